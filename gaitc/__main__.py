@@ -1,0 +1,7 @@
+"""``python -m gaitc``."""
+
+import sys
+
+from gaitc.cli import main
+
+sys.exit(main())

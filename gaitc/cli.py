@@ -1,0 +1,69 @@
+"""The ``gaitc`` command line: parse arguments, dispatch to a command module, print errors.
+
+Exit codes (shared by every subcommand unless its help says otherwise):
+0 success, 1 a user error in an input file, 2 a usage error, 3 unrealizable
+(``check``/``synth``), 4 the solver could not finish (timeout, memory, SLUGS failure).
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from collections.abc import Sequence
+
+from gaitc.commands import COMMAND_MODULES
+from slugs_bridge.diagnostics import GaitcError, UsageError, render_error
+
+EXIT_OK = 0
+EXIT_USER_ERROR = 1
+EXIT_USAGE = 2
+EXIT_UNREALIZABLE = 3
+EXIT_SOLVER_FAILURE = 4
+
+
+class _Parser(argparse.ArgumentParser):
+    def error(self, message: str) -> None:  # type: ignore[override]
+        raise UsageError(message)
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = _Parser(
+        prog="gaitc",
+        description="Compile .gait robot specifications to GR(1), synthesize and run controllers.",
+    )
+    from gaitc import __version__
+
+    parser.add_argument("--version", action="version", version=f"gaitc {__version__}")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
+    for module in COMMAND_MODULES:
+        module.register(sub)
+    return parser
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Run gaitc with ``argv`` (default: ``sys.argv[1:]``) and return the exit code."""
+    parser = build_parser()
+    try:
+        args = parser.parse_args(list(sys.argv[1:] if argv is None else argv))
+        if getattr(args, "run", None) is None:
+            parser.print_help(sys.stderr)
+            return EXIT_USAGE
+        code: int = args.run(args)
+        return code
+    except UsageError as err:
+        print(f"gaitc: usage error: {err.message}", file=sys.stderr)
+        return EXIT_USAGE
+    except GaitcError as err:
+        print(render_error(err), file=sys.stderr)
+        from slugs_bridge.diagnostics import SolverError
+
+        return EXIT_SOLVER_FAILURE if isinstance(err, SolverError) else EXIT_USER_ERROR
+    except KeyboardInterrupt:
+        print("gaitc: interrupted", file=sys.stderr)
+        return 130
+    except BrokenPipeError:
+        return EXIT_OK
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

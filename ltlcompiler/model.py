@@ -1,0 +1,116 @@
+"""The checked robot-and-task model: what a .gait file means once names are resolved.
+
+The semantic checker builds a :class:`Model` from the syntax tree; the lowering turns
+it into a :class:`~slugs_bridge.spec.GR1Spec` (thesis eqs. 3.3-3.9).  The simulator
+and renderer read it to decode controller states into regions, gaits and health.
+
+Atoms of user formulas (``Model.assumptions``/``guarantees``) use one namespace:
+``Var(region)`` is "the robot is in region", ``Var(gait)`` "gait is selected",
+``Var(hazard)`` "hazard set is active", and ``Compare(op, IntVar(leg), IntConst(k))``
+compares a leg's health level (1 = failed, ``health`` = full).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from enum import Enum
+
+from slugs_bridge.diagnostics import Span
+from slugs_bridge.formula import Expr
+
+NO_GAIT = "noGait"
+
+
+class GaitKind(Enum):
+    MOVE = "move"  # uses legs; may degrade them (eq. 3.5)
+    CORRECTION = "correction"  # orientation adjustment: uses no health (section 3.4.1)
+    NONE = "none"  # the implicit noGait
+
+
+class Section(Enum):
+    """Where a free-form formula goes: init, trans (□) or liveness (□◇)."""
+
+    INIT = "init"
+    TRANS = "trans"
+    LIVENESS = "liveness"
+
+
+def _span() -> Span | None:
+    return field(default=None, compare=False, repr=False)  # type: ignore[no-any-return]
+
+
+@dataclass(frozen=True)
+class Leg:
+    name: str
+    health: int  # number of health levels h_i; 1 = permanently failed
+    initial: int  # initial health level (default: health, i.e. full)
+    span: Span | None = _span()
+
+
+@dataclass(frozen=True)
+class Gait:
+    name: str
+    kind: GaitKind
+    legs: tuple[str, ...]  # L_G(g), sorted in declaration order of legs
+    span: Span | None = _span()
+
+
+@dataclass(frozen=True)
+class Region:
+    name: str
+    row: int | None = None  # grid coordinates when the region is a grid cell
+    col: int | None = None
+    span: Span | None = _span()
+
+
+@dataclass(frozen=True)
+class Transition:
+    """(source, target) ∈ τ with D_τ(source, target) = gaits; self-loops included."""
+
+    source: str
+    target: str
+    gaits: tuple[str, ...]
+    span: Span | None = _span()
+
+
+@dataclass(frozen=True)
+class Hazard:
+    name: str
+    regions: tuple[str, ...]  # F_T(t)
+    span: Span | None = _span()
+
+
+@dataclass(frozen=True)
+class UserFormula:
+    """A free-form assume/guarantee, already checked to be GR(1); ``formula`` may contain Next."""
+
+    section: Section
+    formula: Expr
+    span: Span | None = _span()
+
+
+@dataclass(frozen=True)
+class Model:
+    name: str
+    legs: tuple[Leg, ...]
+    gaits: tuple[Gait, ...]  # includes noGait, last
+    regions: tuple[Region, ...]
+    transitions: tuple[Transition, ...]  # sorted by (region order of source, of target)
+    caches: tuple[str, ...]
+    hazards: tuple[Hazard, ...]
+    start: str
+    goals: tuple[UserFormula, ...]  # sys liveness from goal statements (□◇ region ...)
+    assumptions: tuple[UserFormula, ...]
+    guarantees: tuple[UserFormula, ...]
+    grid: tuple[int, int] | None = None  # (rows, columns) when declared with a grid
+    file: str = field(default="", compare=False)
+
+    def leg(self, name: str) -> Leg:
+        return next(leg for leg in self.legs if leg.name == name)
+
+    def gait(self, name: str) -> Gait:
+        return next(g for g in self.gaits if g.name == name)
+
+    def gaits_using(self, leg: str) -> tuple[str, ...]:
+        """G_L(leg): the gaits that use ``leg``."""
+        return tuple(g.name for g in self.gaits if leg in g.legs)

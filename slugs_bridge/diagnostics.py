@@ -1,0 +1,135 @@
+"""User-facing errors and warnings: one exception family, each carrying a source span.
+
+Every stage of gaitc (the .gait front end, the SLUGS format readers, the solver,
+the simulator) raises subclasses of :class:`GaitcError`; the CLI turns them into
+``file:line:col: message`` followed by the source line and a caret.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+
+@dataclass(frozen=True)
+class Span:
+    """A region of a source file; lines and columns count from 1, ``end_*`` is inclusive."""
+
+    file: str
+    line: int
+    column: int
+    end_line: int | None = None
+    end_column: int | None = None
+
+    def __str__(self) -> str:
+        return f"{self.file}:{self.line}:{self.column}"
+
+
+class GaitcError(Exception):
+    """Base of every error a user can cause; ``span`` locates it when known."""
+
+    kind = "error"
+
+    def __init__(self, message: str, span: Span | None = None, hint: str | None = None) -> None:
+        super().__init__(message)
+        self.message = message
+        self.span = span
+        self.hint = hint
+
+    def __str__(self) -> str:
+        where = f"{self.span}: " if self.span is not None else ""
+        return f"{where}{self.message}"
+
+
+class SpecSyntaxError(GaitcError):
+    """A .gait file does not parse."""
+
+
+class SpecSemanticError(GaitcError):
+    """A .gait file parses but says something inconsistent (unknown name, bad range, ...)."""
+
+
+class FormulaError(GaitcError):
+    """A formula is malformed or lies outside the GR(1) fragment."""
+
+
+class SlugsFormatError(GaitcError):
+    """A .slugsin or .structuredslugs file is malformed."""
+
+
+class ControllerError(GaitcError):
+    """A controller file is malformed or does not belong to the given specification."""
+
+
+class SolverError(GaitcError):
+    """Synthesis could not finish (timeout, memory limit, missing or failing SLUGS binary)."""
+
+
+class ScenarioError(GaitcError):
+    """A simulation scenario is malformed or asks for a step the assumptions forbid."""
+
+
+class UsageError(GaitcError):
+    """The command line asks for something that cannot be done (exit code 2)."""
+
+
+@dataclass(frozen=True)
+class Diagnostic:
+    """A non-fatal finding (a warning), reported with the same layout as errors."""
+
+    message: str
+    span: Span | None = None
+    severity: str = "warning"
+    hint: str | None = None
+
+
+def _source_line(span: Span, sources: dict[str, str] | None) -> str | None:
+    text: str | None = None
+    if sources is not None and span.file in sources:
+        text = sources[span.file]
+    else:
+        try:
+            text = Path(span.file).read_text(encoding="utf-8", errors="replace")
+        except OSError:
+            return None
+    lines = text.splitlines()
+    if 1 <= span.line <= len(lines):
+        return lines[span.line - 1]
+    return None
+
+
+def render(
+    message: str,
+    span: Span | None,
+    severity: str = "error",
+    hint: str | None = None,
+    sources: dict[str, str] | None = None,
+) -> str:
+    """Format a message as ``file:line:col: severity: message``, source line and caret."""
+    if span is None:
+        out = [f"gaitc: {severity}: {message}"]
+    else:
+        out = [f"{span}: {severity}: {message}"]
+        line = _source_line(span, sources)
+        if line is not None:
+            col = max(span.column, 1)
+            width = 1
+            if span.end_line == span.line and span.end_column is not None:
+                width = max(1, span.end_column - col + 1)
+            width = min(width, max(1, len(line) - col + 1))
+            expanded = line.replace("\t", " ")
+            out.append(f"    {expanded}")
+            out.append("    " + " " * (col - 1) + "^" * width)
+    if hint:
+        out.append(f"  hint: {hint}")
+    return "\n".join(out)
+
+
+def render_error(err: GaitcError, sources: dict[str, str] | None = None) -> str:
+    """Format a :class:`GaitcError` for the terminal."""
+    return render(err.message, err.span, "error", err.hint, sources)
+
+
+def render_diagnostic(diag: Diagnostic, sources: dict[str, str] | None = None) -> str:
+    """Format a :class:`Diagnostic` for the terminal."""
+    return render(diag.message, diag.span, diag.severity, diag.hint, sources)
