@@ -48,11 +48,23 @@ class Leg:
 
 
 @dataclass(frozen=True)
+class Primitive:
+    """The valve sequence bound to a gait: inline, or synthesised from a robot file."""
+
+    valves: tuple[str, ...] = ()  # inline valve states, each a string of 0/1 per chamber
+    robot: str | None = None  # path of a robot YAML file (relative to the .gait file)
+    direction: str | None = None  # requested direction for synthesis, e.g. "+x"
+    method: str | None = None  # gait-graph method: full | random | reset
+    span: Span | None = _span()
+
+
+@dataclass(frozen=True)
 class Gait:
     name: str
     kind: GaitKind
     legs: tuple[str, ...]  # L_G(g), sorted in declaration order of legs
     span: Span | None = _span()
+    primitive: Primitive | None = None
 
 
 @dataclass(frozen=True)
