@@ -35,16 +35,12 @@ class Section(Enum):
     LIVENESS = "liveness"
 
 
-def _span() -> Span | None:
-    return field(default=None, compare=False, repr=False)  # type: ignore[no-any-return]
-
-
 @dataclass(frozen=True)
 class Leg:
     name: str
     health: int  # number of health levels h_i; 1 = permanently failed
     initial: int  # initial health level (default: health, i.e. full)
-    span: Span | None = _span()
+    span: Span | None = field(default=None, compare=False, repr=False)
 
 
 @dataclass(frozen=True)
@@ -55,7 +51,7 @@ class Primitive:
     robot: str | None = None  # path of a robot YAML file (relative to the .gait file)
     direction: str | None = None  # requested direction for synthesis, e.g. "+x"
     method: str | None = None  # gait-graph method: full | random | reset
-    span: Span | None = _span()
+    span: Span | None = field(default=None, compare=False, repr=False)
 
 
 @dataclass(frozen=True)
@@ -63,7 +59,7 @@ class Gait:
     name: str
     kind: GaitKind
     legs: tuple[str, ...]  # L_G(g), sorted in declaration order of legs
-    span: Span | None = _span()
+    span: Span | None = field(default=None, compare=False, repr=False)
     primitive: Primitive | None = None
 
 
@@ -72,7 +68,7 @@ class Region:
     name: str
     row: int | None = None  # grid coordinates when the region is a grid cell
     col: int | None = None
-    span: Span | None = _span()
+    span: Span | None = field(default=None, compare=False, repr=False)
 
 
 @dataclass(frozen=True)
@@ -82,14 +78,14 @@ class Transition:
     source: str
     target: str
     gaits: tuple[str, ...]
-    span: Span | None = _span()
+    span: Span | None = field(default=None, compare=False, repr=False)
 
 
 @dataclass(frozen=True)
 class Hazard:
     name: str
     regions: tuple[str, ...]  # F_T(t)
-    span: Span | None = _span()
+    span: Span | None = field(default=None, compare=False, repr=False)
 
 
 @dataclass(frozen=True)
@@ -98,7 +94,7 @@ class UserFormula:
 
     section: Section
     formula: Expr
-    span: Span | None = _span()
+    span: Span | None = field(default=None, compare=False, repr=False)
 
 
 @dataclass(frozen=True)

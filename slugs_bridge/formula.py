@@ -319,7 +319,7 @@ def simplify(expr: Expr) -> Expr:
             if isinstance(arg, Const):
                 return Const(not arg.value, span=node.span)
             if isinstance(arg, Not):
-                return arg.arg  # type: ignore[no-any-return]
+                return arg.arg
             return Not(arg, span=node.span)
         if isinstance(node, (And, Or)):
             is_and = isinstance(node, And)
@@ -349,7 +349,7 @@ def simplify(expr: Expr) -> Expr:
             left, right = sub(node.left), sub(node.right)
             if isinstance(node, Implies):
                 if isinstance(left, Const):
-                    return right if left.value else Const(True, span=node.span)  # type: ignore[no-any-return]
+                    return right if left.value else Const(True, span=node.span)
                 if isinstance(right, Const):
                     return Const(True, span=node.span) if right.value else simplify(Not(left))
                 return Implies(left, right, span=node.span)
@@ -359,7 +359,7 @@ def simplify(expr: Expr) -> Expr:
             for a, b in ((left, right), (right, left)):
                 if isinstance(a, Const):
                     keep = a.value != flip
-                    return b if keep else simplify(Not(b))  # type: ignore[no-any-return]
+                    return b if keep else simplify(Not(b))
             return type(node)(left, right, span=node.span)
         return _map_children(node, sub)
 
