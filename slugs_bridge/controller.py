@@ -1,0 +1,267 @@
+"""Explicit controllers (Mealy strategies and counter-strategies) and their JSON file format.
+
+The layout is a superset of ``slugs --explicitStrategy --jsonOutput`` (see
+``docs/controller-format.md``); :func:`load_controller` reads either, :func:`controller_to_json`
+writes it deterministically.
+"""
+
+from __future__ import annotations
+
+import json
+import re
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from slugs_bridge.diagnostics import ControllerError, Span
+from slugs_bridge.spec import GR1Spec, Variable
+
+FORMAT_VERSION = 1
+KINDS = ("strategy", "counterstrategy")
+_FIRST_BIT = re.compile(r"^(?P<name>.+)@0\.(?P<low>-?\d+)\.(?P<high>-?\d+)$")
+
+
+@dataclass(frozen=True)
+class IntegerVar:
+    """An integer variable stored little-endian in ``bits`` (value = ``low`` + unsigned bits)."""
+
+    low: int
+    high: int
+    bits: tuple[str, ...]
+    owner: str  # "env" or "sys"
+
+
+@dataclass(frozen=True)
+class ControllerNode:
+    """One automaton node: the goal index it pursues, its bit vector, its successors."""
+
+    rank: int
+    state: tuple[int, ...]
+    trans: tuple[int, ...]
+
+
+@dataclass(frozen=True)
+class Controller:
+    """An explicit automaton over the bits in ``variables``; node ``k`` is ``nodes[k]``."""
+
+    variables: tuple[str, ...]
+    inputs: tuple[str, ...]
+    outputs: tuple[str, ...]
+    nodes: tuple[ControllerNode, ...]
+    initial: tuple[int, ...]
+    integers: Mapping[str, IntegerVar] = field(default_factory=dict)
+    kind: str = "strategy"
+    solver: str = "embedded"
+    semantics: str = "default"
+    source: Mapping[str, str] | None = None
+    slugs_version: str = "0.0.1"
+
+    def bit_values(self, node: int) -> dict[str, int]:
+        """The bits of ``node`` by name."""
+        return dict(zip(self.variables, self.nodes[node].state, strict=True))
+
+    def values(self, node: int) -> dict[str, int]:
+        """``node`` decoded: Booleans as 0/1 under their names, integers by value."""
+        bits = self.bit_values(node)
+        in_integer = {b for iv in self.integers.values() for b in iv.bits}
+        out = {name: v for name, v in bits.items() if name not in in_integer}
+        for name, iv in self.integers.items():
+            out[name] = iv.low + sum(bits[b] << k for k, b in enumerate(iv.bits))
+        return out
+
+    def successors(self, node: int) -> tuple[int, ...]:
+        return self.nodes[node].trans
+
+
+def integers_of(bit_names: tuple[str, ...], inputs: frozenset[str]) -> dict[str, IntegerVar]:
+    """Recognise SLUGS integer encodings (``x@0.MIN.MAX``, ``x@1``, ...) among bit names."""
+    out: dict[str, IntegerVar] = {}
+    present = set(bit_names)
+    for bit in bit_names:
+        m = _FIRST_BIT.match(bit)
+        if m is None:
+            continue
+        name, low, high = m.group("name"), int(m.group("low")), int(m.group("high"))
+        bits = [bit]
+        k = 1
+        while f"{name}@{k}" in present:
+            bits.append(f"{name}@{k}")
+            k += 1
+        out[name] = IntegerVar(low, high, tuple(bits), "env" if bit in inputs else "sys")
+    return out
+
+
+def spec_bits(spec: GR1Spec) -> tuple[tuple[str, ...], tuple[str, ...]]:
+    """The bit names of a spec's inputs and outputs, in SLUGS order."""
+
+    def bits(v: Variable) -> list[str]:
+        if not v.is_integer:
+            return [v.name]
+        first = f"{v.name}@0.{v.low}.{v.high}"
+        return [first] + [f"{v.name}@{k}" for k in range(1, v.bits)]
+
+    ins = tuple(b for v in spec.inputs for b in bits(v))
+    outs = tuple(b for v in spec.outputs for b in bits(v))
+    return ins, outs
+
+
+# ---------------------------------------------------------------- writing
+def controller_to_dict(c: Controller) -> dict[str, Any]:
+    """The JSON object of ``c`` (see docs/controller-format.md)."""
+    extras: dict[str, Any] = {
+        "format": FORMAT_VERSION,
+        "solver": c.solver,
+        "semantics": c.semantics,
+        "kind": c.kind,
+        "inputs": list(c.inputs),
+        "outputs": list(c.outputs),
+        "integers": {
+            name: {"low": iv.low, "high": iv.high, "bits": list(iv.bits), "owner": iv.owner}
+            for name, iv in sorted(c.integers.items())
+        },
+        "initial": list(c.initial),
+        "values": {str(k): c.values(k) for k in range(len(c.nodes))},
+    }
+    if c.source is not None:
+        extras["source"] = dict(c.source)
+    return {
+        "version": 0,
+        "slugs": c.slugs_version,
+        "variables": list(c.variables),
+        "nodes": {
+            str(k): {"rank": n.rank, "state": list(n.state), "trans": list(n.trans)}
+            for k, n in enumerate(c.nodes)
+        },
+        "gaitc": extras,
+    }
+
+
+def _dump(value: Any, depth: int, level: int = 0) -> str:
+    """JSON with objects expanded down to ``depth`` levels and everything deeper on one line."""
+    if isinstance(value, dict) and value and depth > 0:
+        pad = " " * (level + 1)
+        items = [
+            f"{pad}{json.dumps(k)}: {_dump(v, depth - 1, level + 1)}" for k, v in value.items()
+        ]
+        return "{\n" + ",\n".join(items) + "\n" + " " * level + "}"
+    return json.dumps(value, sort_keys=True)
+
+
+def controller_to_json(c: Controller) -> str:
+    """Deterministic JSON text of ``c`` (one node per line), ending in a newline."""
+    return _dump(controller_to_dict(c), 2) + "\n"
+
+
+# ---------------------------------------------------------------- reading
+def _need(cond: bool, message: str, span: Span) -> None:
+    if not cond:
+        raise ControllerError(message, span, hint="regenerate it with 'gaitc synth -o FILE'")
+
+
+def controller_from_dict(
+    data: Any, filename: str = "<controller>", spec: GR1Spec | None = None
+) -> Controller:
+    """Check and convert a parsed JSON object (``spec`` splits I/O for raw SLUGS files)."""
+    span = Span(filename, 1, 1)
+    _need(isinstance(data, dict), "a controller file must hold one JSON object", span)
+    variables = data.get("variables")
+    _need(
+        isinstance(variables, list) and all(isinstance(v, str) for v in variables),
+        "'variables' must be a list of bit names",
+        span,
+    )
+    raw_nodes = data.get("nodes")
+    _need(isinstance(raw_nodes, dict), "'nodes' must be an object mapping node ids to nodes", span)
+    count = len(raw_nodes)
+    nodes: list[ControllerNode] = []
+    for k in range(count):
+        raw = raw_nodes.get(str(k))
+        _need(raw is not None, f"node ids must be 0..{count - 1}; node {k} is missing", span)
+        _need(isinstance(raw, dict), f"node {k} must be an object", span)
+        state, trans, rank = raw.get("state"), raw.get("trans"), raw.get("rank", 0)
+        _need(
+            isinstance(state, list)
+            and len(state) == len(variables)
+            and all(b in (0, 1) and not isinstance(b, bool) for b in state),
+            f"node {k}: 'state' must list one 0/1 value per variable ({len(variables)})",
+            span,
+        )
+        _need(
+            isinstance(trans, list)
+            and all(
+                isinstance(t, int) and not isinstance(t, bool) and 0 <= t < count for t in trans
+            ),
+            f"node {k}: 'trans' must list node ids between 0 and {count - 1}",
+            span,
+        )
+        _need(isinstance(rank, int), f"node {k}: 'rank' must be an integer", span)
+        nodes.append(ControllerNode(rank, tuple(state), tuple(sorted(set(trans)))))
+    extras = data.get("gaitc")
+    names = tuple(variables)
+    if isinstance(extras, dict):
+        inputs = tuple(extras.get("inputs", ()))
+        outputs = tuple(extras.get("outputs", ()))
+        _need(
+            set(inputs) | set(outputs) == set(names) and not set(inputs) & set(outputs),
+            "'gaitc.inputs' and 'gaitc.outputs' must split 'variables' between the players",
+            span,
+        )
+        initial = extras.get("initial", [])
+        _need(
+            isinstance(initial, list)
+            and all(isinstance(t, int) and 0 <= t < count for t in initial),
+            "'gaitc.initial' must list node ids",
+            span,
+        )
+        kind = extras.get("kind", "strategy")
+        _need(kind in KINDS, f"'gaitc.kind' must be one of {', '.join(KINDS)}", span)
+        source = extras.get("source")
+        return Controller(
+            variables=names,
+            inputs=inputs,
+            outputs=outputs,
+            nodes=tuple(nodes),
+            initial=tuple(initial),
+            integers=integers_of(names, frozenset(inputs)),
+            kind=kind,
+            solver=str(extras.get("solver", "embedded")),
+            semantics=str(extras.get("semantics", "default")),
+            source=dict(source) if isinstance(source, dict) else None,
+            slugs_version=str(data.get("slugs", "0.0.1")),
+        )
+    _need(spec is not None, "this SLUGS controller has no 'gaitc' section; give its spec", span)
+    assert spec is not None
+    ins, outs = spec_bits(spec)
+    _need(
+        set(ins) | set(outs) == set(names),
+        "the controller's variables do not match the specification's inputs and outputs",
+        span,
+    )
+    return Controller(
+        variables=names,
+        inputs=tuple(n for n in names if n in set(ins)),
+        outputs=tuple(n for n in names if n in set(outs)),
+        nodes=tuple(nodes),
+        initial=(),
+        integers=integers_of(names, frozenset(ins)),
+        solver="slugs",
+        slugs_version=str(data.get("slugs", "0.0.1")),
+    )
+
+
+def load_controller(path: str, spec: GR1Spec | None = None) -> Controller:
+    """Read a controller JSON file; raises :class:`ControllerError` when it is malformed."""
+    try:
+        text = Path(path).read_text(encoding="utf-8")
+    except OSError as err:
+        raise ControllerError(
+            f"cannot read controller file: {err.strerror}", Span(path, 1, 1)
+        ) from None
+    try:
+        data = json.loads(text)
+    except json.JSONDecodeError as err:
+        raise ControllerError(
+            f"not valid JSON: {err.msg}", Span(path, err.lineno, err.colno)
+        ) from None
+    return controller_from_dict(data, path, spec)
