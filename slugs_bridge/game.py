@@ -1,0 +1,169 @@
+"""The GR(1) fixpoints: the system's winning region and the initial-state check.
+
+Implements the three-nested fixpoint of Bloem, Jobstmann, Piterman, Pnueli, Sa'ar,
+"Synthesis of Reactive(1) designs" (JCSS 78(3), 2012) in SLUGS's transition-based form
+(Ehlers & Raman, CAV 2016): νZ. ∧_j μY. ∨_i νX. CPre((J^s_j ∧ Z') ∨ Y' ∨ (¬J^e_i ∧ X')) with
+CPre(T) = ∀x'. ρe → ∃y'. ρs ∧ T, liveness goals evaluated on the transition, inner X
+fixpoints recycled across Z rounds (Browne, Clarke, Jha, Long, Marrero 1997).
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, field
+
+import dd.cudd as cudd
+
+from slugs_bridge.diagnostics import SolverError
+from slugs_bridge.symbolic import BDDNode, SymbolicSpec
+
+SEMANTICS = ("default", "robotics")
+Progress = Callable[[str], None]
+
+
+@dataclass
+class Limits:
+    """A wall-clock deadline and a progress callback, checked inside the fixpoint loops."""
+
+    timeout: float | None = None
+    progress: Progress | None = None
+    started: float = field(default_factory=time.monotonic)
+
+    def check(self) -> None:
+        if self.timeout is not None and time.monotonic() - self.started > self.timeout:
+            raise SolverError(
+                f"synthesis stopped after the time limit of {self.timeout:g} s",
+                hint="raise --timeout, or simplify the specification (fewer grid cells or "
+                "health levels, the binary encoding)",
+            )
+
+    def report(self, message: str) -> None:
+        if self.progress is not None:
+            self.progress(message)
+
+
+@dataclass
+class GameStats:
+    z_iterations: int = 0
+    y_iterations: int = 0
+    x_iterations: int = 0
+    peak_nodes: int = 0
+    winning_nodes: int = 0
+
+
+@dataclass
+class GameResult:
+    """The winning region and, when asked for, the per-goal transition layers of the last round.
+
+    ``layers[j]`` lists, ring by ring and for each environment goal, the transitions
+    (over pre and post variables, without ρs) that make progress towards system goal ``j``.
+    """
+
+    winning: BDDNode
+    layers: list[list[BDDNode]]
+    stats: GameStats
+
+
+class Game:
+    """The GR(1) game of a :class:`SymbolicSpec`: controllable predecessors and fixpoints."""
+
+    def __init__(self, sym: SymbolicSpec, limits: Limits | None = None) -> None:
+        self.sym = sym
+        self.limits = limits or Limits()
+        self.stats = GameStats()
+
+    def cpre(self, target: BDDNode) -> BDDNode:
+        """States from which the system can force the next transition into ``target``.
+
+        ``target`` ranges over pre and post variables; the result over pre variables.
+        """
+        sym = self.sym
+        if sym.options.partitioned and len(sym.sys_clusters) > 1:
+            acc = target
+            for cluster, qvars in sym.sys_clusters:
+                acc = cudd.and_exists(acc, cluster, qvars) if qvars else acc & cluster
+            rest = sym.post_outputs & sym.bdd.support(acc)
+            sys_can = sym.bdd.exist(rest, acc) if rest else acc
+        else:
+            sys_can = cudd.and_exists(sym.sys_trans, target, sym.post_outputs)
+        # ∀x'. (∃y'.¬ρe) ∨ sys_can  ==  ¬∃x'. ¬(∃y'.¬ρe) ∧ ¬sys_can
+        return ~cudd.and_exists(~sym.env_blocks, ~sys_can, sym.post_inputs)
+
+    def solve(self, keep_layers: bool = False) -> GameResult:
+        """Compute the winning region; with ``keep_layers``, also the strategy layers."""
+        sym, lim, st = self.sym, self.limits, self.stats
+        bdd = sym.bdd
+        n_goals, n_assm = len(sym.sys_live), len(sym.env_live)
+        recycled: dict[tuple[int, int], BDDNode] = {}
+        z = bdd.true
+        layers: list[list[BDDNode]] = []
+        first_round = True
+        while True:
+            st.z_iterations += 1
+            layers = [[] for _ in range(n_goals)]
+            z_primed = sym.prime(z)
+            next_z = bdd.true
+            for j in range(n_goals):
+                live = sym.sys_live[j] & z_primed
+                y = bdd.false
+                first_middle = True
+                while True:
+                    st.y_iterations += 1
+                    lim.check()
+                    live_or_lower = live | sym.prime(y)
+                    good = y
+                    for i in range(n_assm):
+                        x = z if sym.options.recycle else bdd.true
+                        if sym.options.recycle and first_middle and not first_round:
+                            x = recycled[(j, i)] & z
+                        not_assm = ~sym.env_live[i]
+                        while True:
+                            st.x_iterations += 1
+                            lim.check()
+                            paths = live_or_lower | (sym.prime(x) & not_assm)
+                            new_x = self.cpre(paths)
+                            if sym.options.recycle:
+                                new_x &= z
+                            if new_x == x:
+                                break
+                            x = new_x
+                        good |= x
+                        recycled[(j, i)] = x
+                        if keep_layers:
+                            layers[j].append(paths)
+                    first_middle = False
+                    if good == y:
+                        break
+                    y = good
+                next_z &= y
+                self._track(
+                    f"Z round {st.z_iterations}, goal {j + 1}/{n_goals}: |Y| = {y.dag_size}"
+                )
+            first_round = False
+            if next_z == z:
+                break
+            z = next_z
+        st.winning_nodes = z.dag_size
+        return GameResult(z, layers, st)
+
+    def _track(self, message: str) -> None:
+        nodes = self.sym.node_count()
+        self.stats.peak_nodes = max(self.stats.peak_nodes, nodes)
+        self.limits.report(f"{message}, {nodes} live BDD nodes")
+
+    def initially_winning(self, winning: BDDNode, semantics: str) -> bool:
+        """The initial-state condition of SLUGS.
+
+        default: ∀x. θe → ∃y. θs ∧ W;  robotics (``--sysInitRoboticsSemantics``):
+        ∀x, y. θe ∧ θs → W.
+        """
+        sym = self.sym
+        if semantics == "robotics":
+            bad = sym.env_init & sym.sys_init & ~winning
+        elif semantics == "default":
+            good = sym.bdd.exist(sym.pre_outputs, sym.sys_init & winning)
+            bad = sym.env_init & ~good
+        else:
+            raise ValueError(f"unknown semantics {semantics!r}")
+        return bool(bad == sym.bdd.false)

@@ -1,0 +1,314 @@
+"""The symbolic game: a CUDD BDD manager, the variable order, and a GR(1) spec as BDDs.
+
+Each bit sits next to its primed copy and the bits of an integer stay together, as in SLUGS
+(Ehlers & Raman, CAV 2016); integers follow SLUGS's little-endian encoding ``x@0.MIN.MAX``,
+``x@1``, ... with value = MIN + bits, and non-power-of-two ranges get SLUGS's range constraints.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Iterable, Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import dd.cudd as cudd
+
+from slugs_bridge.controller import spec_bits
+from slugs_bridge.diagnostics import FormulaError
+from slugs_bridge.formula import (
+    Add,
+    And,
+    Compare,
+    Const,
+    Expr,
+    Iff,
+    Implies,
+    IntConst,
+    IntVar,
+    Node,
+    Not,
+    Or,
+    Term,
+    Var,
+    Xor,
+    atoms,
+)
+from slugs_bridge.spec import GR1Spec, Variable
+
+BDDNode = Any  # a dd.cudd.Function; dd ships no type stubs
+ORDERS = ("declaration", "occurrence")
+
+
+@dataclass
+class Options:
+    """Tuning switches of the symbolic solver (each measured in bench/bench_solver.py)."""
+
+    order: str = "occurrence"  # "declaration": inputs then outputs; "occurrence": related first
+    reordering: bool = False  # CUDD dynamic reordering (sifting) while solving
+    partitioned: bool = True  # keep ρs as a list of clusters and quantify early
+    recycle: bool = True  # start inner X fixpoints from the previous round's values
+    cluster_limit: int = 2500  # node limit when merging ρs parts into clusters
+    memory_mb: int | None = None  # CUDD max memory
+
+
+def _var_order(spec: GR1Spec, how: str) -> list[Variable]:
+    declared = list(spec.inputs) + list(spec.outputs)
+    if how == "declaration":
+        return declared
+    by_name = {v.name: v for v in declared}
+    seen: dict[str, None] = {}
+    for section in (
+        "sys_trans",
+        "env_trans",
+        "env_init",
+        "sys_init",
+        "sys_liveness",
+        "env_liveness",
+    ):
+        for clause in spec.section(section):
+            for name, _ in sorted(atoms(clause.formula)):
+                if name in by_name:
+                    seen.setdefault(name, None)
+    for v in declared:
+        seen.setdefault(v.name, None)
+    return [by_name[n] for n in seen]
+
+
+class SymbolicSpec:
+    """A GR(1) spec over a BDD manager: pre/post copies of every bit and the sections as BDDs."""
+
+    def __init__(self, spec: GR1Spec, options: Options | None = None) -> None:
+        self.spec = spec
+        self.options = options or Options()
+        self.bdd = cudd.BDD()
+        self.bdd.configure(reordering=False)
+        if self.options.memory_mb is not None:
+            self.bdd.configure(max_memory=self.options.memory_mb * 1024 * 1024)
+        self.input_bits, self.output_bits = spec_bits(spec)
+        self.var_bits: dict[str, list[str]] = {}
+        ins, outs = iter(self.input_bits), iter(self.output_bits)
+        for v in spec.inputs:
+            self.var_bits[v.name] = [next(ins) for _ in range(v.bits if v.is_integer else 1)]
+        for v in spec.outputs:
+            self.var_bits[v.name] = [next(outs) for _ in range(v.bits if v.is_integer else 1)]
+        self.variables = {v.name: v for v in spec.variables()}
+        order: list[str] = []
+        for v in _var_order(spec, self.options.order):
+            for bit in self.var_bits[v.name]:
+                order += [bit, bit + "'"]
+        self.bdd.declare(*order)
+        self.prime_map = {b: b + "'" for b in self.input_bits + self.output_bits}
+        self.unprime_map = {p: b for b, p in self.prime_map.items()}
+        self.pre_inputs = set(self.input_bits)
+        self.pre_outputs = set(self.output_bits)
+        self.post_inputs = {b + "'" for b in self.input_bits}
+        self.post_outputs = {b + "'" for b in self.output_bits}
+        self._memo: dict[tuple[int, bool], tuple[Node, BDDNode]] = {}
+        self._build()
+        if self.options.reordering:
+            self.bdd.configure(reordering=True)
+
+    # ------------------------------------------------------------ building
+    def _build(self) -> None:
+        s = self.spec
+        true = self.bdd.true
+        env_range_init, env_range_trans, sys_range_init, sys_range_trans = [], [], [], []
+        for v in s.inputs + s.outputs:
+            if v.is_integer and v.low is not None and v.high is not None:
+                width = v.high - v.low + 1
+                if width != 1 << len(self.var_bits[v.name]):
+                    now = self._range(v, width, False)
+                    nxt = self._range(v, width, True)
+                    if v in s.inputs:
+                        env_range_init.append(now)
+                        env_range_trans.append(nxt)
+                    else:
+                        sys_range_init.append(now)
+                        sys_range_trans.append(nxt)
+        self.env_init = self._conj([self.translate(c.formula) for c in s.env_init] + env_range_init)
+        self.sys_init = self._conj([self.translate(c.formula) for c in s.sys_init] + sys_range_init)
+        env_parts = [self.translate(c.formula) for c in s.env_trans] + env_range_trans
+        sys_parts = [self.translate(c.formula) for c in s.sys_trans] + sys_range_trans
+        self.env_trans = self._conj(env_parts)
+        self.sys_trans = self._conj(sys_parts)
+        self.sys_clusters = self._cluster(sys_parts)
+        self.env_live = [self.translate(c.formula) for c in s.env_liveness] or [true]
+        self.sys_live = [self.translate(c.formula) for c in s.sys_liveness] or [true]
+        # ∃y'.¬ρe: when ρe does not mention primed outputs this is just ¬ρe.
+        self.env_blocks = self.bdd.exist(self.post_outputs, ~self.env_trans)
+        self._memo.clear()
+
+    def _conj(self, items: Iterable[BDDNode]) -> BDDNode:
+        out = self.bdd.true
+        for item in items:
+            out &= item
+        return out
+
+    def _cluster(self, parts: Sequence[BDDNode]) -> list[tuple[BDDNode, set[str]]]:
+        """Merge ρs parts into clusters; pair each with the primed outputs it may quantify.
+
+        A primed output is quantified after the last cluster that mentions it (early
+        quantification in the style of Burch, Clarke and Long, 1991).
+        """
+        clusters: list[BDDNode] = []
+        current = self.bdd.true
+        for part in sorted(parts, key=lambda p: sorted(self.bdd.support(p))):
+            merged = current & part
+            if current != self.bdd.true and merged.dag_size > self.options.cluster_limit:
+                clusters.append(current)
+                current = part
+            else:
+                current = merged
+        clusters.append(current)
+        supports = [self.bdd.support(c) & self.post_outputs for c in clusters]
+        out: list[tuple[BDDNode, set[str]]] = []
+        for k, cluster in enumerate(clusters):
+            later: set[str] = set().union(*supports[k + 1 :]) if k + 1 < len(supports) else set()
+            out.append((cluster, supports[k] - later))
+        return out
+
+    def _range(self, v: Variable, width: int, primed: bool) -> BDDNode:
+        bits = [self.bit(b, primed) for b in self.var_bits[v.name]]
+        return _less(bits, self._const_bits(width, len(bits)), self.bdd)
+
+    # ------------------------------------------------------------ formulas
+    def bit(self, name: str, primed: bool) -> BDDNode:
+        return self.bdd.var(name + "'" if primed else name)
+
+    def prime(self, u: BDDNode) -> BDDNode:
+        return self.bdd.let(self.prime_map, u)
+
+    def unprime(self, u: BDDNode) -> BDDNode:
+        return self.bdd.let(self.unprime_map, u)
+
+    def translate(self, expr: Expr) -> BDDNode:
+        """The BDD of a formula; shared sub-formulas (DAGs) are translated once."""
+        key = (id(expr), False)
+        hit = self._memo.get(key)
+        if hit is not None:
+            return hit[1]
+        result = self._translate(expr)
+        self._memo[key] = (expr, result)
+        return result
+
+    def _translate(self, e: Expr) -> BDDNode:
+        b = self.bdd
+        if isinstance(e, Const):
+            return b.true if e.value else b.false
+        if isinstance(e, Var):
+            v = self.variables.get(e.name)
+            if v is None:
+                raise FormulaError(f"unknown variable '{e.name}'", e.span)
+            if v.is_integer:
+                raise FormulaError(
+                    f"'{e.name}' is an integer; compare it with a number (e.g. {e.name} = 0)",
+                    e.span,
+                )
+            return self.bit(self.var_bits[e.name][0], e.primed)
+        if isinstance(e, Not):
+            return ~self.translate(e.arg)
+        if isinstance(e, And):
+            return self._conj(self.translate(a) for a in e.args)
+        if isinstance(e, Or):
+            out = b.false
+            for a in e.args:
+                out |= self.translate(a)
+            return out
+        if isinstance(e, Xor):
+            return _xor(self.translate(e.left), self.translate(e.right), b)
+        if isinstance(e, Iff):
+            return ~_xor(self.translate(e.left), self.translate(e.right), b)
+        if isinstance(e, Implies):
+            return ~self.translate(e.left) | self.translate(e.right)
+        if isinstance(e, Compare):
+            return self._compare(e)
+        raise FormulaError(
+            f"'{type(e).__name__}' cannot appear in a GR(1) section; rewrite it without "
+            "temporal operators",
+            e.span,
+        )
+
+    # ------------------------------------------------------------ integer arithmetic
+    def _const_bits(self, value: int, width: int = 0) -> list[BDDNode]:
+        out: list[BDDNode] = []
+        while value > 0 or len(out) < width:
+            out.append(self.bdd.true if value & 1 else self.bdd.false)
+            value >>= 1
+        return out
+
+    def _term(self, t: Term) -> tuple[list[BDDNode], int]:
+        """A term as (unsigned little-endian bit vector, offset): value = bits + offset."""
+        if isinstance(t, IntConst):
+            return [], t.value
+        if isinstance(t, IntVar):
+            v = self.variables.get(t.name)
+            if v is None:
+                raise FormulaError(f"unknown variable '{t.name}'", t.span)
+            bits = [self.bit(bit, t.primed) for bit in self.var_bits[t.name]]
+            return bits, v.low if v.low is not None else 0
+        if isinstance(t, Add):
+            lb, lo = self._term(t.left)
+            rb, ro = self._term(t.right)
+            return _add(lb, rb, self.bdd), lo + ro
+        raise FormulaError(f"unsupported integer term {type(t).__name__}", t.span)
+
+    def _compare(self, e: Compare) -> BDDNode:
+        a, oa = self._term(e.left)
+        c, oc = self._term(e.right)
+        d = oa - oc
+        if d > 0:
+            a = _add(a, self._const_bits(d), self.bdd)
+        elif d < 0:
+            c = _add(c, self._const_bits(-d), self.bdd)
+        n = max(len(a), len(c))
+        a = a + [self.bdd.false] * (n - len(a))
+        c = c + [self.bdd.false] * (n - len(c))
+        eq = self._conj(~_xor(x, y, self.bdd) for x, y in zip(a, c, strict=True))
+        ops: dict[str, Callable[[], BDDNode]] = {
+            "=": lambda: eq,
+            "!=": lambda: ~eq,
+            "<": lambda: _less(a, c, self.bdd),
+            "<=": lambda: _less(a, c, self.bdd) | eq,
+            ">": lambda: _less(c, a, self.bdd),
+            ">=": lambda: _less(c, a, self.bdd) | eq,
+        }
+        if e.op not in ops:
+            raise FormulaError(f"unknown comparison '{e.op}'", e.span)
+        return ops[e.op]()
+
+    # ------------------------------------------------------------ helpers for the game
+    def node_count(self) -> int:
+        return len(self.bdd)
+
+    def assignment_cube(self, values: dict[str, bool]) -> BDDNode:
+        return self.bdd.cube(values)
+
+
+def _xor(u: BDDNode, v: BDDNode, bdd: Any) -> BDDNode:
+    return bdd.ite(u, ~v, v)
+
+
+def _add(a: list[BDDNode], b: list[BDDNode], bdd: Any) -> list[BDDNode]:
+    """Ripple-carry sum of two unsigned bit vectors; one bit wider than the longer one."""
+    n = max(len(a), len(b))
+    a = a + [bdd.false] * (n - len(a))
+    b = b + [bdd.false] * (n - len(b))
+    carry = bdd.false
+    out: list[BDDNode] = []
+    for x, y in zip(a, b, strict=True):
+        half = _xor(x, y, bdd)
+        out.append(_xor(half, carry, bdd))
+        carry = (x & y) | (carry & half)
+    out.append(carry)
+    return out
+
+
+def _less(a: list[BDDNode], b: list[BDDNode], bdd: Any) -> BDDNode:
+    """Unsigned ``a < b`` for bit vectors of equal length (little-endian)."""
+    n = max(len(a), len(b))
+    a = a + [bdd.false] * (n - len(a))
+    b = b + [bdd.false] * (n - len(b))
+    lt = bdd.false
+    for x, y in zip(a, b, strict=True):
+        lt = (~x & y) | (~_xor(x, y, bdd) & lt)
+    return lt
