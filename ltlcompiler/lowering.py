@@ -1,0 +1,257 @@
+"""Lowering: the checked :class:`Model` to a :class:`GR1Spec` (thesis eqs. 3.3-3.9).
+
+References: thesis chapter 3 — eq. 3.3 (region moves by gait, sys_trans), 3.4 (a failed
+leg forbids its gaits, sys_trans), 3.5 with 3.8's ¬φ_H (degradation of the legs in use,
+env_trans), 3.6 (caches reset health, env_trans), 3.9 (active hazards fail the legs in
+use, env_trans), 3.7 (goals, sys_liveness); plus the mutual exclusions the thesis omits.
+
+Choices beyond the thesis (documented in docs/lowering.md terms, here for the reader):
+* noGait only stays in place: every region gets the move "stay by noGait", and noGait
+  never appears on an edge between two different regions (the checker forbids it).
+* A gait moves only along τ with a gait listed in D_τ; nothing else is allowed.
+* A correction gait needs its legs (eq. 3.4 applies) but degrades nothing: its L_G is
+  treated as empty in eqs. 3.5 and 3.9 (thesis section 3.4.1).
+* A leg with one health level is permanently failed; eq. 3.4 keeps its gaits off for
+  ever and caches leave it failed (its only level is its full level).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+
+from ltlcompiler.encoding import Encoding, check_names, make_encoding
+from ltlcompiler.model import NO_GAIT, GaitKind, Model, Section, UserFormula
+from slugs_bridge.diagnostics import FormulaError, Span, SpecSemanticError
+from slugs_bridge.formula import (
+    And,
+    Compare,
+    Const,
+    Expr,
+    Iff,
+    Implies,
+    IntConst,
+    IntVar,
+    Not,
+    Or,
+    Term,
+    Var,
+    Xor,
+    atoms,
+    conj,
+    disj,
+    has_primes,
+    push_next,
+)
+from slugs_bridge.spec import Clause, GR1Spec, Origin
+
+
+def lower(model: Model, encoding: str = "onehot") -> GR1Spec:
+    """The GR(1) specification of ``model`` in ``encoding`` ("onehot" or "binary").
+
+    Deterministic: the clause order follows the declaration order of the model.
+    """
+    check_names(model, encoding)
+    return _Lowering(model, make_encoding(model, encoding)).run()
+
+
+class _Lowering:
+    def __init__(self, model: Model, enc: Encoding) -> None:
+        self.model = model
+        self.enc = enc
+        self.sections: dict[str, list[Clause]] = {
+            name: [] for name in ("env_init", "sys_init", "env_trans", "sys_trans",
+                                  "env_liveness", "sys_liveness")
+        }
+        self.region_span = {r.name: r.span for r in model.regions}
+        self.moving = {g.name: (g.legs if g.kind is GaitKind.MOVE else ()) for g in model.gaits}
+
+    def add(self, section: str, formula: Expr, rule: str, span: Span | None) -> None:
+        self.sections[section].append(Clause(formula, Origin(rule, span)))
+
+    def run(self) -> GR1Spec:
+        self.init()
+        self.moves()  # eq. 3.3
+        self.failed_legs()  # eq. 3.4
+        self.degradation()  # eqs. 3.5, 3.8, 3.9
+        self.caches()  # eq. 3.6
+        self.goals()  # eq. 3.7
+        for uf in self.model.assumptions:
+            self.user(uf, "env")
+        for uf in self.model.guarantees:
+            self.user(uf, "sys")
+        s = self.sections
+        return GR1Spec(
+            inputs=self.enc.inputs(), outputs=self.enc.outputs(),
+            env_init=tuple(s["env_init"]), sys_init=tuple(s["sys_init"]),
+            env_trans=tuple(s["env_trans"]), sys_trans=tuple(s["sys_trans"]),
+            env_liveness=tuple(s["env_liveness"]), sys_liveness=tuple(s["sys_liveness"]),
+            name=self.model.name,
+        )
+
+    # ------------------------------------------------------------ init and mutexes
+    def init(self) -> None:
+        m, enc = self.model, self.enc
+        for side, rule, formula in enc.mutex(primed=False):
+            self.add(f"{side}_init", formula, rule, None)
+        for leg in m.legs:
+            self.add("env_init", enc.health(leg.name, leg.initial),
+                     f"init: leg {leg.name} starts at health {leg.initial} of {leg.health}",
+                     leg.span)
+        self.add("sys_init", enc.region(m.start), f"init: start in {m.start}",
+                 self.region_span.get(m.start))
+        self.add("sys_init", enc.gait(NO_GAIT), f"init: start with {NO_GAIT}", None)
+        for side, rule, formula in enc.mutex(primed=True):
+            self.add(f"{side}_trans", formula, rule, None)
+
+    # ------------------------------------------------------------ eq. 3.3
+    def moves(self) -> None:
+        enc = self.enc
+        targets: dict[str, dict[str, list[str]]] = {r.name: {} for r in self.model.regions}
+        for t in self.model.transitions:
+            if t.source != t.target and NO_GAIT in t.gaits:
+                raise SpecSemanticError(
+                    f"{NO_GAIT} cannot move the robot from {t.source} to {t.target}: it only "
+                    "stays in place; list a moving gait for this edge", t.span)
+            gaits = targets[t.source].setdefault(t.target, [])
+            gaits.extend(g for g in t.gaits if g not in gaits)
+        for region in self.model.regions:
+            out = targets[region.name]
+            stay = out.setdefault(region.name, [])
+            if NO_GAIT not in stay:
+                stay.append(NO_GAIT)
+            options: list[Expr] = []
+            words: list[str] = []
+            for target, gaits in sorted(out.items(), key=lambda kv: self.enc.region_index[kv[0]]):
+                options.append(conj((enc.region(target, True),
+                                     disj(enc.gait(g, True) for g in gaits))))
+                moves = [g for g in gaits if g != NO_GAIT]
+                if moves and target == region.name:
+                    words.append(f"turn in place by {'|'.join(moves)}")
+                elif moves:
+                    words.append(f"move to {target} by {'|'.join(moves)}")
+            words.append(f"or stay by {NO_GAIT}" if words else f"only stay by {NO_GAIT}")
+            rule = f"eq. 3.3: from {region.name} " + ", ".join(words)
+            self.add("sys_trans", Implies(enc.region(region.name), disj(options)), rule,
+                     region.span)
+
+    # ------------------------------------------------------------ eq. 3.4
+    def failed_legs(self) -> None:
+        for leg in self.model.legs:
+            gaits = self.model.gaits_using(leg.name)
+            if not gaits:
+                continue
+            formula = Implies(self.enc.health(leg.name, 1, True),
+                              conj(Not(self.enc.gait(g, True)) for g in gaits))
+            status = "is failed for ever" if leg.health == 1 else "failed"
+            rule = f"eq. 3.4: leg {leg.name} {status} => gaits using {leg.name} " \
+                   f"({', '.join(gaits)}) are off"
+            self.add("sys_trans", formula, rule, leg.span)
+
+    # ------------------------------------------------------------ eqs. 3.5, 3.8, 3.9
+    def not_in_cache(self) -> list[Expr]:
+        return [Not(self.enc.region(c)) for c in self.model.caches]
+
+    def keep_others(self, used: Iterable[str]) -> list[Expr]:
+        skip = set(used)
+        return [self.enc.keep_health(leg.name) for leg in self.model.legs
+                if leg.name not in skip and leg.health > 1]
+
+    def hazard_active(self, hazard: str, regions: Iterable[str]) -> Expr:
+        enc = self.enc
+        return conj((enc.hazard(hazard), disj(enc.region(r) for r in regions)))
+
+    def degradation(self) -> None:
+        enc, m = self.enc, self.model
+        phi_h = disj(self.hazard_active(h.name, h.regions) for h in m.hazards)
+        for gait in m.gaits:
+            legs = [leg for leg in self.moving[gait.name] if m.leg(leg).health > 1]
+            away = conj([enc.gait(gait.name), *self.not_in_cache()])
+            if not legs:
+                why = "uses only failed legs" if self.moving[gait.name] else "degrades no leg"
+                self.add("env_trans", Implies(away, conj(self.keep_others(()))),
+                         f"eq. 3.5: {gait.name} {why}: every leg keeps its health",
+                         gait.span)
+                continue
+            antecedent = conj([away, Not(phi_h)]) if m.hazards else away
+            body = conj([*(enc.degrade_health(leg) for leg in legs), *self.keep_others(legs)])
+            rule = f"eq. 3.5: under {gait.name} legs {', '.join(legs)} may lose one level, " \
+                   "other legs keep theirs"
+            self.add("env_trans", Implies(antecedent, body), rule, gait.span)
+            for hazard in m.hazards:
+                hot = conj([away, self.hazard_active(hazard.name, hazard.regions)])
+                body = conj([*(enc.health(leg, 1, True) for leg in legs),
+                             *self.keep_others(legs)])
+                rule = f"eq. 3.9: hazard {hazard.name} active in {'|'.join(hazard.regions)} " \
+                       f"under {gait.name} fails legs {', '.join(legs)}"
+                self.add("env_trans", Implies(hot, body), rule, hazard.span)
+
+    # ------------------------------------------------------------ eq. 3.6
+    def caches(self) -> None:
+        for cache in self.model.caches:
+            full = conj(self.enc.health(leg.name, leg.health, True)
+                        for leg in self.model.legs if leg.health > 1)
+            self.add("env_trans", Implies(self.enc.region(cache), full),
+                     f"eq. 3.6: cache {cache} resets every leg", self.region_span.get(cache))
+
+    # ------------------------------------------------------------ eq. 3.7 and user formulas
+    def goals(self) -> None:
+        for goal in self.model.goals:
+            formula = self.translate(goal, "sys")
+            what = f"visit {goal.formula.name}" if isinstance(goal.formula, Var) \
+                else describe(goal.formula)
+            self.add("sys_liveness", formula, f"goal{_line(goal.span)}: {what}", goal.span)
+
+    def user(self, uf: UserFormula, side: str) -> None:
+        formula = self.translate(uf, side)
+        word = "assumption" if side == "env" else "guarantee"
+        self.add(f"{side}_{uf.section.value}", formula,
+                 f"{word}{_line(uf.span)}: {describe(uf.formula)}", uf.span)
+
+    def translate(self, uf: UserFormula, side: str) -> Expr:
+        flat = push_next(uf.formula)
+        if uf.section is Section.INIT and has_primes(flat):
+            raise FormulaError("an initial condition cannot look at the next step: drop "
+                               "'next' or make it an 'always' formula", uf.span)
+        result = self.enc.translate(flat)
+        if side == "env" and uf.section is Section.TRANS:
+            outputs = self.enc.output_names()
+            if any(primed and name in outputs for name, primed in atoms(result)):
+                raise FormulaError(
+                    "an assumption cannot constrain the robot's next region or gait: the "
+                    "environment moves first; make it a guarantee or drop 'next' there",
+                    uf.span)
+        return result
+
+
+def _line(span: Span | None) -> str:
+    return f" (line {span.line})" if span is not None else ""
+
+
+_BINARY = {And: " & ", Or: " | ", Xor: " ^ ", Iff: " <-> ", Implies: " -> "}
+
+
+def describe(expr: Expr | Term) -> str:
+    """A short human-readable text of a user formula, for clause comments."""
+    if isinstance(expr, Const):
+        return "true" if expr.value else "false"
+    if isinstance(expr, (Var, IntVar)):
+        return expr.name + ("'" if expr.primed else "")
+    if isinstance(expr, IntConst):
+        return str(expr.value)
+    if isinstance(expr, Not):
+        return "!" + _paren(expr.arg)
+    if isinstance(expr, (And, Or)):
+        return _BINARY[type(expr)].join(_paren(a) for a in expr.args)
+    if isinstance(expr, (Xor, Iff, Implies)):
+        return _paren(expr.left) + _BINARY[type(expr)] + _paren(expr.right)
+    if isinstance(expr, Compare):
+        return f"{describe(expr.left)} {expr.op} {describe(expr.right)}"
+    args = [describe(c) for c in expr.children() if isinstance(c, (Expr, Term))]
+    word = {"Next": "next", "Always": "always", "Eventually": "eventually", "Add": "+"}
+    name = word.get(type(expr).__name__, type(expr).__name__)
+    return f" {name} ".join(args) if name == "+" else f"{name}({', '.join(args)})"
+
+
+def _paren(expr: Expr) -> str:
+    text = describe(expr)
+    return text if isinstance(expr, (Var, Const, Not, Compare)) else f"({text})"
