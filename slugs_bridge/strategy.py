@@ -1,0 +1,171 @@
+"""Explicit Mealy strategy extraction from the stored layers of the GR(1) fixpoint.
+
+Follows the construction of Bloem et al. (JCSS 2012, Sect. 5) as SLUGS implements it
+(``extensionExtractExplicitStrategy``): per system goal j, prefer transitions that reach the
+goal, else a lower Y ring, else stay in the X layer of an environment goal; the goal index
+advances past every goal the chosen transition satisfies.  Nodes are (state, goal) pairs,
+explored breadth-first from the initial states; every choice is the smallest assignment.
+"""
+
+from __future__ import annotations
+
+from collections import deque
+from collections.abc import Iterable, Sequence
+
+from slugs_bridge.controller import Controller, ControllerNode, IntegerVar, integers_of
+from slugs_bridge.diagnostics import SolverError
+from slugs_bridge.game import GameResult, Limits
+from slugs_bridge.symbolic import BDDNode, SymbolicSpec
+
+State = tuple[int, ...]
+
+
+# ---------------------------------------------------------------- canonical choices
+def assignments(sym: SymbolicSpec, u: BDDNode, bits: Sequence[str]) -> list[State]:
+    """Every assignment to ``bits`` (a superset of ``u``'s support), sorted."""
+    if u == sym.bdd.false:
+        return []
+    out = {tuple(int(a[b]) for b in bits) for a in sym.bdd.pick_iter(u, care_vars=set(bits))}
+    return sorted(out)
+
+
+def smallest(sym: SymbolicSpec, u: BDDNode, bits: Sequence[str]) -> State | None:
+    """The lexicographically smallest assignment to ``bits`` inside ``u`` (None if empty)."""
+    if u == sym.bdd.false:
+        return None
+    out = []
+    for b in bits:
+        low = sym.bdd.let({b: False}, u)
+        if low != sym.bdd.false:
+            out.append(0)
+            u = low
+        else:
+            out.append(1)
+            u = sym.bdd.let({b: True}, u)
+    return tuple(out)
+
+
+def fix(sym: SymbolicSpec, u: BDDNode, bits: Sequence[str], values: Iterable[int]) -> BDDNode:
+    """``u`` with ``bits`` set to ``values`` (a cofactor)."""
+    return sym.bdd.let({b: bool(v) for b, v in zip(bits, values, strict=True)}, u)
+
+
+def primed(bits: Sequence[str]) -> list[str]:
+    return [b + "'" for b in bits]
+
+
+def spec_integers(sym: SymbolicSpec) -> dict[str, IntegerVar]:
+    """Integer variables of the spec, plus SLUGS-encoded bit groups among Boolean names."""
+    names = sym.input_bits + sym.output_bits
+    found = integers_of(names, frozenset(sym.input_bits))
+    for v in sym.spec.variables():
+        if v.is_integer and v.low is not None and v.high is not None:
+            owner = "env" if v in sym.spec.inputs else "sys"
+            found[v.name] = IntegerVar(v.low, v.high, tuple(sym.var_bits[v.name]), owner)
+    return found
+
+
+def initial_states(sym: SymbolicSpec, winning: BDDNode, semantics: str) -> list[State]:
+    """Initial states: one per θe-allowed input (default) or all of θe ∧ θs (robotics)."""
+    ins, outs = list(sym.input_bits), list(sym.output_bits)
+    if semantics == "robotics":
+        return assignments(sym, sym.env_init & sym.sys_init & winning, ins + outs)
+    out = []
+    for x in assignments(sym, sym.bdd.exist(sym.pre_outputs, sym.env_init), ins):
+        y = smallest(sym, fix(sym, sym.sys_init & winning, ins, x), outs)
+        if y is not None:
+            out.append(x + y)
+    return out
+
+
+# ---------------------------------------------------------------- strategy
+def goal_strategies(sym: SymbolicSpec, result: GameResult) -> list[BDDNode]:
+    """Per goal j, the transitions the controller takes: the first layer covering each case."""
+    out = []
+    for layers in result.layers:
+        covered = sym.bdd.false
+        strategy = sym.bdd.false
+        for paths in layers:
+            allowed = sym.sys_trans & paths
+            new_cases = sym.bdd.exist(sym.post_outputs, allowed) & ~covered
+            strategy |= new_cases & allowed
+            covered |= new_cases
+        out.append(strategy)
+    return out
+
+
+def next_goal(sym: SymbolicSpec, goal: int, transition: BDDNode) -> int:
+    """Advance past every goal that ``transition`` (a single pre/post assignment) satisfies."""
+    n = len(sym.sys_live)
+    current = goal
+    first = True
+    while (current != goal or first) and (sym.sys_live[current] & transition) != sym.bdd.false:
+        current = (current + 1) % n
+        first = False
+    return current
+
+
+def extract_strategy(
+    sym: SymbolicSpec,
+    result: GameResult,
+    semantics: str,
+    limits: Limits | None = None,
+    max_nodes: int | None = None,
+) -> Controller:
+    """The explicit Mealy controller of a realizable game (``result`` needs its layers)."""
+    limits = limits or Limits()
+    ins, outs = list(sym.input_bits), list(sym.output_bits)
+    pre = ins + outs
+    post_in, post_out = primed(ins), primed(outs)
+    strategies = goal_strategies(sym, result)
+    index: dict[tuple[State, int], int] = {}
+    nodes: list[tuple[State, int]] = []
+    trans: list[list[int]] = []
+    queue: deque[int] = deque()
+
+    def node_of(state: State, goal: int) -> int:
+        key = (state, goal)
+        if key not in index:
+            if max_nodes is not None and len(nodes) >= max_nodes:
+                raise SolverError(f"the controller has more than {max_nodes} nodes")
+            index[key] = len(nodes)
+            nodes.append(key)
+            trans.append([])
+            queue.append(index[key])
+        return index[key]
+
+    initial = [node_of(s, 0) for s in initial_states(sym, result.winning, semantics)]
+    while queue:
+        k = queue.popleft()
+        limits.check()
+        state, goal = nodes[k]
+        here = fix(sym, strategies[goal], pre, state)
+        env_here = fix(sym, sym.env_trans, pre, state)
+        targets = set()
+        for x in assignments(sym, sym.bdd.exist(sym.post_outputs, env_here), post_in):
+            choices = fix(sym, here, post_in, x)
+            preferred = choices & fix(sym, env_here, post_in, x)
+            y = smallest(sym, preferred if preferred != sym.bdd.false else choices, post_out)
+            if y is None:
+                raise SolverError(
+                    "internal error: the strategy has no move for an allowed input",
+                    hint="please report this specification",
+                )
+            move = sym.bdd.cube(
+                {b: bool(v) for b, v in zip(pre + post_in + post_out, state + x + y, strict=True)}
+            )
+            targets.add(node_of(x + y, next_goal(sym, goal, move)))
+        trans[k] = sorted(targets)
+    return Controller(
+        variables=tuple(pre),
+        inputs=tuple(ins),
+        outputs=tuple(outs),
+        nodes=tuple(
+            ControllerNode(goal, state, tuple(t))
+            for (state, goal), t in zip(nodes, trans, strict=True)
+        ),
+        initial=tuple(sorted(set(initial))),
+        integers=spec_integers(sym),
+        kind="strategy",
+        semantics=semantics,
+    )
