@@ -1,0 +1,337 @@
+"""Semantic checker: a .gait syntax tree becomes the checked :class:`~ltlcompiler.model.Model`.
+
+Resolves names, expands ranges, builds τ (via :mod:`ltlcompiler.regions`) and sorts
+assume/guarantee formulas into GR(1) sections (via :mod:`ltlcompiler.fragment`).
+Errors raise a :class:`GaitcError` with a span; warnings come back as diagnostics.
+"""
+
+from __future__ import annotations
+
+from ltlcompiler import syntax as s
+from ltlcompiler.fragment import FormulaChecker
+from ltlcompiler.model import (
+    NO_GAIT,
+    Gait,
+    GaitKind,
+    Hazard,
+    Leg,
+    Model,
+    Primitive,
+    Section,
+    Transition,
+    UserFormula,
+)
+from ltlcompiler.names import Namespace, expand, expand_all
+from ltlcompiler.regions import (
+    RegionMap,
+    add_grid,
+    add_regions,
+    apply_blocks,
+    build_transitions,
+    reachable,
+)
+from slugs_bridge.diagnostics import Diagnostic, Span, SpecSemanticError
+from slugs_bridge.formula import Var
+
+METHODS = ("full", "random", "reset")
+
+
+def _line(span: Span | None) -> int:
+    return span.line if span is not None else 0
+
+
+class _Checker:
+    def __init__(self, spec: s.SpecFile) -> None:
+        self.spec = spec
+        self.file = spec.file
+        self.ns = Namespace()
+        self.rmap = RegionMap()
+        self.diagnostics: list[Diagnostic] = []
+        self.health: dict[str, int] = {}
+        self.leg_spans: dict[str, Span | None] = {}
+        self.gait_decls: list[s.GaitDecl] = []
+
+    def _top(self) -> Span:
+        return Span(self.file, 1, 1)
+
+    # ------------------------------------------------------------ declarations
+    def declare(self) -> None:
+        """First pass, in file order: every name of every kind enters the namespace."""
+        for st in self.spec.statements:
+            if isinstance(st, s.LegsDecl):
+                self._legs(st)
+            elif isinstance(st, s.GaitDecl):
+                if st.name.text == NO_GAIT:
+                    raise SpecSemanticError(
+                        "noGait is built in (it keeps the robot in place); choose another name",
+                        st.name.span,
+                    )
+                self.ns.declare(st.name, "gait")
+                self.gait_decls.append(st)
+            elif isinstance(st, s.GridDecl):
+                add_grid(self.rmap, st, self.ns)
+            elif isinstance(st, s.RegionDecl):
+                add_regions(self.rmap, st, self.ns)
+            elif isinstance(st, s.HazardDecl):
+                self.ns.declare(st.name, "hazard")
+        self.ns.kinds[NO_GAIT] = "gait"
+        self.ns.spans[NO_GAIT] = None
+        if not self.health:
+            raise SpecSemanticError(
+                "no legs: declare the robot's legs, e.g. 'legs L1..L4 health 3'", self._top()
+            )
+        blocks = [st for st in self.spec.statements if isinstance(st, s.BlockDecl)]
+        apply_blocks(self.rmap, blocks, self.ns, self.file)
+
+    def _legs(self, st: s.LegsDecl) -> None:
+        if st.health < 1:
+            raise SpecSemanticError(
+                f"health must be at least 1 (1 means permanently failed), not {st.health}",
+                st.health_span,
+            )
+        for name in expand_all(st.legs):
+            self.ns.declare(name, "leg")
+            self.health[name.text] = st.health
+            self.leg_spans[name.text] = name.span
+
+    def robot_name(self) -> str:
+        robots = [st for st in self.spec.statements if isinstance(st, s.RobotDecl)]
+        if len(robots) > 1:
+            raise SpecSemanticError(
+                f"a second 'robot' statement (the first is at line {_line(robots[0].span)}); "
+                "keep one",
+                robots[1].span,
+            )
+        return robots[0].name if robots else ""
+
+    # ------------------------------------------------------------ legs and gaits
+    def legs(self) -> tuple[Leg, ...]:
+        starts = [st for st in self.spec.statements if isinstance(st, s.StartDecl)]
+        initial = dict(self.health)
+        for st in starts[:1]:
+            for init in st.health:
+                for name in expand(init.legs):
+                    leg = self.ns.require(name, "leg", "in start")
+                    if not 1 <= init.value <= self.health[leg]:
+                        raise SpecSemanticError(
+                            f"initial health of {leg} is {init.value}, but {leg} has health "
+                            f"levels 1..{self.health[leg]}",
+                            init.value_span,
+                        )
+                    initial[leg] = init.value
+        return tuple(
+            Leg(name, h, initial[name], span=self.leg_spans[name])
+            for name, h in self.health.items()
+        )
+
+    def gaits(self) -> tuple[Gait, ...]:
+        out = [self._gait(st) for st in self.gait_decls]
+        out.append(Gait(NO_GAIT, GaitKind.NONE, ()))
+        return tuple(out)
+
+    def _gait(self, st: s.GaitDecl) -> Gait:
+        name = st.name.text
+        if st.correction and st.legs is not None:
+            raise SpecSemanticError(
+                f"correction gait '{name}' cannot use legs: correction gaits use no health "
+                "(thesis section 3.4.1); remove 'uses ...' or declare it with 'gait'",
+                st.span,
+            )
+        if not st.correction and st.legs is None:
+            raise SpecSemanticError(
+                f"gait '{name}' uses no legs; add 'uses L1, L2' (or declare it as "
+                "'correction gait')",
+                st.name.span,
+            )
+        used: list[str] = []
+        for leg in expand_all(st.legs or ()):
+            known = self.ns.require(leg, "leg", f"in gait {name}")
+            if known in used:
+                raise SpecSemanticError(
+                    f"leg '{known}' is listed twice in gait {name}", leg.span
+                )
+            used.append(known)
+        for failed in used:
+            if self.health[failed] == 1:
+                self.diagnostics.append(Diagnostic(
+                    f"gait '{name}' uses leg {failed}, which has health 1 (permanently failed), "
+                    "so the gait can never be selected",
+                    st.name.span,
+                ))
+                break
+        order = list(self.health)
+        used.sort(key=order.index)
+        kind = GaitKind.CORRECTION if st.correction else GaitKind.MOVE
+        return Gait(name, kind, tuple(used), span=st.span, primitive=self._primitive(st))
+
+    def _primitive(self, st: s.GaitDecl) -> Primitive | None:
+        prim = st.primitive
+        if prim is None:
+            return None
+        if isinstance(prim, s.RobotPrimitive):
+            method = prim.method
+            if method is not None and method.text not in METHODS:
+                raise SpecSemanticError(
+                    f"unknown gait-graph method '{method.text}'; use one of "
+                    + ", ".join(METHODS),
+                    method.span,
+                )
+            return Primitive(
+                robot=prim.robot,
+                direction=prim.direction,
+                method=None if method is None else method.text,
+                span=prim.span,
+            )
+        width = len(prim.states[0].text)
+        for state in prim.states:
+            if set(state.text) - {"0", "1"}:
+                raise SpecSemanticError(
+                    f"valve state '{state.text}' may contain only 0 and 1, one character per "
+                    "valve",
+                    state.span,
+                )
+            if len(state.text) != width:
+                raise SpecSemanticError(
+                    f"valve state '{state.text}' has {len(state.text)} valves, but the first "
+                    f"state has {width}; every state needs one 0/1 per valve",
+                    state.span,
+                )
+        return Primitive(valves=tuple(t.text for t in prim.states), span=prim.span)
+
+    # ------------------------------------------------------------ map and task
+    def transitions(self) -> tuple[Transition, ...]:
+        edges = [st for st in self.spec.statements if isinstance(st, s.EdgeDecl)]
+        trans = build_transitions(self.rmap, self.gait_decls, edges, self.ns, self.diagnostics)
+        used = {g for t in trans for g in t.gaits}
+        for st in self.gait_decls:
+            if st.name.text in used:
+                continue
+            if st.directions:
+                ways = " or ".join(d.name for d in st.directions)
+                why = f"it moves {ways}, but no grid move or edge goes {ways}"
+            else:
+                why = "it has no 'moves' and no edge names it"
+            self.diagnostics.append(
+                Diagnostic(f"gait '{st.name.text}' can never be used: {why}", st.name.span)
+            )
+        return trans
+
+    def caches(self) -> tuple[str, ...]:
+        out: list[str] = []
+        for st in self.spec.statements:
+            if isinstance(st, s.CacheDecl):
+                for ref in st.regions:
+                    name = self.rmap.resolve(ref, self.ns, "in cache")
+                    if name in out:
+                        raise SpecSemanticError(f"region '{name}' is a cache twice", ref.span)
+                    out.append(name)
+        return tuple(out)
+
+    def hazards(self, caches: tuple[str, ...]) -> tuple[Hazard, ...]:
+        out: list[Hazard] = []
+        for st in self.spec.statements:
+            if not isinstance(st, s.HazardDecl):
+                continue
+            hazard = st.name.text
+            if not st.regions:
+                raise SpecSemanticError(
+                    f"hazard '{hazard}' lists no regions; add the regions it covers, e.g. "
+                    f"'hazard {hazard}: r2, r5'",
+                    st.span,
+                )
+            regions: list[str] = []
+            for ref in st.regions:
+                name = self.rmap.resolve(ref, self.ns, f"in hazard {hazard}")
+                if name in caches:
+                    raise SpecSemanticError(
+                        f"region '{name}' is both a cache and in hazard '{hazard}'; the thesis "
+                        "assumes cache and hazard regions are disjoint, so remove it from one",
+                        ref.span,
+                    )
+                if name in regions:
+                    raise SpecSemanticError(
+                        f"region '{name}' is listed twice in hazard '{hazard}'", ref.span
+                    )
+                regions.append(name)
+            out.append(Hazard(hazard, tuple(regions), span=st.span))
+        return tuple(out)
+
+    def start(self) -> str:
+        starts = [st for st in self.spec.statements if isinstance(st, s.StartDecl)]
+        if not starts:
+            raise SpecSemanticError(
+                "no start region; add 'start REGION' (e.g. 'start "
+                f"{self.rmap.regions[0].name}')",
+                self._top(),
+            )
+        if len(starts) > 1:
+            raise SpecSemanticError(
+                f"a second 'start' statement (the first is at line {_line(starts[0].span)}); "
+                "keep one",
+                starts[1].span,
+            )
+        return self.rmap.resolve(starts[0].region, self.ns, "as the start")
+
+    def goals(self, start: str, trans: tuple[Transition, ...]) -> tuple[UserFormula, ...]:
+        out: list[UserFormula] = []
+        seen: set[str] = set()
+        reach = reachable(start, trans)
+        for st in self.spec.statements:
+            if not isinstance(st, s.VisitDecl):
+                continue
+            for ref in st.regions:
+                name = self.rmap.resolve(ref, self.ns, "in goal")
+                if name in seen:
+                    raise SpecSemanticError(f"region '{name}' is a goal twice", ref.span)
+                seen.add(name)
+                if name not in reach:
+                    self.diagnostics.append(Diagnostic(
+                        f"goal region '{name}' is unreachable from the start '{start}' in the "
+                        "region graph, so the specification is unrealizable",
+                        ref.span,
+                    ))
+                out.append(UserFormula(Section.LIVENESS, Var(name, span=ref.span), span=st.span))
+        return tuple(out)
+
+    def formulas(self) -> tuple[tuple[UserFormula, ...], tuple[UserFormula, ...]]:
+        checker = FormulaChecker(self.ns, self.health, set(self.rmap.blocked))
+        assumptions: list[UserFormula] = []
+        guarantees: list[UserFormula] = []
+        for st in self.spec.statements:
+            if isinstance(st, s.AssumeDecl):
+                assumptions.append(checker.check(st.formula, st.span, assumption=True))
+            elif isinstance(st, s.GuaranteeDecl):
+                guarantees.append(checker.check(st.formula, st.span, assumption=False))
+        return tuple(assumptions), tuple(guarantees)
+
+
+def check(spec: s.SpecFile) -> tuple[Model, list[Diagnostic]]:
+    """Check ``spec`` and build its :class:`Model`; warnings are returned, errors raised."""
+    c = _Checker(spec)
+    c.declare()
+    name = c.robot_name()
+    legs = c.legs()
+    gaits = c.gaits()
+    trans = c.transitions()
+    caches = c.caches()
+    hazards = c.hazards(caches)
+    start = c.start()
+    goals = c.goals(start, trans)
+    assumptions, guarantees = c.formulas()
+    model = Model(
+        name=name,
+        legs=legs,
+        gaits=gaits,
+        regions=tuple(c.rmap.regions),
+        transitions=trans,
+        caches=caches,
+        hazards=hazards,
+        start=start,
+        goals=goals,
+        assumptions=assumptions,
+        guarantees=guarantees,
+        grid=c.rmap.grid,
+        file=spec.file,
+    )
+    return model, c.diagnostics
+

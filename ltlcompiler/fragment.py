@@ -1,0 +1,135 @@
+"""GR(1) fragment check for assume/guarantee formulas: resolve atoms, sort into sections.
+
+``φ`` is an initial condition, ``always φ`` safety, ``always eventually φ`` liveness
+(Bloem et al., "Synthesis of Reactive(1) Designs", 2012; thesis section 3.2.1).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+
+from ltlcompiler.model import Section, UserFormula
+from ltlcompiler.names import Namespace
+from slugs_bridge import formula as f
+from slugs_bridge.diagnostics import FormulaError, Span, SpecSemanticError
+
+_SHAPES = "'φ' (initial), 'always φ' (safety) or 'always eventually φ' (liveness)"
+
+
+def _strip_prefix(expr: f.Expr) -> tuple[Section, f.Expr]:
+    """Split the temporal prefix off; reject the shapes GR(1) cannot express."""
+    if isinstance(expr, f.Always):
+        inner = expr.arg
+        if isinstance(inner, f.Eventually):
+            return Section.LIVENESS, inner.arg
+        if isinstance(inner, f.Always):
+            raise FormulaError(
+                "'always always φ' is not a GR(1) shape; write 'always φ' once", inner.span
+            )
+        return Section.TRANS, inner
+    if isinstance(expr, f.Eventually):
+        if isinstance(expr.arg, f.Always):
+            raise FormulaError(
+                "'eventually always φ' (persistence) is outside GR(1); a GR(1) formula must "
+                f"have the shape {_SHAPES}",
+                expr.span,
+            )
+        raise FormulaError(
+            "'eventually φ' alone is outside GR(1), which can only demand that φ holds "
+            "infinitely often: write 'always eventually φ'",
+            expr.span,
+        )
+    return Section.INIT, expr
+
+
+class FormulaChecker:
+    """Checks user formulas against the declared names (legs with their health levels)."""
+
+    def __init__(self, ns: Namespace, health: Mapping[str, int], blocked: set[str]) -> None:
+        self.ns = ns
+        self.health = health
+        self.blocked = blocked
+
+    def check(self, expr: f.Expr, span: Span | None, assumption: bool) -> UserFormula:
+        section, body = _strip_prefix(expr)
+        self._walk(body, section, assumption, under_next=False)
+        return UserFormula(section, body, span=span)
+
+    def _walk(self, node: f.Expr, section: Section, assumption: bool, under_next: bool) -> None:
+        if isinstance(node, (f.Always, f.Eventually)):
+            word = "always" if isinstance(node, f.Always) else "eventually"
+            raise FormulaError(
+                f"'{word}' cannot appear inside a formula: GR(1) allows only {_SHAPES}, "
+                "with the temporal words at the very start",
+                node.span,
+            )
+        if isinstance(node, f.Next):
+            if section is Section.INIT:
+                raise FormulaError(
+                    "an initial condition cannot use 'next', since it describes only the first "
+                    "state; start the formula with 'always' to make it a safety formula",
+                    node.span,
+                )
+            if under_next:
+                raise FormulaError(
+                    "'next' inside 'next' is outside GR(1): a formula may look one step ahead "
+                    "only",
+                    node.span,
+                )
+            self._walk(node.arg, section, assumption, under_next=True)
+            return
+        if isinstance(node, f.Var):
+            self._proposition(node, assumption, under_next)
+            return
+        if isinstance(node, f.Compare):
+            self._comparison(node)
+            return
+        for child in node.children():
+            if isinstance(child, f.Expr):
+                self._walk(child, section, assumption, under_next)
+
+    def _proposition(self, var: f.Var, assumption: bool, under_next: bool) -> None:
+        kind = self.ns.kinds.get(var.name)
+        if kind == "leg":
+            raise SpecSemanticError(
+                f"leg '{var.name}' is not a proposition; compare its health, e.g. "
+                f"health({var.name}) >= 2 or failed({var.name})",
+                var.span,
+            )
+        if kind is None:
+            raise SpecSemanticError(
+                f"unknown name '{var.name}' in formula; formulas may use regions, gaits, "
+                "hazards, noGait and health(LEG)",
+                var.span,
+            )
+        if var.name in self.blocked:
+            raise SpecSemanticError(
+                f"region '{var.name}' is a blocked cell, so the robot is never there; "
+                "remove it from the formula",
+                var.span,
+            )
+        if assumption and under_next and kind in ("region", "gait"):
+            raise FormulaError(
+                f"assumption uses next({var.name}), but {var.name} is a {kind}, which the robot "
+                "chooses after the environment moves; an assumption may apply next only to "
+                "hazards and leg health (move it to a guarantee)",
+                var.span,
+            )
+
+    def _comparison(self, cmp: f.Compare) -> None:
+        leg, value = cmp.left, cmp.right
+        if not isinstance(leg, f.IntVar) or not isinstance(value, f.IntConst):
+            raise FormulaError("health comparisons have the form health(LEG) OP k", cmp.span)
+        kind = self.ns.kinds.get(leg.name)
+        if kind != "leg":
+            what = f"a {kind}" if kind else "not declared"
+            raise SpecSemanticError(
+                f"health({leg.name}) needs a leg, but '{leg.name}' is {what}", leg.span
+            )
+        levels = self.health[leg.name]
+        if not 1 <= value.value <= levels:
+            raise SpecSemanticError(
+                f"health({leg.name}) is compared with {value.value}, but {leg.name} has health "
+                f"levels 1..{levels}",
+                value.span,
+            )
