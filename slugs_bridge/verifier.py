@@ -303,7 +303,7 @@ class _Check:
         """SCCs of the edges not satisfying goal ``avoid[index]`` in which every goal of
         ``need`` holds on some internal edge (a fair cycle that starves the avoided goal)."""
         count = len(self.spec.section(need)) if need is not None else 0
-        keep = [(a, b) for a, b, d in self.graph.edges(data=True) if index not in d[avoid]]
+        keep = [(a, b) for a, b, d in self.graph.edges(data=True) if index not in d.get(avoid, ())]
         sub = nx.DiGraph(keep)
         found: list[list[int]] = []
         for component in nx.strongly_connected_components(sub):
