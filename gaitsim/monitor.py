@@ -1,0 +1,214 @@
+"""The run checker: evaluates a spec's assumptions and guarantees on consecutive states of a run.
+
+Independent of the controller that produced the run: it sees only variable valuations.
+Safety clauses (init, trans) must hold at every step; liveness clauses (□◇, eqs. 3.7 and
+the liveness part of GR(1), Bloem et al. JCSS 2012) are counted, since a finite run cannot
+violate them.  Clauses are compiled to Python closures once, with results cached per pair of
+states, so checking costs little per step; :func:`slugs_bridge.formula.evaluate` is the
+reference semantics the compiled closures agree with.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass
+
+from slugs_bridge.diagnostics import FormulaError, Span
+from slugs_bridge.formula import (
+    Add,
+    And,
+    Compare,
+    Const,
+    Expr,
+    Iff,
+    Implies,
+    IntConst,
+    IntVar,
+    Not,
+    Or,
+    Term,
+    Var,
+    Xor,
+    evaluate,
+)
+from slugs_bridge.spec import Clause, GR1Spec
+
+Values = tuple[int, ...]
+Check = Callable[[Sequence[int]], bool]
+
+_OPS = {"=": "==", "!=": "!=", "<": "<", "<=": "<=", ">": ">", ">=": ">="}
+
+
+@dataclass(frozen=True)
+class Violation:
+    """A safety clause that failed at the initial state (step 0) or on the step into ``step``."""
+
+    step: int
+    section: str  # env_init, sys_init, env_trans or sys_trans
+    index: int  # position of the clause in its section
+    rule: str
+    span: Span | None
+
+    @property
+    def is_assumption(self) -> bool:
+        return self.section.startswith("env")
+
+    def describe(self) -> str:
+        kind = "assumption" if self.is_assumption else "guarantee"
+        where = f" ({self.span})" if self.span is not None else ""
+        return f"step {self.step}: {kind} violated: {self.rule}{where}"
+
+
+def clause_rule(clause: Clause, section: str, index: int) -> str:
+    """The human-readable name of a clause: its origin's rule, or its section and index."""
+    if clause.origin is not None and clause.origin.rule:
+        return clause.origin.rule
+    return f"{section}[{index}]"
+
+
+class _Compiler:
+    """Turns a next-free formula into Python source over a tuple ``v`` of current+next values."""
+
+    def __init__(self, index: Mapping[str, int], width: int) -> None:
+        self.index = index
+        self.width = width
+
+    def slot(self, name: str, primed: bool) -> int:
+        if name not in self.index:
+            raise FormulaError(f"clause mentions '{name}', which the spec does not declare")
+        return self.index[name] + (self.width if primed else 0)
+
+    def term(self, t: Term) -> str:
+        if isinstance(t, IntConst):
+            return repr(t.value)
+        if isinstance(t, IntVar):
+            return f"v[{self.slot(t.name, t.primed)}]"
+        if isinstance(t, Add):
+            return f"({self.term(t.left)} + {self.term(t.right)})"
+        raise TypeError(f"not a term: {t!r}")
+
+    def expr(self, e: Expr) -> str:
+        if isinstance(e, Const):
+            return "True" if e.value else "False"
+        if isinstance(e, Var):
+            return f"(v[{self.slot(e.name, e.primed)}] != 0)"
+        if isinstance(e, Not):
+            return f"(not {self.expr(e.arg)})"
+        if isinstance(e, And):
+            return "(" + " and ".join(self.expr(a) for a in e.args) + ")"
+        if isinstance(e, Or):
+            return "(" + " or ".join(self.expr(a) for a in e.args) + ")"
+        if isinstance(e, Xor):
+            return f"({self.expr(e.left)} != {self.expr(e.right)})"
+        if isinstance(e, Iff):
+            return f"({self.expr(e.left)} == {self.expr(e.right)})"
+        if isinstance(e, Implies):
+            return f"((not {self.expr(e.left)}) or {self.expr(e.right)})"
+        if isinstance(e, Compare):
+            return f"({self.term(e.left)} {_OPS[e.op]} {self.term(e.right)})"
+        raise TypeError(f"cannot compile {type(e).__name__}")
+
+
+def compile_formula(expr: Expr, variables: Sequence[str]) -> Check:
+    """A closure deciding ``expr`` on ``current + next`` values laid out as ``variables`` twice.
+
+    Agrees with :func:`slugs_bridge.formula.evaluate`; falls back to it for formulas too deep
+    for Python's compiler.
+    """
+    index = {name: i for i, name in enumerate(variables)}
+    width = len(variables)
+    try:
+        source = _Compiler(index, width).expr(expr)
+        code = compile(f"lambda v: {source}", "<gaitsim.monitor>", "eval")
+        fn: Check = eval(code, {"__builtins__": {}})
+        return fn
+    except (RecursionError, SyntaxError, MemoryError, TypeError):
+        names = list(variables)
+
+        def slow(v: Sequence[int]) -> bool:
+            valuation = {name: v[i] for i, name in enumerate(names)}
+            valuation.update({name + "'": v[width + i] for i, name in enumerate(names)})
+            return evaluate(expr, valuation)
+
+        return slow
+
+
+@dataclass(frozen=True)
+class StepCheck:
+    """What held on one step: failed safety clauses and satisfied liveness clauses (indices)."""
+
+    env_failed: tuple[int, ...]
+    sys_failed: tuple[int, ...]
+    env_live: tuple[int, ...]
+    sys_live: tuple[int, ...]
+
+
+class Monitor:
+    """Checks valuations against a :class:`GR1Spec`; values are tuples in ``variables`` order."""
+
+    def __init__(self, spec: GR1Spec) -> None:
+        self.spec = spec
+        self.variables: tuple[str, ...] = tuple(v.name for v in spec.variables())
+        self.inputs: tuple[str, ...] = tuple(v.name for v in spec.inputs)
+        self._compiled: dict[str, tuple[Check, ...]] = {}
+        for section in ("env_init", "sys_init", "env_trans", "sys_trans",
+                        "env_liveness", "sys_liveness"):
+            clauses = spec.section(section)
+            self._compiled[section] = tuple(
+                compile_formula(c.formula, self.variables) for c in clauses
+            )
+        self._step_cache: dict[tuple[Values, Values], StepCheck] = {}
+
+    def values(self, valuation: Mapping[str, int]) -> Values:
+        """Lay out a name → value mapping in the monitor's variable order (missing: 0)."""
+        return tuple(int(valuation.get(name, 0)) for name in self.variables)
+
+    def rule(self, section: str, index: int) -> str:
+        return clause_rule(self.spec.section(section)[index], section, index)
+
+    def violation(self, step: int, section: str, index: int) -> Violation:
+        clause = self.spec.section(section)[index]
+        span = clause.origin.span if clause.origin is not None else None
+        return Violation(step, section, index, clause_rule(clause, section, index), span)
+
+    def check_initial(self, state: Values) -> list[Violation]:
+        """Violated ``env_init`` and ``sys_init`` clauses of the first state."""
+        doubled = state + state
+        out = []
+        for section in ("env_init", "sys_init"):
+            for i, fn in enumerate(self._compiled[section]):
+                if not fn(doubled):
+                    out.append(self.violation(0, section, i))
+        return out
+
+    def check_step(self, current: Values, nxt: Values) -> StepCheck:
+        """Evaluate the transition and liveness clauses on the pair ``(current, nxt)``."""
+        key = (current, nxt)
+        found = self._step_cache.get(key)
+        if found is not None:
+            return found
+        pair = current + nxt
+        c = self._compiled
+        result = StepCheck(
+            tuple(i for i, fn in enumerate(c["env_trans"]) if not fn(pair)),
+            tuple(i for i, fn in enumerate(c["sys_trans"]) if not fn(pair)),
+            tuple(i for i, fn in enumerate(c["env_liveness"]) if fn(pair)),
+            tuple(i for i, fn in enumerate(c["sys_liveness"]) if fn(pair)),
+        )
+        self._step_cache[key] = result
+        return result
+
+    def failed_assumptions(self, current: Values, nxt_inputs: Mapping[str, int]) -> list[int]:
+        """Indices of ``env_trans`` clauses that forbid the environment's next ``nxt_inputs``.
+
+        Outputs of the next state are unknown at this point; clauses that mention them are
+        checked with every output unchanged, the weakest reading for the environment.
+        """
+        width = len(self.variables)
+        nxt = [current[i] for i in range(width)]
+        for i, name in enumerate(self.variables):
+            if name in nxt_inputs:
+                nxt[i] = int(nxt_inputs[name])
+        pair = current + tuple(nxt)
+        return [i for i, fn in enumerate(self._compiled["env_trans"]) if not fn(pair)]
+

@@ -1,0 +1,178 @@
+"""A simulated run in domain terms: steps (region, gait, leg health, hazard), summary, files.
+
+Written as JSON Lines (a header line, one line per step, a summary line) or CSV; the JSONL
+form is read back by ``gaitc render map --run``.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+from slugs_bridge.diagnostics import GaitcError, ScenarioError, Span, UsageError
+
+if TYPE_CHECKING:
+    from ltlcompiler.model import Model
+
+
+@dataclass(frozen=True)
+class Step:
+    """One state of a run; ``degraded``/``failed``/``repaired`` compare with the previous step."""
+
+    index: int
+    node: int
+    region: str
+    gait: str
+    legs_used: tuple[str, ...]
+    health: tuple[tuple[str, int], ...]  # (leg, level) in leg order; 1 = failed
+    hazard: str | None
+    goals: tuple[str, ...] = ()  # labels of the goals this state satisfies
+    degraded: tuple[str, ...] = ()  # legs that lost a level but still work
+    failed: tuple[str, ...] = ()  # legs that reached level 1 on the step into this state
+    repaired: tuple[str, ...] = ()  # legs whose level went up (cache)
+    values: tuple[tuple[str, int], ...] = ()  # spec-level variable values
+
+    def level(self, leg: str) -> int:
+        return dict(self.health)[leg]
+
+    def to_json(self) -> dict[str, Any]:
+        return {
+            "kind": "step", "step": self.index, "node": self.node, "region": self.region,
+            "gait": self.gait, "legs_used": list(self.legs_used), "health": dict(self.health),
+            "hazard": self.hazard, "goals": list(self.goals), "degraded": list(self.degraded),
+            "failed": list(self.failed), "repaired": list(self.repaired),
+            "values": dict(self.values),
+        }
+
+
+@dataclass(frozen=True)
+class Summary:
+    """What a run achieved and whether the spec held along it (checked by the monitor)."""
+
+    steps: int
+    goal_visits: tuple[tuple[str, int], ...]  # every goal, with the number of steps reaching it
+    cache_visits: tuple[tuple[str, int], ...]
+    legs_failed: tuple[tuple[int, str], ...]  # (step, leg)
+    legs_degraded: tuple[tuple[int, str], ...]
+    assumptions_held: bool
+    guarantees_held: bool
+    violations: tuple[str, ...] = ()
+    env_liveness: tuple[tuple[str, int], ...] = ()  # □◇ assumption → times it held
+    sys_liveness: tuple[tuple[str, int], ...] = ()  # □◇ guarantee → times it held
+    stopped: str | None = None  # why the run ended early
+
+    def to_json(self) -> dict[str, Any]:
+        return {
+            "kind": "summary", "steps": self.steps,
+            "goal_visits": dict(self.goal_visits), "cache_visits": dict(self.cache_visits),
+            "legs_failed": [list(x) for x in self.legs_failed],
+            "legs_degraded": [list(x) for x in self.legs_degraded],
+            "assumptions_held": self.assumptions_held, "guarantees_held": self.guarantees_held,
+            "violations": list(self.violations), "env_liveness": dict(self.env_liveness),
+            "sys_liveness": dict(self.sys_liveness), "stopped": self.stopped,
+        }
+
+
+@dataclass
+class Run:
+    """The steps of a simulation, its summary, and the error that stopped it (if any)."""
+
+    legs: tuple[str, ...]
+    steps: list[Step] = field(default_factory=list)
+    summary: Summary | None = None
+    error: GaitcError | None = None
+    environment: str = ""
+    spec_file: str = ""
+    model: Model | None = field(default=None, repr=False)
+
+    def _repr_svg_(self) -> str:
+        from gaitsim.map_view import run_view
+
+        return run_view(self).svg()
+
+    def header(self) -> dict[str, Any]:
+        return {"kind": "run", "format": 1, "legs": list(self.legs),
+                "environment": self.environment, "spec": self.spec_file}
+
+
+def write_jsonl(run: Run) -> str:
+    """The run as JSON Lines: a ``run`` header, one ``step`` per state, a ``summary``."""
+    lines = [json.dumps(run.header(), sort_keys=True)]
+    lines.extend(json.dumps(step.to_json(), sort_keys=True) for step in run.steps)
+    if run.summary is not None:
+        lines.append(json.dumps(run.summary.to_json(), sort_keys=True))
+    return "\n".join(lines) + "\n"
+
+
+def write_csv(run: Run) -> str:
+    """The steps as CSV, one column per leg's health level."""
+    out = io.StringIO()
+    writer = csv.writer(out, lineterminator="\n")
+    writer.writerow(["step", "node", "region", "gait", "legs_used",
+                     *[f"health_{leg}" for leg in run.legs],
+                     "hazard", "goals", "degraded", "failed", "repaired"])
+    for s in run.steps:
+        writer.writerow([s.index, s.node, s.region, s.gait, " ".join(s.legs_used),
+                         *[s.level(leg) for leg in run.legs], s.hazard or "",
+                         " ".join(s.goals), " ".join(s.degraded), " ".join(s.failed),
+                         " ".join(s.repaired)])
+    return out.getvalue()
+
+
+def save_run(run: Run, path: str | Path) -> None:
+    """Write ``run`` to ``path``; the extension (``.jsonl`` or ``.csv``) picks the format."""
+    suffix = Path(path).suffix.lower()
+    if suffix in (".jsonl", ".json"):
+        text = write_jsonl(run)
+    elif suffix == ".csv":
+        text = write_csv(run)
+    else:
+        raise UsageError(f"cannot tell the run format from '{path}': use a .jsonl or .csv file")
+    Path(path).write_text(text, encoding="utf-8")
+
+
+def _strs(value: Any) -> tuple[str, ...]:
+    return tuple(str(v) for v in value) if isinstance(value, Sequence) else ()
+
+
+def read_jsonl(path: str | Path) -> Run:
+    """Read a run written by :func:`write_jsonl` (the summary line is kept as is)."""
+    file = str(path)
+    try:
+        text = Path(path).read_text(encoding="utf-8")
+    except OSError as err:
+        raise ScenarioError(f"cannot read run file: {err.strerror}", Span(file, 1, 1)) from None
+    run = Run(legs=())
+    for number, line in enumerate(text.splitlines(), 1):
+        if not line.strip():
+            continue
+        try:
+            data = json.loads(line)
+            kind = data.get("kind")
+            if kind == "run":
+                run.legs = _strs(data["legs"])
+                run.environment = str(data.get("environment", ""))
+                run.spec_file = str(data.get("spec", ""))
+            elif kind == "step":
+                health = tuple((str(k), int(v)) for k, v in dict(data["health"]).items())
+                run.steps.append(Step(
+                    int(data["step"]), int(data["node"]), str(data["region"]),
+                    str(data["gait"]), _strs(data["legs_used"]), health,
+                    None if data.get("hazard") is None else str(data["hazard"]),
+                    _strs(data.get("goals", [])), _strs(data.get("degraded", [])),
+                    _strs(data.get("failed", [])), _strs(data.get("repaired", [])),
+                    tuple((str(k), int(v)) for k, v in dict(data.get("values", {})).items()),
+                ))
+        except (json.JSONDecodeError, KeyError, TypeError, ValueError, AttributeError):
+            raise ScenarioError(
+                "not a run written by 'gaitc simulate --out FILE.jsonl'",
+                Span(file, number, 1),
+            ) from None
+    if not run.legs and run.steps:
+        run.legs = tuple(leg for leg, _ in run.steps[0].health)
+    return run

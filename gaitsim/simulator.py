@@ -1,0 +1,178 @@
+"""Stepping a controller: the environment picks inputs, the controller answers (Mealy machine).
+
+Every state is decoded into domain terms and every step is checked by the
+:class:`~gaitsim.monitor.Monitor` against the spec's clauses, not trusted from the
+controller.  A request the controller cannot follow stops the run with a message naming
+the assumption it breaks (the clause's origin rule) and the step.
+"""
+
+from __future__ import annotations
+
+from collections import Counter
+from collections.abc import Mapping
+
+from gaitsim.domain import Domain, State
+from gaitsim.environments import Environment, Move, Request, Situation
+from gaitsim.monitor import Monitor, Violation
+from gaitsim.run import Run, Step, Summary
+from gaitsim.strategy import InputKey, Strategy
+from slugs_bridge.diagnostics import ControllerError, GaitcError, ScenarioError, Span
+
+MAX_REPORTED = 20
+
+
+class Simulator:
+    """Runs one environment against one controller; decodes and checks every step."""
+
+    def __init__(self, strategy: Strategy, domain: Domain, monitor: Monitor) -> None:
+        if strategy.variables != monitor.variables:
+            raise ControllerError("controller and spec list different variables")
+        self.strategy = strategy
+        self.domain = domain
+        self.monitor = monitor
+        self._states: dict[int, State] = {}
+        self._moves: dict[int, tuple[Move, ...]] = {}
+        self._values: dict[int, tuple[tuple[str, int], ...]] = {}
+
+    def state(self, node: int) -> State:
+        found = self._states.get(node)
+        if found is None:
+            found = self.domain.decode(self.strategy.valuation(node))
+            self._states[node] = found
+        return found
+
+    def moves(self, node: int | None) -> tuple[Move, ...]:
+        key = -1 if node is None else node
+        found = self._moves.get(key)
+        if found is None:
+            options = (self.strategy.initial_options() if node is None
+                       else self.strategy.options(node))
+            found = tuple(Move(k, n, self.state(n)) for k, n in options.items())
+            self._moves[key] = found
+        return found
+
+    def _named(self, node: int) -> tuple[tuple[str, int], ...]:
+        found = self._values.get(node)
+        if found is None:
+            found = tuple(zip(self.strategy.variables, self.strategy.values[node], strict=True))
+            self._values[node] = found
+        return found
+
+    def _step(self, index: int, node: int, previous: Step | None) -> Step:
+        st = self.state(node)
+        degraded: list[str] = []
+        failed: list[str] = []
+        repaired: list[str] = []
+        if previous is not None:
+            before = dict(previous.health)
+            for leg, level in st.health:
+                old = before.get(leg, level)
+                if level < old:
+                    (failed if level == 1 else degraded).append(leg)
+                elif level > old:
+                    repaired.append(leg)
+        prev_state = None if previous is None else self.state(previous.node)
+        return Step(index, node, st.region, st.gait, self.domain.legs_used(st.gait), st.health,
+                    st.hazard, self.domain.goals_reached(st, prev_state), tuple(degraded),
+                    tuple(failed), tuple(repaired), self._named(node))
+
+    def _input_names(self, inputs: InputKey) -> dict[str, int]:
+        return dict(zip(self.strategy.inputs, inputs, strict=True))
+
+    def _refuse(self, index: int, node: int | None, request: Request) -> GaitcError:
+        """The error for a request the controller has no successor for."""
+        what = f" ({request.what})" if request.what else ""
+        span = request.span if isinstance(request.span, Span) else None
+        if node is None:
+            return ControllerError(
+                f"step 0{what}: no initial state of the controller has these inputs; the "
+                "initial assumptions may forbid them", span)
+        if not self.strategy.successors[node]:
+            return ControllerError(
+                f"step {index}: controller node {node} has no successor (a dead end); "
+                "the controller is not a winning strategy for this spec", span)
+        failed = self.monitor.failed_assumptions(self.strategy.values[node],
+                                                 self._input_names(request.inputs))
+        if failed:
+            rules = "; ".join(f"'{self.monitor.rule('env_trans', i)}'" for i in failed[:3])
+            more = f" (and {len(failed) - 3} more)" if len(failed) > 3 else ""
+            cls = ScenarioError if span is not None else ControllerError
+            return cls(f"step {index}{what}: the environment breaks the assumption "
+                       f"{rules}{more}; the controller has no successor for this input", span)
+        return ControllerError(
+            f"step {index}{what}: the controller has no successor for an input the "
+            "assumptions allow; it is incomplete for this spec", span)
+
+    def run(self, environment: Environment, steps: int, spec_file: str = "") -> Run:
+        """Simulate up to ``steps`` transitions (``steps + 1`` states) and summarize."""
+        run = Run(legs=self.domain.legs, environment=environment.name, spec_file=spec_file,
+                  model=self.domain.model)
+        goals = self.domain.goals
+        goal_index = 0
+        violations: list[Violation] = []
+        env_live: Counter[int] = Counter()
+        sys_live: Counter[int] = Counter()
+        node: int | None = None
+        previous: Step | None = None
+        for index in range(steps + 1):
+            here = None if previous is None else self.state(previous.node)
+            moves = self.moves(node)
+            situation = Situation(index, node, here, moves, self.domain,
+                                  goals[goal_index] if goals else None)
+            try:
+                request = environment.choose(situation)
+                if request is None:
+                    break
+                chosen = next((m for m in moves if m.inputs == request.inputs), None)
+                if chosen is None:
+                    raise self._refuse(index, node, request)
+            except GaitcError as err:
+                run.error = err
+                break
+            values = self.strategy.values[chosen.node]
+            if node is None:
+                violations.extend(self.monitor.check_initial(values))
+            else:
+                check = self.monitor.check_step(self.strategy.values[node], values)
+                for i in check.env_failed:
+                    violations.append(self.monitor.violation(index, "env_trans", i))
+                for i in check.sys_failed:
+                    violations.append(self.monitor.violation(index, "sys_trans", i))
+                env_live.update(check.env_live)
+                sys_live.update(check.sys_live)
+            step = self._step(index, chosen.node, previous)
+            run.steps.append(step)
+            for _ in goals:
+                if goals[goal_index].label not in step.goals:
+                    break
+                goal_index = (goal_index + 1) % len(goals)
+            node, previous = chosen.node, step
+        run.summary = self._summary(run, violations, env_live, sys_live)
+        return run
+
+    def _summary(self, run: Run, violations: list[Violation], env_live: Mapping[int, int],
+                 sys_live: Mapping[int, int]) -> Summary:
+        goal_counts = Counter(label for s in run.steps for label in s.goals)
+        caches = Counter(s.region for s in run.steps if s.region in self.domain.model.caches)
+        spec = self.monitor.spec
+        return Summary(
+            steps=max(0, len(run.steps) - 1),
+            goal_visits=tuple((g.label, goal_counts[g.label]) for g in self.domain.goals),
+            cache_visits=tuple((c, caches[c]) for c in self.domain.model.caches),
+            legs_failed=tuple((s.index, leg) for s in run.steps for leg in s.failed),
+            legs_degraded=tuple((s.index, leg) for s in run.steps for leg in s.degraded),
+            assumptions_held=not any(v.is_assumption for v in violations),
+            guarantees_held=not any(not v.is_assumption for v in violations),
+            violations=tuple(v.describe() for v in violations[:MAX_REPORTED]),
+            env_liveness=tuple((self.monitor.rule("env_liveness", i), env_live[i])
+                               for i in range(len(spec.env_liveness))),
+            sys_liveness=tuple((self.monitor.rule("sys_liveness", i), sys_live[i])
+                               for i in range(len(spec.sys_liveness))),
+            stopped=None if run.error is None else run.error.message,
+        )
+
+
+def simulate(strategy: Strategy, domain: Domain, monitor: Monitor, environment: Environment,
+             steps: int = 50, spec_file: str = "") -> Run:
+    """Simulate ``environment`` against ``strategy`` for up to ``steps`` steps."""
+    return Simulator(strategy, domain, monitor).run(environment, steps, spec_file)
