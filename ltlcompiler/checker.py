@@ -333,5 +333,9 @@ def check(spec: s.SpecFile) -> tuple[Model, list[Diagnostic]]:
         grid=c.rmap.grid,
         file=spec.file,
     )
-    return model, c.diagnostics
+    order = sorted(
+        c.diagnostics,
+        key=lambda d: (d.span.line, d.span.column) if d.span is not None else (0, 0),
+    )
+    return model, order
 

@@ -31,6 +31,7 @@ STATEMENT_KEYWORDS = (
     "assume", "block", "cache", "caches", "correction", "edge", "gait", "grid", "guarantee",
     "hazard", "leg", "legs", "region", "regions", "robot", "start", "visit",
 )  # fmt: skip
+_OPERATORS = ("&", "|", "^", "->", "<->", "and", "or", "xor", "until")
 _TERMINAL_WORDS = {
     "NAME": "a name",
     "INT": "a number",
@@ -338,6 +339,9 @@ def _describe_expected(expected: set[str]) -> str:
     statements = [w for w in words if w.strip("'") in STATEMENT_KEYWORDS]
     if len(statements) >= 5:
         words = [w for w in words if w not in statements] + ["a new statement"]
+    operators = [w for w in words if w.strip("'") in _OPERATORS]
+    if len(operators) >= 3:
+        words = ["an operator such as & or ->"] + [w for w in words if w not in operators]
     if len(words) == 1:
         return words[0]
     return ", ".join(words[:-1]) + " or " + words[-1]
