@@ -1,4 +1,4 @@
-"""The error catalogue: every tests/errors/*.gait fails (or warns) with exactly its expected message.
+"""The error catalogue: each tests/errors/*.gait fails (or warns) with exactly its message.
 
 A file's ``# expect: LINE:COL: MESSAGE`` line names the error; files that only warn list
 ``# expect warning: LINE:COL: MESSAGE`` lines, in the order the checker reports them.
