@@ -1,0 +1,314 @@
+"""Tests of the embedded BDD solver (slugs_bridge/symbolic.py, game.py, synthesis.py).
+
+The property test compares it with an explicit-state GR(1) game solver written here from
+the definitions (sets of states, no BDDs), on random tiny specifications.
+"""
+
+from __future__ import annotations
+
+import itertools
+from collections.abc import Iterator
+
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from slugs_bridge import synthesis
+from slugs_bridge.diagnostics import FormulaError, SolverError
+from slugs_bridge.formula import (
+    Add,
+    And,
+    Compare,
+    Const,
+    Expr,
+    Iff,
+    Implies,
+    IntConst,
+    IntVar,
+    Not,
+    Or,
+    Var,
+    Xor,
+    evaluate,
+)
+from slugs_bridge.game import Game
+from slugs_bridge.spec import Clause, GR1Spec, Variable
+from slugs_bridge.symbolic import Options, SymbolicSpec
+
+
+def clauses(*formulas: Expr) -> tuple[Clause, ...]:
+    return tuple(Clause(f) for f in formulas)
+
+
+def v(name: str, primed: bool = False) -> Var:
+    return Var(name, primed)
+
+
+# ---------------------------------------------------------------- an explicit reference solver
+State = tuple[int, ...]
+
+
+def _valuation(names: list[str], pre: State, post: State | None = None) -> dict[str, int]:
+    out = dict(zip(names, pre, strict=True))
+    if post is not None:
+        out.update({n + "'": b for n, b in zip(names, post, strict=True)})
+    return out
+
+
+def explicit_realizable(spec: GR1Spec, semantics: str) -> bool:
+    """Solve the GR(1) game by enumerating states (Boolean specs only)."""
+    ins = [x.name for x in spec.inputs]
+    outs = [y.name for y in spec.outputs]
+    names = ins + outs
+    states = [tuple(s) for s in itertools.product((0, 1), repeat=len(names))]
+    xs = list(itertools.product((0, 1), repeat=len(ins)))
+    ys = list(itertools.product((0, 1), repeat=len(outs)))
+
+    def holds(section: tuple[Clause, ...], pre: State, post: State | None = None) -> bool:
+        val = _valuation(names, pre, post)
+        return all(evaluate(c.formula, val) for c in section)
+
+    env_ok = {
+        (s, x): holds(spec.env_trans, s, x + ys[0]) for s in states for x in xs
+    }  # ρe may not read primed outputs in these tests
+    sys_ok = {(s, t): holds(spec.sys_trans, s, t) for s in states for t in states}
+    env_goals = [c.formula for c in spec.env_liveness] or [Const(True)]
+    sys_goals = [c.formula for c in spec.sys_liveness] or [Const(True)]
+
+    def goal(f: Expr, s: State, t: State) -> bool:
+        return evaluate(f, _valuation(names, s, t))
+
+    def cpre(target: object) -> set[State]:
+        # ∀x'. ρe → ∃y'. ρs ∧ target(s, t)
+        out = set()
+        for s in states:
+            if all(
+                not env_ok[(s, x)] or any(sys_ok[(s, x + y)] and target(s, x + y) for y in ys)  # type: ignore[operator]
+                for x in xs
+            ):
+                out.add(s)
+        return out
+
+    z: set[State] = set(states)
+    while True:
+        new_z = set(states)
+        for sg in sys_goals:
+            y_set: set[State] = set()
+            while True:
+                new_y = set(y_set)
+                for eg in env_goals:
+                    x_set = set(states)
+                    while True:
+                        zz, yy, xx = frozenset(z), frozenset(y_set), frozenset(x_set)
+                        nxt = cpre(
+                            lambda s, t, zz=zz, yy=yy, xx=xx, sg=sg, eg=eg: (
+                                (goal(sg, s, t) and t in zz)
+                                or t in yy
+                                or (not goal(eg, s, t) and t in xx)
+                            )
+                        )
+                        if nxt == x_set:
+                            break
+                        x_set = nxt
+                    new_y |= x_set
+                if new_y == y_set:
+                    break
+                y_set = new_y
+            new_z &= y_set
+        if new_z == z:
+            break
+        z = new_z
+    for x in xs:
+        starts = [x + y for y in ys]
+        if not holds(spec.env_init, starts[0]):
+            continue
+        good = [s for s in starts if holds(spec.sys_init, s) and s in z]
+        if semantics == "default" and not good:
+            return False
+        if semantics == "robotics" and any(holds(spec.sys_init, s) and s not in z for s in starts):
+            return False
+    return True
+
+
+# ---------------------------------------------------------------- random tiny specs
+def formulas(names: list[str], depth: int) -> st.SearchStrategy[Expr]:
+    leaves = st.sampled_from(
+        [Var(n.rstrip("'"), n.endswith("'")) for n in names] + [Const(True), Const(False)]
+    )
+
+    def grow(children: st.SearchStrategy[Expr]) -> st.SearchStrategy[Expr]:
+        pair = st.tuples(children, children)
+        return st.one_of(
+            st.builds(Not, children),
+            pair.map(lambda p: And(p)),
+            pair.map(lambda p: Or(p)),
+            pair.map(lambda p: Xor(*p)),
+            pair.map(lambda p: Iff(*p)),
+            pair.map(lambda p: Implies(*p)),
+        )
+
+    return st.recursive(leaves, grow, max_leaves=depth)
+
+
+@st.composite
+def tiny_specs(draw: st.DrawFn) -> GR1Spec:
+    n_in = draw(st.integers(1, 2))
+    n_out = draw(st.integers(1, 2))
+    ins = [f"x{k}" for k in range(n_in)]
+    outs = [f"y{k}" for k in range(n_out)]
+    pre = ins + outs
+    env_post = pre + [n + "'" for n in ins]
+    all_post = env_post + [n + "'" for n in outs]
+
+    def some(names: list[str], most: int) -> tuple[Clause, ...]:
+        return clauses(*draw(st.lists(formulas(names, 5), max_size=most)))
+
+    return GR1Spec(
+        inputs=tuple(Variable(n) for n in ins),
+        outputs=tuple(Variable(n) for n in outs),
+        env_init=some(ins, 1),
+        sys_init=some(pre, 1),
+        env_trans=some(env_post, 1),
+        sys_trans=some(all_post, 2),
+        env_liveness=some(env_post, 2),
+        sys_liveness=some(all_post, 2),
+    )
+
+
+@settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(tiny_specs())
+def test_bdd_solver_agrees_with_explicit_solver(spec: GR1Spec) -> None:
+    for semantics in ("default", "robotics"):
+        expected = explicit_realizable(spec, semantics)
+        assert synthesis.check(spec, semantics).realizable == expected, semantics
+
+
+@pytest.mark.parametrize(
+    "options",
+    [
+        Options(order="declaration", partitioned=False, recycle=False),
+        Options(order="occurrence", partitioned=True, recycle=True, cluster_limit=1),
+        Options(reordering=True),
+    ],
+    ids=["plain", "clustered", "reordering"],
+)
+@settings(max_examples=25, deadline=None)
+@given(spec=tiny_specs())
+def test_every_tuning_option_gives_the_same_winning_region(spec: GR1Spec, options: Options) -> None:
+    base = SymbolicSpec(spec)
+    other = SymbolicSpec(spec, options)
+    w1 = Game(base).solve().winning
+    w2 = Game(other).solve().winning
+    names = list(base.input_bits + base.output_bits)
+    for bits in itertools.product((False, True), repeat=len(names)):
+        point = dict(zip(names, bits, strict=True))
+        assert (base.bdd.let(point, w1) == base.bdd.true) == (
+            other.bdd.let(point, w2) == other.bdd.true
+        )
+
+
+# ---------------------------------------------------------------- semantics and basics
+SEMANTICS_DIFFERENCE = GR1Spec(
+    inputs=(Variable("person"),),
+    outputs=(Variable("bit0"),),
+    sys_trans=clauses(v("bit0")),
+    env_liveness=clauses(v("person"), Not(v("person"))),
+)
+
+
+def test_initial_semantics_differ_as_in_slugs() -> None:
+    # The system may start with bit0 = 1 (default) but not every start is winning (robotics).
+    assert synthesis.check(SEMANTICS_DIFFERENCE, "default").realizable
+    assert not synthesis.check(SEMANTICS_DIFFERENCE, "robotics").realizable
+
+
+def test_environment_deadlock_makes_the_system_win() -> None:
+    spec = GR1Spec(
+        inputs=(Variable("a"),),
+        outputs=(Variable("b"),),
+        env_trans=clauses(Const(False)),
+        sys_liveness=clauses(Const(False)),
+    )
+    assert synthesis.check(spec).realizable
+
+
+def test_goal_is_a_transition_predicate() -> None:
+    # The goal "b changes" needs primes; the system can toggle b every step.
+    toggle = Xor(v("b"), v("b", True))
+    spec = GR1Spec(outputs=(Variable("b"),), sys_liveness=clauses(toggle))
+    assert synthesis.check(spec).realizable
+    frozen = GR1Spec(
+        outputs=(Variable("b"),),
+        sys_trans=clauses(Iff(v("b"), v("b", True))),
+        sys_liveness=clauses(toggle),
+    )
+    assert not synthesis.check(frozen).realizable
+
+
+def test_unsatisfiable_liveness_is_unrealizable_unless_the_environment_fails() -> None:
+    spec = GR1Spec(
+        inputs=(Variable("a"),), outputs=(Variable("b"),), sys_liveness=clauses(Const(False))
+    )
+    assert not synthesis.check(spec).realizable
+    fair = spec.with_sections(env_liveness=clauses(Const(False)))
+    assert synthesis.check(fair).realizable
+
+
+def _points(
+    names: list[str], lows: dict[str, int], sizes: dict[str, int]
+) -> Iterator[dict[str, int]]:
+    for values in itertools.product(*(range(lows[n], lows[n] + sizes[n]) for n in names)):
+        yield dict(zip(names, values, strict=True))
+
+
+@pytest.mark.parametrize("op", ["=", "!=", "<", "<=", ">", ">="])
+@pytest.mark.parametrize(
+    ("left", "right"),
+    [
+        (IntVar("p"), IntConst(3)),
+        (IntVar("p"), IntVar("q")),
+        (Add(IntVar("p"), IntConst(2)), IntVar("q")),
+        (Add(IntVar("p"), IntVar("q")), IntConst(7)),
+        (IntVar("q"), Add(IntVar("p"), IntConst(-1))),
+    ],
+)
+def test_integer_comparisons_match_evaluate(op: str, left: IntVar, right: IntVar) -> None:
+    spec = GR1Spec(outputs=(Variable("p", -2, 4), Variable("q", 1, 6)))
+    sym = SymbolicSpec(spec)
+    formula = Compare(op, left, right)
+    u = sym.translate(formula)
+    for point in _points(["p", "q"], {"p": -2, "q": 1}, {"p": 7, "q": 6}):
+        bits = {}
+        for name, value in point.items():
+            var = spec.variable(name)
+            assert var is not None and var.low is not None
+            for k, bit in enumerate(sym.var_bits[name]):
+                bits[bit] = bool((value - var.low) >> k & 1)
+        assert (sym.bdd.let(bits, u) == sym.bdd.true) == evaluate(formula, point), point
+
+
+def test_range_constraints_exclude_values_outside_the_domain() -> None:
+    # r in 0..4 has 3 bits; values 5..7 are forbidden for the system, so "r = 6"
+    # can never be reached, while "r = 4" can.
+    r = Variable("r", 0, 4)
+    reach_six = GR1Spec(outputs=(r,), sys_liveness=clauses(Compare("=", IntVar("r"), IntConst(6))))
+    reach_four = GR1Spec(outputs=(r,), sys_liveness=clauses(Compare("=", IntVar("r"), IntConst(4))))
+    assert not synthesis.check(reach_six).realizable
+    assert synthesis.check(reach_four).realizable
+
+
+def test_unknown_variable_is_a_formula_error() -> None:
+    spec = GR1Spec(outputs=(Variable("b"),), sys_trans=clauses(v("ghost")))
+    with pytest.raises(FormulaError, match="unknown variable 'ghost'"):
+        synthesis.check(spec)
+
+
+def test_timeout_stops_with_a_solver_error() -> None:
+    with pytest.raises(SolverError, match="time limit"):
+        synthesis.check(SEMANTICS_DIFFERENCE, timeout=-1.0)
+
+
+def test_progress_reports_iterations() -> None:
+    seen: list[str] = []
+    synthesis.check(SEMANTICS_DIFFERENCE, progress=seen.append)
+    assert seen and all("Z round" in line for line in seen)
