@@ -58,8 +58,9 @@ def _reserved(tok: Token) -> Token:
     """'always'/'eventually' lexed as a name: they sit where GR(1) forbids them."""
     if tok in ("always", "eventually"):
         raise FormulaError(
-            f"'{tok}' cannot appear inside a formula: GR(1) allows only 'always φ' (safety) "
-            "and 'always eventually φ' (liveness), at the start of an assume or guarantee",
+            f"'{tok}' may only start an assume or guarantee: GR(1) allows 'always φ' (safety) "
+            "and 'always eventually φ' (liveness), never a temporal word inside a formula or "
+            "as a name",
             _token_span("", tok),
         )
     return tok

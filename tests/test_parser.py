@@ -179,7 +179,7 @@ def test_syntax_errors(text: str, message: str) -> None:
 
 
 def test_temporal_words_inside_formulas_are_gr1_errors() -> None:
-    with pytest.raises(FormulaError, match="'always' cannot appear inside a formula"):
+    with pytest.raises(FormulaError, match="'always' may only start an assume or guarantee"):
         parse("guarantee a & always b", "t.gait")
     with pytest.raises(FormulaError, match="'until' is outside GR\\(1\\)"):
         parse("assume a until b", "t.gait")
