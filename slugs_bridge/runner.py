@@ -128,7 +128,8 @@ def _verdict(stderr: str, returncode: int) -> bool:
     errors = [line for line in lines if line.startswith("Error")]
     if errors or returncode != 0:
         text = "; ".join(errors or lines[-1:] or ["no message on stderr"])
-        raise SolverError(f"SLUGS failed (exit code {returncode}): {text}")
+        how = f"killed by signal {-returncode}" if returncode < 0 else f"exit code {returncode}"
+        raise SolverError(f"SLUGS failed ({how}): {text}")
     found = _RESULT.findall(stderr)
     if len(found) != 1:
         raise SolverError(

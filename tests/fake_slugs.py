@@ -4,13 +4,15 @@
 It checks options and file-name order the way SLUGS's ``src/main.cpp`` does, prints the banner
 and a ``RESULT:`` line on stderr (exit code 0 for both verdicts), and answers only for the
 specifications recorded in ``tests/data/slugs_recorded`` (matched by exact slugsin text).
-``FAKE_SLUGS_BEHAVIOUR`` selects a failure: ``sleep``, ``no-result``, ``crash``, ``garbage``.
+``FAKE_SLUGS_BEHAVIOUR`` selects a failure: ``sleep``, ``no-result``, ``crash``,
+``signal``, ``garbage``.
 """
 
 from __future__ import annotations
 
 import json
 import os
+import signal
 import sys
 import time
 from pathlib import Path
@@ -93,6 +95,8 @@ def main(argv: list[str]) -> int:
     behaviour = os.environ.get("FAKE_SLUGS_BEHAVIOUR", "")
     if behaviour == "sleep":
         time.sleep(60)
+    if behaviour == "signal":
+        os.kill(os.getpid(), signal.SIGKILL)
     if behaviour == "crash":
         print("Segmentation fault (core dumped)", file=sys.stderr)
         return 139
