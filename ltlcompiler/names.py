@@ -13,6 +13,7 @@ from collections.abc import Iterable
 from ltlcompiler import syntax as s
 from slugs_bridge.diagnostics import Span, SpecSemanticError
 
+MAX_RANGE = 10_000
 _NUMBERED = re.compile(r"^(.*?)(\d+)$")
 
 
@@ -36,6 +37,11 @@ def expand(item: s.NameItem) -> list[s.Name]:
     if low > high:
         raise SpecSemanticError(
             f"range {first}..{last} counts down; write {last}..{first}", item.span
+        )
+    if high - low >= MAX_RANGE:
+        raise SpecSemanticError(
+            f"range {first}..{last} has {high - low + 1} names; at most {MAX_RANGE} are allowed",
+            item.span,
         )
     digits = m1.group(2)
     width = len(digits) if digits.startswith("0") and len(digits) > 1 else 0

@@ -14,6 +14,7 @@ from ltlcompiler.model import NO_GAIT, Region, Transition
 from ltlcompiler.names import Namespace, describe, expand_all
 from slugs_bridge.diagnostics import Diagnostic, Span, SpecSemanticError
 
+MAX_CELLS = 10_000
 STEPS = {"north": (-1, 0), "south": (1, 0), "east": (0, 1), "west": (0, -1)}
 OPPOSITE = {"north": "south", "south": "north", "east": "west", "west": "east"}
 
@@ -105,6 +106,11 @@ def add_grid(rmap: RegionMap, st: s.GridDecl, ns: Namespace) -> None:
             f"a grid needs at least 1 row and 1 column, not {st.rows} x {st.cols}", st.span
         )
     count = st.rows * st.cols
+    if count > MAX_CELLS:
+        raise SpecSemanticError(
+            f"a {st.rows} x {st.cols} grid has {count} cells; at most {MAX_CELLS} are allowed",
+            st.span,
+        )
     if st.cells is None:
         names = [s.Name(f"r{i}", span=st.span) for i in range(count)]
     else:
