@@ -15,6 +15,7 @@ import dd.cudd as cudd
 import networkx as nx
 
 from slugs_bridge.controller import Controller
+from slugs_bridge.diagnostics import FormulaError
 from slugs_bridge.formula import And, Const, Expr, Iff, Implies, Not, Or, Var, Xor
 from slugs_bridge.spec import Clause, GR1Spec
 
@@ -44,23 +45,6 @@ class VerificationReport:
         )
 
 
-@dataclass(frozen=True)
-class Automaton:
-    """The part of a controller the checks read: bit names, node states, successors."""
-
-    variables: tuple[str, ...]
-    states: Mapping[int, Bits]
-    trans: Mapping[int, tuple[int, ...]]
-    initial: tuple[int, ...]
-
-
-def automaton_of(controller: Controller) -> Automaton:
-    """View a :class:`~slugs_bridge.controller.Controller` as an :class:`Automaton`."""
-    states = {k: tuple(node.state) for k, node in enumerate(controller.nodes)}
-    trans = {k: tuple(node.trans) for k, node in enumerate(controller.nodes)}
-    return Automaton(tuple(controller.variables), states, trans, tuple(controller.initial))
-
-
 def _boolean(spec: GR1Spec) -> GR1Spec:
     if not spec.has_integers:
         return spec
@@ -80,7 +64,11 @@ def _rule(section: str, index: int, clause: Clause) -> str:
 
 
 class _Logic:
-    """BDDs of the spec's clauses over unprimed and primed bits, with cached evaluation."""
+    """BDDs of the spec's clauses over unprimed and primed (``x'``) bits, cached evaluation.
+
+    Every BDD used as a cache key stays referenced (clauses, restrictions, conjunctions), so
+    the node ids in the keys cannot be reused by CUDD.
+    """
 
     def __init__(self, spec: GR1Spec) -> None:
         self.spec = spec
@@ -89,8 +77,7 @@ class _Logic:
         self.bdd = cudd.BDD()
         for name in self.inputs + self.outputs:
             self.bdd.declare(name, name + "'")
-        self._memo: dict[int, Any] = {}
-        self._keep: list[Expr] = []
+        self._memo: dict[int, tuple[Expr, Any]] = {}
         self._cache: dict[tuple[int, Bits], bool] = {}
         self._restrict: dict[tuple[int, Bits], Any] = {}
         self._support: dict[int, tuple[str, ...]] = {}
@@ -106,33 +93,35 @@ class _Logic:
         return self._clauses[section]
 
     def translate(self, expr: Expr) -> Any:
-        cached = self._memo.get(id(expr))
-        if cached is not None:
-            return cached
-        b = self.bdd
-        result: Any
+        """The BDD of a Boolean formula (memoised on node identity, so DAGs stay cheap)."""
+        if id(expr) in self._memo:
+            return self._memo[id(expr)][1]
+        b, result = self.bdd, None
         if isinstance(expr, Const):
             result = b.true if expr.value else b.false
         elif isinstance(expr, Var):
             name = expr.name + ("'" if expr.primed else "")
             if name not in b.vars:
-                raise KeyError(f"variable '{name}' is not declared in the specification")
+                raise FormulaError(f"'{expr.name}' is not a variable of the specification",
+                                   expr.span)
             result = b.var(name)
         elif isinstance(expr, Not):
             result = ~self.translate(expr.arg)
-        elif isinstance(expr, (And, Or)):
-            parts = [self.translate(a) for a in expr.args]
-            result = b.true if isinstance(expr, And) else b.false
-            for p in parts:
-                result = (result & p) if isinstance(expr, And) else (result | p)
+        elif isinstance(expr, And):
+            result = b.true
+            for arg in expr.args:
+                result &= self.translate(arg)
+        elif isinstance(expr, Or):
+            result = b.false
+            for arg in expr.args:
+                result |= self.translate(arg)
         elif isinstance(expr, (Xor, Iff, Implies)):
-            left, right = self.translate(expr.left), self.translate(expr.right)
             op = {Xor: "xor", Iff: "equiv", Implies: "implies"}[type(expr)]
-            result = b.apply(op, left, right)
+            result = b.apply(op, self.translate(expr.left), self.translate(expr.right))
         else:
-            raise TypeError(f"the verifier cannot translate {type(expr).__name__} formulas")
-        self._memo[id(expr)] = result
-        self._keep.append(expr)
+            raise FormulaError(f"the verifier cannot check {type(expr).__name__} formulas; "
+                               "bit-blast integers first", expr.span)
+        self._memo[id(expr)] = (expr, result)
         return result
 
     def support(self, u: Any) -> tuple[str, ...]:
@@ -154,7 +143,7 @@ class _Logic:
         return found
 
     def restrict(self, u: Any, current: Mapping[str, bool]) -> Any:
-        """``u`` with the unprimed bits fixed to ``current`` (cached on those bits)."""
+        """``u`` with its unprimed bits fixed to ``current`` (cached on those bits)."""
         names = tuple(n for n in self.support(u) if not n.endswith("'"))
         key = (int(u), tuple(int(current[n]) for n in names))
         found = self._restrict.get(key)
@@ -167,114 +156,83 @@ class _Logic:
         suffix = "'" if primed else ""
         return self.bdd.cube({n + suffix: valuation[n] for n in names})
 
-    def show(self, assignment: Mapping[str, bool], names: Sequence[str], primed: bool) -> str:
+    def pick(self, u: Any, names: Sequence[str], primed: bool) -> tuple[str, int]:
+        """One assignment of ``u`` shown as ``{a=1, b=0}``, and how many there are."""
         suffix = "'" if primed else ""
-        return "{" + ", ".join(f"{n}={int(assignment.get(n + suffix, False))}" for n in names) + "}"
-
-
-class _Problems:
-    def __init__(self) -> None:
-        self.items: list[str] = []
-        self.notes: list[str] = []
-        self.dropped = 0
-
-    def add(self, message: str) -> None:
-        if len(self.items) < MAX_PROBLEMS:
-            self.items.append(message)
-        else:
-            self.dropped += 1
-
-    def note(self, message: str) -> None:
-        if len(self.notes) < MAX_PROBLEMS:
-            self.notes.append(message)
-
-    def final(self) -> tuple[str, ...]:
-        extra = [f"... and {self.dropped} more problem(s)"] if self.dropped else []
-        return tuple(self.items + extra)
+        care = {n + suffix for n in names}
+        example = self.bdd.pick(u, care_vars=care) or {}
+        shown = ", ".join(f"{n}={int(example.get(n + suffix, False))}" for n in names)
+        return "{" + shown + "}", int(self.bdd.count(u, nvars=len(care)))
 
 
 class _Check:
-    """Shared set-up of the strategy and counter-strategy checks."""
+    """State shared by the checks of one controller: valuations, reachable nodes, the graph."""
 
-    def __init__(self, spec: GR1Spec, automaton: Automaton, semantics: str) -> None:
+    def __init__(self, spec: GR1Spec, controller: Controller, semantics: str) -> None:
         if semantics not in SEMANTICS:
             raise ValueError(f"unknown semantics {semantics!r}; use 'default' or 'robotics'")
-        self.semantics = semantics
+        self.semantics, self.ctrl = semantics, controller
         self.spec = _boolean(spec)
-        self.auto = automaton
         self.logic = _Logic(self.spec)
-        self.problems = _Problems()
+        self.problems: list[str] = []
+        self.notes: list[str] = []
         self.reachable: list[int] = []
-        self.valuations: dict[int, dict[str, bool]] = {}
+        self.valuations: list[dict[str, bool]] = []
         self.graph: Any = nx.DiGraph()
         self.sccs = 0
         self._conj: dict[tuple[str, Bits | None], Any] = {}
 
-    def well_formed(self) -> bool:
-        """Variable list, state widths and node references; later checks need all three."""
-        expected = self.logic.inputs + self.logic.outputs
-        if self.auto.variables != expected:
-            self.problems.add(
-                f"the controller's variable list {list(self.auto.variables)} does not match "
-                f"the specification's bits {list(expected)} (inputs first, then outputs)"
-            )
-            return False
-        ok = True
-        for node, bits in sorted(self.auto.states.items()):
-            if len(bits) != len(expected) or any(b not in (0, 1) for b in bits):
-                self.problems.add(f"node {node}: state {list(bits)} is not a 0/1 vector of "
-                                  f"length {len(expected)}")
-                ok = False
-        for node, succ in sorted(self.auto.trans.items()):
-            for target in succ:
-                if target not in self.auto.states:
-                    self.problems.add(f"node {node}: successor {target} does not exist")
-                    ok = False
-        for node in self.auto.initial:
-            if node not in self.auto.states:
-                self.problems.add(f"initial node {node} does not exist")
-                ok = False
-        if ok:
-            self.valuations = {
-                n: {v: bool(b) for v, b in zip(expected, bits, strict=True)}
-                for n, bits in self.auto.states.items()
-            }
-            self.reachable = self._explore()
-        return ok
+    def trans(self, node: int) -> tuple[int, ...]:
+        return tuple(self.ctrl.nodes[node].trans)
 
-    def _explore(self) -> list[int]:
-        seen = set(self.auto.initial)
-        order = sorted(seen)
-        queue = list(order)
-        while queue:
-            node = queue.pop(0)
-            for target in self.auto.trans[node]:
+    def well_formed(self) -> bool:
+        """Variable list, state vectors and node references; the other checks need them."""
+        expected, c = self.logic.inputs + self.logic.outputs, self.ctrl
+        if tuple(c.variables) != expected:
+            self.problems.append(
+                f"the controller's variable list {list(c.variables)} does not match the "
+                f"specification's bits {list(expected)} (inputs first, then outputs)")
+            return False
+        count = len(c.nodes)
+        for k, node in enumerate(c.nodes):
+            if len(node.state) != len(expected) or any(b not in (0, 1) for b in node.state):
+                self.problems.append(f"node {k}: state {list(node.state)} is not a 0/1 vector "
+                                     f"of length {len(expected)}")
+            self.problems += [f"node {k}: successor {t} does not exist"
+                              for t in node.trans if not 0 <= t < count]
+        self.problems += [f"initial node {k} does not exist" for k in c.initial
+                          if not 0 <= k < count]
+        if self.problems:
+            return False
+        self.valuations = [
+            {v: bool(b) for v, b in zip(expected, node.state, strict=True)} for node in c.nodes
+        ]
+        seen = set(c.initial)
+        self.reachable = sorted(seen)
+        for source in self.reachable:  # the list grows while it is walked: breadth-first
+            for target in self.trans(source):
                 if target not in seen:
                     seen.add(target)
-                    order.append(target)
-                    queue.append(target)
-        return order
+                    self.reachable.append(target)
+        return True
 
     def edge_valuation(self, src: int, dst: int) -> dict[str, bool]:
         val = dict(self.valuations[src])
         val.update({name + "'": value for name, value in self.valuations[dst].items()})
         return val
 
-    def initial_states_hold(self, sections: Sequence[str]) -> None:
-        for section in sections:
-            for rule, u in self.logic.clauses(section):
-                for node in self.auto.initial:
-                    if not self.logic.holds(u, self.valuations[node]):
-                        self.problems.add(f"initial node {node}: its state "
-                                          f"{self.show_state(node)} violates {rule}")
+    def show(self, node: int, names: Sequence[str] | None = None) -> str:
+        val = self.valuations[node]
+        names = self.logic.inputs + self.logic.outputs if names is None else names
+        return "{" + ", ".join(f"{n}={int(val[n])}" for n in names) + "}"
 
-    def show_state(self, node: int) -> str:
-        names = self.logic.inputs + self.logic.outputs
-        return self.logic.show(self.valuations[node], names, primed=False)
+    def failing(self, section: str, val: Mapping[str, bool]) -> str:
+        rules = [r for r, u in self.logic.clauses(section) if not self.logic.holds(u, val)]
+        return ", ".join(rules)
 
     def conj(self, section: str, node: int | None) -> Any:
         """Conjunction of a section; with ``node``, its unprimed bits fixed to the node's state."""
-        key = (section, None if node is None else self.auto.states[node])
+        key = (section, None if node is None else tuple(self.ctrl.nodes[node].state))
         found = self._conj.get(key)
         if found is None:
             found = self.logic.bdd.true
@@ -283,28 +241,25 @@ class _Check:
             self._conj[key] = found
         return found
 
-    def label_edges(self, sections: Sequence[str], skip: Callable[[int, int], bool]) -> None:
-        """Build the graph of reachable edges, each labelled with the goals it satisfies."""
-        goals = {s: self.logic.clauses(s) for s in sections}
+    def label_edges(self, skip: Callable[[int, int], bool]) -> None:
+        """The graph of reachable edges, each labelled with the liveness clauses it satisfies."""
+        sections = ("env_liveness", "sys_liveness")
         for node in self.reachable:
             self.graph.add_node(node)
-            for target in self.auto.trans[node]:
+            for target in self.trans(node):
                 if skip(node, target):
                     continue
                 val = self.edge_valuation(node, target)
-                labels = {
-                    s: frozenset(k for k, (_, u) in enumerate(goals[s])
-                                 if self.logic.holds(u, val))
-                    for s in sections
-                }
+                labels = {s: frozenset(k for k, (_, u) in enumerate(self.logic.clauses(s))
+                                       if self.logic.holds(u, val)) for s in sections}
                 self.graph.add_edge(node, target, **labels)
 
     def fair_sccs(self, avoid: str, index: int, need: str | None) -> list[list[int]]:
-        """SCCs of the edges not satisfying goal ``avoid[index]`` in which every goal of
-        ``need`` holds on some internal edge (a fair cycle that starves the avoided goal)."""
+        """SCCs of the edges not satisfying clause ``index`` of ``avoid`` in which every clause
+        of ``need`` holds on some internal edge: a fair cycle that starves the avoided goal."""
         count = len(self.spec.section(need)) if need is not None else 0
-        keep = [(a, b) for a, b, d in self.graph.edges(data=True) if index not in d.get(avoid, ())]
-        sub = nx.DiGraph(keep)
+        sub = nx.DiGraph([(a, b) for a, b, d in self.graph.edges(data=True)
+                          if index not in d.get(avoid, ())])
         found: list[list[int]] = []
         for component in nx.strongly_connected_components(sub):
             inner = sub.subgraph(component)
@@ -313,19 +268,24 @@ class _Check:
             self.sccs += 1
             seen: set[int] = set()
             for a, b in inner.edges():
-                if need is not None:
-                    seen |= self.graph.edges[a, b][need]
+                seen |= self.graph.edges[a, b][need] if need is not None else set()
             if len(seen) == count:
                 found.append(sorted(component))
         return sorted(found)
 
     def report(self, kind: str) -> VerificationReport:
-        problems = self.problems.final()
+        extra = len(self.problems) - MAX_PROBLEMS
+        problems = self.problems[:MAX_PROBLEMS] + [f"... and {extra} more problem(s)"] * (extra > 0)
         return VerificationReport(
-            ok=not problems, problems=problems, notes=tuple(self.problems.notes),
+            ok=not problems, problems=tuple(problems), notes=tuple(self.notes[:MAX_PROBLEMS]),
             nodes=len(self.reachable), edges=self.graph.number_of_edges(), sccs=self.sccs,
             kind=kind, semantics=self.semantics,
         )
+
+
+def _few(nodes: Sequence[int], limit: int = 12) -> str:
+    shown = ", ".join(str(n) for n in nodes[:limit])
+    return f"[{shown}{', ...' if len(nodes) > limit else ''}] ({len(nodes)} nodes)"
 
 
 # ---------------------------------------------------------------- strategies (system wins)
@@ -335,93 +295,81 @@ def verify(spec: GR1Spec, controller: Controller, semantics: str = "default") ->
     Checks initial coverage, safety (every ρe-allowed input answered, every edge keeps ρs)
     and liveness (no fair cycle starves a system goal); see docs/solvers.md.
     """
-    check = _Check(spec, automaton_of(controller), semantics)
-    kind = controller.kind
-    if kind != "strategy":
-        check.problems.add(f"the controller is a {kind}, not a strategy for the system")
+    check = _Check(spec, controller, semantics)
+    if controller.kind != "strategy":
+        check.problems.append(f"the controller is a {controller.kind}, not a strategy for the "
+                              "system")
     elif check.well_formed():
         _strategy_initial(check)
         broken = _strategy_safety(check)
-        check.label_edges(("env_liveness", "sys_liveness"), lambda a, b: (a, b) in broken)
+        check.label_edges(lambda a, b: (a, b) in broken)
         for j, (rule, _) in enumerate(check.logic.clauses("sys_liveness")):
-            for component in check.fair_sccs("sys_liveness", j, "env_liveness"):
-                check.problems.add(
-                    f"nodes {_few(component)}: a cycle through them satisfies every environment "
-                    f"liveness assumption infinitely often but never satisfies {rule}"
-                )
+            check.problems += [
+                f"nodes {_few(c)}: a cycle through them satisfies every environment liveness "
+                f"assumption infinitely often but never satisfies {rule}"
+                for c in check.fair_sccs("sys_liveness", j, "env_liveness")
+            ]
     return check.report("strategy")
 
 
-def _few(nodes: Sequence[int], limit: int = 12) -> str:
-    shown = ", ".join(str(n) for n in nodes[:limit])
-    return f"[{shown}{', ...' if len(nodes) > limit else ''}] ({len(nodes)} nodes)"
-
-
 def _strategy_initial(check: _Check) -> None:
-    check.initial_states_hold(("env_init", "sys_init"))
     logic, b = check.logic, check.logic.bdd
     theta = check.conj("env_init", None) & check.conj("sys_init", None)
-    valid = [n for n in check.auto.initial if logic.holds(theta, check.valuations[n])]
+    valid = []
+    for node in check.ctrl.initial:
+        val = check.valuations[node]
+        if logic.holds(theta, val):
+            valid.append(node)
+        else:
+            rules = check.failing("env_init", val) or check.failing("sys_init", val)
+            check.problems.append(f"initial node {node}: its state {check.show(node)} "
+                                  f"violates {rules}")
     if check.semantics == "default":
         names, what = logic.inputs, "environment input"
         required = b.exist(set(logic.outputs), check.conj("env_init", None))
         need = "default semantics: some initial node must have these inputs and satisfy sys_init"
     else:
-        names, what = logic.inputs + logic.outputs, "initial state"
-        required = theta
+        names, what, required = logic.inputs + logic.outputs, "initial state", theta
         need = "robotics semantics: every state allowed by env_init and sys_init must be covered"
     covered = b.false
     for node in valid:
         covered |= logic.cube(names, check.valuations[node], primed=False)
-    missing = required & ~covered
-    if missing != b.false:
-        example = b.pick(missing, care_vars=set(names))
-        count = int(b.count(missing, nvars=len(names)))
+    if required & ~covered != b.false:
+        shown, count = logic.pick(required & ~covered, names, primed=False)
         others = f" (and {count - 1} more)" if count > 1 else ""
-        check.problems.add(
-            f"no initial node for {what} {logic.show(example, names, primed=False)}{others} "
-            f"allowed by the assumptions ({need})"
-        )
+        check.problems.append(f"no initial node for {what} {shown}{others} allowed by the "
+                              f"assumptions ({need})")
 
 
 def _strategy_safety(check: _Check) -> set[tuple[int, int]]:
     """Every ρe-allowed input has a successor; every edge keeps ρs. Returns ρe-breaking edges."""
     logic, b = check.logic, check.logic.bdd
     primed_outputs = {n + "'" for n in logic.outputs}
-    primed_inputs = {n + "'" for n in logic.inputs}
     broken: set[tuple[int, int]] = set()
     for node in check.reachable:
-        succ = check.auto.trans[node]
-        allowed = b.exist(primed_outputs, check.conj("env_trans", node))
+        succ = check.trans(node)
+        assumption = check.conj("env_trans", node)
         covered = b.false
         for target in succ:
             covered |= logic.cube(logic.inputs, check.valuations[target], primed=True)
-        missing = allowed & ~covered
+        missing = b.exist(primed_outputs, assumption) & ~covered
         if missing != b.false:
-            example = b.pick(missing, care_vars=primed_inputs)
-            count = int(b.count(missing, nvars=len(primed_inputs)))
+            shown, count = logic.pick(missing, logic.inputs, primed=True)
             others = f" (and {count - 1} other input(s))" if count > 1 else ""
-            check.problems.add(
-                f"node {node}: environment input {logic.show(example, logic.inputs, True)} is "
-                f"allowed by the assumptions but has no successor{others}"
-            )
+            check.problems.append(f"node {node}: environment input {shown} is allowed by the "
+                                  f"assumptions but has no successor{others}")
         guarantee = check.conj("sys_trans", node)
-        assumption = check.conj("env_trans", node)
         for target in succ:
             val = check.edge_valuation(node, target)
             if not logic.holds(assumption, val):
                 broken.add((node, target))
-                rules = [r for r, u in logic.clauses("env_trans") if not logic.holds(u, val)]
-                check.problems.note(
-                    f"edge {node} -> {target}: the input violates {rules[0]}; harmless, the "
-                    "environment broke its assumptions there"
-                )
+                check.notes.append(f"edge {node} -> {target}: the input violates "
+                                   f"{check.failing('env_trans', val)}; harmless, the "
+                                   "environment broke its assumptions there")
             if not logic.holds(guarantee, val):
-                rules = [r for r, u in logic.clauses("sys_trans") if not logic.holds(u, val)]
-                check.problems.add(
-                    f"edge {node} -> {target}: the move to state {check.show_state(target)} "
-                    f"violates {', '.join(rules)}"
-                )
+                check.problems.append(f"edge {node} -> {target}: the move to state "
+                                      f"{check.show(target)} violates "
+                                      f"{check.failing('sys_trans', val)}")
     return broken
 
 
@@ -434,99 +382,90 @@ def verify_counterstrategy(
     Every run must either reach a position where the system has no move allowed by ρs, or
     satisfy every environment liveness assumption while missing some system goal forever.
     """
-    check = _Check(spec, automaton_of(controller), semantics)
-    kind = controller.kind
-    if kind != "counterstrategy":
-        check.problems.add(f"the controller is a {kind}, not a counter-strategy")
+    check = _Check(spec, controller, semantics)
+    if controller.kind != "counterstrategy":
+        check.problems.append(f"the controller is a {controller.kind}, not a counter-strategy")
     elif check.well_formed():
         _counter_initial(check)
         _counter_safety(check)
-        check.label_edges(("env_liveness", "sys_liveness"), lambda a, b: False)
+        check.label_edges(lambda a, b: False)
         for i, (rule, _) in enumerate(check.logic.clauses("env_liveness")):
-            for component in check.fair_sccs("env_liveness", i, None):
-                check.problems.add(f"nodes {_few(component)}: a cycle through them never "
-                                   f"satisfies {rule}, so the environment loses there")
-        for component in check.fair_sccs("none", -1, "sys_liveness"):
-            check.problems.add(f"nodes {_few(component)}: a cycle through them lets the system "
-                               "satisfy every system goal infinitely often")
+            check.problems += [f"nodes {_few(c)}: a cycle through them never satisfies {rule}, "
+                               "so the environment loses there"
+                               for c in check.fair_sccs("env_liveness", i, None)]
+        check.problems += [f"nodes {_few(c)}: a cycle through them lets the system satisfy "
+                           "every system goal infinitely often"
+                           for c in check.fair_sccs("none", -1, "sys_liveness")]
     return check.report("counterstrategy")
 
 
 def _counter_initial(check: _Check) -> None:
     logic, b = check.logic, check.logic.bdd
     theta_e, theta_s = check.conj("env_init", None), check.conj("sys_init", None)
-    for node in check.auto.initial:
+    for node in check.ctrl.initial:
         if not logic.holds(theta_e, check.valuations[node]):
-            check.problems.add(f"initial node {node}: its state {check.show_state(node)} "
-                               "violates env_init")
-    if not check.auto.initial:
-        stuck = b.exist(set(logic.inputs), theta_e & ~b.exist(set(logic.outputs), theta_s))
-        if stuck == b.false:
-            check.problems.add("the counter-strategy has no initial node, but the system can "
-                               "always start")
+            check.problems.append(f"initial node {node}: its state {check.show(node)} violates "
+                                  f"{check.failing('env_init', check.valuations[node])}")
+    if not check.ctrl.initial:
+        if b.exist(set(logic.inputs), theta_e & ~b.exist(set(logic.outputs), theta_s)) == b.false:
+            check.problems.append("the counter-strategy has no initial node, but the system can "
+                                  "always start")
         return
-    if check.semantics == "robotics":
+    if check.semantics == "robotics":  # one losing start state allowed by θe ∧ θs suffices
         return
-    groups: dict[Bits, Any] = {}
-    for node in check.auto.initial:
+    groups: dict[Bits, Any] = {}  # default: one input must cover every θs-allowed start
+    for node in check.ctrl.initial:
         key = tuple(int(check.valuations[node][n]) for n in logic.inputs)
         cube = logic.cube(logic.outputs, check.valuations[node], primed=False)
         groups[key] = groups.get(key, b.false) | cube
+    missing = []
     for key, covered in sorted(groups.items()):
         start = dict(zip(logic.inputs, (bool(v) for v in key), strict=True))
-        required = b.let(start, theta_e & theta_s)
-        if required & ~covered == b.false:
+        missing.append((b.let(start, theta_e & theta_s) & ~covered, key))
+        if missing[-1][0] == b.false:
             return
-    key = min(groups)
-    start = dict(zip(logic.inputs, (bool(v) for v in key), strict=True))
-    example = b.pick(b.let(start, theta_e & theta_s) & ~groups[key], care_vars=set(logic.outputs))
-    check.problems.add(
-        f"default semantics: no initial input of the counter-strategy covers every system "
-        f"start; e.g. input {logic.show(start, logic.inputs, False)} lacks outputs "
-        f"{logic.show(example, logic.outputs, False)}"
-    )
+    gap, key = missing[0]
+    shown, _ = logic.pick(gap, logic.outputs, primed=False)
+    check.problems.append(f"default semantics: no initial input of the counter-strategy covers "
+                          f"every system start; initial node {check.ctrl.initial[0]}'s input "
+                          f"lacks a node for outputs {shown}")
 
 
 def _counter_safety(check: _Check) -> None:
     logic, b = check.logic, check.logic.bdd
     primed_outputs = {n + "'" for n in logic.outputs}
-    markers = set()
+    dead_ends: set[int] = set()
     for node in check.reachable:
-        succ = check.auto.trans[node]
+        succ = check.trans(node)
         rho_e, rho_s = check.conj("env_trans", node), check.conj("sys_trans", node)
         if not succ:
-            if node not in markers:
-                stuck = b.exist({n + "'" for n in logic.inputs},
-                                rho_e & ~b.exist(primed_outputs, rho_s))
-                if stuck == b.false:
-                    check.problems.add(f"node {node}: it has no successor, but the system has a "
-                                       "move allowed by the guarantees for every input")
+            stuck = rho_e & ~b.exist(primed_outputs, rho_s)
+            if node not in dead_ends and stuck == b.false:
+                check.problems.append(f"node {node}: it has no successor, but the system has a "
+                                      "move allowed by the guarantees for every input")
             continue
-        inputs = {tuple(int(check.valuations[t][n]) for n in logic.inputs) for t in succ}
-        if len(inputs) > 1:
-            check.problems.add(f"node {node}: the environment must choose one input, but its "
-                               f"successors carry {len(inputs)} different inputs")
+        if len({check.show(t, logic.inputs) for t in succ}) > 1:
+            check.problems.append(f"node {node}: the environment must choose one input, but its "
+                                  f"successors carry different inputs")
             continue
-        first = check.valuations[succ[0]]
-        chosen = {n + "'": first[n] for n in logic.inputs}
+        chosen = {n + "'": check.valuations[succ[0]][n] for n in logic.inputs}
         answers = b.let(chosen, rho_s)
         covered = b.false
         for target in succ:
             val = check.edge_valuation(node, target)
             if not logic.holds(rho_e, val):
-                check.problems.add(f"edge {node} -> {target}: the environment's input "
-                                   "violates env_trans")
+                check.problems.append(f"edge {node} -> {target}: the environment's input "
+                                      f"violates {check.failing('env_trans', val)}")
             if answers == b.false:
-                markers.add(target)
+                dead_ends.add(target)  # the system has no legal answer: it loses here
             elif not logic.holds(rho_s, val):
-                check.problems.add(f"edge {node} -> {target}: the system answer violates "
-                                   "sys_trans, so the environment need not consider it")
+                check.problems.append(f"edge {node} -> {target}: the system answer violates "
+                                      f"{check.failing('sys_trans', val)}; the environment "
+                                      "need not consider it")
             covered |= logic.cube(logic.outputs, check.valuations[target], primed=True)
-        missing = answers & ~covered
-        if missing != b.false:
-            example = b.pick(missing, care_vars=primed_outputs)
-            check.problems.add(
-                f"node {node}: system answer {logic.show(example, logic.outputs, True)} to input "
-                f"{logic.show(chosen, logic.inputs, True)} is allowed by the guarantees but has "
-                "no successor"
-            )
+        if answers & ~covered != b.false:
+            shown, _ = logic.pick(answers & ~covered, logic.outputs, primed=True)
+            check.problems.append(
+                f"node {node}: system answer {shown} to input "
+                f"{check.show(succ[0], logic.inputs)} is allowed by the guarantees but has no "
+                "successor")
