@@ -181,6 +181,8 @@ class _Check:
         self.graph: Any = nx.DiGraph()
         self.sccs = 0
         self._conj: dict[tuple[str, Bits | None], Any] = {}
+        self._cubes: dict[tuple[int, tuple[str, ...]], Any] = {}
+        self._next: dict[tuple[int, int], bool] = {}
 
     def trans(self, node: int) -> tuple[int, ...]:
         return tuple(self.ctrl.nodes[node].trans)
@@ -241,18 +243,36 @@ class _Check:
             self._conj[key] = found
         return found
 
+    def next_cube(self, node: int, names: tuple[str, ...] | None = None) -> Any:
+        """The primed cube of ``node``'s state (or of its ``names`` bits), cached per node."""
+        names = self.logic.inputs + self.logic.outputs if names is None else names
+        key = (node, names)
+        if key not in self._cubes:
+            self._cubes[key] = self.logic.cube(names, self.valuations[node], primed=True)
+        return self._cubes[key]
+
+    def holds_next(self, u: Any, node: int) -> bool:
+        """Truth of ``u`` (a BDD over primed bits only) for the successor ``node``."""
+        key = (int(u), node)
+        found = self._next.get(key)
+        if found is None:
+            val = self.valuations[node]
+            found = self.logic.holds(u, {n: val[n[:-1]] for n in self.logic.support(u)})
+            self._next[key] = found
+        return found
+
     def label_edges(self, skip: Callable[[int, int], bool]) -> None:
         """The graph of reachable edges, each labelled with the liveness clauses it satisfies."""
         sections = ("env_liveness", "sys_liveness")
         for node in self.reachable:
             self.graph.add_node(node)
+            goals = {s: [self.logic.restrict(u, self.valuations[node])
+                         for _, u in self.logic.clauses(s)] for s in sections}
             for target in self.trans(node):
-                if skip(node, target):
-                    continue
-                val = self.edge_valuation(node, target)
-                labels = {s: frozenset(k for k, (_, u) in enumerate(self.logic.clauses(s))
-                                       if self.logic.holds(u, val)) for s in sections}
-                self.graph.add_edge(node, target, **labels)
+                if not skip(node, target):
+                    labels = {s: frozenset(k for k, u in enumerate(goals[s])
+                                           if self.holds_next(u, target)) for s in sections}
+                    self.graph.add_edge(node, target, **labels)
 
     def fair_sccs(self, avoid: str, index: int, need: str | None) -> list[list[int]]:
         """SCCs of the edges not satisfying clause ``index`` of ``avoid`` in which every clause
@@ -348,25 +368,27 @@ def _strategy_safety(check: _Check) -> set[tuple[int, int]]:
     broken: set[tuple[int, int]] = set()
     for node in check.reachable:
         succ = check.trans(node)
-        assumption = check.conj("env_trans", node)
-        covered = b.false
+        assumption, guarantee = check.conj("env_trans", node), check.conj("sys_trans", node)
+        covered, moves = b.false, b.false
         for target in succ:
-            covered |= logic.cube(logic.inputs, check.valuations[target], primed=True)
+            covered |= check.next_cube(target, logic.inputs)
+            moves |= check.next_cube(target)
         missing = b.exist(primed_outputs, assumption) & ~covered
         if missing != b.false:
             shown, count = logic.pick(missing, logic.inputs, primed=True)
             others = f" (and {count - 1} other input(s))" if count > 1 else ""
             check.problems.append(f"node {node}: environment input {shown} is allowed by the "
                                   f"assumptions but has no successor{others}")
-        guarantee = check.conj("sys_trans", node)
+        if moves & ~(assumption & guarantee) == b.false:
+            continue  # every edge keeps both ρe and ρs: nothing to report per edge
         for target in succ:
             val = check.edge_valuation(node, target)
-            if not logic.holds(assumption, val):
+            if not check.holds_next(assumption, target):
                 broken.add((node, target))
                 check.notes.append(f"edge {node} -> {target}: the input violates "
                                    f"{check.failing('env_trans', val)}; harmless, the "
                                    "environment broke its assumptions there")
-            if not logic.holds(guarantee, val):
+            if not check.holds_next(guarantee, target):
                 check.problems.append(f"edge {node} -> {target}: the move to state "
                                       f"{check.show(target)} violates "
                                       f"{check.failing('sys_trans', val)}")
@@ -453,16 +475,16 @@ def _counter_safety(check: _Check) -> None:
         covered = b.false
         for target in succ:
             val = check.edge_valuation(node, target)
-            if not logic.holds(rho_e, val):
+            if not check.holds_next(rho_e, target):
                 check.problems.append(f"edge {node} -> {target}: the environment's input "
                                       f"violates {check.failing('env_trans', val)}")
             if answers == b.false:
                 dead_ends.add(target)  # the system has no legal answer: it loses here
-            elif not logic.holds(rho_s, val):
+            elif not check.holds_next(rho_s, target):
                 check.problems.append(f"edge {node} -> {target}: the system answer violates "
                                       f"{check.failing('sys_trans', val)}; the environment "
                                       "need not consider it")
-            covered |= logic.cube(logic.outputs, check.valuations[target], primed=True)
+            covered |= check.next_cube(target, logic.outputs)
         if answers & ~covered != b.false:
             shown, _ = logic.pick(answers & ~covered, logic.outputs, primed=True)
             check.problems.append(
