@@ -7,6 +7,7 @@ here, safety is checked node by node (every ρe-allowed input has a successor, e
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -78,8 +79,7 @@ class _Logic:
         for name in self.inputs + self.outputs:
             self.bdd.declare(name, name + "'")
         self._memo: dict[int, tuple[Expr, Any]] = {}
-        self._cache: dict[tuple[int, Bits], bool] = {}
-        self._restrict: dict[tuple[int, Bits], Any] = {}
+        self._lets: dict[tuple[int, Bits], Any] = {}
         self._support: dict[int, tuple[str, ...]] = {}
         self._clauses: dict[str, list[tuple[str, Any]]] = {}
 
@@ -107,14 +107,10 @@ class _Logic:
             result = b.var(name)
         elif isinstance(expr, Not):
             result = ~self.translate(expr.arg)
-        elif isinstance(expr, And):
-            result = b.true
-            for arg in expr.args:
-                result &= self.translate(arg)
-        elif isinstance(expr, Or):
-            result = b.false
-            for arg in expr.args:
-                result |= self.translate(arg)
+        elif isinstance(expr, (And, Or)):
+            op, unit = ("and", b.true) if isinstance(expr, And) else ("or", b.false)
+            parts = [self.translate(arg) for arg in expr.args]
+            result = functools.reduce(lambda x, y: b.apply(op, x, y), parts, unit)
         elif isinstance(expr, (Xor, Iff, Implies)):
             op = {Xor: "xor", Iff: "equiv", Implies: "implies"}[type(expr)]
             result = b.apply(op, self.translate(expr.left), self.translate(expr.right))
@@ -130,27 +126,22 @@ class _Logic:
             self._support[key] = tuple(sorted(self.bdd.support(u)))
         return self._support[key]
 
+    def _let(self, u: Any, values: Mapping[str, bool], names: tuple[str, ...]) -> Any:
+        key = (int(u), tuple(int(values[n]) for n in names))
+        found = self._lets.get(key)
+        if found is None:
+            found = self._lets[key] = self.bdd.let({n: values[n] for n in names}, u)
+        return found
+
     def holds(self, u: Any, valuation: Mapping[str, bool]) -> bool:
         """Truth of ``u`` under ``valuation`` (must cover its support); cached on the support."""
         names = self.support(u)
-        if not names:
-            return bool(u == self.bdd.true)
-        key = (int(u), tuple(int(valuation[n]) for n in names))
-        found = self._cache.get(key)
-        if found is None:
-            found = self.bdd.let({n: valuation[n] for n in names}, u) == self.bdd.true
-            self._cache[key] = found
-        return found
+        return bool((self._let(u, valuation, names) if names else u) == self.bdd.true)
 
     def restrict(self, u: Any, current: Mapping[str, bool]) -> Any:
         """``u`` with its unprimed bits fixed to ``current`` (cached on those bits)."""
         names = tuple(n for n in self.support(u) if not n.endswith("'"))
-        key = (int(u), tuple(int(current[n]) for n in names))
-        found = self._restrict.get(key)
-        if found is None:
-            found = self.bdd.let({n: current[n] for n in names}, u) if names else u
-            self._restrict[key] = found
-        return found
+        return self._let(u, current, names) if names else u
 
     def cube(self, names: Iterable[str], valuation: Mapping[str, bool], primed: bool) -> Any:
         suffix = "'" if primed else ""
