@@ -1,0 +1,445 @@
+"""Reader and writer of SLUGS's prefix input format (``.slugsin``), with ``$``/``?`` memory buffers.
+
+Semantics follow ``GR1Context::init`` and ``parseBooleanFormulaRecurse`` in SLUGS
+(src/synthesisContextBasics.cpp): one conjunct per line, ``$ N f0 .. fN-1`` is the
+last of N formulas, ``? i`` recalls element ``i`` of the innermost enclosing buffer.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Iterator
+from dataclasses import dataclass
+from pathlib import Path
+
+from slugs_bridge.diagnostics import SlugsFormatError, Span
+from slugs_bridge.formula import (
+    And,
+    Const,
+    Expr,
+    Iff,
+    Implies,
+    IntVar,
+    Node,
+    Not,
+    Or,
+    Var,
+    Xor,
+    walk,
+)
+from slugs_bridge.spec import SECTIONS, Clause, GR1Spec, Origin, Variable
+
+# Section headers in the order the writers use; values are GR1Spec field names.
+HEADERS: dict[str, str] = {
+    "[INPUT]": "inputs",
+    "[OUTPUT]": "outputs",
+    "[ENV_INIT]": "env_init",
+    "[SYS_INIT]": "sys_init",
+    "[ENV_TRANS]": "env_trans",
+    "[SYS_TRANS]": "sys_trans",
+    "[ENV_LIVENESS]": "env_liveness",
+    "[SYS_LIVENESS]": "sys_liveness",
+}
+FIELD_HEADERS = {field: header for header, field in HEADERS.items()}
+OPERATORS = frozenset({"!", "&", "|", "^", "$", "?", "0", "1"})
+_TOKEN = re.compile(r"\S+")
+
+
+@dataclass(frozen=True)
+class SourceLine:
+    """One meaningful (non-blank, non-comment) line of a SLUGS file, inside a section."""
+
+    field: str  # GR1Spec field name, e.g. "sys_trans"
+    header: str  # e.g. "[SYS_TRANS]"
+    text: str  # the raw line, untrimmed
+    line: int
+    span: Span  # covers the trimmed text
+
+
+def read_sections(text: str, filename: str) -> Iterator[SourceLine]:
+    """Yield the content lines of a SLUGS file with their section; shared by both readers.
+
+    Blank lines and lines starting with ``#`` are skipped (as in SLUGS); a line starting
+    with ``[`` must be a known section header.  Sections may repeat and come in any order.
+    """
+    header: str | None = None
+    for number, raw in enumerate(text.splitlines(), start=1):
+        stripped = raw.strip()
+        if not stripped or stripped.startswith("#"):
+            continue
+        start = len(raw) - len(raw.lstrip()) + 1
+        span = Span(filename, number, start, number, start + len(stripped) - 1)
+        if stripped.startswith("["):
+            if stripped not in HEADERS:
+                known = ", ".join(HEADERS)
+                raise SlugsFormatError(
+                    f"unknown section header '{stripped}'; the known sections are {known}",
+                    span,
+                )
+            header = stripped
+            continue
+        if header is None:
+            raise SlugsFormatError(
+                "this line comes before any section header; start the file with a section "
+                "such as [INPUT]",
+                span,
+            )
+        yield SourceLine(HEADERS[header], header, raw, number, span)
+
+
+def check_name(name: str, span: Span) -> None:
+    """Reject variable names SLUGS cannot read back (whitespace, primes, operator tokens)."""
+    if _TOKEN.fullmatch(name) is None:
+        raise SlugsFormatError(
+            f"variable name '{name}' contains white space; a name must be a single word", span
+        )
+    if "'" in name:
+        raise SlugsFormatError(
+            f"variable name '{name}' contains a prime (\"'\"); primes mark next-state copies, "
+            "which SLUGS creates automatically",
+            span,
+        )
+    if name in OPERATORS:
+        raise SlugsFormatError(
+            f"'{name}' cannot be a variable name: it is an operator or constant of the "
+            "slugsin format",
+            span,
+        )
+
+
+def check_atoms(spec: GR1Spec) -> None:
+    """Check every clause uses declared variables the way SLUGS allows in its section.
+
+    As in SLUGS: [ENV_INIT] may mention only unprimed inputs, [SYS_INIT] only unprimed
+    variables, [ENV_TRANS] no primed outputs; the other sections anything declared.
+    """
+    inputs = {v.name for v in spec.inputs}
+    outputs = {v.name for v in spec.outputs}
+    for field in SECTIONS:
+        header = FIELD_HEADERS[field]
+        for clause in spec.section(field):
+            for node in walk(clause.formula):
+                if isinstance(node, (Var, IntVar)):
+                    _check_atom(node, field, header, inputs, outputs, clause)
+
+
+def _check_atom(
+    node: Var | IntVar,
+    field: str,
+    header: str,
+    inputs: set[str],
+    outputs: set[str],
+    clause: Clause,
+) -> None:
+    span = node.span or (clause.origin.span if clause.origin else None)
+    shown = node.name + ("'" if node.primed else "")
+    if node.name not in inputs and node.name not in outputs:
+        raise SlugsFormatError(
+            f"unknown variable '{node.name}'; declare it under [INPUT] or [OUTPUT]", span
+        )
+    if node.primed and field in ("env_init", "sys_init"):
+        raise SlugsFormatError(
+            f"next-state variable '{shown}' cannot appear in {header}: initial conditions "
+            "constrain the first state only",
+            span,
+        )
+    if field == "env_init" and node.name in outputs:
+        raise SlugsFormatError(
+            f"output '{node.name}' cannot appear in [ENV_INIT]: SLUGS allows only inputs "
+            "there; move the clause to [SYS_INIT]",
+            span,
+        )
+    if field == "env_trans" and node.primed and node.name in outputs:
+        raise SlugsFormatError(
+            f"next-state output '{shown}' cannot appear in [ENV_TRANS]: the environment "
+            "moves before the system and cannot see its next move",
+            span,
+        )
+
+
+# ---------------------------------------------------------------- prefix formulas
+@dataclass
+class _Frame:
+    """An operator (or memory buffer) still waiting for operands."""
+
+    op: str
+    span: Span
+    needed: int
+    args: list[Expr]
+
+
+def _span(filename: str, line: int, match: re.Match[str]) -> Span:
+    return Span(filename, line, match.start() + 1, line, match.end())
+
+
+def _parse_count(
+    matches: list[re.Match[str]], index: int, op: Span, what: str, filename: str, line: int
+) -> int:
+    if index >= len(matches):
+        raise SlugsFormatError(f"missing operand: {what}, but the line ends here", op)
+    text = matches[index].group()
+    if not text.isdigit():
+        raise SlugsFormatError(f"{what}, found '{text}'", _span(filename, line, matches[index]))
+    return int(text)
+
+
+def parse_prefix(
+    text: str, filename: str, line: int, declared: set[str]
+) -> Expr:
+    """Parse one slugsin formula line into the IR; shared subformulas (``$``/``?``) stay shared.
+
+    Nested ``&``/``|`` chains written inline are flattened into one n-ary node.
+    Names must be in ``declared`` (plain names; ``x'`` is the next-state copy of ``x``).
+    """
+    matches = list(_TOKEN.finditer(text))
+    stack: list[_Frame] = []
+    recalled: set[int] = set()  # ids of nodes produced by '?', never flattened into parents
+    result: Expr | None = None
+    i = 0
+    while i < len(matches):
+        tok = matches[i].group()
+        span = _span(filename, line, matches[i])
+        if result is not None:
+            raise SlugsFormatError(
+                f"unexpected token '{tok}' after a complete formula; each line holds exactly "
+                "one formula in prefix notation",
+                span,
+            )
+        i += 1
+        value: Expr | None = None
+        if tok in ("&", "|", "^"):
+            stack.append(_Frame(tok, span, 2, []))
+        elif tok == "!":
+            stack.append(_Frame(tok, span, 1, []))
+        elif tok == "$":
+            n = _parse_count(
+                matches, i, span, "'$' must be followed by the number of buffer elements",
+                filename, line,
+            )
+            if n == 0:
+                raise SlugsFormatError(
+                    "a memory buffer '$ 0' is empty; it needs at least one formula",
+                    _span(filename, line, matches[i]),
+                )
+            i += 1
+            stack.append(_Frame("$", span, n, []))
+        elif tok == "?":
+            k = _parse_count(
+                matches, i, span, "'?' must be followed by a buffer element number",
+                filename, line,
+            )
+            ref = _span(filename, line, matches[i])
+            i += 1
+            buffer = next((f for f in reversed(stack) if f.op == "$"), None)
+            if buffer is None:
+                raise SlugsFormatError(
+                    f"'? {k}' is outside any memory buffer; '?' may only appear inside '$ N ...'",
+                    span,
+                )
+            if k >= len(buffer.args):
+                raise SlugsFormatError(
+                    f"'? {k}' recalls buffer element {k}, but only {len(buffer.args)} "
+                    f"element(s) of the innermost buffer are complete at this point",
+                    ref,
+                )
+            value = buffer.args[k]
+            recalled.add(id(value))
+        elif tok == "1" or tok == "0":
+            value = Const(tok == "1", span=span)
+        else:
+            name, primed = (tok[:-1], True) if tok.endswith("'") else (tok, False)
+            if name not in declared:
+                raise SlugsFormatError(
+                    f"unknown variable '{name}'; declare it under [INPUT] or [OUTPUT]", span
+                )
+            value = Var(name, primed, span=span)
+        # Feed completed values to the waiting operators.
+        while value is not None:
+            if not stack:
+                result = value
+                break
+            frame = stack[-1]
+            frame.args.append(value)
+            if len(frame.args) < frame.needed:
+                break
+            stack.pop()
+            value = _build(frame, recalled)
+    if result is None:
+        if not stack:
+            raise SlugsFormatError(
+                "empty formula", Span(filename, line, 1, line, max(1, len(text)))
+            )
+        frame = stack[-1]
+        if frame.op == "$":
+            msg = (
+                f"missing operand: the memory buffer '$ {frame.needed}' needs {frame.needed} "
+                f"formulas but the line ends after {len(frame.args)}"
+            )
+        else:
+            msg = (
+                f"missing operand: '{frame.op}' needs {frame.needed} operand(s) but the line "
+                f"ends after {len(frame.args)}"
+            )
+        raise SlugsFormatError(msg, frame.span)
+    return result
+
+
+def _build(frame: _Frame, recalled: set[int]) -> Expr:
+    args = frame.args
+    if frame.op == "!":
+        return Not(args[0], span=frame.span)
+    if frame.op == "^":
+        return Xor(args[0], args[1], span=frame.span)
+    if frame.op == "$":
+        return args[-1]
+    kind = And if frame.op == "&" else Or
+    flat: list[Expr] = []
+    for a in args:
+        if type(a) is kind and id(a) not in recalled:
+            flat.extend(a.args)
+        else:
+            flat.append(a)
+    return kind(tuple(flat), span=frame.span)
+
+
+def parse_slugsin(text: str, filename: str) -> GR1Spec:
+    """Read a ``.slugsin`` specification (SLUGS's prefix format) into a Boolean :class:`GR1Spec`.
+
+    Unlike SLUGS, a formula may use a variable declared further down the file.
+    """
+    variables: dict[str, list[Variable]] = {"inputs": [], "outputs": []}
+    first_seen: dict[str, Span] = {}
+    clauses: dict[str, list[Clause]] = {name: [] for name in SECTIONS}
+    formulas: list[SourceLine] = []
+    for src in read_sections(text, filename):
+        if src.field not in variables:
+            formulas.append(src)
+        else:
+            name = src.text.strip()
+            check_name(name, src.span)
+            if name in first_seen:
+                raise SlugsFormatError(
+                    f"variable '{name}' is declared twice (first on line "
+                    f"{first_seen[name].line}); every name must be unique",
+                    src.span,
+                )
+            first_seen[name] = src.span
+            variables[src.field].append(Variable(name, span=src.span))
+    declared = set(first_seen)
+    for src in formulas:
+        formula = parse_prefix(src.text, filename, src.line, declared)
+        origin = Origin(f"slugsin {src.header}", src.span)
+        clauses[src.field].append(Clause(formula, origin))
+    spec = GR1Spec(
+        inputs=tuple(variables["inputs"]),
+        outputs=tuple(variables["outputs"]),
+        name=Path(filename).stem,
+        **{name: tuple(items) for name, items in clauses.items()},
+    )
+    check_atoms(spec)
+    return spec
+
+
+# ---------------------------------------------------------------- writer
+def _shared_nodes(root: Expr) -> list[Expr]:
+    """Compound nodes reachable more than once from ``root``, children before parents."""
+    counts: dict[int, int] = {}
+    order: list[Expr] = []
+    stack: list[tuple[Node, bool]] = [(root, False)]
+    while stack:
+        node, done = stack.pop()
+        if done:
+            order.append(node)  # type: ignore[arg-type]
+            continue
+        counts[id(node)] = counts.get(id(node), 0) + 1
+        if counts[id(node)] > 1:
+            continue
+        stack.append((node, True))
+        stack.extend((child, False) for child in reversed(node.children()))
+    return [
+        n for n in order
+        if counts[id(n)] > 1 and not isinstance(n, (Var, Const)) and n is not root
+    ]
+
+
+def _prefix_tokens(root: Expr, refs: dict[int, str], out: list[str]) -> None:
+    stack: list[Expr | str] = [root]
+    while stack:
+        item = stack.pop()
+        if isinstance(item, str):
+            out.append(item)
+            continue
+        if id(item) in refs and item is not root:
+            out.append(refs[id(item)])
+            continue
+        if isinstance(item, Const):
+            out.append("1" if item.value else "0")
+        elif isinstance(item, Var):
+            out.append(item.name + ("'" if item.primed else ""))
+        elif isinstance(item, Not):
+            out.append("!")
+            stack.append(item.arg)
+        elif isinstance(item, (And, Or)):
+            if not item.args:
+                out.append("1" if isinstance(item, And) else "0")
+                continue
+            op = "&" if isinstance(item, And) else "|"
+            seq: list[Expr | str] = [item.args[0]]
+            for a in item.args[1:]:
+                out.append(op)
+                seq.append(a)
+            stack.extend(reversed(seq))
+        elif isinstance(item, Xor):
+            out.append("^")
+            stack.extend((item.right, item.left))
+        elif isinstance(item, Iff):
+            out.extend(("!", "^"))
+            stack.extend((item.right, item.left))
+        elif isinstance(item, Implies):
+            out.extend(("|", "!"))
+            stack.extend((item.right, item.left))
+        else:
+            raise ValueError(
+                f"cannot write {type(item).__name__} in slugsin: the format is Boolean and "
+                "next-free; bit-blast integers (slugs_bridge.bitblast) and push 'next' first"
+            )
+
+
+def emit_formula(expr: Expr) -> str:
+    """One slugsin line for ``expr``; shared subformulas become a ``$``/``?`` memory buffer."""
+    shared = _shared_nodes(expr)
+    out: list[str] = []
+    if not shared:
+        _prefix_tokens(expr, {}, out)
+        return " ".join(out)
+    refs: dict[int, str] = {}
+    out.extend(("$", str(len(shared) + 1)))
+    for index, node in enumerate(shared):
+        _prefix_tokens(node, refs, out)
+        refs[id(node)] = f"? {index}"
+    _prefix_tokens(expr, refs, out)
+    return " ".join(out)
+
+
+def emit_slugsin(spec: GR1Spec) -> str:
+    """Write a Boolean :class:`GR1Spec` as ``.slugsin`` text (sections in canonical order).
+
+    Raises :class:`ValueError` when the spec has integer variables or non-Boolean nodes.
+    """
+    if spec.has_integers:
+        names = ", ".join(v.name for v in spec.variables() if v.is_integer)
+        raise ValueError(
+            f"spec has integer variables ({names}); bit-blast it first with "
+            "slugs_bridge.bitblast.bitblast"
+        )
+    lines: list[str] = []
+    for header, field in HEADERS.items():
+        if lines:
+            lines.append("")
+        lines.append(header)
+        if field in ("inputs", "outputs"):
+            variables: tuple[Variable, ...] = getattr(spec, field)
+            lines.extend(v.name for v in variables)
+        else:
+            lines.extend(emit_formula(c.formula) for c in spec.section(field))
+    return "\n".join(lines) + "\n"
