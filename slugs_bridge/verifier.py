@@ -8,7 +8,7 @@ here, safety is checked node by node (every ρe-allowed input has a successor, e
 from __future__ import annotations
 
 import functools
-from collections.abc import Callable, Iterable, Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -143,17 +143,13 @@ class _Logic:
         names = tuple(n for n in self.support(u) if not n.endswith("'"))
         return self._let(u, current, names) if names else u
 
-    def cube(self, names: Iterable[str], valuation: Mapping[str, bool], primed: bool) -> Any:
-        suffix = "'" if primed else ""
-        return self.bdd.cube({n + suffix: valuation[n] for n in names})
-
-    def pick(self, u: Any, names: Sequence[str], primed: bool) -> tuple[str, int]:
-        """One assignment of ``u`` shown as ``{a=1, b=0}``, and how many there are."""
+    def pick(self, u: Any, names: Sequence[str], primed: bool) -> tuple[dict[str, bool], int]:
+        """One assignment of ``u`` to ``names`` (unprimed keys) and how many there are."""
         suffix = "'" if primed else ""
         care = {n + suffix for n in names}
         example = self.bdd.pick(u, care_vars=care) or {}
-        shown = ", ".join(f"{n}={int(example.get(n + suffix, False))}" for n in names)
-        return "{" + shown + "}", int(self.bdd.count(u, nvars=len(care)))
+        chosen = {n: bool(example.get(n + suffix, False)) for n in names}
+        return chosen, int(self.bdd.count(u, nvars=len(care)))
 
 
 class _Check:
@@ -174,6 +170,8 @@ class _Check:
         self._conj: dict[tuple[str, Bits | None], Any] = {}
         self._cubes: dict[tuple[int, tuple[str, ...]], Any] = {}
         self._next: dict[tuple[int, int], bool] = {}
+        self.integer_of = {b: (name, iv) for name, iv in controller.integers.items()
+                           for b in iv.bits}
 
     def trans(self, node: int) -> tuple[int, ...]:
         return tuple(self.ctrl.nodes[node].trans)
@@ -209,19 +207,28 @@ class _Check:
                     self.reachable.append(target)
         return True
 
-    def edge_valuation(self, src: int, dst: int) -> dict[str, bool]:
-        val = dict(self.valuations[src])
-        val.update({name + "'": value for name, value in self.valuations[dst].items()})
-        return val
-
-    def show(self, node: int, names: Sequence[str] | None = None) -> str:
-        val = self.valuations[node]
+    def show(self, node: int | Mapping[str, bool], names: Sequence[str] | None = None) -> str:
+        """``{door1=1, x=3}``: a node's state (or an assignment); integers decoded."""
+        val = self.valuations[node] if isinstance(node, int) else node
         names = self.logic.inputs + self.logic.outputs if names is None else names
-        return "{" + ", ".join(f"{n}={int(val[n])}" for n in names) + "}"
+        out, done = [], set()
+        for n in names:
+            name, iv = self.integer_of.get(n, (n, None))
+            if iv is not None and set(iv.bits) <= set(names):
+                if name not in done:
+                    value = iv.low + sum(int(val[b]) << k for k, b in enumerate(iv.bits))
+                    out.append(f"{name}={value}")
+                    done.add(name)
+            else:
+                out.append(f"{n}={int(val[n])}")
+        return "{" + ", ".join(out) + "}"
 
-    def failing(self, section: str, val: Mapping[str, bool]) -> str:
-        rules = [r for r, u in self.logic.clauses(section) if not self.logic.holds(u, val)]
-        return ", ".join(rules)
+    def failing(self, section: str, src: int, dst: int | None = None) -> str:
+        """The clauses of ``section`` that the node ``src`` (or the edge to ``dst``) violates."""
+        val = dict(self.valuations[src])
+        if dst is not None:
+            val.update({name + "'": value for name, value in self.valuations[dst].items()})
+        return ", ".join(r for r, u in self.logic.clauses(section) if not self.logic.holds(u, val))
 
     def conj(self, section: str, node: int | None) -> Any:
         """Conjunction of a section; with ``node``, its unprimed bits fixed to the node's state."""
@@ -239,7 +246,8 @@ class _Check:
         names = self.logic.inputs + self.logic.outputs if names is None else names
         key = (node, names)
         if key not in self._cubes:
-            self._cubes[key] = self.logic.cube(names, self.valuations[node], primed=True)
+            val = self.valuations[node]
+            self._cubes[key] = self.logic.bdd.cube({n + "'": val[n] for n in names})
         return self._cubes[key]
 
     def holds_next(self, u: Any, node: int) -> bool:
@@ -332,7 +340,7 @@ def _strategy_initial(check: _Check) -> None:
         if logic.holds(theta, val):
             valid.append(node)
         else:
-            rules = check.failing("env_init", val) or check.failing("sys_init", val)
+            rules = check.failing("env_init", node) or check.failing("sys_init", node)
             check.problems.append(f"initial node {node}: its state {check.show(node)} "
                                   f"violates {rules}")
     if check.semantics == "default":
@@ -344,10 +352,11 @@ def _strategy_initial(check: _Check) -> None:
         need = "robotics semantics: every state allowed by env_init and sys_init must be covered"
     covered = b.false
     for node in valid:
-        covered |= logic.cube(names, check.valuations[node], primed=False)
+        covered |= b.cube({n: check.valuations[node][n] for n in names})
     if required & ~covered != b.false:
-        shown, count = logic.pick(required & ~covered, names, primed=False)
+        example, count = logic.pick(required & ~covered, names, primed=False)
         others = f" (and {count - 1} more)" if count > 1 else ""
+        shown = check.show(example, names)
         check.problems.append(f"no initial node for {what} {shown}{others} allowed by the "
                               f"assumptions ({need})")
 
@@ -366,23 +375,23 @@ def _strategy_safety(check: _Check) -> set[tuple[int, int]]:
             moves |= check.next_cube(target)
         missing = b.exist(primed_outputs, assumption) & ~covered
         if missing != b.false:
-            shown, count = logic.pick(missing, logic.inputs, primed=True)
+            example, count = logic.pick(missing, logic.inputs, primed=True)
             others = f" (and {count - 1} other input(s))" if count > 1 else ""
+            shown = check.show(example, logic.inputs)
             check.problems.append(f"node {node}: environment input {shown} is allowed by the "
                                   f"assumptions but has no successor{others}")
         if moves & ~(assumption & guarantee) == b.false:
             continue  # every edge keeps both ρe and ρs: nothing to report per edge
         for target in succ:
-            val = check.edge_valuation(node, target)
             if not check.holds_next(assumption, target):
                 broken.add((node, target))
                 check.notes.append(f"edge {node} -> {target}: the input violates "
-                                   f"{check.failing('env_trans', val)}; harmless, the "
+                                   f"{check.failing('env_trans', node, target)}; harmless, the "
                                    "environment broke its assumptions there")
             if not check.holds_next(guarantee, target):
                 check.problems.append(f"edge {node} -> {target}: the move to state "
                                       f"{check.show(target)} violates "
-                                      f"{check.failing('sys_trans', val)}")
+                                      f"{check.failing('sys_trans', node, target)}")
     return broken
 
 
@@ -415,33 +424,33 @@ def verify_counterstrategy(
 def _counter_initial(check: _Check) -> None:
     logic, b = check.logic, check.logic.bdd
     theta_e, theta_s = check.conj("env_init", None), check.conj("sys_init", None)
-    for node in check.ctrl.initial:
-        if not logic.holds(theta_e, check.valuations[node]):
-            check.problems.append(f"initial node {node}: its state {check.show(node)} violates "
-                                  f"{check.failing('env_init', check.valuations[node])}")
-    if not check.ctrl.initial:
+    starts = check.ctrl.initial
+    check.problems += [f"initial node {n}: its state {check.show(n)} violates "
+                       f"{check.failing('env_init', n)}"
+                       for n in starts if not logic.holds(theta_e, check.valuations[n])]
+    if not starts:
         if b.exist(set(logic.inputs), theta_e & ~b.exist(set(logic.outputs), theta_s)) == b.false:
             check.problems.append("the counter-strategy has no initial node, but the system can "
                                   "always start")
-        return
-    if check.semantics == "robotics":  # one losing start state allowed by θe ∧ θs suffices
-        return
-    groups: dict[Bits, Any] = {}  # default: one input must cover every θs-allowed start
-    for node in check.ctrl.initial:
-        key = tuple(int(check.valuations[node][n]) for n in logic.inputs)
-        cube = logic.cube(logic.outputs, check.valuations[node], primed=False)
-        groups[key] = groups.get(key, b.false) | cube
-    missing = []
-    for key, covered in sorted(groups.items()):
-        start = dict(zip(logic.inputs, (bool(v) for v in key), strict=True))
-        missing.append((b.let(start, theta_e & theta_s) & ~covered, key))
-        if missing[-1][0] == b.false:
-            return
-    gap, key = missing[0]
-    shown, _ = logic.pick(gap, logic.outputs, primed=False)
-    check.problems.append(f"default semantics: no initial input of the counter-strategy covers "
-                          f"every system start; initial node {check.ctrl.initial[0]}'s input "
-                          f"lacks a node for outputs {shown}")
+    elif check.semantics == "robotics":  # one losing start allowed by θe ∧ θs suffices
+        if not any(logic.holds(theta_s, check.valuations[n]) for n in starts):
+            check.problems.append("no initial node of the counter-strategy satisfies sys_init")
+    else:  # default: for one input, every start the system may choose must be covered
+        groups: dict[Bits, Any] = {}
+        for n in starts:
+            key = tuple(int(check.valuations[n][v]) for v in logic.inputs)
+            cube = b.cube({v: check.valuations[n][v] for v in logic.outputs})
+            groups[key] = groups.get(key, b.false) | cube
+        gaps = []
+        for key, covered in sorted(groups.items()):
+            start = dict(zip(logic.inputs, (bool(v) for v in key), strict=True))
+            gaps.append((b.let(start, theta_e & theta_s) & ~covered, start))
+        if all(gap != b.false for gap, _ in gaps):
+            example, _ = logic.pick(gaps[0][0], logic.outputs, primed=False)
+            check.problems.append(
+                f"default semantics: no initial input covers every start the system may "
+                f"choose; input {check.show(gaps[0][1], logic.inputs)} lacks outputs "
+                f"{check.show(example, logic.outputs)}")
 
 
 def _counter_safety(check: _Check) -> None:
@@ -465,20 +474,19 @@ def _counter_safety(check: _Check) -> None:
         answers = b.let(chosen, rho_s)
         covered = b.false
         for target in succ:
-            val = check.edge_valuation(node, target)
             if not check.holds_next(rho_e, target):
                 check.problems.append(f"edge {node} -> {target}: the environment's input "
-                                      f"violates {check.failing('env_trans', val)}")
+                                      f"violates {check.failing('env_trans', node, target)}")
             if answers == b.false:
                 dead_ends.add(target)  # the system has no legal answer: it loses here
             elif not check.holds_next(rho_s, target):
+                rules = check.failing("sys_trans", node, target)
                 check.problems.append(f"edge {node} -> {target}: the system answer violates "
-                                      f"{check.failing('sys_trans', val)}; the environment "
-                                      "need not consider it")
+                                      f"{rules}; the environment need not consider it")
             covered |= check.next_cube(target, logic.outputs)
         if answers & ~covered != b.false:
-            shown, _ = logic.pick(answers & ~covered, logic.outputs, primed=True)
+            example, _ = logic.pick(answers & ~covered, logic.outputs, primed=True)
             check.problems.append(
-                f"node {node}: system answer {shown} to input "
+                f"node {node}: system answer {check.show(example, logic.outputs)} to input "
                 f"{check.show(succ[0], logic.inputs)} is allowed by the guarantees but has no "
                 "successor")
