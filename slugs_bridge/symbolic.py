@@ -45,7 +45,7 @@ class Options:
 
     order: str = "occurrence"  # "declaration": inputs then outputs; "occurrence": related first
     reordering: bool = False  # CUDD dynamic reordering (sifting) while solving
-    partitioned: bool = True  # keep ρs as a list of clusters and quantify early
+    partitioned: bool = False  # ρs as clusters with early quantification (slow: see bench)
     recycle: bool = True  # start inner X fixpoints from the previous round's values
     cluster_limit: int = 2500  # node limit when merging ρs parts into clusters
     memory_mb: int | None = None  # CUDD max memory
