@@ -34,11 +34,13 @@ def _get(values: Mapping[str, int], name: str) -> int:
 def _one_of(values: Mapping[str, int], names: list[str], what: str, allow_none: bool) -> str | None:
     true = [n for n in names if _get(values, n)]
     if len(true) > 1:
-        raise ControllerError(f"inconsistent state: {what} {', '.join(true)} are all true at once")
+        raise ControllerError(
+            f"inconsistent state: several {what} are true at once: {', '.join(true)}")
     if not true:
         if allow_none:
             return None
-        raise ControllerError(f"inconsistent state: no {what} is true")
+        raise ControllerError(
+            f"inconsistent state: none of the {what} ({', '.join(names)}) is true")
     return true[0]
 
 
