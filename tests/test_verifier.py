@@ -8,8 +8,8 @@ from pathlib import Path
 
 import pytest
 
-from slugs_bridge.controller import Controller, ControllerNode
-from slugs_bridge.formula import FALSE, Iff, Not, Or, Var
+from slugs_bridge.controller import Controller, ControllerNode, integers_of
+from slugs_bridge.formula import FALSE, Compare, Iff, IntVar, Not, Or, Var
 from slugs_bridge.slugsin import parse_slugsin
 from slugs_bridge.spec import Clause, GR1Spec, Origin, Variable
 from slugs_bridge.verifier import verify, verify_counterstrategy
@@ -250,3 +250,35 @@ def _corrupted_transition_is_caught(
         assert any(f"edge {k} -> {t}:" in n for n in verify(spec, ctrl, semantics).notes)
     else:
         assert any(p.startswith(f"node {k}: environment input") for p in report.problems)
+
+
+# ---------------------------------------------------------------- integer variables
+def integer_spec() -> GR1Spec:
+    """y must copy x (both 0..2, so each has an unused bit pattern)."""
+    return GR1Spec(
+        inputs=(Variable("x", 0, 2),),
+        outputs=(Variable("y", 0, 2),),
+        sys_trans=(Clause(Compare("=", IntVar("y", True), IntVar("x", True)), Origin("copy")),),
+    )
+
+
+def integer_controller(values: list[tuple[int, int]], trans: list[tuple[int, ...]]) -> Controller:
+    bits = ("x@0.0.2", "x@1", "y@0.0.2", "y@1")
+    nodes = tuple(ControllerNode(0, (x & 1, x >> 1, y & 1, y >> 1), t)
+                  for (x, y), t in zip(values, trans, strict=True))
+    return Controller(variables=bits, inputs=bits[:2], outputs=bits[2:], nodes=nodes,
+                      initial=tuple(range(len(nodes))),
+                      integers=integers_of(bits, frozenset(bits[:2])))
+
+
+def test_integer_spec_is_bit_blasted_and_messages_decode_integers() -> None:
+    pytest.importorskip("slugs_bridge.bitblast")
+    spec, every = integer_spec(), (0, 1, 2)
+    good = integer_controller([(0, 0), (1, 1), (2, 2)], [every] * 3)
+    assert verify(spec, good).ok, verify(spec, good).problems
+    missing = integer_controller([(0, 0), (1, 1), (2, 2)], [(0, 1)] * 3)
+    assert "node 0: environment input {x=2} is allowed by the assumptions but has no successor" \
+        in verify(spec, missing).problems
+    wrong = integer_controller([(0, 0), (1, 1), (2, 1)], [every] * 3)
+    assert any(p.startswith("edge 0 -> 2: the move to state {x=2, y=1} violates sys_trans")
+               for p in verify(spec, wrong).problems)
