@@ -13,7 +13,9 @@ from abc import ABC, abstractmethod
 from dataclasses import dataclass
 
 from gaitsim.domain import Domain, Goal, State
+from gaitsim.monitor import Monitor
 from gaitsim.strategy import InputKey
+from slugs_bridge.formula import has_primes
 
 INFINITY = 10**6
 
@@ -37,6 +39,9 @@ class Situation:
     moves: tuple[Move, ...]  # sorted by input values
     domain: Domain
     next_goal: Goal | None
+    monitor: Monitor | None = None
+    values: tuple[int, ...] | None = None  # spec-level values of ``node``
+    successor_values: tuple[tuple[int, ...], ...] = ()  # of each move's node
 
 
 @dataclass(frozen=True)
@@ -97,25 +102,55 @@ class AdversarialEnvironment(Environment):
     levels lost (every leg in use degrades, or fails in an active hazard); (2) the hazard set
     nearest the robot active; (3) the controller's answer farthest (in region transitions)
     from the goal the robot is heading for; ties go to the smallest input valuation.
+    It stays fair: when a □◇ assumption has waited ``patience`` steps, only moves that
+    satisfy it are considered (the assumptions' liveness part, in turn).
     """
 
     name = "adversarial"
 
+    def __init__(self, patience: int = 3) -> None:
+        self.patience = patience
+        self.pending = 0
+        self.waiting = 0
+
+    def _fair(self, situation: Situation) -> tuple[tuple[Move, ...], list[bool]]:
+        monitor, here = situation.monitor, situation.values
+        if monitor is None or here is None or not monitor.spec.env_liveness:
+            return situation.moves, [False] * len(situation.moves)
+        self.pending %= len(monitor.spec.env_liveness)
+        # an unprimed □◇ clause is about the state the move leads to; a primed one about the move
+        primed = has_primes(monitor.spec.env_liveness[self.pending].formula)
+        meets = [self.pending in monitor.check_step(here if primed else nxt, nxt).env_live
+                 for nxt in situation.successor_values]
+        if self.waiting >= self.patience and any(meets):
+            kept = tuple(m for m, ok in zip(situation.moves, meets, strict=True) if ok)
+            return kept, [True] * len(kept)
+        return situation.moves, meets
+
     def choose(self, situation: Situation) -> Request | None:
         if not situation.moves:
             return None
+        moves, meets = self._fair(situation)
+        chosen = self._worst(situation, moves)
+        if meets[moves.index(chosen)]:
+            self.pending, self.waiting = self.pending + 1, 0
+        elif situation.values is not None:
+            self.waiting += 1
+        return Request(chosen.inputs)
+
+    def _worst(self, situation: Situation, moves: tuple[Move, ...]) -> Move:
         here = situation.state
         domain = situation.domain
-        region = here.region if here is not None else situation.moves[0].state.region
+        region = here.region if here is not None else moves[0].state.region
         wanted = nearest_hazard(domain, region)
         goal_regions = situation.next_goal.regions if situation.next_goal is not None else ()
         best: tuple[int, int, int] | None = None
-        chosen = situation.moves[0]
-        for move in situation.moves:
+        chosen = moves[0]
+        for move in moves:
             lost = levels_lost(here, move.state) if here is not None else 0
             hazard = int(wanted is not None and move.state.hazard == wanted)
             far = domain.region_distance(move.state.region, goal_regions) if goal_regions else 0
             score = (lost, hazard, min(far, INFINITY))
             if best is None or score > best:
                 best, chosen = score, move
-        return Request(chosen.inputs)
+        return chosen

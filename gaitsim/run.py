@@ -35,7 +35,7 @@ class Step:
     degraded: tuple[str, ...] = ()  # legs that lost a level but still work
     failed: tuple[str, ...] = ()  # legs that reached level 1 on the step into this state
     repaired: tuple[str, ...] = ()  # legs whose level went up (cache)
-    values: tuple[tuple[str, int], ...] = ()  # spec-level variable values
+    values: tuple[tuple[str, int], ...] = ()  # spec-level variable values, sorted by name
 
     def level(self, leg: str) -> int:
         return dict(self.health)[leg]

@@ -54,7 +54,8 @@ class Simulator:
     def _named(self, node: int) -> tuple[tuple[str, int], ...]:
         found = self._values.get(node)
         if found is None:
-            found = tuple(zip(self.strategy.variables, self.strategy.values[node], strict=True))
+            found = tuple(sorted(zip(self.strategy.variables, self.strategy.values[node],
+                                     strict=True)))
             self._values[node] = found
         return found
 
@@ -117,9 +118,13 @@ class Simulator:
         for index in range(steps + 1):
             here = None if previous is None else self.state(previous.node)
             moves = self.moves(node)
-            situation = Situation(index, node, here, moves, self.domain,
-                                  goals[goal_index] if goals else None)
+            situation = Situation(
+                index, node, here, moves, self.domain, goals[goal_index] if goals else None,
+                self.monitor, None if node is None else self.strategy.values[node],
+                tuple(self.strategy.values[m.node] for m in moves))
             try:
+                if node is not None and not moves:
+                    raise self._refuse(index, node, Request(()))
                 request = environment.choose(situation)
                 if request is None:
                     break
