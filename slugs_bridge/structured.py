@@ -168,7 +168,13 @@ def _level(node: Node) -> int:
     return _LEVEL.get(type(node), 9)
 
 
-def _term(term: Term) -> str:
+def _atom(name: str, primed: bool, as_next: bool) -> str:
+    if not primed:
+        return name
+    return f"X {name}" if as_next else name + "'"
+
+
+def _term(term: Term, as_next: bool = False) -> str:
     if isinstance(term, IntConst):
         if term.value < 0:
             raise ValueError(
@@ -176,24 +182,27 @@ def _term(term: Term) -> str:
             )
         return str(term.value)
     if isinstance(term, IntVar):
-        return term.name + ("'" if term.primed else "")
+        return _atom(term.name, term.primed, as_next)
     if isinstance(term, Add):
         # '+' is right-recursive in SLUGS's grammar, so a sum on the left needs brackets.
-        left = _term(term.left)
+        left = _term(term.left, as_next)
         if isinstance(term.left, Add):
             left = f"({left})"
-        return f"{left} + {_term(term.right)}"
+        return f"{left} + {_term(term.right, as_next)}"
     raise ValueError(f"not an integer term: {term!r}")
 
 
-def emit_infix(expr: Expr) -> str:
-    """A formula in structuredslugs infix syntax, with the fewest brackets that keep its shape."""
+def emit_infix(expr: Expr, as_next: bool = False) -> str:
+    """A formula in structuredslugs infix syntax, with the fewest brackets that keep its shape.
+
+    With ``as_next`` a primed variable ``x'`` is written ``X x`` (readable LTL, not SLUGS).
+    """
     if isinstance(expr, Const):
         return "TRUE" if expr.value else "FALSE"
     if isinstance(expr, Var):
-        return expr.name + ("'" if expr.primed else "")
+        return _atom(expr.name, expr.primed, as_next)
     if isinstance(expr, (Not, Next)):
-        inner = emit_infix(expr.arg)
+        inner = emit_infix(expr.arg, as_next)
         if _level(expr.arg) < _level(expr):
             inner = f"({inner})"
         return ("!" if isinstance(expr, Not) else "X ") + inner
@@ -201,22 +210,23 @@ def emit_infix(expr: Expr) -> str:
         if not expr.args:
             return "TRUE" if isinstance(expr, And) else "FALSE"
         if len(expr.args) == 1:
-            return emit_infix(expr.args[0])
+            return emit_infix(expr.args[0], as_next)
         level = _level(expr)
+        parts = [emit_infix(a, as_next) for a in expr.args]
         parts = [
-            f"({emit_infix(a)})" if _level(a) <= level else emit_infix(a) for a in expr.args
+            f"({p})" if _level(a) <= level else p for a, p in zip(expr.args, parts, strict=True)
         ]
         return f" {_SYMBOL[type(expr)]} ".join(parts)
     if isinstance(expr, (Iff, Implies, Xor)):
         level = _level(expr)
-        left, right = emit_infix(expr.left), emit_infix(expr.right)
+        left, right = emit_infix(expr.left, as_next), emit_infix(expr.right, as_next)
         if _level(expr.left) < level:
             left = f"({left})"
         if _level(expr.right) <= level:
             right = f"({right})"
         return f"{left} {_SYMBOL[type(expr)]} {right}"
     if isinstance(expr, Compare):
-        return f"{_term(expr.left)} {expr.op} {_term(expr.right)}"
+        return f"{_term(expr.left, as_next)} {expr.op} {_term(expr.right, as_next)}"
     raise ValueError(
         f"cannot write {type(expr).__name__} in structuredslugs: sections hold state and "
         "transition formulas only"

@@ -1,0 +1,314 @@
+"""Bit-blasting: integer variables to Boolean bits and comparisons to adder/comparator circuits.
+
+Reproduces SLUGS's tools/StructuredSlugsParser/compiler.py: bits ``x@0.MIN.MAX``,
+``x@1`` .. (little-endian, value = MIN + bits), ripple-carry ``+`` that keeps the carry
+(no overflow), and range constraints (value - MIN < MAX - MIN + 1) in init and primed trans.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Mapping
+
+from slugs_bridge.formula import (
+    FALSE,
+    TRUE,
+    Add,
+    Always,
+    And,
+    Compare,
+    Const,
+    Eventually,
+    Expr,
+    Iff,
+    Implies,
+    IntConst,
+    IntVar,
+    Next,
+    Not,
+    Or,
+    Term,
+    Var,
+    Xor,
+    walk,
+)
+from slugs_bridge.spec import Clause, GR1Spec, Origin, Variable
+
+Bits = list[Expr]  # little-endian bit vector; missing high bits are 0
+
+
+# ---------------------------------------------------------------- naming and decoding
+def bit_count(var: Variable) -> int:
+    """Number of bits SLUGS gives ``var``: the least n with 2**n > MAX - MIN (0 if MIN == MAX)."""
+    if not var.is_integer:
+        return 1
+    assert var.low is not None and var.high is not None
+    n = 0
+    while (1 << n) <= var.high - var.low:
+        n += 1
+    return n
+
+
+def integer_bits(var: Variable) -> list[str]:
+    """SLUGS's bit names for ``var``, least significant first (``[name]`` for a Boolean)."""
+    if not var.is_integer:
+        return [var.name]
+    return [
+        f"{var.name}@0.{var.low}.{var.high}" if i == 0 else f"{var.name}@{i}"
+        for i in range(bit_count(var))
+    ]
+
+
+def split_bit_name(bit: str) -> tuple[str, int] | None:
+    """``("x", k)`` for a SLUGS bit name ``x@0.MIN.MAX`` or ``x@k``; None for other names."""
+    name, at, rest = bit.rpartition("@")
+    if not at or not name:
+        return None
+    index = rest.split(".", 1)[0]
+    return (name, int(index)) if index.isdigit() else None
+
+
+def decode_bits(var: Variable, valuation: Mapping[str, object], primed: bool = False) -> int:
+    """The value of integer ``var`` from a valuation of its bits (``x@1`` or ``x@1'`` keys)."""
+    assert var.low is not None
+    suffix = "'" if primed else ""
+    value = 0
+    for i, bit in enumerate(integer_bits(var)):
+        if valuation[bit + suffix]:
+            value |= 1 << i
+    return var.low + value
+
+
+def encode_bits(var: Variable, value: int, primed: bool = False) -> dict[str, bool]:
+    """The bit valuation SLUGS uses for ``var = value`` (keys primed when ``primed``)."""
+    assert var.low is not None and var.high is not None
+    if not var.low <= value <= var.high:
+        raise ValueError(f"{value} lies outside {var.name}'s range {var.low}...{var.high}")
+    suffix = "'" if primed else ""
+    offset = value - var.low
+    return {bit + suffix: bool(offset >> i & 1) for i, bit in enumerate(integer_bits(var))}
+
+
+def decode_valuation(
+    variables: Iterable[Variable], valuation: Mapping[str, object], primed: bool = False
+) -> dict[str, bool | int]:
+    """Values of the original (integer or Boolean) variables from a bit-level valuation."""
+    suffix = "'" if primed else ""
+    out: dict[str, bool | int] = {}
+    for var in variables:
+        if var.is_integer:
+            out[var.name] = decode_bits(var, valuation, primed)
+        else:
+            out[var.name] = bool(valuation[var.name + suffix])
+    return out
+
+
+# ---------------------------------------------------------------- gates with constant folding
+def _not(a: Expr) -> Expr:
+    if isinstance(a, Const):
+        return FALSE if a.value else TRUE
+    if isinstance(a, Not):
+        return a.arg
+    return Not(a)
+
+
+def _and(a: Expr, b: Expr) -> Expr:
+    if isinstance(a, Const):
+        return b if a.value else FALSE
+    if isinstance(b, Const):
+        return a if b.value else FALSE
+    return And((a, b))
+
+
+def _or(a: Expr, b: Expr) -> Expr:
+    if isinstance(a, Const):
+        return TRUE if a.value else b
+    if isinstance(b, Const):
+        return TRUE if b.value else a
+    return Or((a, b))
+
+
+def _xor(a: Expr, b: Expr) -> Expr:
+    if isinstance(a, Const):
+        return _not(b) if a.value else b
+    if isinstance(b, Const):
+        return _not(a) if b.value else a
+    return Xor(a, b)
+
+
+def constant_bits(value: int) -> Bits:
+    """The bits of a natural number (empty for 0, as in SLUGS)."""
+    if value < 0:
+        raise ValueError(f"negative constant {value} has no bit vector")
+    out: Bits = []
+    while value:
+        out.append(TRUE if value & 1 else FALSE)
+        value >>= 1
+    return out
+
+
+def add_bits(a: Bits, b: Bits) -> Bits:
+    """Ripple-carry sum, one bit longer than the longer operand (SLUGS keeps the carry)."""
+    if not a:
+        return b
+    if not b:
+        return a
+    if len(b) < len(a):
+        a, b = b, a
+    out: Bits = [_xor(a[0], b[0])]
+    carry = _and(a[0], b[0])
+    for i in range(1, len(a)):
+        out.append(_xor(_xor(a[i], b[i]), carry))
+        carry = _or(_or(_and(a[i], b[i]), _and(carry, a[i])), _and(carry, b[i]))
+    for i in range(len(a), len(b)):
+        out.append(_xor(b[i], carry))
+        carry = _and(b[i], carry)
+    out.append(carry)
+    return out
+
+
+def equal_bits(a: Bits, b: Bits) -> Expr:
+    """``a = b`` bit by bit; extra high bits of the longer vector must be 0."""
+    result: Expr = TRUE
+    for i in range(max(len(a), len(b))):
+        x = a[i] if i < len(a) else FALSE
+        y = b[i] if i < len(b) else FALSE
+        result = _and(_not(_xor(x, y)), result)
+    return result
+
+
+def less_bits(a: Bits, b: Bits, or_equal: bool) -> Expr:
+    """``a < b`` (or ``a <= b``), decided from the most significant differing bit."""
+    result: Expr = TRUE if or_equal else FALSE
+    for i in range(min(len(a), len(b))):
+        result = _or(_and(_not(a[i]), b[i]), _and(_or(b[i], _not(a[i])), result))
+    for i in range(len(b), len(a)):
+        result = _and(_not(a[i]), result)
+    for i in range(len(a), len(b)):
+        result = _or(b[i], result)
+    return result
+
+
+# ---------------------------------------------------------------- comparisons
+def _flatten(term: Term, vectors: list[Bits], variables: Mapping[str, Variable]) -> int:
+    """Collect the bit vectors of a sum's variables; return the sum of its constants and MINs."""
+    if isinstance(term, IntConst):
+        return term.value
+    if isinstance(term, Add):
+        return _flatten(term.left, vectors, variables) + _flatten(term.right, vectors, variables)
+    if isinstance(term, IntVar):
+        var = variables.get(term.name)
+        if var is None or not var.is_integer:
+            raise ValueError(f"'{term.name}' is not an integer variable of this spec")
+        assert var.low is not None
+        vectors.append([Var(bit, term.primed) for bit in integer_bits(var)])
+        return var.low
+    raise ValueError(f"not an integer term: {term!r}")
+
+
+def compare_bits(node: Compare, variables: Mapping[str, Variable]) -> Expr:
+    """A Boolean circuit equivalent to the integer comparison ``node``."""
+    left: list[Bits] = []
+    right: list[Bits] = []
+    shift = _flatten(node.left, left, variables) - _flatten(node.right, right, variables)
+    # Move the constants to one side so that every vector is a natural number.
+    (left if shift > 0 else right).append(constant_bits(abs(shift)))
+    a: Bits = []
+    for vec in left:
+        a = add_bits(a, vec)
+    b: Bits = []
+    for vec in right:
+        b = add_bits(b, vec)
+    if node.op in ("=", "!="):
+        eq = equal_bits(a, b)
+        return eq if node.op == "=" else _not(eq)
+    if node.op in ("<", "<="):
+        return less_bits(a, b, node.op == "<=")
+    if node.op in (">", ">="):
+        return less_bits(b, a, node.op == ">=")
+    raise ValueError(f"unknown comparison operator {node.op!r}")
+
+
+def lower(expr: Expr, variables: Mapping[str, Variable], memo: dict[int, Expr]) -> Expr:
+    """``expr`` with every :class:`Compare` replaced by its circuit; shared nodes stay shared."""
+    key = id(expr)
+    if key in memo:
+        return memo[key]
+    result: Expr
+    if isinstance(expr, (Const, Var)):
+        result = expr
+    elif isinstance(expr, Compare):
+        result = compare_bits(expr, variables)
+    elif isinstance(expr, Not):
+        result = Not(lower(expr.arg, variables, memo), span=expr.span)
+    elif isinstance(expr, (And, Or)):
+        args = tuple(lower(a, variables, memo) for a in expr.args)
+        result = type(expr)(args, span=expr.span)
+    elif isinstance(expr, (Xor, Iff, Implies)):
+        left = lower(expr.left, variables, memo)
+        result = type(expr)(left, lower(expr.right, variables, memo), span=expr.span)
+    elif isinstance(expr, (Next, Always, Eventually)):
+        raise ValueError(f"{type(expr).__name__} cannot appear in a GR(1) section")
+    else:
+        raise ValueError(f"unknown formula node {type(expr).__name__}")
+    memo[key] = result
+    return result
+
+
+def range_constraint(var: Variable, primed: bool) -> Expr | None:
+    """SLUGS's limit ``bits < MAX - MIN + 1``, or None when every bit pattern is in range."""
+    assert var.low is not None and var.high is not None
+    limit = var.high - var.low + 1
+    bits = integer_bits(var)
+    if 1 << len(bits) == limit:
+        return None
+    result: Expr = FALSE
+    for i, bit in enumerate(bits):
+        negated = Not(Var(bit, primed))
+        result = Or((negated, result)) if limit >> i & 1 else And((negated, result))
+    return result
+
+
+def bitblast(spec: GR1Spec) -> GR1Spec:
+    """The Boolean spec SLUGS's converter would produce from ``spec`` (identity if Boolean).
+
+    Bits replace each integer variable in place; range constraints are appended to
+    ``env_init``/``env_trans`` for inputs and ``sys_init``/``sys_trans`` for outputs.
+    """
+    has_compare = any(
+        isinstance(node, (Compare, IntVar))
+        for name in ("env_init", "sys_init", "env_trans", "sys_trans",
+                     "env_liveness", "sys_liveness")
+        for clause in spec.section(name)
+        for node in walk(clause.formula)
+    )
+    if not spec.has_integers and not has_compare:
+        return spec
+    variables = {v.name: v for v in spec.variables()}
+    memo: dict[int, Expr] = {}
+    sections: dict[str, list[Clause]] = {}
+    for name in ("env_init", "sys_init", "env_trans", "sys_trans", "env_liveness",
+                 "sys_liveness"):
+        sections[name] = [
+            Clause(lower(c.formula, variables, memo), c.origin) for c in spec.section(name)
+        ]
+    for var in spec.variables():
+        if not var.is_integer:
+            continue
+        player, kind = ("env", "input") if var in spec.inputs else ("sys", "output")
+        rule = f"range of integer {kind} {var.name}: {var.low} <= {var.name}"
+        for primed, section in ((False, "init"), (True, "trans")):
+            limit = range_constraint(var, primed)
+            if limit is not None:
+                mark = "'" if primed else ""
+                origin = Origin(f"{rule}{mark} <= {var.high}", var.span)
+                sections[f"{player}_{section}"].append(Clause(limit, origin))
+
+    def blast(vs: tuple[Variable, ...]) -> tuple[Variable, ...]:
+        return tuple(Variable(b, span=v.span) for v in vs for b in integer_bits(v))
+
+    return GR1Spec(
+        inputs=blast(spec.inputs),
+        outputs=blast(spec.outputs),
+        name=spec.name,
+        **{name: tuple(items) for name, items in sections.items()},
+    )
