@@ -17,10 +17,10 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
-from gaitc.loading import load_spec  # noqa: E402
-from slugs_bridge import synthesis  # noqa: E402
-from slugs_bridge.diagnostics import SolverError  # noqa: E402
-from slugs_bridge.symbolic import Options  # noqa: E402
+from gaitc.loading import load_spec
+from slugs_bridge import synthesis
+from slugs_bridge.diagnostics import SolverError
+from slugs_bridge.symbolic import Options
 
 SIZES = [(4, 5), (6, 6), (10, 10), (15, 15), (20, 20), (30, 30)]
 HEALTH = [2, 3, 4, 5]
