@@ -90,6 +90,8 @@ class Domain:
             h.name: h.regions for h in model.hazards
         }
         self.goals = model_goals(model)
+        self._primed_goals = any(has_primes(g.formula) for g in self.goals)
+        self._reached: dict[tuple[State, State | None], tuple[str, ...]] = {}
         self.distance = _distances(self.regions, [(t.source, t.target)
                                                   for t in model.transitions])
 
@@ -114,8 +116,20 @@ class Domain:
 
     def goals_reached(self, state: State, previous: State | None = None) -> tuple[str, ...]:
         """Labels of the goals that ``state`` satisfies (primed goals read ``previous`` too)."""
+        key = (state, previous if self._primed_goals else None)
+        found = self._reached.get(key)
+        if found is None:
+            found = self._goals_reached(state, previous)
+            self._reached[key] = found
+        return found
+
+    def _goals_reached(self, state: State, previous: State | None) -> tuple[str, ...]:
         reached = []
         for goal in self.goals:
+            if goal.label in self.regions and goal.formula == Var(goal.label):
+                if state.region == goal.label:
+                    reached.append(goal.label)
+                continue
             if has_primes(goal.formula):
                 before = previous if previous is not None else state
                 valuation = self.valuation(before) | self.valuation(state, primed=True)

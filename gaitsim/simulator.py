@@ -10,6 +10,8 @@ from __future__ import annotations
 
 from collections import Counter
 from collections.abc import Mapping
+from dataclasses import fields
+from typing import Any
 
 from gaitsim.domain import Domain, State
 from gaitsim.environments import Environment, Move, Request, Situation
@@ -33,11 +35,19 @@ class Simulator:
         self._states: dict[int, State] = {}
         self._moves: dict[int, tuple[Move, ...]] = {}
         self._values: dict[int, tuple[tuple[str, int], ...]] = {}
+        self._steps: dict[tuple[int, int], Step] = {}
+        self._fields: dict[tuple[int, int], tuple[Any, ...]] = {}
+        self._by_values: dict[tuple[int, ...], State] = {}
+        self._succ_values: dict[int, tuple[tuple[int, ...], ...]] = {}
 
     def state(self, node: int) -> State:
         found = self._states.get(node)
         if found is None:
-            found = self.domain.decode(self.strategy.valuation(node))
+            values = self.strategy.values[node]
+            found = self._by_values.get(values)
+            if found is None:
+                found = self.domain.decode(self.strategy.valuation(node))
+                self._by_values[values] = found
             self._states[node] = found
         return found
 
@@ -51,6 +61,15 @@ class Simulator:
             self._moves[key] = found
         return found
 
+    def _successor_values(self, node: int | None,
+                          moves: tuple[Move, ...]) -> tuple[tuple[int, ...], ...]:
+        key = -1 if node is None else node
+        found = self._succ_values.get(key)
+        if found is None:
+            found = tuple(self.strategy.values[m.node] for m in moves)
+            self._succ_values[key] = found
+        return found
+
     def _named(self, node: int) -> tuple[tuple[str, int], ...]:
         found = self._values.get(node)
         if found is None:
@@ -60,6 +79,15 @@ class Simulator:
         return found
 
     def _step(self, index: int, node: int, previous: Step | None) -> Step:
+        key = (node, -1 if previous is None else previous.node)
+        found = self._steps.get(key)
+        if found is None:
+            found = self._new_step(node, previous)
+            self._steps[key] = found
+            self._fields[key] = tuple(getattr(found, f.name) for f in fields(Step))[1:]
+        return Step(index, *self._fields[key])
+
+    def _new_step(self, node: int, previous: Step | None) -> Step:
         st = self.state(node)
         degraded: list[str] = []
         failed: list[str] = []
@@ -73,7 +101,7 @@ class Simulator:
                 elif level > old:
                     repaired.append(leg)
         prev_state = None if previous is None else self.state(previous.node)
-        return Step(index, node, st.region, st.gait, self.domain.legs_used(st.gait), st.health,
+        return Step(0, node, st.region, st.gait, self.domain.legs_used(st.gait), st.health,
                     st.hazard, self.domain.goals_reached(st, prev_state), tuple(degraded),
                     tuple(failed), tuple(repaired), self._named(node))
 
@@ -121,7 +149,7 @@ class Simulator:
             situation = Situation(
                 index, node, here, moves, self.domain, goals[goal_index] if goals else None,
                 self.monitor, None if node is None else self.strategy.values[node],
-                tuple(self.strategy.values[m.node] for m in moves))
+                self._successor_values(node, moves))
             try:
                 if node is not None and not moves:
                     raise self._refuse(index, node, Request(()))
