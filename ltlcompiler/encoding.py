@@ -60,7 +60,8 @@ def at_most_one(items: Sequence[Expr]) -> Expr:
         return Not(conj(items))
     half = len(items) // 2
     left, right = items[:half], items[half:]
-    return conj((at_most_one(left), at_most_one(right), Not(conj((disj(left), disj(right))))))
+    parts = [at_most_one(left), at_most_one(right), Not(conj((disj(left), disj(right))))]
+    return conj(p for p in parts if not isinstance(p, Const))
 
 
 def exactly_one(items: Sequence[Expr]) -> Expr:

@@ -23,14 +23,17 @@ from ltlcompiler.encoding import Encoding, check_names, make_encoding
 from ltlcompiler.model import NO_GAIT, GaitKind, Model, Section, UserFormula
 from slugs_bridge.diagnostics import FormulaError, Span, SpecSemanticError
 from slugs_bridge.formula import (
+    Always,
     And,
     Compare,
     Const,
+    Eventually,
     Expr,
     Iff,
     Implies,
     IntConst,
     IntVar,
+    Next,
     Not,
     Or,
     Term,
@@ -165,24 +168,26 @@ class _Lowering:
         phi_h = disj(self.hazard_active(h.name, h.regions) for h in m.hazards)
         for gait in m.gaits:
             legs = [leg for leg in self.moving[gait.name] if m.leg(leg).health > 1]
-            away = conj([enc.gait(gait.name), *self.not_in_cache()])
+            away = [enc.gait(gait.name), *self.not_in_cache()]
             if not legs:
                 why = "uses only failed legs" if self.moving[gait.name] else "degrades no leg"
-                self.add("env_trans", Implies(away, conj(self.keep_others(()))),
+                self.add("env_trans", Implies(conj(away), conj(self.keep_others(()))),
                          f"eq. 3.5: {gait.name} {why}: every leg keeps its health",
                          gait.span)
                 continue
-            antecedent = conj([away, Not(phi_h)]) if m.hazards else away
+            antecedent = conj([*away, Not(phi_h)] if m.hazards else away)
             body = conj([*(enc.degrade_health(leg) for leg in legs), *self.keep_others(legs)])
-            rule = f"eq. 3.5: under {gait.name} legs {', '.join(legs)} may lose one level, " \
-                   "other legs keep theirs"
+            which = f"legs {', '.join(legs)}" if len(legs) > 1 else f"leg {legs[0]}"
+            rule = f"eq. 3.5: under {gait.name} {which} may lose one level, the other legs " \
+                   "keep theirs"
             self.add("env_trans", Implies(antecedent, body), rule, gait.span)
             for hazard in m.hazards:
-                hot = conj([away, self.hazard_active(hazard.name, hazard.regions)])
+                hot = conj([*away, enc.hazard(hazard.name),
+                            disj(enc.region(r) for r in hazard.regions)])
                 body = conj([*(enc.health(leg, 1, True) for leg in legs),
                              *self.keep_others(legs)])
                 rule = f"eq. 3.9: hazard {hazard.name} active in {'|'.join(hazard.regions)} " \
-                       f"under {gait.name} fails legs {', '.join(legs)}"
+                       f"under {gait.name} fails {which}"
                 self.add("env_trans", Implies(hot, body), rule, hazard.span)
 
     # ------------------------------------------------------------ eq. 3.6
@@ -234,8 +239,10 @@ def describe(expr: Expr | Term) -> str:
     """A short human-readable text of a user formula, for clause comments."""
     if isinstance(expr, Const):
         return "true" if expr.value else "false"
-    if isinstance(expr, (Var, IntVar)):
+    if isinstance(expr, Var):
         return expr.name + ("'" if expr.primed else "")
+    if isinstance(expr, IntVar):
+        return f"health({expr.name})" + ("'" if expr.primed else "")
     if isinstance(expr, IntConst):
         return str(expr.value)
     if isinstance(expr, Not):
@@ -254,4 +261,5 @@ def describe(expr: Expr | Term) -> str:
 
 def _paren(expr: Expr) -> str:
     text = describe(expr)
-    return text if isinstance(expr, (Var, Const, Not, Compare)) else f"({text})"
+    simple = (Var, Const, Not, Compare, Next, Always, Eventually)
+    return text if isinstance(expr, simple) else f"({text})"

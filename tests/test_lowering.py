@@ -151,7 +151,7 @@ def test_every_clause_names_its_rule() -> None:
     assert "eq. 3.3: from a turn in place by fix, move to b by east, or stay by noGait" in rules
     assert "eq. 3.4: leg L3 is failed for ever => gaits using L3 (west2) are off" in rules
     assert "eq. 3.6: cache c resets every leg" in rules
-    assert "eq. 3.9: hazard hz active in b under east fails legs L1" in rules
+    assert "eq. 3.9: hazard hz active in b under east fails leg L1" in rules
     assert "eq. 3.5: fix degrades no leg: every leg keeps its health" in rules
     assert "init: start in a" in rules
     assert "mutex: exactly one region" in rules
