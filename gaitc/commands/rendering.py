@@ -49,7 +49,8 @@ def register(sub: Any) -> None:
                         "--run the path with step numbers (✗ a leg fails, ↓ degrades) and the "
                         "leg-health timeline.")
     p.add_argument("spec", metavar="SPEC")
-    p.add_argument("--run", dest="run_file", metavar="RUN.jsonl", help="a run saved by 'gaitc simulate --out'")
+    p.add_argument("--run", dest="run_file", metavar="RUN.jsonl",
+                   help="a run saved by 'gaitc simulate --out'")
     p.add_argument("--max-steps", type=int, default=30, metavar="N",
                    help="draw the first N steps of the run (default 30)")
     _output(p)
