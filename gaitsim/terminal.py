@@ -81,6 +81,13 @@ def _counts(items: Sequence[tuple[str, int]]) -> str:
     return ", ".join(f"{name} ×{count}" for name, count in items) or "(none)"
 
 
+def _when(leg: str, steps: list[int], shown: int = 4) -> str:
+    more = ", ..." if len(steps) > shown else ""
+    listed = ", ".join(map(str, steps[:shown])) + more
+    times = f" ×{len(steps)}" if len(steps) > 1 else ""
+    return f"{leg}{times} (step{'s' if len(steps) > 1 else ''} {listed})"
+
+
 def summary_text(summary: Summary, environment: str = "", colour: bool = False) -> str:
     """The summary of a run, as a few indented lines."""
     style = _Style(colour)
@@ -88,7 +95,7 @@ def summary_text(summary: Summary, environment: str = "", colour: bool = False) 
     by_leg: dict[str, list[int]] = {}
     for index, leg in summary.legs_failed:
         by_leg.setdefault(leg, []).append(index)
-    failed = ", ".join(f"{leg} (step {', '.join(map(str, idx))})" for leg, idx in by_leg.items())
+    failed = ", ".join(_when(leg, idx) for leg, idx in by_leg.items())
     lines = [f"summary: {summary.steps} steps" + (f", environment {environment}"
                                                   if environment else ""),
              f"  goals visited:   {_counts(summary.goal_visits)}",

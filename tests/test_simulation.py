@@ -314,3 +314,21 @@ def test_cli_rejects_a_controller_of_another_spec(hazard: Setup, tmp_path: Path,
     path.write_text(controller_to_json(hazard.controller), encoding="utf-8")
     assert main(["simulate", str(PATROL), str(path)]) == 1
     assert "does not" in capsys.readouterr().err
+
+
+def test_step_table_colours_health_only_when_asked(patrol: Setup) -> None:
+    from gaitsim.terminal import step_table, summary_text
+
+    run = simulate(patrol.strategy, patrol.domain, patrol.monitor, AdversarialEnvironment(), 6)
+    full = {leg: 2 for leg in patrol.domain.legs}
+    plain = step_table(run, full, colour=False)
+    coloured = step_table(run, full, colour=True)
+    assert "\x1b[" not in plain
+    assert "\x1b[31m1!" in coloured  # a leg failing on this step, in red
+    assert "\x1b[34m" in coloured  # healthy legs in blue
+    failed = next(s for s in run.steps if s.failed)
+    row = plain.splitlines()[failed.index + 1].split()
+    assert row[0] == str(failed.index) and f"{failed.level(failed.failed[0])}!" in row
+    assert run.summary is not None
+    text = summary_text(run.summary, "adversarial")
+    assert "legs failed:" in text and "(none)" not in text.split("legs failed:")[1].splitlines()[0]
