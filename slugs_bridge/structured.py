@@ -29,14 +29,8 @@ from slugs_bridge.formula import (
     Xor,
 )
 from slugs_bridge.infix import IDENT, KEYWORDS, parse_infix
-from slugs_bridge.slugsin import (
-    HEADERS,
-    SourceLine,
-    check_atoms,
-    check_name,
-    parse_prefix,
-    read_sections,
-)
+from slugs_bridge.sections import HEADERS, SourceLine, check_atoms, check_name, read_sections
+from slugs_bridge.slugsin import parse_prefix
 from slugs_bridge.spec import SECTIONS, Clause, GR1Spec, Origin, Variable
 
 
