@@ -1,17 +1,6 @@
-"""Variable naming and the two encodings of robot state as GR(1) variables.
-
-``onehot`` is the thesis encoding (section 3.3: one proposition per region, gait,
-health level p_{i,j} and hazard t_k); ``binary`` uses one integer variable per
-quantity.  Both give every atom of the lowering and of user formulas a formula.
-
-Names.  onehot: a region, gait or hazard proposition is the object's own name; the
-health proposition p_{i,j} of leg ``L`` at level ``j`` is ``L_h<j>`` (e.g. ``L3_h2``).
-binary: outputs ``region`` (0..p-1) and ``gait`` (0..m-1) index the declaration
-order; inputs ``<leg>`` (1..h) hold a leg's health level and ``hazard`` (0..ν) the
-active hazard, 0 meaning none (declaration order from 1).  ``hazard`` is omitted
-when the model has no hazards.  :func:`check_names` rejects a model whose user names
-would collide with a generated name.
-"""
+"""Variable naming and the two encodings of robot state as GR(1) variables: ``onehot``
+(the thesis, section 3.3: a proposition per region, gait, health level p_{i,j} and hazard)
+and ``binary`` (an integer per quantity).  See :class:`OneHot` and :class:`Binary`."""
 
 from __future__ import annotations
 
@@ -180,7 +169,12 @@ def _int_vars(node: Compare | Term) -> Iterator[IntVar]:
 
 
 class OneHot(Encoding):
-    """The thesis encoding: one Boolean per region, gait, health level and hazard."""
+    """The thesis encoding: one Boolean per region, gait, health level and hazard.
+
+    Region, gait and hazard propositions keep the object's own name; the health
+    proposition p_{i,j} of leg ``L`` at level ``j`` is ``L_h<j>`` (e.g. ``L3_h2``).
+    :func:`check_names` rejects a model whose own names collide with these.
+    """
 
     name = "onehot"
 
@@ -239,7 +233,11 @@ class OneHot(Encoding):
 
 
 class Binary(Encoding):
-    """Integer variables: ``region``, ``gait`` (outputs), a health level per leg and ``hazard``."""
+    """Integer variables: outputs ``region`` (0..p-1) and ``gait`` (0..m-1) index the
+    declaration order (noGait last); inputs ``<leg>`` (1..h) hold a leg's health level and
+    ``hazard`` (0..ν) the active hazard set, 0 meaning none, sets numbered from 1 in
+    declaration order (omitted when there are no hazards).  Ranges make every mutual
+    exclusion implicit."""
 
     name = "binary"
 

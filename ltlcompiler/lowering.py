@@ -1,19 +1,6 @@
-"""Lowering: the checked :class:`Model` to a :class:`GR1Spec` (thesis eqs. 3.3-3.9).
-
-References: thesis chapter 3 — eq. 3.3 (region moves by gait, sys_trans), 3.4 (a failed
-leg forbids its gaits, sys_trans), 3.5 with 3.8's ¬φ_H (degradation of the legs in use,
-env_trans), 3.6 (caches reset health, env_trans), 3.9 (active hazards fail the legs in
-use, env_trans), 3.7 (goals, sys_liveness); plus the mutual exclusions the thesis omits.
-
-Choices beyond the thesis (documented in docs/lowering.md terms, here for the reader):
-* noGait only stays in place: every region gets the move "stay by noGait", and noGait
-  never appears on an edge between two different regions (the checker forbids it).
-* A gait moves only along τ with a gait listed in D_τ; nothing else is allowed.
-* A correction gait needs its legs (eq. 3.4 applies) but degrades nothing: its L_G is
-  treated as empty in eqs. 3.5 and 3.9 (thesis section 3.4.1).
-* A leg with one health level is permanently failed; eq. 3.4 keeps its gaits off for
-  ever and caches leave it failed (its only level is its full level).
-"""
+"""Lowering: the checked Model to a GR1Spec, thesis chapter 3 eqs. 3.3-3.9 (region moves,
+failed legs, degradation, caches, hazards) plus goals (3.7), user formulas and the mutual
+exclusions the thesis omits; both encodings of :mod:`ltlcompiler.encoding`."""
 
 from __future__ import annotations
 
@@ -51,7 +38,29 @@ from slugs_bridge.spec import Clause, GR1Spec, Origin
 def lower(model: Model, encoding: str = "onehot") -> GR1Spec:
     """The GR(1) specification of ``model`` in ``encoding`` ("onehot" or "binary").
 
-    Deterministic: the clause order follows the declaration order of the model.
+    Sections: eqs. 3.3 and 3.4 in sys_trans; 3.5 (with 3.8's ¬φ_H in the antecedent),
+    3.6 and 3.9 in env_trans; goals in sys_liveness; assumptions in env_*, guarantees in
+    sys_*; "exactly one region/gait/health level per leg" and "at most one hazard" in the
+    init sections and, primed, in the trans sections (onehot only: integers need none).
+    Clause order follows the declaration order of the model, so output is deterministic.
+
+    Turn order (SLUGS, Mealy): the environment picks the next health and hazard seeing
+    the current state, then the robot picks its next region and gait.  The gait true at
+    step t is the one that brought the robot into its region at t; the environment
+    degrades its legs at t+1 (eq. 3.5), so a move is allowed while its legs are above
+    level 1 and the move into a cache costs no health (eq. 3.6 wins).
+
+    Choices beyond the thesis:
+
+    * noGait only stays in place: every region gets "stay by noGait" even when the model
+      omits it, and noGait on an edge between two regions is an error.
+    * A gait moves only along τ with a gait listed in D_τ; nothing else is allowed.
+    * A correction gait degrades nothing: its L_G counts as empty in eqs. 3.5 and 3.9
+      (thesis section 3.4.1); eq. 3.4 still applies to any legs it lists.
+    * A leg with one health level is permanently failed: eq. 3.4 keeps its gaits off
+      for ever, and a cache cannot repair it (its only level is its full level).
+    * Hazards are unconstrained at the start apart from "at most one"; health starts
+      at each leg's declared initial level (default full).
     """
     check_names(model, encoding)
     return _Lowering(model, make_encoding(model, encoding)).run()
