@@ -220,9 +220,15 @@ def parse_slugsin(text: str, filename: str) -> GR1Spec:
 
 
 # ---------------------------------------------------------------- writer
-def _shared_nodes(root: Expr) -> list[Expr]:
-    """Compound nodes reachable more than once from ``root``, children before parents."""
+def _buffered_nodes(root: Expr) -> list[Expr]:
+    """Nodes to write as ``$`` buffer elements, children before parents.
+
+    These are compound nodes reachable more than once, and conjunctions (disjunctions)
+    directly inside a conjunction (disjunction): the reader flattens inline chains, so
+    writing such a child through the buffer keeps the shape the reader gives back.
+    """
     counts: dict[int, int] = {}
+    nested: set[int] = set()
     order: list[Expr] = []
     stack: list[tuple[Node, bool]] = [(root, False)]
     while stack:
@@ -234,10 +240,15 @@ def _shared_nodes(root: Expr) -> list[Expr]:
         if counts[id(node)] > 1:
             continue
         stack.append((node, True))
-        stack.extend((child, False) for child in reversed(node.children()))
+        children = node.children()
+        if isinstance(node, (And, Or)):
+            nested.update(id(c) for c in children if type(c) is type(node))
+        stack.extend((child, False) for child in reversed(children))
     return [
         n for n in order
-        if counts[id(n)] > 1 and not isinstance(n, (Var, Const)) and n is not root
+        if (counts[id(n)] > 1 or id(n) in nested)
+        and not isinstance(n, (Var, Const))
+        and n is not root
     ]
 
 
@@ -286,7 +297,7 @@ def _prefix_tokens(root: Expr, refs: dict[int, str], out: list[str]) -> None:
 
 def emit_formula(expr: Expr) -> str:
     """One slugsin line for ``expr``; shared subformulas become a ``$``/``?`` memory buffer."""
-    shared = _shared_nodes(expr)
+    shared = _buffered_nodes(expr)
     out: list[str] = []
     if not shared:
         _prefix_tokens(expr, {}, out)

@@ -6,6 +6,8 @@ import itertools
 from pathlib import Path
 
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from slugs_bridge.diagnostics import SlugsFormatError
 from slugs_bridge.formula import And, Const, Expr, Not, Or, Var, Xor, evaluate, walk
@@ -105,6 +107,14 @@ def test_emit_uses_buffers_only_for_shared_subformulas() -> None:
     assert emit_formula(And((a, Not(b)))) == "& a ! b"
     shared = Or((a, b))
     assert emit_formula(Xor(shared, Not(shared))) == "$ 2 | a b ^ ? 0 ! ? 0"
+
+
+def test_emit_keeps_nested_chains_apart() -> None:
+    a, b, c = Var("a"), Var("b"), Var("c")
+    nested = And((And((a, b)), c))
+    assert emit_formula(nested) == "$ 2 & a b & ? 0 c"
+    assert one(emit_formula(nested)) == nested
+    assert one("$ 3 | a b | ? 0 c' ^ ? 1 d") == Xor(Or((Or((a, b)), Var("c", True))), Var("d"))
 
 
 def test_emit_rejects_integers() -> None:
@@ -217,3 +227,28 @@ def test_all_sections_round_trip_through_the_writer() -> None:
     for name in SECTIONS:
         assert again.section(name) == spec.section(name)
         assert len(spec.section(name)) == 1
+
+
+SEED_TEXT = (
+    "[INPUT]\na\nb\n[OUTPUT]\nc\nd\n[ENV_INIT]\n! a\n[SYS_TRANS]\n$ 3 & a b | ? 0 c' ^ ? 1 d\n"
+    "[SYS_LIVENESS]\n| c d'\n"
+)
+PIECES = ["&", "|", "!", "^", "$", "?", "0", "1", "2", "a", "c'", "x", "'", "#", "[", "]",
+          "[SYS_INIT]", "[INPUT]", "\n", " ", "\t", "é"]
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.lists(st.tuples(st.integers(0, len(SEED_TEXT)), st.sampled_from(PIECES),
+                          st.integers(0, 3)), max_size=6))
+def test_mutated_input_raises_only_format_errors(
+    edits: list[tuple[int, str, int]]
+) -> None:
+    text = SEED_TEXT
+    for position, piece, cut in edits:
+        text = text[:position] + piece + text[position + cut:]
+    try:
+        spec = parse_slugsin(text, "fuzz.slugsin")
+    except SlugsFormatError as err:
+        assert err.span is not None and err.span.file == "fuzz.slugsin"
+        return
+    assert parse_slugsin(emit_slugsin(spec), "again.slugsin") == spec

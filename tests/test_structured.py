@@ -6,6 +6,8 @@ import itertools
 from pathlib import Path
 
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from slugs_bridge.bitblast import bitblast
 from slugs_bridge.diagnostics import SlugsFormatError
@@ -233,3 +235,30 @@ def test_errors_have_exact_messages_and_positions(
     assert err.message == message
     assert err.span is not None
     assert (err.span.file, err.span.line, err.span.column) == ("t.structuredslugs", line, column)
+
+
+SEED_TEXT = (
+    "[INPUT]\na\nn:0...7\n[OUTPUT]\nc\nm:2...5\n[ENV_INIT]\nn = 0 & !a\n"
+    "[SYS_TRANS]\n(a -> X c) & (m' <= n + 1 | c)\n| a c'\n[SYS_LIVENESS]\nnext(m = 3) <-> a\n"
+)
+PIECES = ["&", "|", "!", "^", "->", "<->", "(", ")", "[", "]", "=", "<=", "+", "-", "X",
+          "next", "G", "TRUE", "0", "1", "9", "a", "n", "m'", "x", "'", ":", "...", "#",
+          "$ 1", "? 0", "\n", " ", "[SYS_INIT]", "é"]
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.lists(st.tuples(st.integers(0, len(SEED_TEXT)), st.sampled_from(PIECES),
+                          st.integers(0, 3)), max_size=6))
+def test_mutated_input_raises_only_format_errors(
+    edits: list[tuple[int, str, int]]
+) -> None:
+    text = SEED_TEXT
+    for position, piece, cut in edits:
+        text = text[:position] + piece + text[position + cut:]
+    try:
+        spec = parse_structuredslugs(text, "fuzz.structuredslugs")
+    except SlugsFormatError as err:
+        assert err.span is not None and err.span.file == "fuzz.structuredslugs"
+        return
+    assert parse_structuredslugs(emit_structuredslugs(spec), "again") == spec
+    bitblast(spec)
