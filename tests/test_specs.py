@@ -119,10 +119,11 @@ def test_compile_writes_the_output_file(tmp_path: Path,
                                         capsys: pytest.CaptureFixture[str]) -> None:
     out = tmp_path / "patrol.slugsin"
     out.write_text("old contents", encoding="utf-8")
-    assert main(["compile", "specs/patrol_2x2.gait", "-o", str(out), "--format", "slugsin"]) == 0
+    assert main(["compile", "specs/patrol_2x2.gait", "-o", str(out)]) == 0  # format by suffix
     assert capsys.readouterr().out == ""
     text = out.read_text(encoding="utf-8")
     assert "[SYS_LIVENESS]" in text and "old contents" not in text
+    assert "& | nw ne" in text  # prefix notation: slugsin
     assert [p.name for p in tmp_path.iterdir()] == ["patrol.slugsin"]  # no temp file left
 
 

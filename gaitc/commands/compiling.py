@@ -38,8 +38,9 @@ def register(subparsers: Any) -> None:
     comp.add_argument("spec", metavar="SPEC", help="a .gait file")
     comp.add_argument("-o", "--output", default="-", metavar="OUT",
                       help="output file, '-' for stdout (default); replaced atomically")
-    comp.add_argument("--format", choices=FORMATS, default="structuredslugs",
-                      help="output format (default structuredslugs)")
+    comp.add_argument("--format", choices=FORMATS, default=None,
+                      help="output format (default: from the suffix of OUT, .slugsin or .ltl, "
+                      "else structuredslugs)")
     comp.add_argument("--encoding", choices=ENCODINGS, default="onehot",
                       help="onehot: a proposition per region/gait/health level (the thesis); "
                       "binary: integer variables (default onehot)")
@@ -144,8 +145,17 @@ def write_atomically(path: str, text: str) -> None:
                 os.unlink(tmp)
 
 
+def output_format(output: str, requested: str | None) -> str:
+    """``requested``, else the format the suffix of ``output`` names (structuredslugs)."""
+    if requested is not None:
+        return requested
+    suffix = Path(output).suffix.lstrip(".").lower()
+    return suffix if suffix in ("slugsin", "ltl") else "structuredslugs"
+
+
 def run_compile(args: argparse.Namespace) -> int:
-    text, diagnostics = compile_text(args.spec, args.format, args.encoding)
+    fmt = output_format(args.output, args.format)
+    text, diagnostics = compile_text(args.spec, fmt, args.encoding)
     _warn(diagnostics)
     if args.output == "-":
         sys.stdout.write(text)
