@@ -5,6 +5,8 @@ from __future__ import annotations
 from collections.abc import Iterable
 
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from ltlcompiler.decoding import RobotState, encode
 from ltlcompiler.lowering import lower
@@ -35,7 +37,7 @@ from slugs_bridge.formula import (
     Var,
     evaluate,
 )
-from slugs_bridge.spec import Clause, GR1Spec, Variable
+from slugs_bridge.spec import SECTIONS, Clause, GR1Spec, Variable
 
 ENCODINGS = ("onehot", "binary")
 
@@ -303,3 +305,42 @@ def test_generated_name_collision_is_reported_at_the_user_name() -> None:
         lower(clash, "onehot")
     assert err.value.span == Span("t.gait", 3, 8)
     lower(clash, "binary")  # no clash there
+
+
+# ---------------------------------------------------------------- the encodings agree
+def _states(model: Model) -> st.SearchStrategy[RobotState]:
+    def level(leg: Leg) -> st.SearchStrategy[tuple[str, int]]:
+        return st.tuples(st.just(leg.name), st.integers(1, leg.health))
+
+    health = st.tuples(*(level(leg) for leg in model.legs))
+    return st.builds(RobotState, st.sampled_from([r.name for r in model.regions]),
+                     st.sampled_from([g.name for g in model.gaits]), health,
+                     st.sampled_from([None, *(h.name for h in model.hazards)]))
+
+
+def _rich_model() -> Model:
+    l1, l2 = IntVar("L1"), IntVar("L2", True)
+    return _with(
+        corridor_model(),
+        assumptions=(UserFormula(Section.TRANS, Implies(Var("hz"), Next(Not(Var("hz"))))),
+                     UserFormula(Section.LIVENESS, Compare("<=", l1, IntConst(2)))),
+        guarantees=(UserFormula(Section.TRANS, Implies(
+            Compare(">", l2, IntConst(1)), Or((Next(Var("a")), Compare("!=", l1, l2))))),),
+    )
+
+
+@settings(max_examples=150, deadline=None)
+@given(_states(_rich_model()), _states(_rich_model()))
+def test_onehot_and_binary_mean_the_same(now: RobotState, nxt: RobotState) -> None:
+    model = _rich_model()
+    verdicts = []
+    for enc in ENCODINGS:
+        spec = LOWERED[enc]
+        values = dict(encode(model, enc, now))
+        values.update({k + "'": val for k, val in encode(model, enc, nxt).items()})
+        verdicts.append({name: all(evaluate(c.formula, values) for c in spec.section(name))
+                         for name in SECTIONS})
+    assert verdicts[0] == verdicts[1]
+
+
+LOWERED = {enc: lower(_rich_model(), enc) for enc in ENCODINGS}
