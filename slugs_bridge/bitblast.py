@@ -38,14 +38,12 @@ Bits = list[Expr]  # little-endian bit vector; missing high bits are 0
 
 # ---------------------------------------------------------------- naming and decoding
 def bit_count(var: Variable) -> int:
-    """Number of bits SLUGS gives ``var``: the least n with 2**n > MAX - MIN (0 if MIN == MAX)."""
-    if not var.is_integer:
-        return 1
-    assert var.low is not None and var.high is not None
-    n = 0
-    while (1 << n) <= var.high - var.low:
-        n += 1
-    return n
+    """Bits of ``var``: the least n >= 1 with 2**n > MAX - MIN (:attr:`Variable.bits`).
+
+    SLUGS's converter gives a one-value range (MIN = MAX) no bits at all; gaitc keeps one
+    bit, fixed to 0 by the range constraint, so every integer has a first bit to decode.
+    """
+    return var.bits
 
 
 def integer_bits(var: Variable) -> list[str]:
@@ -111,12 +109,20 @@ def _not(a: Expr) -> Expr:
     return Not(a)
 
 
+def _chain(kind: type[And] | type[Or], a: Expr, b: Expr) -> Expr:
+    # Same-kind operands are spliced in, as the slugsin reader does for inline chains.
+    args: list[Expr] = []
+    for x in (a, b):
+        args.extend(x.args if type(x) is kind else (x,))
+    return kind(tuple(args))
+
+
 def _and(a: Expr, b: Expr) -> Expr:
     if isinstance(a, Const):
         return b if a.value else FALSE
     if isinstance(b, Const):
         return a if b.value else FALSE
-    return And((a, b))
+    return _chain(And, a, b)
 
 
 def _or(a: Expr, b: Expr) -> Expr:
@@ -124,7 +130,7 @@ def _or(a: Expr, b: Expr) -> Expr:
         return TRUE if a.value else b
     if isinstance(b, Const):
         return TRUE if b.value else a
-    return Or((a, b))
+    return _chain(Or, a, b)
 
 
 def _xor(a: Expr, b: Expr) -> Expr:
@@ -264,7 +270,7 @@ def range_constraint(var: Variable, primed: bool) -> Expr | None:
     result: Expr = FALSE
     for i, bit in enumerate(bits):
         negated = Not(Var(bit, primed))
-        result = Or((negated, result)) if limit >> i & 1 else And((negated, result))
+        result = _chain(Or if limit >> i & 1 else And, negated, result)
     return result
 
 

@@ -273,11 +273,15 @@ def _prefix_tokens(root: Expr, refs: dict[int, str], out: list[str]) -> None:
             if not item.args:
                 out.append("1" if isinstance(item, And) else "0")
                 continue
+            if len(item.args) == 1:
+                stack.append(item.args[0])
+                continue
             op = "&" if isinstance(item, And) else "|"
+            out.append(op)  # right-nested, like SLUGS's converter: & a & b c
             seq: list[Expr | str] = [item.args[0]]
-            for a in item.args[1:]:
-                out.append(op)
-                seq.append(a)
+            for a in item.args[1:-1]:
+                seq.extend((op, a))
+            seq.append(item.args[-1])
             stack.extend(reversed(seq))
         elif isinstance(item, Xor):
             out.append("^")

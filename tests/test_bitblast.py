@@ -54,7 +54,7 @@ def test_bit_names_follow_slugs() -> None:
     assert integer_bits(Variable("c", 2, 8)) == ["c@0.2.8", "c@1", "c@2"]
     assert integer_bits(Variable("d", 0, 1)) == ["d@0.0.1"]
     assert integer_bits(Variable("e", 0, 8)) == ["e@0.0.8", "e@1", "e@2", "e@3"]
-    assert integer_bits(Variable("f", 5, 5)) == []  # SLUGS gives a one-value range no bits
+    assert integer_bits(Variable("f", 5, 5)) == ["f@0.5.5"]  # SLUGS: none; gaitc: one, fixed
     assert integer_bits(Variable("g")) == ["g"]
     assert bit_count(Variable("h", 3, 107)) == 7
 
@@ -88,7 +88,8 @@ def test_range_constraints_are_slugs_lines() -> None:
     assert emit_formula(b) == "| ! b@3 & ! b@2 | ! b@1 | ! b@0.0.10 0"
     assert emit_formula(c) == "| ! c@2' | ! c@1' | ! c@0.2.8' 0"
     assert range_constraint(Variable("p", 0, 7), primed=False) is None
-    assert range_constraint(Variable("q", 4, 4), primed=False) is None
+    q = range_constraint(Variable("q", 4, 4), primed=False)
+    assert q is not None and emit_formula(q) == "| ! q@0.4.4 0"
 
 
 @pytest.mark.parametrize(("low", "high"), [(0, 10), (2, 8), (3, 5), (-3, 2), (0, 2)])
@@ -216,7 +217,9 @@ def test_one_value_range_becomes_a_constant() -> None:
         sys_init=(Clause(Compare("=", IntVar("n"), Add(IntVar("k"), IntConst(1)))),),
     )
     out = bitblast(spec)
-    assert [v.name for v in out.outputs] == ["n@0.0.7", "n@1", "n@2"]
+    assert [v.name for v in out.outputs] == ["k@0.4.4", "n@0.0.7", "n@1", "n@2"]
+    assert [emit_formula(c.formula) for c in out.sys_init[1:]] == ["| ! k@0.4.4 0"]
     formula: Expr = out.sys_init[0].formula
     for n in range(8):
-        assert evaluate(formula, encode_bits(Variable("n", 0, 7), n)) == (n == 5)
+        bits = {**encode_bits(Variable("n", 0, 7), n), **encode_bits(Variable("k", 4, 4), 4)}
+        assert evaluate(formula, bits) == (n == 5)
