@@ -183,3 +183,17 @@ def test_temporal_words_inside_formulas_are_gr1_errors() -> None:
         parse("guarantee a & always b", "t.gait")
     with pytest.raises(FormulaError, match="'until' is outside GR\\(1\\)"):
         parse("assume a until b", "t.gait")
+
+
+def test_every_example_in_the_language_reference_parses() -> None:
+    from pathlib import Path
+
+    from ltlcompiler.frontend import model_from_text
+
+    doc = (Path(__file__).resolve().parent.parent / "docs" / "language.md").read_text("utf-8")
+    blocks = doc.split("```gait\n")[1:]
+    assert len(blocks) >= 8
+    for block in blocks:
+        parse(block.split("```")[0], "language.md")
+    model, _ = model_from_text(blocks[0].split("```")[0], "language.md")
+    assert model.start == "r12" and len(model.regions) == 20
