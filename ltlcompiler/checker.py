@@ -144,6 +144,7 @@ class _Checker:
                 st.name.span,
             )
         used: list[str] = []
+        failed: list[s.Name] = []
         for leg in expand_all(st.legs or ()):
             known = self.ns.require(leg, "leg", f"in gait {name}")
             if known in used:
@@ -151,14 +152,14 @@ class _Checker:
                     f"leg '{known}' is listed twice in gait {name}", leg.span
                 )
             used.append(known)
-        for failed in used:
-            if self.health[failed] == 1:
-                self.diagnostics.append(Diagnostic(
-                    f"gait '{name}' uses leg {failed}, which has health 1 (permanently failed), "
-                    "so the gait can never be selected",
-                    st.name.span,
-                ))
-                break
+            if self.health[known] == 1:
+                failed.append(leg)
+        if failed:
+            self.diagnostics.append(Diagnostic(
+                f"gait '{name}' uses leg {failed[0].text}, which has health 1 (permanently "
+                "failed), so the gait can never be selected",
+                failed[0].span,
+            ))
         order = list(self.health)
         used.sort(key=order.index)
         kind = GaitKind.CORRECTION if st.correction else GaitKind.MOVE
