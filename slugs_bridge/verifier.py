@@ -76,6 +76,7 @@ class _Logic:
         self.inputs = tuple(v.name for v in spec.inputs)
         self.outputs = tuple(v.name for v in spec.outputs)
         self.bdd = cudd.BDD()
+        self.bdd.configure(reordering=False)
         for name in self.inputs + self.outputs:
             self.bdd.declare(name, name + "'")
         self._memo: dict[int, tuple[Expr, Any]] = {}
@@ -140,7 +141,10 @@ class _Logic:
 
     def restrict(self, u: Any, current: Mapping[str, bool]) -> Any:
         """``u`` with its unprimed bits fixed to ``current`` (cached on those bits)."""
-        names = tuple(n for n in self.support(u) if not n.endswith("'"))
+        key = -int(u)
+        if key not in self._support:
+            self._support[key] = tuple(n for n in self.support(u) if not n.endswith("'"))
+        names = self._support[key]
         return self._let(u, current, names) if names else u
 
     def pick(self, u: Any, names: Sequence[str], primed: bool) -> tuple[dict[str, bool], int]:
@@ -235,9 +239,12 @@ class _Check:
         key = (section, None if node is None else tuple(self.ctrl.nodes[node].state))
         found = self._conj.get(key)
         if found is None:
-            found = self.logic.bdd.true
-            for _, u in self.logic.clauses(section):
-                found &= u if node is None else self.logic.restrict(u, self.valuations[node])
+            if node is None:
+                found = self.logic.bdd.true
+                for _, u in self.logic.clauses(section):
+                    found &= u
+            else:
+                found = self.logic.restrict(self.conj(section, None), self.valuations[node])
             self._conj[key] = found
         return found
 
@@ -277,20 +284,19 @@ class _Check:
         """SCCs of the edges not satisfying clause ``index`` of ``avoid`` in which every clause
         of ``need`` holds on some internal edge: a fair cycle that starves the avoided goal."""
         count = len(self.spec.section(need)) if need is not None else 0
-        sub = nx.DiGraph([(a, b) for a, b, d in self.graph.edges(data=True)
-                          if index not in d.get(avoid, ())])
-        found: list[list[int]] = []
-        for component in nx.strongly_connected_components(sub):
-            inner = sub.subgraph(component)
-            if inner.number_of_edges() == 0:
-                continue
-            self.sccs += 1
-            seen: set[int] = set()
-            for a, b in inner.edges():
-                seen |= self.graph.edges[a, b][need] if need is not None else set()
-            if len(seen) == count:
-                found.append(sorted(component))
-        return sorted(found)
+        keep = [(a, b, d) for a, b, d in self.graph.edges(data=True)
+                if index not in d.get(avoid, ())]
+        components = nx.strongly_connected_components(nx.DiGraph((a, b) for a, b, _ in keep))
+        comp = {n: i for i, component in enumerate(components) for n in component}
+        seen: dict[int, set[int]] = {}  # component -> goals of `need` on its internal edges
+        for a, b, d in keep:
+            if comp[a] == comp[b]:
+                seen.setdefault(comp[a], set()).update(d[need] if need is not None else ())
+        self.sccs += len(seen)
+        members: dict[int, list[int]] = {}
+        for n, i in sorted(comp.items()):
+            members.setdefault(i, []).append(n)
+        return sorted(members[i] for i, goals in seen.items() if len(goals) == count)
 
     def report(self, kind: str) -> VerificationReport:
         extra = len(self.problems) - MAX_PROBLEMS
