@@ -344,3 +344,18 @@ def test_onehot_and_binary_mean_the_same(now: RobotState, nxt: RobotState) -> No
 
 
 LOWERED = {enc: lower(_rich_model(), enc) for enc in ENCODINGS}
+
+
+def test_binary_reserved_names_and_nogait_edges_are_rejected() -> None:
+    from dataclasses import replace
+
+    model = tiny_model()
+    leg = Leg("gait", 2, 2, span=Span("t.gait", 4, 5))
+    clash = replace(model, legs=(leg,), gaits=(_gait("go", "gait"), model.gaits[1]))
+    with pytest.raises(SpecSemanticError, match="'gait' clashes") as err:
+        lower(clash, "binary")
+    assert err.value.span == Span("t.gait", 4, 5)
+    lower(clash, "onehot")
+    sneaky = replace(model, transitions=(Transition("a", "b", (NO_GAIT,), Span("t.gait", 6, 1)),))
+    with pytest.raises(SpecSemanticError, match="noGait cannot move the robot from a to b"):
+        lower(sneaky)
