@@ -40,19 +40,14 @@ class VerificationReport:
 
     def summary(self) -> str:
         verdict = "ok" if self.ok else f"{len(self.problems)} problem(s)"
-        return (
-            f"{self.kind} {verdict}: {self.nodes} reachable nodes, {self.edges} edges, "
-            f"{self.sccs} SCCs checked ({self.semantics} semantics)"
-        )
+        return (f"{self.kind} {verdict}: {self.nodes} reachable nodes, {self.edges} edges, "
+                f"{self.sccs} SCCs checked ({self.semantics} semantics)")
 
 
 def _boolean(spec: GR1Spec) -> GR1Spec:
-    if not spec.has_integers:
-        return spec
-    from slugs_bridge.bitblast import bitblast
+    from slugs_bridge.bitblast import bitblast  # a format transformation, shared on purpose
 
-    blasted: GR1Spec = bitblast(spec)
-    return blasted
+    return bitblast(spec) if spec.has_integers else spec
 
 
 def _rule(section: str, index: int, clause: Clause) -> str:
@@ -199,9 +194,7 @@ class _Check:
                           if not 0 <= k < count]
         if self.problems:
             return False
-        self.valuations = [
-            {v: bool(b) for v, b in zip(expected, node.state, strict=True)} for node in c.nodes
-        ]
+        self.valuations = [dict(zip(expected, map(bool, n.state), strict=True)) for n in c.nodes]
         seen = set(c.initial)
         self.reachable = sorted(seen)
         for source in self.reachable:  # the list grows while it is walked: breadth-first
