@@ -2,7 +2,7 @@
 
 Expected outputs live next to each spec as ``<stem>.<encoding>.<format>``.  After an
 intended change, regenerate them with
-``pytest tests/golden tests/test_golden.py --update-golden`` (or ``GAITC_UPDATE_GOLDEN=1``)
+``pytest tests/test_golden.py --update-golden`` (or ``GAITC_UPDATE_GOLDEN=1``)
 and review the diff.
 """
 
