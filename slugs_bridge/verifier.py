@@ -62,8 +62,8 @@ def _rule(section: str, index: int, clause: Clause) -> str:
 class _Logic:
     """BDDs of the spec's clauses over unprimed and primed (``x'``) bits, cached evaluation.
 
-    Every BDD used as a cache key stays referenced (clauses, restrictions, conjunctions), so
-    the node ids in the keys cannot be reused by CUDD.
+    Every BDD whose id is a cache key passes through :meth:`support`, which keeps it
+    referenced, so CUDD cannot reuse the id for another function.
     """
 
     def __init__(self, spec: GR1Spec) -> None:
@@ -76,7 +76,7 @@ class _Logic:
             self.bdd.declare(name, name + "'")
         self._memo: dict[int, tuple[Expr, Any]] = {}
         self._lets: dict[tuple[int, Bits], Any] = {}
-        self._support: dict[int, tuple[str, ...]] = {}
+        self._support: dict[int, tuple[Any, tuple[str, ...]]] = {}
         self._clauses: dict[str, list[tuple[str, Any]]] = {}
 
     def clauses(self, section: str) -> list[tuple[str, Any]]:
@@ -118,9 +118,9 @@ class _Logic:
 
     def support(self, u: Any) -> tuple[str, ...]:
         key = int(u)
-        if key not in self._support:
-            self._support[key] = tuple(sorted(self.bdd.support(u)))
-        return self._support[key]
+        if key not in self._support:  # keeps ``u`` alive: its id is a key of the other caches
+            self._support[key] = (u, tuple(sorted(self.bdd.support(u))))
+        return self._support[key][1]
 
     def _let(self, u: Any, values: Mapping[str, bool], names: tuple[str, ...]) -> Any:
         key = (int(u), tuple(int(values[n]) for n in names))
@@ -138,8 +138,8 @@ class _Logic:
         """``u`` with its unprimed bits fixed to ``current`` (cached on those bits)."""
         key = -int(u)
         if key not in self._support:
-            self._support[key] = tuple(n for n in self.support(u) if not n.endswith("'"))
-        names = self._support[key]
+            self._support[key] = (u, tuple(n for n in self.support(u) if not n.endswith("'")))
+        names = self._support[key][1]
         return self._let(u, current, names) if names else u
 
     def pick(self, u: Any, names: Sequence[str], primed: bool) -> tuple[dict[str, bool], int]:
@@ -221,11 +221,16 @@ class _Check:
         return "{" + ", ".join(out) + "}"
 
     def failing(self, section: str, src: int, dst: int | None = None) -> str:
-        """The clauses of ``section`` that the node ``src`` (or the edge to ``dst``) violates."""
+        """The clauses of ``section`` that the node ``src`` (or the edge to ``dst``) violates;
+        for an edge, followed by the successor's values of the next-state bits they read."""
         val = dict(self.valuations[src])
         if dst is not None:
             val.update({name + "'": value for name, value in self.valuations[dst].items()})
-        return ", ".join(r for r, u in self.logic.clauses(section) if not self.logic.holds(u, val))
+        bad = [(r, u) for r, u in self.logic.clauses(section) if not self.logic.holds(u, val)]
+        read = {n[:-1] for _, u in bad for n in self.logic.support(u) if n.endswith("'")}
+        names = [n for n in self.logic.inputs + self.logic.outputs if n in read]
+        where = f" (next: {self.show(dst, names)})" if dst is not None and names else ""
+        return ", ".join(r for r, _ in bad) + where
 
     def conj(self, section: str, node: int | None) -> Any:
         """Conjunction of a section; with ``node``, its unprimed bits fixed to the node's state."""
@@ -388,8 +393,7 @@ def _strategy_safety(check: _Check) -> set[tuple[int, int]]:
                                    f"{check.failing('env_trans', node, target)}; harmless, the "
                                    "environment broke its assumptions there")
             if not check.holds_next(guarantee, target):
-                check.problems.append(f"edge {node} -> {target}: the move to state "
-                                      f"{check.show(target)} violates "
+                check.problems.append(f"edge {node} -> {target}: the system's move violates "
                                       f"{check.failing('sys_trans', node, target)}")
     return broken
 

@@ -80,8 +80,8 @@ def test_successor_violating_the_guarantees() -> None:
     report = verify(grant_spec(), automaton(nodes, (0, 1)))
     assert not report.ok
     assert report.problems[0] == (
-        "edge 0 -> 2: the move to state {r=1, g=0} violates sys_trans clause #1 "
-        "'grant follows request'"
+        "edge 0 -> 2: the system's move violates sys_trans clause #1 'grant follows request' "
+        "(next: {r=1, g=0})"
     )
 
 
@@ -153,8 +153,8 @@ def test_input_breaking_the_assumptions_is_only_a_note() -> None:
     report = verify(spec, automaton(GOOD, (0, 1)))
     assert report.ok, report.problems
     assert report.notes == (
-        "edge 1 -> 1: the input violates env_trans clause #1 'no repeat'; harmless, the "
-        "environment broke its assumptions there",
+        "edge 1 -> 1: the input violates env_trans clause #1 'no repeat' (next: {r=1}); "
+        "harmless, the environment broke its assumptions there",
     )
 
 
@@ -280,5 +280,5 @@ def test_integer_spec_is_bit_blasted_and_messages_decode_integers() -> None:
     assert "node 0: environment input {x=2} is allowed by the assumptions but has no successor" \
         in verify(spec, missing).problems
     wrong = integer_controller([(0, 0), (1, 1), (2, 1)], [every] * 3)
-    assert any(p.startswith("edge 0 -> 2: the move to state {x=2, y=1} violates sys_trans")
-               for p in verify(spec, wrong).problems)
+    assert any(p.startswith("edge 0 -> 2: the system's move violates sys_trans clause #1 "
+                            "'copy' (next: {x=2, y=1})") for p in verify(spec, wrong).problems)
