@@ -220,12 +220,13 @@ def parse_slugsin(text: str, filename: str) -> GR1Spec:
 
 
 # ---------------------------------------------------------------- writer
-def _buffered_nodes(root: Expr) -> list[Expr]:
+def _buffered_nodes(root: Expr, nested_too: bool = True) -> list[Expr]:
     """Nodes to write as ``$`` buffer elements, children before parents.
 
-    These are compound nodes reachable more than once, and conjunctions (disjunctions)
-    directly inside a conjunction (disjunction): the reader flattens inline chains, so
-    writing such a child through the buffer keeps the shape the reader gives back.
+    These are compound nodes reachable more than once, and (with ``nested_too``)
+    conjunctions directly inside a conjunction, disjunctions inside a disjunction: the
+    reader flattens inline chains, so writing such a child through the buffer keeps the
+    shape the reader gives back.
     """
     counts: dict[int, int] = {}
     nested: set[int] = set()
@@ -241,7 +242,7 @@ def _buffered_nodes(root: Expr) -> list[Expr]:
             continue
         stack.append((node, True))
         children = node.children()
-        if isinstance(node, (And, Or)):
+        if nested_too and isinstance(node, (And, Or)):
             nested.update(id(c) for c in children if type(c) is type(node))
         stack.extend((child, False) for child in reversed(children))
     return [
@@ -250,6 +251,11 @@ def _buffered_nodes(root: Expr) -> list[Expr]:
         and not isinstance(n, (Var, Const))
         and n is not root
     ]
+
+
+def has_shared_subformulas(expr: Expr) -> bool:
+    """Whether ``expr`` is a DAG that a tree-shaped (infix) writer would have to copy."""
+    return bool(_buffered_nodes(expr, nested_too=False))
 
 
 def _prefix_tokens(root: Expr, refs: dict[int, str], out: list[str]) -> None:

@@ -27,10 +27,11 @@ from slugs_bridge.formula import (
     Term,
     Var,
     Xor,
+    walk,
 )
 from slugs_bridge.infix import IDENT, KEYWORDS, parse_infix
 from slugs_bridge.sections import HEADERS, SourceLine, check_atoms, check_name, read_sections
-from slugs_bridge.slugsin import parse_prefix
+from slugs_bridge.slugsin import emit_formula, has_shared_subformulas, parse_prefix
 from slugs_bridge.spec import SECTIONS, Clause, GR1Spec, Origin, Variable
 
 
@@ -228,7 +229,10 @@ def emit_infix(expr: Expr, as_next: bool = False) -> str:
 
 
 def emit_structuredslugs(spec: GR1Spec) -> str:
-    """Write a :class:`GR1Spec` as ``.structuredslugs`` text (sections in canonical order)."""
+    """Write a :class:`GR1Spec` as ``.structuredslugs`` text (sections in canonical order).
+
+    Boolean clauses with shared subformulas are written as slugsin ``$`` lines.
+    """
     lines: list[str] = []
     for header, field in HEADERS.items():
         if lines:
@@ -239,5 +243,14 @@ def emit_structuredslugs(spec: GR1Spec) -> str:
             for v in variables:
                 lines.append(f"{v.name}:{v.low}...{v.high}" if v.is_integer else v.name)
         else:
-            lines.extend(emit_infix(c.formula) for c in spec.section(field))
+            lines.extend(_clause_line(c.formula) for c in spec.section(field))
     return "\n".join(lines) + "\n"
+
+
+def _clause_line(formula: Expr) -> str:
+    # A Boolean DAG (e.g. bit-blasted adders) would grow exponentially as a tree; the
+    # reader passes '$' lines through, so such clauses are written in prefix form.
+    has_integers = any(isinstance(n, (Compare, IntVar)) for n in walk(formula))
+    if not has_integers and has_shared_subformulas(formula):
+        return emit_formula(formula)
+    return emit_infix(formula)

@@ -167,6 +167,19 @@ def test_writer_is_canonical_and_keeps_shapes() -> None:
     assert parse_structuredslugs(text, "x") == spec
 
 
+def test_shared_boolean_clauses_are_written_as_buffers() -> None:
+    # 2**30 leaves as a tree: the writer must keep the DAG (a '$' line, passed through).
+    parts = ["a"] + [f"^ ? {i} ? {i}" for i in range(30)]
+    text = "[INPUT]\na\n[SYS_LIVENESS]\n$ 31 " + " ".join(parts) + "\n"
+    spec = parse_slugsin(text, "dag.slugsin")
+    written = emit_structuredslugs(spec)
+    assert len(written) < 1000
+    line = written.splitlines()[-1]
+    assert line.startswith("$ ")
+    again = parse_structuredslugs(written, "dag.structuredslugs")
+    assert emit_structuredslugs(again) == written
+
+
 ERRORS = [
     ("[SYS_TRANS]\n(a & b\n", 9, 1, "missing ')' to close the '(' at column 1"),
     ("[SYS_TRANS]\na & b)\n", 9, 6, "unexpected ')' with no matching opening bracket"),
