@@ -7,6 +7,7 @@ import random
 from pathlib import Path
 
 import pytest
+from dd import cudd
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -22,17 +23,23 @@ from slugs_bridge.bitblast import (
 )
 from slugs_bridge.formula import (
     Add,
+    And,
     Compare,
+    Const,
     Expr,
+    Iff,
+    Implies,
     IntConst,
     IntVar,
+    Not,
     Or,
     Term,
     Var,
+    Xor,
     evaluate,
     walk,
 )
-from slugs_bridge.slugsin import emit_formula, emit_slugsin, parse_slugsin
+from slugs_bridge.slugsin import emit_formula, emit_slugsin, parse_prefix, parse_slugsin
 from slugs_bridge.spec import Clause, GR1Spec, Variable
 from slugs_bridge.structured import parse_structuredslugs
 
@@ -223,3 +230,120 @@ def test_one_value_range_becomes_a_constant() -> None:
     for n in range(8):
         bits = {**encode_bits(Variable("n", 0, 7), n), **encode_bits(Variable("k", 4, 4), 4)}
         assert evaluate(formula, bits) == (n == 5)
+
+
+# ---------------------------------------------------------------- against SLUGS's own output
+# The structured example of SLUGS's doc/input_formats.md and the slugsin text its
+# converter printed for it (formulas only; that converter also repeated the unprimed
+# range limits in the trans sections, which hold anyway on in-range states).
+DOC_STRUCTURED = """[INPUT]
+a
+b:0...10
+[OUTPUT]
+c:2...8
+d
+[ENV_INIT]
+! a
+b = 1
+[SYS_INIT]
+d
+c = 4
+[ENV_TRANS]
+a -> (a' <-> ! a)
+b' = b + 1
+[SYS_TRANS]
+d -> (c' = 3)
+[ENV_LIVENESS]
+! a | (b = 3)
+[SYS_LIVENESS]
+d
+c = 2
+"""
+DOC_CONVERTED = {
+    "env_init": [
+        "! a",
+        "$ 1 & ! b@3 & ! b@2 & ! b@1 & ! ^ b@0.0.10 1 1",
+        "| ! b@3 & ! b@2 | ! b@1 | ! b@0.0.10 0",
+    ],
+    "sys_init": [
+        "d",
+        "$ 7 ^ 0 c@0.2.8 & 0 c@0.2.8 ^ ^ 1 c@1 ? 1 | | & 1 c@1 & ? 1 1 & ? 1 c@1 ^ c@2 ? 3 "
+        "& c@2 ? 3 & ! ? 5 & ! ^ ? 4 1 & ! ^ ? 2 0 & ! ^ ? 0 0 1",
+        "| ! c@2 | ! c@1 | ! c@0.2.8 0",
+    ],
+    "env_trans": [
+        "| ! a | & ! a' ! ! a & a' ! a",
+        "$ 9 ^ 1 b@0.0.10 & 1 b@0.0.10 ^ b@1 ? 1 & b@1 ? 1 ^ b@2 ? 3 & b@2 ? 3 ^ b@3 ? 5 "
+        "& b@3 ? 5 & ! ? 7 & ! ^ b@3' ? 6 & ! ^ b@2' ? 4 & ! ^ b@1' ? 2 & ! ^ b@0.0.10' ? 0 1",
+        "| ! b@3 & ! b@2 | ! b@1 | ! b@0.0.10 0",
+        "| ! b@3' & ! b@2' | ! b@1' | ! b@0.0.10' 0",
+    ],
+    "sys_trans": [
+        "| ! d $ 7 ^ 0 c@0.2.8' & 0 c@0.2.8' ^ ^ 1 c@1' ? 1 | | & 1 c@1' & ? 1 1 & ? 1 c@1' "
+        "^ c@2' ? 3 & c@2' ? 3 & ! ? 5 & ! ? 4 & ! ^ ? 2 1 & ! ^ ? 0 1 1",
+        "| ! c@2 | ! c@1 | ! c@0.2.8 0",
+        "| ! c@2' | ! c@1' | ! c@0.2.8' 0",
+    ],
+    "env_liveness": ["| ! a $ 1 & ! b@3 & ! b@2 & ! ^ b@1 1 & ! ^ b@0.0.10 1 1"],
+    "sys_liveness": [
+        "d",
+        "$ 7 ^ 0 c@0.2.8 & 0 c@0.2.8 ^ ^ 1 c@1 ? 1 | | & 1 c@1 & ? 1 1 & ? 1 c@1 ^ c@2 ? 3 "
+        "& c@2 ? 3 & ! ? 5 & ! ? 4 & ! ^ ? 2 1 & ! ^ ? 0 0 1",
+    ],
+}
+
+
+def to_bdd(
+    expr: Expr, manager: cudd.BDD, memo: dict[int, tuple[Expr, cudd.Function]]
+) -> cudd.Function:
+    # The memo keeps each node alive, so its id cannot be reused by a later formula.
+    if id(expr) in memo:
+        return memo[id(expr)][1]
+    if isinstance(expr, Const):
+        out = manager.true if expr.value else manager.false
+    elif isinstance(expr, Var):
+        out = manager.var(expr.name + ("'" if expr.primed else ""))
+    elif isinstance(expr, Not):
+        out = ~to_bdd(expr.arg, manager, memo)
+    elif isinstance(expr, (And, Or)):
+        parts = [to_bdd(a, manager, memo) for a in expr.args]
+        out = manager.true if isinstance(expr, And) else manager.false
+        for p in parts:
+            out = (out & p) if isinstance(expr, And) else (out | p)
+    elif isinstance(expr, (Xor, Iff, Implies)):
+        left, right = to_bdd(expr.left, manager, memo), to_bdd(expr.right, manager, memo)
+        if isinstance(expr, Implies):
+            out = ~left | right
+        else:
+            out = manager.apply("xor" if isinstance(expr, Xor) else "<=>", left, right)
+    else:
+        raise AssertionError(f"unexpected node {expr!r}")
+    memo[id(expr)] = (expr, out)
+    return out
+
+
+def test_bitblast_agrees_with_slugs_converter_output() -> None:
+    spec = parse_structuredslugs(DOC_STRUCTURED, "doc.structuredslugs")
+    ours = bitblast(spec)
+    assert [v.name for v in ours.inputs] == ["a", "b@0.0.10", "b@1", "b@2", "b@3"]
+    assert [v.name for v in ours.outputs] == ["c@0.2.8", "c@1", "c@2", "d"]
+    declared = {v.name for v in ours.variables()}
+    manager = cudd.BDD()
+    manager.declare(*sorted(declared | {n + "'" for n in declared}))
+    memo: dict[int, tuple[Expr, cudd.Function]] = {}
+    in_range = manager.true
+    for var in spec.variables():
+        if var.is_integer:
+            limit = range_constraint(var, primed=False)
+            assert limit is not None
+            in_range &= to_bdd(limit, manager, memo)
+    for section, lines in DOC_CONVERTED.items():
+        theirs = manager.true
+        for number, line in enumerate(lines, start=1):
+            theirs &= to_bdd(parse_prefix(line, "doc", number, declared), manager, memo)
+        mine = manager.true
+        for clause in ours.section(section):
+            mine &= to_bdd(clause.formula, manager, memo)
+        assert (mine & in_range) == (theirs & in_range), section
+        if section.endswith("init") or section.endswith("liveness"):
+            assert mine == theirs, section
