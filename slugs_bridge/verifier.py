@@ -51,12 +51,9 @@ def _boolean(spec: GR1Spec) -> GR1Spec:
 
 
 def _rule(section: str, index: int, clause: Clause) -> str:
-    where = ""
-    if clause.origin is not None:
-        where = f" '{clause.origin.rule}'"
-        if clause.origin.span is not None:
-            where += f" ({clause.origin.span})"
-    return f"{section} clause #{index + 1}{where}"
+    origin, span = clause.origin, clause.origin and clause.origin.span
+    where = f" '{origin.rule}'" if origin is not None else ""
+    return f"{section} clause #{index + 1}{where}" + (f" ({span})" if span else "")
 
 
 class _Logic:
@@ -299,11 +296,9 @@ class _Check:
     def report(self, kind: str) -> VerificationReport:
         extra = len(self.problems) - MAX_PROBLEMS
         problems = self.problems[:MAX_PROBLEMS] + [f"... and {extra} more problem(s)"] * (extra > 0)
-        return VerificationReport(
-            ok=not problems, problems=tuple(problems), notes=tuple(self.notes[:MAX_PROBLEMS]),
-            nodes=len(self.reachable), edges=self.graph.number_of_edges(), sccs=self.sccs,
-            kind=kind, semantics=self.semantics,
-        )
+        return VerificationReport(not problems, tuple(problems), tuple(self.notes[:MAX_PROBLEMS]),
+                                  len(self.reachable), self.graph.number_of_edges(), self.sccs,
+                                  kind, self.semantics)
 
 
 def _few(nodes: Sequence[int], limit: int = 12) -> str:

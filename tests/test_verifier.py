@@ -9,6 +9,7 @@ from pathlib import Path
 import pytest
 
 from slugs_bridge.controller import Controller, ControllerNode, integers_of
+from slugs_bridge.diagnostics import Span
 from slugs_bridge.formula import FALSE, Compare, Iff, IntVar, Not, Or, Var
 from slugs_bridge.slugsin import parse_slugsin
 from slugs_bridge.spec import Clause, GR1Spec, Origin, Variable
@@ -282,3 +283,14 @@ def test_integer_spec_is_bit_blasted_and_messages_decode_integers() -> None:
     wrong = integer_controller([(0, 0), (1, 1), (2, 1)], [every] * 3)
     assert any(p.startswith("edge 0 -> 2: the system's move violates sys_trans clause #1 "
                             "'copy' (next: {x=2, y=1})") for p in verify(spec, wrong).problems)
+
+
+def test_problem_names_the_source_line_of_the_violated_clause() -> None:
+    where = Span("robot.gait", 12, 5)
+    spec = replace(grant_spec(), sys_trans=(
+        Clause(Iff(Var("g", True), Var("r", True)), Origin("eq. 3.5 grant", where)),))
+    nodes = [((0, 0), (0, 2)), ((1, 1), (0, 1)), ((1, 0), (0, 1))]
+    assert verify(spec, automaton(nodes, (0, 1))).problems[0] == (
+        "edge 0 -> 2: the system's move violates sys_trans clause #1 'eq. 3.5 grant' "
+        "(robot.gait:12:5) (next: {r=1, g=0})"
+    )
