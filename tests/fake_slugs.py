@@ -39,9 +39,23 @@ def fail(message: str) -> int:
     return 1
 
 
+def sections(text: str) -> dict[str, list[str]]:
+    """Section name -> its formula lines: the same spec whatever the section order or spacing."""
+    out: dict[str, list[str]] = {}
+    current = ""
+    for raw in text.splitlines():
+        line = " ".join(raw.split())
+        if line.startswith("["):
+            current = line
+            out.setdefault(current, [])
+        elif line and not line.startswith("#"):
+            out.setdefault(current, []).append(line)
+    return {name: lines for name, lines in out.items() if lines}
+
+
 def recording(text: str) -> str | None:
     for path in sorted(RECORDED.glob("*.slugsin")):
-        if path.read_text(encoding="utf-8").rstrip() == text.rstrip():
+        if sections(path.read_text(encoding="utf-8")) == sections(text):
             return path.stem
     return None
 

@@ -204,3 +204,21 @@ def test_live_slugs_agrees_with_recorded_verdicts(semantics: str) -> None:
             assert synth.output is not None
             assert verify(spec, controller_from_slugs_json(synth.output, spec, semantics),
                           semantics).ok
+
+
+# ---------------------------------------------------------------- through the command line
+def test_cli_slugs_path_end_to_end(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    from gaitc.cli import main
+
+    spec_file = str(RECORDED / "semantics_diference.slugsin")
+    common = ["--solver", "slugs", "--slugs", FAKE, "--timeout", "60"]
+    assert main(["check", *common, spec_file]) == 0
+    assert main(["check", *common, "--robotics-semantics", spec_file]) == 3
+    out = str(tmp_path / "ctrl.json")
+    assert main(["synth", *common, spec_file, "-o", out]) == 0
+    assert "verified: strategy ok" in capsys.readouterr().out
+    assert main(["verify", spec_file, out]) == 0
+    counter = str(tmp_path / "counter.json")
+    assert main(["counter", *common, "--robotics-semantics", spec_file, "-o", counter]) == 0
+    assert main(["verify", "--robotics-semantics", spec_file, counter]) == 0
+    assert "verified: counterstrategy ok" in capsys.readouterr().out
