@@ -3,7 +3,8 @@
 
 It checks options and file-name order the way SLUGS's ``src/main.cpp`` does, prints the banner
 and a ``RESULT:`` line on stderr (exit code 0 for both verdicts), and answers only for the
-specifications recorded in ``tests/data/slugs_recorded`` (matched by exact slugsin text).
+specifications recorded in ``tests/data/slugs_recorded`` (matched section by section, so
+the text gaitc emits for a recorded spec finds its recording).
 ``FAKE_SLUGS_BEHAVIOUR`` selects a failure: ``sleep``, ``no-result``, ``crash``,
 ``signal``, ``garbage``.
 """
