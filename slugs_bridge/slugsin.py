@@ -86,7 +86,10 @@ def parse_prefix(
             )
         i += 1
         value: Expr | None = None
-        if tok in ("&", "|", "^"):
+        if tok in ("&", "|") and stack and stack[-1].op == tok:
+            # An inline chain: the operands join the enclosing node (flattening in O(n)).
+            stack[-1].needed += 1
+        elif tok in ("&", "|", "^"):
             stack.append(_Frame(tok, span, 2, []))
         elif tok == "!":
             stack.append(_Frame(tok, span, 1, []))
