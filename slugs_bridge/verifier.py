@@ -442,7 +442,8 @@ def _counter_initial(check: _Check) -> None:
         gaps = []
         for key, covered in sorted(groups.items()):
             start = dict(zip(logic.inputs, (bool(v) for v in key), strict=True))
-            gaps.append((b.let(start, theta_e & theta_s) & ~covered, start))
+            allowed = b.let(start, theta_e & theta_s) if start else theta_e & theta_s
+            gaps.append((allowed & ~covered, start))
         if all(gap != b.false for gap, _ in gaps):
             example, _ = logic.pick(gaps[0][0], logic.outputs, primed=False)
             check.problems.append(
@@ -469,7 +470,7 @@ def _counter_safety(check: _Check) -> None:
                                   f"successors carry different inputs")
             continue
         chosen = {n + "'": check.valuations[succ[0]][n] for n in logic.inputs}
-        answers = b.let(chosen, rho_s)
+        answers = b.let(chosen, rho_s) if chosen else rho_s
         covered = b.false
         for target in succ:
             if not check.holds_next(rho_e, target):
