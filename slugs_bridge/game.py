@@ -63,6 +63,8 @@ class GameResult:
     winning: BDDNode
     layers: list[list[BDDNode]]
     stats: GameStats
+    care: BDDNode  # ``winning`` is exact on these states (all states without a care set)
+    decided_early: bool = False  # stopped once the initial states were lost (check only)
 
 
 class Game:
@@ -86,17 +88,22 @@ class Game:
             rest = sym.post_outputs & sym.bdd.support(acc)
             sys_can = sym.bdd.exist(rest, acc) if rest else acc
         else:
-            sys_can = cudd.and_exists(sym.sys_trans, target, sym.post_outputs)
+            sys_can = cudd.and_exists(sym.game_sys_trans, target, sym.post_outputs)
         # ∀x'. (∃y'.¬ρe) ∨ sys_can  ==  ¬∃x'. ¬(∃y'.¬ρe) ∧ ¬sys_can
-        return ~cudd.and_exists(~sym.env_blocks, ~sys_can, sym.post_inputs)
+        return ~cudd.and_exists(~sym.game_env_blocks, ~sys_can, sym.post_inputs)
 
-    def solve(self, keep_layers: bool = False) -> GameResult:
-        """Compute the winning region; with ``keep_layers``, also the strategy layers."""
+    def solve(self, keep_layers: bool = False, stop_if_lost: str | None = None) -> GameResult:
+        """Compute the winning region; with ``keep_layers``, also the strategy layers.
+
+        Every set is kept inside ``sym.care`` (exact there, see SymbolicSpec._care_set).  With
+        ``stop_if_lost`` (a semantics), stop after the first Z round whose Z already fails the
+        initial condition: the winning region lies inside every Z, so it fails too.
+        """
         sym, lim, st = self.sym, self.limits, self.stats
         bdd = sym.bdd
         n_goals, n_assm = len(sym.sys_live), len(sym.env_live)
         recycled: dict[tuple[int, int], BDDNode] = {}
-        z = bdd.true
+        z = sym.care
         layers: list[list[BDDNode]] = []
         first_round = True
         while True:
@@ -114,7 +121,7 @@ class Game:
                     live_or_lower = live | sym.prime(y)
                     good = y
                     for i in range(n_assm):
-                        x = z if sym.options.recycle else bdd.true
+                        x = z if sym.options.recycle else sym.care
                         if sym.options.recycle and first_middle and not first_round:
                             x = recycled[(j, i)] & z
                         not_assm = ~sym.env_live[i]
@@ -122,9 +129,7 @@ class Game:
                             st.x_iterations += 1
                             lim.check()
                             paths = live_or_lower | (sym.prime(x) & not_assm)
-                            new_x = self.cpre(paths)
-                            if sym.options.recycle:
-                                new_x &= z
+                            new_x = self.cpre(paths) & (z if sym.options.recycle else sym.care)
                             if new_x == x:
                                 break
                             x = new_x
@@ -144,8 +149,11 @@ class Game:
             if next_z == z:
                 break
             z = next_z
+            if stop_if_lost is not None and not self.initially_winning(z, stop_if_lost):
+                st.winning_nodes = z.dag_size
+                return GameResult(z, layers, st, sym.care, decided_early=True)
         st.winning_nodes = z.dag_size
-        return GameResult(z, layers, st)
+        return GameResult(z, layers, st, sym.care)
 
     def _track(self, message: str) -> None:
         nodes = self.sym.node_count()

@@ -31,47 +31,25 @@ from slugs_bridge.formula import (
     Term,
     Var,
     Xor,
-    atoms,
 )
+from slugs_bridge.ordering import invariant_clauses, variable_order
 from slugs_bridge.spec import GR1Spec, Variable
 
 BDDNode = Any  # a dd.cudd.Function; dd ships no type stubs
-ORDERS = ("declaration", "occurrence")
 
 
 @dataclass
 class Options:
-    """Tuning switches of the symbolic solver (each measured in bench/bench_solver.py)."""
+    """Tuning switches of the symbolic solver (each measured in docs/performance.md)."""
 
-    order: str = "occurrence"  # "declaration": inputs then outputs; "occurrence": related first
+    order: str = "guards"  # see slugs_bridge.ordering.ORDERS
+    care: bool = True  # solve modulo the invariants of ρe/ρs (see SymbolicSpec.care)
     reordering: bool = False  # CUDD dynamic reordering (sifting) while solving
+    reorder_once: bool = False  # one sifting run after building ρ, then the order is fixed
     partitioned: bool = False  # ρs as clusters with early quantification (slow: see bench)
     recycle: bool = True  # start inner X fixpoints from the previous round's values
     cluster_limit: int = 2500  # node limit when merging ρs parts into clusters
     memory_mb: int | None = None  # CUDD max memory
-
-
-def _var_order(spec: GR1Spec, how: str) -> list[Variable]:
-    declared = list(spec.inputs) + list(spec.outputs)
-    if how == "declaration":
-        return declared
-    by_name = {v.name: v for v in declared}
-    seen: dict[str, None] = {}
-    for section in (
-        "sys_trans",
-        "env_trans",
-        "env_init",
-        "sys_init",
-        "sys_liveness",
-        "env_liveness",
-    ):
-        for clause in spec.section(section):
-            for name, _ in sorted(atoms(clause.formula)):
-                if name in by_name:
-                    seen.setdefault(name, None)
-    for v in declared:
-        seen.setdefault(v.name, None)
-    return [by_name[n] for n in seen]
 
 
 class SymbolicSpec:
@@ -93,7 +71,7 @@ class SymbolicSpec:
             self.var_bits[v.name] = [next(outs) for _ in range(v.bits if v.is_integer else 1)]
         self.variables = {v.name: v for v in spec.variables()}
         order: list[str] = []
-        for v in _var_order(spec, self.options.order):
+        for v in variable_order(spec, self.options.order):
             for bit in self.var_bits[v.name]:
                 order += [bit, bit + "'"]
         self.bdd.declare(*order)
@@ -105,6 +83,10 @@ class SymbolicSpec:
         self.post_outputs = {b + "'" for b in self.output_bits}
         self._memo: dict[tuple[int, bool], tuple[Node, BDDNode]] = {}
         self._build()
+        if self.options.reorder_once:
+            for bit in self.input_bits + self.output_bits:
+                self.bdd.group({bit: 2})
+            self.bdd.reorder()
         if self.options.reordering:
             self.bdd.configure(reordering=True)
 
@@ -136,7 +118,36 @@ class SymbolicSpec:
         self.sys_live = [self.translate(c.formula) for c in s.sys_liveness] or [true]
         # ∃y'.¬ρe: when ρe does not mention primed outputs this is just ¬ρe.
         self.env_blocks = self.bdd.exist(self.post_outputs, ~self.env_trans)
+        env_inv, sys_inv = invariant_clauses(s)
+        env_next = self._conj([self.translate(c.formula) for c in env_inv] + env_range_trans)
+        sys_next = self._conj([self.translate(c.formula) for c in sys_inv] + sys_range_trans)
         self._memo.clear()
+        self._care_set(env_next, sys_next)
+
+    def _care_set(self, env_next: BDDNode, sys_next: BDDNode) -> None:
+        """The states the fixpoint must get right, and ρ simplified outside them.
+
+        I = Ie ∧ Is, with ρe → Ie' and ρs → Is' (invariant clauses and range limits), holds in
+        every state after the first step.  Because ∀x'. ρe → ∃y'. ρs ∧ T only looks at T inside
+        Ie' ∧ Is', CPre(T) = CPre(T ∧ C') for C = I ∨ (θe ∧ θs) ⊇ I: the game's sets matter only
+        on C, the fixpoints of the masked operators S ↦ G(S) ∧ C are the exact fixpoints ∧ C
+        (docs/performance.md has the proof), and so they are exact on every state that the
+        initial condition or a strategy ever looks at.  ρ itself is needed only for pre-states
+        in C (and ρs only for next inputs in Ie'), so both are simplified with Coudert and
+        Madre's restrict (ICCAD 1990); ``game_*`` hold the simplified copies.
+        """
+        self.invariant = self.unprime(env_next & sys_next)
+        if not self.options.care or self.invariant == self.bdd.true:
+            self.care = self.bdd.true
+            self.game_env_blocks = self.env_blocks
+            self.game_sys_trans = self.sys_trans
+            return
+        self.care = self.invariant | (self.env_init & self.sys_init)
+        if self.care == self.bdd.false:  # nothing to solve; restrict needs a non-empty set
+            self.game_env_blocks, self.game_sys_trans = self.env_blocks, self.sys_trans
+            return
+        self.game_env_blocks = cudd.restrict(self.env_blocks, self.care)
+        self.game_sys_trans = cudd.restrict(self.sys_trans, self.care & env_next)
 
     def _conj(self, items: Iterable[BDDNode]) -> BDDNode:
         out = self.bdd.true

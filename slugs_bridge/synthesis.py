@@ -61,7 +61,7 @@ def check(
     sym = _symbolic(spec, options)
     game = Game(sym, limits)
     try:
-        result = game.solve()
+        result = game.solve(stop_if_lost=semantics)
         ok = game.initially_winning(result.winning, semantics)
     except MemoryError:
         raise _out_of_memory() from None

@@ -31,7 +31,8 @@ from slugs_bridge.formula import (
     Xor,
     evaluate,
 )
-from slugs_bridge.game import Game
+from slugs_bridge.game import SEMANTICS, Game
+from slugs_bridge.ordering import group_members, invariant_clauses, variable_order
 from slugs_bridge.spec import Clause, GR1Spec, Variable
 from slugs_bridge.symbolic import Options, SymbolicSpec
 
@@ -175,6 +176,42 @@ def tiny_specs(draw: st.DrawFn) -> GR1Spec:
     )
 
 
+def _exactly_one(names: list[str], primed: bool) -> Expr:
+    some = Or(tuple(Var(n, primed) for n in names))
+    pairs = [
+        Not(And((Var(a, primed), Var(b, primed)))) for a, b in itertools.combinations(names, 2)
+    ]
+    return And((some, *pairs))
+
+
+@st.composite
+def one_hot_specs(draw: st.DrawFn) -> GR1Spec:
+    """Random specs over a one-hot input pair and a one-hot output triple, as the .gait
+    lowering writes them: mutexes in ρe/ρs over primed variables (invariants, a care set),
+    in θe/θs only sometimes (then initial states lie outside the invariant)."""
+    ins, outs = ["a", "b"], ["p", "q", "r"]
+    pre = ins + outs
+    all_post = pre + [n + "'" for n in pre]
+    env_post = [*pre, "a'", "b'"]
+
+    def some(names: list[str], most: int) -> tuple[Clause, ...]:
+        return clauses(*draw(st.lists(formulas(names, 6), max_size=most)))
+
+    mutex_init = draw(st.booleans())
+    env_init = clauses(_exactly_one(ins, False)) if mutex_init else ()
+    sys_init = clauses(_exactly_one(outs, False)) if mutex_init else ()
+    return GR1Spec(
+        inputs=tuple(Variable(n) for n in ins),
+        outputs=tuple(Variable(n) for n in outs),
+        env_init=env_init + some(ins, 1),
+        sys_init=sys_init + some(pre, 1),
+        env_trans=clauses(_exactly_one(ins, True)) + some(env_post, 1),
+        sys_trans=clauses(_exactly_one(outs, True)) + some(all_post, 2),
+        env_liveness=some(env_post, 2),
+        sys_liveness=some(all_post, 2),
+    )
+
+
 @settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(tiny_specs())
 def test_bdd_solver_agrees_with_explicit_solver(spec: GR1Spec) -> None:
@@ -183,18 +220,37 @@ def test_bdd_solver_agrees_with_explicit_solver(spec: GR1Spec) -> None:
         assert synthesis.check(spec, semantics).realizable == expected, semantics
 
 
+@settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(one_hot_specs())
+def test_care_set_solver_agrees_with_explicit_solver_on_one_hot_specs(spec: GR1Spec) -> None:
+    sym = SymbolicSpec(spec)
+    assert sym.invariant != sym.bdd.true  # the mutexes are found as invariants
+    for semantics in ("default", "robotics"):
+        expected = explicit_realizable(spec, semantics)
+        assert synthesis.check(spec, semantics).realizable == expected, semantics
+        unmasked = synthesis.check(spec, semantics, options=Options(care=False))
+        assert unmasked.realizable == expected, semantics
+
+
+def _holds(sym: SymbolicSpec, u: object, point: dict[str, bool]) -> bool:
+    return bool(sym.bdd.let(point, u) == sym.bdd.true)
+
+
 @pytest.mark.parametrize(
     "options",
     [
-        Options(order="declaration", partitioned=False, recycle=False),
+        Options(order="declaration", partitioned=False, recycle=False, care=False),
         Options(order="occurrence", partitioned=True, recycle=True, cluster_limit=1),
         Options(reordering=True),
+        Options(reorder_once=True, order="declaration"),
+        Options(care=False, recycle=False),
     ],
-    ids=["plain", "clustered", "reordering"],
+    ids=["plain", "clustered", "reordering", "reorder-once", "no-care"],
 )
 @settings(max_examples=25, deadline=None)
-@given(spec=tiny_specs())
+@given(spec=st.one_of(tiny_specs(), one_hot_specs()))
 def test_every_tuning_option_gives_the_same_winning_region(spec: GR1Spec, options: Options) -> None:
+    # Each solver is exact on its care set: compare wherever both claim exactness.
     base = SymbolicSpec(spec)
     other = SymbolicSpec(spec, options)
     w1 = Game(base).solve().winning
@@ -202,9 +258,8 @@ def test_every_tuning_option_gives_the_same_winning_region(spec: GR1Spec, option
     names = list(base.input_bits + base.output_bits)
     for bits in itertools.product((False, True), repeat=len(names)):
         point = dict(zip(names, bits, strict=True))
-        assert (base.bdd.let(point, w1) == base.bdd.true) == (
-            other.bdd.let(point, w2) == other.bdd.true
-        )
+        if _holds(base, base.care, point) and _holds(other, other.care, point):
+            assert _holds(base, w1, point) == _holds(other, w2, point), point
 
 
 # ---------------------------------------------------------------- semantics and basics
@@ -312,3 +367,72 @@ def test_progress_reports_iterations() -> None:
     seen: list[str] = []
     synthesis.check(SEMANTICS_DIFFERENCE, progress=seen.append)
     assert seen and all("Z round" in line for line in seen)
+
+
+def test_check_stops_once_the_initial_states_are_lost() -> None:
+    spec = GR1Spec(
+        inputs=(Variable("a"),), outputs=(Variable("b"),), sys_liveness=clauses(Const(False))
+    )
+    full = Game(SymbolicSpec(spec)).solve()
+    early = Game(SymbolicSpec(spec)).solve(stop_if_lost="default")
+    assert early.decided_early and not full.decided_early
+    assert early.stats.z_iterations < full.stats.z_iterations
+
+
+@settings(max_examples=30, deadline=None)
+@given(spec=st.one_of(tiny_specs(), one_hot_specs()), semantics=st.sampled_from(SEMANTICS))
+def test_stopping_early_never_changes_the_verdict(spec: GR1Spec, semantics: str) -> None:
+    full = Game(SymbolicSpec(spec))
+    early = Game(SymbolicSpec(spec))
+    result = early.solve(stop_if_lost=semantics)
+    expected = full.initially_winning(full.solve().winning, semantics)
+    assert early.initially_winning(result.winning, semantics) == expected
+    assert not (result.decided_early and expected)
+
+
+# ---------------------------------------------------------------- variable order
+ONE_HOT_TASK = GR1Spec(
+    inputs=(Variable("h_hi"), Variable("h_lo"), Variable("hazard")),
+    outputs=(Variable("at_a"), Variable("at_b"), Variable("go")),
+    env_trans=clauses(
+        Or((Var("h_hi", True), Var("h_lo", True))),
+        Implies(And((v("go"), v("hazard"), v("at_b"))), Var("h_lo", True)),
+    ),
+    sys_trans=clauses(
+        Not(And((Var("at_a", True), Var("at_b", True)))),
+        Implies(v("at_a"), Or((Var("at_a", True), Var("go", True)))),
+        Implies(Var("h_lo", True), Not(Var("go", True))),
+    ),
+)
+
+
+def test_invariants_are_the_clauses_over_next_state_variables_only() -> None:
+    env, sys = invariant_clauses(ONE_HOT_TASK)
+    assert [c.formula for c in env] == [ONE_HOT_TASK.env_trans[0].formula]
+    assert [c.formula for c in sys] == [
+        ONE_HOT_TASK.sys_trans[0].formula,
+        ONE_HOT_TASK.sys_trans[2].formula,
+    ]
+    # The last one mixes an input and an output: an invariant, but no mutex group.
+    assert group_members(ONE_HOT_TASK) == [["h_hi", "h_lo"], ["at_a", "at_b"]]
+
+
+def test_guards_come_before_the_variables_they_constrain() -> None:
+    names = [v.name for v in variable_order(ONE_HOT_TASK, "guards")]
+    # Scores (guarded clauses minus constraining ones): at_* +1 (guards the env clause; its
+    # own move has it on both sides), hazard +1, health -1 +1 = 0, go +1 -2 = -1.  Ties go
+    # by first occurrence (ρs is read first), and each mutex group stays together.
+    assert names == ["at_a", "at_b", "hazard", "h_hi", "h_lo", "go"]
+    declared = [v.name for v in variable_order(ONE_HOT_TASK, "declaration")]
+    assert declared == ["h_hi", "h_lo", "hazard", "at_a", "at_b", "go"]
+    with pytest.raises(ValueError, match="unknown variable order"):
+        variable_order(ONE_HOT_TASK, "random")
+
+
+def test_care_set_contains_the_initial_states_and_the_invariant() -> None:
+    sym = SymbolicSpec(ONE_HOT_TASK)
+    both_places = sym.bdd.add_expr("at_a & at_b")
+    assert sym.invariant & both_places == sym.bdd.false
+    assert sym.care & both_places != sym.bdd.false  # θ allows it, so it stays exact there
+    plain = SymbolicSpec(ONE_HOT_TASK, Options(care=False))
+    assert plain.care == plain.bdd.true

@@ -1,0 +1,126 @@
+"""The BDD variable order of the embedded solver: mutex groups kept together, guards first.
+
+Invariants are the transition clauses over next-state variables only (one-hot mutexes,
+range limits); a group is the support of such a clause over one player's Boolean variables.
+Groups are ranked by how often they guard an implication (``A -> B``: A's groups rank up, B's
+down), so that a relation decides its case before it constrains the effect, the usual rule for
+small transition BDDs (Bryant 1986; Aziz, Tasiran, Brayton, "BDD variable ordering for
+interacting finite state machines", DAC 1994).  Measured in docs/performance.md.
+"""
+
+from __future__ import annotations
+
+from slugs_bridge.formula import Implies, Node, atoms
+from slugs_bridge.spec import Clause, GR1Spec, Variable
+
+ORDERS = ("guards", "occurrence", "declaration")
+_SECTIONS = ("sys_trans", "env_trans", "env_init", "sys_init", "sys_liveness", "env_liveness")
+
+
+def is_invariant(clause: Clause) -> bool:
+    """Whether a transition clause mentions next-state variables only (so holds after step 1)."""
+    found = atoms(clause.formula)
+    return bool(found) and all(primed for _, primed in found)
+
+
+def invariant_clauses(spec: GR1Spec) -> tuple[list[Clause], list[Clause]]:
+    """The invariants of ρe (over primed inputs only) and of ρs (over primed variables only)."""
+    inputs = {v.name for v in spec.inputs}
+    env = [
+        c
+        for c in spec.env_trans
+        if is_invariant(c) and all(name in inputs for name, _ in atoms(c.formula))
+    ]
+    return env, [c for c in spec.sys_trans if is_invariant(c)]
+
+
+def variable_order(spec: GR1Spec, how: str) -> list[Variable]:
+    """The variables of ``spec`` top to bottom for ordering ``how`` (one of :data:`ORDERS`)."""
+    declared = list(spec.inputs) + list(spec.outputs)
+    if how == "declaration":
+        return declared
+    if how not in ORDERS:
+        raise ValueError(f"unknown variable order {how!r}; use one of {ORDERS}")
+    occurrence = _occurrence(spec, declared)
+    if how == "occurrence":
+        return occurrence
+    rank = {v.name: k for k, v in enumerate(declared)}
+    groups = _groups(spec, declared)
+    score = _guard_scores(spec, groups)
+    first = {v.name: k for k, v in enumerate(occurrence)}
+    members: dict[str, list[Variable]] = {}
+    for v in declared:
+        members.setdefault(groups[v.name], []).append(v)
+    ordered = sorted(
+        members, key=lambda g: (-score.get(g, 0), min(first[v.name] for v in members[g]))
+    )
+    return [v for g in ordered for v in sorted(members[g], key=lambda v: rank[v.name])]
+
+
+def _occurrence(spec: GR1Spec, declared: list[Variable]) -> list[Variable]:
+    """Variables in the order the transition clauses first mention them."""
+    by_name = {v.name: v for v in declared}
+    seen: dict[str, None] = {}
+    for section in _SECTIONS:
+        for clause in spec.section(section):
+            for name, _ in sorted(atoms(clause.formula)):
+                if name in by_name:
+                    seen.setdefault(name, None)
+    for v in declared:
+        seen.setdefault(v.name, None)
+    return [by_name[n] for n in seen]
+
+
+def _groups(spec: GR1Spec, declared: list[Variable]) -> dict[str, str]:
+    """Each variable's group representative (union-find over one-player Boolean invariants)."""
+    parent = {v.name: v.name for v in declared}
+
+    def find(name: str) -> str:
+        while parent[name] != name:
+            parent[name] = parent[parent[name]]
+            name = parent[name]
+        return name
+
+    booleans = {v.name for v in declared if not v.is_integer}
+    players = [{v.name for v in spec.inputs}, {v.name for v in spec.outputs}]
+    env, sys = invariant_clauses(spec)
+    for clause in env + sys:
+        names = sorted({name for name, _ in atoms(clause.formula)})
+        if len(names) < 2 or not set(names) <= booleans:
+            continue
+        if not any(set(names) <= side for side in players):
+            continue
+        root = find(names[0])
+        for name in names[1:]:
+            parent[find(name)] = root
+    return {name: find(name) for name in parent}
+
+
+def _guard_scores(spec: GR1Spec, groups: dict[str, str]) -> dict[str, int]:
+    """Per group: transition clauses it guards minus clauses whose effect it is."""
+    score: dict[str, int] = {}
+    for clause in list(spec.env_trans) + list(spec.sys_trans):
+        formula = clause.formula
+        if not isinstance(formula, Implies):
+            continue
+        guard = _group_set(formula.left, groups)
+        effect = _group_set(formula.right, groups)
+        for g in guard - effect:
+            score[g] = score.get(g, 0) + 1
+        for g in effect - guard:
+            score[g] = score.get(g, 0) - 1
+    return score
+
+
+def _group_set(node: Node, groups: dict[str, str]) -> set[str]:
+    return {groups[name] for name, _ in atoms(node) if name in groups}
+
+
+def group_members(spec: GR1Spec) -> list[list[str]]:
+    """The mutex groups with two or more variables, each in declaration order (for reporting)."""
+    declared = list(spec.inputs) + list(spec.outputs)
+    groups = _groups(spec, declared)
+    out: dict[str, list[str]] = {}
+    for v in declared:
+        out.setdefault(groups[v.name], []).append(v.name)
+    return [names for names in out.values() if len(names) > 1]
