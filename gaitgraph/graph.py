@@ -85,8 +85,13 @@ class GaitGraph:
     def motion(self, edge: int) -> Motion:
         e = self.edges
         return Motion(
-            int(e.src[edge]), int(e.dst[edge]), float(e.dx[edge]), float(e.dy[edge]),
-            float(np.degrees(e.rot[edge])), float(e.slip[edge]), int(e.condition[edge]),
+            int(e.src[edge]),
+            int(e.dst[edge]),
+            float(e.dx[edge]),
+            float(e.dy[edge]),
+            float(np.degrees(e.rot[edge])),
+            float(e.slip[edge]),
+            int(e.condition[edge]),
         )
 
     def to_networkx(self) -> nx.DiGraph:
@@ -99,9 +104,17 @@ class GaitGraph:
         e = self.edges
         rot = np.degrees(e.rot)
         g.add_edges_from(
-            (int(e.src[i]), int(e.dst[i]),
-             {"index": i, "dx": float(e.dx[i]), "dy": float(e.dy[i]),
-              "rotation": float(rot[i]), "slip": float(e.slip[i])})
+            (
+                int(e.src[i]),
+                int(e.dst[i]),
+                {
+                    "index": i,
+                    "dx": float(e.dx[i]),
+                    "dy": float(e.dy[i]),
+                    "rotation": float(rot[i]),
+                    "slip": float(e.slip[i]),
+                },
+            )
             for i in range(len(e))
         )
         return g
@@ -123,7 +136,9 @@ def full_graph(robot: Robot, limit: int = 16) -> GaitGraph:
     return graph
 
 
-def random_states(robot: Robot, rng: np.random.Generator, count: int, exclude: set[int]) -> list[int]:
+def random_states(
+    robot: Robot, rng: np.random.Generator, count: int, exclude: set[int]
+) -> list[int]:
     """``count`` distinct random valve states not in ``exclude`` (fewer if none are left)."""
     total = 1 << robot.valve_count
     want = min(count, total - len(exclude))

@@ -153,7 +153,9 @@ def forward(robot: Robot, states: NDArray[np.int64] | list[int]) -> Geometry:
     return Geometry(st, kappa, phi, base, axes, tips, cg, contacts)
 
 
-def leg_polyline(geometry: Geometry, index: int, leg: int, length: float, points: int = 12) -> Array:
+def leg_polyline(
+    geometry: Geometry, index: int, leg: int, length: float, points: int = 12
+) -> Array:
     """Points along one leg of one state (for drawing), shape (points, 3)."""
     s = np.linspace(0.0, length, points)
     local = arc_point(geometry.kappa[index, leg], geometry.phi[index, leg], s)

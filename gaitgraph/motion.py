@@ -46,7 +46,9 @@ def rotate(points: Array, theta: Array) -> Array:
     c, s = np.cos(theta), np.sin(theta)
     if points.ndim == 3:
         c, s = c[:, None], s[:, None]
-    return np.stack([c * points[..., 0] - s * points[..., 1], s * points[..., 0] + c * points[..., 1]], axis=-1)
+    return np.stack(
+        [c * points[..., 0] - s * points[..., 1], s * points[..., 0] + c * points[..., 1]], axis=-1
+    )
 
 
 @dataclass(frozen=True)
@@ -125,7 +127,12 @@ def transitions(robot: Robot, poses: PoseTable, start: int, zero_only: bool = Fa
 
 
 def _block(
-    robot: Robot, poses: PoseTable, rows_a: Ints, rows_b: Ints, shared: int, eps: float,
+    robot: Robot,
+    poses: PoseTable,
+    rows_a: Ints,
+    rows_b: Ints,
+    shared: int,
+    eps: float,
     zero_only: bool,
 ) -> list[Edges]:
     idx = bits(shared)
@@ -167,7 +174,9 @@ def _evaluate(
         ok = slip <= eps
         if zero_only:
             limit = robot.settings.zero_motion
-            ok &= (np.hypot(trans[:, 0], trans[:, 1]) <= limit) & (np.degrees(np.abs(theta)) <= limit)
+            ok &= (np.hypot(trans[:, 0], trans[:, 1]) <= limit) & (
+                np.degrees(np.abs(theta)) <= limit
+            )
         keep = np.nonzero(ok)[0]
         src, dst, theta, trans, slip = src[keep], dst[keep], theta[keep], trans[keep], slip[keep]
         cond1 = inside_hull(poses.cg[src], poses.xy[src], shared) & inside_hull(
@@ -183,8 +192,14 @@ def _evaluate(
         sel = np.nonzero(ok)[0]
         out.append(
             Edges(
-                src[sel], dst[sel], trans[sel, 0], trans[sel, 1], theta[sel], slip[sel],
-                cond[sel], np.full(len(sel), shared, dtype=np.int64),
+                src[sel],
+                dst[sel],
+                trans[sel, 0],
+                trans[sel, 1],
+                theta[sel],
+                slip[sel],
+                cond[sel],
+                np.full(len(sel), shared, dtype=np.int64),
             )
         )
     return out

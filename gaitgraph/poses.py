@@ -72,22 +72,33 @@ class PoseTable:
     z: Array  # (m, P) heights of the contact points above the support plane
     cg: Array  # (m, 2) levelled centre of gravity
     rotation: Array  # (m, 3, 3) levelling rotation (chassis frame -> ground frame)
+    height: Array  # (m,) height of the chassis origin above the support plane
 
     def __len__(self) -> int:
         return len(self.state)
 
     def take(self, rows: NDArray[np.int64]) -> PoseTable:
         return PoseTable(
-            self.state[rows], self.mask[rows], self.xy[rows], self.z[rows], self.cg[rows],
+            self.state[rows],
+            self.mask[rows],
+            self.xy[rows],
+            self.z[rows],
+            self.cg[rows],
             self.rotation[rows],
+            self.height[rows],
         )
 
     @staticmethod
     def concat(tables: list[PoseTable], points: int) -> PoseTable:
         if not tables:
             return PoseTable(
-                np.zeros(0, np.int64), np.zeros(0, np.int64), np.zeros((0, points, 2)),
-                np.zeros((0, points)), np.zeros((0, 2)), np.zeros((0, 3, 3)),
+                np.zeros(0, np.int64),
+                np.zeros(0, np.int64),
+                np.zeros((0, points, 2)),
+                np.zeros((0, points)),
+                np.zeros((0, 2)),
+                np.zeros((0, 3, 3)),
+                np.zeros(0),
             )
         return PoseTable(
             np.concatenate([t.state for t in tables]),
@@ -96,13 +107,14 @@ class PoseTable:
             np.concatenate([t.z for t in tables]),
             np.concatenate([t.cg for t in tables]),
             np.concatenate([t.rotation for t in tables]),
+            np.concatenate([t.height for t in tables]),
         )
 
 
 def support_planes(robot: Robot, geo: Geometry) -> PoseTable:
     """Every (state, contact set) whose support plane is admissible, stable or not."""
     pts, cg = geo.contacts, geo.cg
-    n, count = pts.shape[0], pts.shape[1]
+    _n, count = pts.shape[0], pts.shape[1]
     tol = robot.settings.contact_tolerance
     min_nz = float(np.cos(np.radians(robot.settings.max_tilt)))
     rows: list[NDArray[np.int64]] = []
@@ -132,10 +144,14 @@ def support_planes(robot: Robot, geo: Geometry) -> PoseTable:
     row, mask, normal = row[first], mask[first], normal[first]
     rot = level_rotation(normal)
     lifted = np.einsum("mij,mpj->mpi", rot, pts[row])
-    lowest = lifted[np.arange(len(row)), [bits(int(m))[0] for m in mask], 2] if len(row) else np.zeros(0)
+    lowest = (
+        lifted[np.arange(len(row)), [bits(int(m))[0] for m in mask], 2] if len(row) else np.zeros(0)
+    )
     lifted[..., 2] -= lowest[:, None]
     cg_l = np.einsum("mij,mj->mi", rot, cg[row])
-    return PoseTable(geo.states[row], mask, lifted[..., :2], lifted[..., 2], cg_l[:, :2], rot)
+    return PoseTable(
+        geo.states[row], mask, lifted[..., :2], lifted[..., 2], cg_l[:, :2], rot, -lowest
+    )
 
 
 def stable_poses(robot: Robot, geo: Geometry) -> PoseTable:

@@ -94,7 +94,7 @@ class Robot:
     @property
     def contact_names(self) -> tuple[str, ...]:
         """Names of the points that can touch the ground: chassis contacts, then feet."""
-        return tuple(n for n, _ in self.contacts) + tuple(l.name for l in self.legs if l.foot)
+        return tuple(n for n, _ in self.contacts) + tuple(leg.name for leg in self.legs if leg.foot)
 
     def leg(self, name: str) -> Leg:
         return next(leg for leg in self.legs if leg.name == name)
@@ -183,8 +183,19 @@ class _Reader:
 _TOP = {"robot", "description", "chassis", "defaults", "legs", "gait_graph", "gaits"}
 _CHASSIS = {"mass", "cg", "outline", "contacts"}
 _LEG = {
-    "name", "mount", "yaw", "pitch", "roll", "length", "mass", "tip_mass", "foot", "parent",
-    "chambers", "rest", "table",
+    "name",
+    "mount",
+    "yaw",
+    "pitch",
+    "roll",
+    "length",
+    "mass",
+    "tip_mass",
+    "foot",
+    "parent",
+    "chambers",
+    "rest",
+    "table",
 }
 _SHAPE = {"curvature", "angle"}
 _CHAMBER = {"name", "curvature", "angle"}
@@ -221,13 +232,21 @@ def parse_robot(text: str, path: str = "<robot>") -> Robot:
     chassis = r.mapping(top["chassis"], "chassis", _CHASSIS)
     if "mass" not in chassis:
         raise r.fail(top["chassis"], "chassis needs a mass (grams)")
-    outline = tuple(
-        (xy[0], xy[1])
-        for xy in (r.vector(p, "outline point", 2) for p in r.sequence(chassis["outline"], "outline"))
-    ) if "outline" in chassis else ()
+    outline = (
+        tuple(
+            (xy[0], xy[1])
+            for xy in (
+                r.vector(p, "outline point", 2) for p in r.sequence(chassis["outline"], "outline")
+            )
+        )
+        if "outline" in chassis
+        else ()
+    )
     contacts: list[tuple[str, tuple[float, float, float]]] = []
     if "contacts" in chassis:
-        for key, value in r.mapping(chassis["contacts"], "chassis contacts", _any(chassis["contacts"])).items():
+        for key, value in r.mapping(
+            chassis["contacts"], "chassis contacts", _any(chassis["contacts"])
+        ).items():
             x, y, z = r.vector(value, f"contact {key}", 3)
             contacts.append((key, (x, y, z)))
     defaults = r.mapping(top["defaults"], "defaults", _LEG - {"name"}) if "defaults" in top else {}
@@ -256,7 +275,11 @@ def parse_robot(text: str, path: str = "<robot>") -> Robot:
     )
     if len(robot.contact_names) < 3:
         raise r.fail(top["legs"], "a robot needs at least three points that can touch the ground")
-    gaits = tuple(_gait(r, g, robot) for g in r.sequence(top["gaits"], "gaits")) if "gaits" in top else ()
+    gaits = (
+        tuple(_gait(r, g, robot) for g in r.sequence(top["gaits"], "gaits"))
+        if "gaits" in top
+        else ()
+    )
     return Robot(**{**robot.__dict__, "gaits": gaits})
 
 
@@ -285,27 +308,39 @@ def _legs(r: _Reader, node: yaml.Node, defaults: dict[str, yaml.Node]) -> tuple[
                 raise r.fail(item, f"leg {name} needs {key!r}")
         parent = r.text(m["parent"], "parent") if "parent" in m else None
         if parent is not None and parent not in {leg.name for leg in legs}:
-            raise r.fail(m["parent"], f"leg {name} is mounted on {parent!r}, which is not a leg declared above it")
-        chambers = []
+            raise r.fail(
+                m["parent"],
+                f"leg {name} is mounted on {parent!r}, which is not a leg declared above it",
+            )
+        chambers: list[Chamber] = []
         for c in r.sequence(m["chambers"], f"chambers of leg {name}"):
             cm = r.mapping(c, "a chamber", _CHAMBER)
             if "curvature" not in cm:
                 raise r.fail(c, f"a chamber of leg {name} needs a curvature (1/mm)")
             chambers.append(
                 Chamber(
-                    name=r.text(cm["name"], "chamber name") if "name" in cm else str(len(chambers) + 1),
+                    name=r.text(cm["name"], "chamber name")
+                    if "name" in cm
+                    else str(len(chambers) + 1),
                     curvature=r.number(cm["curvature"], "chamber curvature"),
-                    angle=math.radians(r.number(cm["angle"], "chamber angle")) if "angle" in cm else 0.0,
+                    angle=math.radians(r.number(cm["angle"], "chamber angle"))
+                    if "angle" in cm
+                    else 0.0,
                 )
             )
         table = []
         if "table" in m:
-            for key_node, value in m["table"].value if isinstance(m["table"], yaml.MappingNode) else []:
+            for key_node, value in (
+                m["table"].value if isinstance(m["table"], yaml.MappingNode) else []
+            ):
                 pattern = parse_valves(str(key_node.value), len(chambers), _span(r.path, key_node))
                 kappa, phi = _shape(r, value, f"table entry {pattern}")
                 table.append((pattern, kappa, phi))
             if not isinstance(m["table"], yaml.MappingNode):
-                raise r.fail(m["table"], "table must map chamber patterns like '1100' to a curvature and angle")
+                raise r.fail(
+                    m["table"],
+                    "table must map chamber patterns like '1100' to a curvature and angle",
+                )
         x, y, z = r.vector(m["mount"], f"mount of leg {name}", 3)
         legs.append(
             Leg(
@@ -320,7 +355,9 @@ def _legs(r: _Reader, node: yaml.Node, defaults: dict[str, yaml.Node]) -> tuple[
                 foot=r.flag(m["foot"], "foot") if "foot" in m else True,
                 parent=parent,
                 chambers=tuple(chambers),
-                rest=_shape(r, m["rest"], f"rest shape of leg {name}") if "rest" in m else (0.0, 0.0),
+                rest=_shape(r, m["rest"], f"rest shape of leg {name}")
+                if "rest" in m
+                else (0.0, 0.0),
                 table=tuple(sorted(table)),
                 first_valve=first,
                 span=_span(r.path, item),
@@ -340,8 +377,8 @@ def _gait(r: _Reader, node: yaml.Node, robot: Robot) -> StoredGait:
         if key not in m:
             raise r.fail(node, f"a stored gait needs {key!r}")
     legs = tuple(r.text(n, "leg name") for n in r.sequence(m["legs"], "gait legs"))
-    for leg_node, leg in zip(m["legs"].value, legs):
-        if leg not in {l.name for l in robot.legs}:
+    for leg_node, leg in zip(m["legs"].value, legs, strict=False):
+        if leg not in {x.name for x in robot.legs}:
             raise r.fail(leg_node, f"gait uses unknown leg {leg!r}")
     direction = r.text(m["direction"], "direction")
     if direction not in DIRECTIONS:

@@ -11,6 +11,7 @@ zero-motion edges around e*, unit weights, found by A* over one-leg changes (2.5
 from __future__ import annotations
 
 import heapq
+import itertools
 import math
 from dataclasses import dataclass
 from typing import Any
@@ -21,9 +22,9 @@ import numpy as np
 from gaitgraph.graph import GaitGraph, Motion, PoseKey, full_graph, random_states
 from gaitgraph.kinematics import body_length, forward, leg_shapes
 from gaitgraph.motion import Edges, Ints, pair_edges
-from gaitgraph.poses import stable_poses
+from gaitgraph.poses import PoseTable, stable_poses
 from gaitgraph.robot import Robot
-from slugs_bridge.diagnostics import SpecSemanticError, Span
+from slugs_bridge.diagnostics import Span, SpecSemanticError
 
 METHODS = ("full", "random", "reset")
 _NAMED = {"+x": 0.0, "-x": 180.0, "+y": 90.0, "-y": 270.0}
@@ -77,13 +78,30 @@ def _angles(edges: Edges, ux: float, uy: float) -> np.ndarray[Any, np.dtype[np.f
     return out
 
 
-def driving_edges(graph: GaitGraph, direction: tuple[float, float], count: int) -> list[int]:
-    """The ``count`` moving edges closest in angle to ``direction`` (ties: longer, less slip)."""
+def driving_edges(
+    graph: GaitGraph, direction: tuple[float, float], count: int, steady: bool = False
+) -> list[int]:
+    """The ``count`` moving edges closest in angle to ``direction`` (ties: longer, less slip).
+
+    ``steady`` keeps only condition-1 edges between poses on equally tilted support planes:
+    zero-motion resets cannot undo a tilt or a change of height, so other edges cannot
+    close a reset cycle.
+    """
     e = graph.edges
-    moving = np.hypot(e.dx, e.dy) > graph.robot.settings.zero_motion
+    ok = np.hypot(e.dx, e.dy) > graph.robot.settings.zero_motion
     alpha = np.round(_angles(e, *direction), 9)
-    order = np.lexsort((e.dst, e.src, e.slip, -np.round(np.hypot(e.dx, e.dy), 6), alpha))
-    return [int(i) for i in order if moving[i] and alpha[i] < math.pi / 2][:count]
+    ok &= alpha < math.pi / 2
+    if steady:
+        rot = graph.poses.rotation
+        ok &= (e.condition == 1) & (np.abs(rot[e.src] - rot[e.dst]).max(axis=(1, 2)) < 1e-6)
+        height = graph.poses.height
+        ok &= np.abs(height[e.src] - height[e.dst]) < graph.robot.settings.contact_tolerance
+    changed = np.zeros(len(e), dtype=np.int64)
+    if steady:
+        keys = _shape_keys(graph.robot, graph.poses.state)
+        changed = (keys[e.src] != keys[e.dst]).sum(axis=1)
+    order = np.lexsort((e.dst, e.src, e.slip, -np.round(np.hypot(e.dx, e.dy), 6), changed, alpha))
+    return [int(i) for i in order if ok[i]][:count]
 
 
 def edge_weights(graph: GaitGraph, driving: int) -> np.ndarray[Any, np.dtype[np.float64]]:
@@ -113,7 +131,7 @@ def close_cycle(
         path: list[int] = nx.dijkstra_path(nxg, v, u, weight=weight)
     except nx.NetworkXNoPath:
         return None
-    rows = [driving] + [int(nxg.edges[a, b]["index"]) for a, b in zip(path, path[1:])]
+    rows = [driving] + [int(nxg.edges[a, b]["index"]) for a, b in itertools.pairwise(path)]
     return make_cycle(graph, [u, *path[:-1]], rows)
 
 
@@ -121,8 +139,13 @@ def make_cycle(graph: GaitGraph, poses: list[int], rows: list[int]) -> GaitCycle
     motions = [graph.motion(i) for i in rows]
     x, y, th = compose(motions)
     return GaitCycle(
-        tuple(poses), tuple(graph.key(p) for p in poses), tuple(motions), (x, y), th,
-        max(m.slip for m in motions), 0.0,
+        tuple(poses),
+        tuple(graph.key(p) for p in poses),
+        tuple(motions),
+        (x, y),
+        th,
+        max(m.slip for m in motions),
+        0.0,
     )
 
 
@@ -150,7 +173,10 @@ graph_epsilon = 1e-6
 
 
 def synthesize(
-    graph: GaitGraph, direction: tuple[float, float], candidates: int = 8, unit_weights: bool = False
+    graph: GaitGraph,
+    direction: tuple[float, float],
+    candidates: int = 8,
+    unit_weights: bool = False,
 ) -> list[GaitCycle]:
     """Algorithm 1 for the best ``candidates`` driving edges, ranked."""
     nxg = graph.to_networkx()
@@ -171,31 +197,44 @@ class SearchResult:
 
 
 def search(
-    robot: Robot, direction: tuple[float, float], method: str = "reset", seed: int = 0,
-    max_states: int = 10_000, candidates: int = 8, budget: int = 400,
+    robot: Robot,
+    direction: tuple[float, float],
+    method: str = "reset",
+    seed: int = 0,
+    max_states: int = 10_000,
+    candidates: int = 8,
+    budget: int = 1500,
 ) -> SearchResult:
-    """Run one of :data:`METHODS` and return the graph it built and the ranked gaits."""
+    """Run one of :data:`METHODS` and return the graph it built and the ranked gaits.
+
+    ``random`` adds batches of 100 random valve states and searches after each batch;
+    ``reset`` does the same until steady driving edges exist, then searches around them.
+    """
     rng = np.random.default_rng(seed)
+    total = 1 << robot.valve_count
     if method == "full":
         graph = full_graph(robot)
-        return SearchResult(method, graph, synthesize(graph, direction, candidates), len(graph.states))
+        return SearchResult(
+            method, graph, synthesize(graph, direction, candidates), len(graph.states)
+        )
     graph = GaitGraph(robot)
-    if robot.valve_count <= 10:
-        graph.add_states(range(1 << robot.valve_count))
+    if robot.valve_count <= 8:
+        graph.add_states(range(total))
+    tried: set[int] = set()
     while True:
-        if method == "random" or not driving_edges(graph, direction, 1):
-            graph.add_states(random_states(robot, rng, 100, graph.states))
         if method == "random":
-            gaits = synthesize(graph, direction, candidates)
+            gaits = synthesize(graph, direction, candidates) if len(graph) else []
+            result = SearchResult(method, graph, gaits, len(graph.states))
         else:
-            gaits, reset_graph = _reset_gaits(graph, direction, candidates, budget)
-            if gaits or len(graph.states) >= max_states or len(graph.states) == 1 << robot.valve_count:
-                return SearchResult(method, reset_graph, gaits, len(graph.states))
-            graph.add_states(random_states(robot, rng, 100, graph.states))
-            continue
-        full = len(graph.states) >= min(max_states, 1 << robot.valve_count)
-        if gaits or full:
-            return SearchResult(method, graph, gaits, len(graph.states))
+            drivers = [
+                d for d in driving_edges(graph, direction, candidates, True) if d not in tried
+            ]
+            tried.update(drivers)
+            gaits, around = _reset_gaits(graph, drivers, direction, budget)
+            result = SearchResult(method, around, gaits, len(graph.states))
+        if gaits or len(graph.states) >= min(max_states, total):
+            return result
+        graph.add_states(random_states(robot, rng, 100, graph.states))
 
 
 # ---------------------------------------------------------------- search around one edge
@@ -221,16 +260,18 @@ def _leg_patterns(robot: Robot) -> list[list[int]]:
 
 
 def _reset_gaits(
-    seed_graph: GaitGraph, direction: tuple[float, float], candidates: int, budget: int
+    seed_graph: GaitGraph, drivers: list[int], direction: tuple[float, float], budget: int
 ) -> tuple[list[GaitCycle], GaitGraph]:
-    cycles: list[GaitCycle] = []
-    last = GaitGraph(seed_graph.robot, zero_only=True)
-    for d in driving_edges(seed_graph, direction, candidates):
+    cycles: list[tuple[GaitCycle, GaitGraph]] = []
+    for d in drivers:
         found = _search_around(seed_graph, d, budget)
         if found is not None:
-            cycles.append(found[0])
-            last = last if len(cycles) > 1 else found[1]
-    return rank(cycles, direction, body_length(seed_graph.robot)), last
+            cycles.append(found)
+    ranked = rank([c for c, _ in cycles], direction, body_length(seed_graph.robot))
+    if not ranked:
+        return [], GaitGraph(seed_graph.robot, zero_only=True)
+    best = next(g for c, g in cycles if c.keys == ranked[0].keys)
+    return ranked, best
 
 
 def _search_around(
@@ -242,10 +283,15 @@ def _search_around(
     robot = seed.robot
     u0, v0 = int(seed.edges.src[driving]), int(seed.edges.dst[driving])
     graph = GaitGraph(robot, zero_only=True)
-    graph.add_poses(seed.poses.take(np.array([u0, v0], dtype=np.int64)), link=False)
+    patterns = _leg_patterns(robot)
+    ends = seed.poses.take(np.array([u0, v0], dtype=np.int64))
+    canon = np.array([_canonical(robot, int(s), patterns) for s in ends.state], dtype=np.int64)
+    graph.add_poses(
+        PoseTable(canon, ends.mask, ends.xy, ends.z, ends.cg, ends.rotation, ends.height),
+        link=False,
+    )
     graph.states.update(int(s) for s in graph.poses.state)
     graph.add_edges(_relabel(seed.edges, driving, 0, 1))
-    patterns = _leg_patterns(robot)
     goal = _shape_keys(robot, graph.poses.state[:1])[0]
     far = [int(x) for x in (_shape_keys(robot, graph.poses.state) != goal).sum(axis=1)]
     dist = {1: 0}
@@ -273,10 +319,12 @@ def _search_around(
             rows_of.setdefault(state, []).append(row)
         src = [p for p, _ in group for s in sorted(near[p]) for _ in rows_of.get(s, [])]
         dst = [r for p, _ in group for s in sorted(near[p]) for r in rows_of.get(s, [])]
-        edges = pair_edges(robot, graph.poses, np.array(src, np.int64), np.array(dst, np.int64), True)
+        edges = pair_edges(
+            robot, graph.poses, np.array(src, np.int64), np.array(dst, np.int64), True
+        )
         graph.add_edges(edges)
         depth_of = dict(group)
-        for a, b in zip(edges.src.tolist(), edges.dst.tolist()):
+        for a, b in zip(edges.src.tolist(), edges.dst.tolist(), strict=False):
             if a in depth_of and depth_of[a] + 1 < dist.get(b, budget + 1):
                 dist[b] = depth_of[a] + 1
                 heapq.heappush(frontier, (dist[b] + 2 * far[b], dist[b], b))
@@ -286,9 +334,23 @@ def _search_around(
     return None if cycle is None else (cycle, graph)
 
 
+def _canonical(robot: Robot, state: int, patterns: list[list[int]]) -> int:
+    """The same geometry with each leg's chambers set to its shape's representative."""
+    keys = _shape_keys(robot, np.array([state], dtype=np.int64))[0]
+    out = state
+    for j, (leg, pats) in enumerate(zip(robot.legs, patterns, strict=False)):
+        width = len(leg.chambers)
+        cands = np.array([p << leg.first_valve for p in pats], dtype=np.int64)
+        same = [
+            p for p, k in zip(pats, _shape_keys(robot, cands)[:, j], strict=False) if k == keys[j]
+        ]
+        out = (out & ~(((1 << width) - 1) << leg.first_valve)) | (same[0] << leg.first_valve)
+    return out
+
+
 def _neighbours(robot: Robot, state: int, patterns: list[list[int]]) -> set[int]:
     out = set()
-    for leg, pats in zip(robot.legs, patterns):
+    for leg, pats in zip(robot.legs, patterns, strict=False):
         width = len(leg.chambers)
         clear = state & ~(((1 << width) - 1) << leg.first_valve)
         for p in pats:
@@ -300,6 +362,12 @@ def _neighbours(robot: Robot, state: int, patterns: list[list[int]]) -> set[int]
 def _relabel(edges: Edges, row: int, src: int, dst: int) -> Edges:
     one = edges.take(np.array([row], dtype=np.int64))
     return Edges(
-        np.array([src]), np.array([dst]), one.dx, one.dy, one.rot, one.slip, one.condition,
+        np.array([src]),
+        np.array([dst]),
+        one.dx,
+        one.dy,
+        one.rot,
+        one.slip,
+        one.condition,
         one.shared,
     )

@@ -1,0 +1,65 @@
+"""``gaitc gaits``: synthesise gait primitives for a robot file (thesis chapter 2)."""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+from typing import Any
+
+from slugs_bridge.diagnostics import UsageError
+
+
+def register(subparsers: Any) -> None:
+    p = subparsers.add_parser(
+        "gaits",
+        help="synthesise gaits for a robot description (gait graph, thesis ch. 2)",
+        description="Build the gait graph of ROBOT.yaml, synthesise gaits towards a direction, "
+        "print them as a table and write them as JSON.",
+    )
+    p.add_argument("robot", metavar="ROBOT.yaml")
+    p.add_argument("--direction", default="+x", help="+x, -x, +y, -y or an angle in degrees")
+    p.add_argument(
+        "--method",
+        choices=("full", "random", "reset"),
+        default=None,
+        help="default: full for at most 12 chambers, else random",
+    )
+    p.add_argument("--seed", type=int, default=0)
+    p.add_argument("--max-states", type=int, default=10_000, help="valve states to try at most")
+    p.add_argument("-o", "--output", metavar="gaits.json", help="write the gaits as JSON")
+    p.add_argument("--svg", metavar="DIR", help="write the gait graph and pose top views here")
+    p.set_defaults(run=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    from gaitgraph.drawing import write_drawings
+    from gaitgraph.report import gait_table, gaits_json
+    from gaitgraph.robot import load_robot
+    from gaitgraph.search import parse_direction, search
+
+    if args.max_states < 1:
+        raise UsageError("--max-states must be at least 1")
+    robot = load_robot(args.robot)
+    try:
+        direction = parse_direction(args.direction)
+    except Exception as err:  # a SpecSemanticError without a span is a usage error here
+        raise UsageError(f"--direction: unknown direction {args.direction!r}") from err
+    method = args.method or ("full" if robot.valve_count <= 12 else "random")
+    result = search(robot, direction, method, args.seed, args.max_states)
+    print(
+        f"robot {robot.name}: {robot.valve_count} chambers, method {method}, "
+        f"{result.states_added} valve states, {len(result.graph)} poses, "
+        f"{len(result.graph.edges)} transitions"
+    )
+    if result.gaits:
+        print(gait_table(robot, result.gaits))
+    else:
+        print(f"no gait towards {args.direction} found")
+    if args.output:
+        Path(args.output).write_text(
+            gaits_json(robot, result, args.direction, args.seed), encoding="utf-8"
+        )
+    if args.svg:
+        for path in write_drawings(robot, result.graph, result.gaits, args.svg):
+            print(f"wrote {path}")
+    return 0 if result.gaits else 1
