@@ -4,7 +4,8 @@ Follows the construction of Bloem et al. (JCSS 2012, Sect. 5) as SLUGS implement
 (``extensionExtractExplicitStrategy``): per system goal j, prefer transitions that reach the
 goal, else a lower Y ring, else stay in the X layer of an environment goal; the goal index
 advances past every goal the chosen transition satisfies.  Nodes are (state, goal) pairs,
-explored breadth-first from the initial states; every choice is the smallest assignment.
+explored breadth-first from the initial states; every choice is the smallest assignment
+in the BDD's variable order.
 """
 
 from __future__ import annotations
@@ -30,19 +31,27 @@ def assignments(sym: SymbolicSpec, u: BDDNode, bits: Sequence[str]) -> list[Stat
 
 
 def smallest(sym: SymbolicSpec, u: BDDNode, bits: Sequence[str]) -> State | None:
-    """The lexicographically smallest assignment to ``bits`` inside ``u`` (None if empty)."""
+    """The smallest assignment to ``bits`` inside ``u`` (None if empty).
+
+    Smallest in the BDD's variable order: a walk from the root that takes the 0-branch
+    whenever it is not empty, so one step per level instead of a cofactor per bit.  ``u``
+    must not depend on variables outside ``bits``.
+    """
     if u == sym.bdd.false:
         return None
-    out = []
-    for b in bits:
-        low = sym.bdd.let({b: False}, u)
-        if low != sym.bdd.false:
-            out.append(0)
+    false = sym.bdd.false
+    wanted = set(bits)
+    chosen: dict[str, int] = {}
+    while u.var is not None:
+        if u.var not in wanted:
+            raise ValueError(f"smallest: {u.var!r} is not among the bits to choose")
+        low, high = (~u.low, ~u.high) if u.negated else (u.low, u.high)
+        if low != false:
             u = low
         else:
-            out.append(1)
-            u = sym.bdd.let({b: True}, u)
-    return tuple(out)
+            chosen[u.var] = 1
+            u = high
+    return tuple(chosen.get(b, 0) for b in bits)
 
 
 def fix(sym: SymbolicSpec, u: BDDNode, bits: Sequence[str], values: Iterable[int]) -> BDDNode:
@@ -94,12 +103,21 @@ def goal_strategies(sym: SymbolicSpec, result: GameResult) -> list[BDDNode]:
     return out
 
 
-def next_goal(sym: SymbolicSpec, goal: int, transition: BDDNode) -> int:
-    """Advance past every goal that ``transition`` (a single pre/post assignment) satisfies."""
+def holds(u: BDDNode, values: dict[str, bool]) -> bool:
+    """Whether ``u`` is true at ``values`` (which assigns every variable of its support)."""
+    negated = False
+    while u.var is not None:
+        negated ^= u.negated
+        u = u.high if values[u.var] else u.low
+    return bool((u == u.bdd.true) != negated)
+
+
+def next_goal(sym: SymbolicSpec, goal: int, move: dict[str, bool]) -> int:
+    """Advance past every goal that ``move`` (a full pre/post assignment) satisfies."""
     n = len(sym.sys_live)
     current = goal
     first = True
-    while (current != goal or first) and (sym.sys_live[current] & transition) != sym.bdd.false:
+    while (current != goal or first) and holds(sym.sys_live[current], move):
         current = (current + 1) % n
         first = False
     return current
@@ -135,25 +153,26 @@ def extract_strategy(
         return index[key]
 
     initial = [node_of(s, 0) for s in initial_states(sym, result.winning, semantics)]
+    bdd = sym.bdd
     while queue:
         k = queue.popleft()
         limits.check()
         state, goal = nodes[k]
-        here = fix(sym, strategies[goal], pre, state)
-        env_here = fix(sym, sym.env_trans, pre, state)
+        at = dict(zip(pre, map(bool, state), strict=True))
+        here = bdd.let(at, strategies[goal])
+        env_here = bdd.let(at, sym.env_trans)
         targets = set()
-        for x in assignments(sym, sym.bdd.exist(sym.post_outputs, env_here), post_in):
-            choices = fix(sym, here, post_in, x)
-            preferred = choices & fix(sym, env_here, post_in, x)
-            y = smallest(sym, preferred if preferred != sym.bdd.false else choices, post_out)
+        for x in assignments(sym, bdd.exist(sym.post_outputs, env_here), post_in):
+            at_x = dict(zip(post_in, map(bool, x), strict=True))
+            choices = bdd.let(at_x, here)
+            preferred = choices & bdd.let(at_x, env_here)
+            y = smallest(sym, preferred if preferred != bdd.false else choices, post_out)
             if y is None:
                 raise SolverError(
                     "internal error: the strategy has no move for an allowed input",
                     hint="please report this specification",
                 )
-            move = sym.bdd.cube(
-                {b: bool(v) for b, v in zip(pre + post_in + post_out, state + x + y, strict=True)}
-            )
+            move = at | at_x | dict(zip(post_out, map(bool, y), strict=True))
             targets.add(node_of(x + y, next_goal(sym, goal, move)))
         trans[k] = sorted(targets)
     return Controller(

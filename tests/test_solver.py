@@ -34,6 +34,7 @@ from slugs_bridge.formula import (
 from slugs_bridge.game import SEMANTICS, Game
 from slugs_bridge.ordering import group_members, invariant_clauses, variable_order
 from slugs_bridge.spec import Clause, GR1Spec, Variable
+from slugs_bridge.strategy import holds, smallest
 from slugs_bridge.symbolic import Options, SymbolicSpec
 
 
@@ -436,3 +437,21 @@ def test_care_set_contains_the_initial_states_and_the_invariant() -> None:
     assert sym.care & both_places != sym.bdd.false  # θ allows it, so it stays exact there
     plain = SymbolicSpec(ONE_HOT_TASK, Options(care=False))
     assert plain.care == plain.bdd.true
+
+
+# ---------------------------------------------------------------- extraction helpers
+@settings(max_examples=40, deadline=None)
+@given(formula=formulas(["a", "b", "c", "d"], 8))
+def test_walking_helpers_agree_with_cofactors(formula: Expr) -> None:
+    spec = GR1Spec(outputs=tuple(Variable(n) for n in "abcd"))
+    sym = SymbolicSpec(spec, Options(order="declaration"))
+    u = sym.translate(formula)
+    names = list("abcd")
+    models = []
+    for bits in itertools.product((0, 1), repeat=4):
+        point = dict(zip(names, map(bool, bits), strict=True))
+        assert holds(u, point) == evaluate(formula, point)
+        if evaluate(formula, point):
+            models.append(bits)
+    # with the declaration order the BDD order is a, b, c, d: the smallest model
+    assert smallest(sym, u, names) == (min(models) if models else None)
