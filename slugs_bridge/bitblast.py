@@ -235,29 +235,40 @@ def compare_bits(node: Compare, variables: Mapping[str, Variable]) -> Expr:
 
 
 def lower(expr: Expr, variables: Mapping[str, Variable], memo: dict[int, Expr]) -> Expr:
-    """``expr`` with every :class:`Compare` replaced by its circuit; shared nodes stay shared."""
-    key = id(expr)
-    if key in memo:
-        return memo[key]
-    result: Expr
-    if isinstance(expr, (Const, Var)):
-        result = expr
-    elif isinstance(expr, Compare):
-        result = compare_bits(expr, variables)
-    elif isinstance(expr, Not):
-        result = Not(lower(expr.arg, variables, memo), span=expr.span)
-    elif isinstance(expr, (And, Or)):
-        args = tuple(lower(a, variables, memo) for a in expr.args)
-        result = type(expr)(args, span=expr.span)
-    elif isinstance(expr, (Xor, Iff, Implies)):
-        left = lower(expr.left, variables, memo)
-        result = type(expr)(left, lower(expr.right, variables, memo), span=expr.span)
-    elif isinstance(expr, (Next, Always, Eventually)):
-        raise ValueError(f"{type(expr).__name__} cannot appear in a GR(1) section")
-    else:
-        raise ValueError(f"unknown formula node {type(expr).__name__}")
-    memo[key] = result
-    return result
+    """``expr`` with every :class:`Compare` replaced by its circuit; shared nodes stay shared.
+
+    Iterative (children before parents), so deeply nested formulas cannot overflow.
+    """
+    stack: list[tuple[Expr, bool]] = [(expr, False)]
+    keep: list[Expr] = []  # keeps visited nodes alive while their ids are memo keys
+    while stack:
+        node, ready = stack.pop()
+        if id(node) in memo:
+            continue
+        if not ready and not isinstance(node, (Const, Var, Compare)):
+            stack.append((node, True))
+            stack.extend((child, False) for child in node.children()  # type: ignore[misc]
+                         if id(child) not in memo)
+            continue
+        keep.append(node)
+        memo[id(node)] = _lower_node(node, variables, memo)
+    return memo[id(expr)]
+
+
+def _lower_node(node: Expr, variables: Mapping[str, Variable], memo: dict[int, Expr]) -> Expr:
+    if isinstance(node, (Const, Var)):
+        return node
+    if isinstance(node, Compare):
+        return compare_bits(node, variables)
+    if isinstance(node, Not):
+        return Not(memo[id(node.arg)], span=node.span)
+    if isinstance(node, (And, Or)):
+        return type(node)(tuple(memo[id(a)] for a in node.args), span=node.span)
+    if isinstance(node, (Xor, Iff, Implies)):
+        return type(node)(memo[id(node.left)], memo[id(node.right)], span=node.span)
+    if isinstance(node, (Next, Always, Eventually)):
+        raise ValueError(f"{type(node).__name__} cannot appear in a GR(1) section")
+    raise ValueError(f"unknown formula node {type(node).__name__}")
 
 
 def range_constraint(var: Variable, primed: bool) -> Expr | None:

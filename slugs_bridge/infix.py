@@ -319,5 +319,13 @@ def parse_infix(
     text: str, filename: str, line: int, booleans: set[str], integers: Mapping[str, object]
 ) -> Expr:
     """Parse one infix formula line; ``next``/``X`` are pushed into primes."""
-    parser = InfixParser(tokenize(text, filename, line), booleans, integers)
-    return parser.parse_line()
+    tokens = tokenize(text, filename, line)
+    parser = InfixParser(tokens, booleans, integers)
+    try:
+        return parser.parse_line()
+    except RecursionError:
+        raise SlugsFormatError(
+            "this formula nests too deeply for the reader (brackets or prefix operators "
+            "hundreds of levels deep); split it into several lines",
+            Span(filename, line, tokens[0].span.column, line, tokens[-1].span.column),
+        ) from None

@@ -6,6 +6,7 @@ each conjunct carries a ``#`` comment naming the rule and source line it came fr
 
 from __future__ import annotations
 
+from slugs_bridge.slugsin import emit_formula
 from slugs_bridge.spec import Clause, GR1Spec, Variable
 from slugs_bridge.structured import emit_infix
 
@@ -37,7 +38,10 @@ def _side(spec: GR1Spec, sections: tuple[str, ...]) -> list[str]:
     for section in sections:
         prefix = _PREFIX[section.split("_", 1)[1]]
         for clause in spec.section(section):
-            body = emit_infix(clause.formula, as_next=True)
+            try:
+                body = emit_infix(clause.formula, as_next=True)
+            except RecursionError:
+                body = "slugsin: " + emit_formula(clause.formula)
             text = f"{prefix}({body})" if prefix else body
             rows.append((text, _comment(clause)))
     if not rows:

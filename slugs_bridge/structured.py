@@ -250,7 +250,13 @@ def emit_structuredslugs(spec: GR1Spec) -> str:
 def _clause_line(formula: Expr) -> str:
     # A Boolean DAG (e.g. bit-blasted adders) would grow exponentially as a tree; the
     # reader passes '$' lines through, so such clauses are written in prefix form.
+    # Formulas nested too deeply for the recursive infix writer also go out in prefix form.
     has_integers = any(isinstance(n, (Compare, IntVar)) for n in walk(formula))
     if not has_integers and has_shared_subformulas(formula):
         return emit_formula(formula)
-    return emit_infix(formula)
+    try:
+        return emit_infix(formula)
+    except RecursionError:
+        if has_integers:
+            raise ValueError("an integer formula nests too deeply to write") from None
+        return emit_formula(formula)

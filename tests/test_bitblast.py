@@ -218,6 +218,24 @@ def test_examples_bitblast_to_equivalent_slugsin(path: Path) -> None:
     check_examples_equivalent(original, again, seed=len(path.name))
 
 
+def test_deep_formulas_do_not_overflow() -> None:
+    deep: Expr = Compare("<", IntVar("n"), IntConst(3))
+    for _ in range(5000):
+        deep = Not(deep)
+    spec = GR1Spec(outputs=(Variable("n", 0, 7),), sys_init=(Clause(deep),))
+    out = bitblast(spec).sys_init[0].formula
+    for n in range(8):
+        assert evaluate_iteratively(out, encode_bits(Variable("n", 0, 7), n)) == (n < 3)
+
+
+def evaluate_iteratively(expr: Expr, valuation: dict[str, bool]) -> bool:
+    negations = 0
+    while isinstance(expr, Not):
+        negations += 1
+        expr = expr.arg
+    return evaluate(expr, valuation) != (negations % 2 == 1)
+
+
 def test_one_value_range_becomes_a_constant() -> None:
     spec = GR1Spec(
         outputs=(Variable("k", 4, 4), Variable("n", 0, 7)),

@@ -28,7 +28,7 @@ from slugs_bridge.formula import (
     atoms,
     evaluate,
 )
-from slugs_bridge.slugsin import parse_slugsin
+from slugs_bridge.slugsin import emit_formula, parse_slugsin
 from slugs_bridge.spec import GR1Spec, Variable
 from slugs_bridge.structured import emit_structuredslugs, is_prefix_line, parse_structuredslugs
 
@@ -178,6 +178,17 @@ def test_shared_boolean_clauses_are_written_as_buffers() -> None:
     assert line.startswith("$ ")
     again = parse_structuredslugs(written, "dag.structuredslugs")
     assert emit_structuredslugs(again) == written
+
+
+def test_too_deep_nesting_is_a_format_error_and_writers_fall_back_to_prefix() -> None:
+    with pytest.raises(SlugsFormatError) as info:
+        one("(" * 5000 + "a" + ")" * 5000)
+    assert info.value.message.startswith("this formula nests too deeply for the reader")
+    deep = parse_slugsin("[INPUT]\na\n[SYS_TRANS]\n" + "! " * 5000 + "a\n", "deep.slugsin")
+    text = emit_structuredslugs(deep)
+    assert "! ! ! a" in text
+    again = parse_structuredslugs(text, "x").sys_trans[0].formula
+    assert emit_formula(again) == emit_formula(deep.sys_trans[0].formula)  # no deep hashing
 
 
 ERRORS = [
