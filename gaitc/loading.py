@@ -11,7 +11,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from slugs_bridge.diagnostics import Diagnostic, Span, UsageError
+from slugs_bridge.diagnostics import Diagnostic, UsageError
 from slugs_bridge.spec import GR1Spec
 
 if TYPE_CHECKING:
@@ -67,26 +67,14 @@ def load_spec(path: str, encoding: str = "onehot") -> LoadedSpec:
         spec = lower(model, encoding)
         return LoadedSpec(path, spec, model, encoding, tuple(diagnostics), digest)
     if suffix in SLUGS_SUFFIXES:
-        return LoadedSpec(path, _load_slugs(path, raw), sha256=digest)
+        return LoadedSpec(path, _load_slugs(path), sha256=digest)
     raise UsageError(
         f"'{path}': unknown specification kind '{suffix or '(none)'}'; "
         "give a .gait, .slugsin or .structuredslugs file"
     )
 
 
-def _load_slugs(path: str, raw: bytes) -> GR1Spec:
-    try:
-        from slugs_bridge.formats import load_spec_file
-    except ModuleNotFoundError:
-        load_spec_file = None
-    if load_spec_file is not None:
-        spec: GR1Spec = load_spec_file(path)
-        return spec
-    from slugs_bridge.diagnostics import SlugsFormatError
-    from slugs_bridge.slugsin import parse_slugsin
+def _load_slugs(path: str) -> GR1Spec:
+    from slugs_bridge.formats import load_spec_file
 
-    if Path(path).suffix.lower() not in (".slugsin", ".txt"):
-        raise SlugsFormatError(
-            "this gaitc build cannot read structured SLUGS files yet", Span(path, 1, 1)
-        )
-    return parse_slugsin(raw.decode("utf-8", errors="replace"), path)
+    return load_spec_file(path)

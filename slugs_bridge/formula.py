@@ -33,13 +33,13 @@ class Node:
         if type(self) is not type(other):
             return False
         assert isinstance(other, Node)
-        return hash(self) == hash(other) and self._key() == other._key()
+        return hash(self) == hash(other) and _structurally_equal(self, other)
 
     def __hash__(self) -> int:
         cached = self.__dict__.get("_hash")
         if cached is None:
-            cached = hash((type(self).__name__, self._key()))
-            object.__setattr__(self, "_hash", cached)
+            _hash_bottom_up(self)
+            cached = self.__dict__["_hash"]
         return int(cached)
 
     def children(self) -> tuple[Node, ...]:
@@ -51,6 +51,43 @@ class Node:
             elif isinstance(value, tuple):
                 out.extend(v for v in value if isinstance(v, Node))
         return tuple(out)
+
+
+def _hash_bottom_up(root: Node) -> None:
+    """Cache the hash of ``root`` and its descendants, children first (no deep recursion)."""
+    stack: list[tuple[Node, bool]] = [(root, False)]
+    while stack:
+        node, children_done = stack.pop()
+        if "_hash" in node.__dict__:
+            continue
+        if not children_done:
+            stack.append((node, True))
+            stack.extend((c, False) for c in node.children() if "_hash" not in c.__dict__)
+            continue
+        object.__setattr__(node, "_hash", hash((type(node).__name__, node._key())))
+
+
+def _structurally_equal(left: Node, right: Node) -> bool:
+    """Equality of two trees or DAGs, comparing each pair of shared nodes once."""
+    seen: set[tuple[int, int]] = set()
+    stack = [(left, right)]
+    while stack:
+        a, b = stack.pop()
+        if a is b or (id(a), id(b)) in seen:
+            continue
+        seen.add((id(a), id(b)))
+        if type(a) is not type(b) or hash(a) != hash(b):
+            return False
+        for x, y in zip(a._key(), b._key(), strict=True):
+            if isinstance(x, Node) and isinstance(y, Node):
+                stack.append((x, y))
+            elif isinstance(x, tuple) and isinstance(y, tuple) and len(x) == len(y) and all(
+                isinstance(v, Node) for v in x + y
+            ):
+                stack.extend(zip(x, y, strict=True))
+            elif x != y:
+                return False
+    return True
 
 
 _SPAN = field(default=None, compare=False, repr=False, kw_only=True)
@@ -374,38 +411,56 @@ def _key(name: str, primed: bool) -> str:
     return name + "'" if primed else name
 
 
+def _value(node: Node, args: list[Any], valuation: Valuation) -> Any:
+    if isinstance(node, (Const, IntConst)):
+        return node.value
+    if isinstance(node, (Var, IntVar)):
+        value = valuation[_key(node.name, node.primed)]
+        return bool(value) if isinstance(node, Var) else int(value)
+    if isinstance(node, Add):
+        return args[0] + args[1]
+    if isinstance(node, Not):
+        return not args[0]
+    if isinstance(node, And):
+        return all(args)
+    if isinstance(node, Or):
+        return any(args)
+    if isinstance(node, Xor):
+        return args[0] != args[1]
+    if isinstance(node, Iff):
+        return args[0] == args[1]
+    if isinstance(node, Implies):
+        return (not args[0]) or args[1]
+    if isinstance(node, Compare):
+        a, b = args
+        return {
+            "=": a == b, "!=": a != b, "<": a < b, "<=": a <= b, ">": a > b, ">=": a >= b
+        }[node.op]
+    raise FormulaError(f"cannot evaluate temporal operator {type(node).__name__}", node.span)
+
+
+def _evaluate_node(root: Node, valuation: Valuation) -> Any:
+    """Bottom-up evaluation; each shared node once, no deep recursion."""
+    memo: dict[int, Any] = {}
+    stack: list[tuple[Node, bool]] = [(root, False)]
+    while stack:
+        node, children_done = stack.pop()
+        if id(node) in memo:
+            continue
+        children = node.children()
+        if not children_done and children:
+            stack.append((node, True))
+            stack.extend((c, False) for c in children if id(c) not in memo)
+            continue
+        memo[id(node)] = _value(node, [memo[id(c)] for c in children], valuation)
+    return memo[id(root)]
+
+
 def evaluate_term(term: Term, valuation: Valuation) -> int:
     """Value of an integer term; primed variables are looked up as ``name'``."""
-    if isinstance(term, IntConst):
-        return term.value
-    if isinstance(term, IntVar):
-        return int(valuation[_key(term.name, term.primed)])
-    if isinstance(term, Add):
-        return evaluate_term(term.left, valuation) + evaluate_term(term.right, valuation)
-    raise TypeError(f"not a term: {term!r}")
+    return int(_evaluate_node(term, valuation))
 
 
 def evaluate(expr: Expr, valuation: Valuation) -> bool:
     """Truth value of a next-free formula; ``valuation`` maps ``x`` and ``x'`` to 0/1 or ints."""
-    if isinstance(expr, Const):
-        return expr.value
-    if isinstance(expr, Var):
-        return bool(valuation[_key(expr.name, expr.primed)])
-    if isinstance(expr, Not):
-        return not evaluate(expr.arg, valuation)
-    if isinstance(expr, And):
-        return all(evaluate(a, valuation) for a in expr.args)
-    if isinstance(expr, Or):
-        return any(evaluate(a, valuation) for a in expr.args)
-    if isinstance(expr, Xor):
-        return evaluate(expr.left, valuation) != evaluate(expr.right, valuation)
-    if isinstance(expr, Iff):
-        return evaluate(expr.left, valuation) == evaluate(expr.right, valuation)
-    if isinstance(expr, Implies):
-        return (not evaluate(expr.left, valuation)) or evaluate(expr.right, valuation)
-    if isinstance(expr, Compare):
-        a, b = evaluate_term(expr.left, valuation), evaluate_term(expr.right, valuation)
-        return {
-            "=": a == b, "!=": a != b, "<": a < b, "<=": a <= b, ">": a > b, ">=": a >= b
-        }[expr.op]
-    raise FormulaError(f"cannot evaluate temporal operator {type(expr).__name__}", expr.span)
+    return bool(_evaluate_node(expr, valuation))
