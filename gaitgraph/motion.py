@@ -118,7 +118,7 @@ def transitions(robot: Robot, poses: PoseTable, start: int, zero_only: bool = Fa
         rows_a = by_mask[m1][by_mask[m1] >= start]
         for m2, rows_b in by_mask.items():
             shared = m1 & m2
-            if shared.bit_count() < 2:
+            if shared.bit_count() < 2 or int(rows_b[0]) >= int(rows_a[-1]):
                 continue
             parts.extend(_block(robot, poses, rows_a, rows_b, shared, eps, zero_only))
     edges = Edges.concat(parts)
@@ -166,6 +166,9 @@ def _evaluate(
     eps = robot.settings.max_slip
     idx = bits(shared)
     xa, xb = poses.xy[p][:, idx], poses.xy[q][:, idx]
+    rows = np.unique(np.concatenate([p, q]))
+    holds = np.zeros(len(poses), dtype=bool)  # the shared contacts alone hold the CG
+    holds[rows] = inside_hull(poses.cg[rows], poses.xy[rows], shared)
     out = []
     for src, dst, xs, xt in ((p, q, xa, xb), (q, p, xb, xa)):
         # chassis motion src -> dst: the map taking dst's shared feet onto src's
@@ -179,14 +182,13 @@ def _evaluate(
             )
         keep = np.nonzero(ok)[0]
         src, dst, theta, trans, slip = src[keep], dst[keep], theta[keep], trans[keep], slip[keep]
-        cond1 = inside_hull(poses.cg[src], poses.xy[src], shared) & inside_hull(
-            poses.cg[dst], poses.xy[dst], shared
-        )
+        cond1 = holds[src] & holds[dst]
         cond2 = np.zeros(len(src), dtype=bool)
-        carried = rotate(poses.cg[dst], theta) + trans
-        for m in np.unique(poses.mask[src]):
-            sel = poses.mask[src] == m
-            cond2[sel] = ~inside_hull(carried[sel], poses.xy[src[sel]], int(m))
+        falls = np.nonzero(~cond1)[0]
+        carried = rotate(poses.cg[dst[falls]], theta[falls]) + trans[falls]
+        for m in np.unique(poses.mask[src[falls]]):
+            sel = poses.mask[src[falls]] == m
+            cond2[falls[sel]] = ~inside_hull(carried[sel], poses.xy[src[falls[sel]]], int(m))
         ok = cond1 | cond2
         cond = np.where(cond1, 1, 2).astype(np.int64)
         sel = np.nonzero(ok)[0]
