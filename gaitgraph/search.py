@@ -234,7 +234,10 @@ def search(
             result = SearchResult(method, around, gaits, len(graph.states))
         if gaits or len(graph.states) >= min(max_states, total):
             return result
+        start = len(graph)
         graph.add_states(random_states(robot, rng, 100, graph.states))
+        if method == "reset":
+            graph.add_states(_stance_variants(graph, start))
 
 
 # ---------------------------------------------------------------- search around one edge
@@ -332,6 +335,31 @@ def _search_around(
         return None
     cycle = close_cycle(graph, graph.to_networkx(), 0, unit_weights=True)
     return None if cycle is None else (cycle, graph)
+
+
+def _stance_variants(graph: GaitGraph, start: int, limit: int = 25) -> set[int]:
+    """Driving-edge proposals for the reset method: for the first ``limit`` poses from
+    ``start`` on, set every leg whose foot is in contact to one same chamber pattern (a
+    coordinated stance stroke; legs with other chamber counts are left alone)."""
+    robot = graph.robot
+    names = robot.contact_names
+    out: set[int] = set()
+    for pose in range(start, min(len(graph), start + limit)):
+        state = int(graph.poses.state[pose])
+        mask = int(graph.poses.mask[pose])
+        legs = [leg for leg in robot.legs if leg.foot and (mask >> names.index(leg.name)) & 1]
+        widths = {len(leg.chambers) for leg in legs}
+        if len(widths) != 1:
+            continue
+        width = widths.pop()
+        for pattern in range(1 << width):
+            new = state
+            for leg in legs:
+                new = (new & ~(((1 << width) - 1) << leg.first_valve)) | (
+                    pattern << leg.first_valve
+                )
+            out.add(new)
+    return out - graph.states
 
 
 def _canonical(robot: Robot, state: int, patterns: list[list[int]]) -> int:

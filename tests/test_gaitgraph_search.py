@@ -106,3 +106,14 @@ def test_cli_writes_json_and_svgs(tmp_path: Path, capsys) -> None:  # type: igno
     svgs = sorted(p.name for p in (tmp_path / "svg").iterdir())
     assert "gait1-pose0.svg" in svgs and any(n.startswith("gait-graph") for n in svgs)
     assert "<circle" in (tmp_path / "svg" / "gait1-pose0.svg").read_text()
+
+
+def test_reset_method_synthesises_a_forward_gait(symmetric) -> None:  # type: ignore[no-untyped-def]
+    result = search(symmetric, (1.0, 0.0), "reset", seed=0, max_states=1000)
+    assert result.gaits, "no reset gait found"
+    best = result.gaits[0]
+    assert 0.1 <= best.displacement[0] / body_length(symmetric) <= 0.5
+    assert abs(best.rotation) < 1.0 and abs(best.displacement[1]) < 1.0
+    zero = symmetric.settings.zero_motion
+    moving = [m for m in best.motions if math.hypot(m.dx, m.dy) > zero]
+    assert len(moving) == 1 and best.slip <= symmetric.settings.max_slip
