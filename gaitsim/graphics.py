@@ -13,6 +13,7 @@ from pathlib import Path
 import pydot
 
 from slugs_bridge.diagnostics import GaitcError, UsageError
+from slugs_bridge.output import write_atomically
 
 FORMATS = ("dot", "svg", "png", "pdf")
 _ALIASES = {"gv": "dot"}
@@ -76,7 +77,7 @@ class Picture:
     def save(self, path: str | Path, fmt: str | None = None) -> str:
         """Write the picture; returns the format used."""
         chosen = output_format(path, fmt)
-        Path(path).write_bytes(self.render(chosen))
+        write_atomically(path, self.render(chosen))
         return chosen
 
     def _repr_svg_(self) -> str:

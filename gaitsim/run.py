@@ -15,6 +15,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from slugs_bridge.diagnostics import GaitcError, ScenarioError, Span, UsageError
+from slugs_bridge.output import write_atomically
 
 if TYPE_CHECKING:
     from ltlcompiler.model import Model
@@ -133,7 +134,7 @@ def save_run(run: Run, path: str | Path) -> None:
         text = write_csv(run)
     else:
         raise UsageError(f"cannot tell the run format from '{path}': use a .jsonl or .csv file")
-    Path(path).write_text(text, encoding="utf-8")
+    write_atomically(path, text)
 
 
 def _strs(value: Any) -> tuple[str, ...]:

@@ -7,10 +7,7 @@ to stderr in the standard layout, and the output file is replaced atomically.
 from __future__ import annotations
 
 import argparse
-import contextlib
-import os
 import sys
-import tempfile
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
@@ -18,6 +15,7 @@ from typing import Any
 from ltlcompiler.encoding import ENCODINGS
 from slugs_bridge.diagnostics import Diagnostic, UsageError, render_diagnostic
 from slugs_bridge.formula import Expr
+from slugs_bridge.output import write_atomically
 from slugs_bridge.spec import GR1Spec, Variable
 
 FORMATS = ("structuredslugs", "slugsin", "ltl")
@@ -122,27 +120,6 @@ def _annotated(spec: GR1Spec, formula: Callable[[Expr], str],
                 lines.append(f"# {where}{origin.rule}")
             lines.append(formula(clause.formula))
     return "\n".join(lines) + "\n"
-
-
-def write_atomically(path: str, text: str) -> None:
-    """Replace ``path`` by ``text`` via a temporary file and a rename: never half-written."""
-    target = Path(path)
-    tmp: str | None = None
-    try:
-        fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp",
-                                   dir=target.parent if str(target.parent) else ".")
-        with os.fdopen(fd, "w", encoding="utf-8", newline="\n") as out:
-            out.write(text)
-            out.flush()
-            os.fsync(out.fileno())
-        os.replace(tmp, target)
-        tmp = None
-    except OSError as err:
-        raise UsageError(f"cannot write '{path}': {err.strerror or err}") from None
-    finally:
-        if tmp is not None:
-            with contextlib.suppress(OSError):
-                os.unlink(tmp)
 
 
 def output_format(output: str, requested: str | None) -> str:

@@ -9,18 +9,16 @@ from __future__ import annotations
 
 import argparse
 import json
-import os
 import resource
 import sys
-import tempfile
 import time
-from pathlib import Path
 from typing import Any
 
 from gaitc.loading import ENCODINGS, LoadedSpec, load_spec
 from slugs_bridge.controller import Controller, controller_to_json, load_controller
 from slugs_bridge.diagnostics import GaitcError, SolverError, UsageError, render_error
 from slugs_bridge.game import Progress
+from slugs_bridge.output import write_atomically
 from slugs_bridge.spec import GR1Spec
 
 EXIT_OK, EXIT_USER, EXIT_UNREALIZABLE, EXIT_SOLVER = 0, 1, 3, 4
@@ -153,19 +151,6 @@ def _slugsin(spec: GR1Spec) -> str:
     from slugs_bridge.slugsin import emit_slugsin
 
     return emit_slugsin(_boolean(spec))
-
-
-def write_atomically(path: str, text: str) -> None:
-    """Write ``text`` to ``path`` through a temporary file in the same directory."""
-    target = Path(path)
-    folder = target.parent if str(target.parent) else Path(".")
-    try:
-        fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", dir=folder)
-        with os.fdopen(fd, "w", encoding="utf-8") as out:
-            out.write(text)
-        os.replace(tmp, target)
-    except OSError as err:
-        raise UsageError(f"cannot write '{path}': {err.strerror}") from None
 
 
 def _options(args: argparse.Namespace) -> Any:

@@ -1,0 +1,37 @@
+"""Writing result files safely: a temporary file in the target folder, then a rename.
+
+Every command that writes a file (specs, controllers, runs, pictures) goes through
+:func:`write_atomically`, so an error or an interruption never leaves a half-written
+or lost file behind.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import tempfile
+from pathlib import Path
+
+from slugs_bridge.diagnostics import UsageError
+
+
+def write_atomically(path: str | Path, data: str | bytes) -> None:
+    """Replace ``path`` by ``data`` (text is written as UTF-8 with ``\\n`` line ends)."""
+    target = Path(path)
+    payload = data.encode("utf-8") if isinstance(data, str) else data
+    tmp: str | None = None
+    try:
+        folder = target.parent if str(target.parent) else Path(".")
+        fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=folder)
+        with os.fdopen(fd, "wb") as out:
+            out.write(payload)
+            out.flush()
+            os.fsync(out.fileno())
+        os.replace(tmp, target)
+        tmp = None
+    except OSError as err:
+        raise UsageError(f"cannot write '{path}': {err.strerror or err}") from None
+    finally:
+        if tmp is not None:
+            with contextlib.suppress(OSError):
+                os.unlink(tmp)
