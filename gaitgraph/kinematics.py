@@ -169,3 +169,12 @@ def body_length(robot: Robot) -> float:
     xs = [float(x) for x in g.contacts[0, :, 0]] + [p[0] for p in robot.outline]
     xs += [float(x) for x in g.base[0, :, 0]]
     return max(xs) - min(xs)
+
+
+def shape_keys(robot: Robot, states: NDArray[np.int64]) -> NDArray[np.int64]:
+    """An integer per (state, leg) that is equal exactly when the leg shapes are equal."""
+    kappa, phi = leg_shapes(robot, states)
+    x = np.round(kappa * np.cos(phi) * 1e6).astype(np.int64)
+    y = np.round(kappa * np.sin(phi) * 1e6).astype(np.int64)
+    out: NDArray[np.int64] = x * 1_000_003 + y
+    return out

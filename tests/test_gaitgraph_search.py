@@ -12,8 +12,9 @@ from gaitc.cli import main
 from gaitgraph.graph import GaitGraph, full_graph
 from gaitgraph.kinematics import body_length, valve_int
 from gaitgraph.report import gaits_json
+from gaitgraph.resets import search_around
 from gaitgraph.robot import load_robot
-from gaitgraph.search import _search_around, edge_weights, search
+from gaitgraph.search import edge_weights, search
 
 ROBOTS = Path(__file__).resolve().parent.parent / "specs" / "robots"
 
@@ -31,7 +32,7 @@ def test_reset_search_closes_a_tripod_stride_with_zero_motion_edges(symmetric) -
     graph = GaitGraph(symmetric)
     graph.add_states([u, v])
     driving = next(i for i in range(len(graph.edges)) if graph.motion(i).dx > 50)
-    found = _search_around(graph, driving, 3000)
+    found = search_around(graph, driving, 3000)
     assert found is not None
     cycle, around = found
     kappa, length = 0.010, 95.0
