@@ -220,38 +220,53 @@ def _with_source(c: Controller, loaded: LoadedSpec, solver: str) -> Controller:
     return replace(c, source=loaded.source(), solver=solver)
 
 
+def _solve(
+    args: argparse.Namespace, loaded: LoadedSpec, semantics: str, kind: str
+) -> tuple[Controller | None, float]:
+    """Run the chosen solver for a ``strategy`` or a ``counterstrategy``; (automaton, seconds).
+
+    The automaton is None when the spec has no such winner (unrealizable for a strategy,
+    realizable for a counter-strategy).
+    """
+    started = time.monotonic()
+    automaton: Controller | None = None
+    try:
+        if args.solver == "slugs":
+            from slugs_bridge import runner
+
+            wanted_realizable = kind == "strategy"
+            run = runner.run_slugs_synth if wanted_realizable else runner.run_slugs_counter
+            result = run(
+                _slugsin(loaded.spec), semantics=semantics, timeout=args.timeout, slugs=args.slugs
+            )
+            if result.realizable == wanted_realizable:
+                if result.output is None:
+                    verdict = "realizable" if result.realizable else "unrealizable"
+                    raise SolverError(f"SLUGS reported {verdict} but wrote no {kind}")
+                read = (runner.controller_from_slugs_json if wanted_realizable
+                        else runner.counterstrategy_from_slugs_text)
+                automaton = read(result.output, loaded.spec, semantics)
+        else:
+            from slugs_bridge import synthesis
+
+            make = synthesis.synthesize if kind == "strategy" else synthesis.counterstrategy
+            automaton = make(loaded.spec, semantics, args.timeout, _progress(), _options(args))
+    except MemoryError:
+        raise SolverError("synthesis ran out of memory (see --memory-limit)") from None
+    if automaton is not None:
+        automaton = _with_source(automaton, loaded, args.solver)
+    return automaton, time.monotonic() - started
+
+
 def run_synth(args: argparse.Namespace) -> int:
     _limit_memory(args)
     semantics = _semantics(args)
     loaded = load_spec(args.spec, args.encoding)
-    started = time.monotonic()
-    controller: Controller | None
-    try:
-        if args.solver == "slugs":
-            from slugs_bridge.runner import controller_from_slugs_json, run_slugs_synth
-
-            result = run_slugs_synth(
-                _slugsin(loaded.spec), semantics=semantics, timeout=args.timeout, slugs=args.slugs
-            )
-            controller = None
-            if result.realizable:
-                if result.output is None:
-                    raise SolverError("SLUGS reported realizable but wrote no strategy")
-                controller = controller_from_slugs_json(result.output, loaded.spec, semantics)
-        else:
-            from slugs_bridge import synthesis
-
-            controller = synthesis.synthesize(
-                loaded.spec, semantics, args.timeout, _progress(), _options(args)
-            )
-    except MemoryError:
-        raise SolverError("synthesis ran out of memory (see --memory-limit)") from None
-    seconds = time.monotonic() - started
+    controller, seconds = _solve(args, loaded, semantics, "strategy")
     if controller is None:
         print(f"{args.spec}: unrealizable ({seconds:.2f} s); no controller written")
         print("  hint: 'gaitc counter' shows how the environment wins", file=sys.stderr)
         return EXIT_UNREALIZABLE
-    controller = _with_source(controller, loaded, args.solver)
     write_atomically(args.output, controller_to_json(controller))
     print(
         f"{args.spec}: realizable ({seconds:.2f} s); wrote {args.output} "
@@ -277,32 +292,10 @@ def run_counter(args: argparse.Namespace) -> int:
     _limit_memory(args)
     semantics = _semantics(args)
     loaded = load_spec(args.spec, args.encoding)
-    started = time.monotonic()
-    try:
-        if args.solver == "slugs":
-            from slugs_bridge.runner import counterstrategy_from_slugs_text, run_slugs_counter
-
-            result = run_slugs_counter(
-                _slugsin(loaded.spec), semantics=semantics, timeout=args.timeout, slugs=args.slugs
-            )
-            counter = None
-            if not result.realizable:
-                if result.output is None:
-                    raise SolverError("SLUGS reported unrealizable but wrote no counter-strategy")
-                counter = counterstrategy_from_slugs_text(result.output, loaded.spec, semantics)
-        else:
-            from slugs_bridge import synthesis
-
-            counter = synthesis.counterstrategy(
-                loaded.spec, semantics, args.timeout, _progress(), _options(args)
-            )
-    except MemoryError:
-        raise SolverError("synthesis ran out of memory (see --memory-limit)") from None
-    seconds = time.monotonic() - started
+    counter, seconds = _solve(args, loaded, semantics, "counterstrategy")
     if counter is None:
         print(f"{args.spec}: realizable ({seconds:.2f} s); there is no counter-strategy")
         return EXIT_UNREALIZABLE
-    counter = _with_source(counter, loaded, args.solver)
     write_atomically(args.output, controller_to_json(counter))
     print(
         f"{args.spec}: unrealizable ({seconds:.2f} s); wrote {args.output} "
