@@ -101,3 +101,12 @@ def test_kabsch_recovers_planar_motions(theta: float, tx: float, ty: float, seed
     _, _, resid = kabsch_2d(pts, mirrored)
     spread = np.ptp(pts[0, :, 1])
     assert resid.max() > 1e-3 * spread
+
+
+def test_a_valve_state_can_have_several_stable_poses() -> None:
+    robot = load_robot(ROBOTS / "symmetric6.yaml")
+    state = valve_int("0010 1100 0010 1100 0010 1100".replace(" ", ""))
+    poses = stable_poses(robot, forward(robot, [state]))
+    masks = sorted(int(m) for m in poses.mask)
+    assert len(masks) >= 2 and len(set(masks)) == len(masks)
+    assert 0b010101 in masks  # the tripod L1 L3 L5 with the other legs lifted

@@ -6,7 +6,7 @@ import argparse
 from pathlib import Path
 from typing import Any
 
-from slugs_bridge.diagnostics import UsageError
+from slugs_bridge.diagnostics import SpecSemanticError, UsageError
 
 
 def register(subparsers: Any) -> None:
@@ -42,7 +42,7 @@ def run(args: argparse.Namespace) -> int:
     robot = load_robot(args.robot)
     try:
         direction = parse_direction(args.direction)
-    except Exception as err:  # a SpecSemanticError without a span is a usage error here
+    except SpecSemanticError as err:  # no file to point at: a usage error
         raise UsageError(f"--direction: unknown direction {args.direction!r}") from err
     method = args.method or ("full" if robot.valve_count <= 12 else "random")
     result = search(robot, direction, method, args.seed, args.max_states)
