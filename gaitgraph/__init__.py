@@ -1,7 +1,7 @@
 """Gait primitives from the gait graph of thesis chapter 2 (Algorithm 1, sections 2.2-2.5).
 
-Pipeline: :mod:`robot` (YAML description) → :mod:`kinematics` (constant curvature) →
-:mod:`poses` (stable poses) → :mod:`motion` (transitions) → :mod:`graph` → :mod:`search`.
+Pipeline: :mod:`robot` (YAML) → :mod:`kinematics` → :mod:`poses` → :mod:`motion` →
+:mod:`graph` → :mod:`search` / :mod:`resets`; :mod:`pairing` ties gaits of a spec to them.
 """
 
 from __future__ import annotations
