@@ -27,6 +27,9 @@ def register(subparsers: Any) -> None:
         description="Parse and check SPEC, lower it in both encodings, print warnings. "
         "Exit 0 when there is no error (warnings allowed), 1 on an error.")
     lint.add_argument("spec", metavar="SPEC", help="a .gait file")
+    lint.add_argument("--primitives", action="store_true",
+                      help="report gaits without a valve primitive even when no gait binds one "
+                      "(by default they are reported once any gait of the spec binds one)")
     lint.set_defaults(run=run_lint)
 
     comp = subparsers.add_parser(
@@ -57,8 +60,15 @@ def run_lint(args: argparse.Namespace) -> int:
     model, diagnostics = load_model(args.spec)
     for encoding in ENCODINGS:
         lower(model, encoding)
+    if args.primitives or any(g.primitive is not None for g in model.gaits):
+        from gaitgraph.pairing import check_gaits
+
+        spec_dir = str(Path(args.spec).resolve().parent)
+        diagnostics = diagnostics + check_gaits(
+            model.gaits, spec_dir, legs=[leg.name for leg in model.legs]
+        )
     _warn(diagnostics)
-    return 0
+    return 1 if any(d.severity == "error" for d in diagnostics) else 0
 
 
 def compile_text(path: str, fmt: str = "structuredslugs", encoding: str = "onehot"

@@ -1,0 +1,69 @@
+"""``gaitc lint`` pairs each gait with its valve primitive (issue 5) through the CLI."""
+
+from __future__ import annotations
+
+import shutil
+from pathlib import Path
+
+import pytest
+
+from gaitc.cli import main
+
+SPECS = Path(__file__).resolve().parent.parent / "specs"
+
+
+@pytest.fixture
+def radial(tmp_path: Path) -> Path:
+    shutil.copytree(SPECS / "robots", tmp_path / "robots")
+    spec = tmp_path / "radial8_patrol.gait"
+    shutil.copy(SPECS / "radial8_patrol.gait", spec)
+    return spec
+
+
+def test_bound_primitives_agree_with_the_gaits(radial: Path, capsys: pytest.CaptureFixture[str]
+                                               ) -> None:
+    assert main(["lint", str(radial)]) == 0
+    assert "error" not in capsys.readouterr().err
+
+
+def test_primitive_pressurising_other_legs_is_an_error(
+    radial: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    text = radial.read_text(encoding="utf-8")
+    radial.write_text(text.replace("gait north_a uses L6, L8", "gait north_a uses L6, L7"),
+                      encoding="utf-8")
+    assert main(["lint", str(radial)]) == 1
+    err = capsys.readouterr().err
+    assert (f"{radial}:16:38: error: gait north_a uses L6, L7 but its primitive (robot file "
+            "gait north_L6_L8) pressurises L6, L8") in err
+
+
+def test_inline_valves_with_the_wrong_legs_are_an_error(
+    radial: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    text = radial.read_text(encoding="utf-8")
+    radial.write_text(text.replace("valves 00010000, 10000000", "valves 00010000, 01000000"),
+                      encoding="utf-8")
+    assert main(["lint", str(radial)]) == 1
+    assert "south_c" in capsys.readouterr().err
+
+
+def test_unbound_gaits_are_reported_once_one_gait_binds_a_primitive(
+    radial: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    text = radial.read_text(encoding="utf-8")
+    radial.write_text(text.replace(' primitive "robots/radial8.yaml" direction -x', "", 1),
+                      encoding="utf-8")
+    assert main(["lint", str(radial)]) == 0
+    err = capsys.readouterr().err
+    assert "warning: gait west_a has no primitive" in err
+
+
+def test_specs_without_primitives_stay_quiet_unless_asked(
+    capsys: pytest.CaptureFixture[str]
+) -> None:
+    spec = str(SPECS / "patrol_2x2.gait")
+    assert main(["lint", spec]) == 0
+    assert "primitive" not in capsys.readouterr().err
+    assert main(["lint", "--primitives", spec]) == 0
+    assert capsys.readouterr().err.count("has no primitive") == 4
