@@ -2,23 +2,27 @@
 
 Exit codes (shared by every subcommand unless its help says otherwise):
 0 success, 1 a user error in an input file, 2 a usage error, 3 unrealizable
-(``check``/``synth``), 4 the solver could not finish (timeout, memory, SLUGS failure).
+(``check``/``synth``), 4 the solver could not finish (timeout, memory, SLUGS failure),
+70 an internal error (a bug in gaitc; ``GAITC_DEBUG=1`` shows the traceback).
 """
 
 from __future__ import annotations
 
 import argparse
+import os
 import sys
+import traceback
 from collections.abc import Sequence
 
 from gaitc.commands import COMMAND_MODULES
-from slugs_bridge.diagnostics import GaitcError, UsageError, render_error
+from slugs_bridge.diagnostics import GaitcError, SolverError, UsageError, render_error
 
 EXIT_OK = 0
 EXIT_USER_ERROR = 1
 EXIT_USAGE = 2
 EXIT_UNREALIZABLE = 3
 EXIT_SOLVER_FAILURE = 4
+EXIT_INTERNAL = 70
 
 
 class _Parser(argparse.ArgumentParser):
@@ -55,14 +59,22 @@ def main(argv: Sequence[str] | None = None) -> int:
         return EXIT_USAGE
     except GaitcError as err:
         print(render_error(err), file=sys.stderr)
-        from slugs_bridge.diagnostics import SolverError
-
         return EXIT_SOLVER_FAILURE if isinstance(err, SolverError) else EXIT_USER_ERROR
     except KeyboardInterrupt:
         print("gaitc: interrupted", file=sys.stderr)
         return 130
     except BrokenPipeError:
         return EXIT_OK
+    except Exception as err:  # a bug in gaitc, not in the user's input
+        if os.environ.get("GAITC_DEBUG"):
+            traceback.print_exc()
+        print(
+            f"gaitc: internal error: {type(err).__name__}: {err}\n"
+            "  this is a bug in gaitc, not in your input; please report it with the command "
+            "line and files (GAITC_DEBUG=1 prints the traceback)",
+            file=sys.stderr,
+        )
+        return EXIT_INTERNAL
 
 
 if __name__ == "__main__":  # pragma: no cover
