@@ -10,7 +10,7 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parent.parent
-PACKAGES = ["gaitc", "ltlcompiler", "slugs_bridge", "gaitgraph", "gaitsim"]
+PACKAGES = ["gaitc", "ltlcompiler", "slugs_bridge", "gaitgraph", "gaitsim", "gaithw"]
 
 
 def _tool(name: str) -> list[str]:
