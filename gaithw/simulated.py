@@ -33,6 +33,7 @@ class SimulatedRobot(Backend):
         self.view = Simulator(strategy, domain, monitor)
         self.domain = domain
         self.environment = environment
+        self.name = f"simulated robot, {environment.name}"
         self.applied: list[str] = []  # every valve state, in order
         self.readings: list[SensorReading] = []
         self.is_open = False

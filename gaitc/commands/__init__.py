@@ -6,6 +6,6 @@ parser default; the function returns an exit code (see :mod:`gaitc.cli`).
 
 from __future__ import annotations
 
-from gaitc.commands import compiling, gaits, rendering, simulating, solving
+from gaitc.commands import compiling, driving, gaits, rendering, simulating, solving
 
-COMMAND_MODULES = (compiling, solving, simulating, rendering, gaits)
+COMMAND_MODULES = (compiling, solving, simulating, rendering, gaits, driving)

@@ -1,0 +1,173 @@
+"""The ``drive`` command: run a controller's gaits on a valve board (simulated or serial).
+
+The work lives in :mod:`gaithw` (backends, driver loop); this module parses options, binds
+the gaits to their valve primitives, picks the backend and prints the run.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+from typing import Any
+
+from gaitc.commands.simulating import ENVIRONMENTS, Loaded, load_session
+from gaitc.loading import ENCODINGS, load_spec
+from gaithw.backend import Backend
+from gaitsim.environments import AdversarialEnvironment, Environment, RandomEnvironment
+from slugs_bridge.diagnostics import UsageError
+
+EXIT_OK, EXIT_USER, EXIT_UNREALIZABLE = 0, 1, 3
+EPILOG = """backends:
+  --backend sim      a simulated robot (default): valves apply instantly, sensor readings come
+                     from --env (random, adversarial or a scripted scenario), within the
+                     spec's assumptions
+  --backend serial   a valve board on --port (a device such as /dev/ttyUSB0, or
+                     socket://HOST:PORT) speaking the gaitc line protocol (docs/hardware.md);
+                     every valve is vented on exit, on any error and on Ctrl-C
+
+exit codes:
+  0  the run finished (or was interrupted with Ctrl-C) and the spec held along it
+  1  an input file is wrong, a gait has no valve primitive, the board failed, the sensors
+     broke an assumption, or the controller broke a guarantee
+  2  the command line is wrong
+  3  the spec is unrealizable (when no CONTROLLER is given)
+"""
+
+
+def register(sub: Any) -> None:
+    p = sub.add_parser(
+        "drive",
+        help="run a controller's gaits on a valve board",
+        description="Drive the robot of the .gait SPEC with CONTROLLER (JSON from 'gaitc synth'; "
+        "without it, synthesize one first): each step reads the sensors, follows the "
+        "controller and runs the chosen gait's valve sequence on the board.",
+        epilog=EPILOG,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    p.add_argument("spec", metavar="SPEC")
+    p.add_argument("controller", metavar="CONTROLLER", nargs="?")
+    p.add_argument("--backend", choices=("sim", "serial"), default="sim",
+                   help="sim (default) or serial")
+    p.add_argument("--port", metavar="URL", help="serial port or pyserial URL (serial backend)")
+    p.add_argument("--baud", type=int, default=115200, metavar="N", help="baud rate (115200)")
+    p.add_argument("--timeout", type=float, default=1.0, metavar="S",
+                   help="seconds to wait for each board answer (1)")
+    p.add_argument("--channels", metavar="LIST",
+                   help="board channel of each robot valve, e.g. 7,6,5,4,3,2,1,0 "
+                   "(default: valve i on channel i)")
+    p.add_argument("--steps", type=int, metavar="N",
+                   help="steps to run (20; a scenario's length when scripted)")
+    p.add_argument("--step-delay", type=float, metavar="S",
+                   help="seconds between valve states (0 for sim, 0.5 for serial)")
+    p.add_argument("--cycles", type=int, default=1, metavar="N",
+                   help="times each gait's valve sequence is repeated per step (1)")
+    p.add_argument("--env", nargs="+", metavar="KIND",
+                   help="sim backend: random (default) | adversarial | scripted FILE.yaml")
+    p.add_argument("--seed", type=int, default=0, help="seed of the random environment")
+    p.add_argument("--out", metavar="FILE", help="save the run as .jsonl or .csv")
+    p.add_argument("--encoding", choices=ENCODINGS,
+                   help="encoding of the spec (default: the one recorded in the controller)")
+    p.add_argument("--robotics-semantics", action="store_true",
+                   help="semantics when synthesizing on the fly")
+    p.add_argument("--quiet", action="store_true", help="print only the summary")
+    p.set_defaults(run=run_drive)
+
+
+def _check_options(args: argparse.Namespace) -> None:
+    if args.steps is not None and args.steps < 0:
+        raise UsageError("--steps must not be negative")
+    if args.cycles < 1:
+        raise UsageError("--cycles must be at least 1")
+    if args.step_delay is not None and args.step_delay < 0:
+        raise UsageError("--step-delay must not be negative")
+    if args.backend == "serial":
+        if not args.port:
+            raise UsageError("--backend serial needs --port URL (e.g. /dev/ttyUSB0 or "
+                             "socket://localhost:7000)")
+        if args.env:
+            raise UsageError("--env chooses the simulated robot's environment; the serial "
+                             "backend reads real sensors")
+    elif args.port or args.channels:
+        raise UsageError("--port and --channels are for --backend serial")
+
+
+def _environment(args: argparse.Namespace, loaded: Loaded) -> tuple[Environment, int | None]:
+    kind, *rest = args.env or ["random"]
+    if kind not in ENVIRONMENTS:
+        raise UsageError(f"unknown environment '{kind}'; use one of {', '.join(ENVIRONMENTS)}")
+    if kind == "scripted":
+        if len(rest) != 1:
+            raise UsageError("--env scripted needs one scenario file: --env scripted FILE.yaml")
+        from gaitsim.scenario import ScriptedEnvironment, load_scenario
+
+        scenario = load_scenario(rest[0], loaded.model)
+        return ScriptedEnvironment(scenario, loaded.strategy.inputs), len(scenario.steps)
+    if rest:
+        raise UsageError(f"--env {kind} takes no file (got '{rest[0]}')")
+    if kind == "random":
+        return RandomEnvironment(args.seed), None
+    return AdversarialEnvironment(), None
+
+
+def _backend(args: argparse.Namespace, loaded: Loaded, valves: int) -> tuple[Backend, int]:
+    steps: int = 20 if args.steps is None else args.steps
+    if args.backend == "serial":
+        from gaithw.serial_board import SerialValveBoard, parse_channels
+
+        channels = parse_channels(args.channels) if args.channels else None
+        return SerialValveBoard(args.port, valves, loaded.domain.legs, args.baud, args.timeout,
+                                channels=channels), steps
+    from gaithw.simulated import SimulatedRobot
+
+    environment, scripted = _environment(args, loaded)
+    if scripted is not None and args.steps is None:
+        steps = scripted
+    return SimulatedRobot(loaded.strategy, loaded.domain, loaded.monitor, environment,
+                          valves), steps
+
+
+def run_drive(args: argparse.Namespace) -> int:
+    from gaithw.driver import Driver, bind_primitives, valve_count
+    from gaitsim.run import save_run
+    from gaitsim.terminal import step_table, summary_text, use_colour
+
+    _check_options(args)
+    checked = load_spec(args.spec, args.encoding or "onehot")
+    if checked.model is None:
+        raise UsageError(f"'{args.spec}': driving needs a .gait spec, which binds gaits to "
+                         "valve primitives")
+    primitives = bind_primitives(checked.model, str(Path(args.spec).parent))
+    semantics = "robotics" if args.robotics_semantics else "default"
+    loaded = load_session(args.spec, args.controller, args.encoding, semantics)
+    if loaded is None:
+        print(f"{args.spec}: unrealizable: no controller to drive", file=sys.stderr)
+        return EXIT_UNREALIZABLE
+    backend, steps = _backend(args, loaded, valve_count(primitives, len(loaded.domain.legs)))
+    delay = args.step_delay if args.step_delay is not None else (
+        0.5 if args.backend == "serial" else 0.0)
+    live = None if args.quiet or args.backend == "sim" else _print_flush
+    driver = Driver(loaded.strategy, loaded.domain, loaded.monitor, primitives, backend,
+                    delay, args.cycles, live)
+    run = driver.run(steps, args.spec)
+    colour = use_colour(sys.stdout)
+    if not args.quiet:
+        print(step_table(run, dict(loaded.domain.full), colour))
+        print()
+    if run.summary is not None:
+        print(summary_text(run.summary, backend.name, colour))
+    if args.out:
+        save_run(run, args.out)
+    if run.error is not None:
+        sys.stdout.flush()
+        raise run.error
+    summary = run.summary
+    if summary is not None and summary.assumptions_held and not summary.guarantees_held:
+        print("gaitc: error: the controller broke a guarantee along this run (see above)",
+              file=sys.stderr)
+        return EXIT_USER
+    return EXIT_OK
+
+
+def _print_flush(line: str) -> None:
+    print(line, flush=True)

@@ -1,0 +1,393 @@
+"""Tests of the hardware layer (gaithw) and ``gaitc drive``, without hardware.
+
+The simulated robot runs the radial8 patrol end to end; the serial backend talks to a fake
+valve board served on a local socket (``socket://`` URL) by a thread.
+"""
+
+from __future__ import annotations
+
+import itertools
+import json
+import socket
+import threading
+from collections.abc import Iterator
+from pathlib import Path
+
+import pytest
+
+from gaitc.cli import main
+from gaitc.commands.simulating import Loaded, load_session
+from gaitgraph.pairing import resolve_primitive
+from gaithw.backend import HardwareError, SensorReading, level_from_waveguide
+from gaithw.driver import Driver, applied_states, bind_primitives, valve_count
+from gaithw.serial_board import Garbled, SerialValveBoard, parse_pong, parse_sensors
+from gaithw.simulated import SimulatedRobot
+from gaitsim.environments import AdversarialEnvironment, RandomEnvironment
+from gaitsim.run import read_jsonl
+from gaitsim.scenario import ScriptedEnvironment, load_scenario
+from ltlcompiler.model import GaitKind
+from slugs_bridge.diagnostics import SpecSemanticError
+
+ROOT = Path(__file__).resolve().parent.parent
+RADIAL8 = ROOT / "specs" / "radial8_patrol.gait"
+TINY = """robot "tiny"
+legs L1..L2 health 2
+gait east uses L1 moves east valves 10, 00
+gait west uses L2 moves west valves 01, 00
+grid 1 x 2 cells a, b
+cache a
+start a
+visit a, b infinitely often
+"""
+
+
+# ---------------------------------------------------------------------------- fixtures
+@pytest.fixture(scope="module")
+def radial8() -> Loaded:
+    loaded = load_session(str(RADIAL8), None)
+    assert loaded is not None
+    return loaded
+
+
+@pytest.fixture()
+def tiny_spec(tmp_path: Path) -> Path:
+    path = tmp_path / "tiny.gait"
+    path.write_text(TINY, encoding="utf-8")
+    return path
+
+
+@pytest.fixture()
+def tiny(tiny_spec: Path) -> Loaded:
+    loaded = load_session(str(tiny_spec), None)
+    assert loaded is not None
+    return loaded
+
+
+class FakeBoard:
+    """A valve board on a local TCP port speaking the gaitc line protocol."""
+
+    def __init__(self, valves: int = 8, mode: str = "ok", silent_after: int = 10**6,
+                 health: str = "2,2", region: str = "-") -> None:
+        self.valves = valves
+        self.mode = mode
+        self.silent_after = silent_after
+        self.health = health
+        self.region = region
+        self.received: list[str] = []
+        self.server = socket.create_server(("127.0.0.1", 0))
+        self.url = f"socket://127.0.0.1:{self.server.getsockname()[1]}"
+        self.thread = threading.Thread(target=self._serve, daemon=True)
+        self.thread.start()
+
+    def reply(self, line: str) -> str | None:
+        if len(self.received) > self.silent_after:
+            return None
+        if line == "PING":
+            return f"PONG fake-1.0 valves={self.valves}"
+        if self.mode == "garbage":
+            return "#@!~ 0x7f"
+        if line.startswith("V "):
+            if self.mode == "refuse":
+                return "ERR pressure rail empty"
+            return "OK" if len(line) == 2 + self.valves else "ERR bad length"
+        if line == "S":
+            return f"S h={self.health} hazard=- region={self.region}"
+        return "ERR unknown command"
+
+    def _serve(self) -> None:
+        conn, _ = self.server.accept()
+        conn.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
+        with conn, conn.makefile("rwb") as stream:
+            for raw in stream:
+                line = raw.decode("ascii").strip()
+                self.received.append(line)
+                answer = self.reply(line)
+                if answer is not None:
+                    stream.write(answer.encode("ascii") + b"\n")
+                    stream.flush()
+
+    def commands(self, prefix: str) -> list[str]:
+        return [c for c in self.received if c.startswith(prefix)]
+
+    def close(self) -> None:
+        self.server.close()
+
+
+@pytest.fixture()
+def board_factory() -> Iterator[type[FakeBoard]]:
+    boards: list[FakeBoard] = []
+
+    class Tracked(FakeBoard):
+        def __init__(self, *args: object, **kwargs: object) -> None:
+            super().__init__(*args, **kwargs)  # type: ignore[arg-type]
+            boards.append(self)
+
+    yield Tracked
+    for board in boards:
+        board.close()
+
+
+def wait_for(board: FakeBoard, count: int) -> None:
+    """Let the board thread record ``count`` commands (the last vent has no reply read)."""
+    for _ in range(200):
+        if len(board.received) >= count:
+            return
+        threading.Event().wait(0.01)
+
+
+# ---------------------------------------------------------------------------- simulated
+def test_simulated_radial8_runs_the_primitives_of_the_chosen_gaits(radial8: Loaded) -> None:
+    prims = bind_primitives(radial8.model, str(RADIAL8.parent))
+    robot = SimulatedRobot(radial8.strategy, radial8.domain, radial8.monitor,
+                           AdversarialEnvironment(), valve_count(prims, 0))
+    driver = Driver(radial8.strategy, radial8.domain, radial8.monitor, prims, robot)
+    run = driver.run(15, str(RADIAL8))
+    assert run.error is None and len(run.steps) == 16
+    legs = [leg.name for leg in radial8.model.legs]
+    expected = ["00000000"]  # vented when the driver starts
+    for step in run.steps:
+        gait = radial8.model.gait(step.gait)
+        if gait.kind is GaitKind.NONE:
+            expected.append("00000000")
+            continue
+        seq = resolve_primitive(gait, str(RADIAL8.parent), legs)
+        assert set(seq.pressurised_legs()) == set(step.legs_used)
+        expected.extend(seq.states)
+    expected.append("00000000")  # vented on close
+    assert robot.applied == expected
+    assert applied_states(driver.executed) == expected[1:-1]
+    assert [e.gait for e in driver.executed] == [s.gait for s in run.steps]
+    assert any(s.gait != "noGait" for s in run.steps)
+
+
+def test_simulated_health_readings_obey_the_assumptions(radial8: Loaded) -> None:
+    prims = bind_primitives(radial8.model, str(RADIAL8.parent))
+    robot = SimulatedRobot(radial8.strategy, radial8.domain, radial8.monitor,
+                           RandomEnvironment(3), 8)
+    run = Driver(radial8.strategy, radial8.domain, radial8.monitor, prims, robot).run(25)
+    monitor = radial8.monitor
+    values = [monitor.values(dict(step.values)) for step in run.steps]
+    assert monitor.check_initial(values[0]) == []
+    for before, after in itertools.pairwise(values):
+        check = monitor.check_step(before, after)
+        assert check.env_failed == () and check.sys_failed == ()
+    assert [r.health for r in robot.readings] == [s.health for s in run.steps]
+    assert any(s.degraded or s.failed for s in run.steps)
+    assert run.summary is not None and run.summary.assumptions_held
+
+
+def test_scenario_breaking_an_assumption_stops_and_vents(tiny: Loaded, tmp_path: Path) -> None:
+    scenario = tmp_path / "s.yaml"
+    scenario.write_text("steps:\n  - degrade: [L2]\n", encoding="utf-8")
+    env = ScriptedEnvironment(load_scenario(str(scenario), tiny.model), tiny.strategy.inputs)
+    prims = bind_primitives(tiny.model, str(tmp_path))
+    robot = SimulatedRobot(tiny.strategy, tiny.domain, tiny.monitor, env, 2)
+    run = Driver(tiny.strategy, tiny.domain, tiny.monitor, prims, robot).run(5)
+    assert run.error is not None
+    assert run.error.message.startswith("step 1 (sensed L2 2→1; no hazard): the environment "
+                                        "breaks the assumption 'eq. 3.6: cache a resets")
+    assert robot.applied[-1] == "00"
+
+
+class _Interrupting(SimulatedRobot):
+    def __init__(self, *args: object, fail_at: int, error: BaseException) -> None:
+        super().__init__(*args)  # type: ignore[arg-type]
+        self.fail_at = fail_at
+        self.error = error
+
+    def read_sensors(self) -> SensorReading:
+        if len(self.readings) == self.fail_at:
+            raise self.error
+        return super().read_sensors()
+
+
+def test_ctrl_c_vents_all_valves_and_keeps_the_run(tiny: Loaded, tmp_path: Path) -> None:
+    prims = bind_primitives(tiny.model, str(tmp_path))
+    robot = _Interrupting(tiny.strategy, tiny.domain, tiny.monitor, RandomEnvironment(1), 2,
+                          fail_at=3, error=KeyboardInterrupt())
+    run = Driver(tiny.strategy, tiny.domain, tiny.monitor, prims, robot).run(10)
+    assert len(run.steps) == 3 and run.error is None
+    assert run.summary is not None and run.summary.stopped is not None
+    assert "interrupted" in run.summary.stopped
+    assert robot.applied[-2:] == ["00", "00"] and not robot.is_open
+
+
+def test_an_unexpected_exception_still_vents(tiny: Loaded, tmp_path: Path) -> None:
+    prims = bind_primitives(tiny.model, str(tmp_path))
+    robot = _Interrupting(tiny.strategy, tiny.domain, tiny.monitor, RandomEnvironment(1), 2,
+                          fail_at=2, error=RuntimeError("sensor bus fault"))
+    with pytest.raises(RuntimeError):
+        Driver(tiny.strategy, tiny.domain, tiny.monitor, prims, robot).run(10)
+    assert robot.applied[-1] == "00" and not robot.is_open
+
+
+def test_missing_primitives_are_listed(tmp_path: Path) -> None:
+    spec = tmp_path / "bare.gait"
+    spec.write_text(TINY.replace(" valves 10, 00", "").replace(" valves 01, 00", ""),
+                    encoding="utf-8")
+    loaded = load_session(str(spec), None)
+    assert loaded is not None
+    with pytest.raises(SpecSemanticError, match=r"2 gait\(s\) have no valve primitive: "
+                       r"east, west"):
+        bind_primitives(loaded.model, str(tmp_path))
+
+
+# ---------------------------------------------------------------------------- protocol
+def test_protocol_parsers() -> None:
+    assert parse_pong("PONG gaitboard-2.1 valves=16") == ("gaitboard-2.1", 16)
+    reading = parse_sensors("S h=3,2 hazard=blue region=r12", ["L1", "L2"])
+    assert reading == SensorReading((("L1", 3), ("L2", 2)), "blue", "r12")
+    assert parse_sensors("S h=1,1 hazard=- region=-", ["L1", "L2"]).region is None
+    for bad in ("S h=3 hazard=-", "S h=3,x", "X h=3,3", "S h=3,3 h=3,3", "S h=3,3 foo=1"):
+        with pytest.raises(Garbled):
+            parse_sensors(bad, ["L1", "L2"])
+    for bad in ("PONG", "PONG v1 valves=0", "PING v1 valves=8", "PONG v1 count=8"):
+        with pytest.raises(Garbled):
+            parse_pong(bad)
+
+
+def test_level_from_waveguide() -> None:
+    assert [level_from_waveguide(x, (0.8, 0.3)) for x in (1.0, 0.8, 0.5, 0.29, 0.0)] == \
+        [3, 3, 2, 1, 1]
+
+
+# ---------------------------------------------------------------------------- serial
+def test_serial_handshake_valves_through_channel_map_and_sensors(
+        board_factory: type[FakeBoard]) -> None:
+    board = board_factory(valves=4, health="2,1", region="b")
+    with SerialValveBoard(board.url, 2, ["L1", "L2"], timeout=1.0, channels=(3, 1)) as hw:
+        assert isinstance(hw, SerialValveBoard)
+        assert (hw.firmware, hw.board_valves) == ("fake-1.0", 4)
+        hw.apply("10")
+        hw.apply("01")
+        assert hw.read_sensors() == SensorReading((("L1", 2), ("L2", 1)), None, "b")
+    wait_for(board, 5)
+    assert board.received[0] == "PING"
+    assert board.commands("V") == ["V 0001", "V 0100", "V 0000"]
+
+
+def test_serial_wrong_valve_count(board_factory: type[FakeBoard]) -> None:
+    board = board_factory(valves=16)
+    hw = SerialValveBoard(board.url, 8, ["L1"], timeout=1.0)
+    with pytest.raises(HardwareError, match="the robot has 8 valves but the board"):
+        hw.open()
+    with pytest.raises(HardwareError, match="not open"):
+        hw.apply("00000000")
+    with pytest.raises(HardwareError, match=r"distinct channels in 0\.\.15"):
+        SerialValveBoard(board_factory(valves=16).url, 2, ["L1"], channels=(0, 16)).open()
+
+
+def test_serial_rejects_a_valve_state_of_the_wrong_length(board_factory: type[FakeBoard]) -> None:
+    board = board_factory(valves=8)
+    with SerialValveBoard(board.url, 8, ["L1"]) as hw, \
+            pytest.raises(HardwareError, match="has 4 valves but the robot has 8"):
+        hw.apply("1000")
+    wait_for(board, 2)
+    assert board.commands("V") == ["V 00000000"]  # only the vent on close reached it
+
+
+def test_serial_garbled_answers_are_retried_then_fail_vented(
+        board_factory: type[FakeBoard]) -> None:
+    board = board_factory(valves=8, mode="garbage")
+    hw = SerialValveBoard(board.url, 8, ["L1"], timeout=1.0, retries=2)
+    hw.open()
+    with pytest.raises(HardwareError,
+                       match=r"garbled answer .* \(after 3 attempts\); all valves vented"):
+        hw.apply("10000000")
+    hw.close()
+    wait_for(board, 6)
+    assert board.commands("V") == ["V 10000000"] * 3 + ["V 00000000"] * 2
+
+
+def test_serial_board_that_stops_answering_times_out_vented(
+        board_factory: type[FakeBoard]) -> None:
+    board = board_factory(valves=8, silent_after=2)
+    hw = SerialValveBoard(board.url, 8, ["L1"], timeout=0.2, retries=1)
+    hw.open()
+    hw.apply("01000000")
+    with pytest.raises(HardwareError, match=r"no answer to 'V' within 0.2 s") as caught:
+        hw.apply("00100000")
+    assert caught.value.span is not None and "vented" in caught.value.message
+    hw.close()
+    wait_for(board, 5)
+    assert board.commands("V")[-1] == "V 00000000"
+
+
+def test_serial_board_error_reply_and_missing_port(board_factory: type[FakeBoard]) -> None:
+    board = board_factory(valves=2, mode="refuse")
+    with SerialValveBoard(board.url, 2, ["L1"]) as hw, \
+            pytest.raises(HardwareError, match="refused 'V 10': pressure rail empty"):
+        hw.apply("10")
+    with pytest.raises(HardwareError, match="cannot open the valve board at /dev/nonexistent"):
+        SerialValveBoard("/dev/nonexistent-gaitc", 2, ["L1"]).open()
+
+
+def test_driver_on_a_serial_board(tiny: Loaded, tmp_path: Path,
+                                  board_factory: type[FakeBoard]) -> None:
+    board = board_factory(valves=2, health="2,2")
+    prims = bind_primitives(tiny.model, str(tmp_path))
+    hw = SerialValveBoard(board.url, 2, tiny.domain.legs, timeout=1.0)
+    run = Driver(tiny.strategy, tiny.domain, tiny.monitor, prims, hw).run(4)
+    assert run.error is None and len(run.steps) == 5
+    expected = ["V 00"]
+    for step in run.steps:
+        gait = step.gait
+        expected += ["V 00"] if gait == "noGait" else [f"V {v}" for v in prims[gait].states]
+    wait_for(board, 1 + len(expected) + 1 + 5)
+    assert board.commands("V") == [*expected, "V 00"]
+    assert len(board.commands("S")) == 5
+
+
+def test_driver_stops_when_localisation_disagrees(tiny: Loaded, tmp_path: Path,
+                                                  board_factory: type[FakeBoard]) -> None:
+    board = board_factory(valves=2, health="2,2", region="b")  # the robot starts in a
+    hw = SerialValveBoard(board.url, 2, tiny.domain.legs, timeout=1.0)
+    run = Driver(tiny.strategy, tiny.domain, tiny.monitor,
+                 bind_primitives(tiny.model, str(tmp_path)), hw).run(3)
+    assert isinstance(run.error, HardwareError)
+    assert "localisation reports region b but the controller expects a" in run.error.message
+    assert run.steps == []
+
+
+# ---------------------------------------------------------------------------- CLI
+def test_cli_drive_sim(tiny_spec: Path, tmp_path: Path,
+                       capsys: pytest.CaptureFixture[str]) -> None:
+    out = tmp_path / "run.jsonl"
+    code = main(["drive", str(tiny_spec), "--env", "adversarial", "--steps", "6",
+                 "--out", str(out)])
+    captured = capsys.readouterr()
+    assert code == 0, captured.err
+    assert "guarantees:      held at every step" in captured.out
+    run = read_jsonl(out)
+    assert len(run.steps) == 7 and {s.gait for s in run.steps} >= {"east", "west"}
+    header = json.loads(out.read_text(encoding="utf-8").splitlines()[0])
+    assert header["environment"].startswith("hardware (simulated robot, adversarial")
+
+
+def test_cli_drive_missing_primitives(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    spec = tmp_path / "bare.gait"
+    spec.write_text(TINY.replace(" valves 01, 00", ""), encoding="utf-8")
+    assert main(["drive", str(spec)]) == 1
+    err = capsys.readouterr().err
+    assert f"{spec}:4:1: error: cannot drive the robot: 1 gait(s) have no valve primitive: " \
+           "west" in err
+    assert "bind one to each gait" in err
+
+
+def test_cli_drive_usage_errors(tiny_spec: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["drive", str(tiny_spec), "--backend", "serial"]) == 2
+    assert "needs --port" in capsys.readouterr().err
+    assert main(["drive", str(tiny_spec), "--port", "socket://x:1"]) == 2
+    assert main(["drive", str(tiny_spec), "--steps", "-1"]) == 2
+
+
+def test_cli_drive_serial(tiny_spec: Path, board_factory: type[FakeBoard],
+                          capsys: pytest.CaptureFixture[str]) -> None:
+    board = board_factory(valves=2, health="2,2", region="-")
+    code = main(["drive", str(tiny_spec), "--backend", "serial", "--port", board.url,
+                 "--steps", "3", "--step-delay", "0"])
+    out = capsys.readouterr().out
+    assert code == 0
+    assert "step 1: " in out and "summary: 3 steps" in out
+    wait_for(board, 8)
+    assert board.received[0] == "PING" and board.commands("V")[-1] == "V 00"
