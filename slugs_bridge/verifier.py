@@ -41,7 +41,8 @@ class VerificationReport:
     def summary(self) -> str:
         verdict = "ok" if self.ok else f"{len(self.problems)} problem(s)"
         return (f"{self.kind} {verdict}: {self.nodes} reachable nodes, {self.edges} edges, "
-                f"{self.sccs} SCCs checked ({self.semantics} semantics)")
+                f"{self.sccs} goal-avoiding cycle component(s) examined for fairness "
+                f"({self.semantics} semantics)")
 
 
 def _boolean(spec: GR1Spec) -> GR1Spec:
