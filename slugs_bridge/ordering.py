@@ -13,25 +13,41 @@ from __future__ import annotations
 from slugs_bridge.formula import Implies, Node, atoms
 from slugs_bridge.spec import Clause, GR1Spec, Variable
 
+Atoms = set[tuple[str, bool]]
+
+
+class _AtomCache:
+    """``atoms`` of formulas, computed once per node object (big mutexes are walked once)."""
+
+    def __init__(self) -> None:
+        self._seen: dict[int, tuple[Node, Atoms]] = {}
+
+    def __call__(self, node: Node) -> Atoms:
+        hit = self._seen.get(id(node))
+        if hit is None:
+            hit = (node, atoms(node))
+            self._seen[id(node)] = hit
+        return hit[1]
+
+
 ORDERS = ("guards", "occurrence", "declaration")
 _SECTIONS = ("sys_trans", "env_trans", "env_init", "sys_init", "sys_liveness", "env_liveness")
 
 
-def is_invariant(clause: Clause) -> bool:
-    """Whether a transition clause mentions next-state variables only (so holds after step 1)."""
-    found = atoms(clause.formula)
-    return bool(found) and all(primed for _, primed in found)
-
-
-def invariant_clauses(spec: GR1Spec) -> tuple[list[Clause], list[Clause]]:
-    """The invariants of ρe (over primed inputs only) and of ρs (over primed variables only)."""
+def invariant_clauses(
+    spec: GR1Spec, cache: _AtomCache | None = None
+) -> tuple[list[Clause], list[Clause]]:
+    """The invariants of ρe (over primed inputs only) and of ρs (over primed variables only):
+    transition clauses over next-state variables, which hold in every state after the first."""
+    found = cache or _AtomCache()
     inputs = {v.name for v in spec.inputs}
-    env = [
-        c
-        for c in spec.env_trans
-        if is_invariant(c) and all(name in inputs for name, _ in atoms(c.formula))
-    ]
-    return env, [c for c in spec.sys_trans if is_invariant(c)]
+
+    def only_next(clause: Clause, names: set[str] | None) -> bool:
+        used = found(clause.formula)
+        return bool(used) and all(p and (names is None or n in names) for n, p in used)
+
+    env = [c for c in spec.env_trans if only_next(c, inputs)]
+    return env, [c for c in spec.sys_trans if only_next(c, None)]
 
 
 def variable_order(spec: GR1Spec, how: str) -> list[Variable]:
@@ -41,12 +57,13 @@ def variable_order(spec: GR1Spec, how: str) -> list[Variable]:
         return declared
     if how not in ORDERS:
         raise ValueError(f"unknown variable order {how!r}; use one of {ORDERS}")
-    occurrence = _occurrence(spec, declared)
+    found = _AtomCache()
+    occurrence = _occurrence(spec, declared, found)
     if how == "occurrence":
         return occurrence
     rank = {v.name: k for k, v in enumerate(declared)}
-    groups = _groups(spec, declared)
-    score = _guard_scores(spec, groups)
+    groups = _groups(spec, declared, found)
+    score = _guard_scores(spec, groups, found)
     first = {v.name: k for k, v in enumerate(occurrence)}
     members: dict[str, list[Variable]] = {}
     for v in declared:
@@ -57,13 +74,13 @@ def variable_order(spec: GR1Spec, how: str) -> list[Variable]:
     return [v for g in ordered for v in sorted(members[g], key=lambda v: rank[v.name])]
 
 
-def _occurrence(spec: GR1Spec, declared: list[Variable]) -> list[Variable]:
+def _occurrence(spec: GR1Spec, declared: list[Variable], found: _AtomCache) -> list[Variable]:
     """Variables in the order the transition clauses first mention them."""
     by_name = {v.name: v for v in declared}
     seen: dict[str, None] = {}
     for section in _SECTIONS:
         for clause in spec.section(section):
-            for name, _ in sorted(atoms(clause.formula)):
+            for name, _ in sorted(found(clause.formula)):
                 if name in by_name:
                     seen.setdefault(name, None)
     for v in declared:
@@ -71,7 +88,7 @@ def _occurrence(spec: GR1Spec, declared: list[Variable]) -> list[Variable]:
     return [by_name[n] for n in seen]
 
 
-def _groups(spec: GR1Spec, declared: list[Variable]) -> dict[str, str]:
+def _groups(spec: GR1Spec, declared: list[Variable], found: _AtomCache) -> dict[str, str]:
     """Each variable's group representative (union-find over one-player Boolean invariants)."""
     parent = {v.name: v.name for v in declared}
 
@@ -83,9 +100,9 @@ def _groups(spec: GR1Spec, declared: list[Variable]) -> dict[str, str]:
 
     booleans = {v.name for v in declared if not v.is_integer}
     players = [{v.name for v in spec.inputs}, {v.name for v in spec.outputs}]
-    env, sys = invariant_clauses(spec)
+    env, sys = invariant_clauses(spec, found)
     for clause in env + sys:
-        names = sorted({name for name, _ in atoms(clause.formula)})
+        names = sorted({name for name, _ in found(clause.formula)})
         if len(names) < 2 or not set(names) <= booleans:
             continue
         if not any(set(names) <= side for side in players):
@@ -96,15 +113,15 @@ def _groups(spec: GR1Spec, declared: list[Variable]) -> dict[str, str]:
     return {name: find(name) for name in parent}
 
 
-def _guard_scores(spec: GR1Spec, groups: dict[str, str]) -> dict[str, int]:
+def _guard_scores(spec: GR1Spec, groups: dict[str, str], found: _AtomCache) -> dict[str, int]:
     """Per group: transition clauses it guards minus clauses whose effect it is."""
     score: dict[str, int] = {}
     for clause in list(spec.env_trans) + list(spec.sys_trans):
         formula = clause.formula
         if not isinstance(formula, Implies):
             continue
-        guard = _group_set(formula.left, groups)
-        effect = _group_set(formula.right, groups)
+        guard = {groups[n] for n, _ in found(formula.left) if n in groups}
+        effect = {groups[n] for n, _ in found(formula.right) if n in groups}
         for g in guard - effect:
             score[g] = score.get(g, 0) + 1
         for g in effect - guard:
@@ -112,14 +129,10 @@ def _guard_scores(spec: GR1Spec, groups: dict[str, str]) -> dict[str, int]:
     return score
 
 
-def _group_set(node: Node, groups: dict[str, str]) -> set[str]:
-    return {groups[name] for name, _ in atoms(node) if name in groups}
-
-
 def group_members(spec: GR1Spec) -> list[list[str]]:
     """The mutex groups with two or more variables, each in declaration order (for reporting)."""
     declared = list(spec.inputs) + list(spec.outputs)
-    groups = _groups(spec, declared)
+    groups = _groups(spec, declared, _AtomCache())
     out: dict[str, list[str]] = {}
     for v in declared:
         out.setdefault(groups[v.name], []).append(v.name)
