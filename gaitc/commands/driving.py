@@ -11,7 +11,7 @@ import sys
 from pathlib import Path
 from typing import Any
 
-from gaitc.commands.simulating import ENVIRONMENTS, Loaded, load_session
+from gaitc.commands.simulating import ENVIRONMENTS, Loaded, load_session, report_run
 from gaitc.loading import ENCODINGS, load_spec
 from gaithw.backend import Backend
 from gaitsim.environments import AdversarialEnvironment, Environment, RandomEnvironment
@@ -129,8 +129,6 @@ def _backend(args: argparse.Namespace, loaded: Loaded, valves: int) -> tuple[Bac
 
 def run_drive(args: argparse.Namespace) -> int:
     from gaithw.driver import Driver, bind_primitives, valve_count
-    from gaitsim.run import save_run
-    from gaitsim.terminal import step_table, summary_text, use_colour
 
     _check_options(args)
     checked = load_spec(args.spec, args.encoding or "onehot")
@@ -150,23 +148,7 @@ def run_drive(args: argparse.Namespace) -> int:
     driver = Driver(loaded.strategy, loaded.domain, loaded.monitor, primitives, backend,
                     delay, args.cycles, live)
     run = driver.run(steps, args.spec)
-    colour = use_colour(sys.stdout)
-    if not args.quiet:
-        print(step_table(run, dict(loaded.domain.full), colour))
-        print()
-    if run.summary is not None:
-        print(summary_text(run.summary, backend.name, colour))
-    if args.out:
-        save_run(run, args.out)
-    if run.error is not None:
-        sys.stdout.flush()
-        raise run.error
-    summary = run.summary
-    if summary is not None and summary.assumptions_held and not summary.guarantees_held:
-        print("gaitc: error: the controller broke a guarantee along this run (see above)",
-              file=sys.stderr)
-        return EXIT_USER
-    return EXIT_OK
+    return report_run(run, dict(loaded.domain.full), backend.name, args.quiet, args.out)
 
 
 def _print_flush(line: str) -> None:

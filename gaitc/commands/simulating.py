@@ -9,6 +9,7 @@ from __future__ import annotations
 import argparse
 import json
 import sys
+from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -17,6 +18,7 @@ from gaitc.loading import ENCODINGS, LoadedSpec, load_spec
 from gaitsim.domain import Domain
 from gaitsim.environments import AdversarialEnvironment, Environment, RandomEnvironment
 from gaitsim.monitor import Monitor
+from gaitsim.run import Run
 from gaitsim.strategy import Strategy, load_strategy, strategy_from_controller
 from ltlcompiler.model import Model
 from slugs_bridge.diagnostics import ControllerError, UsageError
@@ -136,9 +138,7 @@ def _environment(args: argparse.Namespace, loaded: Loaded) -> tuple[Environment,
 
 
 def run_simulate(args: argparse.Namespace) -> int:
-    from gaitsim.run import save_run
     from gaitsim.simulator import simulate
-    from gaitsim.terminal import step_table, summary_text, use_colour
 
     semantics = "robotics" if args.robotics_semantics else "default"
     loaded = load_session(args.spec, args.controller, args.encoding, semantics)
@@ -148,15 +148,29 @@ def run_simulate(args: argparse.Namespace) -> int:
     environment, steps = _environment(args, loaded)
     run = simulate(loaded.strategy, loaded.domain, loaded.monitor, environment, steps,
                    args.spec)
-    colour = use_colour(sys.stdout)
     full = {leg.name: leg.health for leg in loaded.model.legs}
-    if not args.quiet:
-        print(step_table(run, full, colour))
+    return report_run(run, full, environment.name, args.quiet, args.out)
+
+
+def report_run(
+    run: Run, full_health: Mapping[str, int], source: str, quiet: bool, out: str | None
+) -> int:
+    """Print ``run``'s step table and summary, save it to ``out``, return the exit code.
+
+    A run stopped by a broken assumption raises its error; a run along which the controller
+    broke a guarantee (with every assumption kept) is a user error (exit 1).
+    """
+    from gaitsim.run import save_run
+    from gaitsim.terminal import step_table, summary_text, use_colour
+
+    colour = use_colour(sys.stdout)
+    if not quiet:
+        print(step_table(run, dict(full_health), colour))
         print()
     if run.summary is not None:
-        print(summary_text(run.summary, environment.name, colour))
-    if args.out:
-        save_run(run, args.out)
+        print(summary_text(run.summary, source, colour))
+    if out:
+        save_run(run, out)
     if run.error is not None:
         sys.stdout.flush()
         raise run.error
