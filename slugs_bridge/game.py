@@ -10,6 +10,7 @@ fixpoints recycled across Z rounds (Browne, Clarke, Jha, Long, Marrero 1997).
 from __future__ import annotations
 
 import time
+import warnings
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
@@ -48,8 +49,9 @@ class GameStats:
     z_iterations: int = 0
     y_iterations: int = 0
     x_iterations: int = 0
-    peak_nodes: int = 0
+    peak_nodes: int = 0  # CUDD's peak of live nodes while solving
     winning_nodes: int = 0
+    longest_step: float = 0.0  # seconds of the slowest CPre: how late a timeout can fire
 
 
 @dataclass
@@ -129,7 +131,10 @@ class Game:
                             st.x_iterations += 1
                             lim.check()
                             paths = live_or_lower | (sym.prime(x) & not_assm)
+                            step = time.monotonic()
                             new_x = self.cpre(paths) & (z if sym.options.recycle else sym.care)
+                            step = time.monotonic() - step
+                            st.longest_step = max(st.longest_step, step)
                             if new_x == x:
                                 break
                             x = new_x
@@ -150,10 +155,16 @@ class Game:
                 break
             z = next_z
             if stop_if_lost is not None and not self.initially_winning(z, stop_if_lost):
-                st.winning_nodes = z.dag_size
-                return GameResult(z, layers, st, sym.care, decided_early=True)
-        st.winning_nodes = z.dag_size
-        return GameResult(z, layers, st, sym.care)
+                return self._result(z, layers, decided_early=True)
+        return self._result(z, layers, decided_early=False)
+
+    def _result(self, z: BDDNode, layers: list[list[BDDNode]], decided_early: bool) -> GameResult:
+        self.stats.winning_nodes = z.dag_size
+        with warnings.catch_warnings():  # dd warns that the unrelated 'mem' field changed unit
+            warnings.simplefilter("ignore")
+            peak = int(self.sym.bdd.statistics()["peak_live_nodes"])
+        self.stats.peak_nodes = max(self.stats.peak_nodes, peak)
+        return GameResult(z, layers, self.stats, self.sym.care, decided_early)
 
     def _track(self, message: str) -> None:
         nodes = self.sym.node_count()

@@ -47,7 +47,7 @@ class Options:
     reordering: bool = False  # CUDD dynamic reordering (sifting) while solving
     reorder_once: bool = False  # one sifting run after building ρ, then the order is fixed
     partitioned: bool = False  # ρs as clusters with early quantification (slow: see bench)
-    recycle: bool = True  # start inner X fixpoints from the previous round's values
+    recycle: bool = False  # start inner X fixpoints from the previous round's values (slower here)
     cluster_limit: int = 2500  # node limit when merging ρs parts into clusters
     memory_mb: int | None = None  # CUDD max memory
 
