@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import xml.etree.ElementTree as ET
 from pathlib import Path
 
 import numpy as np
@@ -118,3 +119,16 @@ def test_reset_method_synthesises_a_forward_gait(symmetric) -> None:  # type: ig
     zero = symmetric.settings.zero_motion
     moving = [m for m in best.motions if math.hypot(m.dx, m.dy) > zero]
     assert len(moving) == 1 and best.slip <= symmetric.settings.max_slip
+
+
+def test_render_gaits_draws_the_same_gaits_as_the_gaits_command(tmp_path: Path) -> None:
+    robot = str(ROBOTS / "symmetric6.yaml")
+    common = ["--method", "random", "--seed", "1"]
+    assert main(["gaits", robot, *common, "--svg", str(tmp_path / "a")]) == 0
+    assert main(["render", "gaits", robot, *common, "-o", str(tmp_path / "b")]) == 0
+    first = sorted(p.name for p in (tmp_path / "a").iterdir())
+    second = sorted(p.name for p in (tmp_path / "b").iterdir())
+    assert first == second and "gait-graph.svg" in second
+    for name in second:
+        ET.parse(tmp_path / "b" / name)  # well-formed SVG
+        assert (tmp_path / "a" / name).read_bytes() == (tmp_path / "b" / name).read_bytes()

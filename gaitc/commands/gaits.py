@@ -3,10 +3,10 @@
 from __future__ import annotations
 
 import argparse
-from pathlib import Path
 from typing import Any
 
 from slugs_bridge.diagnostics import SpecSemanticError, UsageError
+from slugs_bridge.output import write_atomically
 
 
 def register(subparsers: Any) -> None:
@@ -16,6 +16,14 @@ def register(subparsers: Any) -> None:
         description="Build the gait graph of ROBOT.yaml, synthesise gaits towards a direction, "
         "print them as a table and write them as JSON.",
     )
+    search_arguments(p)
+    p.add_argument("-o", "--output", metavar="gaits.json", help="write the gaits as JSON")
+    p.add_argument("--svg", metavar="DIR", help="write the gait graph and pose top views here")
+    p.set_defaults(run=run)
+
+
+def search_arguments(p: argparse.ArgumentParser) -> None:
+    """The robot file and search options, shared by ``gaits`` and ``render gaits``."""
     p.add_argument("robot", metavar="ROBOT.yaml")
     p.add_argument("--direction", default="+x", help="+x, -x, +y, -y or an angle in degrees")
     p.add_argument(
@@ -26,9 +34,12 @@ def register(subparsers: Any) -> None:
     )
     p.add_argument("--seed", type=int, default=0)
     p.add_argument("--max-states", type=int, default=10_000, help="valve states to try at most")
-    p.add_argument("-o", "--output", metavar="gaits.json", help="write the gaits as JSON")
-    p.add_argument("--svg", metavar="DIR", help="write the gait graph and pose top views here")
-    p.set_defaults(run=run)
+
+
+def run_render(args: argparse.Namespace) -> int:
+    """``gaitc render gaits``: search, then draw the gait graph and each gait's poses."""
+    args.svg, args.output = args.output_dir, None
+    return run(args)
 
 
 def run(args: argparse.Namespace) -> int:
@@ -56,9 +67,7 @@ def run(args: argparse.Namespace) -> int:
     else:
         print(f"no gait towards {args.direction} found")
     if args.output:
-        Path(args.output).write_text(
-            gaits_json(robot, result, args.direction, args.seed), encoding="utf-8"
-        )
+        write_atomically(args.output, gaits_json(robot, result, args.direction, args.seed))
     if args.svg:
         for path in write_drawings(robot, result.graph, result.gaits, args.svg):
             print(f"wrote {path}")

@@ -61,6 +61,17 @@ def register(sub: Any) -> None:
     _output(p)
     p.set_defaults(run=run_spec)
 
+    from gaitc.commands.gaits import run_render, search_arguments
+
+    p = what.add_parser("gaits", help="a robot's gait graph and the poses of its gaits (SVG)",
+                        description="Search gaits for ROBOT.yaml as 'gaitc gaits' does, then "
+                        "write the gait graph around each gait and a top view of every pose "
+                        "(legs, contacts, contact polygon, centre of gravity) into DIR.")
+    search_arguments(p)
+    p.add_argument("-o", "--output", dest="output_dir", required=True, metavar="DIR",
+                   help="folder for the SVG files")
+    p.set_defaults(run=run_render)
+
 
 def _save(picture: Picture, args: argparse.Namespace) -> int:
     fmt = output_format(args.output, args.format)
