@@ -138,9 +138,13 @@ def main() -> None:
     parser.add_argument("--ablation", action="store_true", help="compare solver options")
     parser.add_argument("--timeout", type=float, default=120.0)
     parser.add_argument("--repeat", type=int, default=1, help="best of N runs")
+    parser.add_argument("--grid", action="append", help="only this grid, e.g. 30x30 (repeatable)")
+    parser.add_argument("--health", type=int, action="append", help="only this health level")
     args = parser.parse_args()
     sizes = SIZES[:3] if args.quick else SIZES
-    health = HEALTH[:2] if args.quick else HEALTH
+    if args.grid:
+        sizes = [(int(r), int(c)) for r, c in (g.lower().split("x") for g in args.grid)]
+    health = args.health or (HEALTH[:2] if args.quick else HEALTH)
     load_spec(str(ROOT / "specs" / "thesis_robot_b.gait"))  # warm up: grammar, imports
     print(HEADER)
     for name in ("thesis_robot_a", "thesis_robot_b"):

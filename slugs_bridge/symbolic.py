@@ -55,9 +55,16 @@ class Options:
 class SymbolicSpec:
     """A GR(1) spec over a BDD manager: pre/post copies of every bit and the sections as BDDs."""
 
-    def __init__(self, spec: GR1Spec, options: Options | None = None) -> None:
+    def __init__(
+        self,
+        spec: GR1Spec,
+        options: Options | None = None,
+        deadline: Callable[[], None] | None = None,
+    ) -> None:
+        """``deadline`` is called between building steps; it raises to stop (a timeout)."""
         self.spec = spec
         self.options = options or Options()
+        self._deadline = deadline or (lambda: None)
         self.bdd = cudd.BDD()
         self.bdd.configure(reordering=False)
         if self.options.memory_mb is not None:
@@ -165,8 +172,13 @@ class SymbolicSpec:
         With the invariants as ``base`` every partial product stays inside the mutexes, so
         it stays small; a left fold over the 900 move clauses of a 30 x 30 grid took 34 s.
         """
-        level = [base & item for item in items] or [base]
+        level = []
+        for item in items:
+            self._deadline()
+            level.append(base & item)
+        level = level or [base]
         while len(level) > 1:
+            self._deadline()
             paired = [a & b for a, b in zip(level[::2], level[1::2], strict=False)]
             level = paired + ([level[-1]] if len(level) % 2 else [])
         return level[0]

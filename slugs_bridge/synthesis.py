@@ -33,9 +33,9 @@ def _check_semantics(semantics: str) -> None:
         raise ValueError(f"semantics must be one of {SEMANTICS}, not {semantics!r}")
 
 
-def _symbolic(spec: GR1Spec, options: Options | None) -> SymbolicSpec:
+def _symbolic(spec: GR1Spec, options: Options | None, limits: Limits) -> SymbolicSpec:
     try:
-        return SymbolicSpec(spec, options)
+        return SymbolicSpec(spec, options, limits.check)
     except MemoryError:
         raise _out_of_memory() from None
 
@@ -58,7 +58,7 @@ def check(
     _check_semantics(semantics)
     started = time.monotonic()
     limits = Limits(timeout, progress, started)
-    sym = _symbolic(spec, options)
+    sym = _symbolic(spec, options, limits)
     game = Game(sym, limits)
     try:
         result = game.solve(stop_if_lost=semantics)
@@ -79,7 +79,7 @@ def synthesize(
     """An explicit Mealy controller for ``spec``, or None when it is unrealizable."""
     _check_semantics(semantics)
     limits = Limits(timeout, progress)
-    sym = _symbolic(spec, options)
+    sym = _symbolic(spec, options, limits)
     game = Game(sym, limits)
     try:
         result = game.solve(keep_layers=True)
@@ -102,7 +102,7 @@ def counterstrategy(
     """The environment's winning strategy for an unrealizable ``spec``; None if realizable."""
     _check_semantics(semantics)
     limits = Limits(timeout, progress)
-    sym = _symbolic(spec, options)
+    sym = _symbolic(spec, options, limits)
     game = Game(sym, limits)
     try:
         result = game.solve()

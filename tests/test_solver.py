@@ -455,3 +455,14 @@ def test_walking_helpers_agree_with_cofactors(formula: Expr) -> None:
             models.append(bits)
     # with the declaration order the BDD order is a, b, c, d: the smallest model
     assert smallest(sym, u, names) == (min(models) if models else None)
+
+
+def test_building_the_relations_checks_the_deadline() -> None:
+    def stop() -> None:
+        raise SolverError("synthesis stopped after the time limit of 0 s")
+
+    with pytest.raises(SolverError, match="time limit"):
+        SymbolicSpec(ONE_HOT_TASK, deadline=stop)
+    calls: list[int] = []
+    SymbolicSpec(ONE_HOT_TASK, deadline=lambda: calls.append(1))
+    assert len(calls) >= 2  # at least once per clause that is not an invariant
