@@ -40,13 +40,18 @@ class CounterGame:
         self.sym = sym
         self.limits = limits
         self.env_must = sym.bdd.forall(sym.post_outputs, sym.env_trans)
+        # As in the system's game, EPre(T) only reads T inside the invariant, so the sets are
+        # kept inside the care set and ρ is simplified outside it (SymbolicSpec._care_set).
+        self.game_env_must = self.env_must
+        if sym.care != sym.bdd.true and sym.care != sym.bdd.false:
+            self.game_env_must = cudd.restrict(self.env_must, sym.care)
         self.layers: list[_Layer] = []
 
     def epre(self, target: BDDNode) -> BDDNode:
         """States where the environment has an input after which every ρs answer hits target."""
         sym = self.sym
-        all_answers = ~cudd.and_exists(sym.sys_trans, ~target, sym.post_outputs)
-        return cudd.and_exists(self.env_must, all_answers, sym.post_inputs)
+        all_answers = ~cudd.and_exists(sym.game_sys_trans, ~target, sym.post_outputs)
+        return cudd.and_exists(self.game_env_must, all_answers, sym.post_inputs) & sym.care
 
     def _guard(self, j: int, below: BDDNode, y: BDDNode) -> BDDNode:
         sym = self.sym
@@ -60,12 +65,12 @@ class CounterGame:
             layer = _Layer(zbar, [], [])
             new = bdd.false
             for j in range(len(sym.sys_live)):
-                y = bdd.true
+                y = sym.care
                 while True:
                     self.limits.check()
                     guard = self._guard(j, zbar, y)
                     all_rings = []
-                    next_y = bdd.true
+                    next_y = sym.care
                     for i in range(len(sym.env_live)):
                         x = bdd.false
                         rings = []

@@ -36,6 +36,7 @@ from slugs_bridge.ordering import group_members, invariant_clauses, variable_ord
 from slugs_bridge.spec import Clause, GR1Spec, Variable
 from slugs_bridge.strategy import holds, smallest
 from slugs_bridge.symbolic import Options, SymbolicSpec
+from slugs_bridge.verifier import verify, verify_counterstrategy
 
 
 def clauses(*formulas: Expr) -> tuple[Clause, ...]:
@@ -466,3 +467,15 @@ def test_building_the_relations_checks_the_deadline() -> None:
     calls: list[int] = []
     SymbolicSpec(ONE_HOT_TASK, deadline=lambda: calls.append(1))
     assert len(calls) >= 2  # at least once per clause that is not an invariant
+
+
+@settings(max_examples=30, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(spec=one_hot_specs(), semantics=st.sampled_from(SEMANTICS))
+def test_automata_from_the_care_set_game_pass_the_verifier(spec: GR1Spec, semantics: str) -> None:
+    controller = synthesis.synthesize(spec, semantics)
+    if controller is not None:
+        assert verify(spec, controller, semantics).ok
+        return
+    counter = synthesis.counterstrategy(spec, semantics)
+    assert counter is not None
+    assert verify_counterstrategy(spec, counter, semantics).ok
