@@ -6,7 +6,7 @@
 * ``patrol_2x2_automaton.svg``: the controller of specs/patrol_2x2.gait, every node drawn.
 * ``thesis_robot_a_spec.svg``: robot A's region graph and gait map (``gaitc render spec``).
 
-Robot A is synthesized in the binary encoding (about a minute or two); the result is cached
+Robot A is synthesized in the binary encoding (about ten seconds); the result is cached
 in the system's temporary directory, keyed by the spec's hash.
 """
 
