@@ -11,6 +11,7 @@ from pathlib import Path
 
 import pytest
 
+from slugs_bridge.counterverifier import verify_counterstrategy
 from slugs_bridge.diagnostics import SolverError
 from slugs_bridge.runner import (
     OPTIONS,
@@ -22,7 +23,7 @@ from slugs_bridge.runner import (
     run_slugs_synth,
 )
 from slugs_bridge.slugsin import parse_slugsin
-from slugs_bridge.verifier import verify, verify_counterstrategy
+from slugs_bridge.verifier import verify
 
 HERE = Path(__file__).resolve().parent
 FAKE = str(HERE / "fake_slugs.py")

@@ -14,6 +14,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from slugs_bridge import synthesis
+from slugs_bridge.counterverifier import verify_counterstrategy
 from slugs_bridge.diagnostics import FormulaError, SolverError
 from slugs_bridge.formula import (
     Add,
@@ -36,7 +37,7 @@ from slugs_bridge.ordering import group_members, invariant_clauses, variable_ord
 from slugs_bridge.spec import Clause, GR1Spec, Variable
 from slugs_bridge.strategy import holds, smallest
 from slugs_bridge.symbolic import Options, SymbolicSpec
-from slugs_bridge.verifier import verify, verify_counterstrategy
+from slugs_bridge.verifier import verify
 
 
 def clauses(*formulas: Expr) -> tuple[Clause, ...]:

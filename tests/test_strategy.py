@@ -18,11 +18,12 @@ from slugs_bridge.controller import (
     integers_of,
     load_controller,
 )
+from slugs_bridge.counterverifier import verify_counterstrategy
 from slugs_bridge.diagnostics import ControllerError
 from slugs_bridge.formula import Compare, Const, IntConst, IntVar, Not, Var, Xor
 from slugs_bridge.slugsin import parse_slugsin
 from slugs_bridge.spec import Clause, GR1Spec, Variable
-from slugs_bridge.verifier import verify, verify_counterstrategy
+from slugs_bridge.verifier import verify
 
 DATA = Path(__file__).parent / "data"
 EXAMPLES = sorted(

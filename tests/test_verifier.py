@@ -9,11 +9,12 @@ from pathlib import Path
 import pytest
 
 from slugs_bridge.controller import Controller, ControllerNode, integers_of
+from slugs_bridge.counterverifier import verify_counterstrategy
 from slugs_bridge.diagnostics import Span
 from slugs_bridge.formula import FALSE, And, Compare, Expr, Iff, IntVar, Not, Or, Var
 from slugs_bridge.slugsin import parse_slugsin
 from slugs_bridge.spec import Clause, GR1Spec, Origin, Variable
-from slugs_bridge.verifier import verify, verify_counterstrategy
+from slugs_bridge.verifier import verify
 
 DATA = Path(__file__).resolve().parent / "data"
 r, g = Var("r"), Var("g")

@@ -278,7 +278,8 @@ def run_synth(args: argparse.Namespace) -> int:
 
 
 def _report_verification(spec: GR1Spec, controller: Controller, semantics: str) -> int:
-    from slugs_bridge.verifier import verify, verify_counterstrategy
+    from slugs_bridge.counterverifier import verify_counterstrategy
+    from slugs_bridge.verifier import verify
 
     check = verify_counterstrategy if controller.kind == "counterstrategy" else verify
     report = check(spec, controller, semantics)
