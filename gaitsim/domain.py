@@ -12,17 +12,8 @@ from dataclasses import dataclass
 
 from ltlcompiler.decoding import RobotState, decode, encode
 from ltlcompiler.model import Model
-from slugs_bridge.formula import (
-    Always,
-    Eventually,
-    Expr,
-    Or,
-    Var,
-    atoms,
-    evaluate,
-    has_primes,
-    push_next,
-)
+from slugs_bridge.evaluation import evaluate
+from slugs_bridge.formula import Always, Eventually, Expr, Or, Var, atoms, has_primes, push_next
 
 
 @dataclass(frozen=True)

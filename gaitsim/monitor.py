@@ -4,7 +4,7 @@ Independent of the controller that produced the run: it sees only variable valua
 Safety clauses (init, trans) must hold at every step; liveness clauses (□◇, eqs. 3.7 and
 the liveness part of GR(1), Bloem et al. JCSS 2012) are counted, since a finite run cannot
 violate them.  Clauses are compiled to Python closures once, with results cached per pair of
-states, so checking costs little per step; :func:`slugs_bridge.formula.evaluate` is the
+states, so checking costs little per step; :func:`slugs_bridge.evaluation.evaluate` is the
 reference semantics the compiled closures agree with.
 """
 
@@ -14,6 +14,7 @@ from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 
 from slugs_bridge.diagnostics import FormulaError, Span
+from slugs_bridge.evaluation import evaluate
 from slugs_bridge.formula import (
     Add,
     And,
@@ -29,7 +30,6 @@ from slugs_bridge.formula import (
     Term,
     Var,
     Xor,
-    evaluate,
 )
 from slugs_bridge.spec import Clause, GR1Spec
 
@@ -112,7 +112,7 @@ class _Compiler:
 def compile_formula(expr: Expr, variables: Sequence[str]) -> Check:
     """A closure deciding ``expr`` on ``current + next`` values laid out as ``variables`` twice.
 
-    Agrees with :func:`slugs_bridge.formula.evaluate`; falls back to it for formulas too deep
+    Agrees with :func:`slugs_bridge.evaluation.evaluate`; falls back to it for formulas too deep
     for Python's compiler.
     """
     index = {name: i for i, name in enumerate(variables)}

@@ -9,6 +9,7 @@ from collections.abc import Iterator, Sequence
 
 from ltlcompiler.model import Model
 from slugs_bridge.diagnostics import FormulaError, SpecSemanticError, UsageError
+from slugs_bridge.evaluation import evaluate
 from slugs_bridge.formula import (
     Add,
     And,
@@ -26,7 +27,6 @@ from slugs_bridge.formula import (
     Xor,
     conj,
     disj,
-    evaluate,
 )
 from slugs_bridge.spec import Variable
 

@@ -26,7 +26,8 @@ from slugs_bridge.controller import (
     spec_bits,
 )
 from slugs_bridge.diagnostics import SolverError, Span
-from slugs_bridge.formula import conj, evaluate
+from slugs_bridge.evaluation import evaluate
+from slugs_bridge.formula import conj
 from slugs_bridge.spec import GR1Spec
 
 #: Options per task and semantics; every combination appears in SLUGS's ``optionCombinations``.

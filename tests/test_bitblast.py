@@ -21,6 +21,7 @@ from slugs_bridge.bitblast import (
     range_constraint,
     split_bit_name,
 )
+from slugs_bridge.evaluation import evaluate
 from slugs_bridge.formula import (
     Add,
     And,
@@ -36,7 +37,6 @@ from slugs_bridge.formula import (
     Term,
     Var,
     Xor,
-    evaluate,
     walk,
 )
 from slugs_bridge.slugsin import emit_formula, emit_slugsin, parse_prefix, parse_slugsin

@@ -9,6 +9,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from slugs_bridge.diagnostics import FormulaError, Span
+from slugs_bridge.evaluation import evaluate
 from slugs_bridge.formula import (
     FALSE,
     TRUE,
@@ -31,7 +32,6 @@ from slugs_bridge.formula import (
     atoms,
     conj,
     disj,
-    evaluate,
     has_primes,
     prime,
     push_next,

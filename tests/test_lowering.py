@@ -23,6 +23,7 @@ from ltlcompiler.model import (
     UserFormula,
 )
 from slugs_bridge.diagnostics import FormulaError, Span, SpecSemanticError
+from slugs_bridge.evaluation import evaluate
 from slugs_bridge.formula import (
     And,
     Compare,
@@ -35,7 +36,6 @@ from slugs_bridge.formula import (
     Not,
     Or,
     Var,
-    evaluate,
 )
 from slugs_bridge.spec import SECTIONS, Clause, GR1Spec, Variable
 

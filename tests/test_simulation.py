@@ -21,7 +21,7 @@ from gaitsim.simulator import simulate
 from gaitsim.strategy import Strategy, strategy_from_controller
 from slugs_bridge.controller import Controller, controller_to_json
 from slugs_bridge.diagnostics import ControllerError
-from slugs_bridge.formula import evaluate
+from slugs_bridge.evaluation import evaluate
 from slugs_bridge.synthesis import synthesize
 
 ROOT = Path(__file__).resolve().parent.parent

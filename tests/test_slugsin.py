@@ -10,7 +10,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from slugs_bridge.diagnostics import SlugsFormatError
-from slugs_bridge.formula import And, Const, Expr, Not, Or, Var, Xor, evaluate, walk
+from slugs_bridge.evaluation import evaluate
+from slugs_bridge.formula import And, Const, Expr, Not, Or, Var, Xor, walk
 from slugs_bridge.slugsin import emit_formula, emit_slugsin, parse_slugsin
 from slugs_bridge.spec import Clause, GR1Spec, Variable
 

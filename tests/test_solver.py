@@ -16,6 +16,7 @@ from hypothesis import strategies as st
 from slugs_bridge import synthesis
 from slugs_bridge.counterverifier import verify_counterstrategy
 from slugs_bridge.diagnostics import FormulaError, SolverError
+from slugs_bridge.evaluation import evaluate
 from slugs_bridge.formula import (
     Add,
     And,
@@ -30,7 +31,6 @@ from slugs_bridge.formula import (
     Or,
     Var,
     Xor,
-    evaluate,
 )
 from slugs_bridge.game import SEMANTICS, Game
 from slugs_bridge.ordering import group_members, invariant_clauses, variable_order

@@ -11,6 +11,7 @@ from hypothesis import strategies as st
 
 from slugs_bridge.bitblast import bitblast
 from slugs_bridge.diagnostics import SlugsFormatError
+from slugs_bridge.evaluation import evaluate
 from slugs_bridge.formula import (
     Add,
     And,
@@ -26,7 +27,6 @@ from slugs_bridge.formula import (
     Var,
     Xor,
     atoms,
-    evaluate,
 )
 from slugs_bridge.slugsin import emit_formula, parse_slugsin
 from slugs_bridge.spec import GR1Spec, Variable

@@ -302,7 +302,8 @@ def _oracle(spec: GR1Spec, ctrl: Controller, semantics: str) -> bool:
     """The verifier's verdict recomputed by enumerating every valuation (tiny specs only)."""
     from itertools import product
 
-    from slugs_bridge.formula import conj, evaluate
+    from slugs_bridge.evaluation import evaluate
+    from slugs_bridge.formula import conj
 
     ins, outs = [v.name for v in spec.inputs], [v.name for v in spec.outputs]
     names = ins + outs
