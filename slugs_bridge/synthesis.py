@@ -12,7 +12,8 @@ from dataclasses import dataclass, field
 
 from slugs_bridge.controller import Controller
 from slugs_bridge.counter import extract_counterstrategy
-from slugs_bridge.diagnostics import SolverError
+from slugs_bridge.diagnostics import FormulaError, SolverError
+from slugs_bridge.formula import atoms
 from slugs_bridge.game import SEMANTICS, Game, GameStats, Limits, Progress
 from slugs_bridge.spec import GR1Spec
 from slugs_bridge.strategy import extract_strategy
@@ -47,6 +48,36 @@ def _out_of_memory() -> SolverError:
     )
 
 
+def _game(
+    spec: GR1Spec,
+    semantics: str,
+    timeout: float | None,
+    progress: Progress | None,
+    options: Options | None,
+    started: float | None = None,
+) -> tuple[SymbolicSpec, Game, Limits]:
+    """The symbolic game of ``spec``, after the checks the game relies on."""
+    _check_semantics(semantics)
+    _check_env_trans(spec)
+    limits = Limits(timeout, progress) if started is None else Limits(timeout, progress, started)
+    sym = _symbolic(spec, options, limits)
+    return sym, Game(sym, limits), limits
+
+
+def _check_env_trans(spec: GR1Spec) -> None:
+    """No next-state output in env_trans, as SLUGS requires (the readers enforce it for
+    files; specs built in Python are checked here): the environment moves first."""
+    outputs = {v.name for v in spec.outputs}
+    for clause in spec.env_trans:
+        for name, primed in sorted(atoms(clause.formula)):
+            if primed and name in outputs:
+                raise FormulaError(
+                    f"next-state output '{name}'' cannot appear in env_trans: the environment "
+                    "moves before the system and cannot see its next move",
+                    clause.origin.span if clause.origin else None,
+                )
+
+
 def check(
     spec: GR1Spec,
     semantics: str = "default",
@@ -55,11 +86,8 @@ def check(
     options: Options | None = None,
 ) -> CheckResult:
     """Decide realizability of ``spec`` under ``semantics`` ("default" or "robotics")."""
-    _check_semantics(semantics)
     started = time.monotonic()
-    limits = Limits(timeout, progress, started)
-    sym = _symbolic(spec, options, limits)
-    game = Game(sym, limits)
+    _, game, _ = _game(spec, semantics, timeout, progress, options, started)
     try:
         result = game.solve(stop_if_lost=semantics)
         ok = game.initially_winning(result.winning, semantics)
@@ -77,10 +105,7 @@ def synthesize(
     max_nodes: int | None = None,
 ) -> Controller | None:
     """An explicit Mealy controller for ``spec``, or None when it is unrealizable."""
-    _check_semantics(semantics)
-    limits = Limits(timeout, progress)
-    sym = _symbolic(spec, options, limits)
-    game = Game(sym, limits)
+    sym, game, limits = _game(spec, semantics, timeout, progress, options)
     try:
         result = game.solve(keep_layers=True)
         if not game.initially_winning(result.winning, semantics):
@@ -100,10 +125,7 @@ def counterstrategy(
     max_nodes: int | None = None,
 ) -> Controller | None:
     """The environment's winning strategy for an unrealizable ``spec``; None if realizable."""
-    _check_semantics(semantics)
-    limits = Limits(timeout, progress)
-    sym = _symbolic(spec, options, limits)
-    game = Game(sym, limits)
+    sym, game, limits = _game(spec, semantics, timeout, progress, options)
     try:
         result = game.solve()
         if game.initially_winning(result.winning, semantics):

@@ -480,3 +480,18 @@ def test_automata_from_the_care_set_game_pass_the_verifier(spec: GR1Spec, semant
     counter = synthesis.counterstrategy(spec, semantics)
     assert counter is not None
     assert verify_counterstrategy(spec, counter, semantics).ok
+
+
+def test_solver_rejects_next_state_outputs_in_env_trans() -> None:
+    """As SLUGS does; built through the API, such a spec must not reach the fixpoint.
+
+    (Primed outputs in env_liveness are accepted, as SLUGS does: fastslow_ICRA uses them.)
+    """
+    from slugs_bridge.formula import Or, Var
+    from slugs_bridge.spec import Clause, GR1Spec, Variable
+
+    base = GR1Spec(inputs=(Variable("a"),), outputs=(Variable("y"),))
+    spec = base.with_sections(env_trans=(Clause(Or((Var("a"), Var("y", True)))),))
+    for run in (synthesis.check, synthesis.synthesize, synthesis.counterstrategy):
+        with pytest.raises(FormulaError, match="next-state output 'y'' cannot appear"):
+            run(spec)
