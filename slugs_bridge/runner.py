@@ -18,6 +18,7 @@ import time
 from dataclasses import dataclass, replace
 from pathlib import Path
 
+from slugs_bridge.bitblast import bitblast
 from slugs_bridge.controller import (
     Controller,
     ControllerNode,
@@ -167,15 +168,6 @@ def run_slugs_counter(
 
 
 # ---------------------------------------------------------------- reading SLUGS's answers
-def _boolean(spec: GR1Spec) -> GR1Spec:
-    if not spec.has_integers:
-        return spec
-    from slugs_bridge.bitblast import bitblast
-
-    blasted: GR1Spec = bitblast(spec)
-    return blasted
-
-
 def _starts(spec: GR1Spec, variables: tuple[str, ...], node: ControllerNode) -> bool:
     """Whether ``node``'s state satisfies env_init ∧ sys_init (``spec`` is Boolean)."""
     valuation = dict(zip(variables, node.state, strict=True))
@@ -198,7 +190,7 @@ def controller_from_slugs_json(
             Span(filename, err.lineno, err.colno),
         ) from None
     raw = controller_from_dict(data, filename, spec)
-    boolean = _boolean(spec)
+    boolean = bitblast(spec)
     initial = tuple(
         k for k, node in enumerate(raw.nodes)
         if node.rank == 0 and _starts(boolean, raw.variables, node)
@@ -246,7 +238,7 @@ def counterstrategy_from_slugs_text(
         ControllerNode(states[k][0], states[k][1], tuple(sorted(set(trans.get(k, ())))))
         for k in range(count)
     )
-    boolean = _boolean(spec)
+    boolean = bitblast(spec)
     initial: list[int] = []
     for k, node in enumerate(nodes):
         if k in dead or not _starts(boolean, variables, node):

@@ -15,6 +15,7 @@ from typing import Any
 import dd.cudd as cudd
 import networkx as nx
 
+from slugs_bridge.bitblast import bitblast
 from slugs_bridge.controller import Controller
 from slugs_bridge.diagnostics import FormulaError
 from slugs_bridge.formula import And, Const, Expr, Iff, Implies, Not, Or, Var, Xor
@@ -43,12 +44,6 @@ class VerificationReport:
         return (f"{self.kind} {verdict}: {self.nodes} reachable nodes, {self.edges} edges, "
                 f"{self.sccs} goal-avoiding cycle component(s) examined for fairness "
                 f"({self.semantics} semantics)")
-
-
-def _boolean(spec: GR1Spec) -> GR1Spec:
-    from slugs_bridge.bitblast import bitblast  # a format transformation, shared on purpose
-
-    return bitblast(spec) if spec.has_integers else spec
 
 
 def _rule(section: str, index: int, clause: Clause) -> str:
@@ -156,7 +151,7 @@ class Check:
         if semantics not in SEMANTICS:
             raise ValueError(f"unknown semantics {semantics!r}; use 'default' or 'robotics'")
         self.semantics, self.ctrl = semantics, controller
-        self.spec = _boolean(spec)
+        self.spec = bitblast(spec)  # a format transformation, shared on purpose
         self.logic = _Logic(self.spec)
         self.problems: list[str] = []
         self.notes: list[str] = []

@@ -138,19 +138,11 @@ def _limit_memory(args: argparse.Namespace) -> None:
         raise UsageError(f"cannot set a memory limit of {mb} MB: {err}") from None
 
 
-def _boolean(spec: GR1Spec) -> GR1Spec:
-    if not spec.has_integers:
-        return spec
-    from slugs_bridge.bitblast import bitblast
-
-    blasted: GR1Spec = bitblast(spec)
-    return blasted
-
-
 def _slugsin(spec: GR1Spec) -> str:
+    from slugs_bridge.bitblast import bitblast
     from slugs_bridge.slugsin import emit_slugsin
 
-    return emit_slugsin(_boolean(spec))
+    return emit_slugsin(bitblast(spec))
 
 
 def _options(args: argparse.Namespace) -> Any:
