@@ -15,14 +15,8 @@ import traceback
 from collections.abc import Sequence
 
 from gaitc.commands import COMMAND_MODULES
+from gaitc.exitcodes import EXIT_INTERNAL, EXIT_OK, EXIT_SOLVER, EXIT_USAGE, EXIT_USER
 from slugs_bridge.diagnostics import GaitcError, SolverError, UsageError, render_error
-
-EXIT_OK = 0
-EXIT_USER_ERROR = 1
-EXIT_USAGE = 2
-EXIT_UNREALIZABLE = 3
-EXIT_SOLVER_FAILURE = 4
-EXIT_INTERNAL = 70
 
 
 class _Parser(argparse.ArgumentParser):
@@ -59,7 +53,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         return EXIT_USAGE
     except GaitcError as err:
         print(render_error(err), file=sys.stderr)
-        return EXIT_SOLVER_FAILURE if isinstance(err, SolverError) else EXIT_USER_ERROR
+        return EXIT_SOLVER if isinstance(err, SolverError) else EXIT_USER
     except KeyboardInterrupt:
         print("gaitc: interrupted", file=sys.stderr)
         return 130

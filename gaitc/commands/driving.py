@@ -12,12 +12,12 @@ from pathlib import Path
 from typing import Any
 
 from gaitc.commands.simulating import ENVIRONMENTS, Loaded, load_session, report_run
+from gaitc.exitcodes import EXIT_UNREALIZABLE
 from gaitc.loading import ENCODINGS, load_spec
 from gaithw.backend import Backend
 from gaitsim.environments import AdversarialEnvironment, Environment, RandomEnvironment
 from slugs_bridge.diagnostics import UsageError
 
-EXIT_OK, EXIT_USER, EXIT_UNREALIZABLE = 0, 1, 3
 EPILOG = """backends:
   --backend sim      a simulated robot (default): valves apply instantly, sensor readings come
                      from --env (random, adversarial or a scripted scenario), within the

@@ -8,10 +8,10 @@ import argparse
 import sys
 from typing import Any
 
+from gaitc.exitcodes import EXIT_OK, EXIT_UNREALIZABLE
 from gaitsim.graphics import FORMATS, Picture, output_format
 from slugs_bridge.diagnostics import UsageError
 
-EXIT_OK, EXIT_UNREALIZABLE = 0, 3
 FORMAT_HELP = (f"output format: {', '.join(FORMATS)} (default: from the -o extension); every "
                "format but dot needs Graphviz's 'dot' program")
 

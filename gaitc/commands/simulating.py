@@ -14,6 +14,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from gaitc.exitcodes import EXIT_OK, EXIT_UNREALIZABLE, EXIT_USER
 from gaitc.loading import ENCODINGS, LoadedSpec, load_spec
 from gaitsim.domain import Domain
 from gaitsim.environments import AdversarialEnvironment, Environment, RandomEnvironment
@@ -23,7 +24,6 @@ from gaitsim.strategy import Strategy, load_strategy, strategy_from_controller
 from ltlcompiler.model import Model
 from slugs_bridge.diagnostics import ControllerError, UsageError
 
-EXIT_OK, EXIT_USER, EXIT_UNREALIZABLE = 0, 1, 3
 ENVIRONMENTS = ("scripted", "random", "adversarial")
 EPILOG = """environments:
   --env random [--seed N]   uniform among the inputs the controller accepts (default, seed 0)

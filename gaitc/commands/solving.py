@@ -14,6 +14,7 @@ import sys
 import time
 from typing import Any
 
+from gaitc.exitcodes import EXIT_OK, EXIT_SOLVER, EXIT_UNREALIZABLE, EXIT_USER
 from gaitc.loading import ENCODINGS, LoadedSpec, load_spec
 from slugs_bridge.controller import Controller, controller_to_json, load_controller
 from slugs_bridge.diagnostics import GaitcError, SolverError, UsageError, render_error
@@ -21,7 +22,6 @@ from slugs_bridge.game import Progress
 from slugs_bridge.output import write_atomically
 from slugs_bridge.spec import GR1Spec
 
-EXIT_OK, EXIT_USER, EXIT_UNREALIZABLE, EXIT_SOLVER = 0, 1, 3, 4
 EXIT_CODES = """exit codes:
   0  every spec is realizable (check), the controller was written / verified
   1  an input file is wrong (syntax, names, malformed controller) or verification failed
