@@ -19,24 +19,9 @@ from slugs_bridge.controller import controller_to_json
 from slugs_bridge.diagnostics import ScenarioError
 from slugs_bridge.synthesis import synthesize
 
-SPEC = """\
-robot "hazard patrol"
-legs L1..L3 health 3
-gait north_a uses L1 moves north
-gait south_a uses L1 moves south
-gait east_a uses L2 moves east
-gait west_a uses L2 moves west
-gait east_b uses L3 moves east
-gait west_b uses L3 moves west
-gait north_b uses L3 moves north
-gait south_b uses L3 moves south
-grid 2 x 2 cells nw, ne, sw, se
-cache nw
-hazard h: se
-start nw
-visit ne, sw infinitely often
-assume always eventually !h
-"""
+SPEC = (Path(__file__).resolve().parent / "data" / "hazard_patrol.gait").read_text(
+    encoding="utf-8"
+)
 
 
 class World:

@@ -26,25 +26,7 @@ from slugs_bridge.synthesis import synthesize
 
 ROOT = Path(__file__).resolve().parent.parent
 PATROL = ROOT / "specs" / "patrol_2x2.gait"
-HAZARD_PATROL = """\
-# 2 x 2 patrol with a hazard set and redundant gaits (tests only).
-robot "hazard patrol"
-legs L1..L3 health 3
-gait north_a uses L1 moves north
-gait south_a uses L1 moves south
-gait east_a uses L2 moves east
-gait west_a uses L2 moves west
-gait east_b uses L3 moves east
-gait west_b uses L3 moves west
-gait north_b uses L3 moves north
-gait south_b uses L3 moves south
-grid 2 x 2 cells nw, ne, sw, se
-cache nw
-hazard h: se
-start nw
-visit ne, sw infinitely often
-assume always eventually !h
-"""
+HAZARD_PATROL = (ROOT / "tests" / "data" / "hazard_patrol.gait").read_text(encoding="utf-8")
 
 
 @dataclasses.dataclass
