@@ -14,6 +14,7 @@ from functools import partial
 from typing import TypeVar
 
 from gaitc.commands.compiling import emit
+from gr1.spec import SECTIONS
 from ltlcompiler.frontend import model_from_text
 from ltlcompiler.lowering import lower
 
@@ -75,9 +76,7 @@ def main() -> None:
         for encoding in ("onehot", "binary"):
             spec, t_lower = timed(partial(lower, model, encoding), args.repeat)
             out, t_emit = timed(partial(emit, spec, "slugsin"), args.repeat)
-            clauses = sum(len(spec.section(s)) for s in ("env_init", "sys_init", "env_trans",
-                                                         "sys_trans", "env_liveness",
-                                                         "sys_liveness"))
+            clauses = sum(len(spec.section(s)) for s in SECTIONS)
             total = t_front + t_lower + t_emit
             print(f"{rows:>3}x{cols:<3} {rows * cols:>7} {encoding:>8} {t_front:>11.3f} "
                   f"{t_lower:>8.3f} {t_emit:>8.3f} {total:>8.3f} {clauses:>7} "

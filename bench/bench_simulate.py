@@ -17,8 +17,8 @@ from gaitc.commands.simulating import load_session
 from gaitc.loading import load_spec
 from gaitsim.environments import AdversarialEnvironment, Environment, RandomEnvironment
 from gaitsim.simulator import Simulator
-from slugs_bridge.controller import controller_to_json
-from slugs_bridge.synthesis import synthesize
+from gr1.controller import controller_to_json
+from solver.synthesis import synthesize
 
 ROOT = Path(__file__).resolve().parent.parent
 SPEC = ROOT / "specs" / "thesis_robot_a.gait"

@@ -22,10 +22,10 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
+from diagnostics import SolverError
 from gaitc.loading import load_spec
-from slugs_bridge import synthesis
-from slugs_bridge.diagnostics import SolverError
-from slugs_bridge.symbolic import Options
+from solver import synthesis
+from solver.symbolic import Options
 
 ROOT = Path(__file__).resolve().parent.parent
 SIZES = [(4, 5), (6, 6), (10, 10), (15, 15), (20, 20), (30, 30)]

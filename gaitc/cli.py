@@ -14,9 +14,9 @@ import sys
 import traceback
 from collections.abc import Sequence
 
+from diagnostics import GaitcError, SolverError, UsageError, render_error
 from gaitc.commands import COMMAND_MODULES
 from gaitc.exitcodes import EXIT_INTERNAL, EXIT_OK, EXIT_SOLVER, EXIT_USAGE, EXIT_USER
-from slugs_bridge.diagnostics import GaitcError, SolverError, UsageError, render_error
 
 
 class _Parser(argparse.ArgumentParser):

@@ -11,8 +11,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from slugs_bridge.diagnostics import Diagnostic, UsageError
-from slugs_bridge.spec import GR1Spec
+from diagnostics import Diagnostic, UsageError
+from gr1.spec import GR1Spec
 
 if TYPE_CHECKING:
     from ltlcompiler.model import Model
@@ -51,7 +51,7 @@ def _read(path: str) -> bytes:
 def load_spec(path: str, encoding: str = "onehot") -> LoadedSpec:
     """Read ``path`` (.gait, .slugsin, .structuredslugs) into a :class:`LoadedSpec`.
 
-    Raises the project's :class:`~slugs_bridge.diagnostics.GaitcError` subclasses with a
+    Raises the project's :class:`~diagnostics.GaitcError` subclasses with a
     span for every problem in the file; :class:`UsageError` for an unknown file kind.
     """
     if encoding not in ENCODINGS:

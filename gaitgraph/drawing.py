@@ -12,11 +12,11 @@ from pathlib import Path
 import numpy as np
 import pydot
 
+from gaitgraph.cycles import GaitCycle
 from gaitgraph.graph import GaitGraph, PoseKey
 from gaitgraph.kinematics import Array, forward, leg_polyline, valve_int
 from gaitgraph.poses import support_planes
 from gaitgraph.robot import Robot
-from gaitgraph.search import GaitCycle
 
 
 def _hull(points: list[tuple[float, float]]) -> list[tuple[float, float]]:

@@ -12,9 +12,9 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
+from diagnostics import Diagnostic, GaitcError, SpecSemanticError
 from gaitgraph.robot import Robot, load_robot, parse_valves
 from ltlcompiler.model import Gait, GaitKind
-from slugs_bridge.diagnostics import Diagnostic, GaitcError, SpecSemanticError
 
 
 @dataclass(frozen=True)
@@ -83,7 +83,8 @@ def resolve_primitive(
             f"gait {gait.name}: a primitive needs inline valves, or a robot file and a direction",
             span,
         )
-    from gaitgraph.search import parse_direction, search
+    from gaitgraph.cycles import parse_direction
+    from gaitgraph.search import search
 
     direction = parse_direction(prim.direction, span)
     if prim.method is None:

@@ -6,9 +6,10 @@ from __future__ import annotations
 import json
 from typing import Any
 
+from gaitgraph.cycles import GaitCycle
 from gaitgraph.kinematics import body_length
 from gaitgraph.robot import Robot
-from gaitgraph.search import GaitCycle, SearchResult
+from gaitgraph.search import SearchResult
 
 
 def _grouped(robot: Robot, valves: str) -> str:

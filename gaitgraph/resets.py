@@ -11,12 +11,12 @@ import heapq
 
 import numpy as np
 
+from gaitgraph.cycles import GaitCycle, close_cycle, rank
 from gaitgraph.graph import GaitGraph
 from gaitgraph.kinematics import body_length, forward, shape_keys
 from gaitgraph.motion import Edges, pair_edges
 from gaitgraph.poses import PoseTable, stable_poses
 from gaitgraph.robot import Robot
-from gaitgraph.search import GaitCycle, close_cycle, rank
 
 
 def _leg_patterns(robot: Robot) -> list[list[int]]:

@@ -12,7 +12,7 @@ from pathlib import Path
 
 import yaml
 
-from slugs_bridge.diagnostics import GaitcError, Span
+from diagnostics import GaitcError, Span
 
 
 class RobotFileError(GaitcError):

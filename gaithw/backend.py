@@ -12,7 +12,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from types import TracebackType
 
-from slugs_bridge.diagnostics import GaitcError, Span
+from diagnostics import GaitcError, Span
 
 
 class HardwareError(GaitcError):

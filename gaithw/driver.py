@@ -13,6 +13,7 @@ import dataclasses
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 
+from diagnostics import SpecSemanticError
 from gaitgraph.pairing import ValveSequence, resolve_primitive
 from gaithw.backend import Backend, HardwareError, SensorReading, where
 from gaithw.simulated import ScenarioFinished
@@ -23,7 +24,6 @@ from gaitsim.run import Run
 from gaitsim.simulator import Simulator
 from gaitsim.strategy import InputKey, Strategy
 from ltlcompiler.model import GaitKind, Model
-from slugs_bridge.diagnostics import SpecSemanticError
 
 
 @dataclass(frozen=True)

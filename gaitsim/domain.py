@@ -10,10 +10,10 @@ from collections import deque
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
+from gr1.evaluation import evaluate
+from gr1.formula import Always, Eventually, Expr, Or, Var, atoms, has_primes, push_next
 from ltlcompiler.decoding import RobotState, decode, encode
 from ltlcompiler.model import Model
-from slugs_bridge.evaluation import evaluate
-from slugs_bridge.formula import Always, Eventually, Expr, Or, Var, atoms, has_primes, push_next
 
 
 @dataclass(frozen=True)

@@ -15,7 +15,7 @@ from dataclasses import dataclass
 from gaitsim.domain import Domain, Goal, State
 from gaitsim.monitor import Monitor
 from gaitsim.strategy import InputKey
-from slugs_bridge.formula import has_primes
+from gr1.formula import has_primes
 
 INFINITY = 10**6
 

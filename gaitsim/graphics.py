@@ -12,8 +12,8 @@ from pathlib import Path
 
 import pydot
 
-from slugs_bridge.diagnostics import GaitcError, UsageError
-from slugs_bridge.output import write_atomically
+from diagnostics import GaitcError, UsageError
+from diagnostics.files import write_atomically
 
 FORMATS = ("dot", "svg", "png", "pdf")
 _ALIASES = {"gv": "dot"}

@@ -7,13 +7,16 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from itertools import pairwise
+from typing import TYPE_CHECKING
 
 import pydot
 
 from gaitsim.domain import model_goals
 from gaitsim.graphics import Picture, html
-from gaitsim.run import Run, Step
 from ltlcompiler.model import NO_GAIT, Model
+
+if TYPE_CHECKING:
+    from gaitsim.run import Run, Step
 
 CELL = 1.6  # inches between grid cells
 HAZARD_COLOURS = (("#c6dbef", "#2171b5"), ("#fcbba1", "#cb181d"), ("#dadaeb", "#6a51a3"),
@@ -250,7 +253,7 @@ def spec_view(model: Model) -> Picture:
 def run_view(run: Run, max_steps: int = DEFAULT_MAX_STEPS) -> Picture:
     """A run on its map (needs ``run.model``, set by the simulator or by the caller)."""
     if run.model is None:
-        from slugs_bridge.diagnostics import UsageError
+        from diagnostics import UsageError
 
         raise UsageError("this run has no model attached; draw it with map_view(model, run)")
     return map_view(run.model, run, max_steps)

@@ -4,7 +4,7 @@ Independent of the controller that produced the run: it sees only variable valua
 Safety clauses (init, trans) must hold at every step; liveness clauses (□◇, eqs. 3.7 and
 the liveness part of GR(1), Bloem et al. JCSS 2012) are counted, since a finite run cannot
 violate them.  Clauses are compiled to Python closures once, with results cached per pair of
-states, so checking costs little per step; :func:`slugs_bridge.evaluation.evaluate` is the
+states, so checking costs little per step; :func:`gr1.evaluation.evaluate` is the
 reference semantics the compiled closures agree with.
 """
 
@@ -13,9 +13,9 @@ from __future__ import annotations
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 
-from slugs_bridge.diagnostics import FormulaError, Span
-from slugs_bridge.evaluation import evaluate
-from slugs_bridge.formula import (
+from diagnostics import FormulaError, Span
+from gr1.evaluation import evaluate
+from gr1.formula import (
     Add,
     And,
     Compare,
@@ -31,7 +31,7 @@ from slugs_bridge.formula import (
     Var,
     Xor,
 )
-from slugs_bridge.spec import Clause, GR1Spec
+from gr1.spec import SECTIONS, Clause, GR1Spec
 
 Values = tuple[int, ...]
 Check = Callable[[Sequence[int]], bool]
@@ -112,7 +112,7 @@ class _Compiler:
 def compile_formula(expr: Expr, variables: Sequence[str]) -> Check:
     """A closure deciding ``expr`` on ``current + next`` values laid out as ``variables`` twice.
 
-    Agrees with :func:`slugs_bridge.evaluation.evaluate`; falls back to it for formulas too deep
+    Agrees with :func:`gr1.evaluation.evaluate`; falls back to it for formulas too deep
     for Python's compiler.
     """
     index = {name: i for i, name in enumerate(variables)}
@@ -151,8 +151,7 @@ class Monitor:
         self.variables: tuple[str, ...] = tuple(v.name for v in spec.variables())
         self.inputs: tuple[str, ...] = tuple(v.name for v in spec.inputs)
         self._compiled: dict[str, tuple[Check, ...]] = {}
-        for section in ("env_init", "sys_init", "env_trans", "sys_trans",
-                        "env_liveness", "sys_liveness"):
+        for section in SECTIONS:
             clauses = spec.section(section)
             self._compiled[section] = tuple(
                 compile_formula(c.formula, self.variables) for c in clauses

@@ -14,8 +14,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from slugs_bridge.diagnostics import GaitcError, ScenarioError, Span, UsageError
-from slugs_bridge.output import write_atomically
+from diagnostics import GaitcError, ScenarioError, Span, UsageError
+from diagnostics.files import write_atomically
 
 if TYPE_CHECKING:
     from ltlcompiler.model import Model

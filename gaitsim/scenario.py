@@ -10,10 +10,10 @@ from pathlib import Path
 
 import yaml
 
+from diagnostics import ScenarioError, Span
 from gaitsim.domain import State
 from gaitsim.environments import Environment, Move, Request, Situation
 from ltlcompiler.model import Model
-from slugs_bridge.diagnostics import ScenarioError, Span
 
 NONE_WORDS = ("none", "null", "~", "", "off")
 STEP_KEYS = ("hazard", "degrade", "fail", "health", "note")

@@ -13,12 +13,12 @@ from collections.abc import Mapping
 from dataclasses import fields
 from typing import Any
 
+from diagnostics import ControllerError, GaitcError, ScenarioError, Span
 from gaitsim.domain import Domain, State
 from gaitsim.environments import Environment, Move, Request, Situation
 from gaitsim.monitor import Monitor, Violation
 from gaitsim.run import Run, Step, Summary
 from gaitsim.strategy import InputKey, Strategy
-from slugs_bridge.diagnostics import ControllerError, GaitcError, ScenarioError, Span
 
 MAX_REPORTED = 20
 

@@ -1,6 +1,6 @@
 """The controller as the simulator and renderer see it: spec-level values per node, successors.
 
-Adapts a ``slugs_bridge.controller.Controller`` (JSON of ``docs/controller-format.md``, from the
+Adapts a ``gr1.controller.Controller`` (JSON of ``docs/controller-format.md``, from the
 embedded solver or SLUGS), checked against the spec it claims to implement, so a user learns
 early that a controller belongs to another spec.
 """
@@ -10,9 +10,9 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from slugs_bridge.controller import Controller, load_controller
-from slugs_bridge.diagnostics import ControllerError, Span
-from slugs_bridge.spec import GR1Spec
+from diagnostics import ControllerError, Span
+from gr1.controller import Controller, load_controller
+from gr1.spec import GR1Spec
 
 InputKey = tuple[int, ...]
 

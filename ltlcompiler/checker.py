@@ -7,6 +7,8 @@ Errors raise a :class:`GaitcError` with a span; warnings come back as diagnostic
 
 from __future__ import annotations
 
+from diagnostics import Diagnostic, Span, SpecSemanticError
+from gr1.formula import Var
 from ltlcompiler import syntax as s
 from ltlcompiler.fragment import FormulaChecker
 from ltlcompiler.model import (
@@ -30,8 +32,6 @@ from ltlcompiler.regions import (
     build_transitions,
     reachable,
 )
-from slugs_bridge.diagnostics import Diagnostic, Span, SpecSemanticError
-from slugs_bridge.formula import Var
 
 METHODS = ("full", "random", "reset")
 

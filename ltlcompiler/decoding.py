@@ -9,9 +9,9 @@ from __future__ import annotations
 from collections.abc import Mapping
 from dataclasses import dataclass
 
+from diagnostics import ControllerError
 from ltlcompiler.encoding import GAIT_VAR, HAZARD_VAR, REGION_VAR, health_prop, make_encoding
 from ltlcompiler.model import Model
-from slugs_bridge.diagnostics import ControllerError
 
 
 @dataclass(frozen=True)

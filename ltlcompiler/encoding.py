@@ -7,10 +7,9 @@ from __future__ import annotations
 import itertools
 from collections.abc import Iterator, Sequence
 
-from ltlcompiler.model import Model
-from slugs_bridge.diagnostics import FormulaError, SpecSemanticError, UsageError
-from slugs_bridge.evaluation import evaluate
-from slugs_bridge.formula import (
+from diagnostics import FormulaError, SpecSemanticError, UsageError
+from gr1.evaluation import evaluate
+from gr1.formula import (
     Add,
     And,
     Compare,
@@ -28,7 +27,8 @@ from slugs_bridge.formula import (
     conj,
     disj,
 )
-from slugs_bridge.spec import Variable
+from gr1.spec import Variable
+from ltlcompiler.model import Model
 
 ENCODINGS = ("onehot", "binary")
 REGION_VAR = "region"

@@ -8,10 +8,10 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 
+from diagnostics import FormulaError, Span, SpecSemanticError
+from gr1 import formula as f
 from ltlcompiler.model import Section, UserFormula
 from ltlcompiler.names import Namespace
-from slugs_bridge import formula as f
-from slugs_bridge.diagnostics import FormulaError, Span, SpecSemanticError
 
 _SHAPES = "'φ' (initial), 'always φ' (safety) or 'always eventually φ' (liveness)"
 

@@ -8,11 +8,11 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from diagnostics import Diagnostic, SpecSyntaxError
 from ltlcompiler.checker import check
 from ltlcompiler.model import Model
 from ltlcompiler.parser import parse
 from ltlcompiler.syntax import SpecFile
-from slugs_bridge.diagnostics import Diagnostic, SpecSyntaxError
 
 
 def parse_text(text: str, filename: str = "<string>") -> SpecFile:

@@ -6,10 +6,8 @@ from __future__ import annotations
 
 from collections.abc import Iterable
 
-from ltlcompiler.encoding import Encoding, check_names, make_encoding
-from ltlcompiler.model import NO_GAIT, GaitKind, Model, Section, UserFormula
-from slugs_bridge.diagnostics import FormulaError, Span, SpecSemanticError
-from slugs_bridge.formula import (
+from diagnostics import FormulaError, Span, SpecSemanticError
+from gr1.formula import (
     Always,
     And,
     Compare,
@@ -32,7 +30,9 @@ from slugs_bridge.formula import (
     has_primes,
     push_next,
 )
-from slugs_bridge.spec import Clause, GR1Spec, Origin
+from gr1.spec import SECTIONS, Clause, GR1Spec, Origin, section_named
+from ltlcompiler.encoding import Encoding, check_names, make_encoding
+from ltlcompiler.model import NO_GAIT, GaitKind, Model, Section, UserFormula
 
 
 def lower(model: Model, encoding: str = "onehot") -> GR1Spec:
@@ -70,10 +70,7 @@ class _Lowering:
     def __init__(self, model: Model, enc: Encoding) -> None:
         self.model = model
         self.enc = enc
-        self.sections: dict[str, list[Clause]] = {
-            name: [] for name in ("env_init", "sys_init", "env_trans", "sys_trans",
-                                  "env_liveness", "sys_liveness")
-        }
+        self.sections: dict[str, list[Clause]] = {name: [] for name in SECTIONS}
         self.region_span = {r.name: r.span for r in model.regions}
         self.moving = {g.name: (g.legs if g.kind is GaitKind.MOVE else ()) for g in model.gaits}
 
@@ -94,17 +91,14 @@ class _Lowering:
         s = self.sections
         return GR1Spec(
             inputs=self.enc.inputs(), outputs=self.enc.outputs(),
-            env_init=tuple(s["env_init"]), sys_init=tuple(s["sys_init"]),
-            env_trans=tuple(s["env_trans"]), sys_trans=tuple(s["sys_trans"]),
-            env_liveness=tuple(s["env_liveness"]), sys_liveness=tuple(s["sys_liveness"]),
-            name=self.model.name,
+            name=self.model.name, **{name: tuple(s[name]) for name in SECTIONS},
         )
 
     # ------------------------------------------------------------ init and mutexes
     def init(self) -> None:
         m, enc = self.model, self.enc
         for side, rule, formula in enc.mutex(primed=False):
-            self.add(f"{side}_init", formula, rule, None)
+            self.add(section_named(side, "init"), formula, rule, None)
         for leg in m.legs:
             self.add("env_init", enc.health(leg.name, leg.initial),
                      f"init: leg {leg.name} starts at health {leg.initial} of {leg.health}",
@@ -218,7 +212,7 @@ class _Lowering:
     def user(self, uf: UserFormula, side: str) -> None:
         formula = self.translate(uf, side)
         word = "assumption" if side == "env" else "guarantee"
-        self.add(f"{side}_{uf.section.value}", formula,
+        self.add(section_named(side, uf.section.value), formula,
                  f"{word}{_line(uf.span)}: {describe(uf.formula)}", uf.span)
 
     def translate(self, uf: UserFormula, side: str) -> Expr:

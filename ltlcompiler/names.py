@@ -10,8 +10,8 @@ import difflib
 import re
 from collections.abc import Iterable
 
+from diagnostics import Span, SpecSemanticError
 from ltlcompiler import syntax as s
-from slugs_bridge.diagnostics import Span, SpecSemanticError
 
 MAX_RANGE = 10_000
 _NUMBERED = re.compile(r"^(.*?)(\d+)$")

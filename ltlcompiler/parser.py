@@ -23,9 +23,9 @@ from lark.exceptions import (
 from lark.lexer import PatternStr
 from lark.tree import Meta
 
+from diagnostics import FormulaError, GaitcError, Span, SpecSyntaxError
+from gr1 import formula as f
 from ltlcompiler import syntax as s
-from slugs_bridge import formula as f
-from slugs_bridge.diagnostics import FormulaError, GaitcError, Span, SpecSyntaxError
 
 STATEMENT_KEYWORDS = (
     "assume", "block", "cache", "caches", "correction", "edge", "gait", "grid", "guarantee",

@@ -9,10 +9,10 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 
+from diagnostics import Diagnostic, Span, SpecSemanticError
 from ltlcompiler import syntax as s
 from ltlcompiler.model import NO_GAIT, Region, Transition
 from ltlcompiler.names import Namespace, describe, expand_all
-from slugs_bridge.diagnostics import Diagnostic, Span, SpecSemanticError
 
 MAX_CELLS = 10_000
 STEPS = {"north": (-1, 0), "south": (1, 0), "east": (0, 1), "west": (0, -1)}

@@ -2,7 +2,7 @@
 
 Names are not resolved yet (that is :mod:`ltlcompiler.checker`'s job).  Spans ride
 along but do not count in equality.  Formulas are already formula IR
-(:mod:`slugs_bridge.formula`) whose ``Var``/``IntVar`` names are still unchecked.
+(:mod:`gr1.formula`) whose ``Var``/``IntVar`` names are still unchecked.
 """
 
 from __future__ import annotations
@@ -10,8 +10,8 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any
 
-from slugs_bridge.diagnostics import Span
-from slugs_bridge.formula import Expr
+from diagnostics import Span
+from gr1.formula import Expr
 
 _SPAN: Any = field(default=None, compare=False, repr=False, kw_only=True)
 

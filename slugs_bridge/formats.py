@@ -4,9 +4,9 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from slugs_bridge.diagnostics import SlugsFormatError, Span
+from diagnostics import SlugsFormatError, Span
+from gr1.spec import GR1Spec
 from slugs_bridge.slugsin import parse_slugsin
-from slugs_bridge.spec import GR1Spec
 from slugs_bridge.structured import parse_structuredslugs
 
 PREFIX_EXTENSIONS = (".slugsin", ".txt")

@@ -11,8 +11,8 @@ import re
 from collections.abc import Mapping
 from dataclasses import dataclass
 
-from slugs_bridge.diagnostics import FormulaError, SlugsFormatError, Span
-from slugs_bridge.formula import (
+from diagnostics import FormulaError, SlugsFormatError, Span
+from gr1.formula import (
     Add,
     And,
     Compare,

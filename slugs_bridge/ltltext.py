@@ -6,8 +6,8 @@ each conjunct carries a ``#`` comment naming the rule and source line it came fr
 
 from __future__ import annotations
 
+from gr1.spec import Clause, GR1Spec, Variable
 from slugs_bridge.slugsin import emit_formula
-from slugs_bridge.spec import Clause, GR1Spec, Variable
 from slugs_bridge.structured import emit_infix
 
 _PARTS = (

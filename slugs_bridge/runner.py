@@ -18,18 +18,18 @@ import time
 from dataclasses import dataclass, replace
 from pathlib import Path
 
-from slugs_bridge.bitblast import bitblast
-from slugs_bridge.controller import (
+from diagnostics import SolverError, Span
+from gr1.bitblast import bitblast
+from gr1.controller import (
     Controller,
     ControllerNode,
     controller_from_dict,
     integers_of,
     spec_bits,
 )
-from slugs_bridge.diagnostics import SolverError, Span
-from slugs_bridge.evaluation import evaluate
-from slugs_bridge.formula import conj
-from slugs_bridge.spec import GR1Spec
+from gr1.evaluation import evaluate
+from gr1.formula import conj
+from gr1.spec import GR1Spec
 
 #: Options per task and semantics; every combination appears in SLUGS's ``optionCombinations``.
 OPTIONS: dict[tuple[str, str], tuple[str, ...]] = {

@@ -10,9 +10,9 @@ import re
 from collections.abc import Iterator
 from dataclasses import dataclass
 
-from slugs_bridge.diagnostics import SlugsFormatError, Span
-from slugs_bridge.formula import IntVar, Var, walk
-from slugs_bridge.spec import SECTIONS, Clause, GR1Spec
+from diagnostics import SlugsFormatError, Span
+from gr1.formula import IntVar, Var, walk
+from gr1.spec import SECTIONS, Clause, GR1Spec
 
 # Section headers in the order the writers use; values are GR1Spec field names.
 HEADERS: dict[str, str] = {

@@ -11,8 +11,8 @@ import re
 from dataclasses import dataclass
 from pathlib import Path
 
-from slugs_bridge.diagnostics import SlugsFormatError, Span
-from slugs_bridge.formula import (
+from diagnostics import SlugsFormatError, Span
+from gr1.formula import (
     And,
     Const,
     Expr,
@@ -24,6 +24,7 @@ from slugs_bridge.formula import (
     Var,
     Xor,
 )
+from gr1.spec import SECTIONS, Clause, GR1Spec, Origin, Variable
 from slugs_bridge.sections import FIELD_HEADERS as FIELD_HEADERS
 from slugs_bridge.sections import HEADERS as HEADERS
 from slugs_bridge.sections import (
@@ -33,7 +34,6 @@ from slugs_bridge.sections import (
     check_name,
     read_sections,
 )
-from slugs_bridge.spec import SECTIONS, Clause, GR1Spec, Origin, Variable
 
 
 # ---------------------------------------------------------------- prefix formulas
@@ -304,7 +304,7 @@ def _prefix_tokens(root: Expr, refs: dict[int, str], out: list[str]) -> None:
         else:
             raise ValueError(
                 f"cannot write {type(item).__name__} in slugsin: the format is Boolean and "
-                "next-free; bit-blast integers (slugs_bridge.bitblast) and push 'next' first"
+                "next-free; bit-blast integers (gr1.bitblast) and push 'next' first"
             )
 
 
@@ -333,7 +333,7 @@ def emit_slugsin(spec: GR1Spec) -> str:
         names = ", ".join(v.name for v in spec.variables() if v.is_integer)
         raise ValueError(
             f"spec has integer variables ({names}); bit-blast it first with "
-            "slugs_bridge.bitblast.bitblast"
+            "gr1.bitblast.bitblast"
         )
     lines: list[str] = []
     for header, field in HEADERS.items():

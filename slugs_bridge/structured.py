@@ -9,8 +9,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from slugs_bridge.diagnostics import SlugsFormatError, Span
-from slugs_bridge.formula import (
+from diagnostics import SlugsFormatError, Span
+from gr1.formula import (
     Add,
     And,
     Compare,
@@ -29,10 +29,10 @@ from slugs_bridge.formula import (
     Xor,
     walk,
 )
+from gr1.spec import SECTIONS, Clause, GR1Spec, Origin, Variable
 from slugs_bridge.infix import IDENT, KEYWORDS, parse_infix
 from slugs_bridge.sections import HEADERS, SourceLine, check_atoms, check_name, read_sections
 from slugs_bridge.slugsin import emit_formula, has_shared_subformulas, parse_prefix
-from slugs_bridge.spec import SECTIONS, Clause, GR1Spec, Origin, Variable
 
 
 def is_prefix_line(text: str, booleans: set[str]) -> bool:
@@ -113,7 +113,7 @@ def parse_structuredslugs(text: str, filename: str) -> GR1Spec:
     """Read a ``.structuredslugs`` specification; integer variables stay integers.
 
     Integer variables become ``Variable(name, low, high)`` and comparisons stay
-    :class:`~slugs_bridge.formula.Compare` nodes; :func:`slugs_bridge.bitblast.bitblast`
+    :class:`~gr1.formula.Compare` nodes; :func:`gr1.bitblast.bitblast`
     lowers them to bits the way SLUGS's converter does.
     """
     variables: dict[str, list[Variable]] = {"inputs": [], "outputs": []}

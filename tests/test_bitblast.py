@@ -1,4 +1,4 @@
-"""Tests of bit-blasting integers the way SLUGS's converter does (slugs_bridge/bitblast.py)."""
+"""Tests of bit-blasting integers the way SLUGS's converter does (gr1/bitblast.py)."""
 
 from __future__ import annotations
 
@@ -11,7 +11,7 @@ from dd import cudd
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from slugs_bridge.bitblast import (
+from gr1.bitblast import (
     bit_count,
     bitblast,
     decode_bits,
@@ -21,8 +21,8 @@ from slugs_bridge.bitblast import (
     range_constraint,
     split_bit_name,
 )
-from slugs_bridge.evaluation import evaluate
-from slugs_bridge.formula import (
+from gr1.evaluation import evaluate
+from gr1.formula import (
     Add,
     And,
     Compare,
@@ -39,8 +39,8 @@ from slugs_bridge.formula import (
     Xor,
     walk,
 )
+from gr1.spec import Clause, GR1Spec, Variable
 from slugs_bridge.slugsin import emit_formula, emit_slugsin, parse_prefix, parse_slugsin
-from slugs_bridge.spec import Clause, GR1Spec, Variable
 from slugs_bridge.structured import parse_structuredslugs
 
 DATA = Path(__file__).parent / "data" / "slugs_examples"

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import pytest
 
+from diagnostics import FormulaError, SpecSemanticError
+from gr1 import formula as f
 from ltlcompiler.frontend import model_from_text
 from ltlcompiler.model import (
     Gait,
@@ -16,8 +18,6 @@ from ltlcompiler.model import (
     Transition,
     UserFormula,
 )
-from slugs_bridge import formula as f
-from slugs_bridge.diagnostics import FormulaError, SpecSemanticError
 
 GRID = """
 robot "tiny"

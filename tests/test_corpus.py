@@ -13,8 +13,8 @@ from pathlib import Path
 import pytest
 
 from gaitc.loading import load_spec
-from slugs_bridge.game import Game
-from slugs_bridge.symbolic import SymbolicSpec
+from solver.game import Game
+from solver.symbolic import SymbolicSpec
 
 DATA = Path(__file__).parent / "data"
 CORPUS = DATA / "gr1_corpus"

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from slugs_bridge.diagnostics import (
+from diagnostics import (
     Diagnostic,
     GaitcError,
     Span,

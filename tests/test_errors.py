@@ -10,13 +10,13 @@ from pathlib import Path
 
 import pytest
 
-from ltlcompiler.frontend import load_model
-from slugs_bridge.diagnostics import (
+from diagnostics import (
     GaitcError,
     SpecSemanticError,
     render_diagnostic,
     render_error,
 )
+from ltlcompiler.frontend import load_model
 
 CATALOGUE = sorted((Path(__file__).parent / "errors").glob("*.gait"))
 

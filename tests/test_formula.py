@@ -1,4 +1,4 @@
-"""Property tests of the formula IR (slugs_bridge/formula.py): simplify, next, evaluate."""
+"""Property tests of the formula IR (gr1/formula.py): simplify, next, evaluate."""
 
 from __future__ import annotations
 
@@ -8,9 +8,9 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from slugs_bridge.diagnostics import FormulaError, Span
-from slugs_bridge.evaluation import evaluate
-from slugs_bridge.formula import (
+from diagnostics import FormulaError, Span
+from gr1.evaluation import evaluate
+from gr1.formula import (
     FALSE,
     TRUE,
     Add,

@@ -13,8 +13,8 @@ from pathlib import Path
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+from diagnostics import GaitcError
 from ltlcompiler.frontend import model_from_text
-from slugs_bridge.diagnostics import GaitcError
 
 SEEDS = [
     """robot "thesis robot A"

@@ -6,10 +6,10 @@ from pathlib import Path
 
 import pytest
 
+from diagnostics import Span
 from gaitgraph.pairing import check_gaits, resolve_primitive
 from gaitgraph.robot import RobotFileError, load_robot, parse_robot
 from ltlcompiler.model import Gait, GaitKind, Primitive
-from slugs_bridge.diagnostics import Span
 
 ROBOTS = Path(__file__).resolve().parent.parent / "specs" / "robots"
 GOOD = """robot: tiny

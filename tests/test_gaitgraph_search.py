@@ -10,12 +10,13 @@ import numpy as np
 import pytest
 
 from gaitc.cli import main
+from gaitgraph.cycles import edge_weights
 from gaitgraph.graph import GaitGraph, full_graph
 from gaitgraph.kinematics import body_length, valve_int
 from gaitgraph.report import gaits_json
 from gaitgraph.resets import search_around
 from gaitgraph.robot import load_robot
-from gaitgraph.search import edge_weights, search
+from gaitgraph.search import search
 
 ROBOTS = Path(__file__).resolve().parent.parent / "specs" / "robots"
 

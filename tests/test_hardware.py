@@ -15,6 +15,7 @@ from pathlib import Path
 
 import pytest
 
+from diagnostics import SpecSemanticError
 from gaitc.cli import main
 from gaitc.commands.simulating import Loaded, load_session
 from gaitgraph.pairing import resolve_primitive
@@ -26,7 +27,6 @@ from gaitsim.environments import AdversarialEnvironment, RandomEnvironment
 from gaitsim.run import read_jsonl
 from gaitsim.scenario import ScriptedEnvironment, load_scenario
 from ltlcompiler.model import GaitKind
-from slugs_bridge.diagnostics import SpecSemanticError
 
 ROOT = Path(__file__).resolve().parent.parent
 RADIAL8 = ROOT / "specs" / "radial8_patrol.gait"

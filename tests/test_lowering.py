@@ -8,6 +8,22 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from diagnostics import FormulaError, Span, SpecSemanticError
+from gr1.evaluation import evaluate
+from gr1.formula import (
+    And,
+    Compare,
+    Expr,
+    Iff,
+    Implies,
+    IntConst,
+    IntVar,
+    Next,
+    Not,
+    Or,
+    Var,
+)
+from gr1.spec import SECTIONS, Clause, GR1Spec, Variable
 from ltlcompiler.decoding import RobotState, encode
 from ltlcompiler.lowering import lower
 from ltlcompiler.model import (
@@ -22,22 +38,6 @@ from ltlcompiler.model import (
     Transition,
     UserFormula,
 )
-from slugs_bridge.diagnostics import FormulaError, Span, SpecSemanticError
-from slugs_bridge.evaluation import evaluate
-from slugs_bridge.formula import (
-    And,
-    Compare,
-    Expr,
-    Iff,
-    Implies,
-    IntConst,
-    IntVar,
-    Next,
-    Not,
-    Or,
-    Var,
-)
-from slugs_bridge.spec import SECTIONS, Clause, GR1Spec, Variable
 
 ENCODINGS = ("onehot", "binary")
 

@@ -4,11 +4,11 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from slugs_bridge.diagnostics import Span
-from slugs_bridge.formula import And, Compare, IntConst, IntVar, Not, Or, Var
+from diagnostics import Span
+from gr1.formula import And, Compare, IntConst, IntVar, Not, Or, Var
+from gr1.spec import Clause, GR1Spec, Origin, Variable
 from slugs_bridge.ltltext import emit_ltl
 from slugs_bridge.slugsin import parse_slugsin
-from slugs_bridge.spec import Clause, GR1Spec, Origin, Variable
 
 DATA = Path(__file__).parent / "data"
 

@@ -4,10 +4,10 @@ from __future__ import annotations
 
 import pytest
 
+from diagnostics import FormulaError, SpecSyntaxError
+from gr1 import formula as f
 from ltlcompiler import syntax as s
 from ltlcompiler.parser import parse
-from slugs_bridge import formula as f
-from slugs_bridge.diagnostics import FormulaError, SpecSyntaxError
 
 
 def one(text: str) -> s.Statement:

@@ -10,7 +10,11 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parent.parent
-PACKAGES = ["gaitc", "ltlcompiler", "slugs_bridge", "gaitgraph", "gaitsim", "gaithw"]
+PACKAGES = [
+    "diagnostics", "gr1", "solver", "verifier", "slugs_bridge", "ltlcompiler",
+    "gaitgraph", "gaitsim", "gaithw", "gaitc",
+]
+MAX_LINES = 500  # lowered to 400 once the last long modules are split
 
 
 def _tool(name: str) -> list[str]:
@@ -25,7 +29,7 @@ def _tool(name: str) -> list[str]:
 
 def test_ruff_clean() -> None:
     result = subprocess.run(
-        [*_tool("ruff"), "check", *PACKAGES, "tests", "bench"],
+        [*_tool("ruff"), "check", *PACKAGES, "tests", "bench", "tools"],
         cwd=ROOT, capture_output=True, text=True, check=False,
     )
     assert result.returncode == 0, result.stdout + result.stderr
@@ -41,26 +45,15 @@ def test_mypy_clean() -> None:
 
 def test_every_module_has_a_docstring_and_stays_small() -> None:
     problems = []
-    for package in PACKAGES:
+    for package in [*PACKAGES, "tests", "bench", "tools"]:
         for path in sorted((ROOT / package).rglob("*.py")):
             text = path.read_text(encoding="utf-8")
-            if not text.lstrip().startswith(('"""', "'''")):
+            body = text.split("\n", 1)[1] if text.startswith("#!") else text
+            if not body.lstrip().startswith(('"""', "'''")):
                 problems.append(f"{path.relative_to(ROOT)}: no module docstring")
-            if text.count("\n") > 500:
+            if text.count("\n") > MAX_LINES:
                 problems.append(f"{path.relative_to(ROOT)}: {text.count(chr(10))} lines")
     assert not problems, "\n".join(problems)
-
-
-def test_slugs_bridge_never_imports_the_front_end() -> None:
-    offenders = []
-    for path in sorted((ROOT / "slugs_bridge").rglob("*.py")):
-        for number, line in enumerate(path.read_text(encoding="utf-8").splitlines(), 1):
-            stripped = line.strip()
-            if stripped.startswith(("import ", "from ")) and (
-                "ltlcompiler" in stripped or "gaitc" in stripped.split()[1]
-            ):
-                offenders.append(f"{path.relative_to(ROOT)}:{number}: {stripped}")
-    assert not offenders, "\n".join(offenders)
 
 
 def test_lark_stays_in_the_parser() -> None:

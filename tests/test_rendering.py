@@ -7,6 +7,7 @@ from pathlib import Path
 
 import pytest
 
+from diagnostics import UsageError
 from gaitc.cli import main
 from gaitc.commands.simulating import Loaded, load_session
 from gaitsim import graphics
@@ -16,9 +17,8 @@ from gaitsim.environments import AdversarialEnvironment
 from gaitsim.map_view import map_view, spec_view
 from gaitsim.run import Run, save_run
 from gaitsim.simulator import simulate
-from slugs_bridge.controller import controller_to_json
-from slugs_bridge.diagnostics import UsageError
-from slugs_bridge.synthesis import synthesize
+from gr1.controller import controller_to_json
+from solver.synthesis import synthesize
 
 ROOT = Path(__file__).resolve().parent.parent
 PATROL = str(ROOT / "specs" / "patrol_2x2.gait")

@@ -11,8 +11,7 @@ from pathlib import Path
 
 import pytest
 
-from slugs_bridge.counterverifier import verify_counterstrategy
-from slugs_bridge.diagnostics import SolverError
+from diagnostics import SolverError
 from slugs_bridge.runner import (
     OPTIONS,
     controller_from_slugs_json,
@@ -23,7 +22,8 @@ from slugs_bridge.runner import (
     run_slugs_synth,
 )
 from slugs_bridge.slugsin import parse_slugsin
-from slugs_bridge.verifier import verify
+from verifier.counterstrategy import verify_counterstrategy
+from verifier.strategy import verify
 
 HERE = Path(__file__).resolve().parent
 FAKE = str(HERE / "fake_slugs.py")

@@ -6,6 +6,7 @@ from pathlib import Path
 
 import pytest
 
+from diagnostics import ScenarioError
 from gaitc.cli import main
 from gaitc.loading import load_spec
 from gaitsim.domain import Domain
@@ -14,10 +15,9 @@ from gaitsim.run import Run
 from gaitsim.scenario import ScriptedEnvironment, load_scenario, parse_scenario
 from gaitsim.simulator import simulate
 from gaitsim.strategy import Strategy, strategy_from_controller
+from gr1.controller import controller_to_json
 from ltlcompiler.model import Model
-from slugs_bridge.controller import controller_to_json
-from slugs_bridge.diagnostics import ScenarioError
-from slugs_bridge.synthesis import synthesize
+from solver.synthesis import synthesize
 
 SPEC = (Path(__file__).resolve().parent / "data" / "hazard_patrol.gait").read_text(
     encoding="utf-8"

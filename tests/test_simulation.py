@@ -11,6 +11,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from diagnostics import ControllerError
 from gaitc.cli import main
 from gaitc.loading import load_spec
 from gaitsim.domain import Domain, State
@@ -19,10 +20,9 @@ from gaitsim.monitor import Monitor, compile_formula
 from gaitsim.run import read_jsonl, write_csv, write_jsonl
 from gaitsim.simulator import simulate
 from gaitsim.strategy import Strategy, strategy_from_controller
-from slugs_bridge.controller import Controller, controller_to_json
-from slugs_bridge.diagnostics import ControllerError
-from slugs_bridge.evaluation import evaluate
-from slugs_bridge.synthesis import synthesize
+from gr1.controller import Controller, controller_to_json
+from gr1.evaluation import evaluate
+from solver.synthesis import synthesize
 
 ROOT = Path(__file__).resolve().parent.parent
 PATROL = ROOT / "specs" / "patrol_2x2.gait"

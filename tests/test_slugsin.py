@@ -9,11 +9,11 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from slugs_bridge.diagnostics import SlugsFormatError
-from slugs_bridge.evaluation import evaluate
-from slugs_bridge.formula import And, Const, Expr, Not, Or, Var, Xor, walk
+from diagnostics import SlugsFormatError
+from gr1.evaluation import evaluate
+from gr1.formula import And, Const, Expr, Not, Or, Var, Xor, walk
+from gr1.spec import Clause, GR1Spec, Variable
 from slugs_bridge.slugsin import emit_formula, emit_slugsin, parse_slugsin
-from slugs_bridge.spec import Clause, GR1Spec, Variable
 
 DATA = Path(__file__).parent / "data"
 PREFIX_FILES = sorted(

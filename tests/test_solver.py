@@ -1,4 +1,4 @@
-"""Tests of the embedded BDD solver (slugs_bridge/symbolic.py, game.py, synthesis.py).
+"""Tests of the embedded BDD solver (solver/symbolic.py, game.py, synthesis.py).
 
 The property test compares it with an explicit-state GR(1) game solver written here from
 the definitions (sets of states, no BDDs), on random tiny specifications.
@@ -13,11 +13,9 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from slugs_bridge import synthesis
-from slugs_bridge.counterverifier import verify_counterstrategy
-from slugs_bridge.diagnostics import FormulaError, SolverError
-from slugs_bridge.evaluation import evaluate
-from slugs_bridge.formula import (
+from diagnostics import FormulaError, SolverError
+from gr1.evaluation import evaluate
+from gr1.formula import (
     Add,
     And,
     Compare,
@@ -32,12 +30,14 @@ from slugs_bridge.formula import (
     Var,
     Xor,
 )
-from slugs_bridge.game import SEMANTICS, Game
-from slugs_bridge.ordering import group_members, invariant_clauses, variable_order
-from slugs_bridge.spec import Clause, GR1Spec, Variable
-from slugs_bridge.strategy import holds, smallest
-from slugs_bridge.symbolic import Options, SymbolicSpec
-from slugs_bridge.verifier import verify
+from gr1.spec import SEMANTICS, Clause, GR1Spec, Variable
+from solver import synthesis
+from solver.game import Game
+from solver.ordering import group_members, invariant_clauses, variable_order
+from solver.strategy import holds, smallest
+from solver.symbolic import Options, SymbolicSpec
+from verifier.counterstrategy import verify_counterstrategy
+from verifier.strategy import verify
 
 
 def clauses(*formulas: Expr) -> tuple[Clause, ...]:
@@ -487,8 +487,8 @@ def test_solver_rejects_next_state_outputs_in_env_trans() -> None:
 
     (Primed outputs in env_liveness are accepted, as SLUGS does: fastslow_ICRA uses them.)
     """
-    from slugs_bridge.formula import Or, Var
-    from slugs_bridge.spec import Clause, GR1Spec, Variable
+    from gr1.formula import Or, Var
+    from gr1.spec import Clause, GR1Spec, Variable
 
     base = GR1Spec(inputs=(Variable("a"),), outputs=(Variable("y"),))
     spec = base.with_sections(env_trans=(Clause(Or((Var("a"), Var("y", True)))),))

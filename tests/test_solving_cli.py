@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 
 from gaitc.cli import main
-from slugs_bridge.controller import load_controller
+from gr1.controller import load_controller
 
 DATA = Path(__file__).parent / "data" / "slugs_examples"
 REALIZABLE = str(DATA / "firefighting.slugsin")

@@ -15,13 +15,13 @@ from pathlib import Path
 
 import pytest
 
+from diagnostics import UsageError
 from gaitc.cli import main
 from gaitc.commands.compiling import FORMATS, compile_text, write_atomically
 from ltlcompiler.frontend import load_model
 from ltlcompiler.lowering import lower
-from slugs_bridge.diagnostics import UsageError
 from slugs_bridge.structured import parse_structuredslugs
-from slugs_bridge.synthesis import check
+from solver.synthesis import check
 
 ROOT = Path(__file__).resolve().parent.parent
 SPECS = sorted((ROOT / "specs").glob("*.gait"))

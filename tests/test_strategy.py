@@ -10,20 +10,20 @@ from pathlib import Path
 
 import pytest
 
-from slugs_bridge import synthesis
-from slugs_bridge.controller import (
+from diagnostics import ControllerError
+from gr1.controller import (
     Controller,
     ControllerNode,
     controller_to_json,
     integers_of,
     load_controller,
 )
-from slugs_bridge.counterverifier import verify_counterstrategy
-from slugs_bridge.diagnostics import ControllerError
-from slugs_bridge.formula import Compare, Const, IntConst, IntVar, Not, Var, Xor
+from gr1.formula import Compare, Const, IntConst, IntVar, Not, Var, Xor
+from gr1.spec import Clause, GR1Spec, Variable
 from slugs_bridge.slugsin import parse_slugsin
-from slugs_bridge.spec import Clause, GR1Spec, Variable
-from slugs_bridge.verifier import verify
+from solver import synthesis
+from verifier.counterstrategy import verify_counterstrategy
+from verifier.strategy import verify
 
 DATA = Path(__file__).parent / "data"
 EXAMPLES = sorted(

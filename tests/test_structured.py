@@ -9,10 +9,10 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from slugs_bridge.bitblast import bitblast
-from slugs_bridge.diagnostics import SlugsFormatError
-from slugs_bridge.evaluation import evaluate
-from slugs_bridge.formula import (
+from diagnostics import SlugsFormatError
+from gr1.bitblast import bitblast
+from gr1.evaluation import evaluate
+from gr1.formula import (
     Add,
     And,
     Compare,
@@ -28,8 +28,8 @@ from slugs_bridge.formula import (
     Xor,
     atoms,
 )
+from gr1.spec import GR1Spec, Variable
 from slugs_bridge.slugsin import emit_formula, parse_slugsin
-from slugs_bridge.spec import GR1Spec, Variable
 from slugs_bridge.structured import emit_structuredslugs, is_prefix_line, parse_structuredslugs
 
 DATA = Path(__file__).parent / "data"

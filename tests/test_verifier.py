@@ -8,13 +8,13 @@ from pathlib import Path
 
 import pytest
 
-from slugs_bridge.controller import Controller, ControllerNode, integers_of
-from slugs_bridge.counterverifier import verify_counterstrategy
-from slugs_bridge.diagnostics import Span
-from slugs_bridge.formula import FALSE, And, Compare, Expr, Iff, IntVar, Not, Or, Var
+from diagnostics import Span
+from gr1.controller import Controller, ControllerNode, integers_of
+from gr1.formula import FALSE, And, Compare, Expr, Iff, IntVar, Not, Or, Var
+from gr1.spec import Clause, GR1Spec, Origin, Variable
 from slugs_bridge.slugsin import parse_slugsin
-from slugs_bridge.spec import Clause, GR1Spec, Origin, Variable
-from slugs_bridge.verifier import verify
+from verifier.counterstrategy import verify_counterstrategy
+from verifier.strategy import verify
 
 DATA = Path(__file__).resolve().parent / "data"
 r, g = Var("r"), Var("g")
@@ -218,7 +218,7 @@ def corpus_specs(step: int) -> list[Path]:
 
 @pytest.mark.parametrize("path", corpus_specs(5), ids=lambda p: p.stem)
 def test_embedded_solver_controllers_pass(path: Path) -> None:
-    synthesis = pytest.importorskip("slugs_bridge.synthesis")
+    synthesis = pytest.importorskip("solver.synthesis")
     spec = parse_slugsin(path.read_text(encoding="utf-8"), str(path))
     for semantics in ("default", "robotics"):
         ctrl = synthesis.synthesize(spec, semantics)
@@ -274,7 +274,7 @@ def integer_controller(values: list[tuple[int, int]], trans: list[tuple[int, ...
 
 
 def test_integer_spec_is_bit_blasted_and_messages_decode_integers() -> None:
-    pytest.importorskip("slugs_bridge.bitblast")
+    pytest.importorskip("gr1.bitblast")
     spec, every = integer_spec(), (0, 1, 2)
     good = integer_controller([(0, 0), (1, 1), (2, 2)], [every] * 3)
     assert verify(spec, good).ok, verify(spec, good).problems
@@ -302,8 +302,8 @@ def _oracle(spec: GR1Spec, ctrl: Controller, semantics: str) -> bool:
     """The verifier's verdict recomputed by enumerating every valuation (tiny specs only)."""
     from itertools import product
 
-    from slugs_bridge.evaluation import evaluate
-    from slugs_bridge.formula import conj
+    from gr1.evaluation import evaluate
+    from gr1.formula import conj
 
     ins, outs = [v.name for v in spec.inputs], [v.name for v in spec.outputs]
     names = ins + outs
@@ -385,7 +385,7 @@ def _random_formula(rng: random.Random, names: list[str], primes: str, depth: in
 
 @pytest.mark.parametrize("seed", range(40))
 def test_verifier_agrees_with_brute_force_oracle(seed: int) -> None:
-    synthesis = pytest.importorskip("slugs_bridge.synthesis")
+    synthesis = pytest.importorskip("solver.synthesis")
     rng = random.Random(seed)
     names = ["a", "b", "x", "y"]
 

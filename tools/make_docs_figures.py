@@ -26,8 +26,8 @@ from gaitsim.automaton_view import automaton_view  # noqa: E402
 from gaitsim.environments import AdversarialEnvironment  # noqa: E402
 from gaitsim.map_view import map_view, spec_view  # noqa: E402
 from gaitsim.simulator import simulate  # noqa: E402
-from slugs_bridge.controller import controller_to_json  # noqa: E402
-from slugs_bridge.synthesis import synthesize  # noqa: E402
+from gr1.controller import controller_to_json  # noqa: E402
+from solver.synthesis import synthesize  # noqa: E402
 
 FIGURES = ROOT / "docs" / "figures"
 ROBOT_A = ROOT / "specs" / "thesis_robot_a.gait"

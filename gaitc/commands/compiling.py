@@ -12,11 +12,11 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
+from diagnostics import Diagnostic, UsageError, render_diagnostic
+from diagnostics.files import write_atomically
+from gr1.formula import Expr
+from gr1.spec import GR1Spec, Variable
 from ltlcompiler.encoding import ENCODINGS
-from slugs_bridge.diagnostics import Diagnostic, UsageError, render_diagnostic
-from slugs_bridge.formula import Expr
-from slugs_bridge.output import write_atomically
-from slugs_bridge.spec import GR1Spec, Variable
 
 FORMATS = ("structuredslugs", "slugsin", "ltl")
 
@@ -86,7 +86,7 @@ def compile_text(path: str, fmt: str = "structuredslugs", encoding: str = "oneho
 def emit(spec: GR1Spec, fmt: str) -> str:
     """``spec`` written in ``fmt``; SLUGS formats get a ``#`` comment naming each clause's rule.
 
-    slugsin bit-blasts integer variables first (slugs_bridge.bitblast).
+    slugsin bit-blasts integer variables first (gr1.bitblast).
     """
     if fmt == "structuredslugs":
         from slugs_bridge.structured import emit_infix
@@ -96,7 +96,7 @@ def emit(spec: GR1Spec, fmt: str) -> str:
         from slugs_bridge.slugsin import emit_formula
 
         if spec.has_integers:
-            from slugs_bridge.bitblast import bitblast
+            from gr1.bitblast import bitblast
 
             spec = bitblast(spec)
         return _annotated(spec, emit_formula, lambda v: v.name)

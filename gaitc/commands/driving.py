@@ -11,12 +11,12 @@ import sys
 from pathlib import Path
 from typing import Any
 
+from diagnostics import UsageError
 from gaitc.commands.simulating import ENVIRONMENTS, Loaded, load_session, report_run
 from gaitc.exitcodes import EXIT_UNREALIZABLE
 from gaitc.loading import ENCODINGS, load_spec
 from gaithw.backend import Backend
 from gaitsim.environments import AdversarialEnvironment, Environment, RandomEnvironment
-from slugs_bridge.diagnostics import UsageError
 
 EPILOG = """backends:
   --backend sim      a simulated robot (default): valves apply instantly, sensor readings come

@@ -5,8 +5,8 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
-from slugs_bridge.diagnostics import SpecSemanticError, UsageError
-from slugs_bridge.output import write_atomically
+from diagnostics import SpecSemanticError, UsageError
+from diagnostics.files import write_atomically
 
 
 def register(subparsers: Any) -> None:
@@ -43,10 +43,11 @@ def run_render(args: argparse.Namespace) -> int:
 
 
 def run(args: argparse.Namespace) -> int:
+    from gaitgraph.cycles import parse_direction
     from gaitgraph.drawing import write_drawings
     from gaitgraph.report import gait_table, gaits_json
     from gaitgraph.robot import load_robot
-    from gaitgraph.search import parse_direction, search
+    from gaitgraph.search import search
 
     if args.max_states < 1:
         raise UsageError("--max-states must be at least 1")

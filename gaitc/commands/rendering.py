@@ -8,9 +8,9 @@ import argparse
 import sys
 from typing import Any
 
+from diagnostics import UsageError
 from gaitc.exitcodes import EXIT_OK, EXIT_UNREALIZABLE
 from gaitsim.graphics import FORMATS, Picture, output_format
-from slugs_bridge.diagnostics import UsageError
 
 FORMAT_HELP = (f"output format: {', '.join(FORMATS)} (default: from the -o extension); every "
                "format but dot needs Graphviz's 'dot' program")
@@ -123,7 +123,7 @@ def run_map(args: argparse.Namespace) -> int:
 
 
 def _check_run(run: Any, model: Any, path: str) -> None:
-    from slugs_bridge.diagnostics import ScenarioError, Span
+    from diagnostics import ScenarioError, Span
 
     regions = {r.name for r in model.regions}
     legs = {leg.name for leg in model.legs}

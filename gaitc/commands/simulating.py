@@ -14,6 +14,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from diagnostics import ControllerError, UsageError
 from gaitc.exitcodes import EXIT_OK, EXIT_UNREALIZABLE, EXIT_USER
 from gaitc.loading import ENCODINGS, LoadedSpec, load_spec
 from gaitsim.domain import Domain
@@ -22,7 +23,6 @@ from gaitsim.monitor import Monitor
 from gaitsim.run import Run
 from gaitsim.strategy import Strategy, load_strategy, strategy_from_controller
 from ltlcompiler.model import Model
-from slugs_bridge.diagnostics import ControllerError, UsageError
 
 ENVIRONMENTS = ("scripted", "random", "adversarial")
 EPILOG = """environments:
@@ -75,7 +75,7 @@ def load_session(spec_path: str, controller: str | None, encoding: str | None = 
     if controller is not None:
         strategy = load_strategy(controller, loaded.spec)
     else:
-        from slugs_bridge.synthesis import synthesize
+        from solver.synthesis import synthesize
 
         found = synthesize(loaded.spec, semantics)
         if found is None:

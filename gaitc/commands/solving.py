@@ -1,8 +1,8 @@
 """The solving commands: ``check``, ``synth``, ``counter`` and ``verify``.
 
 Each loads a spec with :func:`gaitc.loading.load_spec`, runs the embedded solver
-(:mod:`slugs_bridge.synthesis`) or SLUGS (:mod:`slugs_bridge.runner`), and, for ``synth``,
-proves the result with the independent checker (:mod:`slugs_bridge.verifier`).
+(:mod:`solver.synthesis`) or SLUGS (:mod:`slugs_bridge.runner`), and, for ``synth``,
+proves the result with the independent checker (:mod:`verifier.strategy`).
 """
 
 from __future__ import annotations
@@ -14,13 +14,13 @@ import sys
 import time
 from typing import Any
 
+from diagnostics import GaitcError, SolverError, UsageError, render_error
+from diagnostics.files import write_atomically
 from gaitc.exitcodes import EXIT_OK, EXIT_SOLVER, EXIT_UNREALIZABLE, EXIT_USER
 from gaitc.loading import ENCODINGS, LoadedSpec, load_spec
-from slugs_bridge.controller import Controller, controller_to_json, load_controller
-from slugs_bridge.diagnostics import GaitcError, SolverError, UsageError, render_error
-from slugs_bridge.game import Progress
-from slugs_bridge.output import write_atomically
-from slugs_bridge.spec import GR1Spec
+from gr1.controller import Controller, controller_to_json, load_controller
+from gr1.spec import GR1Spec
+from solver.game import Progress
 
 EXIT_CODES = """exit codes:
   0  every spec is realizable (check), the controller was written / verified
@@ -139,14 +139,14 @@ def _limit_memory(args: argparse.Namespace) -> None:
 
 
 def _slugsin(spec: GR1Spec) -> str:
-    from slugs_bridge.bitblast import bitblast
+    from gr1.bitblast import bitblast
     from slugs_bridge.slugsin import emit_slugsin
 
     return emit_slugsin(bitblast(spec))
 
 
 def _options(args: argparse.Namespace) -> Any:
-    from slugs_bridge.symbolic import Options
+    from solver.symbolic import Options
 
     return Options(memory_mb=getattr(args, "memory_limit", None))
 
@@ -160,7 +160,7 @@ def _decide(loaded: LoadedSpec, args: argparse.Namespace) -> tuple[bool, float]:
             _slugsin(loaded.spec), semantics=semantics, timeout=args.timeout, slugs=args.slugs
         )
         return result.realizable, result.seconds
-    from slugs_bridge import synthesis
+    from solver import synthesis
 
     checked = synthesis.check(loaded.spec, semantics, args.timeout, _progress(), _options(args))
     return checked.realizable, checked.seconds
@@ -239,7 +239,7 @@ def _solve(
                         else runner.counterstrategy_from_slugs_text)
                 automaton = read(result.output, loaded.spec, semantics)
         else:
-            from slugs_bridge import synthesis
+            from solver import synthesis
 
             make = synthesis.synthesize if kind == "strategy" else synthesis.counterstrategy
             automaton = make(loaded.spec, semantics, args.timeout, _progress(), _options(args))
@@ -270,8 +270,8 @@ def run_synth(args: argparse.Namespace) -> int:
 
 
 def _report_verification(spec: GR1Spec, controller: Controller, semantics: str) -> int:
-    from slugs_bridge.counterverifier import verify_counterstrategy
-    from slugs_bridge.verifier import verify
+    from verifier.counterstrategy import verify_counterstrategy
+    from verifier.strategy import verify
 
     check = verify_counterstrategy if controller.kind == "counterstrategy" else verify
     report = check(spec, controller, semantics)

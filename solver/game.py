@@ -16,10 +16,9 @@ from dataclasses import dataclass, field
 
 import dd.cudd as cudd
 
-from slugs_bridge.diagnostics import SolverError
-from slugs_bridge.symbolic import BDDNode, SymbolicSpec
+from diagnostics import SolverError
+from solver.symbolic import BDDNode, SymbolicSpec
 
-SEMANTICS = ("default", "robotics")
 Progress = Callable[[str], None]
 
 

@@ -13,11 +13,37 @@ and ``sys_init`` (unprimed), ``env_trans`` and ``sys_trans`` (may use primes), a
 from __future__ import annotations
 
 from dataclasses import dataclass, field, replace
+from typing import Final, Literal, get_args
 
-from slugs_bridge.diagnostics import Span
-from slugs_bridge.formula import Expr
+from diagnostics import Span
+from gr1.formula import Expr
 
-SECTIONS = ("env_init", "sys_init", "env_trans", "sys_trans", "env_liveness", "sys_liveness")
+Section = Literal["env_init", "sys_init", "env_trans", "sys_trans", "env_liveness", "sys_liveness"]
+#: The six sections, in the canonical order of SLUGS's files.
+SECTIONS: Final[tuple[Section, ...]] = get_args(Section)
+
+
+def section_named(player: str, part: str) -> Section:
+    """The section of ``player`` (env, sys) and ``part`` (init, trans, liveness)."""
+    for known in SECTIONS:
+        if known == f"{player}_{part}":
+            return known
+    raise ValueError(f"no section {player}_{part}; the sections are {', '.join(SECTIONS)}")
+
+
+Semantics = Literal["default", "robotics"]
+#: ``default``: for every input allowed by θe some output satisfying θs is winning (SLUGS's
+#: default); ``robotics``: every state allowed by θe ∧ θs is winning
+#: (SLUGS's ``--sysInitRoboticsSemantics``).
+SEMANTICS: Final[tuple[Semantics, ...]] = get_args(Semantics)
+
+
+def semantics_named(name: str) -> Semantics:
+    """``name`` as a :data:`Semantics`; :class:`ValueError` names the choices otherwise."""
+    for known in SEMANTICS:
+        if name == known:
+            return known
+    raise ValueError(f"unknown semantics {name!r}; use one of {', '.join(SEMANTICS)}")
 
 
 @dataclass(frozen=True)

@@ -1,6 +1,6 @@
 """Independent verification of counter-strategies: the environment really wins.
 
-Shares the BDD translation and the automaton graph of :mod:`slugs_bridge.verifier` (not
+Shares the BDD translation and the automaton graph of :mod:`verifier.strategy` (not
 the solver's fixpoint code); the checks are the duals of a strategy's: the environment's
 starts are allowed, every system answer allowed by ρs is present, and every cycle the system
 can keep alive satisfies every environment assumption while starving some system goal.
@@ -10,9 +10,9 @@ from __future__ import annotations
 
 from typing import Any
 
-from slugs_bridge.controller import Controller
-from slugs_bridge.spec import GR1Spec
-from slugs_bridge.verifier import Bits, Check, VerificationReport, few_nodes
+from gr1.controller import Controller
+from gr1.spec import GR1Spec
+from verifier.strategy import Bits, Check, VerificationReport, few_nodes
 
 
 def verify_counterstrategy(

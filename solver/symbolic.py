@@ -13,9 +13,9 @@ from typing import Any
 
 import dd.cudd as cudd
 
-from slugs_bridge.controller import spec_bits
-from slugs_bridge.diagnostics import FormulaError
-from slugs_bridge.formula import (
+from diagnostics import FormulaError
+from gr1.controller import spec_bits
+from gr1.formula import (
     Add,
     And,
     Compare,
@@ -32,8 +32,8 @@ from slugs_bridge.formula import (
     Var,
     Xor,
 )
-from slugs_bridge.ordering import invariant_clauses, variable_order
-from slugs_bridge.spec import GR1Spec, Variable
+from gr1.spec import GR1Spec, Variable
+from solver.ordering import invariant_clauses, variable_order
 
 BDDNode = Any  # a dd.cudd.Function; dd ships no type stubs
 
@@ -42,7 +42,7 @@ BDDNode = Any  # a dd.cudd.Function; dd ships no type stubs
 class Options:
     """Tuning switches of the symbolic solver (each measured in docs/performance.md)."""
 
-    order: str = "guards"  # see slugs_bridge.ordering.ORDERS
+    order: str = "guards"  # see solver.ordering.ORDERS
     care: bool = True  # solve modulo the invariants of ρe/ρs (see SymbolicSpec.care)
     reordering: bool = False  # CUDD dynamic reordering (sifting) while solving
     reorder_once: bool = False  # one sifting run after building ρ, then the order is fixed

@@ -15,11 +15,11 @@ from dataclasses import dataclass
 
 import dd.cudd as cudd
 
-from slugs_bridge.controller import Controller, ControllerNode
-from slugs_bridge.diagnostics import SolverError
-from slugs_bridge.game import Limits
-from slugs_bridge.strategy import assignments, fix, primed, smallest, spec_integers
-from slugs_bridge.symbolic import BDDNode, SymbolicSpec
+from diagnostics import SolverError
+from gr1.controller import Controller, ControllerNode
+from solver.game import Limits
+from solver.strategy import assignments, fix, primed, smallest, spec_integers
+from solver.symbolic import BDDNode, SymbolicSpec
 
 State = tuple[int, ...]
 

@@ -12,7 +12,7 @@ import os
 import tempfile
 from pathlib import Path
 
-from slugs_bridge.diagnostics import UsageError
+from diagnostics import UsageError
 
 
 def write_atomically(path: str | Path, data: str | bytes) -> None:

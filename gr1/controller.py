@@ -14,8 +14,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from slugs_bridge.diagnostics import ControllerError, Span
-from slugs_bridge.spec import GR1Spec, Variable
+from diagnostics import ControllerError, Span
+from gr1.spec import GR1Spec, Variable
 
 FORMAT_VERSION = 1
 KINDS = ("strategy", "counterstrategy")

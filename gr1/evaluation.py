@@ -2,7 +2,7 @@
 
 Bottom-up over the DAG: each shared node is evaluated once and deep formulas need no
 recursion.  ``Next``/``Always``/``Eventually`` cannot be evaluated on one step and raise
-:class:`~slugs_bridge.diagnostics.FormulaError`.
+:class:`~diagnostics.FormulaError`.
 """
 
 from __future__ import annotations
@@ -10,8 +10,8 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import Any
 
-from slugs_bridge.diagnostics import FormulaError
-from slugs_bridge.formula import (
+from diagnostics import FormulaError
+from gr1.formula import (
     Add,
     And,
     Compare,

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Mapping
 
-from slugs_bridge.formula import (
+from gr1.formula import (
     FALSE,
     TRUE,
     Add,
@@ -31,7 +31,7 @@ from slugs_bridge.formula import (
     Xor,
     walk,
 )
-from slugs_bridge.spec import Clause, GR1Spec, Origin, Variable
+from gr1.spec import SECTIONS, Clause, GR1Spec, Origin, Variable
 
 Bits = list[Expr]  # little-endian bit vector; missing high bits are 0
 
@@ -293,8 +293,7 @@ def bitblast(spec: GR1Spec) -> GR1Spec:
     """
     has_compare = any(
         isinstance(node, (Compare, IntVar))
-        for name in ("env_init", "sys_init", "env_trans", "sys_trans",
-                     "env_liveness", "sys_liveness")
+        for name in SECTIONS
         for clause in spec.section(name)
         for node in walk(clause.formula)
     )
@@ -303,8 +302,7 @@ def bitblast(spec: GR1Spec) -> GR1Spec:
     variables = {v.name: v for v in spec.variables()}
     memo: dict[int, Expr] = {}
     sections: dict[str, list[Clause]] = {}
-    for name in ("env_init", "sys_init", "env_trans", "sys_trans", "env_liveness",
-                 "sys_liveness"):
+    for name in SECTIONS:
         sections[name] = [
             Clause(lower(c.formula, variables, memo), c.origin) for c in spec.section(name)
         ]

@@ -5,7 +5,7 @@ part in equality or hashing, so tests compare trees structurally.  Hashes are
 cached, because readers of ``.slugsin`` memory buffers (``$``/``?``) build DAGs
 with heavy sharing.  ``Next``/``Always``/``Eventually`` exist only so front ends
 can represent user formulas before they are sorted into GR(1) sections; the
-sections of a :class:`~slugs_bridge.spec.GR1Spec` contain none of them
+sections of a :class:`~gr1.spec.GR1Spec` contain none of them
 (:func:`push_next` removes ``Next`` by priming variables).
 """
 
@@ -15,7 +15,7 @@ from collections.abc import Iterable, Iterator, Mapping
 from dataclasses import dataclass, field, fields
 from typing import Any, ClassVar
 
-from slugs_bridge.diagnostics import FormulaError, Span
+from diagnostics import FormulaError, Span
 
 
 class Node:

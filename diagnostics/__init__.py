@@ -1,8 +1,9 @@
-"""User-facing errors and warnings: one exception family, each carrying a source span.
+"""diagnostics: the bottom layer, user-facing errors and warnings with source spans.
 
 Every stage of gaitc (the .gait front end, the SLUGS format readers, the solver,
 the simulator) raises subclasses of :class:`GaitcError`; the CLI turns them into
-``file:line:col: message`` followed by the source line and a caret.
+``file:line:col: message`` followed by the source line and a caret. :mod:`diagnostics.files`
+writes result files atomically. Every package may import this one; it imports none of them.
 """
 
 from __future__ import annotations

@@ -15,13 +15,12 @@ from typing import Any
 import dd.cudd as cudd
 import networkx as nx
 
-from slugs_bridge.bitblast import bitblast
-from slugs_bridge.controller import Controller
-from slugs_bridge.diagnostics import FormulaError
-from slugs_bridge.formula import And, Const, Expr, Iff, Implies, Not, Or, Var, Xor
-from slugs_bridge.spec import Clause, GR1Spec
+from diagnostics import FormulaError
+from gr1.bitblast import bitblast
+from gr1.controller import Controller
+from gr1.formula import And, Const, Expr, Iff, Implies, Not, Or, Var, Xor
+from gr1.spec import SEMANTICS, Clause, GR1Spec
 
-SEMANTICS = ("default", "robotics")
 MAX_PROBLEMS = 60
 Bits = tuple[int, ...]
 
@@ -149,7 +148,7 @@ class Check:
 
     def __init__(self, spec: GR1Spec, controller: Controller, semantics: str) -> None:
         if semantics not in SEMANTICS:
-            raise ValueError(f"unknown semantics {semantics!r}; use 'default' or 'robotics'")
+            raise ValueError(f"unknown semantics {semantics!r}; use one of {', '.join(SEMANTICS)}")
         self.semantics, self.ctrl = semantics, controller
         self.spec = bitblast(spec)  # a format transformation, shared on purpose
         self.logic = _Logic(self.spec)

@@ -1,8 +1,8 @@
 """Facade of the embedded solver: realizability, controllers and counter-strategies for a spec.
 
-Each call builds a fresh :class:`~slugs_bridge.symbolic.SymbolicSpec`, solves the game of
-:mod:`slugs_bridge.game` and, when asked, extracts an explicit automaton
-(:mod:`slugs_bridge.strategy`, :mod:`slugs_bridge.counter`).
+Each call builds a fresh :class:`~solver.symbolic.SymbolicSpec`, solves the game of
+:mod:`solver.game` and, when asked, extracts an explicit automaton
+(:mod:`solver.strategy`, :mod:`solver.counter`).
 """
 
 from __future__ import annotations
@@ -10,14 +10,14 @@ from __future__ import annotations
 import time
 from dataclasses import dataclass, field
 
-from slugs_bridge.controller import Controller
-from slugs_bridge.counter import extract_counterstrategy
-from slugs_bridge.diagnostics import FormulaError, SolverError
-from slugs_bridge.formula import atoms
-from slugs_bridge.game import SEMANTICS, Game, GameStats, Limits, Progress
-from slugs_bridge.spec import GR1Spec
-from slugs_bridge.strategy import extract_strategy
-from slugs_bridge.symbolic import Options, SymbolicSpec
+from diagnostics import FormulaError, SolverError
+from gr1.controller import Controller
+from gr1.formula import atoms
+from gr1.spec import SEMANTICS, GR1Spec
+from solver.counter import extract_counterstrategy
+from solver.game import Game, GameStats, Limits, Progress
+from solver.strategy import extract_strategy
+from solver.symbolic import Options, SymbolicSpec
 
 
 @dataclass(frozen=True)

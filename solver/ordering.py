@@ -10,8 +10,8 @@ interacting finite state machines", DAC 1994).  Measured in docs/performance.md.
 
 from __future__ import annotations
 
-from slugs_bridge.formula import Implies, Node, atoms
-from slugs_bridge.spec import Clause, GR1Spec, Variable
+from gr1.formula import Implies, Node, atoms
+from gr1.spec import Clause, GR1Spec, Variable
 
 Atoms = set[tuple[str, bool]]
 

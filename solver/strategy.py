@@ -13,10 +13,10 @@ from __future__ import annotations
 from collections import deque
 from collections.abc import Iterable, Sequence
 
-from slugs_bridge.controller import Controller, ControllerNode, IntegerVar, integers_of
-from slugs_bridge.diagnostics import SolverError
-from slugs_bridge.game import GameResult, Limits
-from slugs_bridge.symbolic import BDDNode, SymbolicSpec
+from diagnostics import SolverError
+from gr1.controller import Controller, ControllerNode, IntegerVar, integers_of
+from solver.game import GameResult, Limits
+from solver.symbolic import BDDNode, SymbolicSpec
 
 State = tuple[int, ...]
 
