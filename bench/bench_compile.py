@@ -13,7 +13,7 @@ from collections.abc import Callable
 from functools import partial
 from typing import TypeVar
 
-from gaitc.commands.compiling import emit
+from gaitc.emission import emit
 from gr1.spec import SECTIONS
 from ltlcompiler.frontend import model_from_text
 from ltlcompiler.lowering import lower

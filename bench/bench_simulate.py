@@ -14,7 +14,7 @@ import time
 from pathlib import Path
 
 from gaitc.commands.simulating import load_session
-from gaitc.loading import load_spec
+from gaitc.loading import load
 from gaitsim.environments import AdversarialEnvironment, Environment, RandomEnvironment
 from gaitsim.simulator import Simulator
 from gr1.controller import controller_to_json
@@ -30,7 +30,7 @@ def cached_controller(spec: Path, encoding: str) -> Path:
     path = Path(tempfile.gettempdir()) / f"gaitc-bench-{spec.stem}-{encoding}-{digest}.json"
     if not path.exists():
         print(f"synthesizing {spec.name} ({encoding}) once; cached in {path}")
-        controller = synthesize(load_spec(str(spec), encoding).spec)
+        controller = synthesize(load(str(spec), encoding).gr1)
         if controller is None:
             raise SystemExit(f"{spec}: unrealizable")
         path.write_text(controller_to_json(controller), encoding="utf-8")

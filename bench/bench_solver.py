@@ -23,7 +23,7 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
 from diagnostics import SolverError
-from gaitc.loading import load_spec
+from gaitc.loading import load
 from solver import synthesis
 from solver.symbolic import Options
 
@@ -93,7 +93,7 @@ def time_embedded(path: str, encoding: str, options: Options, timeout: float, re
     for _ in range(repeat):
         started = time.process_time()
         try:
-            spec = load_spec(path, encoding).spec
+            spec = load(path, encoding).gr1
             result = synthesis.check(spec, timeout=timeout, options=options)
         except SolverError:
             return Row("timeout", time.process_time() - started, 0)
@@ -111,7 +111,7 @@ def time_slugs(path: str, encoding: str, timeout: float) -> str:
     from slugs_bridge.runner import run_slugs_check
 
     try:
-        res = run_slugs_check(_slugsin(load_spec(path, encoding).spec), timeout=timeout)
+        res = run_slugs_check(_slugsin(load(path, encoding).gr1), timeout=timeout)
     except SolverError:
         return "timeout"
     return f"{res.seconds:.2f}"
@@ -145,7 +145,7 @@ def main() -> None:
     if args.grid:
         sizes = [(int(r), int(c)) for r, c in (g.lower().split("x") for g in args.grid)]
     health = args.health or (HEALTH[:2] if args.quick else HEALTH)
-    load_spec(str(ROOT / "specs" / "thesis_robot_b.gait"))  # warm up: grammar, imports
+    load(str(ROOT / "specs" / "thesis_robot_b.gait"))  # warm up: grammar, imports
     print(HEADER)
     for name in ("thesis_robot_a", "thesis_robot_b"):
         path = str(ROOT / "specs" / f"{name}.gait")

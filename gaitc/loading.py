@@ -1,37 +1,45 @@
-"""Loading a specification file of any supported kind into a GR(1) spec.
+"""Loading: a specification file or text of any supported kind becomes a :class:`Spec`.
 
-``.gait`` goes through the ltlcompiler front end and lowering (thesis eqs. 3.3-3.9);
-``.slugsin``/``.txt`` and ``.structuredslugs`` through the SLUGS format readers.
+``.gait`` goes through the :mod:`ltlcompiler` front end and lowering (thesis eqs. 3.3-3.9);
+``.slugsin``/``.txt`` and ``.structuredslugs`` through the readers of :mod:`slugs_bridge`.
+Each file is read once; its hash is taken from the same bytes the readers see.
 """
 
 from __future__ import annotations
 
 import hashlib
+import html
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from diagnostics import Diagnostic, UsageError
-from gr1.spec import GR1Spec
+from diagnostics import Diagnostic, SlugsFormatError, Span, SpecSyntaxError, UsageError
+from gr1.spec import SECTIONS, GR1Spec
+from ltlcompiler.encoding import ENCODINGS
 
 if TYPE_CHECKING:
     from ltlcompiler.model import Model
 
-ENCODINGS = ("onehot", "binary")
 GAIT_SUFFIXES = (".gait",)
-SLUGS_SUFFIXES = (".slugsin", ".txt", ".structuredslugs", ".structureslugs")
+PREFIX_SUFFIXES = (".slugsin", ".txt")
+INFIX_SUFFIXES = (".structuredslugs", ".structureslugs")
+SUFFIXES = GAIT_SUFFIXES + PREFIX_SUFFIXES + INFIX_SUFFIXES
 
 
 @dataclass(frozen=True)
-class LoadedSpec:
-    """A spec ready for a solver, with the domain model when it came from a ``.gait`` file."""
+class Spec:
+    """A GR(1) spec ready for a solver, with the domain model when it came from ``.gait``.
+
+    ``gr1`` is the specification IR; ``model`` (robot, map, task) and ``encoding`` are set
+    for ``.gait`` sources, and every clause of ``gr1`` then carries its ``.gait`` origin.
+    """
 
     path: str
-    spec: GR1Spec
-    model: Model | None = None
+    gr1: GR1Spec
+    model: Model | None = field(default=None, repr=False)
     encoding: str | None = None
-    diagnostics: tuple[Diagnostic, ...] = field(default=())
-    sha256: str = ""
+    diagnostics: tuple[Diagnostic, ...] = field(default=(), repr=False)
+    sha256: str = field(default="", repr=False)
 
     def source(self) -> dict[str, str]:
         """The ``source`` record written into controller files."""
@@ -40,41 +48,122 @@ class LoadedSpec:
             out["encoding"] = self.encoding
         return out
 
+    def clause_count(self) -> int:
+        spec = self.gr1
+        return sum(len(spec.section(name)) for name in SECTIONS)
 
-def _read(path: str) -> bytes:
-    try:
-        return Path(path).read_bytes()
-    except OSError as err:
-        raise UsageError(f"cannot read '{path}': {err.strerror}") from None
+    def __repr__(self) -> str:
+        kind = f".gait, {self.encoding} encoding" if self.model is not None else "SLUGS format"
+        return (f"<gaitc.Spec {self.path!r} ({kind}): {len(self.gr1.inputs)} inputs, "
+                f"{len(self.gr1.outputs)} outputs, {self.clause_count()} clauses>")
+
+    def _repr_html_(self) -> str:
+        rows = [("file", self.path), ("inputs", str(len(self.gr1.inputs))),
+                ("outputs", str(len(self.gr1.outputs))), ("clauses", str(self.clause_count()))]
+        if self.model is not None:
+            rows[1:1] = [
+                ("robot", self.model.name or "(unnamed)"), ("encoding", str(self.encoding)),
+                ("legs", ", ".join(f"{leg.name}:{leg.health}" for leg in self.model.legs)),
+                ("regions", str(len(self.model.regions))),
+                ("gaits", ", ".join(g.name for g in self.model.gaits)),
+            ]
+        if self.diagnostics:
+            rows.append(("warnings", str(len(self.diagnostics))))
+        return _table("GR(1) specification", rows)
 
 
-def load_spec(path: str, encoding: str = "onehot") -> LoadedSpec:
-    """Read ``path`` (.gait, .slugsin, .structuredslugs) into a :class:`LoadedSpec`.
+def _table(title: str, rows: list[tuple[str, str]]) -> str:
+    body = "".join(
+        f"<tr><th style='text-align:left'>{html.escape(k)}</th><td>{html.escape(v)}</td></tr>"
+        for k, v in rows
+    )
+    return f"<table><caption>{html.escape(title)}</caption>{body}</table>"
 
-    Raises the project's :class:`~diagnostics.GaitcError` subclasses with a
-    span for every problem in the file; :class:`UsageError` for an unknown file kind.
-    """
+
+def _check_encoding(encoding: str) -> None:
     if encoding not in ENCODINGS:
         raise UsageError(f"unknown encoding '{encoding}'; use one of {', '.join(ENCODINGS)}")
-    raw = _read(path)
-    digest = hashlib.sha256(raw).hexdigest()
-    suffix = Path(path).suffix.lower()
-    if suffix in GAIT_SUFFIXES:
-        from ltlcompiler.frontend import load_model
-        from ltlcompiler.lowering import lower
 
-        model, diagnostics = load_model(path)
-        spec = lower(model, encoding)
-        return LoadedSpec(path, spec, model, encoding, tuple(diagnostics), digest)
-    if suffix in SLUGS_SUFFIXES:
-        return LoadedSpec(path, _load_slugs(path), sha256=digest)
+
+def _kind(name: str) -> str:
+    suffix = Path(name).suffix.lower()
+    if suffix in SUFFIXES:
+        return suffix
     raise UsageError(
-        f"'{path}': unknown specification kind '{suffix or '(none)'}'; "
+        f"'{name}': unknown specification kind '{suffix or '(none)'}'; "
         "give a .gait, .slugsin or .structuredslugs file"
     )
 
 
-def _load_slugs(path: str) -> GR1Spec:
-    from slugs_bridge.formats import load_spec_file
+def _read(path: str) -> bytes:
+    try:
+        return Path(path).read_bytes()
+    except FileNotFoundError:
+        raise UsageError(f"cannot read '{path}': no such file") from None
+    except IsADirectoryError:
+        raise UsageError(f"cannot read '{path}': it is a directory") from None
+    except OSError as err:
+        raise UsageError(f"cannot read '{path}': {err.strerror or err}") from None
 
-    return load_spec_file(path)
+
+def _decode(data: bytes, path: str, suffix: str) -> str:
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError as err:
+        before = data[: err.start]
+        line = before.count(b"\n") + 1
+        column = err.start - (before.rfind(b"\n") + 1) + 1
+        message = (f"'{path}' is not UTF-8 text (byte 0x{data[err.start]:02x} at offset "
+                   f"{err.start}); save the file as UTF-8")
+        error = SpecSyntaxError if suffix in GAIT_SUFFIXES else SlugsFormatError
+        raise error(message, Span(path, line, column)) from None
+
+
+def load(path: str | Path, encoding: str = "onehot", kind: str | None = None) -> Spec:
+    """Read ``path`` (.gait, .slugsin, .structuredslugs) into a :class:`Spec`.
+
+    The suffix picks the reader unless ``kind`` (one of the suffixes, say ``".gait"``) does.
+
+    Raises the project's :class:`~diagnostics.GaitcError` subclasses with a span for every
+    problem in the file, and :class:`~diagnostics.UsageError` for an unknown file kind,
+    encoding or an unreadable file.
+    """
+    name = str(path)
+    _check_encoding(encoding)
+    suffix = _kind(name) if kind is None else _kind(f"spec{kind}")
+    raw = _read(name)
+    return _build(_decode(raw, name, suffix), name, suffix, encoding,
+                  hashlib.sha256(raw).hexdigest())
+
+
+def parse(text: str, name: str = "<string>.gait", encoding: str = "onehot") -> Spec:
+    """A :class:`Spec` from ``text``; the suffix of ``name`` picks the reader (``.gait``
+    when ``name`` has none of the known suffixes), and spans name ``name``."""
+    _check_encoding(encoding)
+    suffix = Path(name).suffix.lower()
+    if suffix not in SUFFIXES:
+        suffix = ".gait"
+    digest = hashlib.sha256(text.encode("utf-8")).hexdigest()
+    return _build(text, name, suffix, encoding, digest)
+
+
+def _build(text: str, name: str, suffix: str, encoding: str, digest: str) -> Spec:
+    if suffix in GAIT_SUFFIXES:
+        from ltlcompiler.frontend import model_from_text
+        from ltlcompiler.lowering import lower
+
+        model, diagnostics = model_from_text(text, name)
+        spec = lower(model, encoding)
+        return Spec(name, spec, model, encoding, tuple(diagnostics), digest)
+    if suffix in PREFIX_SUFFIXES:
+        from slugs_bridge.slugsin import parse_slugsin
+
+        return Spec(name, parse_slugsin(text, name), sha256=digest)
+    from slugs_bridge.structured import parse_structuredslugs
+
+    return Spec(name, parse_structuredslugs(text, name), sha256=digest)
+
+
+def as_gr1(spec: Spec | GR1Spec) -> GR1Spec:
+    """The IR of a loaded spec, or ``spec`` itself when it already is one."""
+    return spec.gr1 if isinstance(spec, Spec) else spec

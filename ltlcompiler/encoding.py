@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import itertools
 from collections.abc import Iterator, Sequence
+from typing import Final, Literal, get_args
 
 from diagnostics import FormulaError, SpecSemanticError, UsageError
 from gr1.evaluation import evaluate
@@ -30,7 +31,10 @@ from gr1.formula import (
 from gr1.spec import Variable
 from ltlcompiler.model import Model
 
-ENCODINGS = ("onehot", "binary")
+EncodingName = Literal["onehot", "binary"]
+#: ``onehot``: the thesis's proposition per region, gait and health level; ``binary``:
+#: integer variables, bit-blasted as SLUGS's converter does.
+ENCODINGS: Final[tuple[EncodingName, ...]] = get_args(EncodingName)
 REGION_VAR = "region"
 GAIT_VAR = "gait"
 HAZARD_VAR = "hazard"

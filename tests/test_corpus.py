@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pytest
 
-from gaitc.loading import load_spec
+from gaitc.loading import load
 from solver.game import Game
 from solver.symbolic import SymbolicSpec
 
@@ -52,7 +52,7 @@ def _structured_reader_available() -> bool:
 def verdicts(path: Path) -> tuple[str, str]:
     if path.suffix != ".slugsin" and path.suffix != ".txt" and not _structured_reader_available():
         pytest.skip("the .structuredslugs reader (slugs_bridge.formats) is not available")
-    sym = SymbolicSpec(load_spec(str(path)).spec)
+    sym = SymbolicSpec(load(str(path)).gr1)
     game = Game(sym)
     winning = game.solve().winning
     return tuple(  # type: ignore[return-value]

@@ -151,7 +151,7 @@ def test_output_formats_and_missing_graphviz(monkeypatch: pytest.MonkeyPatch,
 @needs_dot
 def test_cli_render_commands(patrol: Loaded, run: Run, tmp_path: Path,
                              capsys: pytest.CaptureFixture[str]) -> None:
-    controller = synthesize(patrol.spec.spec)
+    controller = synthesize(patrol.spec.gr1)
     assert controller is not None
     ctrl = tmp_path / "c.json"
     ctrl.write_text(controller_to_json(controller), encoding="utf-8")

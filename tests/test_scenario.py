@@ -8,7 +8,7 @@ import pytest
 
 from diagnostics import ScenarioError
 from gaitc.cli import main
-from gaitc.loading import load_spec
+from gaitc.loading import load
 from gaitsim.domain import Domain
 from gaitsim.monitor import Monitor
 from gaitsim.run import Run
@@ -29,16 +29,16 @@ class World:
         self.folder = folder
         self.spec_path = folder / "patrol.gait"
         self.spec_path.write_text(SPEC, encoding="utf-8")
-        loaded = load_spec(str(self.spec_path))
+        loaded = load(str(self.spec_path))
         assert loaded.model is not None
         self.model: Model = loaded.model
-        controller = synthesize(loaded.spec)
+        controller = synthesize(loaded.gr1)
         assert controller is not None
         self.controller_path = folder / "patrol.json"
         self.controller_path.write_text(controller_to_json(controller), encoding="utf-8")
-        self.strategy: Strategy = strategy_from_controller(controller, loaded.spec)
+        self.strategy: Strategy = strategy_from_controller(controller, loaded.gr1)
         self.domain = Domain(self.model, "onehot")
-        self.monitor = Monitor(loaded.spec)
+        self.monitor = Monitor(loaded.gr1)
 
     def scenario_file(self, text: str, name: str = "s.yaml") -> Path:
         path = self.folder / name

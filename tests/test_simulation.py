@@ -13,7 +13,7 @@ from hypothesis import strategies as st
 
 from diagnostics import ControllerError
 from gaitc.cli import main
-from gaitc.loading import load_spec
+from gaitc.loading import load
 from gaitsim.domain import Domain, State
 from gaitsim.environments import AdversarialEnvironment, RandomEnvironment, Request, Situation
 from gaitsim.monitor import Monitor, compile_formula
@@ -39,12 +39,12 @@ class Setup:
 
 
 def _setup(path: str, encoding: str = "onehot") -> Setup:
-    loaded = load_spec(path, encoding)
+    loaded = load(path, encoding)
     assert loaded.model is not None
-    controller = synthesize(loaded.spec)
+    controller = synthesize(loaded.gr1)
     assert controller is not None
-    return Setup(path, controller, strategy_from_controller(controller, loaded.spec),
-                 Domain(loaded.model, encoding), Monitor(loaded.spec))
+    return Setup(path, controller, strategy_from_controller(controller, loaded.gr1),
+                 Domain(loaded.model, encoding), Monitor(loaded.gr1))
 
 
 @pytest.fixture(scope="module")
@@ -74,7 +74,7 @@ def test_decoding_hand_checked_onehot_state(patrol: Setup) -> None:
 
 
 def test_decoding_hand_checked_binary_state(hazard_path: str) -> None:
-    loaded = load_spec(hazard_path, "binary")
+    loaded = load(hazard_path, "binary")
     assert loaded.model is not None
     domain = Domain(loaded.model, "binary")
     # regions nw, ne, sw, se = 0..3; gaits in declaration order, noGait last = 8
@@ -182,7 +182,7 @@ def _diagonal(setup: Setup, node: int) -> str:
 
 
 def test_monitor_catches_a_corrupted_controller(patrol: Setup) -> None:
-    spec = load_spec(str(PATROL)).spec
+    spec = load(str(PATROL)).gr1
     first = patrol.strategy.initial[0]
     victim = patrol.strategy.successors[first][0]
     bad = strategy_from_controller(_corrupt(patrol.controller, victim, _diagonal(patrol, first)),

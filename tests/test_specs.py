@@ -16,8 +16,10 @@ from pathlib import Path
 import pytest
 
 from diagnostics import UsageError
+from diagnostics.files import write_atomically
 from gaitc.cli import main
-from gaitc.commands.compiling import FORMATS, compile_text, write_atomically
+from gaitc.commands.compiling import compile_text
+from gaitc.emission import FORMATS
 from ltlcompiler.frontend import load_model
 from ltlcompiler.lowering import lower
 from slugs_bridge.structured import parse_structuredslugs
@@ -172,5 +174,5 @@ def test_lint_reports_errors_with_location(tmp_path: Path,
 def test_bad_command_lines(capsys: pytest.CaptureFixture[str]) -> None:
     assert main(["compile", "specs/patrol_2x2.gait", "--format", "dot"]) == 2
     assert main(["compile", "specs/patrol_2x2.gait", "--encoding", "gray"]) == 2
-    assert main(["compile", "specs/missing.gait"]) == 1
+    assert main(["compile", "specs/missing.gait"]) == 2  # a missing file is a usage error, as in every command
     assert "no such file" in capsys.readouterr().err

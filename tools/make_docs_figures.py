@@ -21,7 +21,7 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
 from gaitc.commands.simulating import load_session  # noqa: E402
-from gaitc.loading import load_spec  # noqa: E402
+from gaitc.loading import load  # noqa: E402
 from gaitsim.automaton_view import automaton_view  # noqa: E402
 from gaitsim.environments import AdversarialEnvironment  # noqa: E402
 from gaitsim.map_view import map_view, spec_view  # noqa: E402
@@ -39,7 +39,7 @@ def controller_for(spec: Path, encoding: str) -> Path:
     path = Path(tempfile.gettempdir()) / f"gaitc-bench-{spec.stem}-{encoding}-{digest}.json"
     if not path.exists():
         print(f"synthesizing {spec.name} ({encoding}); this takes a while once", flush=True)
-        controller = synthesize(load_spec(str(spec), encoding).spec)
+        controller = synthesize(load(str(spec), encoding).gr1)
         if controller is None:
             raise SystemExit(f"{spec}: unrealizable")
         path.write_text(controller_to_json(controller), encoding="utf-8")

@@ -14,9 +14,10 @@ from typing import Any
 from diagnostics import UsageError
 from gaitc.commands.simulating import ENVIRONMENTS, Loaded, load_session, report_run
 from gaitc.exitcodes import EXIT_UNREALIZABLE
-from gaitc.loading import ENCODINGS, load_spec
+from gaitc.loading import load
 from gaithw.backend import Backend
 from gaitsim.environments import AdversarialEnvironment, Environment, RandomEnvironment
+from ltlcompiler.encoding import ENCODINGS
 
 EPILOG = """backends:
   --backend sim      a simulated robot (default): valves apply instantly, sensor readings come
@@ -131,7 +132,7 @@ def run_drive(args: argparse.Namespace) -> int:
     from gaithw.driver import Driver, bind_primitives, valve_count
 
     _check_options(args)
-    checked = load_spec(args.spec, args.encoding or "onehot")
+    checked = load(args.spec, args.encoding or "onehot")
     if checked.model is None:
         raise UsageError(f"'{args.spec}': driving needs a .gait spec, which binds gaits to "
                          "valve primitives")

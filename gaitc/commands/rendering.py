@@ -83,9 +83,9 @@ def _save(picture: Picture, args: argparse.Namespace) -> int:
 
 
 def _model(path: str) -> Any:
-    from gaitc.loading import load_spec
+    from gaitc.loading import load
 
-    loaded = load_spec(path)
+    loaded = load(path)
     if loaded.model is None:
         raise UsageError(f"'{path}': maps need a .gait spec")
     return loaded.model

@@ -16,12 +16,13 @@ from typing import Any
 
 from diagnostics import ControllerError, UsageError
 from gaitc.exitcodes import EXIT_OK, EXIT_UNREALIZABLE, EXIT_USER
-from gaitc.loading import ENCODINGS, LoadedSpec, load_spec
+from gaitc.loading import Spec, load
 from gaitsim.domain import Domain
 from gaitsim.environments import AdversarialEnvironment, Environment, RandomEnvironment
 from gaitsim.monitor import Monitor
 from gaitsim.run import Run
 from gaitsim.strategy import Strategy, load_strategy, strategy_from_controller
+from ltlcompiler.encoding import ENCODINGS
 from ltlcompiler.model import Model
 
 ENVIRONMENTS = ("scripted", "random", "adversarial")
@@ -44,7 +45,7 @@ exit codes:
 class Loaded:
     """A .gait spec with its model, a controller adapted to it, and the run checker."""
 
-    spec: LoadedSpec
+    spec: Spec
     model: Model
     strategy: Strategy
     domain: Domain
@@ -68,24 +69,24 @@ def load_session(spec_path: str, controller: str | None, encoding: str | None = 
     """
     if encoding is None:
         encoding = (_recorded_encoding(controller) if controller else None) or "onehot"
-    loaded = load_spec(spec_path, encoding)
+    loaded = load(spec_path, encoding)
     if loaded.model is None:
         raise UsageError(f"'{spec_path}': simulation and maps need a .gait spec, which says "
                          "what the variables mean (regions, gaits, legs)")
     if controller is not None:
-        strategy = load_strategy(controller, loaded.spec)
+        strategy = load_strategy(controller, loaded.gr1)
     else:
         from solver.synthesis import synthesize
 
-        found = synthesize(loaded.spec, semantics)
+        found = synthesize(loaded.gr1, semantics)
         if found is None:
             return None
-        strategy = strategy_from_controller(found, loaded.spec, "<synthesized>")
+        strategy = strategy_from_controller(found, loaded.gr1, "<synthesized>")
     if strategy.kind != "strategy":
         raise ControllerError("this is a counter-strategy; simulate a controller written by "
                               "'gaitc synth'", None)
     domain = Domain(loaded.model, encoding)
-    return Loaded(loaded, loaded.model, strategy, domain, Monitor(loaded.spec))
+    return Loaded(loaded, loaded.model, strategy, domain, Monitor(loaded.gr1))
 
 
 def register(sub: Any) -> None:

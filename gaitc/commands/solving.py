@@ -17,9 +17,10 @@ from typing import Any
 from diagnostics import GaitcError, SolverError, UsageError, render_error
 from diagnostics.files import write_atomically
 from gaitc.exitcodes import EXIT_OK, EXIT_SOLVER, EXIT_UNREALIZABLE, EXIT_USER
-from gaitc.loading import ENCODINGS, LoadedSpec, load_spec
+from gaitc.loading import Spec, load
 from gr1.controller import Controller, controller_to_json, load_controller
 from gr1.spec import GR1Spec
+from ltlcompiler.encoding import ENCODINGS
 from solver.game import Progress
 
 EXIT_CODES = """exit codes:
@@ -151,18 +152,18 @@ def _options(args: argparse.Namespace) -> Any:
     return Options(memory_mb=getattr(args, "memory_limit", None))
 
 
-def _decide(loaded: LoadedSpec, args: argparse.Namespace) -> tuple[bool, float]:
+def _decide(loaded: Spec, args: argparse.Namespace) -> tuple[bool, float]:
     semantics = _semantics(args)
     if args.solver == "slugs":
         from slugs_bridge.runner import run_slugs_check
 
         result = run_slugs_check(
-            _slugsin(loaded.spec), semantics=semantics, timeout=args.timeout, slugs=args.slugs
+            _slugsin(loaded.gr1), semantics=semantics, timeout=args.timeout, slugs=args.slugs
         )
         return result.realizable, result.seconds
     from solver import synthesis
 
-    checked = synthesis.check(loaded.spec, semantics, args.timeout, _progress(), _options(args))
+    checked = synthesis.check(loaded.gr1, semantics, args.timeout, _progress(), _options(args))
     return checked.realizable, checked.seconds
 
 
@@ -174,7 +175,7 @@ def run_check(args: argparse.Namespace) -> int:
         started = time.monotonic()
         record: dict[str, Any] = {"file": path, "semantics": _semantics(args)}
         try:
-            loaded = load_spec(path, args.encoding)
+            loaded = load(path, args.encoding)
             realizable, seconds = _decide(loaded, args)
             record.update(
                 verdict="realizable" if realizable else "unrealizable",
@@ -206,14 +207,14 @@ def _severity(code: int) -> int:
     return {EXIT_OK: 0, EXIT_UNREALIZABLE: 1, EXIT_USER: 2, EXIT_SOLVER: 3}.get(code, 4)
 
 
-def _with_source(c: Controller, loaded: LoadedSpec, solver: str) -> Controller:
+def _with_source(c: Controller, loaded: Spec, solver: str) -> Controller:
     from dataclasses import replace
 
     return replace(c, source=loaded.source(), solver=solver)
 
 
 def _solve(
-    args: argparse.Namespace, loaded: LoadedSpec, semantics: str, kind: str
+    args: argparse.Namespace, loaded: Spec, semantics: str, kind: str
 ) -> tuple[Controller | None, float]:
     """Run the chosen solver for a ``strategy`` or a ``counterstrategy``; (automaton, seconds).
 
@@ -229,7 +230,7 @@ def _solve(
             wanted_realizable = kind == "strategy"
             run = runner.run_slugs_synth if wanted_realizable else runner.run_slugs_counter
             result = run(
-                _slugsin(loaded.spec), semantics=semantics, timeout=args.timeout, slugs=args.slugs
+                _slugsin(loaded.gr1), semantics=semantics, timeout=args.timeout, slugs=args.slugs
             )
             if result.realizable == wanted_realizable:
                 if result.output is None:
@@ -237,12 +238,12 @@ def _solve(
                     raise SolverError(f"SLUGS reported {verdict} but wrote no {kind}")
                 read = (runner.controller_from_slugs_json if wanted_realizable
                         else runner.counterstrategy_from_slugs_text)
-                automaton = read(result.output, loaded.spec, semantics)
+                automaton = read(result.output, loaded.gr1, semantics)
         else:
             from solver import synthesis
 
             make = synthesis.synthesize if kind == "strategy" else synthesis.counterstrategy
-            automaton = make(loaded.spec, semantics, args.timeout, _progress(), _options(args))
+            automaton = make(loaded.gr1, semantics, args.timeout, _progress(), _options(args))
     except MemoryError:
         raise SolverError("synthesis ran out of memory (see --memory-limit)") from None
     if automaton is not None:
@@ -253,7 +254,7 @@ def _solve(
 def run_synth(args: argparse.Namespace) -> int:
     _limit_memory(args)
     semantics = _semantics(args)
-    loaded = load_spec(args.spec, args.encoding)
+    loaded = load(args.spec, args.encoding)
     controller, seconds = _solve(args, loaded, semantics, "strategy")
     if controller is None:
         print(f"{args.spec}: unrealizable ({seconds:.2f} s); no controller written")
@@ -266,7 +267,7 @@ def run_synth(args: argparse.Namespace) -> int:
     )
     if args.no_verify:
         return EXIT_OK
-    return _report_verification(loaded.spec, controller, semantics)
+    return _report_verification(loaded.gr1, controller, semantics)
 
 
 def _report_verification(spec: GR1Spec, controller: Controller, semantics: str) -> int:
@@ -284,7 +285,7 @@ def _report_verification(spec: GR1Spec, controller: Controller, semantics: str) 
 def run_counter(args: argparse.Namespace) -> int:
     _limit_memory(args)
     semantics = _semantics(args)
-    loaded = load_spec(args.spec, args.encoding)
+    loaded = load(args.spec, args.encoding)
     counter, seconds = _solve(args, loaded, semantics, "counterstrategy")
     if counter is None:
         print(f"{args.spec}: realizable ({seconds:.2f} s); there is no counter-strategy")
@@ -298,7 +299,7 @@ def run_counter(args: argparse.Namespace) -> int:
 
 
 def run_verify(args: argparse.Namespace) -> int:
-    loaded = load_spec(args.spec, args.encoding)
-    controller = load_controller(args.controller, loaded.spec)
+    loaded = load(args.spec, args.encoding)
+    controller = load_controller(args.controller, loaded.gr1)
     semantics = "robotics" if args.robotics_semantics else controller.semantics
-    return _report_verification(loaded.spec, controller, semantics)
+    return _report_verification(loaded.gr1, controller, semantics)
