@@ -13,12 +13,8 @@ import tempfile
 import time
 from pathlib import Path
 
-from gaitc.commands.simulating import load_session
-from gaitc.loading import load
+import gaitc
 from gaitsim.environments import AdversarialEnvironment, Environment, RandomEnvironment
-from gaitsim.simulator import Simulator
-from gr1.controller import controller_to_json
-from solver.synthesis import synthesize
 
 ROOT = Path(__file__).resolve().parent.parent
 SPEC = ROOT / "specs" / "thesis_robot_a.gait"
@@ -30,10 +26,10 @@ def cached_controller(spec: Path, encoding: str) -> Path:
     path = Path(tempfile.gettempdir()) / f"gaitc-bench-{spec.stem}-{encoding}-{digest}.json"
     if not path.exists():
         print(f"synthesizing {spec.name} ({encoding}) once; cached in {path}")
-        controller = synthesize(load(str(spec), encoding).gr1)
-        if controller is None:
+        found = gaitc.synthesize(gaitc.load(spec, encoding))
+        if found.controller is None:
             raise SystemExit(f"{spec}: unrealizable")
-        path.write_text(controller_to_json(controller), encoding="utf-8")
+        found.save(path)
     return path
 
 
@@ -45,7 +41,7 @@ def main() -> None:
     args = parser.parse_args()
     controller = args.controller or str(cached_controller(SPEC, args.encoding))
     started = time.perf_counter()
-    loaded = load_session(str(SPEC), controller, args.encoding)
+    loaded = gaitc.session(SPEC, controller, args.encoding)
     assert loaded is not None
     print(f"loaded {len(loaded.strategy)} controller nodes in "
           f"{time.perf_counter() - started:.2f} s")
@@ -53,9 +49,8 @@ def main() -> None:
     print(f"{'environment':<18}{'steps':>8}{'seconds':>10}{'cpu s':>8}{'steps/s':>10}  spec held")
     worst = 0.0
     for env in environments:
-        simulator = Simulator(loaded.strategy, loaded.domain, loaded.monitor)
         wall, cpu = time.perf_counter(), time.process_time()
-        run = simulator.run(env, args.steps)
+        run = gaitc.simulate(loaded, env=env, steps=args.steps)
         wall, cpu = time.perf_counter() - wall, time.process_time() - cpu
         worst = max(worst, cpu)
         held = run.summary is not None and run.summary.assumptions_held \

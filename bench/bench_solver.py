@@ -22,9 +22,8 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
+import gaitc
 from diagnostics import SolverError
-from gaitc.loading import load
-from solver import synthesis
 from solver.symbolic import Options
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -93,12 +92,12 @@ def time_embedded(path: str, encoding: str, options: Options, timeout: float, re
     for _ in range(repeat):
         started = time.process_time()
         try:
-            spec = load(path, encoding).gr1
-            result = synthesis.check(spec, timeout=timeout, options=options)
+            result = gaitc.check(gaitc.load(path, encoding), timeout=timeout, options=options)
         except SolverError:
             return Row("timeout", time.process_time() - started, 0)
         verdict = "realizable" if result.realizable else "unrealizable"
-        row = Row(verdict, time.process_time() - started, result.stats.peak_nodes)
+        peak = result.stats.peak_nodes if result.stats is not None else 0
+        row = Row(verdict, time.process_time() - started, peak)
         best = row if best is None or row.seconds < best.seconds else best
     assert best is not None
     return best
@@ -107,14 +106,11 @@ def time_embedded(path: str, encoding: str, options: Options, timeout: float, re
 def time_slugs(path: str, encoding: str, timeout: float) -> str:
     if not os.environ.get("SLUGS"):
         return "-"
-    from gaitc.commands.solving import _slugsin
-    from slugs_bridge.runner import run_slugs_check
-
     try:
-        res = run_slugs_check(_slugsin(load(path, encoding).gr1), timeout=timeout)
+        verdict = gaitc.check(gaitc.load(path, encoding), solver="slugs", timeout=timeout)
     except SolverError:
         return "timeout"
-    return f"{res.seconds:.2f}"
+    return f"{verdict.seconds:.2f}"
 
 
 HEADER = (
@@ -145,7 +141,7 @@ def main() -> None:
     if args.grid:
         sizes = [(int(r), int(c)) for r, c in (g.lower().split("x") for g in args.grid)]
     health = args.health or (HEALTH[:2] if args.quick else HEALTH)
-    load(str(ROOT / "specs" / "thesis_robot_b.gait"))  # warm up: grammar, imports
+    gaitc.load(str(ROOT / "specs" / "thesis_robot_b.gait"))  # warm up: grammar, imports
     print(HEADER)
     for name in ("thesis_robot_a", "thesis_robot_b"):
         path = str(ROOT / "specs" / f"{name}.gait")

@@ -9,10 +9,25 @@ from __future__ import annotations
 
 import contextlib
 import os
+import stat
 import tempfile
 from pathlib import Path
 
 from diagnostics import UsageError
+
+
+def _ordinary_mode(target: Path) -> int:
+    """The mode ``open(target, "w")`` would leave: the old file's, else 0o666 minus umask.
+
+    (``mkstemp`` creates its file with mode 0600, which a plain rename would keep.)
+    """
+    try:
+        return stat.S_IMODE(target.stat().st_mode)
+    except OSError:
+        pass
+    mask = os.umask(0o022)
+    os.umask(mask)
+    return 0o666 & ~mask
 
 
 def write_atomically(path: str | Path, data: str | bytes) -> None:
@@ -23,6 +38,7 @@ def write_atomically(path: str | Path, data: str | bytes) -> None:
     try:
         folder = target.parent if str(target.parent) else Path(".")
         fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=folder)
+        os.fchmod(fd, _ordinary_mode(target))
         with os.fdopen(fd, "wb") as out:
             out.write(payload)
             out.flush()

@@ -1,3 +1,41 @@
-"""gaitc: a specification compiler and GR(1) synthesizer for walking soft robots."""
+"""gaitc: a specification compiler and GR(1) synthesizer for walking soft robots.
+
+The public API, one function per stage; each returns an object that shows itself in a
+notebook (see ``docs/api.md``):
+
+- :func:`load` / :func:`parse`: a ``.gait``, ``.slugsin`` or ``.structuredslugs`` file or
+  text becomes a :class:`Spec` (the GR(1) IR, plus the robot model and source map for
+  ``.gait``);
+- :func:`emit`: the spec as structuredslugs, slugsin or LTL text, exactly as
+  ``gaitc compile`` writes it;
+- :func:`check`: a :class:`Verdict`; :func:`synthesize` and :func:`counterstrategy`: a
+  :class:`Synthesis` holding an automaton that :func:`verify` has proved;
+- :func:`simulate`: a run of a controller against an environment, checked against the spec.
+
+The command line (:mod:`gaitc.cli`) is a thin layer over these functions.
+"""
+
+from gaitc.emission import FORMATS, emit
+from gaitc.loading import Spec, load, parse
+from gaitc.simulation import Session, session, simulate
+from gaitc.solving import SOLVERS, Synthesis, Verdict, check, counterstrategy, synthesize, verify
 
 __version__ = "0.1.0"
+
+__all__ = [
+    "FORMATS",
+    "SOLVERS",
+    "Session",
+    "Spec",
+    "Synthesis",
+    "Verdict",
+    "check",
+    "counterstrategy",
+    "emit",
+    "load",
+    "parse",
+    "session",
+    "simulate",
+    "synthesize",
+    "verify",
+]

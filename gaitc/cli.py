@@ -1,9 +1,6 @@
 """The ``gaitc`` command line: parse arguments, dispatch to a command module, print errors.
 
-Exit codes (shared by every subcommand unless its help says otherwise):
-0 success, 1 a user error in an input file, 2 a usage error, 3 unrealizable
-(``check``/``synth``), 4 the solver could not finish (timeout, memory, SLUGS failure),
-70 an internal error (a bug in gaitc; ``GAITC_DEBUG=1`` shows the traceback).
+The exit codes are :class:`gaitc.exitcodes.ExitCode`; ``gaitc --help`` lists them.
 """
 
 from __future__ import annotations
@@ -16,7 +13,7 @@ from collections.abc import Sequence
 
 from diagnostics import GaitcError, SolverError, UsageError, render_error
 from gaitc.commands import COMMAND_MODULES
-from gaitc.exitcodes import EXIT_INTERNAL, EXIT_OK, EXIT_SOLVER, EXIT_USAGE, EXIT_USER
+from gaitc.exitcodes import ExitCode, exit_code_help
 
 
 class _Parser(argparse.ArgumentParser):
@@ -28,6 +25,8 @@ def build_parser() -> argparse.ArgumentParser:
     parser = _Parser(
         prog="gaitc",
         description="Compile .gait robot specifications to GR(1), synthesize and run controllers.",
+        epilog=exit_code_help(codes=tuple(ExitCode)),
+        formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     from gaitc import __version__
 
@@ -45,20 +44,20 @@ def main(argv: Sequence[str] | None = None) -> int:
         args = parser.parse_args(list(sys.argv[1:] if argv is None else argv))
         if getattr(args, "run", None) is None:
             parser.print_help(sys.stderr)
-            return EXIT_USAGE
+            return ExitCode.USAGE
         code: int = args.run(args)
         return code
     except UsageError as err:
         print(f"gaitc: usage error: {err.message}", file=sys.stderr)
-        return EXIT_USAGE
+        return ExitCode.USAGE
     except GaitcError as err:
         print(render_error(err), file=sys.stderr)
-        return EXIT_SOLVER if isinstance(err, SolverError) else EXIT_USER
+        return ExitCode.SOLVER if isinstance(err, SolverError) else ExitCode.USER
     except KeyboardInterrupt:
         print("gaitc: interrupted", file=sys.stderr)
-        return 130
+        return ExitCode.INTERRUPTED
     except BrokenPipeError:
-        return EXIT_OK
+        return ExitCode.OK
     except Exception as err:  # a bug in gaitc, not in the user's input
         if os.environ.get("GAITC_DEBUG"):
             traceback.print_exc()
@@ -68,7 +67,7 @@ def main(argv: Sequence[str] | None = None) -> int:
             "line and files (GAITC_DEBUG=1 prints the traceback)",
             file=sys.stderr,
         )
-        return EXIT_INTERNAL
+        return ExitCode.INTERNAL
 
 
 if __name__ == "__main__":  # pragma: no cover

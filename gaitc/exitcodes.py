@@ -1,8 +1,49 @@
-"""The exit codes of every gaitc command, in one place (documented in ``gaitc --help``)."""
+"""The exit codes of every gaitc command, defined once with what each means.
 
-EXIT_OK = 0  # success; for check/synth: realizable
-EXIT_USER = 1  # an error in an input file, or a controller that fails verification
-EXIT_USAGE = 2  # the command line is wrong
-EXIT_UNREALIZABLE = 3  # check/synth: unrealizable; counter: realizable
-EXIT_SOLVER = 4  # the solver could not finish (timeout, memory limit, SLUGS failure)
-EXIT_INTERNAL = 70  # a bug in gaitc (GAITC_DEBUG=1 prints the traceback)
+Commands print their own ``exit codes:`` block in ``--help`` with :func:`exit_code_help`,
+which takes the general meaning from :data:`MEANINGS` unless the command says more.
+"""
+
+from __future__ import annotations
+
+import textwrap
+from collections.abc import Mapping
+from enum import IntEnum
+
+
+class ExitCode(IntEnum):
+    """What ``gaitc`` returns to the shell."""
+
+    OK = 0
+    USER = 1
+    USAGE = 2
+    UNREALIZABLE = 3
+    SOLVER = 4
+    INTERNAL = 70
+    INTERRUPTED = 130
+
+
+MEANINGS: Mapping[ExitCode, str] = {
+    ExitCode.OK: "success; for check and synth: realizable",
+    ExitCode.USER: "an error in an input file (syntax, names, malformed controller), or a "
+    "controller that fails verification",
+    ExitCode.USAGE: "the command line is wrong (an unknown option, a missing file)",
+    ExitCode.UNREALIZABLE: "unrealizable (check, synth; counter: realizable)",
+    ExitCode.SOLVER: "the solver could not finish (timeout, memory limit, SLUGS failure)",
+    ExitCode.INTERNAL: "a bug in gaitc (GAITC_DEBUG=1 prints the traceback)",
+    ExitCode.INTERRUPTED: "interrupted (Ctrl-C)",
+}
+
+#: The codes every command's help lists; 70 and 130 are described once, in ``gaitc --help``.
+_LISTED = (ExitCode.OK, ExitCode.USER, ExitCode.USAGE, ExitCode.UNREALIZABLE, ExitCode.SOLVER)
+
+
+def exit_code_help(meanings: Mapping[ExitCode, str] | None = None,
+                   codes: tuple[ExitCode, ...] = _LISTED) -> str:
+    """An ``exit codes:`` block for ``--help``: ``meanings`` override the general ones."""
+    lines = ["exit codes:"]
+    for code in codes:
+        text = (meanings or {}).get(code, MEANINGS[code])
+        lines.extend(textwrap.wrap(text, 88, initial_indent=f"  {int(code):<2} ",
+                                   subsequent_indent=" " * 5))
+    return "\n".join(lines) + "\n"

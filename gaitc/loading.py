@@ -8,12 +8,12 @@ Each file is read once; its hash is taken from the same bytes the readers see.
 from __future__ import annotations
 
 import hashlib
-import html
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING
 
 from diagnostics import Diagnostic, SlugsFormatError, Span, SpecSyntaxError, UsageError
+from gaitc.presentation import table
 from gr1.spec import SECTIONS, GR1Spec
 from ltlcompiler.encoding import ENCODINGS
 
@@ -69,15 +69,7 @@ class Spec:
             ]
         if self.diagnostics:
             rows.append(("warnings", str(len(self.diagnostics))))
-        return _table("GR(1) specification", rows)
-
-
-def _table(title: str, rows: list[tuple[str, str]]) -> str:
-    body = "".join(
-        f"<tr><th style='text-align:left'>{html.escape(k)}</th><td>{html.escape(v)}</td></tr>"
-        for k, v in rows
-    )
-    return f"<table><caption>{html.escape(title)}</caption>{body}</table>"
+        return table("GR(1) specification", rows)
 
 
 def _check_encoding(encoding: str) -> None:

@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 
 from gaitc.cli import main
-from gaitc.exitcodes import EXIT_INTERNAL
+from gaitc.exitcodes import ExitCode
 
 
 def test_no_command_prints_help_and_is_a_usage_error(capsys: pytest.CaptureFixture[str]) -> None:
@@ -42,6 +42,6 @@ def test_internal_error_is_reported_without_traceback(
 
     monkeypatch.setattr(compiling, "run_lint", broken)
     monkeypatch.delenv("GAITC_DEBUG", raising=False)
-    assert main(["lint", "whatever.gait"]) == EXIT_INTERNAL
+    assert main(["lint", "whatever.gait"]) == ExitCode.INTERNAL
     err = capsys.readouterr().err
     assert "internal error: RuntimeError: boom" in err and "Traceback" not in err

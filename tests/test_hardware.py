@@ -17,7 +17,7 @@ import pytest
 
 from diagnostics import SpecSemanticError
 from gaitc.cli import main
-from gaitc.commands.simulating import Loaded, load_session
+from gaitc.simulation import Session, session
 from gaitgraph.pairing import resolve_primitive
 from gaithw.backend import HardwareError, SensorReading, level_from_waveguide
 from gaithw.driver import Driver, applied_states, bind_primitives, valve_count
@@ -43,8 +43,8 @@ visit a, b infinitely often
 
 # ---------------------------------------------------------------------------- fixtures
 @pytest.fixture(scope="module")
-def radial8() -> Loaded:
-    loaded = load_session(str(RADIAL8), None)
+def radial8() -> Session:
+    loaded = session(str(RADIAL8), None)
     assert loaded is not None
     return loaded
 
@@ -57,8 +57,8 @@ def tiny_spec(tmp_path: Path) -> Path:
 
 
 @pytest.fixture()
-def tiny(tiny_spec: Path) -> Loaded:
-    loaded = load_session(str(tiny_spec), None)
+def tiny(tiny_spec: Path) -> Session:
+    loaded = session(str(tiny_spec), None)
     assert loaded is not None
     return loaded
 
@@ -136,7 +136,7 @@ def wait_for(board: FakeBoard, count: int) -> None:
 
 
 # ---------------------------------------------------------------------------- simulated
-def test_simulated_radial8_runs_the_primitives_of_the_chosen_gaits(radial8: Loaded) -> None:
+def test_simulated_radial8_runs_the_primitives_of_the_chosen_gaits(radial8: Session) -> None:
     prims = bind_primitives(radial8.model, str(RADIAL8.parent))
     robot = SimulatedRobot(radial8.strategy, radial8.domain, radial8.monitor,
                            AdversarialEnvironment(), valve_count(prims, 0))
@@ -160,7 +160,7 @@ def test_simulated_radial8_runs_the_primitives_of_the_chosen_gaits(radial8: Load
     assert any(s.gait != "noGait" for s in run.steps)
 
 
-def test_simulated_health_readings_obey_the_assumptions(radial8: Loaded) -> None:
+def test_simulated_health_readings_obey_the_assumptions(radial8: Session) -> None:
     prims = bind_primitives(radial8.model, str(RADIAL8.parent))
     robot = SimulatedRobot(radial8.strategy, radial8.domain, radial8.monitor,
                            RandomEnvironment(3), 8)
@@ -176,7 +176,7 @@ def test_simulated_health_readings_obey_the_assumptions(radial8: Loaded) -> None
     assert run.summary is not None and run.summary.assumptions_held
 
 
-def test_scenario_breaking_an_assumption_stops_and_vents(tiny: Loaded, tmp_path: Path) -> None:
+def test_scenario_breaking_an_assumption_stops_and_vents(tiny: Session, tmp_path: Path) -> None:
     scenario = tmp_path / "s.yaml"
     scenario.write_text("steps:\n  - degrade: [L2]\n", encoding="utf-8")
     env = ScriptedEnvironment(load_scenario(str(scenario), tiny.model), tiny.strategy.inputs)
@@ -201,7 +201,7 @@ class _Interrupting(SimulatedRobot):
         return super().read_sensors()
 
 
-def test_ctrl_c_vents_all_valves_and_keeps_the_run(tiny: Loaded, tmp_path: Path) -> None:
+def test_ctrl_c_vents_all_valves_and_keeps_the_run(tiny: Session, tmp_path: Path) -> None:
     prims = bind_primitives(tiny.model, str(tmp_path))
     robot = _Interrupting(tiny.strategy, tiny.domain, tiny.monitor, RandomEnvironment(1), 2,
                           fail_at=3, error=KeyboardInterrupt())
@@ -212,7 +212,7 @@ def test_ctrl_c_vents_all_valves_and_keeps_the_run(tiny: Loaded, tmp_path: Path)
     assert robot.applied[-2:] == ["00", "00"] and not robot.is_open
 
 
-def test_an_unexpected_exception_still_vents(tiny: Loaded, tmp_path: Path) -> None:
+def test_an_unexpected_exception_still_vents(tiny: Session, tmp_path: Path) -> None:
     prims = bind_primitives(tiny.model, str(tmp_path))
     robot = _Interrupting(tiny.strategy, tiny.domain, tiny.monitor, RandomEnvironment(1), 2,
                           fail_at=2, error=RuntimeError("sensor bus fault"))
@@ -225,7 +225,7 @@ def test_missing_primitives_are_listed(tmp_path: Path) -> None:
     spec = tmp_path / "bare.gait"
     spec.write_text(TINY.replace(" valves 10, 00", "").replace(" valves 01, 00", ""),
                     encoding="utf-8")
-    loaded = load_session(str(spec), None)
+    loaded = session(str(spec), None)
     assert loaded is not None
     with pytest.raises(SpecSemanticError, match=r"2 gait\(s\) have no valve primitive: "
                        r"east, west"):
@@ -322,7 +322,7 @@ def test_serial_board_error_reply_and_missing_port(board_factory: type[FakeBoard
         SerialValveBoard("/dev/nonexistent-gaitc", 2, ["L1"]).open()
 
 
-def test_driver_on_a_serial_board(tiny: Loaded, tmp_path: Path,
+def test_driver_on_a_serial_board(tiny: Session, tmp_path: Path,
                                   board_factory: type[FakeBoard]) -> None:
     board = board_factory(valves=2, health="2,2")
     prims = bind_primitives(tiny.model, str(tmp_path))
@@ -338,7 +338,7 @@ def test_driver_on_a_serial_board(tiny: Loaded, tmp_path: Path,
     assert len(board.commands("S")) == 5
 
 
-def test_driver_stops_when_localisation_disagrees(tiny: Loaded, tmp_path: Path,
+def test_driver_stops_when_localisation_disagrees(tiny: Session, tmp_path: Path,
                                                   board_factory: type[FakeBoard]) -> None:
     board = board_factory(valves=2, health="2,2", region="b")  # the robot starts in a
     hw = SerialValveBoard(board.url, 2, tiny.domain.legs, timeout=1.0)

@@ -9,7 +9,7 @@ import pytest
 
 from diagnostics import UsageError
 from gaitc.cli import main
-from gaitc.commands.simulating import Loaded, load_session
+from gaitc.simulation import Session, session
 from gaitsim import graphics
 from gaitsim.automaton_view import automaton_view, input_change
 from gaitsim.domain import State
@@ -28,14 +28,14 @@ needs_dot = pytest.mark.skipif(not graphics.have_dot(),
 
 
 @pytest.fixture(scope="module")
-def patrol() -> Loaded:
-    loaded = load_session(PATROL, None)
+def patrol() -> Session:
+    loaded = session(PATROL, None)
     assert loaded is not None
     return loaded
 
 
 @pytest.fixture(scope="module")
-def run(patrol: Loaded) -> Run:
+def run(patrol: Session) -> Run:
     return simulate(patrol.strategy, patrol.domain, patrol.monitor, AdversarialEnvironment(), 12)
 
 
@@ -58,7 +58,7 @@ def test_input_change_speaks_domain_terms() -> None:
     assert input_change(before, before) == "no change"
 
 
-def test_automaton_dot_has_one_node_per_state(patrol: Loaded) -> None:
+def test_automaton_dot_has_one_node_per_state(patrol: Session) -> None:
     view = automaton_view(patrol.strategy, patrol.domain, "none")
     dot = view.dot()
     assert len(view.groups) == len(patrol.strategy)
@@ -69,7 +69,7 @@ def test_automaton_dot_has_one_node_per_state(patrol: Loaded) -> None:
     assert dot.count(" -> ") == edges
 
 
-def test_quotients_partition_the_nodes_and_report_merges(patrol: Loaded) -> None:
+def test_quotients_partition_the_nodes_and_report_merges(patrol: Session) -> None:
     total = len(patrol.strategy)
     for quotient in ("region-gait", "region"):
         view = automaton_view(patrol.strategy, patrol.domain, quotient)
@@ -79,7 +79,7 @@ def test_quotients_partition_the_nodes_and_report_merges(patrol: Loaded) -> None
     assert len(automaton_view(patrol.strategy, patrol.domain, "region").groups) == 4
 
 
-def test_automatic_quotient_above_the_threshold(patrol: Loaded) -> None:
+def test_automatic_quotient_above_the_threshold(patrol: Session) -> None:
     small = automaton_view(patrol.strategy, patrol.domain, None, max_nodes=10**6)
     assert small.quotient == "none" and small.notes == ()
     big = automaton_view(patrol.strategy, patrol.domain, None, max_nodes=5)
@@ -89,7 +89,7 @@ def test_automatic_quotient_above_the_threshold(patrol: Loaded) -> None:
 
 
 @needs_dot
-def test_automaton_svg_is_well_formed_with_expected_labels(patrol: Loaded) -> None:
+def test_automaton_svg_is_well_formed_with_expected_labels(patrol: Session) -> None:
     view = automaton_view(patrol.strategy, patrol.domain, "region-gait")
     nodes = _svg_nodes(view.svg())
     assert len(nodes) == len(view.groups) + 1  # plus the start point
@@ -101,7 +101,7 @@ def test_automaton_svg_is_well_formed_with_expected_labels(patrol: Loaded) -> No
 
 
 @needs_dot
-def test_map_svg_with_run_shows_regions_path_and_timeline(patrol: Loaded, run: Run) -> None:
+def test_map_svg_with_run_shows_regions_path_and_timeline(patrol: Session, run: Run) -> None:
     svg = map_view(patrol.model, run).svg()
     nodes = _svg_nodes(svg)
     assert len(nodes) == 4 + 2  # regions, timeline, legend
@@ -122,7 +122,7 @@ def test_map_svg_with_run_shows_regions_path_and_timeline(patrol: Loaded, run: R
 
 
 @needs_dot
-def test_spec_view_lists_every_gait(patrol: Loaded) -> None:
+def test_spec_view_lists_every_gait(patrol: Session) -> None:
     nodes = _svg_nodes(spec_view(patrol.model).svg())
     texts = [t for lines in nodes for t in lines]
     for gait in ("north", "south", "east", "west"):
@@ -130,7 +130,7 @@ def test_spec_view_lists_every_gait(patrol: Loaded) -> None:
 
 
 def test_output_formats_and_missing_graphviz(monkeypatch: pytest.MonkeyPatch,
-                                             patrol: Loaded, tmp_path: Path) -> None:
+                                             patrol: Session, tmp_path: Path) -> None:
     assert graphics.output_format("a.svg") == "svg"
     assert graphics.output_format("a.gv") == "dot"
     assert graphics.output_format("a.svg", "pdf") == "pdf"
@@ -149,7 +149,7 @@ def test_output_formats_and_missing_graphviz(monkeypatch: pytest.MonkeyPatch,
 
 
 @needs_dot
-def test_cli_render_commands(patrol: Loaded, run: Run, tmp_path: Path,
+def test_cli_render_commands(patrol: Session, run: Run, tmp_path: Path,
                              capsys: pytest.CaptureFixture[str]) -> None:
     controller = synthesize(patrol.spec.gr1)
     assert controller is not None

@@ -20,14 +20,9 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
-from gaitc.commands.simulating import load_session  # noqa: E402
-from gaitc.loading import load  # noqa: E402
+import gaitc  # noqa: E402
 from gaitsim.automaton_view import automaton_view  # noqa: E402
-from gaitsim.environments import AdversarialEnvironment  # noqa: E402
 from gaitsim.map_view import map_view, spec_view  # noqa: E402
-from gaitsim.simulator import simulate  # noqa: E402
-from gr1.controller import controller_to_json  # noqa: E402
-from solver.synthesis import synthesize  # noqa: E402
 
 FIGURES = ROOT / "docs" / "figures"
 ROBOT_A = ROOT / "specs" / "thesis_robot_a.gait"
@@ -39,10 +34,10 @@ def controller_for(spec: Path, encoding: str) -> Path:
     path = Path(tempfile.gettempdir()) / f"gaitc-bench-{spec.stem}-{encoding}-{digest}.json"
     if not path.exists():
         print(f"synthesizing {spec.name} ({encoding}); this takes a while once", flush=True)
-        controller = synthesize(load(str(spec), encoding).gr1)
-        if controller is None:
+        found = gaitc.synthesize(gaitc.load(spec, encoding))
+        if found.controller is None:
             raise SystemExit(f"{spec}: unrealizable")
-        path.write_text(controller_to_json(controller), encoding="utf-8")
+        found.save(path)
     return path
 
 
@@ -54,13 +49,12 @@ def write(name: str, svg: str) -> None:
 
 def main() -> None:
     FIGURES.mkdir(parents=True, exist_ok=True)
-    robot_a = load_session(str(ROBOT_A), str(controller_for(ROBOT_A, "binary")), "binary")
+    robot_a = gaitc.session(ROBOT_A, controller_for(ROBOT_A, "binary"), "binary")
     assert robot_a is not None
-    run = simulate(robot_a.strategy, robot_a.domain, robot_a.monitor, AdversarialEnvironment(),
-                   20, "specs/thesis_robot_a.gait")
+    run = gaitc.simulate(robot_a, env="adversarial", steps=20)
     write("robot_a_adversarial_run.svg", map_view(robot_a.model, run, 20).svg())
     write("thesis_robot_a_spec.svg", spec_view(robot_a.model).svg())
-    patrol = load_session(str(PATROL), None)
+    patrol = gaitc.session(PATROL)
     assert patrol is not None
     write("patrol_2x2_automaton.svg", automaton_view(patrol.strategy, patrol.domain,
                                                      "none").svg())

@@ -11,12 +11,15 @@ import sys
 from pathlib import Path
 from typing import Any
 
+import gaitc
 from diagnostics import UsageError
-from gaitc.commands.simulating import ENVIRONMENTS, Loaded, load_session, report_run
-from gaitc.exitcodes import EXIT_UNREALIZABLE
-from gaitc.loading import load
+from gaitc.commands.simulating import environment_of, report_run
+from gaitc.exitcodes import ExitCode, exit_code_help
+from gaitc.simulation import Session
+from gaitc.solving import recorded_encoding
 from gaithw.backend import Backend
-from gaitsim.environments import AdversarialEnvironment, Environment, RandomEnvironment
+from gaitsim.environments import Environment
+from gaitsim.scenario import ScriptedEnvironment
 from ltlcompiler.encoding import ENCODINGS
 
 EPILOG = """backends:
@@ -27,13 +30,13 @@ EPILOG = """backends:
                      socket://HOST:PORT) speaking the gaitc line protocol (docs/hardware.md);
                      every valve is vented on exit, on any error and on Ctrl-C
 
-exit codes:
-  0  the run finished (or was interrupted with Ctrl-C) and the spec held along it
-  1  an input file is wrong, a gait has no valve primitive, the board failed, the sensors
-     broke an assumption, or the controller broke a guarantee
-  2  the command line is wrong
-  3  the spec is unrealizable (when no CONTROLLER is given)
 """
+EPILOG += exit_code_help({
+    ExitCode.OK: "the run finished (or was interrupted with Ctrl-C) and the spec held along it",
+    ExitCode.USER: "an input file is wrong, a gait has no valve primitive, the board failed, "
+    "the sensors broke an assumption, or the controller broke a guarantee",
+    ExitCode.UNREALIZABLE: "the spec is unrealizable (when no CONTROLLER is given)",
+}, codes=(ExitCode.OK, ExitCode.USER, ExitCode.USAGE, ExitCode.UNREALIZABLE))
 
 
 def register(sub: Any) -> None:
@@ -93,25 +96,13 @@ def _check_options(args: argparse.Namespace) -> None:
         raise UsageError("--port and --channels are for --backend serial")
 
 
-def _environment(args: argparse.Namespace, loaded: Loaded) -> tuple[Environment, int | None]:
-    kind, *rest = args.env or ["random"]
-    if kind not in ENVIRONMENTS:
-        raise UsageError(f"unknown environment '{kind}'; use one of {', '.join(ENVIRONMENTS)}")
-    if kind == "scripted":
-        if len(rest) != 1:
-            raise UsageError("--env scripted needs one scenario file: --env scripted FILE.yaml")
-        from gaitsim.scenario import ScriptedEnvironment, load_scenario
-
-        scenario = load_scenario(rest[0], loaded.model)
-        return ScriptedEnvironment(scenario, loaded.strategy.inputs), len(scenario.steps)
-    if rest:
-        raise UsageError(f"--env {kind} takes no file (got '{rest[0]}')")
-    if kind == "random":
-        return RandomEnvironment(args.seed), None
-    return AdversarialEnvironment(), None
+def _environment(args: argparse.Namespace, bound: Session) -> tuple[Environment, int | None]:
+    chosen = environment_of(args, bound)
+    scripted = chosen.scenario.steps if isinstance(chosen, ScriptedEnvironment) else None
+    return chosen, None if scripted is None else len(scripted)
 
 
-def _backend(args: argparse.Namespace, loaded: Loaded, valves: int) -> tuple[Backend, int]:
+def _backend(args: argparse.Namespace, loaded: Session, valves: int) -> tuple[Backend, int]:
     steps: int = 20 if args.steps is None else args.steps
     if args.backend == "serial":
         from gaithw.serial_board import SerialValveBoard, parse_channels
@@ -132,16 +123,18 @@ def run_drive(args: argparse.Namespace) -> int:
     from gaithw.driver import Driver, bind_primitives, valve_count
 
     _check_options(args)
-    checked = load(args.spec, args.encoding or "onehot")
+    encoding = args.encoding or (recorded_encoding(args.controller) if args.controller
+                                 else None) or "onehot"
+    checked = gaitc.load(args.spec, encoding)
     if checked.model is None:
         raise UsageError(f"'{args.spec}': driving needs a .gait spec, which binds gaits to "
                          "valve primitives")
     primitives = bind_primitives(checked.model, str(Path(args.spec).parent))
     semantics = "robotics" if args.robotics_semantics else "default"
-    loaded = load_session(args.spec, args.controller, args.encoding, semantics)
+    loaded = gaitc.session(checked, args.controller, semantics=semantics)
     if loaded is None:
         print(f"{args.spec}: unrealizable: no controller to drive", file=sys.stderr)
-        return EXIT_UNREALIZABLE
+        return ExitCode.UNREALIZABLE
     backend, steps = _backend(args, loaded, valve_count(primitives, len(loaded.domain.legs)))
     delay = args.step_delay if args.step_delay is not None else (
         0.5 if args.backend == "serial" else 0.0)

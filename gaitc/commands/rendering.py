@@ -8,8 +8,9 @@ import argparse
 import sys
 from typing import Any
 
+import gaitc
 from diagnostics import UsageError
-from gaitc.exitcodes import EXIT_OK, EXIT_UNREALIZABLE
+from gaitc.exitcodes import ExitCode
 from gaitsim.graphics import FORMATS, Picture, output_format
 
 FORMAT_HELP = (f"output format: {', '.join(FORMATS)} (default: from the -o extension); every "
@@ -79,29 +80,26 @@ def _save(picture: Picture, args: argparse.Namespace) -> int:
     for note in picture.notes:
         print(f"gaitc: {note}", file=sys.stderr)
     print(f"wrote {args.output} ({fmt})", file=sys.stderr)
-    return EXIT_OK
+    return ExitCode.OK
 
 
 def _model(path: str) -> Any:
-    from gaitc.loading import load
-
-    loaded = load(path)
+    loaded = gaitc.load(path)
     if loaded.model is None:
         raise UsageError(f"'{path}': maps need a .gait spec")
     return loaded.model
 
 
 def run_automaton(args: argparse.Namespace) -> int:
-    from gaitc.commands.simulating import load_session
     from gaitsim.automaton_view import automaton_view
 
     output_format(args.output, args.format)  # fail on a bad format before synthesizing
     if args.max_nodes < 1:
         raise UsageError("--max-nodes must be at least 1")
-    loaded = load_session(args.spec, args.controller, args.encoding)
+    loaded = gaitc.session(args.spec, args.controller, args.encoding)
     if loaded is None:
         print(f"{args.spec}: unrealizable: no controller to draw", file=sys.stderr)
-        return EXIT_UNREALIZABLE
+        return ExitCode.UNREALIZABLE
     view = automaton_view(loaded.strategy, loaded.domain, args.quotient, args.max_nodes)
     if args.quotient == "none" and len(loaded.strategy) > args.max_nodes:
         print(f"gaitc: the automaton has {len(loaded.strategy)} nodes; --quotient region-gait "

@@ -1,92 +1,37 @@
 """The ``simulate`` command: run a controller against an environment, print and save the run.
 
-The work lives in :mod:`gaitsim` (simulator, environments, scenarios, monitor); this module
-parses options, loads the spec and controller (or synthesizes one) and prints the results.
+The work lives in :func:`gaitc.simulate` (:mod:`gaitc.simulation`, over :mod:`gaitsim`);
+this module parses options, calls it and prints the step table and summary.
 """
 
 from __future__ import annotations
 
 import argparse
-import json
 import sys
 from collections.abc import Mapping
-from dataclasses import dataclass
-from pathlib import Path
 from typing import Any
 
-from diagnostics import ControllerError, UsageError
-from gaitc.exitcodes import EXIT_OK, EXIT_UNREALIZABLE, EXIT_USER
-from gaitc.loading import Spec, load
-from gaitsim.domain import Domain
-from gaitsim.environments import AdversarialEnvironment, Environment, RandomEnvironment
-from gaitsim.monitor import Monitor
+import gaitc
+from diagnostics import UsageError
+from gaitc.exitcodes import ExitCode, exit_code_help
+from gaitc.simulation import ENVIRONMENTS, Session, environment
+from gaitsim.environments import Environment
 from gaitsim.run import Run
-from gaitsim.strategy import Strategy, load_strategy, strategy_from_controller
 from ltlcompiler.encoding import ENCODINGS
-from ltlcompiler.model import Model
 
-ENVIRONMENTS = ("scripted", "random", "adversarial")
 EPILOG = """environments:
   --env random [--seed N]   uniform among the inputs the controller accepts (default, seed 0)
   --env adversarial         degrades every leg in use, activates the nearest hazard set,
                             keeps the robot from its next goal (docs/simulation.md)
   --env scripted FILE.yaml  a scenario: per step the hazard and the legs that degrade/fail
 
-exit codes:
-  0  the run finished and the spec held along it
-  1  an input file is wrong, a scenario step breaks an assumption, or the controller broke
-     a guarantee along the run
-  2  the command line is wrong
-  3  the spec is unrealizable (when no CONTROLLER is given)
 """
-
-
-@dataclass(frozen=True)
-class Loaded:
-    """A .gait spec with its model, a controller adapted to it, and the run checker."""
-
-    spec: Spec
-    model: Model
-    strategy: Strategy
-    domain: Domain
-    monitor: Monitor
-
-
-def _recorded_encoding(controller: str) -> str | None:
-    try:
-        data = json.loads(Path(controller).read_text(encoding="utf-8"))
-        encoding = data["gaitc"]["source"]["encoding"]
-    except (OSError, ValueError, KeyError, TypeError):
-        return None
-    return str(encoding) if encoding in ENCODINGS else None
-
-
-def load_session(spec_path: str, controller: str | None, encoding: str | None = None,
-                 semantics: str = "default") -> Loaded | None:
-    """Load ``spec_path`` (a .gait file) and its controller; synthesize one if not given.
-
-    Returns None when no controller was given and the spec is unrealizable.
-    """
-    if encoding is None:
-        encoding = (_recorded_encoding(controller) if controller else None) or "onehot"
-    loaded = load(spec_path, encoding)
-    if loaded.model is None:
-        raise UsageError(f"'{spec_path}': simulation and maps need a .gait spec, which says "
-                         "what the variables mean (regions, gaits, legs)")
-    if controller is not None:
-        strategy = load_strategy(controller, loaded.gr1)
-    else:
-        from solver.synthesis import synthesize
-
-        found = synthesize(loaded.gr1, semantics)
-        if found is None:
-            return None
-        strategy = strategy_from_controller(found, loaded.gr1, "<synthesized>")
-    if strategy.kind != "strategy":
-        raise ControllerError("this is a counter-strategy; simulate a controller written by "
-                              "'gaitc synth'", None)
-    domain = Domain(loaded.model, encoding)
-    return Loaded(loaded, loaded.model, strategy, domain, Monitor(loaded.gr1))
+EPILOG += exit_code_help({
+    ExitCode.OK: "the run finished and the spec held along it",
+    ExitCode.USER: "an input file is wrong, a scenario step breaks an assumption, or the "
+    "controller broke a guarantee along the run",
+    ExitCode.UNREALIZABLE: "the spec is unrealizable (when no CONTROLLER is given)",
+}, codes=(ExitCode.OK, ExitCode.USER, ExitCode.USAGE, ExitCode.UNREALIZABLE))
 
 
 def register(sub: Any) -> None:
@@ -115,42 +60,31 @@ def register(sub: Any) -> None:
     p.set_defaults(run=run_simulate)
 
 
-def _environment(args: argparse.Namespace, loaded: Loaded) -> tuple[Environment, int]:
-    kind, *rest = args.env
+def environment_of(args: argparse.Namespace, bound: Session) -> Environment:
+    """The environment ``--env`` names (with its scenario file for ``scripted``)."""
+    kind, *rest = args.env or ["random"]
     if kind not in ENVIRONMENTS:
         raise UsageError(f"unknown environment '{kind}'; use one of {', '.join(ENVIRONMENTS)}")
-    steps = 50 if args.steps is None else args.steps
-    if steps < 0:
-        raise UsageError("--steps must not be negative")
     if kind == "scripted":
         if len(rest) != 1:
             raise UsageError("--env scripted needs one scenario file: --env scripted FILE.yaml")
-        from gaitsim.scenario import ScriptedEnvironment, load_scenario
-
-        scenario = load_scenario(rest[0], loaded.model)
-        if args.steps is None:
-            steps = len(scenario.steps)
-        return ScriptedEnvironment(scenario, loaded.strategy.inputs), steps
+        return environment(f"scripted:{rest[0]}", bound)
     if rest:
         raise UsageError(f"--env {kind} takes no file (got '{rest[0]}')")
-    if kind == "random":
-        return RandomEnvironment(args.seed), steps
-    return AdversarialEnvironment(), steps
+    return environment(kind, bound, args.seed)
 
 
 def run_simulate(args: argparse.Namespace) -> int:
-    from gaitsim.simulator import simulate
-
     semantics = "robotics" if args.robotics_semantics else "default"
-    loaded = load_session(args.spec, args.controller, args.encoding, semantics)
-    if loaded is None:
+    if args.steps is not None and args.steps < 0:
+        raise UsageError("--steps must not be negative")
+    bound = gaitc.session(args.spec, args.controller, args.encoding, semantics)
+    if bound is None:
         print(f"{args.spec}: unrealizable: no controller to simulate", file=sys.stderr)
-        return EXIT_UNREALIZABLE
-    environment, steps = _environment(args, loaded)
-    run = simulate(loaded.strategy, loaded.domain, loaded.monitor, environment, steps,
-                   args.spec)
-    full = {leg.name: leg.health for leg in loaded.model.legs}
-    return report_run(run, full, environment.name, args.quiet, args.out)
+        return ExitCode.UNREALIZABLE
+    chosen = environment_of(args, bound)
+    run = gaitc.simulate(bound, env=chosen, steps=args.steps)
+    return report_run(run, bound.full_health, chosen.name, args.quiet, args.out)
 
 
 def report_run(
@@ -179,5 +113,5 @@ def report_run(
     if summary is not None and summary.assumptions_held and not summary.guarantees_held:
         print("gaitc: error: the controller broke a guarantee along this run (see above)",
               file=sys.stderr)
-        return EXIT_USER
-    return EXIT_OK
+        return ExitCode.USER
+    return ExitCode.OK

@@ -1,0 +1,14 @@
+"""Presentation: the small HTML tables that results show in a notebook (``_repr_html_``)."""
+
+from __future__ import annotations
+
+import html
+
+
+def table(title: str, rows: list[tuple[str, str]]) -> str:
+    """An HTML table of ``rows`` (label, value) under ``title``, every string escaped."""
+    body = "".join(
+        f"<tr><th style='text-align:left'>{html.escape(k)}</th><td>{html.escape(v)}</td></tr>"
+        for k, v in rows
+    )
+    return f"<table><caption>{html.escape(title)}</caption>{body}</table>"

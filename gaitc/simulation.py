@@ -1,0 +1,132 @@
+"""Simulation: a controller of a ``.gait`` spec run against an environment, step by step.
+
+A :class:`Session` binds a spec, its controller (read from a file, or synthesized), the
+domain decoding of :mod:`gaitsim.domain` and the run monitor of :mod:`gaitsim.monitor`;
+:func:`simulate` runs it against a random, adversarial or scripted environment and returns
+a :class:`gaitsim.run.Run` checked against every assumption and guarantee.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import TYPE_CHECKING, Final
+
+from diagnostics import ControllerError, UsageError
+from gaitc.loading import Spec, load
+from gaitc.solving import Synthesis, recorded_encoding, synthesize
+from gaitsim.domain import Domain
+from gaitsim.environments import AdversarialEnvironment, Environment, RandomEnvironment
+from gaitsim.monitor import Monitor
+from gaitsim.strategy import Strategy, load_strategy, strategy_from_controller
+from gr1.controller import Controller
+
+if TYPE_CHECKING:
+    from gaitsim.run import Run
+    from gaitsim.scenario import Scenario
+    from ltlcompiler.model import Model
+
+#: The environments :func:`simulate` and ``gaitc simulate --env`` know by name.
+ENVIRONMENTS: Final = ("scripted", "random", "adversarial")
+DEFAULT_STEPS: Final = 50
+
+
+@dataclass(frozen=True)
+class Session:
+    """A ``.gait`` spec with its model, a controller adapted to it, and the run checker."""
+
+    spec: Spec
+    model: Model = field(repr=False)
+    strategy: Strategy = field(repr=False)
+    domain: Domain = field(repr=False)
+    monitor: Monitor = field(repr=False)
+
+    @property
+    def full_health(self) -> dict[str, int]:
+        """Each leg's number of health levels (the table's reference for marks)."""
+        return {leg.name: leg.health for leg in self.model.legs}
+
+    def __repr__(self) -> str:
+        return (f"<gaitc.Session {self.spec.path!r}: controller of {len(self.strategy)} "
+                f"nodes, {len(self.model.legs)} legs>")
+
+
+def session(spec: Spec | str | Path, controller: Controller | Synthesis | str | Path | None
+            = None, encoding: str | None = None, semantics: str = "default") -> Session | None:
+    """Bind ``spec`` (a ``.gait`` :class:`Spec` or path) to ``controller`` (an automaton, a
+    :class:`Synthesis` or a controller file); synthesize one when ``controller`` is None.
+
+    A path is loaded with ``encoding``, else the encoding the controller file records, else
+    onehot. Returns None when no controller was given and the spec is unrealizable.
+    """
+    if not isinstance(spec, Spec):
+        if encoding is None and isinstance(controller, (str, Path)):
+            encoding = recorded_encoding(controller)
+        spec = load(spec, encoding or "onehot")
+    if spec.model is None:
+        raise UsageError(f"'{spec.path}': simulation and maps need a .gait spec, which says "
+                         "what the variables mean (regions, gaits, legs)")
+    if isinstance(controller, (str, Path)):
+        strategy = load_strategy(controller, spec.gr1)
+    else:
+        if controller is None:
+            controller = synthesize(spec, semantics, verify=False)
+        automaton = controller.controller if isinstance(controller, Synthesis) else controller
+        if automaton is None:
+            return None
+        strategy = strategy_from_controller(automaton, spec.gr1, "<synthesized>")
+    if strategy.kind != "strategy":
+        raise ControllerError("this is a counter-strategy; simulate a controller written by "
+                              "'gaitc synth'", None)
+    domain = Domain(spec.model, spec.encoding or "onehot")
+    return Session(spec, spec.model, strategy, domain, Monitor(spec.gr1))
+
+
+def environment(kind: str | Scenario | Environment, bound: Session, seed: int = 0
+                ) -> Environment:
+    """The environment named ``kind`` (:data:`ENVIRONMENTS`; ``scripted`` needs a scenario
+    object or a path ``scripted:FILE.yaml``), or ``kind`` itself when it already is one."""
+    from gaitsim.scenario import Scenario, ScriptedEnvironment, load_scenario
+
+    if isinstance(kind, Environment):
+        return kind
+    if isinstance(kind, Scenario):
+        return ScriptedEnvironment(kind, bound.strategy.inputs)
+    if kind == "random":
+        return RandomEnvironment(seed)
+    if kind == "adversarial":
+        return AdversarialEnvironment()
+    if kind.startswith("scripted:"):
+        scenario = load_scenario(kind.removeprefix("scripted:"), bound.model)
+        return ScriptedEnvironment(scenario, bound.strategy.inputs)
+    raise UsageError(f"unknown environment '{kind}'; use random, adversarial, a scenario or "
+                     "'scripted:FILE.yaml'")
+
+
+def simulate(spec: Spec | Session | str | Path,
+             controller: Controller | Synthesis | str | Path | None = None,
+             env: str | Scenario | Environment = "random", steps: int | None = None,
+             seed: int = 0, semantics: str = "default") -> Run:
+    """Run ``controller`` (synthesized when None) for ``spec`` against ``env`` for ``steps``
+    steps (default 50, or the scenario's length) and check every step against the spec.
+
+    >>> import gaitc
+    >>> run = gaitc.simulate("specs/patrol_2x2.gait", env="adversarial", steps=6)
+    >>> run.summary.guarantees_held, len(run.steps)
+    (True, 7)
+    """
+    from gaitsim.scenario import ScriptedEnvironment
+    from gaitsim.simulator import simulate as run_simulation
+
+    bound = spec if isinstance(spec, Session) else session(spec, controller, None, semantics)
+    if bound is None:
+        path = spec.path if isinstance(spec, Spec) else str(spec)
+        raise UsageError(f"'{path}' is unrealizable: there is no controller to simulate")
+    chosen = environment(env, bound, seed)
+    if steps is None:
+        steps = (len(chosen.scenario.steps) if isinstance(chosen, ScriptedEnvironment)
+                 else DEFAULT_STEPS)
+    if steps < 0:
+        raise UsageError("the number of steps must not be negative")
+    return run_simulation(bound.strategy, bound.domain, bound.monitor, chosen, steps,
+                          bound.spec.path)

@@ -1,0 +1,280 @@
+"""Solving: realizability, verified controllers and counter-strategies for a loaded spec.
+
+The embedded BDD solver (:mod:`solver`) or the SLUGS binary (:mod:`slugs_bridge.runner`)
+decides and synthesizes; every automaton is then proved by the independent checker of
+:mod:`verifier`, which shares no code with either solver.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+from typing import TYPE_CHECKING, Final, Literal, get_args
+
+from diagnostics import SolverError, UsageError
+from diagnostics.files import write_atomically
+from gaitc.loading import Spec, as_gr1
+from gaitc.presentation import table
+from gr1.controller import Controller, controller_to_json, load_controller
+from gr1.spec import SEMANTICS, GR1Spec
+from solver.game import GameStats, Progress
+from solver.symbolic import Options
+from verifier.strategy import VerificationReport
+
+if TYPE_CHECKING:
+    from gaitsim.graphics import Picture
+
+SolverName = Literal["embedded", "slugs"]
+#: ``embedded``: the BDD solver in :mod:`solver`; ``slugs``: an installed SLUGS binary.
+SOLVERS: Final[tuple[SolverName, ...]] = get_args(SolverName)
+Kind = Literal["strategy", "counterstrategy"]
+
+
+@dataclass(frozen=True)
+class Verdict:
+    """Whether a spec is realizable, how long deciding took, and the fixpoint statistics."""
+
+    file: str
+    realizable: bool
+    seconds: float
+    semantics: str = "default"
+    solver: str = "embedded"
+    stats: GameStats | None = field(default=None, repr=False)
+
+    def __repr__(self) -> str:
+        word = "realizable" if self.realizable else "unrealizable"
+        return (f"<gaitc.Verdict {self.file!r}: {word} in {self.seconds:.2f} s "
+                f"({self.solver} solver, {self.semantics} semantics)>")
+
+    def _repr_html_(self) -> str:
+        rows = [("verdict", "realizable" if self.realizable else "unrealizable"),
+                ("seconds", f"{self.seconds:.3f}"), ("solver", self.solver),
+                ("semantics", self.semantics)]
+        if self.stats is not None:
+            rows.append(("peak BDD nodes", str(self.stats.peak_nodes)))
+        return table(f"realizability of {self.file}", rows)
+
+
+@dataclass(frozen=True)
+class Synthesis:
+    """A solver's automaton for a spec, with the verifier's report on it.
+
+    ``controller`` is None when the spec has no winner of the kind asked for: no strategy
+    for an unrealizable spec, no counter-strategy for a realizable one.
+    """
+
+    spec: Spec | GR1Spec = field(repr=False)
+    kind: Kind
+    controller: Controller | None
+    report: VerificationReport | None
+    seconds: float
+    semantics: str = "default"
+    solver: str = "embedded"
+
+    @property
+    def realizable(self) -> bool:
+        """Whether the spec is realizable (the verdict behind this automaton)."""
+        found = self.controller is not None
+        return found if self.kind == "strategy" else not found
+
+    @property
+    def verified(self) -> bool:
+        """An automaton exists and the independent verifier accepted it."""
+        return self.report is not None and self.report.ok
+
+    def save(self, path: str | Path) -> None:
+        """Write the automaton as JSON (docs/controller-format.md), atomically."""
+        if self.controller is None:
+            raise UsageError(f"there is no {self.kind} to save: the spec is "
+                             f"{'realizable' if self.realizable else 'unrealizable'}")
+        write_atomically(path, controller_to_json(self.controller))
+
+    def picture(self) -> Picture:
+        """The automaton drawn in domain terms (needs a ``.gait`` spec and Graphviz)."""
+        from gaitsim.automaton_view import automaton_view
+        from gaitsim.domain import Domain
+        from gaitsim.strategy import strategy_from_controller
+
+        if self.controller is None:
+            raise UsageError(f"there is no {self.kind} to draw")
+        if not isinstance(self.spec, Spec) or self.spec.model is None:
+            raise UsageError("drawing an automaton needs a .gait spec, which says what its "
+                             "variables mean")
+        strategy = strategy_from_controller(self.controller, self.spec.gr1, self.spec.path)
+        domain = Domain(self.spec.model, self.spec.encoding or "onehot")
+        return automaton_view(strategy, domain)
+
+    def __repr__(self) -> str:
+        file = self.spec.path if isinstance(self.spec, Spec) else self.spec.name or "spec"
+        if self.controller is None:
+            word = "realizable" if self.realizable else "unrealizable"
+            return f"<gaitc.Synthesis {file!r}: {word}, no {self.kind} ({self.seconds:.2f} s)>"
+        proof = "not verified" if self.report is None else (
+            "verified" if self.report.ok else "FAILED verification")
+        return (f"<gaitc.Synthesis {file!r}: {self.kind} of {len(self.controller.nodes)} "
+                f"nodes, {proof} ({self.seconds:.2f} s, {self.solver} solver)>")
+
+    def _repr_html_(self) -> str:
+        rows = [("kind", self.kind), ("realizable", str(self.realizable)),
+                ("seconds", f"{self.seconds:.3f}"), ("solver", self.solver),
+                ("semantics", self.semantics)]
+        if self.controller is not None:
+            rows.append(("nodes", str(len(self.controller.nodes))))
+        if self.report is not None:
+            rows.append(("verification", self.report.summary()))
+        return table(repr(self)[1:-1], rows)
+
+
+def _semantics(semantics: str) -> str:
+    if semantics not in SEMANTICS:
+        raise UsageError(f"unknown semantics '{semantics}'; use one of {', '.join(SEMANTICS)}")
+    return semantics
+
+
+def _solver(solver: str) -> str:
+    if solver not in SOLVERS:
+        raise UsageError(f"unknown solver '{solver}'; use one of {', '.join(SOLVERS)}")
+    return solver
+
+
+def _name(spec: Spec | GR1Spec) -> str:
+    return spec.path if isinstance(spec, Spec) else spec.name or "<spec>"
+
+
+def _slugsin(spec: GR1Spec) -> str:
+    from gr1.bitblast import bitblast
+    from slugs_bridge.slugsin import emit_slugsin
+
+    return emit_slugsin(bitblast(spec))
+
+
+def check(spec: Spec | GR1Spec, semantics: str = "default", solver: str = "embedded",
+          timeout: float | None = None, slugs: str | None = None,
+          options: Options | None = None, progress: Progress | None = None) -> Verdict:
+    """Decide whether a controller exists for ``spec``.
+
+    ``semantics`` is ``default`` or ``robotics`` (:data:`gr1.spec.SEMANTICS`), ``solver``
+    ``embedded`` or ``slugs`` (then ``slugs`` names the binary, else ``$SLUGS`` or PATH).
+    Raises :class:`~diagnostics.SolverError` when the solver cannot finish.
+    """
+    gr1, started = as_gr1(spec), time.monotonic()
+    _semantics(semantics)
+    if _solver(solver) == "slugs":
+        from slugs_bridge.runner import run_slugs_check
+
+        result = run_slugs_check(_slugsin(gr1), semantics=semantics, timeout=timeout,
+                                 slugs=slugs)
+        return Verdict(_name(spec), result.realizable, result.seconds, semantics, solver)
+    from solver import synthesis
+
+    try:
+        checked = synthesis.check(gr1, semantics, timeout, progress, options)
+    except MemoryError:
+        raise _out_of_memory() from None
+    return Verdict(_name(spec), checked.realizable, time.monotonic() - started, semantics,
+                   solver, checked.stats)
+
+
+def synthesize(spec: Spec | GR1Spec, semantics: str = "default", solver: str = "embedded",
+               timeout: float | None = None, slugs: str | None = None,
+               options: Options | None = None, progress: Progress | None = None,
+               verify: bool = True) -> Synthesis:
+    """A controller for ``spec``, proved by the independent verifier unless ``verify`` is
+    False; ``.controller`` is None when the spec is unrealizable."""
+    return _solve(spec, "strategy", semantics, solver, timeout, slugs, options, progress, verify)
+
+
+def counterstrategy(spec: Spec | GR1Spec, semantics: str = "default",
+                    solver: str = "embedded", timeout: float | None = None,
+                    slugs: str | None = None, options: Options | None = None,
+                    progress: Progress | None = None, verify: bool = True) -> Synthesis:
+    """The environment's winning strategy for an unrealizable ``spec``, verified;
+    ``.controller`` is None when the spec is realizable."""
+    return _solve(spec, "counterstrategy", semantics, solver, timeout, slugs, options,
+                  progress, verify)
+
+
+def _solve(spec: Spec | GR1Spec, kind: Kind, semantics: str, solver: str,
+           timeout: float | None, slugs: str | None, options: Options | None,
+           progress: Progress | None, check_it: bool) -> Synthesis:
+    gr1, started = as_gr1(spec), time.monotonic()
+    _semantics(semantics)
+    try:
+        if _solver(solver) == "slugs":
+            automaton = _slugs_automaton(gr1, kind, semantics, timeout, slugs)
+        else:
+            from solver import synthesis
+
+            make = synthesis.synthesize if kind == "strategy" else synthesis.counterstrategy
+            automaton = make(gr1, semantics, timeout, progress, options)
+    except MemoryError:
+        raise _out_of_memory() from None
+    seconds = time.monotonic() - started
+    report = None
+    if automaton is not None:
+        source = spec.source() if isinstance(spec, Spec) else None
+        automaton = replace(automaton, source=source, solver=solver)
+        if check_it:
+            report = verify(spec, automaton, semantics)
+    return Synthesis(spec, kind, automaton, report, seconds, semantics, solver)
+
+
+def _slugs_automaton(gr1: GR1Spec, kind: Kind, semantics: str, timeout: float | None,
+                     slugs: str | None) -> Controller | None:
+    from slugs_bridge import runner
+
+    wanted = kind == "strategy"
+    run = runner.run_slugs_synth if wanted else runner.run_slugs_counter
+    result = run(_slugsin(gr1), semantics=semantics, timeout=timeout, slugs=slugs)
+    if result.realizable != wanted:
+        return None
+    if result.output is None:
+        verdict = "realizable" if result.realizable else "unrealizable"
+        raise SolverError(f"SLUGS reported {verdict} but wrote no {kind}")
+    if wanted:
+        return runner.controller_from_slugs_json(result.output, gr1, semantics)
+    return runner.counterstrategy_from_slugs_text(result.output, gr1, semantics)
+
+
+def _out_of_memory() -> SolverError:
+    return SolverError("synthesis ran out of memory",
+                       hint="raise the memory limit, or shrink the specification")
+
+
+def verify(spec: Spec | GR1Spec, controller: Controller | Synthesis | str | Path,
+           semantics: str | None = None) -> VerificationReport:
+    """Prove independently that ``controller`` (a strategy) realizes ``spec``, or that a
+    counter-strategy defeats it; a path is read as a controller file. ``semantics`` defaults
+    to the one recorded in the controller."""
+    gr1 = as_gr1(spec)
+    if isinstance(controller, Synthesis):
+        if controller.controller is None:
+            raise UsageError(f"there is no {controller.kind} to verify")
+        automaton = controller.controller
+    elif isinstance(controller, Controller):
+        automaton = controller
+    else:
+        automaton = load_controller(str(controller), gr1)
+    chosen = _semantics(semantics or automaton.semantics)
+    if automaton.kind == "counterstrategy":
+        from verifier.counterstrategy import verify_counterstrategy
+
+        return verify_counterstrategy(gr1, automaton, chosen)
+    from verifier.strategy import verify as verify_strategy
+
+    return verify_strategy(gr1, automaton, chosen)
+
+
+def recorded_encoding(path: str | Path) -> str | None:
+    """The encoding a controller file says its spec was compiled with, if it says one."""
+    import json
+
+    from ltlcompiler.encoding import ENCODINGS
+
+    try:
+        data = json.loads(Path(path).read_text(encoding="utf-8"))
+        encoding = data["gaitc"]["source"]["encoding"]
+    except (OSError, ValueError, KeyError, TypeError, RecursionError):
+        return None
+    return str(encoding) if encoding in ENCODINGS else None
