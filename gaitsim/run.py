@@ -91,6 +91,17 @@ class Run:
     spec_file: str = ""
     model: Model | None = field(default=None, repr=False)
 
+    def __repr__(self) -> str:
+        if self.summary is None:
+            held = "not checked"
+        elif self.summary.assumptions_held and self.summary.guarantees_held:
+            held = "the spec held"
+        else:
+            held = "the spec was broken"
+        stopped = f"; stopped: {self.error.message}" if self.error is not None else ""
+        return (f"<Run of {self.spec_file or 'a spec'!r}: {len(self.steps)} states against "
+                f"{self.environment or 'an environment'}, {held}{stopped}>")
+
     def _repr_svg_(self) -> str:
         from gaitsim.map_view import run_view
 

@@ -7,6 +7,7 @@ writes it deterministically.
 
 from __future__ import annotations
 
+import html
 import json
 import re
 from collections.abc import Mapping
@@ -56,6 +57,23 @@ class Controller:
     semantics: str = "default"
     source: Mapping[str, str] | None = None
     slugs_version: str = "0.0.1"
+
+    def __repr__(self) -> str:
+        source = f" for {self.source['file']!r}" if self.source and "file" in self.source else ""
+        return (f"<Controller {self.kind}{source}: {len(self.nodes)} nodes, "
+                f"{len(self.initial)} initial, {len(self.inputs)} input and "
+                f"{len(self.outputs)} output bits, {self.semantics} semantics, "
+                f"{self.solver} solver>")
+
+    def _repr_html_(self) -> str:
+        rows = [("kind", self.kind), ("nodes", str(len(self.nodes))),
+                ("initial nodes", str(len(self.initial))),
+                ("edges", str(sum(len(n.trans) for n in self.nodes))),
+                ("inputs", ", ".join(self.inputs)), ("outputs", ", ".join(self.outputs)),
+                ("semantics", self.semantics), ("solver", self.solver)]
+        body = "".join(f"<tr><th style='text-align:left'>{html.escape(k)}</th>"
+                       f"<td>{html.escape(v)}</td></tr>" for k, v in rows)
+        return f"<table><caption>explicit {html.escape(self.kind)}</caption>{body}</table>"
 
     def bit_values(self, node: int) -> dict[str, int]:
         """The bits of ``node`` by name."""

@@ -8,6 +8,7 @@ here, safety is checked node by node (every ρe-allowed input has a successor, e
 from __future__ import annotations
 
 import functools
+import html
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -37,6 +38,15 @@ class VerificationReport:
     sccs: int = 0
     kind: str = "strategy"
     semantics: str = "default"
+
+    def __repr__(self) -> str:
+        return f"<VerificationReport: {self.summary()}>"
+
+    def _repr_html_(self) -> str:
+        items = "".join(f"<li>{html.escape(p)}</li>" for p in self.problems)
+        head = "verified" if self.ok else "NOT verified"
+        return f"<p><b>{head}</b>: {html.escape(self.summary())}</p>" + (
+            f"<ul>{items}</ul>" if items else "")
 
     def summary(self) -> str:
         verdict = "ok" if self.ok else f"{len(self.problems)} problem(s)"
