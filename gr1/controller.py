@@ -16,7 +16,7 @@ from pathlib import Path
 from typing import Any
 
 from diagnostics import ControllerError, Span
-from gr1.spec import GR1Spec, Variable
+from gr1.spec import SEMANTICS, GR1Spec, Variable
 
 FORMAT_VERSION = 1
 KINDS = ("strategy", "counterstrategy")
@@ -234,6 +234,9 @@ def controller_from_dict(
         )
         kind = extras.get("kind", "strategy")
         _need(kind in KINDS, f"'gaitc.kind' must be one of {', '.join(KINDS)}", span)
+        semantics = extras.get("semantics", "default")
+        _need(semantics in SEMANTICS,
+              f"'gaitc.semantics' must be one of {', '.join(SEMANTICS)}", span)
         source = extras.get("source")
         return Controller(
             variables=names,
@@ -244,7 +247,7 @@ def controller_from_dict(
             integers=integers_of(names, frozenset(inputs)),
             kind=kind,
             solver=str(extras.get("solver", "embedded")),
-            semantics=str(extras.get("semantics", "default")),
+            semantics=str(semantics),
             source=dict(source) if isinstance(source, dict) else None,
             slugs_version=str(data.get("slugs", "0.0.1")),
         )

@@ -127,3 +127,44 @@ def test_parse_and_load_agree() -> None:
     parsed = gaitc.parse(path.read_text(encoding="utf-8"), name=str(path), encoding="binary")
     assert loaded.gr1 == parsed.gr1 and loaded.sha256 == parsed.sha256
     assert gaitc.emit(loaded, "slugsin") == gaitc.emit(parsed, "slugsin")
+
+
+def test_a_controller_with_unknown_semantics_is_refused_everywhere(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    import json
+
+    from gaitc.cli import main
+
+    patrol = str(ROOT / "specs" / "patrol_2x2.gait")
+    good = tmp_path / "good.json"
+    assert main(["synth", patrol, "-o", str(good)]) == 0
+    data = json.loads(good.read_text(encoding="utf-8"))
+    data["gaitc"]["semantics"] = "bogus"
+    bad = tmp_path / "bad.json"
+    bad.write_text(json.dumps(data), encoding="utf-8")
+    capsys.readouterr()
+    for command in (["verify", patrol, str(bad)], ["simulate", patrol, str(bad)]):
+        assert main(command) == 1
+        assert "'gaitc.semantics' must be one of default, robotics" in capsys.readouterr().err
+
+
+def test_load_reads_the_file_once(monkeypatch: pytest.MonkeyPatch) -> None:
+    import pathlib
+
+    reads: list[str] = []
+    real_bytes, real_text = pathlib.Path.read_bytes, pathlib.Path.read_text
+
+    def count_bytes(self: pathlib.Path) -> bytes:
+        reads.append(str(self))
+        return real_bytes(self)
+
+    def count_text(self: pathlib.Path, *args: object, **kwargs: object) -> str:
+        reads.append(str(self))
+        return real_text(self, *args, **kwargs)  # type: ignore[arg-type]
+
+    monkeypatch.setattr(pathlib.Path, "read_bytes", count_bytes)
+    monkeypatch.setattr(pathlib.Path, "read_text", count_text)
+    for name in ("patrol_2x2.gait",):
+        gaitc.load(ROOT / "specs" / name)
+    gaitc.load(ROOT / "tests" / "data" / "slugs_examples" / "water_reservoir.structuredslugs")
+    assert [Path(r).name for r in reads] == ["patrol_2x2.gait", "water_reservoir.structuredslugs"]
