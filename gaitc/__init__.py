@@ -6,6 +6,7 @@ notebook (see ``docs/api.md``):
 - :func:`load` / :func:`parse`: a ``.gait``, ``.slugsin`` or ``.structuredslugs`` file or
   text becomes a :class:`Spec` (the GR(1) IR, plus the robot model and source map for
   ``.gait``);
+- :func:`lint`: the warnings of a ``.gait`` spec and the check of its valve primitives;
 - :func:`emit`: the spec as structuredslugs, slugsin or LTL text, exactly as
   ``gaitc compile`` writes it;
 - :func:`check`: a :class:`Verdict`; :func:`synthesize` and :func:`counterstrategy`: a
@@ -16,6 +17,7 @@ The command line (:mod:`gaitc.cli`) is a thin layer over these functions.
 """
 
 from gaitc.emission import FORMATS, emit
+from gaitc.linting import lint
 from gaitc.loading import Spec, load, parse
 from gaitc.simulation import Session, session, simulate
 from gaitc.solving import SOLVERS, Synthesis, Verdict, check, counterstrategy, synthesize, verify
@@ -32,6 +34,7 @@ __all__ = [
     "check",
     "counterstrategy",
     "emit",
+    "lint",
     "load",
     "parse",
     "session",

@@ -8,9 +8,9 @@ from __future__ import annotations
 
 import argparse
 import sys
-from pathlib import Path
 from typing import Any
 
+import gaitc
 from diagnostics import Diagnostic, UsageError, render_diagnostic
 from diagnostics.files import write_atomically
 from gaitc.emission import FORMATS, emit, output_format
@@ -51,19 +51,7 @@ def _warn(diagnostics: list[Diagnostic]) -> None:
 
 
 def run_lint(args: argparse.Namespace) -> int:
-    from ltlcompiler.frontend import load_model
-    from ltlcompiler.lowering import lower
-
-    model, diagnostics = load_model(args.spec)
-    for encoding in ENCODINGS:
-        lower(model, encoding)
-    if args.primitives or any(g.primitive is not None for g in model.gaits):
-        from gaitgraph.pairing import check_gaits
-
-        spec_dir = str(Path(args.spec).resolve().parent)
-        diagnostics = diagnostics + check_gaits(
-            model.gaits, spec_dir, legs=[leg.name for leg in model.legs]
-        )
+    diagnostics = list(gaitc.lint(args.spec, args.primitives))
     _warn(diagnostics)
     return 1 if any(d.severity == "error" for d in diagnostics) else 0
 
