@@ -11,12 +11,15 @@ notebook (see ``docs/api.md``):
   ``gaitc compile`` writes it;
 - :func:`check`: a :class:`Verdict`; :func:`synthesize` and :func:`counterstrategy`: a
   :class:`Synthesis` holding an automaton that :func:`verify` has proved;
+- :func:`explain`: why a spec is unrealizable (kind, core, the environment's freedoms, a
+  play, verified repairs), or the sanity checks of a realizable one;
 - :func:`simulate`: a run of a controller against an environment, checked against the spec.
 
 The command line (:mod:`gaitc.cli`) is a thin layer over these functions.
 """
 
 from gaitc.emission import FORMATS, emit
+from gaitc.explaining import explain
 from gaitc.linting import lint
 from gaitc.loading import Spec, load, parse
 from gaitc.simulation import Session, session, simulate
@@ -34,6 +37,7 @@ __all__ = [
     "check",
     "counterstrategy",
     "emit",
+    "explain",
     "lint",
     "load",
     "parse",

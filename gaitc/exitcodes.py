@@ -19,6 +19,7 @@ class ExitCode(IntEnum):
     USAGE = 2
     UNREALIZABLE = 3
     SOLVER = 4
+    WARNING = 5
     INTERNAL = 70
     INTERRUPTED = 130
 
@@ -30,6 +31,7 @@ MEANINGS: Mapping[ExitCode, str] = {
     ExitCode.USAGE: "the command line is wrong (an unknown option, a missing file)",
     ExitCode.UNREALIZABLE: "unrealizable (check, synth; counter: realizable)",
     ExitCode.SOLVER: "the solver could not finish (timeout, memory limit, SLUGS failure)",
+    ExitCode.WARNING: "explain, lint --deep: realizable, with a sanity warning",
     ExitCode.INTERNAL: "a bug in gaitc (GAITC_DEBUG=1 prints the traceback)",
     ExitCode.INTERRUPTED: "interrupted (Ctrl-C)",
 }

@@ -40,6 +40,7 @@ class Spec:
     encoding: str | None = None
     diagnostics: tuple[Diagnostic, ...] = field(default=(), repr=False)
     sha256: str = field(default="", repr=False)
+    text: str = field(default="", repr=False, compare=False)  # the source, for messages
 
     def source(self) -> dict[str, str]:
         """The ``source`` record written into controller files."""
@@ -146,14 +147,14 @@ def _build(text: str, name: str, suffix: str, encoding: str, digest: str) -> Spe
 
         model, diagnostics = model_from_text(text, name)
         spec = lower(model, encoding)
-        return Spec(name, spec, model, encoding, tuple(diagnostics), digest)
+        return Spec(name, spec, model, encoding, tuple(diagnostics), digest, text)
     if suffix in PREFIX_SUFFIXES:
         from slugs_bridge.slugsin import parse_slugsin
 
-        return Spec(name, parse_slugsin(text, name), sha256=digest)
+        return Spec(name, parse_slugsin(text, name), sha256=digest, text=text)
     from slugs_bridge.structured import parse_structuredslugs
 
-    return Spec(name, parse_structuredslugs(text, name), sha256=digest)
+    return Spec(name, parse_structuredslugs(text, name), sha256=digest, text=text)
 
 
 def as_gr1(spec: Spec | GR1Spec) -> GR1Spec:

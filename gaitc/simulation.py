@@ -12,7 +12,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Final
 
-from diagnostics import ControllerError, UsageError
+from diagnostics import UsageError
 from gaitc.loading import Spec, load
 from gaitc.solving import Synthesis, recorded_encoding, synthesize
 from gaitsim.domain import Domain
@@ -75,9 +75,6 @@ def session(spec: Spec | str | Path, controller: Controller | Synthesis | str | 
         if automaton is None:
             return None
         strategy = strategy_from_controller(automaton, spec.gr1, "<synthesized>")
-    if strategy.kind != "strategy":
-        raise ControllerError("this is a counter-strategy; simulate a controller written by "
-                              "'gaitc synth'", None)
     domain = Domain(spec.model, spec.encoding or "onehot")
     return Session(spec, spec.model, strategy, domain, Monitor(spec.gr1))
 
@@ -103,12 +100,34 @@ def environment(kind: str | Scenario | Environment, bound: Session, seed: int = 
                      "'scripted:FILE.yaml'")
 
 
+def _counter_play(bound: Session, env: object, steps: int | None, seed: int) -> Run:
+    """A counter-strategy plays the environment; ``env`` says how the robot answers:
+    ``random`` (with ``seed``) or ``adversarial`` (it avoids forced deadlocks)."""
+    from gaitsim.counterplay import careful_chooser, play, random_chooser
+
+    if env == "random":
+        choose, name = random_chooser(seed), f"counter-strategy, robot random --seed {seed}"
+    elif env == "adversarial":
+        choose, name = careful_chooser(bound.strategy), "counter-strategy, robot careful"
+    else:
+        raise UsageError("a counter-strategy is the environment: choose how the robot answers "
+                         "with 'random' or 'adversarial' (it avoids forced deadlocks)")
+    count = DEFAULT_STEPS if steps is None else steps
+    if count < 0:
+        raise UsageError("the number of steps must not be negative")
+    return play(bound.strategy, bound.domain, bound.monitor, count, choose, bound.spec.path,
+                name)
+
+
 def simulate(spec: Spec | Session | str | Path,
              controller: Controller | Synthesis | str | Path | None = None,
              env: str | Scenario | Environment = "random", steps: int | None = None,
              seed: int = 0, semantics: str = "default") -> Run:
     """Run ``controller`` (synthesized when None) for ``spec`` against ``env`` for ``steps``
     steps (default 50, or the scenario's length) and check every step against the spec.
+
+    A counter-strategy (``gaitc counter``) plays the environment itself; ``env`` then says
+    how the robot answers (``random`` or ``adversarial``).
 
     >>> import gaitc
     >>> run = gaitc.simulate("specs/patrol_2x2.gait", env="adversarial", steps=6)
@@ -122,6 +141,8 @@ def simulate(spec: Spec | Session | str | Path,
     if bound is None:
         path = spec.path if isinstance(spec, Spec) else str(spec)
         raise UsageError(f"'{path}' is unrealizable: there is no controller to simulate")
+    if bound.strategy.kind == "counterstrategy":
+        return _counter_play(bound, env, steps, seed)
     chosen = environment(env, bound, seed)
     if steps is None:
         steps = (len(chosen.scenario.steps) if isinstance(chosen, ScriptedEnvironment)

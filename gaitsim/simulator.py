@@ -78,6 +78,15 @@ class Simulator:
             self._values[node] = found
         return found
 
+    def step(self, index: int, node: int, previous: Step | None) -> Step:
+        """Step ``index`` of a run: ``node`` decoded, compared with ``previous``."""
+        return self._step(index, node, previous)
+
+    def summarize(self, run: Run, violations: list[Violation], env_live: Mapping[int, int],
+                  sys_live: Mapping[int, int]) -> Summary:
+        """The summary of ``run`` from the monitor's findings along it."""
+        return self._summary(run, violations, env_live, sys_live)
+
     def _step(self, index: int, node: int, previous: Step | None) -> Step:
         key = (node, -1 if previous is None else previous.node)
         found = self._steps.get(key)

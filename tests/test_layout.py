@@ -19,7 +19,7 @@ LAYERS: list[tuple[str, ...]] = [
     ("ltlcompiler",),
     ("gaitgraph",),
     ("gaitsim",),
-    ("gaithw",),
+    ("analysis", "gaithw"),
     ("gaitc",),
 ]
 PACKAGES = [name for layer in LAYERS for name in layer]

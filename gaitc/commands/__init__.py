@@ -6,6 +6,14 @@ parser default; the function returns an exit code (see :mod:`gaitc.cli`).
 
 from __future__ import annotations
 
-from gaitc.commands import compiling, driving, gaits, rendering, simulating, solving
+from gaitc.commands import (
+    compiling,
+    driving,
+    explaining,
+    gaits,
+    rendering,
+    simulating,
+    solving,
+)
 
-COMMAND_MODULES = (compiling, solving, simulating, rendering, gaits, driving)
+COMMAND_MODULES = (compiling, solving, explaining, simulating, rendering, gaits, driving)

@@ -14,6 +14,7 @@ import gaitc
 from diagnostics import Diagnostic, UsageError, render_diagnostic
 from diagnostics.files import write_atomically
 from gaitc.emission import FORMATS, emit, output_format
+from gaitc.exitcodes import ExitCode
 from gaitc.loading import load
 from ltlcompiler.encoding import ENCODINGS
 
@@ -27,6 +28,9 @@ def register(subparsers: Any) -> None:
     lint.add_argument("--primitives", action="store_true",
                       help="report gaits without a valve primitive even when no gait binds one "
                       "(by default they are reported once any gait of the spec binds one)")
+    lint.add_argument("--deep", action="store_true",
+                      help="also solve the spec and run the sanity checks of 'gaitc explain' "
+                      "(exit 3 if unrealizable, 5 on a sanity warning)")
     lint.set_defaults(run=run_lint)
 
     comp = subparsers.add_parser(
@@ -53,7 +57,18 @@ def _warn(diagnostics: list[Diagnostic]) -> None:
 def run_lint(args: argparse.Namespace) -> int:
     diagnostics = list(gaitc.lint(args.spec, args.primitives))
     _warn(diagnostics)
-    return 1 if any(d.severity == "error" for d in diagnostics) else 0
+    if any(d.severity == "error" for d in diagnostics):
+        return ExitCode.USER
+    if not args.deep:
+        return ExitCode.OK
+    why = gaitc.explain(gaitc.load(args.spec, kind=".gait"), repairs=False)
+    if not why.realizable:
+        print(f"{args.spec}: unrealizable ({why.kind} failure); 'gaitc explain' says why",
+              file=sys.stderr)
+        return ExitCode.UNREALIZABLE
+    for warning in why.warnings:
+        print(f"{args.spec}: warning: {warning.message}", file=sys.stderr)
+    return ExitCode.WARNING if why.warnings else ExitCode.OK
 
 
 def compile_text(path: str, fmt: str = "structuredslugs", encoding: str = "onehot"

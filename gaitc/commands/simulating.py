@@ -24,6 +24,8 @@ EPILOG = """environments:
   --env adversarial         degrades every leg in use, activates the nearest hazard set,
                             keeps the robot from its next goal (docs/simulation.md)
   --env scripted FILE.yaml  a scenario: per step the hazard and the legs that degrade/fail
+A counter-strategy (from 'gaitc counter') is the environment itself; --env random or
+adversarial then says how the robot answers (adversarial: it avoids forced deadlocks).
 
 """
 EPILOG += exit_code_help({
@@ -82,6 +84,10 @@ def run_simulate(args: argparse.Namespace) -> int:
     if bound is None:
         print(f"{args.spec}: unrealizable: no controller to simulate", file=sys.stderr)
         return ExitCode.UNREALIZABLE
+    if bound.strategy.kind == "counterstrategy":
+        kind = (args.env or ["random"])[0]
+        run = gaitc.simulate(bound, env=kind, steps=args.steps, seed=args.seed)
+        return report_run(run, bound.full_health, run.environment, args.quiet, args.out)
     chosen = environment_of(args, bound)
     run = gaitc.simulate(bound, env=chosen, steps=args.steps)
     return report_run(run, bound.full_health, chosen.name, args.quiet, args.out)

@@ -1,0 +1,216 @@
+"""Explanations: everything :mod:`analysis` can say about one spec, as one object.
+
+For an unrealizable spec: the kind of failure and the goals the environment can block
+(:mod:`analysis.failure`), a minimal core (:mod:`analysis.core`), the freedoms the
+environment needs (:mod:`analysis.freedoms`), a play it wins (:mod:`analysis.play`) and
+verified repairs (:mod:`analysis.repairs`). For a realizable one: the sanity checks of
+:mod:`analysis.sanity`. Rendered as text for the terminal, JSON, or HTML in a notebook.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import html
+import time
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
+
+from analysis.core import guarantee_core
+from analysis.failure import Kind, classify
+from analysis.freedoms import Freedom, needed_freedoms, restricted
+from analysis.freedoms import freedoms as all_freedoms
+from analysis.oracle import Oracle
+from analysis.play import Play, choose_play, narrate, narrate_values
+from analysis.repairs import Repair, repairs
+from analysis.sanity import Warning_, sanity
+from analysis.units import Unit
+from diagnostics import render
+from gr1.spec import GR1Spec
+
+if TYPE_CHECKING:
+    from gaitsim.run import Run
+    from ltlcompiler.model import Model
+
+
+@dataclass(frozen=True)
+class Explanation:
+    """Why ``file`` is (un)realizable; see the module docstring for each part."""
+
+    file: str
+    realizable: bool
+    kind: Kind | None = None
+    goals: tuple[str, ...] = ()
+    core: tuple[Unit, ...] = ()
+    freedoms: tuple[Freedom, ...] = ()
+    play: Play | None = None
+    run: Run | None = field(default=None, repr=False)
+    story: tuple[str, ...] = ()
+    repairs: tuple[Repair, ...] = ()
+    warnings: tuple[Warning_, ...] = ()
+    solver_calls: int = 0
+    seconds: float = 0.0
+    source: str = field(default="", repr=False)
+
+    @property
+    def sane(self) -> bool:
+        return self.realizable and not self.warnings
+
+    def verdict(self) -> str:
+        return "realizable" if self.realizable else "unrealizable"
+
+    def core_json(self) -> list[dict[str, Any]]:
+        lines = self.source.splitlines()
+        out = []
+        for unit in self.core:
+            span = unit.span
+            text = lines[span.line - 1].strip() if span and 0 < span.line <= len(lines) else ""
+            out.append({"line": span.line if span else None,
+                        "column": span.column if span else None,
+                        "text": text, "rule": unit.rule, "section": unit.section})
+        return out
+
+    def to_json(self) -> dict[str, Any]:
+        play: dict[str, Any] | None = None
+        if self.play is not None:
+            play = {"nodes": list(self.play.path), "deadlock": self.play.deadlock,
+                    "loop_start": self.play.loop_start, "story": list(self.story)}
+            if self.run is not None:
+                play["steps"] = [s.to_json() for s in self.run.steps]
+        return {
+            "file": self.file, "verdict": self.verdict(), "kind": self.kind,
+            "goals": list(self.goals), "core": self.core_json(),
+            "environment": [f.to_json() for f in self.freedoms], "play": play,
+            "repairs": [r.to_json() for r in self.repairs],
+            "warnings": [w.to_json() for w in self.warnings],
+            "solver_calls": self.solver_calls, "seconds": round(self.seconds, 3),
+        }
+
+    def lines(self) -> list[str]:
+        """The explanation for the terminal."""
+        sources = {self.file: self.source} if self.source else None
+        if self.realizable:
+            out = [f"{self.file}: realizable"]
+            if not self.warnings:
+                out.append("  sanity checks passed: the assumptions can be met, the robot "
+                           "cannot block them, no goal is vacuous, every part is used")
+            out.extend(f"  warning: {w.message}" for w in self.warnings)
+            return out
+        out = [f"{self.file}: unrealizable ({self.kind} failure)", f"  {_KIND_TEXT[self.kind]}"]
+        if self.goals:
+            out.append(f"  the environment can keep the robot from: {', '.join(self.goals)}")
+        if self.core:
+            out.append(f"core: these {len(self.core)} guarantee(s), with all the assumptions, "
+                       "cannot be met; dropping any one of them makes the spec realizable")
+            out.extend(render(u.rule, u.span, "note", None, sources) for u in self.core)
+        else:
+            out.append("core: the structural rules alone (one region and one gait at a time) "
+                       "with the assumptions cannot be met")
+        if self.freedoms:
+            out.append("the environment needs only these freedoms to win:")
+            out.extend(f"  - {f.describe()}" for f in self.freedoms)
+        if self.story:
+            out.append("a play the environment wins:")
+            out.extend(f"  {line}" for line in self.story)
+        if self.repairs:
+            out.append("repairs (each verified by solving the edited spec):")
+            for number, repair in enumerate(self.repairs, 1):
+                out.append(f"  {number}. {repair.change}")
+                out.extend(f"       {d}" for d in repair.diff)
+        out.append(f"({self.solver_calls} solver calls, {self.seconds:.2f} s)")
+        return out
+
+    def __repr__(self) -> str:
+        what = f"{self.kind} failure, core of {len(self.core)}, {len(self.repairs)} repairs" \
+            if not self.realizable else f"{len(self.warnings)} sanity warning(s)"
+        return f"<Explanation {self.file!r}: {self.verdict()}, {what}>"
+
+    def _repr_html_(self) -> str:
+        parts = [f"<h4>{html.escape(self.file)}: {self.verdict()}"
+                 f"{f' ({self.kind} failure)' if self.kind else ''}</h4>"]
+        marked = {u.span.line for u in self.core if u.span is not None}
+        if self.source and marked:
+            rows = []
+            for number, line in enumerate(self.source.splitlines(), 1):
+                style = " style='background:#fde0dd'" if number in marked else ""
+                rows.append(f"<span{style}>{number:4d}  {html.escape(line)}</span>")
+            parts.append("<pre>" + "\n".join(rows) + "</pre>")
+        parts.append("<pre>" + html.escape("\n".join(self.lines())) + "</pre>")
+        if self.run is not None and self.run.model is not None:
+            with contextlib.suppress(Exception):
+                parts.append(self.run._repr_svg_())
+        return "".join(parts)
+
+
+_KIND_TEXT: dict[Kind | None, str] = {
+    "initial": "the robot cannot choose a legal initial state for some initial state of the "
+    "environment",
+    "safety": "the environment can force the robot into a state with no legal move",
+    "liveness": "the robot can always move, but the environment can keep it from a goal for ever",
+    None: "",
+}
+
+
+def explain(spec: GR1Spec, file: str, source: str = "", model: Model | None = None,
+            encoding: str | None = None, semantics: str = "default",
+            timeout: float | None = None, with_repairs: bool = True) -> Explanation:
+    """Explain ``spec``: for a ``.gait`` spec pass its ``model``, ``encoding`` and ``source``."""
+    started = time.monotonic()
+    oracle = Oracle.within(semantics, timeout)
+    if oracle.realizable(spec):
+        found = sanity(spec, model, encoding, oracle)
+        return Explanation(file, True, warnings=found, solver_calls=oracle.calls,
+                           seconds=time.monotonic() - started, source=source)
+    failure = classify(spec, oracle)
+    goals = tuple(_goal_label(spec, j) for j in failure.blocked_goals)
+    core = guarantee_core(spec, oracle)
+    freedoms: tuple[Freedom, ...] = ()
+    if model is not None and encoding is not None:
+        freedoms = needed_freedoms(spec, model, encoding, oracle)
+    # The play comes from the environment restricted to the freedoms it needs: a smaller
+    # automaton, a play that shows exactly those freedoms, and (the assumptions being only
+    # stronger) a play that keeps the spec's own assumptions.
+    focused = spec
+    if freedoms and model is not None and encoding is not None:
+        taken = tuple(f for f in all_freedoms(model) if f not in freedoms)
+        focused = restricted(spec, model, encoding, taken)
+    counter = oracle.counterstrategy(focused)
+    play = run = None
+    story: list[str] = []
+    if counter is not None:
+        play = choose_play(counter, spec, failure.blocked_goals)
+        if model is not None and encoding is not None:
+            run = _run(counter, spec, model, encoding, play, file)
+            story = narrate(run, play, [_goal_label(spec, j) for j in range(
+                len(spec.sys_liveness))])
+        else:
+            story = narrate_values(counter, play)
+    fixes: tuple[Repair, ...] = ()
+    if with_repairs and model is not None and encoding is not None and source:
+        visited = [s.region for s in run.steps] if run is not None else []
+        fixes = repairs(model, source, file, encoding, oracle, visited)
+    return Explanation(file, False, failure.kind, goals, core, freedoms, play, run,
+                       tuple(story), fixes, (), oracle.calls, time.monotonic() - started,
+                       source)
+
+
+def _goal_label(spec: GR1Spec, j: int) -> str:
+    origin = spec.sys_liveness[j].origin
+    if origin is None:
+        return f"goal {j + 1}"
+    rule = origin.rule
+    return rule.split(": ", 1)[1] if rule.startswith("goal") and ": " in rule else rule
+
+
+def _run(counter: Any, spec: GR1Spec, model: Model, encoding: str, play: Play,
+         file: str) -> Run:
+    from gaitsim.counterplay import path_run
+    from gaitsim.domain import Domain
+    from gaitsim.monitor import Monitor
+    from gaitsim.strategy import strategy_from_controller
+
+    strategy = strategy_from_controller(counter, spec, file)
+    stopped = None
+    if play.deadlock:
+        stopped = f"step {len(play.path) - 1}: deadlock: the robot has no legal move"
+    return path_run(strategy, Domain(model, encoding), Monitor(spec), play.path, file,
+                    "counter-strategy", stopped)

@@ -1,0 +1,62 @@
+"""The oracle: realizability of spec variants with the embedded solver, counted and timed.
+
+Every answer of :mod:`analysis` comes from re-solving; the oracle keeps the number of
+solver calls and their time (benchmarks print them) and a deadline for the whole analysis.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+
+from diagnostics import SolverError
+from gr1.controller import Controller
+from gr1.spec import GR1Spec
+from solver import synthesis
+
+
+@dataclass
+class Oracle:
+    """Solves variants under one semantics until ``deadline`` (a ``time.monotonic`` value)."""
+
+    semantics: str = "default"
+    deadline: float | None = None
+    calls: int = 0
+    seconds: float = 0.0
+    _memo: dict[GR1Spec, bool] = field(default_factory=dict, repr=False)
+
+    @classmethod
+    def within(cls, semantics: str, timeout: float | None) -> Oracle:
+        deadline = None if timeout is None else time.monotonic() + timeout
+        return cls(semantics, deadline)
+
+    def _left(self) -> float | None:
+        if self.deadline is None:
+            return None
+        left = self.deadline - time.monotonic()
+        if left <= 0:
+            raise SolverError("the analysis ran out of time (see --timeout)")
+        return left
+
+    def realizable(self, spec: GR1Spec) -> bool:
+        """Whether ``spec`` is realizable (answers for equal specs are remembered)."""
+        known = self._memo.get(spec)
+        if known is not None:
+            return known
+        started = time.monotonic()
+        self.calls += 1
+        try:
+            answer = synthesis.check(spec, self.semantics, self._left()).realizable
+        finally:
+            self.seconds += time.monotonic() - started
+        self._memo[spec] = answer
+        return answer
+
+    def counterstrategy(self, spec: GR1Spec) -> Controller | None:
+        """The environment's winning strategy, or None when ``spec`` is realizable."""
+        started = time.monotonic()
+        self.calls += 1
+        try:
+            return synthesis.counterstrategy(spec, self.semantics, self._left())
+        finally:
+            self.seconds += time.monotonic() - started
