@@ -20,11 +20,19 @@ from analysis.failure import Kind, classify
 from analysis.freedoms import Freedom, needed_freedoms, restricted
 from analysis.freedoms import freedoms as all_freedoms
 from analysis.oracle import Oracle
-from analysis.play import Play, choose_play, narrate, narrate_values
+from analysis.play import (
+    Play,
+    choose_play,
+    deadlock_move,
+    last_move,
+    narrate,
+    narrate_values,
+)
 from analysis.repairs import Repair, repairs
 from analysis.sanity import Warning_, sanity
 from analysis.units import Unit
 from diagnostics import render
+from gr1.controller import Controller
 from gr1.spec import GR1Spec
 
 if TYPE_CHECKING:
@@ -43,6 +51,7 @@ class Explanation:
     core: tuple[Unit, ...] = ()
     freedoms: tuple[Freedom, ...] = ()
     play: Play | None = None
+    counter: Controller | None = field(default=None, repr=False)
     run: Run | None = field(default=None, repr=False)
     story: tuple[str, ...] = ()
     repairs: tuple[Repair, ...] = ()
@@ -98,6 +107,8 @@ class Explanation:
         out = [f"{self.file}: unrealizable ({self.kind} failure)", f"  {_KIND_TEXT[self.kind]}"]
         if self.goals:
             out.append(f"  the environment can keep the robot from: {', '.join(self.goals)}")
+        elif self.kind == "liveness":
+            out.append("  no goal is lost on its own: only the goals together")
         if self.core:
             out.append(f"core: these {len(self.core)} guarantee(s), with all the assumptions, "
                        "cannot be met; dropping any one of them makes the spec realizable")
@@ -176,21 +187,38 @@ def explain(spec: GR1Spec, file: str, source: str = "", model: Model | None = No
     counter = oracle.counterstrategy(focused)
     play = run = None
     story: list[str] = []
-    if counter is not None:
+    if counter is not None and not counter.initial:
+        story = ["the environment's first state leaves the robot no initial state that keeps "
+                 "its initial guarantees (see the core)"]
+    elif counter is not None:
         play = choose_play(counter, spec, failure.blocked_goals)
         if model is not None and encoding is not None:
             run = _run(counter, spec, model, encoding, play, file)
             story = narrate(run, play, [_goal_label(spec, j) for j in range(
-                len(spec.sys_liveness))])
+                len(spec.sys_liveness))], _final_move(focused, counter, play, model, encoding,
+                                                     run))
         else:
             story = narrate_values(counter, play)
     fixes: tuple[Repair, ...] = ()
     if with_repairs and model is not None and encoding is not None and source:
         visited = [s.region for s in run.steps] if run is not None else []
         fixes = repairs(model, source, file, encoding, oracle, visited)
-    return Explanation(file, False, failure.kind, goals, core, freedoms, play, run,
+    return Explanation(file, False, failure.kind, goals, core, freedoms, play, counter, run,
                        tuple(story), fixes, (), oracle.calls, time.monotonic() - started,
                        source)
+
+
+def _final_move(spec: GR1Spec, counter: Controller, play: Play, model: Model,
+                encoding: str, run: Run) -> str | None:
+    if not play.deadlock or not run.steps:
+        return None
+    from gaitsim.domain import Domain
+
+    values = deadlock_move(spec, counter, play.path[-1])
+    if values is None:
+        return None
+    state = Domain(model, encoding).decode(values)
+    return last_move(run.steps[-1], state.health, state.hazard)
 
 
 def _goal_label(spec: GR1Spec, j: int) -> str:

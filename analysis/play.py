@@ -104,8 +104,10 @@ def _missed(counter: Controller, spec: GR1Spec, loop: list[int]) -> tuple[int, .
     return tuple(missed)
 
 
-def narrate(run: Run, play: Play, goal_names: list[str]) -> list[str]:
-    """The play in robot terms, a sentence a step, and how the environment wins."""
+def narrate(run: Run, play: Play, goal_names: list[str], final: str | None = None
+            ) -> list[str]:
+    """The play in robot terms, a sentence a step, and how the environment wins
+    (``final``: its last move at a deadlock)."""
     lines: list[str] = []
     previous: Step | None = None
     for step in run.steps:
@@ -113,8 +115,9 @@ def narrate(run: Run, play: Play, goal_names: list[str]) -> list[str]:
         previous = step
     last = run.steps[-1] if run.steps else None
     if play.deadlock and last is not None:
-        lines.append(f"from step {last.index} the robot has no legal move in {last.region}: "
-                     "every move breaks one of its guarantees (see the core)")
+        move = f"the environment answers: {final}; " if final else ""
+        lines.append(f"after step {last.index} {move}the robot has no legal move out of "
+                     f"{last.region}: every move breaks one of its guarantees (see the core)")
     elif play.loop_start is not None:
         goals = ", ".join(goal_names[j] for j in play.missed) or "a goal"
         lines.append(f"from step {len(play.path) - 1} the play repeats steps "
@@ -166,3 +169,42 @@ def narrate_values(counter: Controller, play: Play) -> list[str]:
         lines.append(f"the play repeats steps {play.loop_start}..{len(play.path) - 2} "
                      "for ever")
     return lines
+
+
+def deadlock_move(spec: GR1Spec, counter: Controller, node: int) -> dict[str, int] | None:
+    """The environment's winning last input at the deadlock ``node``: one its assumptions
+    allow and after which no robot answer keeps the guarantees (bits by name)."""
+    from solver.strategy import fix, primed, smallest
+    from solver.symbolic import SymbolicSpec
+
+    sym = SymbolicSpec(spec)
+    ins, outs = list(sym.input_bits), list(sym.output_bits)
+    here = fix(sym, sym.env_trans & sym.sys_trans, ins + outs, counter.nodes[node].state)
+    allowed = fix(sym, sym.env_trans, ins + outs, counter.nodes[node].state)
+    answered = sym.bdd.exist(sym.post_outputs, here)
+    stuck = sym.bdd.exist(sym.post_outputs, allowed) & ~answered
+    x = smallest(sym, sym.bdd.exist(sym.post_outputs, stuck), primed(ins))
+    if x is None:
+        return None
+    bits = dict(zip(ins, x, strict=True))
+    values = dict(counter.values(node))
+    plain = {b: v for b, v in bits.items() if not any(b in iv.bits for iv in
+                                                       counter.integers.values())}
+    values.update(plain)
+    for name, iv in counter.integers.items():
+        if iv.owner == "env":
+            values[name] = iv.low + sum(bits[b] << k for k, b in enumerate(iv.bits))
+    return values
+
+
+def last_move(before: Step, after_health: tuple[tuple[str, int], ...],
+              hazard: str | None) -> str:
+    """The environment's final move in robot terms (legs that degrade or fail, hazards)."""
+    old = dict(before.health)
+    parts = []
+    for leg, level in after_health:
+        if level < old[leg]:
+            parts.append(f"{leg} fails" if level == 1 else f"{leg} drops to level {level}")
+    if hazard != before.hazard:
+        parts.append(f"hazard {hazard} on" if hazard else f"hazard {before.hazard} off")
+    return "; ".join(parts) or "no change"

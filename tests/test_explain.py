@@ -1,0 +1,224 @@
+"""``gaitc explain``: every answer is checked here by solving again, not trusted.
+
+Purpose-built specs in tests/data/explain/ cover each kind of failure and each sanity
+warning; every core is re-solved with and without each of its units, every repair's edited
+text is parsed and solved, the freedoms are re-checked, and the play is replayed.
+"""
+
+from __future__ import annotations
+
+import difflib
+import itertools
+import json
+import shutil
+from collections.abc import Sequence
+from pathlib import Path
+
+import pytest
+
+import gaitc
+from analysis.explanation import Explanation
+from analysis.freedoms import Freedom, freedoms
+from gaitc.cli import main
+from gr1.evaluation import evaluate
+from gr1.formula import Implies, Not, conj, disj
+from gr1.spec import Clause, GR1Spec
+from ltlcompiler.encoding import make_encoding
+from solver import synthesis
+from verifier.counterstrategy import verify_counterstrategy
+
+ROOT = Path(__file__).resolve().parent.parent
+DATA = ROOT / "tests" / "data" / "explain"
+UNREALIZABLE = {
+    "initial.gait": "initial", "safety.gait": "safety", "corridor_guarantee.gait": "liveness",
+    "hazard_cut.gait": "liveness", "few_levels.gait": "liveness",
+    "failed_direction.gait": "liveness", "unrealizable_2x2.gait": "liveness",
+}
+SPECS = {**{name: DATA / name for name in UNREALIZABLE if name != "unrealizable_2x2.gait"},
+         "unrealizable_2x2.gait": ROOT / "specs" / "unrealizable_2x2.gait"}
+_EXPLAINED: dict[tuple[str, str], gaitc.Spec] = {}
+
+
+def _realizable(spec: GR1Spec) -> bool:
+    return synthesis.check(spec).realizable
+
+
+def _core_variant(spec: GR1Spec, keep: set[tuple[str, int]]) -> GR1Spec:
+    """Assumptions whole; of the guarantees, the structural ones (no source, or the map)
+    and the clauses in ``keep`` (built here, not with analysis.units)."""
+    changes = {}
+    for section in ("sys_init", "sys_trans", "sys_liveness"):
+        kept = []
+        for index, clause in enumerate(spec.section(section)):
+            origin = clause.origin
+            structural = origin is None or origin.span is None or origin.rule.startswith(
+                "eq. 3.3:")
+            if structural or (section, index) in keep:
+                kept.append(clause)
+        changes[section] = tuple(kept)
+    return spec.with_sections(**changes)
+
+
+@pytest.mark.parametrize("encoding", ["onehot", "binary"])
+@pytest.mark.parametrize("name", sorted(SPECS))
+def test_unrealizable_specs_are_explained_and_every_answer_rechecked(
+        name: str, encoding: str) -> None:
+    spec = gaitc.load(SPECS[name], encoding)
+    why = gaitc.explain(spec)
+    assert not why.realizable and why.kind == UNREALIZABLE[name]
+    # the core: unrealizable with all its units, realizable without any one of them
+    clauses = {(u.section, i) for u in why.core for i in u.indices}
+    assert not _realizable(_core_variant(spec.gr1, clauses))
+    for unit in why.core:
+        without = clauses - {(unit.section, i) for i in unit.indices}
+        assert _realizable(_core_variant(spec.gr1, without)), unit.rule
+    # every repair: its edited text is what its diff says, and it is realizable
+    original = spec.text.splitlines()
+    for repair in why.repairs:
+        changed = [d for d in difflib.ndiff(original, repair.text.splitlines())
+                   if d.startswith(("+ ", "- "))]
+        assert sorted(d[0] + d[2:] for d in changed) == sorted(repair.diff)
+        fixed = gaitc.parse(repair.text, name=str(SPECS[name]), encoding=encoding)
+        assert gaitc.check(fixed).realizable, repair.change
+    assert why.repairs or name == "safety.gait" or why.kind == "initial"
+    _check_freedoms(spec, why)
+    _check_play(spec, why)
+
+
+def _restrict(spec: gaitc.Spec, taken: Sequence[Freedom]) -> GR1Spec:
+    model, encoding = spec.model, spec.encoding
+    assert model is not None and encoding is not None
+    enc = make_encoding(model, encoding)
+    hot = disj(conj((enc.hazard(h.name), disj(enc.region(r) for r in h.regions)))
+               for h in model.hazards)
+    extra_init, extra_trans = [], []
+    for f in taken:
+        if f.kind == "degrade":
+            guard = conj([enc.gait(f.gait), *(Not(enc.region(c)) for c in model.caches),
+                          *([Not(hot)] if model.hazards else [])])
+            extra_trans.append(Clause(Implies(guard, enc.keep_health(f.leg))))
+        else:
+            extra_init.append(Clause(Not(enc.hazard(f.hazard))))
+            extra_trans.append(Clause(Not(enc.hazard(f.hazard, True))))
+    gr1 = spec.gr1
+    return gr1.with_sections(env_init=gr1.env_init + tuple(extra_init),
+                             env_trans=gr1.env_trans + tuple(extra_trans))
+
+
+def _check_freedoms(spec: gaitc.Spec, why: Explanation) -> None:
+
+    assert spec.model is not None
+    every = list(freedoms(spec.model))
+    needed = list(why.freedoms)
+    assert set(needed) <= set(every)
+    others = [f for f in every if f not in needed]
+    assert not _realizable(_restrict(spec, others))  # it still wins with just these
+    for f in needed:  # and each one is needed
+        assert _realizable(_restrict(spec, [*others, f])), f.describe()
+
+
+def _check_play(spec: gaitc.Spec, why: Explanation) -> None:
+    counter = why.counter
+    assert counter is not None
+    report = verify_counterstrategy(spec.gr1, counter, "default")
+    assert report.ok, report.problems
+    play, run = why.play, why.run
+    if why.kind == "initial":
+        assert play is None and not counter.initial
+        return
+    assert play is not None and run is not None
+    assert run.summary is not None and run.summary.assumptions_held
+    assert run.summary.guarantees_held  # the robot's answers keep its rules
+    assert play.path[0] in counter.initial
+    for a, b in zip(play.path, play.path[1:], strict=False):
+        assert b in counter.nodes[a].trans
+    if play.deadlock:
+        assert not counter.nodes[play.path[-1]].trans
+        return
+    loop = play.path[play.loop_start:]
+    missed = [j for j, goal in enumerate(spec.gr1.sys_liveness) if not any(
+        evaluate(goal.formula, {**counter.values(a),
+                                **{f"{k}'": v for k, v in counter.values(b).items()}})
+        for a, b in itertools.pairwise(loop))]
+    assert missed and tuple(missed) == play.missed
+
+
+def test_the_robot_needs_the_corridor_the_guarantee_closes() -> None:
+    why = gaitc.explain(DATA / "corridor_guarantee.gait")
+    assert any(u.rule == "guarantee (line 9): !b" for u in why.core)
+    assert why.goals == ("visit c",)
+    assert "drop the guarantee on line 9" in [r.change for r in why.repairs]
+
+
+def test_hazard_repairs_and_the_story() -> None:
+    why = gaitc.explain(DATA / "hazard_cut.gait")
+    changes = [r.change for r in why.repairs]
+    assert changes[:2] == ["take b out of hazard set fire",
+                           "assume hazard set fire is off infinitely often"]
+    assert [f.describe() for f in why.freedoms] == ["switch hazard set fire on"]
+    assert any("hazard fire on" in line for line in why.story)
+
+
+def test_a_permanently_failed_leg_is_repaired_by_health() -> None:
+    why = gaitc.explain(DATA / "failed_direction.gait")
+    assert why.goals == ("visit sw",)
+    assert "raise leg L2's health to 2" in [r.change for r in why.repairs]
+
+
+@pytest.mark.parametrize(("name", "code"), [("bad_assumption.gait", "assumptions-unsatisfiable"),
+                                            ("not_separated.gait", "not-well-separated")])
+def test_realizable_for_the_wrong_reason(name: str, code: str) -> None:
+    why = gaitc.explain(DATA / name)
+    assert why.realizable and [w.code for w in why.warnings][:1] == [code]
+    if code == "not-well-separated":
+        assert [u.rule for u in why.warnings[0].units] == ["assumption (line 9): b"]
+
+
+def test_every_example_spec_is_explained() -> None:
+    for path in sorted((ROOT / "specs").glob("*.gait")):
+        why = gaitc.explain(path, repairs=False)
+        assert why.realizable == gaitc.check(gaitc.load(path)).realizable, path
+    robot_b = gaitc.explain(ROOT / "specs" / "thesis_robot_b.gait")
+    assert [w.code for w in robot_b.warnings] == ["unused-gaits"]
+    assert "north_b, east_b, south_c, west_c" in robot_b.warnings[0].message
+
+
+def test_cli_exit_codes_json_and_saved_play(tmp_path: Path,
+                                            capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["explain", "specs/patrol_2x2.gait"]) == 0
+    assert main(["explain", str(DATA / "not_separated.gait")]) == 5
+    assert main(["lint", "--deep", str(DATA / "not_separated.gait")]) == 5
+    assert main(["lint", "--deep", str(DATA / "safety.gait")]) == 3
+    capsys.readouterr()
+    out = tmp_path / "play.jsonl"
+    assert main(["explain", str(DATA / "hazard_cut.gait"), "--json", "--out", str(out)]) == 3
+    data = json.loads(capsys.readouterr().out)
+    assert {"file", "verdict", "kind", "goals", "core", "environment", "play", "repairs",
+            "warnings"} <= set(data)
+    assert data["kind"] == "liveness" and data["core"][0]["line"] >= 1
+    assert data["repairs"][0]["diff"].startswith("-hazard fire: b")
+    from gaitsim.run import read_jsonl
+
+    replayed = read_jsonl(str(out))
+    assert len(replayed.steps) == len(data["play"]["steps"])
+
+
+def test_a_counter_strategy_can_be_simulated(tmp_path: Path,
+                                             capsys: pytest.CaptureFixture[str]) -> None:
+    counter = tmp_path / "counter.json"
+    spec = str(DATA / "safety.gait")
+    assert main(["counter", spec, "-o", str(counter)]) == 0
+    capsys.readouterr()
+    assert main(["simulate", spec, str(counter), "--env", "adversarial", "--quiet"]) == 0
+    assert "counter-strategy, robot careful" in capsys.readouterr().out
+    assert main(["simulate", spec, str(counter), "--env", "scripted", "x.yaml"]) == 2
+
+
+@pytest.mark.graphviz
+@pytest.mark.skipif(shutil.which("dot") is None, reason="Graphviz 'dot' is not installed")
+def test_the_saved_play_draws_as_a_map(tmp_path: Path) -> None:
+    play, picture = tmp_path / "play.jsonl", tmp_path / "play.svg"
+    spec = str(DATA / "hazard_cut.gait")
+    assert main(["explain", spec, "--no-repairs", "--out", str(play)]) == 3
+    assert main(["render", "map", spec, "--run", str(play), "-o", str(picture)]) == 0
+    assert "<svg" in picture.read_text(encoding="utf-8")
