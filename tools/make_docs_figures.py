@@ -54,6 +54,9 @@ def main() -> None:
     run = gaitc.simulate(robot_a, env="adversarial", steps=20)
     write("robot_a_adversarial_run.svg", map_view(robot_a.model, run, 20).svg())
     write("thesis_robot_a_spec.svg", spec_view(robot_a.model).svg())
+    why = gaitc.explain(ROOT / "specs" / "thesis_robot_a_health2.gait", repairs=False)
+    assert why.run is not None and why.run.model is not None
+    write("robot_a_health2_play.svg", map_view(why.run.model, why.run, 30).svg())
     patrol = gaitc.session(PATROL)
     assert patrol is not None
     write("patrol_2x2_automaton.svg", automaton_view(patrol.strategy, patrol.domain,
