@@ -1,0 +1,248 @@
+"""Resilience analysis: which failures a task survives, and what the robot needs.
+
+1. Legs failed from the start: minimal fatal and maximal survivable sets over all subsets
+   of legs, single points of failure, and the legs each compass direction depends on.
+2. Legs breaking during the run: the largest k such that the robot survives any k legs
+   breaking at moments of the environment's choosing (SLUGS's k-resilience, made concrete
+   for legs), and the sets of k+1 legs that defeat it.
+3. Health: the least uniform number of levels, and the Pareto front of per-leg levels.
+4. Caches and hazards: essential caches, cache placements, hazard sets survived alone.
+
+The failure sets and the health front come either from one parametric game
+(:mod:`analysis.parametric`) or from lattice searches over variants (:mod:`analysis.lattice`),
+which may run in parallel (:mod:`analysis.pool`).
+"""
+
+from __future__ import annotations
+
+import itertools
+import time
+from dataclasses import dataclass, field
+from typing import Any, Final
+
+from analysis.lattice import fatal_sets, minimal_of, minimal_vectors
+from analysis.parametric import winning_caps
+from analysis.pool import Pool
+from analysis.variants import (
+    anytime_spec,
+    family_legs,
+    gait_families,
+    with_caches,
+    with_failed,
+    with_hazards,
+    with_health,
+)
+from ltlcompiler.model import Model
+
+METHODS: Final = ("parametric", "lattice")
+MAX_PLACEMENTS = 5_000
+
+
+@dataclass(frozen=True)
+class Resilience:
+    """The answers; every set is a tuple of names in declaration order."""
+
+    file: str
+    legs: tuple[tuple[str, int], ...]  # (leg, health levels)
+    realizable: bool
+    method: str
+    minimal_fatal_sets: tuple[tuple[str, ...], ...] = ()
+    maximal_survivable_sets: tuple[tuple[str, ...], ...] = ()
+    single_points_of_failure: tuple[str, ...] = ()
+    already_failed: tuple[str, ...] = ()
+    directions: tuple[tuple[str, tuple[str, ...], tuple[str, ...], tuple[str, ...]], ...] = ()
+    any_time_k: int | None = None
+    defeating_sets: tuple[tuple[str, ...], ...] = ()
+    health_bound: int | None = None
+    min_uniform_health: int | None = None
+    health_front: tuple[tuple[tuple[str, int], ...], ...] = ()
+    essential_caches: tuple[str, ...] = ()
+    cache_placements: tuple[tuple[str, ...], ...] = ()
+    placed: int | None = None
+    hazards_survived_alone: tuple[str, ...] = ()
+    hazards_fatal_alone: tuple[str, ...] = ()
+    solver_calls: int = 0
+    seconds: float = 0.0
+    notes: tuple[str, ...] = ()
+    model: Model | None = field(default=None, repr=False, compare=False)
+
+    def to_json(self) -> dict[str, Any]:
+        return {
+            "file": self.file, "realizable": self.realizable, "method": self.method,
+            "legs": dict(self.legs),
+            "minimal_fatal_sets": [list(s) for s in self.minimal_fatal_sets],
+            "maximal_survivable_sets": [list(s) for s in self.maximal_survivable_sets],
+            "single_points_of_failure": list(self.single_points_of_failure),
+            "already_failed": list(self.already_failed),
+            "directions": {d: {"gaits": list(g), "legs": list(some), "every_gait_uses":
+                               list(every)} for d, g, some, every in self.directions},
+            "any_time_k": self.any_time_k,
+            "defeating_sets": [list(s) for s in self.defeating_sets],
+            "health_bound": self.health_bound, "min_uniform_health": self.min_uniform_health,
+            "health_front": [dict(v) for v in self.health_front],
+            "essential_caches": list(self.essential_caches),
+            "cache_placements": [list(s) for s in self.cache_placements],
+            "hazards_survived_alone": list(self.hazards_survived_alone),
+            "solver_calls": self.solver_calls, "seconds": round(self.seconds, 3),
+            "notes": list(self.notes),
+        }
+
+    def __repr__(self) -> str:
+        return (f"<Resilience {self.file!r}: {len(self.minimal_fatal_sets)} minimal fatal "
+                f"sets, single points of failure {list(self.single_points_of_failure)}, "
+                f"any-time k = {self.any_time_k}>")
+
+    def picture(self) -> Any:
+        from analysis.legs_picture import legs_picture
+
+        return legs_picture(self)
+
+    def _repr_svg_(self) -> str:
+        svg: str = self.picture().svg()
+        return svg
+
+
+def resilience(model: Model, encoding: str, file: str = "", semantics: str = "default",
+               method: str = "parametric", health_bound: int | None = None,
+               place_caches: int | None = None, pool: Pool | None = None) -> Resilience:
+    """Every answer of the module docstring for ``model``."""
+    if method not in METHODS:
+        raise ValueError(f"unknown method {method!r}; use one of {', '.join(METHODS)}")
+    started = time.monotonic()
+    owned = pool is None
+    pool = pool or Pool(encoding, semantics)
+    notes: list[str] = []
+    param_seconds = 0.0
+    try:
+        legs = tuple((leg.name, leg.health) for leg in model.legs)
+        realizable = pool.models([model])[0]
+        failed = tuple(name for name, h in legs if h == 1)
+        candidates = [name for name, h in legs if h > 1]
+        directions = tuple((d, gaits, *family_legs(model, gaits))
+                           for d, gaits in gait_families(model).items())
+        report = Resilience(file, legs, realizable, method, already_failed=failed,
+                            directions=directions, model=model)
+        if not realizable:
+            notes.append("the task is unrealizable even with no failure; "
+                         "'gaitc explain' says why")
+            return _finish(report, pool, started, notes, param_seconds)
+        if method == "parametric":
+            domains = {name: ((1, h) if h > 1 else (1,)) for name, h in legs}
+            result = winning_caps(model, encoding, domains, semantics)
+            param_seconds += result.seconds
+            survivable = [frozenset(name for (name, _), cap in zip(legs, v, strict=True)
+                                    if cap == 1 and name in candidates)
+                          for v in result.winning]
+            minimal, maximal = _from_survivors(candidates, set(survivable))
+            pool.calls += 1
+        else:
+            found = fatal_sets(candidates, lambda sets: [not ok for ok in pool.models(
+                [with_failed(model, s) for s in sets])])
+            minimal, maximal = found.minimal_fatal, found.maximal_survivable
+        report = _with(report, minimal_fatal_sets=minimal, maximal_survivable_sets=maximal,
+                       single_points_of_failure=tuple(s[0] for s in minimal if len(s) == 1))
+        k, defeating = _any_time(model, encoding, candidates, pool)
+        report = _with(report, any_time_k=k, defeating_sets=defeating)
+        report = _health(report, model, encoding, semantics, method, health_bound, pool,
+                         notes)
+        report = _caches_and_hazards(report, model, place_caches, pool, notes)
+        return _finish(report, pool, started, notes, param_seconds)
+    finally:
+        if owned:
+            pool.close()
+
+
+def _with(report: Resilience, **changes: Any) -> Resilience:
+    from dataclasses import replace
+
+    return replace(report, **changes)
+
+
+def _finish(report: Resilience, pool: Pool, started: float, notes: list[str],
+            param_seconds: float) -> Resilience:
+    if param_seconds:
+        notes.append(f"parametric games: {param_seconds:.2f} s")
+    return _with(report, solver_calls=pool.calls, seconds=time.monotonic() - started,
+                 notes=tuple(notes))
+
+
+def _from_survivors(elements: list[str], survivors: set[frozenset[str]]
+                    ) -> tuple[tuple[tuple[str, ...], ...], tuple[tuple[str, ...], ...]]:
+    """Minimal fatal and maximal survivable sets from the full table of survivors."""
+    rank = {e: i for i, e in enumerate(elements)}
+
+    def ordered(sets: list[frozenset[str]]) -> tuple[tuple[str, ...], ...]:
+        items = [tuple(sorted(s, key=rank.__getitem__)) for s in sets]
+        return tuple(sorted(items, key=lambda t: (len(t), [rank[x] for x in t])))
+
+    everything = [frozenset(c) for n in range(len(elements) + 1)
+                  for c in itertools.combinations(elements, n)]
+    fatal = [s for s in everything if s not in survivors]
+    minimal = [s for s in fatal if all(s - {e} in survivors for e in s)]
+    maximal = [s for s in survivors if all(s | {e} not in survivors
+                                           for e in elements if e not in s)]
+    return ordered(minimal), ordered(maximal)
+
+
+def _any_time(model: Model, encoding: str, legs: list[str], pool: Pool
+              ) -> tuple[int, tuple[tuple[str, ...], ...]]:
+    k = 0
+    while k < len(legs) and pool.specs([anytime_spec(model, encoding, k + 1, legs)])[0]:
+        k += 1
+    if k == len(legs):
+        return k, ()
+    combos = [c for c in itertools.combinations(legs, k + 1)]
+    answers = pool.specs([anytime_spec(model, encoding, k + 1, c) for c in combos])
+    return k, tuple(c for c, ok in zip(combos, answers, strict=True) if not ok)
+
+
+def _health(report: Resilience, model: Model, encoding: str, semantics: str, method: str,
+            bound: int | None, pool: Pool, notes: list[str]) -> Resilience:
+    names = [leg.name for leg in model.legs]
+    top = bound or max(leg.health for leg in model.legs)
+    uniform = None
+    for h in range(1, top + 1):
+        if pool.models([with_health(model, dict.fromkeys(names, h))])[0]:
+            uniform = h
+            break
+    front: tuple[tuple[int, ...], ...] = ()
+    try:
+        if method == "parametric":
+            caps = winning_caps(model, encoding, {n: tuple(range(1, top + 1)) for n in names},
+                                semantics)
+            front = minimal_of(set(caps.winning))
+            pool.calls += 1
+        else:
+            front = minimal_vectors(len(names), top, lambda v: pool.models(
+                [with_health(model, dict(zip(names, v, strict=True)))])[0]).minimal
+    except ValueError as err:
+        notes.append(f"health front skipped: {err}")
+    return _with(report, health_bound=top, min_uniform_health=uniform,
+                 health_front=tuple(tuple(zip(names, v, strict=True)) for v in front))
+
+
+def _caches_and_hazards(report: Resilience, model: Model, place: int | None, pool: Pool,
+                        notes: list[str]) -> Resilience:
+    caches = list(model.caches)
+    without = pool.models([with_caches(model, [c for c in caches if c != cache])
+                           for cache in caches])
+    essential = tuple(c for c, ok in zip(caches, without, strict=True) if not ok)
+    placements: tuple[tuple[str, ...], ...] = ()
+    if place is not None:
+        hazardous = {r for h in model.hazards for r in h.regions}
+        regions = [r.name for r in model.regions if r.name not in hazardous]
+        combos = list(itertools.combinations(regions, place))
+        if len(combos) > MAX_PLACEMENTS:
+            notes.append(f"cache placement skipped: {len(combos)} sets of {place} regions "
+                         f"(more than {MAX_PLACEMENTS})")
+        else:
+            answers = pool.models([with_caches(model, c) for c in combos])
+            placements = tuple(c for c, ok in zip(combos, answers, strict=True) if ok)
+    names = [h.name for h in model.hazards]
+    alone = pool.models([with_hazards(model, [h]) for h in names])
+    return _with(report, essential_caches=essential, cache_placements=placements,
+                 placed=place,
+                 hazards_survived_alone=tuple(h for h, ok in zip(names, alone, strict=True)
+                                              if ok),
+                 hazards_fatal_alone=tuple(h for h, ok in zip(names, alone, strict=True)
+                                           if not ok))
