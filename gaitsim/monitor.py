@@ -97,6 +97,8 @@ class _Compiler:
         if isinstance(node, Not):
             return ("(not ", parts[0], ")")
         if isinstance(node, (And, Or)):
+            if not parts:  # the empty conjunction holds, the empty disjunction does not
+                return "True" if isinstance(node, And) else "False"
             word = " and " if isinstance(node, And) else " or "
             return ("(", separated(word, parts), ")")
         if isinstance(node, Xor):
