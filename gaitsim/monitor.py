@@ -32,6 +32,7 @@ from gr1.formula import (
     Xor,
 )
 from gr1.spec import SECTIONS, Clause, GR1Spec
+from gr1.traversal import Node, Text, fold, join_text, separated
 
 Values = tuple[int, ...]
 Check = Callable[[Sequence[int]], bool]
@@ -78,35 +79,46 @@ class _Compiler:
             raise FormulaError(f"clause mentions '{name}', which the spec does not declare")
         return self.index[name] + (self.width if primed else 0)
 
-    def term(self, t: Term) -> str:
-        if isinstance(t, IntConst):
-            return repr(t.value)
-        if isinstance(t, IntVar):
-            return f"v[{self.slot(t.name, t.primed)}]"
-        if isinstance(t, Add):
-            return f"({self.term(t.left)} + {self.term(t.right)})"
-        raise TypeError(f"not a term: {t!r}")
-
     def expr(self, e: Expr) -> str:
-        if isinstance(e, Const):
-            return "True" if e.value else "False"
-        if isinstance(e, Var):
-            return f"(v[{self.slot(e.name, e.primed)}] != 0)"
-        if isinstance(e, Not):
-            return f"(not {self.expr(e.arg)})"
-        if isinstance(e, And):
-            return "(" + " and ".join(self.expr(a) for a in e.args) + ")"
-        if isinstance(e, Or):
-            return "(" + " or ".join(self.expr(a) for a in e.args) + ")"
-        if isinstance(e, Xor):
-            return f"({self.expr(e.left)} != {self.expr(e.right)})"
-        if isinstance(e, Iff):
-            return f"({self.expr(e.left)} == {self.expr(e.right)})"
-        if isinstance(e, Implies):
-            return f"((not {self.expr(e.left)}) or {self.expr(e.right)})"
-        if isinstance(e, Compare):
-            return f"({self.term(e.left)} {_OPS[e.op]} {self.term(e.right)})"
-        raise TypeError(f"cannot compile {type(e).__name__}")
+        """Python source for ``e`` (a fold, so any depth; shared nodes written out again)."""
+        return join_text(fold(e, self._source, _operands))
+
+    def _source(self, node: Node, parts: list[Text]) -> Text:
+        if isinstance(node, Const):
+            return "True" if node.value else "False"
+        if isinstance(node, Var):
+            return f"(v[{self.slot(node.name, node.primed)}] != 0)"
+        if isinstance(node, IntConst):
+            return repr(node.value)
+        if isinstance(node, IntVar):
+            return f"v[{self.slot(node.name, node.primed)}]"
+        if isinstance(node, Add):
+            return ("(", parts[0], " + ", parts[1], ")")
+        if isinstance(node, Not):
+            return ("(not ", parts[0], ")")
+        if isinstance(node, (And, Or)):
+            if not parts:  # the empty conjunction holds, the empty disjunction does not
+                return "True" if isinstance(node, And) else "False"
+            word = " and " if isinstance(node, And) else " or "
+            return ("(", separated(word, parts), ")")
+        if isinstance(node, Xor):
+            return ("(", parts[0], " != ", parts[1], ")")
+        if isinstance(node, Iff):
+            return ("(", parts[0], " == ", parts[1], ")")
+        if isinstance(node, Implies):
+            return ("((not ", parts[0], ") or ", parts[1], ")")
+        if isinstance(node, Compare):
+            return ("(", parts[0], f" {_OPS[node.op]} ", parts[1], ")")
+        if isinstance(node, Term):
+            raise TypeError(f"not a term: {node!r}")
+        raise TypeError(f"cannot compile {type(node).__name__}")
+
+
+def _operands(node: Node) -> Sequence[Node]:
+    """What :class:`_Compiler` writes inside ``node``: operands of operators and sums."""
+    if isinstance(node, (Not, And, Or, Xor, Iff, Implies, Compare, Add)):
+        return node.children()
+    return ()
 
 
 def compile_formula(expr: Expr, variables: Sequence[str]) -> Check:

@@ -7,7 +7,7 @@ Reproduces SLUGS's tools/StructuredSlugsParser/compiler.py: bits ``x@0.MIN.MAX``
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Mapping
+from collections.abc import Iterable, Mapping, Sequence
 
 from gr1.formula import (
     FALSE,
@@ -32,6 +32,7 @@ from gr1.formula import (
     walk,
 )
 from gr1.spec import SECTIONS, Clause, GR1Spec, Origin, Variable
+from gr1.traversal import Memo, Node, fold
 
 Bits = list[Expr]  # little-endian bit vector; missing high bits are 0
 
@@ -195,27 +196,35 @@ def less_bits(a: Bits, b: Bits, or_equal: bool) -> Expr:
 
 
 # ---------------------------------------------------------------- comparisons
-def _flatten(term: Term, vectors: list[Bits], variables: Mapping[str, Variable]) -> int:
-    """Collect the bit vectors of a sum's variables; return the sum of its constants and MINs."""
-    if isinstance(term, IntConst):
-        return term.value
-    if isinstance(term, Add):
-        return _flatten(term.left, vectors, variables) + _flatten(term.right, vectors, variables)
-    if isinstance(term, IntVar):
-        var = variables.get(term.name)
-        if var is None or not var.is_integer:
-            raise ValueError(f"'{term.name}' is not an integer variable of this spec")
-        assert var.low is not None
-        vectors.append([Var(bit, term.primed) for bit in integer_bits(var)])
-        return var.low
-    raise ValueError(f"not an integer term: {term!r}")
+def _flatten(term: Term, variables: Mapping[str, Variable]) -> tuple[tuple[Bits, ...], int]:
+    """The bit vectors of a sum's variables, left to right, and the sum of its constants and
+    MINs (a fold: each shared subterm is flattened once)."""
+
+    def combine(node: Node, kids: list[tuple[tuple[Bits, ...], int]]) -> tuple[
+        tuple[Bits, ...], int
+    ]:
+        if isinstance(node, IntConst):
+            return (), node.value
+        if isinstance(node, Add):
+            (left, low), (right, high) = kids
+            return left + right, low + high
+        if isinstance(node, IntVar):
+            var = variables.get(node.name)
+            if var is None or not var.is_integer:
+                raise ValueError(f"'{node.name}' is not an integer variable of this spec")
+            assert var.low is not None
+            return ([Var(bit, node.primed) for bit in integer_bits(var)],), var.low
+        raise ValueError(f"not an integer term: {node!r}")
+
+    return fold(term, combine, lambda n: n.children() if isinstance(n, Add) else ())
 
 
 def compare_bits(node: Compare, variables: Mapping[str, Variable]) -> Expr:
     """A Boolean circuit equivalent to the integer comparison ``node``."""
-    left: list[Bits] = []
-    right: list[Bits] = []
-    shift = _flatten(node.left, left, variables) - _flatten(node.right, right, variables)
+    left_vectors, left_shift = _flatten(node.left, variables)
+    right_vectors, right_shift = _flatten(node.right, variables)
+    left, right = list(left_vectors), list(right_vectors)
+    shift = left_shift - right_shift
     # Move the constants to one side so that every vector is a natural number.
     (left if shift > 0 else right).append(constant_bits(abs(shift)))
     a: Bits = []
@@ -234,38 +243,32 @@ def compare_bits(node: Compare, variables: Mapping[str, Variable]) -> Expr:
     raise ValueError(f"unknown comparison operator {node.op!r}")
 
 
-def lower(expr: Expr, variables: Mapping[str, Variable], memo: dict[int, Expr]) -> Expr:
+def lower(expr: Expr, variables: Mapping[str, Variable], memo: Memo[Expr]) -> Expr:
     """``expr`` with every :class:`Compare` replaced by its circuit; shared nodes stay shared.
 
-    Iterative (children before parents), so deeply nested formulas cannot overflow.
+    A fold (children before parents, no recursion), memoised in ``memo`` across calls.
     """
-    stack: list[tuple[Expr, bool]] = [(expr, False)]
-    keep: list[Expr] = []  # keeps visited nodes alive while their ids are memo keys
-    while stack:
-        node, ready = stack.pop()
-        if id(node) in memo:
-            continue
-        if not ready and not isinstance(node, (Const, Var, Compare)):
-            stack.append((node, True))
-            stack.extend((child, False) for child in node.children()  # type: ignore[misc]
-                         if id(child) not in memo)
-            continue
-        keep.append(node)
-        memo[id(node)] = _lower_node(node, variables, memo)
-    return memo[id(expr)]
+
+    def combine(node: Node, kids: list[Expr]) -> Expr:
+        return _lower_node(node, kids, variables)
+
+    def children(node: Node) -> Sequence[Node]:
+        return () if isinstance(node, (Const, Var, Compare)) else node.children()
+
+    return fold(expr, combine, children, memo)
 
 
-def _lower_node(node: Expr, variables: Mapping[str, Variable], memo: dict[int, Expr]) -> Expr:
+def _lower_node(node: Node, kids: list[Expr], variables: Mapping[str, Variable]) -> Expr:
     if isinstance(node, (Const, Var)):
         return node
     if isinstance(node, Compare):
         return compare_bits(node, variables)
     if isinstance(node, Not):
-        return Not(memo[id(node.arg)], span=node.span)
+        return Not(kids[0], span=node.span)
     if isinstance(node, (And, Or)):
-        return type(node)(tuple(memo[id(a)] for a in node.args), span=node.span)
+        return type(node)(tuple(kids), span=node.span)
     if isinstance(node, (Xor, Iff, Implies)):
-        return type(node)(memo[id(node.left)], memo[id(node.right)], span=node.span)
+        return type(node)(kids[0], kids[1], span=node.span)
     if isinstance(node, (Next, Always, Eventually)):
         raise ValueError(f"{type(node).__name__} cannot appear in a GR(1) section")
     raise ValueError(f"unknown formula node {type(node).__name__}")
@@ -300,7 +303,7 @@ def bitblast(spec: GR1Spec) -> GR1Spec:
     if not spec.has_integers and not has_compare:
         return spec
     variables = {v.name: v for v in spec.variables()}
-    memo: dict[int, Expr] = {}
+    memo: Memo[Expr] = {}
     sections: dict[str, list[Clause]] = {}
     for name in SECTIONS:
         sections[name] = [

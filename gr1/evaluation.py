@@ -1,8 +1,8 @@
 """Evaluating formulas of the IR on concrete valuations (simulation, checks, tests).
 
-Bottom-up over the DAG: each shared node is evaluated once and deep formulas need no
-recursion.  ``Next``/``Always``/``Eventually`` cannot be evaluated on one step and raise
-:class:`~diagnostics.FormulaError`.
+A fold over the DAG (:mod:`gr1.traversal`): each shared node is evaluated once and deep
+formulas need no recursion.  ``Next``/``Always``/``Eventually`` cannot be evaluated on one
+step and raise :class:`~diagnostics.FormulaError`.
 """
 
 from __future__ import annotations
@@ -28,6 +28,7 @@ from gr1.formula import (
     Var,
     Xor,
 )
+from gr1.traversal import fold
 
 Valuation = Mapping[str, int]
 
@@ -65,20 +66,8 @@ def _value(node: Node, args: list[Any], valuation: Valuation) -> Any:
 
 
 def _evaluate_node(root: Node, valuation: Valuation) -> Any:
-    """Bottom-up evaluation; each shared node once, no deep recursion."""
-    memo: dict[int, Any] = {}
-    stack: list[tuple[Node, bool]] = [(root, False)]
-    while stack:
-        node, children_done = stack.pop()
-        if id(node) in memo:
-            continue
-        children = node.children()
-        if not children_done and children:
-            stack.append((node, True))
-            stack.extend((c, False) for c in children if id(c) not in memo)
-            continue
-        memo[id(node)] = _value(node, [memo[id(c)] for c in children], valuation)
-    return memo[id(root)]
+    """Bottom-up evaluation (:func:`~gr1.traversal.fold`); each shared node once."""
+    return fold(root, lambda node, args: _value(node, args, valuation))
 
 
 def evaluate_term(term: Term, valuation: Valuation) -> int:

@@ -7,88 +7,21 @@ with heavy sharing.  ``Next``/``Always``/``Eventually`` exist only so front ends
 can represent user formulas before they are sorted into GR(1) sections; the
 sections of a :class:`~gr1.spec.GR1Spec` contain none of them
 (:func:`push_next` removes ``Next`` by priming variables).
+
+The node base class and the traversal live in :mod:`gr1.traversal`; priming,
+substitution and simplification here are folds over it, so formulas of any depth
+need no recursion.
 """
 
 from __future__ import annotations
 
 from collections.abc import Iterable, Iterator, Mapping
-from dataclasses import dataclass, field, fields
-from typing import Any, ClassVar
+from dataclasses import dataclass, field
+from typing import cast
 
 from diagnostics import FormulaError, Span
-
-
-class Node:
-    """Common behaviour of formula nodes: structural equality without spans, cached hash."""
-
-    span: Span | None
-    precedence: ClassVar[int] = 100
-
-    def _key(self) -> tuple[Any, ...]:
-        return tuple(getattr(self, f.name) for f in fields(self) if f.compare)  # type: ignore[arg-type]
-
-    def __eq__(self, other: object) -> bool:
-        if self is other:
-            return True
-        if type(self) is not type(other):
-            return False
-        assert isinstance(other, Node)
-        return hash(self) == hash(other) and _structurally_equal(self, other)
-
-    def __hash__(self) -> int:
-        cached = self.__dict__.get("_hash")
-        if cached is None:
-            _hash_bottom_up(self)
-            cached = self.__dict__["_hash"]
-        return int(cached)
-
-    def children(self) -> tuple[Node, ...]:
-        out: list[Node] = []
-        for f in fields(self):  # type: ignore[arg-type]
-            value = getattr(self, f.name)
-            if isinstance(value, Node):
-                out.append(value)
-            elif isinstance(value, tuple):
-                out.extend(v for v in value if isinstance(v, Node))
-        return tuple(out)
-
-
-def _hash_bottom_up(root: Node) -> None:
-    """Cache the hash of ``root`` and its descendants, children first (no deep recursion)."""
-    stack: list[tuple[Node, bool]] = [(root, False)]
-    while stack:
-        node, children_done = stack.pop()
-        if "_hash" in node.__dict__:
-            continue
-        if not children_done:
-            stack.append((node, True))
-            stack.extend((c, False) for c in node.children() if "_hash" not in c.__dict__)
-            continue
-        object.__setattr__(node, "_hash", hash((type(node).__name__, node._key())))
-
-
-def _structurally_equal(left: Node, right: Node) -> bool:
-    """Equality of two trees or DAGs, comparing each pair of shared nodes once."""
-    seen: set[tuple[int, int]] = set()
-    stack = [(left, right)]
-    while stack:
-        a, b = stack.pop()
-        if a is b or (id(a), id(b)) in seen:
-            continue
-        seen.add((id(a), id(b)))
-        if type(a) is not type(b) or hash(a) != hash(b):
-            return False
-        for x, y in zip(a._key(), b._key(), strict=True):
-            if isinstance(x, Node) and isinstance(y, Node):
-                stack.append((x, y))
-            elif isinstance(x, tuple) and isinstance(y, tuple) and len(x) == len(y) and all(
-                isinstance(v, Node) for v in x + y
-            ):
-                stack.extend(zip(x, y, strict=True))
-            elif x != y:
-                return False
-    return True
-
+from gr1.traversal import Node as Node
+from gr1.traversal import fold, rebuild
 
 _SPAN = field(default=None, compare=False, repr=False, kw_only=True)
 
@@ -267,28 +200,40 @@ def has_primes(node: Node) -> bool:
 
 
 # ---------------------------------------------------------------- transformations
-def _rebuild(node: Node, fn: Any, memo: dict[int, Any]) -> Any:
-    key = id(node)
-    if key in memo:
-        return memo[key]
-    result = fn(node, lambda child: _rebuild(child, fn, memo))
-    memo[key] = result
-    return result
+def _reject_temporal(node: Node) -> None:
+    if isinstance(node, (Always, Eventually)):
+        word = "always" if isinstance(node, Always) else "eventually"
+        raise FormulaError(
+            f"'{word}' cannot appear inside another formula here: GR(1) allows it only "
+            "at the top of an assumption or guarantee",
+            node.span,
+        )
 
 
-def _map_children(node: Node, sub: Any) -> Node:
-    changes: dict[str, Any] = {}
-    for f in fields(node):  # type: ignore[arg-type]
-        value = getattr(node, f.name)
-        if isinstance(value, Node):
-            changes[f.name] = sub(value)
-        elif isinstance(value, tuple) and value and isinstance(value[0], Node):
-            changes[f.name] = tuple(sub(v) for v in value)
-    if not changes:
-        return node
-    kwargs = {f.name: getattr(node, f.name) for f in fields(node)}  # type: ignore[arg-type]
-    kwargs.update(changes)
-    return type(node)(**kwargs)
+def _primed(node: Node) -> Node | None:
+    """The replacement of ``node`` under ``next`` (:func:`rebuild`): variables primed."""
+    if isinstance(node, Next):
+        raise FormulaError(
+            "'next' inside 'next' is outside GR(1): a formula may look one step ahead only",
+            node.span,
+        )
+    _reject_temporal(node)
+    if isinstance(node, (Var, IntVar)):
+        if node.primed:
+            raise FormulaError(
+                f"'{node.name}' is already a next-state value; 'next' cannot apply twice",
+                node.span,
+            )
+        return type(node)(node.name, True, span=node.span)
+    return None
+
+
+def _unprimed(node: Node) -> Node | None:
+    """The replacement of ``node`` outside ``next``: a ``Next`` by its primed argument."""
+    if isinstance(node, Next):
+        return rebuild(node.arg, _primed)
+    _reject_temporal(node)
+    return None
 
 
 def push_next(expr: Expr) -> Expr:
@@ -298,34 +243,7 @@ def push_next(expr: Expr) -> Expr:
     primed variable) and for ``always``/``eventually`` anywhere inside: neither is
     expressible in a GR(1) section.
     """
-
-    def fn(node: Node, sub: Any, primed: bool) -> Node:
-        if isinstance(node, Next):
-            if primed:
-                raise FormulaError(
-                    "'next' inside 'next' is outside GR(1): a formula may look one step ahead only",
-                    node.span,
-                )
-            return _rebuild(node.arg, lambda n, s: fn(n, s, True), {})  # type: ignore[no-any-return]
-        if isinstance(node, (Always, Eventually)):
-            word = "always" if isinstance(node, Always) else "eventually"
-            raise FormulaError(
-                f"'{word}' cannot appear inside another formula here: GR(1) allows it only "
-                "at the top of an assumption or guarantee",
-                node.span,
-            )
-        if isinstance(node, (Var, IntVar)):
-            if primed and node.primed:
-                raise FormulaError(
-                    f"'{node.name}' is already a next-state value; 'next' cannot apply twice",
-                    node.span,
-                )
-            if primed:
-                return type(node)(node.name, True, span=node.span)
-            return node
-        return _map_children(node, sub)
-
-    return _rebuild(expr, lambda n, s: fn(n, s, False), {})  # type: ignore[no-any-return]
+    return rebuild(expr, _unprimed)
 
 
 def prime(expr: Expr) -> Expr:
@@ -336,12 +254,72 @@ def prime(expr: Expr) -> Expr:
 def substitute(expr: Expr, mapping: Mapping[tuple[str, bool], Expr]) -> Expr:
     """Replace Boolean variables ``(name, primed)`` by formulas."""
 
-    def fn(node: Node, sub: Any) -> Node:
-        if isinstance(node, Var) and (node.name, node.primed) in mapping:
-            return mapping[(node.name, node.primed)]
-        return _map_children(node, sub)
+    def replace(node: Node) -> Node | None:
+        if isinstance(node, Var):
+            return mapping.get((node.name, node.primed))
+        return None
 
-    return _rebuild(expr, fn, {})  # type: ignore[no-any-return]
+    return rebuild(expr, replace)
+
+
+def _negated(expr: Expr) -> Expr:
+    """``simplify(Not(expr))`` for an already simplified ``expr`` (simplify is idempotent)."""
+    if isinstance(expr, Const):
+        return Const(not expr.value)
+    if isinstance(expr, Not):
+        return expr.arg
+    return Not(expr)
+
+
+def _simplified(node: Node, kids: list[Node]) -> Node:
+    """One step of :func:`simplify`: ``node`` over its already simplified children."""
+    args = cast(list[Expr], kids)  # the children of a Boolean operator are formulas
+    if isinstance(node, Not):
+        arg = args[0]
+        if isinstance(arg, Const):
+            return Const(not arg.value, span=node.span)
+        if isinstance(arg, Not):
+            return arg.arg
+        return Not(arg, span=node.span)
+    if isinstance(node, (And, Or)):
+        unit, zero = (True, False) if isinstance(node, And) else (False, True)
+        out: list[Expr] = []
+        seen: set[Expr] = set()
+        for c in args:
+            parts = c.args if isinstance(c, (And, Or)) and type(c) is type(node) else (c,)
+            for p in parts:
+                if isinstance(p, Const):
+                    if p.value == zero:
+                        return Const(zero, span=node.span)
+                    continue
+                if p not in seen:
+                    seen.add(p)
+                    out.append(p)
+        for p in out:
+            if Not(p) in seen:
+                return Const(zero, span=node.span)
+        if not out:
+            return Const(unit, span=node.span)
+        if len(out) == 1:
+            return out[0]
+        return type(node)(tuple(out), span=node.span)
+    if isinstance(node, (Xor, Iff, Implies)):
+        left, right = args
+        if isinstance(node, Implies):
+            if isinstance(left, Const):
+                return right if left.value else Const(True, span=node.span)
+            if isinstance(right, Const):
+                return Const(True, span=node.span) if right.value else _negated(left)
+            return Implies(left, right, span=node.span)
+        flip = isinstance(node, Xor)
+        if isinstance(left, Const) and isinstance(right, Const):
+            return Const((left.value == right.value) != flip, span=node.span)
+        for a, b in ((left, right), (right, left)):
+            if isinstance(a, Const):
+                keep = a.value != flip
+                return b if keep else _negated(b)
+        return type(node)(left, right, span=node.span)
+    return node.with_children(kids)
 
 
 def simplify(expr: Expr) -> Expr:
@@ -349,55 +327,6 @@ def simplify(expr: Expr) -> Expr:
 
     The result has the same truth value as ``expr`` under every valuation.
     """
-
-    def fn(node: Node, sub: Any) -> Node:
-        if isinstance(node, Not):
-            arg = sub(node.arg)
-            if isinstance(arg, Const):
-                return Const(not arg.value, span=node.span)
-            if isinstance(arg, Not):
-                return arg.arg
-            return Not(arg, span=node.span)
-        if isinstance(node, (And, Or)):
-            is_and = isinstance(node, And)
-            unit, zero = (True, False) if is_and else (False, True)
-            out: list[Expr] = []
-            seen: set[Expr] = set()
-            for child in node.args:
-                c = sub(child)
-                parts = c.args if type(c) is type(node) else (c,)
-                for p in parts:
-                    if isinstance(p, Const):
-                        if p.value == zero:
-                            return Const(zero, span=node.span)
-                        continue
-                    if p not in seen:
-                        seen.add(p)
-                        out.append(p)
-            for p in out:
-                if Not(p) in seen:
-                    return Const(zero, span=node.span)
-            if not out:
-                return Const(unit, span=node.span)
-            if len(out) == 1:
-                return out[0]
-            return type(node)(tuple(out), span=node.span)
-        if isinstance(node, (Xor, Iff, Implies)):
-            left, right = sub(node.left), sub(node.right)
-            if isinstance(node, Implies):
-                if isinstance(left, Const):
-                    return right if left.value else Const(True, span=node.span)
-                if isinstance(right, Const):
-                    return Const(True, span=node.span) if right.value else simplify(Not(left))
-                return Implies(left, right, span=node.span)
-            flip = isinstance(node, Xor)
-            if isinstance(left, Const) and isinstance(right, Const):
-                return Const((left.value == right.value) != flip, span=node.span)
-            for a, b in ((left, right), (right, left)):
-                if isinstance(a, Const):
-                    keep = a.value != flip
-                    return b if keep else simplify(Not(b))
-            return type(node)(left, right, span=node.span)
-        return _map_children(node, sub)
-
-    return _rebuild(expr, fn, {})  # type: ignore[no-any-return]
+    result = fold(expr, _simplified)
+    assert isinstance(result, Expr)
+    return result

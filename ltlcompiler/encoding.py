@@ -11,7 +11,6 @@ from typing import Final, Literal, get_args
 from diagnostics import FormulaError, SpecSemanticError, UsageError
 from gr1.evaluation import evaluate
 from gr1.formula import (
-    Add,
     And,
     Compare,
     Const,
@@ -22,13 +21,14 @@ from gr1.formula import (
     IntVar,
     Not,
     Or,
-    Term,
     Var,
     Xor,
     conj,
     disj,
+    walk,
 )
 from gr1.spec import Variable
+from gr1.traversal import Node, rebuild
 from ltlcompiler.model import Model
 
 EncodingName = Literal["onehot", "binary"]
@@ -121,22 +121,19 @@ class Encoding:
     # ------------------------------------------------------------ user formulas
     def translate(self, expr: Expr) -> Expr:
         """Rewrite a next-free user formula's atoms (model namespace) into this encoding."""
-        if isinstance(expr, Var):
-            return self._atom(expr)
-        if isinstance(expr, Compare):
-            return self._compare(expr)
-        if isinstance(expr, Const):
-            return expr
-        if isinstance(expr, Not):
-            return Not(self.translate(expr.arg), span=expr.span)
-        if isinstance(expr, (And, Or)):
-            return type(expr)(tuple(self.translate(a) for a in expr.args), span=expr.span)
-        if isinstance(expr, (Xor, Iff, Implies)):
-            return type(expr)(self.translate(expr.left), self.translate(expr.right),
-                              span=expr.span)
-        raise FormulaError(f"temporal operator {type(expr).__name__} is not allowed here: "
+        return rebuild(expr, self._replace)
+
+    def _replace(self, node: Node) -> Node | None:
+        """The encoding of an atom; None (rebuild with translated operands) for an operator."""
+        if isinstance(node, Var):
+            return self._atom(node)
+        if isinstance(node, Compare):
+            return self._compare(node)
+        if isinstance(node, (Const, Not, And, Or, Xor, Iff, Implies)):
+            return None
+        raise FormulaError(f"temporal operator {type(node).__name__} is not allowed here: "
                            "GR(1) allows it only at the top of an assumption or guarantee",
-                           expr.span)
+                           node.span)
 
     def _atom(self, var: Var) -> Expr:
         if var.name in self.region_index:
@@ -153,7 +150,7 @@ class Encoding:
                            "hazard or a comparison on a leg's health", var.span)
 
     def _compare(self, cmp: Compare) -> Expr:
-        names = sorted({(n.name, n.primed) for n in _int_vars(cmp)})
+        names = sorted({(n.name, n.primed) for n in walk(cmp) if isinstance(n, IntVar)})
         for name, _ in names:
             if name not in self.legs:
                 raise FormulaError(f"'{name}' is not a leg: only a leg's health level is an "
@@ -162,14 +159,6 @@ class Encoding:
 
     def _compare_legs(self, cmp: Compare, names: list[tuple[str, bool]]) -> Expr:
         raise NotImplementedError
-
-
-def _int_vars(node: Compare | Term) -> Iterator[IntVar]:
-    if isinstance(node, IntVar):
-        yield node
-    elif isinstance(node, (Add, Compare)):
-        yield from _int_vars(node.left)
-        yield from _int_vars(node.right)
 
 
 class OneHot(Encoding):

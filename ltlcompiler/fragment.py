@@ -6,10 +6,11 @@
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 
 from diagnostics import FormulaError, Span, SpecSemanticError
 from gr1 import formula as f
+from gr1.traversal import Node, fold
 from ltlcompiler.model import Section, UserFormula
 from ltlcompiler.names import Namespace
 
@@ -55,38 +56,42 @@ class FormulaChecker:
         self._walk(body, section, assumption, under_next=False)
         return UserFormula(section, body, span=span)
 
-    def _walk(self, node: f.Expr, section: Section, assumption: bool, under_next: bool) -> None:
-        if isinstance(node, (f.Always, f.Eventually)):
-            word = "always" if isinstance(node, f.Always) else "eventually"
-            raise FormulaError(
-                f"'{word}' cannot appear inside a formula: GR(1) allows only {_SHAPES}, "
-                "with the temporal words at the very start",
-                node.span,
-            )
-        if isinstance(node, f.Next):
-            if section is Section.INIT:
+    def _walk(self, root: f.Expr, section: Section, assumption: bool, under_next: bool) -> None:
+        """Check every node of ``root``, top-down and left to right (the first error wins)."""
+
+        def enter(node: Node) -> Sequence[Node]:
+            if isinstance(node, (f.Always, f.Eventually)):
+                word = "always" if isinstance(node, f.Always) else "eventually"
                 raise FormulaError(
-                    "an initial condition cannot use 'next', since it describes only the first "
-                    "state; start the formula with 'always' to make it a safety formula",
+                    f"'{word}' cannot appear inside a formula: GR(1) allows only {_SHAPES}, "
+                    "with the temporal words at the very start",
                     node.span,
                 )
-            if under_next:
-                raise FormulaError(
-                    "'next' inside 'next' is outside GR(1): a formula may look one step ahead "
-                    "only",
-                    node.span,
-                )
-            self._walk(node.arg, section, assumption, under_next=True)
-            return
-        if isinstance(node, f.Var):
-            self._proposition(node, assumption, under_next)
-            return
-        if isinstance(node, f.Compare):
-            self._comparison(node)
-            return
-        for child in node.children():
-            if isinstance(child, f.Expr):
-                self._walk(child, section, assumption, under_next)
+            if isinstance(node, f.Next):
+                if section is Section.INIT:
+                    raise FormulaError(
+                        "an initial condition cannot use 'next', since it describes only the "
+                        "first state; start the formula with 'always' to make it a safety "
+                        "formula",
+                        node.span,
+                    )
+                if under_next:
+                    raise FormulaError(
+                        "'next' inside 'next' is outside GR(1): a formula may look one step "
+                        "ahead only",
+                        node.span,
+                    )
+                self._walk(node.arg, section, assumption, under_next=True)
+                return ()
+            if isinstance(node, f.Var):
+                self._proposition(node, assumption, under_next)
+                return ()
+            if isinstance(node, f.Compare):
+                self._comparison(node)
+                return ()
+            return [child for child in node.children() if isinstance(child, f.Expr)]
+
+        fold(root, lambda node, results: None, enter)
 
     def _proposition(self, var: f.Var, assumption: bool, under_next: bool) -> None:
         kind = self.ns.kinds.get(var.name)

@@ -8,6 +8,7 @@ from collections.abc import Iterable
 
 from diagnostics import FormulaError, Span, SpecSemanticError
 from gr1.formula import (
+    Add,
     Always,
     And,
     Compare,
@@ -31,6 +32,7 @@ from gr1.formula import (
     push_next,
 )
 from gr1.spec import SECTIONS, Clause, GR1Spec, Origin, section_named
+from gr1.traversal import Node, Text, fold, join_text, separated
 from ltlcompiler.encoding import Encoding, check_names, make_encoding
 from ltlcompiler.model import NO_GAIT, GaitKind, Model, Section, UserFormula
 
@@ -236,33 +238,34 @@ def _line(span: Span | None) -> str:
 
 
 _BINARY = {And: " & ", Or: " | ", Xor: " ^ ", Iff: " <-> ", Implies: " -> "}
+_WORDS: dict[type[Node], str] = {Next: "next", Always: "always", Eventually: "eventually"}
+_SIMPLE = (Var, Const, Not, Compare, Next, Always, Eventually)  # never parenthesised
 
 
 def describe(expr: Expr | Term) -> str:
     """A short human-readable text of a user formula, for clause comments."""
-    if isinstance(expr, Const):
-        return "true" if expr.value else "false"
-    if isinstance(expr, Var):
-        return expr.name + ("'" if expr.primed else "")
-    if isinstance(expr, IntVar):
-        return f"health({expr.name})" + ("'" if expr.primed else "")
-    if isinstance(expr, IntConst):
-        return str(expr.value)
-    if isinstance(expr, Not):
-        return "!" + _paren(expr.arg)
-    if isinstance(expr, (And, Or)):
-        return _BINARY[type(expr)].join(_paren(a) for a in expr.args)
-    if isinstance(expr, (Xor, Iff, Implies)):
-        return _paren(expr.left) + _BINARY[type(expr)] + _paren(expr.right)
-    if isinstance(expr, Compare):
-        return f"{describe(expr.left)} {expr.op} {describe(expr.right)}"
-    args = [describe(c) for c in expr.children() if isinstance(c, (Expr, Term))]
-    word = {"Next": "next", "Always": "always", "Eventually": "eventually", "Add": "+"}
-    name = word.get(type(expr).__name__, type(expr).__name__)
-    return f" {name} ".join(args) if name == "+" else f"{name}({', '.join(args)})"
+    return join_text(fold(expr, _describe))
 
 
-def _paren(expr: Expr) -> str:
-    text = describe(expr)
-    simple = (Var, Const, Not, Compare, Next, Always, Eventually)
-    return text if isinstance(expr, simple) else f"({text})"
+def _describe(node: Node, texts: list[Text]) -> Text:
+    """The text of ``node`` from the texts of its children (a step of the fold)."""
+    if isinstance(node, Const):
+        return "true" if node.value else "false"
+    if isinstance(node, Var):
+        return node.name + ("'" if node.primed else "")
+    if isinstance(node, IntVar):
+        return f"health({node.name})" + ("'" if node.primed else "")
+    if isinstance(node, IntConst):
+        return str(node.value)
+    operands = [t if isinstance(c, _SIMPLE) else ("(", t, ")")
+                for c, t in zip(node.children(), texts, strict=True)]
+    if isinstance(node, Not):
+        return ("!", operands[0])
+    if isinstance(node, (And, Or, Xor, Iff, Implies)):
+        return separated(_BINARY[type(node)], operands)
+    if isinstance(node, Compare):
+        return (texts[0], f" {node.op} ", texts[1])
+    if isinstance(node, Add):
+        return separated(" + ", texts)
+    name = _WORDS.get(type(node), type(node).__name__)
+    return (name, "(", separated(", ", texts), ")")

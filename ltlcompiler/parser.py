@@ -1,8 +1,11 @@
-"""The .gait parser: ``gait.lark`` (LALR) plus a Transformer building :mod:`ltlcompiler.syntax`.
+"""The .gait parser: ``gait.lark`` (LALR) plus :mod:`ltlcompiler.parse_tree`, which builds
+:mod:`ltlcompiler.syntax` from lark's tree without recursion.
 
-The only module that imports lark.  Lark's exceptions are mapped to
-:class:`SpecSyntaxError` (or :class:`FormulaError`) with ``file:line:col`` and a
-message saying what was expected; lark objects never leave this module.
+With :mod:`ltlcompiler.parse_tree`, the only module that imports lark.  Lark's exceptions
+are mapped to :class:`SpecSyntaxError` (or :class:`FormulaError`) with ``file:line:col``
+and a message saying what was expected; lark objects never leave the two modules.  LALR
+parsing keeps its own stack, so formulas of any depth parse; the builder refuses those
+deeper than :data:`~ltlcompiler.parse_tree.MAX_NESTING`.
 """
 
 from __future__ import annotations
@@ -10,22 +13,19 @@ from __future__ import annotations
 from dataclasses import replace
 from functools import cache
 from importlib import resources
-from typing import Any
 
-from lark import Lark, Token, Transformer, v_args
+from lark import Lark, Token
 from lark.exceptions import (
     UnexpectedCharacters,
     UnexpectedEOF,
     UnexpectedInput,
     UnexpectedToken,
-    VisitError,
 )
 from lark.lexer import PatternStr
-from lark.tree import Meta
 
 from diagnostics import FormulaError, GaitcError, Span, SpecSyntaxError
-from gr1 import formula as f
 from ltlcompiler import syntax as s
+from ltlcompiler.parse_tree import build, token_span
 
 STATEMENT_KEYWORDS = (
     "assume", "block", "cache", "caches", "correction", "edge", "gait", "grid", "guarantee",
@@ -61,234 +61,9 @@ def _reserved(tok: Token) -> Token:
             f"'{tok}' may only start an assume or guarantee: GR(1) allows 'always φ' (safety) "
             "and 'always eventually φ' (liveness), never a temporal word inside a formula or "
             "as a name",
-            _token_span("", tok),
+            token_span("", tok),
         )
     return tok
-
-
-# ---------------------------------------------------------------- spans
-def _meta_span(file: str, meta: Meta) -> Span | None:
-    if getattr(meta, "empty", True):
-        return None
-    return Span(file, meta.line, meta.column, meta.end_line, meta.end_column - 1)
-
-
-def _token_span(file: str, tok: Token) -> Span:
-    line = tok.line or 1
-    column = tok.column or 1
-    end_column = (tok.end_column or column + 1) - 1
-    return Span(file, line, column, tok.end_line or line, end_column)
-
-
-# ---------------------------------------------------------------- tree -> syntax
-@v_args(meta=True)
-class _Builder(Transformer[Token, s.SpecFile]):
-    """Turns lark's parse tree into syntax nodes; method names are the grammar's rules."""
-
-    def __init__(self, file: str) -> None:
-        super().__init__()
-        self.file = file
-
-    def _sp(self, meta: Meta) -> Span | None:
-        return _meta_span(self.file, meta)
-
-    def _name(self, tok: Token) -> s.Name:
-        return s.Name(str(tok), span=_token_span(self.file, tok))
-
-    def _item(self, item: Any) -> Any:
-        """A NAME token becomes a Name; syntax nodes pass through."""
-        return self._name(item) if isinstance(item, Token) else item
-
-    # names and cells
-    def name_list(self, meta: Meta, ch: list[Any]) -> tuple[s.NameItem, ...]:
-        return tuple(self._item(c) for c in ch)
-
-    def name_range(self, meta: Meta, ch: list[Token]) -> s.NameRange:
-        return s.NameRange(self._name(ch[0]), self._name(ch[1]), span=self._sp(meta))
-
-    def ref_list(self, meta: Meta, ch: list[Any]) -> tuple[s.RegionRef, ...]:
-        return tuple(self._item(c) for c in ch)
-
-    def cell(self, meta: Meta, ch: list[Token]) -> s.Cell:
-        return s.Cell(int(ch[0]), int(ch[1]), span=self._sp(meta))
-
-    # statements
-    def start(self, meta: Meta, ch: list[s.Statement]) -> s.SpecFile:
-        return s.SpecFile(tuple(ch), file=self.file)
-
-    def robot_decl(self, meta: Meta, ch: list[Token]) -> s.RobotDecl:
-        return s.RobotDecl(str(ch[0])[1:-1], span=self._sp(meta))
-
-    def legs_decl(self, meta: Meta, ch: list[Any]) -> s.LegsDecl:
-        health: Token = ch[1]
-        return s.LegsDecl(
-            ch[0], int(health), health_span=_token_span(self.file, health), span=self._sp(meta)
-        )
-
-    def uses(self, meta: Meta, ch: list[Any]) -> tuple[s.NameItem, ...]:
-        return tuple(ch[0])
-
-    def direction(self, meta: Meta, ch: list[Token]) -> s.Direction:
-        return s.Direction(str(ch[0]), span=self._sp(meta))
-
-    def moves_direction(self, meta: Meta, ch: list[s.Direction]) -> tuple[str, tuple[Any, ...]]:
-        return ("directions", tuple(ch))
-
-    def moves_transitions(self, meta: Meta, ch: list[s.Arrow]) -> tuple[str, tuple[Any, ...]]:
-        return ("transitions", tuple(ch))
-
-    def arrow(self, meta: Meta, ch: list[Any]) -> s.Arrow:
-        return s.Arrow(self._item(ch[0]), self._item(ch[1]), span=self._sp(meta))
-
-    def primitive_valves(self, meta: Meta, ch: list[Token]) -> s.ValvesPrimitive:
-        return s.ValvesPrimitive(tuple(self._name(t) for t in ch), span=self._sp(meta))
-
-    def primitive_robot(self, meta: Meta, ch: list[Token | None]) -> s.RobotPrimitive:
-        robot, axis, method = ch
-        return s.RobotPrimitive(
-            str(robot)[1:-1],
-            None if axis is None else str(axis),
-            None if method is None else self._name(method),
-            span=self._sp(meta),
-        )
-
-    def gait_decl(self, meta: Meta, ch: list[Any]) -> s.GaitDecl:
-        correction, name, legs, moves, primitive = ch
-        kind, items = moves if moves is not None else ("", ())
-        return s.GaitDecl(
-            self._name(name),
-            correction is not None,
-            legs,
-            directions=items if kind == "directions" else (),
-            transitions=items if kind == "transitions" else (),
-            primitive=primitive,
-            span=self._sp(meta),
-        )
-
-    def grid_decl(self, meta: Meta, ch: list[Any]) -> s.GridDecl:
-        return s.GridDecl(int(ch[0]), int(ch[1]), ch[2], span=self._sp(meta))
-
-    def block_decl(self, meta: Meta, ch: list[Any]) -> s.BlockDecl:
-        return s.BlockDecl(ch[0], span=self._sp(meta))
-
-    def region_decl(self, meta: Meta, ch: list[Any]) -> s.RegionDecl:
-        return s.RegionDecl(ch[0], span=self._sp(meta))
-
-    def edge_arrow(self, meta: Meta, ch: list[Token]) -> bool:
-        return str(ch[0]) == "<->"
-
-    def edge_by(self, meta: Meta, ch: list[Token]) -> tuple[s.Name, ...]:
-        return tuple(self._name(t) for t in ch)
-
-    def edge_direction(self, meta: Meta, ch: list[s.Direction]) -> s.Direction:
-        return ch[0]
-
-    def edge_decl(self, meta: Meta, ch: list[Any]) -> s.EdgeDecl:
-        source, both, target, label = ch
-        return s.EdgeDecl(
-            self._item(source),
-            self._item(target),
-            both,
-            gaits=label if isinstance(label, tuple) else (),
-            direction=label if isinstance(label, s.Direction) else None,
-            span=self._sp(meta),
-        )
-
-    def cache_decl(self, meta: Meta, ch: list[Any]) -> s.CacheDecl:
-        return s.CacheDecl(ch[0], span=self._sp(meta))
-
-    def hazard_decl(self, meta: Meta, ch: list[Any]) -> s.HazardDecl:
-        regions = ch[1] if ch[1] is not None else ()
-        return s.HazardDecl(self._name(ch[0]), regions, span=self._sp(meta))
-
-    def health_init(self, meta: Meta, ch: list[Any]) -> s.HealthInit:
-        value: Token = ch[1]
-        return s.HealthInit(
-            self._item(ch[0]),
-            int(value),
-            value_span=_token_span(self.file, value),
-            span=self._sp(meta),
-        )
-
-    def start_decl(self, meta: Meta, ch: list[Any]) -> s.StartDecl:
-        inits = tuple(c for c in ch[1:] if c is not None)
-        return s.StartDecl(self._item(ch[0]), inits, span=self._sp(meta))
-
-    def visit_decl(self, meta: Meta, ch: list[Any]) -> s.VisitDecl:
-        return s.VisitDecl(ch[0], span=self._sp(meta))
-
-    def assume_decl(self, meta: Meta, ch: list[f.Expr]) -> s.AssumeDecl:
-        return s.AssumeDecl(ch[0], span=self._sp(meta))
-
-    def guarantee_decl(self, meta: Meta, ch: list[f.Expr]) -> s.GuaranteeDecl:
-        return s.GuaranteeDecl(ch[0], span=self._sp(meta))
-
-    # formulas
-    def always(self, meta: Meta, ch: list[f.Expr]) -> f.Expr:
-        return f.Always(ch[0], span=self._sp(meta))
-
-    def eventually(self, meta: Meta, ch: list[f.Expr]) -> f.Expr:
-        return f.Eventually(ch[0], span=self._sp(meta))
-
-    def until(self, meta: Meta, ch: list[f.Expr]) -> f.Expr:
-        raise FormulaError(
-            "'until' is outside GR(1): write 'always φ' (safety) or 'always eventually φ' "
-            "(liveness) instead",
-            self._sp(meta),
-        )
-
-    def iff(self, meta: Meta, ch: list[f.Expr]) -> f.Expr:
-        return f.Iff(ch[0], ch[1], span=self._sp(meta))
-
-    def implies(self, meta: Meta, ch: list[f.Expr]) -> f.Expr:
-        return f.Implies(ch[0], ch[1], span=self._sp(meta))
-
-    def or_(self, meta: Meta, ch: list[f.Expr]) -> f.Expr:
-        left = ch[0].args if isinstance(ch[0], f.Or) else (ch[0],)
-        return f.Or((*left, ch[1]), span=self._sp(meta))
-
-    def xor(self, meta: Meta, ch: list[f.Expr]) -> f.Expr:
-        return f.Xor(ch[0], ch[1], span=self._sp(meta))
-
-    def and_(self, meta: Meta, ch: list[f.Expr]) -> f.Expr:
-        left = ch[0].args if isinstance(ch[0], f.And) else (ch[0],)
-        return f.And((*left, ch[1]), span=self._sp(meta))
-
-    def not_(self, meta: Meta, ch: list[f.Expr]) -> f.Expr:
-        return f.Not(ch[0], span=self._sp(meta))
-
-    def next_(self, meta: Meta, ch: list[f.Expr]) -> f.Expr:
-        return f.Next(ch[0], span=self._sp(meta))
-
-    def var(self, meta: Meta, ch: list[Token]) -> f.Expr:
-        return f.Var(str(ch[0]), span=_token_span(self.file, ch[0]))
-
-    def true(self, meta: Meta, ch: list[Token]) -> f.Expr:
-        return f.Const(True, span=self._sp(meta))
-
-    def false(self, meta: Meta, ch: list[Token]) -> f.Expr:
-        return f.Const(False, span=self._sp(meta))
-
-    def compare_op(self, meta: Meta, ch: list[Token]) -> str:
-        return str(ch[0])
-
-    def compare(self, meta: Meta, ch: list[Any]) -> f.Expr:
-        leg, op, value = ch
-        return f.Compare(
-            op,
-            f.IntVar(str(leg), span=_token_span(self.file, leg)),
-            f.IntConst(int(value), span=_token_span(self.file, value)),
-            span=self._sp(meta),
-        )
-
-    def failed(self, meta: Meta, ch: list[Token]) -> f.Expr:
-        leg = ch[0]
-        return f.Compare(
-            "=",
-            f.IntVar(str(leg), span=_token_span(self.file, leg)),
-            f.IntConst(1, span=self._sp(meta)),
-            span=self._sp(meta),
-        )
 
 
 # ---------------------------------------------------------------- errors
@@ -388,7 +163,7 @@ def _syntax_error(err: UnexpectedInput, text: str, file: str) -> GaitcError:
             )
         return SpecSyntaxError(
             f"unexpected {_describe_token(tok)}; expected {_describe_expected(expected)}",
-            _token_span(file, tok),
+            token_span(file, tok),
         )
     if isinstance(err, UnexpectedEOF):
         expected = set(err.expected or ())
@@ -413,9 +188,4 @@ def parse(text: str, file: str = "<string>") -> s.SpecFile:
     except FormulaError as err:  # from the lexer callback, which does not know the file
         span = None if err.span is None else replace(err.span, file=file)
         raise FormulaError(err.message, span) from None
-    try:
-        return _Builder(file).transform(tree)
-    except VisitError as err:
-        if isinstance(err.orig_exc, GaitcError):
-            raise err.orig_exc from None
-        raise
+    return build(tree, file)

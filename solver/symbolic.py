@@ -33,6 +33,7 @@ from gr1.formula import (
     Xor,
 )
 from gr1.spec import GR1Spec, Variable
+from gr1.traversal import Memo, fold
 from solver.ordering import invariant_clauses, variable_order
 
 BDDNode = Any  # a dd.cudd.Function; dd ships no type stubs
@@ -88,7 +89,7 @@ class SymbolicSpec:
         self.pre_outputs = set(self.output_bits)
         self.post_inputs = {b + "'" for b in self.input_bits}
         self.post_outputs = {b + "'" for b in self.output_bits}
-        self._memo: dict[tuple[int, bool], tuple[Node, BDDNode]] = {}
+        self._memo: Memo[BDDNode] = {}
         self._build()
         if self.options.reorder_once:
             for bit in self.input_bits + self.output_bits:
@@ -222,15 +223,10 @@ class SymbolicSpec:
 
     def translate(self, expr: Expr) -> BDDNode:
         """The BDD of a formula; shared sub-formulas (DAGs) are translated once."""
-        key = (id(expr), False)
-        hit = self._memo.get(key)
-        if hit is not None:
-            return hit[1]
-        result = self._translate(expr)
-        self._memo[key] = (expr, result)
-        return result
+        return fold(expr, self._translate, _operands, self._memo)
 
-    def _translate(self, e: Expr) -> BDDNode:
+    def _translate(self, e: Node, args: list[BDDNode]) -> BDDNode:
+        """The BDD of ``e`` from the BDDs of its operands (a step of the fold)."""
         b = self.bdd
         if isinstance(e, Const):
             return b.true if e.value else b.false
@@ -245,20 +241,20 @@ class SymbolicSpec:
                 )
             return self.bit(self.var_bits[e.name][0], e.primed)
         if isinstance(e, Not):
-            return ~self.translate(e.arg)
+            return ~args[0]
         if isinstance(e, And):
-            return self._conj(self.translate(a) for a in e.args)
+            return self._conj(args)
         if isinstance(e, Or):
             out = b.false
-            for a in e.args:
-                out |= self.translate(a)
+            for a in args:
+                out |= a
             return out
         if isinstance(e, Xor):
-            return _xor(self.translate(e.left), self.translate(e.right), b)
+            return _xor(args[0], args[1], b)
         if isinstance(e, Iff):
-            return ~_xor(self.translate(e.left), self.translate(e.right), b)
+            return ~_xor(args[0], args[1], b)
         if isinstance(e, Implies):
-            return ~self.translate(e.left) | self.translate(e.right)
+            return ~args[0] | args[1]
         if isinstance(e, Compare):
             return self._compare(e)
         raise FormulaError(
@@ -277,19 +273,24 @@ class SymbolicSpec:
 
     def _term(self, t: Term) -> tuple[list[BDDNode], int]:
         """A term as (unsigned little-endian bit vector, offset): value = bits + offset."""
-        if isinstance(t, IntConst):
-            return [], t.value
-        if isinstance(t, IntVar):
-            v = self.variables.get(t.name)
-            if v is None:
-                raise FormulaError(f"unknown variable '{t.name}'", t.span)
-            bits = [self.bit(bit, t.primed) for bit in self.var_bits[t.name]]
-            return bits, v.low if v.low is not None else 0
-        if isinstance(t, Add):
-            lb, lo = self._term(t.left)
-            rb, ro = self._term(t.right)
-            return _add(lb, rb, self.bdd), lo + ro
-        raise FormulaError(f"unsupported integer term {type(t).__name__}", t.span)
+
+        def combine(node: Node, kids: list[tuple[list[BDDNode], int]]) -> tuple[
+            list[BDDNode], int
+        ]:
+            if isinstance(node, IntConst):
+                return [], node.value
+            if isinstance(node, IntVar):
+                v = self.variables.get(node.name)
+                if v is None:
+                    raise FormulaError(f"unknown variable '{node.name}'", node.span)
+                bits = [self.bit(bit, node.primed) for bit in self.var_bits[node.name]]
+                return bits, v.low if v.low is not None else 0
+            if isinstance(node, Add):
+                (lb, lo), (rb, ro) = kids
+                return _add(lb, rb, self.bdd), lo + ro
+            raise FormulaError(f"unsupported integer term {type(node).__name__}", node.span)
+
+        return fold(t, combine, lambda n: n.children() if isinstance(n, Add) else ())
 
     def _compare(self, e: Compare) -> BDDNode:
         a, oa = self._term(e.left)
@@ -321,6 +322,12 @@ class SymbolicSpec:
 
     def assignment_cube(self, values: dict[str, bool]) -> BDDNode:
         return self.bdd.cube(values)
+
+
+def _operands(node: Node) -> Sequence[Node]:
+    """The subformulas :meth:`SymbolicSpec.translate` needs first: those of the Boolean
+    operators (a comparison is translated whole, any other node is rejected)."""
+    return node.children() if isinstance(node, (Not, And, Or, Xor, Iff, Implies)) else ()
 
 
 def _xor(u: BDDNode, v: BDDNode, bdd: Any) -> BDDNode:

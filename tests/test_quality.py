@@ -56,11 +56,14 @@ def test_every_module_has_a_docstring_and_stays_small() -> None:
     assert not problems, "\n".join(problems)
 
 
+LARK_MODULES = ("ltlcompiler/parser.py", "ltlcompiler/parse_tree.py")
+
+
 def test_lark_stays_in_the_parser() -> None:
     offenders = []
     for package in PACKAGES:
         for path in sorted((ROOT / package).rglob("*.py")):
-            if path.name == "parser.py" and path.parent.name == "ltlcompiler":
+            if path.relative_to(ROOT).as_posix() in LARK_MODULES:
                 continue
             for number, line in enumerate(path.read_text(encoding="utf-8").splitlines(), 1):
                 if line.strip().startswith(("import lark", "from lark")):

@@ -21,6 +21,7 @@ from gr1.bitblast import bitblast
 from gr1.controller import Controller
 from gr1.formula import And, Const, Expr, Iff, Implies, Not, Or, Var, Xor
 from gr1.spec import SEMANTICS, Clause, GR1Spec
+from gr1.traversal import Memo, Node, fold
 
 MAX_PROBLEMS = 60
 Bits = tuple[int, ...]
@@ -76,7 +77,7 @@ class _Logic:
         self.bdd.configure(reordering=False)
         for name in self.inputs + self.outputs:
             self.bdd.declare(name, name + "'")
-        self._memo: dict[int, tuple[Expr, Any]] = {}
+        self._memo: Memo[Any] = {}
         self._lets: dict[tuple[int, Bits], Any] = {}
         self._support: dict[int, tuple[Any, tuple[str, ...]]] = {}
         self._clauses: dict[str, list[tuple[str, Any]]] = {}
@@ -92,31 +93,29 @@ class _Logic:
 
     def translate(self, expr: Expr) -> Any:
         """The BDD of a Boolean formula (memoised on node identity, so DAGs stay cheap)."""
-        if id(expr) in self._memo:
-            return self._memo[id(expr)][1]
-        b, result = self.bdd, None
+        return fold(expr, self._translate, lambda n: n.children() if isinstance(
+            n, (Not, And, Or, Xor, Iff, Implies)) else (), self._memo)  # others: rejected
+
+    def _translate(self, expr: Node, args: list[Any]) -> Any:
+        b = self.bdd
         if isinstance(expr, Const):
-            result = b.true if expr.value else b.false
-        elif isinstance(expr, Var):
+            return b.true if expr.value else b.false
+        if isinstance(expr, Var):
             name = expr.name + ("'" if expr.primed else "")
             if name not in b.vars:
                 raise FormulaError(f"'{expr.name}' is not a variable of the specification",
                                    expr.span)
-            result = b.var(name)
-        elif isinstance(expr, Not):
-            result = ~self.translate(expr.arg)
-        elif isinstance(expr, (And, Or)):
+            return b.var(name)
+        if isinstance(expr, Not):
+            return ~args[0]
+        if isinstance(expr, (And, Or)):
             op, unit = ("and", b.true) if isinstance(expr, And) else ("or", b.false)
-            parts = [self.translate(arg) for arg in expr.args]
-            result = functools.reduce(lambda x, y: b.apply(op, x, y), parts, unit)
-        elif isinstance(expr, (Xor, Iff, Implies)):
+            return functools.reduce(lambda x, y: b.apply(op, x, y), args, unit)
+        if isinstance(expr, (Xor, Iff, Implies)):
             op = {Xor: "xor", Iff: "equiv", Implies: "implies"}[type(expr)]
-            result = b.apply(op, self.translate(expr.left), self.translate(expr.right))
-        else:
-            raise FormulaError(f"the verifier cannot check {type(expr).__name__} formulas; "
-                               "bit-blast integers first", expr.span)
-        self._memo[id(expr)] = (expr, result)
-        return result
+            return b.apply(op, args[0], args[1])
+        raise FormulaError(f"the verifier cannot check {type(expr).__name__} formulas; "
+                           "bit-blast integers first", expr.span)
 
     def support(self, u: Any) -> tuple[str, ...]:
         key = int(u)
