@@ -174,5 +174,5 @@ def test_lint_reports_errors_with_location(tmp_path: Path,
 def test_bad_command_lines(capsys: pytest.CaptureFixture[str]) -> None:
     assert main(["compile", "specs/patrol_2x2.gait", "--format", "dot"]) == 2
     assert main(["compile", "specs/patrol_2x2.gait", "--encoding", "gray"]) == 2
-    assert main(["compile", "specs/missing.gait"]) == 2  # a missing file is a usage error, as in every command
+    assert main(["compile", "specs/missing.gait"]) == 2  # usage error, as in check
     assert "no such file" in capsys.readouterr().err
