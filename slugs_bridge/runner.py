@@ -3,7 +3,9 @@
 Facts from SLUGS's ``src/main.cpp`` (Ehlers & Raman, CAV 2016): the verdict is the
 ``RESULT: Specification is (un)realizable.`` line on stderr (exit code 0 for both); only fixed,
 lexicographically sorted option combinations are accepted; ``--counterStrategy`` reads the
-output file name *before* the input file, explicit strategies *after* it.
+output file name *before* the input file, explicit strategies *after* it.  SLUGS answers in
+the bit names gaitc's slugsin writer wrote; names it renamed (:mod:`slugs_bridge.names`) are
+mapped back to the spec's before a controller is built.
 """
 
 from __future__ import annotations
@@ -30,6 +32,7 @@ from gr1.controller import (
 from gr1.evaluation import evaluate
 from gr1.formula import conj
 from gr1.spec import GR1Spec
+from slugs_bridge.slugsin import slugsin_renaming
 
 #: Options per task and semantics; every combination appears in SLUGS's ``optionCombinations``.
 OPTIONS: dict[tuple[str, str], tuple[str, ...]] = {
@@ -189,8 +192,12 @@ def controller_from_slugs_json(
             f"SLUGS wrote a strategy that is not valid JSON: {err.msg}",
             Span(filename, err.lineno, err.colno),
         ) from None
-    raw = controller_from_dict(data, filename, spec)
     boolean = bitblast(spec)
+    if isinstance(data, dict) and "gaitc" not in data and isinstance(data.get("variables"), list):
+        back = _spec_names(boolean)
+        data = {**data, "variables": [back.get(v, v) if isinstance(v, str) else v
+                                      for v in data["variables"]]}
+    raw = controller_from_dict(data, filename, spec)
     initial = tuple(
         k for k, node in enumerate(raw.nodes)
         if node.rank == 0 and _starts(boolean, raw.variables, node)
@@ -209,6 +216,7 @@ def counterstrategy_from_slugs_text(
     """
     ins, outs = spec_bits(spec)
     variables = ins + outs
+    back = _spec_names(bitblast(spec))
     states: dict[int, tuple[int, tuple[int, ...]]] = {}
     trans: dict[int, tuple[int, ...]] = {}
     dead: set[int] = set()
@@ -222,7 +230,7 @@ def counterstrategy_from_slugs_text(
         succ = _SUCC.match(stripped)
         if state is not None:
             current = int(state.group(1))
-            values = _bits(state.group(4), variables, span)
+            values = _bits(state.group(4), variables, back, span)
             states[current] = (int(state.group(2)), values)
         elif succ is not None and current is not None:
             if succ.group(1) is None:
@@ -258,10 +266,18 @@ def _ids(text: str, span: Span) -> tuple[int, ...]:
     return tuple(int(p) for p in parts)
 
 
-def _bits(text: str, variables: tuple[str, ...], span: Span) -> tuple[int, ...]:
+def _spec_names(boolean: GR1Spec) -> dict[str, str]:
+    """SLUGS's bit names (as gaitc's slugsin writer renamed them) -> the spec's bit names."""
+    return {written: name for name, written in slugsin_renaming(boolean).items()}
+
+
+def _bits(
+    text: str, variables: tuple[str, ...], back: dict[str, str], span: Span
+) -> tuple[int, ...]:
     found: dict[str, int] = {}
     for item in text.split(","):
-        name, _, value = item.strip().rpartition(":")
+        written, _, value = item.strip().rpartition(":")
+        name = back.get(written, written)
         if name not in variables or value not in ("0", "1"):
             raise SolverError(f"unknown variable or value '{item.strip()}' in SLUGS's output",
                               span)

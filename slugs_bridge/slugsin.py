@@ -8,6 +8,7 @@ last of N formulas, ``? i`` recalls element ``i`` of the innermost enclosing buf
 from __future__ import annotations
 
 import re
+from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -25,6 +26,7 @@ from gr1.formula import (
     Xor,
 )
 from gr1.spec import SECTIONS, Clause, GR1Spec, Origin, Variable
+from slugs_bridge.names import check_renaming, read_renaming, renaming
 from slugs_bridge.sections import FIELD_HEADERS as FIELD_HEADERS
 from slugs_bridge.sections import HEADERS as HEADERS
 from slugs_bridge.sections import (
@@ -33,6 +35,7 @@ from slugs_bridge.sections import (
     check_atoms,
     check_name,
     read_sections,
+    write_sections,
 )
 
 
@@ -63,13 +66,16 @@ def _parse_count(
 
 
 def parse_prefix(
-    text: str, filename: str, line: int, declared: set[str]
+    text: str, filename: str, line: int, declared: set[str],
+    names: Mapping[str, str] | None = None,
 ) -> Expr:
     """Parse one slugsin formula line into the IR; shared subformulas (``$``/``?``) stay shared.
 
     Nested ``&``/``|`` chains written inline are flattened into one n-ary node.
-    Names must be in ``declared`` (plain names; ``x'`` is the next-state copy of ``x``).
+    Names must be in ``declared`` (plain names; ``x'`` is the next-state copy of ``x``);
+    ``names`` maps written names to the spec's names (see :mod:`slugs_bridge.names`).
     """
+    rename = names or {}
     matches = list(TOKEN.finditer(text))
     stack: list[_Frame] = []
     recalled: set[int] = set()  # ids of nodes produced by '?', never flattened into parents
@@ -134,7 +140,7 @@ def parse_prefix(
                 raise SlugsFormatError(
                     f"unknown variable '{name}'; declare it under [INPUT] or [OUTPUT]", span
                 )
-            value = Var(name, primed, span=span)
+            value = Var(rename.get(name, name), primed, span=span)
         # Feed completed values to the waiting operators.
         while value is not None:
             if not stack:
@@ -187,8 +193,10 @@ def _build(frame: _Frame, recalled: set[int]) -> Expr:
 def parse_slugsin(text: str, filename: str) -> GR1Spec:
     """Read a ``.slugsin`` specification (SLUGS's prefix format) into a Boolean :class:`GR1Spec`.
 
-    Unlike SLUGS, a formula may use a variable declared further down the file.
+    Unlike SLUGS, a formula may use a variable declared further down the file.  Names
+    renamed by the writer (the renaming comment at the top) get their spec names back.
     """
+    back, where = read_renaming(text, filename)
     variables: dict[str, list[Variable]] = {"inputs": [], "outputs": []}
     first_seen: dict[str, Span] = {}
     clauses: dict[str, list[Clause]] = {name: [] for name in SECTIONS}
@@ -206,10 +214,11 @@ def parse_slugsin(text: str, filename: str) -> GR1Spec:
                     src.span,
                 )
             first_seen[name] = src.span
-            variables[src.field].append(Variable(name, span=src.span))
+            variables[src.field].append(Variable(back.get(name, name), span=src.span))
+    check_renaming(back, first_seen, where)
     declared = set(first_seen)
     for src in formulas:
-        formula = parse_prefix(src.text, filename, src.line, declared)
+        formula = parse_prefix(src.text, filename, src.line, declared, back)
         origin = Origin(f"slugsin {src.header}", src.span)
         clauses[src.field].append(Clause(formula, origin))
     spec = GR1Spec(
@@ -261,7 +270,9 @@ def has_shared_subformulas(expr: Expr) -> bool:
     return bool(_buffered_nodes(expr, nested_too=False))
 
 
-def _prefix_tokens(root: Expr, refs: dict[int, str], out: list[str]) -> None:
+def _prefix_tokens(
+    root: Expr, refs: dict[int, str], out: list[str], names: Mapping[str, str]
+) -> None:
     stack: list[Expr | str] = [root]
     while stack:
         item = stack.pop()
@@ -274,7 +285,7 @@ def _prefix_tokens(root: Expr, refs: dict[int, str], out: list[str]) -> None:
         if isinstance(item, Const):
             out.append("1" if item.value else "0")
         elif isinstance(item, Var):
-            out.append(item.name + ("'" if item.primed else ""))
+            out.append(names.get(item.name, item.name) + ("'" if item.primed else ""))
         elif isinstance(item, Not):
             out.append("!")
             stack.append(item.arg)
@@ -308,25 +319,32 @@ def _prefix_tokens(root: Expr, refs: dict[int, str], out: list[str]) -> None:
             )
 
 
-def emit_formula(expr: Expr) -> str:
-    """One slugsin line for ``expr``; shared subformulas become a ``$``/``?`` memory buffer."""
+def emit_formula(expr: Expr, names: Mapping[str, str] | None = None) -> str:
+    """One slugsin line for ``expr``; shared subformulas become a ``$``/``?`` memory buffer.
+
+    ``names`` maps spec names to the names written (see :mod:`slugs_bridge.names`).
+    """
+    rename = names or {}
     shared = _buffered_nodes(expr)
     out: list[str] = []
     if not shared:
-        _prefix_tokens(expr, {}, out)
+        _prefix_tokens(expr, {}, out, rename)
         return " ".join(out)
     refs: dict[int, str] = {}
     out.extend(("$", str(len(shared) + 1)))
     for index, node in enumerate(shared):
-        _prefix_tokens(node, refs, out)
+        _prefix_tokens(node, refs, out, rename)
         refs[id(node)] = f"? {index}"
-    _prefix_tokens(expr, refs, out)
+    _prefix_tokens(expr, refs, out, rename)
     return " ".join(out)
 
 
-def emit_slugsin(spec: GR1Spec) -> str:
+def emit_slugsin(spec: GR1Spec, *, comments: bool = True) -> str:
     """Write a Boolean :class:`GR1Spec` as ``.slugsin`` text (sections in canonical order).
 
+    With ``comments`` (as ``gaitc compile`` writes it): a ``# <name>: generated by gaitc``
+    header and each clause's origin as a ``# line N: rule`` comment.  Names slugsin cannot
+    carry are renamed, with the renaming comment at the top (:mod:`slugs_bridge.names`).
     Raises :class:`ValueError` when the spec has integer variables or non-Boolean nodes.
     """
     if spec.has_integers:
@@ -335,14 +353,19 @@ def emit_slugsin(spec: GR1Spec) -> str:
             f"spec has integer variables ({names}); bit-blast it first with "
             "gr1.bitblast.bitblast"
         )
-    lines: list[str] = []
-    for header, field in HEADERS.items():
-        if lines:
-            lines.append("")
-        lines.append(header)
-        if field in ("inputs", "outputs"):
-            variables: tuple[Variable, ...] = getattr(spec, field)
-            lines.extend(v.name for v in variables)
-        else:
-            lines.extend(emit_formula(c.formula) for c in spec.section(field))
-    return "\n".join(lines) + "\n"
+    renamed = slugsin_renaming(spec)
+    return write_sections(
+        spec,
+        lambda v: renamed.get(v.name, v.name),
+        lambda f: emit_formula(f, renamed),
+        renamed,
+        comments,
+    )
+
+
+def slugsin_renaming(spec: GR1Spec) -> dict[str, str]:
+    """``{spec name: written name}`` for the names of Boolean ``spec`` slugsin cannot carry.
+
+    SLUGS answers in the written names; :mod:`slugs_bridge.runner` maps them back.
+    """
+    return renaming((v.name for v in spec.variables()), "slugsin")

@@ -3,36 +3,34 @@
 Follows SLUGS's tools/StructuredSlugsParser/compiler.py: declarations ``x`` or
 ``x:MIN...MAX``, one infix formula per line, and lines that already are slugsin prefix
 formulas passed through unchanged (detected the way ``isValidRecursiveSlugsProperty`` does).
+The writer is the one ``gaitc compile`` uses: origin comments, a header, renamed names
+(:mod:`slugs_bridge.names`), and prefix lines for shared Boolean formulas.
 """
 
 from __future__ import annotations
 
+from dataclasses import replace
 from pathlib import Path
 
 from diagnostics import SlugsFormatError, Span
-from gr1.formula import (
-    Add,
-    And,
-    Compare,
-    Const,
-    Expr,
-    Iff,
-    Implies,
-    IntConst,
-    IntVar,
-    Next,
-    Node,
-    Not,
-    Or,
-    Term,
-    Var,
-    Xor,
-    walk,
-)
+from gr1.formula import Compare, Expr, IntVar, walk
 from gr1.spec import SECTIONS, Clause, GR1Spec, Origin, Variable
 from slugs_bridge.infix import IDENT, KEYWORDS, parse_infix
-from slugs_bridge.sections import HEADERS, SourceLine, check_atoms, check_name, read_sections
+from slugs_bridge.infixtext import emit_infix as emit_infix
+from slugs_bridge.names import check_renaming, read_renaming, renaming
+from slugs_bridge.sections import (
+    SourceLine,
+    check_atoms,
+    check_name,
+    read_sections,
+    write_sections,
+)
+from slugs_bridge.shapes import prefix_exact, tree_size
 from slugs_bridge.slugsin import emit_formula, has_shared_subformulas, parse_prefix
+
+#: A shared formula whose tree would have more nodes than this is written in prefix form
+#: even when slugsin spells it only up to equivalence (see :func:`prefix_line`).
+TREE_LIMIT = 100_000
 
 
 def is_prefix_line(text: str, booleans: set[str]) -> bool:
@@ -114,8 +112,10 @@ def parse_structuredslugs(text: str, filename: str) -> GR1Spec:
 
     Integer variables become ``Variable(name, low, high)`` and comparisons stay
     :class:`~gr1.formula.Compare` nodes; :func:`gr1.bitblast.bitblast`
-    lowers them to bits the way SLUGS's converter does.
+    lowers them to bits the way SLUGS's converter does.  Names renamed by the writer (the
+    renaming comment at the top) get their spec names back.
     """
+    back, where = read_renaming(text, filename)
     variables: dict[str, list[Variable]] = {"inputs": [], "outputs": []}
     first_seen: dict[str, Span] = {}
     formulas: list[SourceLine] = []
@@ -132,20 +132,21 @@ def parse_structuredslugs(text: str, filename: str) -> GR1Spec:
             )
         first_seen[var.name] = src.span
         variables[src.field].append(var)
+    check_renaming(back, first_seen, where)
     all_vars = variables["inputs"] + variables["outputs"]
     booleans = {v.name for v in all_vars if not v.is_integer}
     integers = {v.name: v for v in all_vars if v.is_integer}
     clauses: dict[str, list[Clause]] = {name: [] for name in SECTIONS}
     for src in formulas:
         if is_prefix_line(src.text, booleans):
-            formula = parse_prefix(src.text, filename, src.line, booleans)
+            formula = parse_prefix(src.text, filename, src.line, booleans, back)
         else:
-            formula = parse_infix(src.text, filename, src.line, booleans, integers)
+            formula = parse_infix(src.text, filename, src.line, booleans, integers, back)
         origin = Origin(f"structuredslugs {src.header}", src.span)
         clauses[src.field].append(Clause(formula, origin))
     spec = GR1Spec(
-        inputs=tuple(variables["inputs"]),
-        outputs=tuple(variables["outputs"]),
+        inputs=tuple(replace(v, name=back.get(v.name, v.name)) for v in variables["inputs"]),
+        outputs=tuple(replace(v, name=back.get(v.name, v.name)) for v in variables["outputs"]),
         name=Path(filename).stem,
         **{name: tuple(items) for name, items in clauses.items()},
     )
@@ -154,109 +155,39 @@ def parse_structuredslugs(text: str, filename: str) -> GR1Spec:
 
 
 # ---------------------------------------------------------------- writer
-# Binding strength in SLUGS's grammar: higher binds tighter; comparisons are atoms.
-_LEVEL: dict[type, int] = {Iff: 1, Implies: 2, Xor: 3, Or: 4, And: 5, Not: 7, Next: 7}
-_SYMBOL: dict[type, str] = {Iff: "<->", Implies: "->", Xor: "^", Or: "|", And: "&"}
-
-
-def _level(node: Node) -> int:
-    return _LEVEL.get(type(node), 9)
-
-
-def _atom(name: str, primed: bool, as_next: bool) -> str:
-    if not primed:
-        return name
-    return f"X {name}" if as_next else name + "'"
-
-
-def _term(term: Term, as_next: bool = False) -> str:
-    if isinstance(term, IntConst):
-        if term.value < 0:
-            raise ValueError(
-                f"cannot write the negative constant {term.value} in structuredslugs"
-            )
-        return str(term.value)
-    if isinstance(term, IntVar):
-        return _atom(term.name, term.primed, as_next)
-    if isinstance(term, Add):
-        # '+' is right-recursive in SLUGS's grammar, so a sum on the left needs brackets.
-        left = _term(term.left, as_next)
-        if isinstance(term.left, Add):
-            left = f"({left})"
-        return f"{left} + {_term(term.right, as_next)}"
-    raise ValueError(f"not an integer term: {term!r}")
-
-
-def emit_infix(expr: Expr, as_next: bool = False) -> str:
-    """A formula in structuredslugs infix syntax, with the fewest brackets that keep its shape.
-
-    With ``as_next`` a primed variable ``x'`` is written ``X x`` (readable LTL, not SLUGS).
-    """
-    if isinstance(expr, Const):
-        return "TRUE" if expr.value else "FALSE"
-    if isinstance(expr, Var):
-        return _atom(expr.name, expr.primed, as_next)
-    if isinstance(expr, (Not, Next)):
-        inner = emit_infix(expr.arg, as_next)
-        if _level(expr.arg) < _level(expr):
-            inner = f"({inner})"
-        return ("!" if isinstance(expr, Not) else "X ") + inner
-    if isinstance(expr, (And, Or)):
-        if not expr.args:
-            return "TRUE" if isinstance(expr, And) else "FALSE"
-        if len(expr.args) == 1:
-            return emit_infix(expr.args[0], as_next)
-        level = _level(expr)
-        parts = [emit_infix(a, as_next) for a in expr.args]
-        parts = [
-            f"({p})" if _level(a) <= level else p for a, p in zip(expr.args, parts, strict=True)
-        ]
-        return f" {_SYMBOL[type(expr)]} ".join(parts)
-    if isinstance(expr, (Iff, Implies, Xor)):
-        level = _level(expr)
-        left, right = emit_infix(expr.left, as_next), emit_infix(expr.right, as_next)
-        if _level(expr.left) < level:
-            left = f"({left})"
-        if _level(expr.right) <= level:
-            right = f"({right})"
-        return f"{left} {_SYMBOL[type(expr)]} {right}"
-    if isinstance(expr, Compare):
-        return f"{_term(expr.left, as_next)} {expr.op} {_term(expr.right, as_next)}"
-    raise ValueError(
-        f"cannot write {type(expr).__name__} in structuredslugs: sections hold state and "
-        "transition formulas only"
-    )
-
-
-def emit_structuredslugs(spec: GR1Spec) -> str:
+def emit_structuredslugs(spec: GR1Spec, *, comments: bool = True) -> str:
     """Write a :class:`GR1Spec` as ``.structuredslugs`` text (sections in canonical order).
 
-    Boolean clauses with shared subformulas are written as slugsin ``$`` lines.
+    With ``comments`` (as ``gaitc compile`` writes it): a ``# <name>: generated by gaitc``
+    header and each clause's origin as a ``# line N: rule`` comment.  Names the format
+    cannot carry (``F``, ``next``, ``a@1``, ...) are renamed, with the renaming comment at
+    the top; a clause :func:`prefix_line` picks is written as a slugsin prefix line.
     """
-    lines: list[str] = []
-    for header, field in HEADERS.items():
-        if lines:
-            lines.append("")
-        lines.append(header)
-        if field in ("inputs", "outputs"):
-            variables: tuple[Variable, ...] = getattr(spec, field)
-            for v in variables:
-                lines.append(f"{v.name}:{v.low}...{v.high}" if v.is_integer else v.name)
-        else:
-            lines.extend(_clause_line(c.formula) for c in spec.section(field))
-    return "\n".join(lines) + "\n"
+    renamed = renaming((v.name for v in spec.variables()), "structuredslugs")
+
+    def declaration(v: Variable) -> str:
+        name = renamed.get(v.name, v.name)
+        return f"{name}:{v.low}...{v.high}" if v.is_integer else name
+
+    def clause_line(formula: Expr) -> str:
+        if prefix_line(formula):
+            return emit_formula(formula, renamed)
+        return emit_infix(formula, names=renamed)
+
+    return write_sections(spec, declaration, clause_line, renamed, comments)
 
 
-def _clause_line(formula: Expr) -> str:
-    # A Boolean DAG (e.g. bit-blasted adders) would grow exponentially as a tree; the
-    # reader passes '$' lines through, so such clauses are written in prefix form.
-    # Formulas nested too deeply for the recursive infix writer also go out in prefix form.
-    has_integers = any(isinstance(n, (Compare, IntVar)) for n in walk(formula))
-    if not has_integers and has_shared_subformulas(formula):
-        return emit_formula(formula)
-    try:
-        return emit_infix(formula)
-    except RecursionError:
-        if has_integers:
-            raise ValueError("an integer formula nests too deeply to write") from None
-        return emit_formula(formula)
+def prefix_line(formula: Expr) -> bool:
+    """Whether a clause is written as a slugsin prefix line (which the reader passes through).
+
+    A Boolean formula with shared subformulas (a DAG, e.g. one read from a slugsin ``$``
+    line) would grow as a tree, up to exponentially: it goes out in prefix form, with the
+    DAG kept in a ``$`` buffer, when slugsin spells it node for node
+    (:func:`slugs_bridge.shapes.prefix_exact`) or when its tree would exceed
+    :data:`TREE_LIMIT` nodes (then the line read back is only equivalent).
+    """
+    if any(isinstance(n, (Compare, IntVar)) for n in walk(formula)):
+        return False
+    if not has_shared_subformulas(formula):
+        return False
+    return prefix_exact(formula) or tree_size(formula, TREE_LIMIT) > TREE_LIMIT
