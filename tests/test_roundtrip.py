@@ -139,7 +139,7 @@ def models(draw: st.DrawFn) -> str:
     goals = draw(st.lists(st.sampled_from(regions), max_size=2, unique=True))
     if goals:
         lines.append(f"visit {', '.join(goals)} infinitely often")
-    robot = [n for n in regions + gaits if n != "next"] + hazards
+    robot = [n for n in regions + gaits + hazards if n != "next"]
     env = [n for n in hazards if n != "next"]
     for _ in range(draw(st.integers(0, 3))):
         shape = draw(st.sampled_from(["", "always ", "always eventually "]))
