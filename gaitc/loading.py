@@ -1,7 +1,8 @@
 """Loading: a specification file or text of any supported kind becomes a :class:`Spec`.
 
 ``.gait`` goes through the :mod:`ltlcompiler` front end and lowering (thesis eqs. 3.3-3.9);
-``.slugsin``/``.txt`` and ``.structuredslugs`` through the readers of :mod:`slugs_bridge`.
+``.slugsin``/``.txt``, ``.structuredslugs`` and ``.ltl`` (the LTL text ``gaitc compile``
+writes) through the readers of :mod:`slugs_bridge`.
 Each file is read once; its hash is taken from the same bytes the readers see.
 """
 
@@ -23,7 +24,8 @@ if TYPE_CHECKING:
 GAIT_SUFFIXES = (".gait",)
 PREFIX_SUFFIXES = (".slugsin", ".txt")
 INFIX_SUFFIXES = (".structuredslugs", ".structureslugs")
-SUFFIXES = GAIT_SUFFIXES + PREFIX_SUFFIXES + INFIX_SUFFIXES
+LTL_SUFFIXES = (".ltl",)  # the readable LTL text gaitc compile writes
+SUFFIXES = GAIT_SUFFIXES + PREFIX_SUFFIXES + INFIX_SUFFIXES + LTL_SUFFIXES
 
 
 @dataclass(frozen=True)
@@ -84,7 +86,7 @@ def _kind(name: str) -> str:
         return suffix
     raise UsageError(
         f"'{name}': unknown specification kind '{suffix or '(none)'}'; "
-        "give a .gait, .slugsin or .structuredslugs file"
+        "give a .gait, .slugsin, .structuredslugs or .ltl file"
     )
 
 
@@ -152,6 +154,10 @@ def _build(text: str, name: str, suffix: str, encoding: str, digest: str) -> Spe
         from slugs_bridge.slugsin import parse_slugsin
 
         return Spec(name, parse_slugsin(text, name), sha256=digest, text=text)
+    if suffix in LTL_SUFFIXES:
+        from slugs_bridge.ltltext import parse_ltl
+
+        return Spec(name, parse_ltl(text, name), sha256=digest, text=text)
     from slugs_bridge.structured import parse_structuredslugs
 
     return Spec(name, parse_structuredslugs(text, name), sha256=digest, text=text)

@@ -1,14 +1,16 @@
 """Bit-blasting: integer variables to Boolean bits and comparisons to adder/comparator circuits.
 
-Reproduces SLUGS's tools/StructuredSlugsParser/compiler.py: bits ``x@0.MIN.MAX``,
+Reproduces SLUGS's tools/StructuredSlugsParser/compiler.py: bits ``x@0.MIN.MAX``
+(named in :mod:`gr1.bits`),
 ``x@1`` .. (little-endian, value = MIN + bits), ripple-carry ``+`` that keeps the carry
 (no overflow), and range constraints (value - MIN < MAX - MIN + 1) in init and primed trans.
 """
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Mapping, Sequence
+from collections.abc import Mapping, Sequence
 
+from gr1.bits import integer_bits
 from gr1.formula import (
     FALSE,
     TRUE,
@@ -35,70 +37,6 @@ from gr1.spec import SECTIONS, Clause, GR1Spec, Origin, Variable
 from gr1.traversal import Memo, Node, fold
 
 Bits = list[Expr]  # little-endian bit vector; missing high bits are 0
-
-
-# ---------------------------------------------------------------- naming and decoding
-def bit_count(var: Variable) -> int:
-    """Bits of ``var``: the least n >= 1 with 2**n > MAX - MIN (:attr:`Variable.bits`).
-
-    SLUGS's converter gives a one-value range (MIN = MAX) no bits at all; gaitc keeps one
-    bit, fixed to 0 by the range constraint, so every integer has a first bit to decode.
-    """
-    return var.bits
-
-
-def integer_bits(var: Variable) -> list[str]:
-    """SLUGS's bit names for ``var``, least significant first (``[name]`` for a Boolean)."""
-    if not var.is_integer:
-        return [var.name]
-    return [
-        f"{var.name}@0.{var.low}.{var.high}" if i == 0 else f"{var.name}@{i}"
-        for i in range(bit_count(var))
-    ]
-
-
-def split_bit_name(bit: str) -> tuple[str, int] | None:
-    """``("x", k)`` for a SLUGS bit name ``x@0.MIN.MAX`` or ``x@k``; None for other names."""
-    name, at, rest = bit.rpartition("@")
-    if not at or not name:
-        return None
-    index = rest.split(".", 1)[0]
-    return (name, int(index)) if index.isdigit() else None
-
-
-def decode_bits(var: Variable, valuation: Mapping[str, object], primed: bool = False) -> int:
-    """The value of integer ``var`` from a valuation of its bits (``x@1`` or ``x@1'`` keys)."""
-    assert var.low is not None
-    suffix = "'" if primed else ""
-    value = 0
-    for i, bit in enumerate(integer_bits(var)):
-        if valuation[bit + suffix]:
-            value |= 1 << i
-    return var.low + value
-
-
-def encode_bits(var: Variable, value: int, primed: bool = False) -> dict[str, bool]:
-    """The bit valuation SLUGS uses for ``var = value`` (keys primed when ``primed``)."""
-    assert var.low is not None and var.high is not None
-    if not var.low <= value <= var.high:
-        raise ValueError(f"{value} lies outside {var.name}'s range {var.low}...{var.high}")
-    suffix = "'" if primed else ""
-    offset = value - var.low
-    return {bit + suffix: bool(offset >> i & 1) for i, bit in enumerate(integer_bits(var))}
-
-
-def decode_valuation(
-    variables: Iterable[Variable], valuation: Mapping[str, object], primed: bool = False
-) -> dict[str, bool | int]:
-    """Values of the original (integer or Boolean) variables from a bit-level valuation."""
-    suffix = "'" if primed else ""
-    out: dict[str, bool | int] = {}
-    for var in variables:
-        if var.is_integer:
-            out[var.name] = decode_bits(var, valuation, primed)
-        else:
-            out[var.name] = bool(valuation[var.name + suffix])
-    return out
 
 
 # ---------------------------------------------------------------- gates with constant folding

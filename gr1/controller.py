@@ -9,18 +9,17 @@ from __future__ import annotations
 
 import html
 import json
-import re
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 from diagnostics import ControllerError, Span
-from gr1.spec import SEMANTICS, GR1Spec, Variable
+from gr1.bits import bit_name, parse_first_bit, spec_bits
+from gr1.spec import SEMANTICS, GR1Spec
 
 FORMAT_VERSION = 1
 KINDS = ("strategy", "counterstrategy")
-_FIRST_BIT = re.compile(r"^(?P<name>.+)@0\.(?P<low>-?\d+)\.(?P<high>-?\d+)$")
 
 
 @dataclass(frozen=True)
@@ -97,31 +96,17 @@ def integers_of(bit_names: tuple[str, ...], inputs: frozenset[str]) -> dict[str,
     out: dict[str, IntegerVar] = {}
     present = set(bit_names)
     for bit in bit_names:
-        m = _FIRST_BIT.match(bit)
-        if m is None:
+        first = parse_first_bit(bit)
+        if first is None:
             continue
-        name, low, high = m.group("name"), int(m.group("low")), int(m.group("high"))
+        name, low, high = first
         bits = [bit]
         k = 1
-        while f"{name}@{k}" in present:
-            bits.append(f"{name}@{k}")
+        while bit_name(name, k) in present:
+            bits.append(bit_name(name, k))
             k += 1
         out[name] = IntegerVar(low, high, tuple(bits), "env" if bit in inputs else "sys")
     return out
-
-
-def spec_bits(spec: GR1Spec) -> tuple[tuple[str, ...], tuple[str, ...]]:
-    """The bit names of a spec's inputs and outputs, in SLUGS order."""
-
-    def bits(v: Variable) -> list[str]:
-        if not v.is_integer:
-            return [v.name]
-        first = f"{v.name}@0.{v.low}.{v.high}"
-        return [first] + [f"{v.name}@{k}" for k in range(1, v.bits)]
-
-    ins = tuple(b for v in spec.inputs for b in bits(v))
-    outs = tuple(b for v in spec.outputs for b in bits(v))
-    return ins, outs
 
 
 # ---------------------------------------------------------------- writing

@@ -22,12 +22,12 @@ from pathlib import Path
 
 from diagnostics import SolverError, Span
 from gr1.bitblast import bitblast
+from gr1.bits import spec_bits
 from gr1.controller import (
     Controller,
     ControllerNode,
     controller_from_dict,
     integers_of,
-    spec_bits,
 )
 from gr1.evaluation import evaluate
 from gr1.formula import conj

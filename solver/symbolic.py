@@ -14,7 +14,7 @@ from typing import Any
 import dd.cudd as cudd
 
 from diagnostics import FormulaError
-from gr1.controller import spec_bits
+from gr1.bits import spec_bits
 from gr1.formula import (
     Add,
     And,

@@ -168,3 +168,13 @@ def test_load_reads_the_file_once(monkeypatch: pytest.MonkeyPatch) -> None:
         gaitc.load(ROOT / "specs" / name)
     gaitc.load(ROOT / "tests" / "data" / "slugs_examples" / "water_reservoir.structuredslugs")
     assert [Path(r).name for r in reads] == ["patrol_2x2.gait", "water_reservoir.structuredslugs"]
+
+
+@pytest.mark.parametrize("fmt", ["structuredslugs", "slugsin", "ltl"])
+def test_what_compile_writes_loads_back_with_the_same_verdict(fmt: str, tmp_path: Path) -> None:
+    spec = gaitc.load(ROOT / "specs" / "thesis_robot_b.gait", "binary")
+    path = tmp_path / f"robot_b.{fmt}"
+    path.write_text(gaitc.emit(spec, fmt), encoding="utf-8")
+    again = gaitc.load(path)
+    assert again.model is None
+    assert gaitc.check(again).realizable == gaitc.check(spec).realizable

@@ -11,14 +11,13 @@ from dd import cudd
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from gr1.bitblast import (
+from gr1.bitblast import bitblast, range_constraint
+from gr1.bits import (
     bit_count,
-    bitblast,
     decode_bits,
     decode_valuation,
     encode_bits,
     integer_bits,
-    range_constraint,
     split_bit_name,
 )
 from gr1.evaluation import evaluate

@@ -16,7 +16,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from gaitsim.monitor import compile_formula
-from gr1.bitblast import bitblast, encode_bits
+from gr1.bitblast import bitblast
+from gr1.bits import encode_bits
 from gr1.evaluation import evaluate
 from gr1.formula import (
     COMPARE_OPS,
