@@ -58,7 +58,6 @@ FORMULAS = {  # each means "the robot is in nw"
 DEEP = {"not", "implies", "next"}  # deep in the IR too (and: one n-ary node; parentheses: none)
 FORMATS = ("structuredslugs", "slugsin", "ltl")
 ENCODINGS = ("onehot", "binary")
-OTHER_BRANCH = pytest.mark.xfail(reason="slugs_bridge writers: other branch", strict=False)
 
 
 def test_the_depth_is_far_beyond_the_recursion_limit() -> None:
@@ -76,11 +75,7 @@ def _cases() -> list[object]:
     for kind in FORMULAS:
         for encoding in ENCODINGS:
             for fmt in FORMATS:
-                recursive_writer = fmt == "structuredslugs" or (
-                    fmt == "ltl" and encoding == "binary")
-                marks = [OTHER_BRANCH] if kind in DEEP and recursive_writer else []
-                cases.append(pytest.param(kind, encoding, fmt, marks=marks,
-                                          id=f"{kind}-{encoding}-{fmt}"))
+                cases.append(pytest.param(kind, encoding, fmt, id=f"{kind}-{encoding}-{fmt}"))
     return cases
 
 
