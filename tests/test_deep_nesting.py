@@ -55,7 +55,6 @@ FORMULAS = {  # each means "the robot is in nw"
     "parentheses": "(" * DEPTH + "nw" + ")" * DEPTH,
     "next": "next " + "!" * DEPTH + "nw",
 }
-DEEP = {"not", "implies", "next"}  # deep in the IR too (and: one n-ary node; parentheses: none)
 FORMATS = ("structuredslugs", "slugsin", "ltl")
 ENCODINGS = ("onehot", "binary")
 
