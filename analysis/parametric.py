@@ -22,7 +22,7 @@ from ltlcompiler.encoding import make_encoding
 from ltlcompiler.lowering import lower
 from ltlcompiler.model import Model
 from solver.game import Game
-from solver.symbolic import SymbolicSpec
+from solver.symbolic import BDDNode, Options, SymbolicSpec
 
 PREFIX = "gaitc_cap_"
 
@@ -83,11 +83,13 @@ def _rule(clause: Clause) -> str:
 
 
 def winning_caps(model: Model, encoding: str, domains: Mapping[str, Sequence[int]],
-                 semantics: str = "default") -> ParametricResult:
-    """Every cap vector (one value per leg, in ``model.legs`` order) the robot wins from."""
+                 semantics: str = "default", minimal_only: bool = False) -> ParametricResult:
+    """Every cap vector (one value per leg, in ``model.legs`` order) the robot wins from;
+    with ``minimal_only``, just the minimal ones (the Pareto front of an upward-closed set
+    over contiguous domains), computed on the BDD before anything is enumerated."""
     started = time.monotonic()
     spec = parametric_spec(model, encoding, domains)
-    sym = SymbolicSpec(spec)
+    sym = SymbolicSpec(spec, Options(first=tuple(cap_name(leg.name) for leg in model.legs)))
     result = Game(sym).solve()
     winning = result.winning
     bdd = sym.bdd
@@ -100,6 +102,8 @@ def winning_caps(model: Model, encoding: str, domains: Mapping[str, Sequence[int
         bad = sym.env_init & ~bdd.exist(sym.pre_outputs, sym.sys_init & winning)
     admissible = bdd.exist(others, sym.env_init)
     good = admissible & ~bdd.exist(others, bad)
+    if minimal_only:
+        good = _minimal(sym, good, legs, domains)
     vectors = set()
     lows = {leg: min(domains[leg]) for leg in legs}
     for point in bdd.pick_iter(good, care_vars=set(param_bits)):
@@ -113,3 +117,28 @@ def winning_caps(model: Model, encoding: str, domains: Mapping[str, Sequence[int
                                          for x, leg in zip(v, legs, strict=True))}
     return ParametricResult(legs, frozenset(vectors), time.monotonic() - started,
                             result.stats.peak_nodes)
+
+
+def _minimal(sym: SymbolicSpec, good: BDDNode, legs: tuple[str, ...],
+             domains: Mapping[str, Sequence[int]]) -> BDDNode:
+    """The vectors of ``good`` none of whose coordinates can drop by one and stay good.
+
+    ``good`` shifted down in one coordinate is ``good`` with that cap's bits replaced by
+    the bits of cap - 1 (a borrow chain), a vector composition on the BDD.
+    """
+    bdd = sym.bdd
+    out = good
+    for leg in legs:
+        bits = sym.var_bits[cap_name(leg)]
+        if len(set(domains[leg])) < 2:
+            continue
+        borrow = bdd.true
+        lowered: dict[str, BDDNode] = {}
+        for b in bits:
+            var = bdd.var(b)
+            lowered[b] = (var & ~borrow) | (~var & borrow)
+            borrow = borrow & ~var
+        above_low = ~borrow  # the offset from the low end is not zero
+        below = bdd.let(lowered, good)
+        out &= ~(above_low & below)
+    return out

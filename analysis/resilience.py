@@ -20,7 +20,7 @@ import time
 from dataclasses import dataclass, field
 from typing import Any, Final
 
-from analysis.lattice import fatal_sets, minimal_of, minimal_vectors
+from analysis.lattice import fatal_sets, minimal_vectors
 from analysis.parametric import winning_caps
 from analysis.pool import Pool
 from analysis.variants import (
@@ -87,6 +87,58 @@ class Resilience:
             "notes": list(self.notes),
         }
 
+    def lines(self) -> list[str]:
+        """The report for the terminal: one table per question."""
+        out = [f"{self.file}: resilience ({self.method} method, {self.solver_calls} solver "
+               f"calls, {self.seconds:.1f} s)"]
+        out.append("legs: " + ", ".join(f"{leg} ({h} level{'s' if h > 1 else ''})"
+                                        for leg, h in self.legs))
+        if not self.realizable:
+            out.append("the task is unrealizable even with no failure ('gaitc explain' says "
+                       "why); nothing else to report")
+            return out
+        if self.already_failed:
+            out.append(f"already failed (health 1): {', '.join(self.already_failed)}")
+        out.append("")
+        out.append("1. legs failed from the start")
+        out.append(f"   minimal fatal sets:      {_sets(self.minimal_fatal_sets)}")
+        out.append(f"   maximal survivable sets: {_sets(self.maximal_survivable_sets)}")
+        out.append("   single points of failure: "
+                   + (", ".join(self.single_points_of_failure) or "none"))
+        width = max((len(d) for d, *_ in self.directions), default=9)
+        for direction, gaits, some, every in self.directions:
+            need = f"; every gait uses {', '.join(every)}" if every else ""
+            out.append(f"   {direction:<{width}}  gaits {', '.join(gaits)}: legs "
+                       f"{', '.join(some)}{need}")
+        out.append("")
+        out.append("2. legs breaking during the run (at moments the environment chooses)")
+        k = self.any_time_k or 0
+        out.append(f"   survives any {k} leg(s) breaking"
+                   + (f"; these sets of {k + 1} defeat it: {_sets(self.defeating_sets)}"
+                      if self.defeating_sets else ""))
+        out.append("")
+        out.append(f"3. health (levels 1..{self.health_bound})")
+        out.append("   least uniform health: " + (str(self.min_uniform_health)
+                                                  if self.min_uniform_health else "none"))
+        out.append(f"   Pareto front ({len(self.health_front)} vectors, no leg can lose a "
+                   "level):")
+        out.extend("     " + " ".join(f"{leg}={h}" for leg, h in v)
+                   for v in self.health_front[:40])
+        if len(self.health_front) > 40:
+            out.append(f"     ... and {len(self.health_front) - 40} more (--json lists all)")
+        out.append("")
+        out.append("4. caches and hazards")
+        out.append("   essential caches: " + (", ".join(self.essential_caches) or "none"))
+        if self.placed is not None:
+            out.append(f"   caches at {self.placed} region(s) that make the task realizable "
+                       f"(the spec's own caches replaced): {_sets(self.cache_placements)}")
+        out.append("   hazard sets survived alone: "
+                   + (", ".join(self.hazards_survived_alone) or "none"))
+        if self.hazards_fatal_alone:
+            out.append("   hazard sets fatal alone: " + ", ".join(self.hazards_fatal_alone))
+        out.extend(f"note: {n}" for n in self.notes)
+        return out
+
     def __repr__(self) -> str:
         return (f"<Resilience {self.file!r}: {len(self.minimal_fatal_sets)} minimal fatal "
                 f"sets, single points of failure {list(self.single_points_of_failure)}, "
@@ -100,6 +152,12 @@ class Resilience:
     def _repr_svg_(self) -> str:
         svg: str = self.picture().svg()
         return svg
+
+
+def _sets(sets: tuple[tuple[str, ...], ...]) -> str:
+    if not sets:
+        return "none"
+    return " ".join("{" + ", ".join(s) + "}" for s in sets)
 
 
 def resilience(model: Model, encoding: str, file: str = "", semantics: str = "default",
@@ -209,8 +267,8 @@ def _health(report: Resilience, model: Model, encoding: str, semantics: str, met
     try:
         if method == "parametric":
             caps = winning_caps(model, encoding, {n: tuple(range(1, top + 1)) for n in names},
-                                semantics)
-            front = minimal_of(set(caps.winning))
+                                semantics, minimal_only=True)
+            front = tuple(sorted(caps.winning))
             pool.calls += 1
         else:
             front = minimal_vectors(len(names), top, lambda v: pool.models(

@@ -13,6 +13,8 @@ notebook (see ``docs/api.md``):
   :class:`Synthesis` holding an automaton that :func:`verify` has proved;
 - :func:`explain`: why a spec is unrealizable (kind, core, the environment's freedoms, a
   play, verified repairs), or the sanity checks of a realizable one;
+- :func:`resilience`: which leg failures, health levels, caches and hazards a task
+  tolerates or needs;
 - :func:`simulate`: a run of a controller against an environment, checked against the spec.
 
 The command line (:mod:`gaitc.cli`) is a thin layer over these functions.
@@ -22,6 +24,7 @@ from gaitc.emission import FORMATS, emit
 from gaitc.explaining import explain
 from gaitc.linting import lint
 from gaitc.loading import Spec, load, parse
+from gaitc.resilient import resilience
 from gaitc.simulation import Session, session, simulate
 from gaitc.solving import SOLVERS, Synthesis, Verdict, check, counterstrategy, synthesize, verify
 
@@ -41,6 +44,7 @@ __all__ = [
     "lint",
     "load",
     "parse",
+    "resilience",
     "session",
     "simulate",
     "synthesize",

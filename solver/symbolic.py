@@ -51,6 +51,7 @@ class Options:
     recycle: bool = False  # start inner X fixpoints from the previous round's values (slower here)
     cluster_limit: int = 2500  # node limit when merging ρs parts into clusters
     memory_mb: int | None = None  # CUDD max memory
+    first: tuple[str, ...] = ()  # variables pinned to the top of the order (rigid parameters)
 
 
 class SymbolicSpec:
@@ -79,7 +80,9 @@ class SymbolicSpec:
             self.var_bits[v.name] = [next(outs) for _ in range(v.bits if v.is_integer else 1)]
         self.variables = {v.name: v for v in spec.variables()}
         order: list[str] = []
-        for v in variable_order(spec, self.options.order):
+        ordered = variable_order(spec, self.options.order)
+        pinned = [v for name in self.options.first for v in ordered if v.name == name]
+        for v in pinned + [v for v in ordered if v not in pinned]:
             for bit in self.var_bits[v.name]:
                 order += [bit, bit + "'"]
         self.bdd.declare(*order)

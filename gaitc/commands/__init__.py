@@ -12,8 +12,10 @@ from gaitc.commands import (
     explaining,
     gaits,
     rendering,
+    resilient,
     simulating,
     solving,
 )
 
-COMMAND_MODULES = (compiling, solving, explaining, simulating, rendering, gaits, driving)
+COMMAND_MODULES = (compiling, solving, explaining, resilient, simulating, rendering, gaits,
+                   driving)
