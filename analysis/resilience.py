@@ -50,6 +50,7 @@ class Resilience:
     maximal_survivable_sets: tuple[tuple[str, ...], ...] = ()
     single_points_of_failure: tuple[str, ...] = ()
     already_failed: tuple[str, ...] = ()
+    # per direction: its usable gaits (no already failed leg), their legs, the legs all use
     directions: tuple[tuple[str, tuple[str, ...], tuple[str, ...], tuple[str, ...]], ...] = ()
     any_time_k: int | None = None
     defeating_sets: tuple[tuple[str, ...], ...] = ()
@@ -107,9 +108,9 @@ class Resilience:
                    + (", ".join(self.single_points_of_failure) or "none"))
         width = max((len(d) for d, *_ in self.directions), default=9)
         for direction, gaits, some, every in self.directions:
-            need = f"; every gait uses {', '.join(every)}" if every else ""
-            out.append(f"   {direction:<{width}}  gaits {', '.join(gaits)}: legs "
-                       f"{', '.join(some)}{need}")
+            need = f"; every one uses {', '.join(every)}" if every else ""
+            out.append(f"   {direction:<{width}}  usable gaits {', '.join(gaits) or 'none'}: "
+                       f"legs {', '.join(some)}{need}")
         out.append("")
         out.append("2. legs breaking during the run (at moments the environment chooses)")
         k = self.any_time_k or 0
@@ -176,8 +177,10 @@ def resilience(model: Model, encoding: str, file: str = "", semantics: str = "de
         realizable = pool.models([model])[0]
         failed = tuple(name for name, h in legs if h == 1)
         candidates = [name for name, h in legs if h > 1]
-        directions = tuple((d, gaits, *family_legs(model, gaits))
-                           for d, gaits in gait_families(model).items())
+        usable = {g.name for g in model.gaits if not set(g.legs) & set(failed)}
+        directions = tuple((d, kept, *family_legs(model, kept))
+                           for d, gaits in gait_families(model).items()
+                           for kept in [tuple(g for g in gaits if g in usable)])
         report = Resilience(file, legs, realizable, method, already_failed=failed,
                             directions=directions, model=model)
         if not realizable:
