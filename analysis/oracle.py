@@ -35,8 +35,16 @@ class Oracle:
             return None
         left = self.deadline - time.monotonic()
         if left <= 0:
-            raise SolverError("the analysis ran out of time (see --timeout)")
+            raise SolverError(f"the analysis ran out of time after {self.calls} solver calls",
+                              hint="raise --timeout, or skip the repairs (--no-repairs)")
         return left
+
+    def _timed_out(self, err: SolverError) -> SolverError:
+        """The analysis's own deadline, rather than the last call's share of it."""
+        if self.deadline is not None and time.monotonic() >= self.deadline - 0.5:
+            return SolverError(f"the analysis ran out of time after {self.calls} solver calls",
+                               hint="raise --timeout, or skip the repairs (--no-repairs)")
+        return err
 
     def realizable(self, spec: GR1Spec) -> bool:
         """Whether ``spec`` is realizable (answers for equal specs are remembered)."""
@@ -47,6 +55,8 @@ class Oracle:
         self.calls += 1
         try:
             answer = synthesis.check(spec, self.semantics, self._left()).realizable
+        except SolverError as err:
+            raise self._timed_out(err) from None
         finally:
             self.seconds += time.monotonic() - started
         self._memo[spec] = answer
@@ -58,5 +68,7 @@ class Oracle:
         self.calls += 1
         try:
             return synthesis.counterstrategy(spec, self.semantics, self._left())
+        except SolverError as err:
+            raise self._timed_out(err) from None
         finally:
             self.seconds += time.monotonic() - started

@@ -222,3 +222,19 @@ def test_the_saved_play_draws_as_a_map(tmp_path: Path) -> None:
     assert main(["explain", spec, "--no-repairs", "--out", str(play)]) == 3
     assert main(["render", "map", spec, "--run", str(play), "-o", str(picture)]) == 0
     assert "<svg" in picture.read_text(encoding="utf-8")
+
+
+def test_a_timeout_stops_the_analysis_with_exit_4(capsys: pytest.CaptureFixture[str]) -> None:
+    spec = str(ROOT / "specs" / "thesis_robot_a_health2.gait")
+    assert main(["explain", spec, "--timeout", "0.05"]) == 4
+    assert "ran out of time" in capsys.readouterr().err
+
+
+def test_the_notebook_view_highlights_the_core_and_draws_the_play() -> None:
+    why = gaitc.explain(DATA / "hazard_cut.gait", repairs=False)
+    page = why._repr_html_()
+    core_lines = {u.span.line for u in why.core if u.span is not None}
+    assert page.count("background:#fde0dd") == len(core_lines)
+    if shutil.which("dot") is not None:
+        assert "<svg" in page
+    assert "Explanation" in repr(why) and "liveness failure" in repr(why)
