@@ -95,13 +95,7 @@ def winning_caps(model: Model, encoding: str, domains: Mapping[str, Sequence[int
     bdd = sym.bdd
     legs = tuple(leg.name for leg in model.legs)
     param_bits = [b for leg in legs for b in sym.var_bits[cap_name(leg)]]
-    others = (sym.pre_inputs | sym.pre_outputs) - set(param_bits)
-    if semantics == "robotics":
-        bad = sym.env_init & sym.sys_init & ~winning
-    else:
-        bad = sym.env_init & ~bdd.exist(sym.pre_outputs, sym.sys_init & winning)
-    admissible = bdd.exist(others, sym.env_init)
-    good = admissible & ~bdd.exist(others, bad)
+    good = winning_parameters(sym, winning, param_bits, semantics)
     if minimal_only:
         good = _minimal(sym, good, legs, domains)
     vectors = set()
@@ -117,6 +111,21 @@ def winning_caps(model: Model, encoding: str, domains: Mapping[str, Sequence[int
                                          for x, leg in zip(v, legs, strict=True))}
     return ParametricResult(legs, frozenset(vectors), time.monotonic() - started,
                             result.stats.peak_nodes)
+
+
+def winning_parameters(sym: SymbolicSpec, winning: BDDNode, param_bits: Sequence[str],
+                       semantics: str) -> BDDNode:
+    """The parameter values (a BDD over ``param_bits``) with an admissible initial state from
+    which the robot wins under ``semantics`` (SLUGS's initial condition, per parameter)."""
+    bdd = sym.bdd
+    others = (sym.pre_inputs | sym.pre_outputs) - set(param_bits)
+    if semantics == "robotics":
+        bad = sym.env_init & sym.sys_init & ~winning
+    else:
+        bad = sym.env_init & ~bdd.exist(sym.pre_outputs, sym.sys_init & winning)
+    admissible = bdd.exist(others, sym.env_init)
+    good: BDDNode = admissible & ~bdd.exist(others, bad)
+    return good
 
 
 def _minimal(sym: SymbolicSpec, good: BDDNode, legs: tuple[str, ...],

@@ -16,15 +16,18 @@ which may run in parallel (:mod:`analysis.pool`).
 from __future__ import annotations
 
 import itertools
+import math
 import time
 from dataclasses import dataclass, field
 from typing import Any, Final
 
 from analysis.lattice import fatal_sets, minimal_vectors
-from analysis.parametric import winning_caps
+from analysis.parametric import winning_caps, winning_parameters
 from analysis.pool import Pool
 from analysis.variants import (
     anytime_spec,
+    at_most,
+    breakable_name,
     family_legs,
     gait_families,
     with_caches,
@@ -36,6 +39,7 @@ from ltlcompiler.model import Model
 
 METHODS: Final = ("parametric", "lattice")
 MAX_PLACEMENTS = 5_000
+DIRECT_DEFEATS = 64  # up to this many (k+1)-sets are checked one by one
 
 
 @dataclass(frozen=True)
@@ -202,7 +206,7 @@ def resilience(model: Model, encoding: str, file: str = "", semantics: str = "de
             minimal, maximal = found.minimal_fatal, found.maximal_survivable
         report = _with(report, minimal_fatal_sets=minimal, maximal_survivable_sets=maximal,
                        single_points_of_failure=tuple(s[0] for s in minimal if len(s) == 1))
-        k, defeating = _any_time(model, encoding, candidates, pool)
+        k, defeating = _any_time(model, encoding, candidates, pool, semantics)
         report = _with(report, any_time_k=k, defeating_sets=defeating)
         report = _health(report, model, encoding, semantics, method, health_bound, pool,
                          notes)
@@ -245,16 +249,41 @@ def _from_survivors(elements: list[str], survivors: set[frozenset[str]]
     return ordered(minimal), ordered(maximal)
 
 
-def _any_time(model: Model, encoding: str, legs: list[str], pool: Pool
+def _any_time(model: Model, encoding: str, legs: list[str], pool: Pool, semantics: str
               ) -> tuple[int, tuple[tuple[str, ...], ...]]:
+    """The largest k with any k legs breaking survived (one game per k), and the sets of
+    k + 1 breakable legs that defeat the robot: one game per set when there are few, else
+    one parametric game over which legs may break, read for the sets of exactly k + 1."""
     k = 0
     while k < len(legs) and pool.specs([anytime_spec(model, encoding, k + 1, legs)])[0]:
         k += 1
     if k == len(legs):
         return k, ()
-    combos = [c for c in itertools.combinations(legs, k + 1)]
-    answers = pool.specs([anytime_spec(model, encoding, k + 1, c) for c in combos])
-    return k, tuple(c for c, ok in zip(combos, answers, strict=True) if not ok)
+    if math.comb(len(legs), k + 1) <= DIRECT_DEFEATS:
+        combos = list(itertools.combinations(legs, k + 1))
+        answers = pool.specs([anytime_spec(model, encoding, k + 1, c) for c in combos])
+        return k, tuple(c for c, ok in zip(combos, answers, strict=True) if not ok)
+    pool.calls += 1
+    return k, _defeating(model, encoding, legs, k + 1, semantics)
+
+
+def _defeating(model: Model, encoding: str, legs: list[str], size: int, semantics: str
+               ) -> tuple[tuple[str, ...], ...]:
+    from gr1.formula import Var
+    from solver.game import Game
+    from solver.symbolic import Options, SymbolicSpec
+
+    spec = anytime_spec(model, encoding, size, legs, parametric=True)
+    names = [breakable_name(leg) for leg in legs]
+    sym = SymbolicSpec(spec, Options(first=tuple(names)))
+    good = winning_parameters(sym, Game(sym).solve().winning, names, semantics)
+    flags = [Var(n) for n in names]
+    exactly = sym.translate(at_most(flags, size)) & ~sym.translate(at_most(flags, size - 1))
+    found = []
+    for point in sym.bdd.pick_iter(exactly & ~good, care_vars=set(names)):
+        found.append(tuple(leg for leg, n in zip(legs, names, strict=True) if point[n]))
+    rank = {leg: i for i, leg in enumerate(legs)}
+    return tuple(sorted(found, key=lambda s: [rank[x] for x in s]))
 
 
 def _health(report: Resilience, model: Model, encoding: str, semantics: str, method: str,

@@ -8,18 +8,17 @@ on the GR(1) level: the environment may break up to k legs at moments of its cho
 
 from __future__ import annotations
 
-import itertools
-from collections.abc import Iterable, Mapping
+from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import replace
 
-from gr1.formula import Expr, Implies, Not, Var, conj, disj
+from gr1.formula import Expr, Iff, Implies, Not, Var, conj
 from gr1.spec import Clause, GR1Spec, Origin, Variable
 from ltlcompiler.encoding import make_encoding
 from ltlcompiler.lowering import lower
 from ltlcompiler.model import GaitKind, Model
 
 BROKEN = "gaitc_broken_"
-MAX_SUBSETS = 20_000  # at-most-k over this many (k+1)-sets is written out clause by clause
+BREAKABLE = "gaitc_breakable_"
 
 
 def with_failed(model: Model, legs: Iterable[str]) -> Model:
@@ -82,15 +81,37 @@ def family_legs(model: Model, gaits: tuple[str, ...]) -> tuple[tuple[str, ...], 
     return (tuple(x for x in order if x in some), tuple(x for x in order if x in every))
 
 
+def at_most(items: Sequence[Expr], k: int) -> Expr:
+    """"At most ``k`` of ``items`` hold", as a DAG of n·k shared nodes: F(i, j) = "at most
+    j of items[i:]" is (items[i] & F(i+1, j-1)) | (!items[i] & F(i+1, j))."""
+    from gr1.formula import FALSE, TRUE, And, Or
+
+    memo: dict[tuple[int, int], Expr] = {}
+    n = len(items)
+    for i in range(n, -1, -1):
+        for j in range(k + 1):
+            if i == n:
+                memo[(i, j)] = TRUE
+                continue
+            take = memo[(i + 1, j - 1)] if j > 0 else FALSE
+            memo[(i, j)] = Or((And((items[i], take)), And((Not(items[i]), memo[(i + 1, j)]))))
+    return memo[(0, k)]
+
+
 def broken_name(leg: str) -> str:
     return f"{BROKEN}{leg}"
 
 
-def anytime_spec(model: Model, encoding: str, k: int, breakable: Iterable[str] | None = None
-                 ) -> GR1Spec:
+def breakable_name(leg: str) -> str:
+    return f"{BREAKABLE}{leg}"
+
+
+def anytime_spec(model: Model, encoding: str, k: int, breakable: Iterable[str] | None = None,
+                 parametric: bool = False) -> GR1Spec:
     """The spec in which the environment may, at any step, break legs for good (at most
     ``k`` of those in ``breakable``, default all): a broken leg's gaits are off from the
-    step it breaks on, whatever its health, and no cache mends it."""
+    step it breaks on, whatever its health, and no cache mends it. With ``parametric``,
+    which legs may break is itself a rigid parameter per leg (``gaitc_breakable_L``)."""
     spec = lower(model, encoding)
     enc = make_encoding(model, encoding)
     legs = [leg.name for leg in model.legs] if breakable is None else list(breakable)
@@ -100,11 +121,8 @@ def anytime_spec(model: Model, encoding: str, k: int, breakable: Iterable[str] |
     env_trans = [Clause(Implies(flags[leg], Var(broken_name(leg), True)),
                         Origin(f"resilience: a broken {leg} stays broken")) for leg in legs]
     if k < len(legs):
-        combos = list(itertools.combinations(legs, k + 1))
-        if len(combos) > MAX_SUBSETS:
-            raise ValueError(f"too many sets of {k + 1} of {len(legs)} legs to write out")
-        many: Expr = disj(conj(Var(broken_name(x), True) for x in c) for c in combos)
-        env_trans.append(Clause(Not(many), Origin(f"resilience: at most {k} legs break")))
+        bound = at_most([Var(broken_name(x), True) for x in legs], k)
+        env_trans.append(Clause(bound, Origin(f"resilience: at most {k} legs break")))
     sys_trans = []
     for leg in legs:
         gaits = model.gaits_using(leg)
@@ -113,6 +131,15 @@ def anytime_spec(model: Model, encoding: str, k: int, breakable: Iterable[str] |
             sys_trans.append(Clause(Implies(Var(broken_name(leg), True), off),
                                     Origin(f"resilience: gaits using a broken {leg} are off")))
     inputs = spec.inputs + tuple(Variable(broken_name(leg)) for leg in legs)
+    if parametric:
+        for leg in legs:
+            may = Var(breakable_name(leg))
+            env_trans.append(Clause(Implies(Var(broken_name(leg), True), may),
+                                    Origin(f"parameter: {leg} breaks only if breakable")))
+            env_trans.append(Clause(Iff(Var(breakable_name(leg), True), may),
+                                    Origin(f"parameter: whether {leg} may break never "
+                                           "changes")))
+        inputs += tuple(Variable(breakable_name(leg)) for leg in legs)
     return replace(spec, inputs=inputs, env_init=spec.env_init + tuple(env_init),
                    env_trans=spec.env_trans + tuple(env_trans),
                    sys_trans=spec.sys_trans + tuple(sys_trans))
