@@ -30,10 +30,35 @@ def _ordinary_mode(target: Path) -> int:
     return 0o666 & ~mask
 
 
+def _stream_in_place(target: Path) -> bool:
+    """Whether ``target`` is a FIFO or a device, which is written to, never replaced."""
+    try:
+        mode = target.stat().st_mode
+    except OSError:
+        return False
+    return stat.S_ISFIFO(mode) or stat.S_ISCHR(mode) or stat.S_ISBLK(mode)
+
+
 def write_atomically(path: str | Path, data: str | bytes) -> None:
-    """Replace ``path`` by ``data`` (text is written as UTF-8 with ``\\n`` line ends)."""
+    """Replace ``path`` by ``data`` (text is written as UTF-8 with ``\\n`` line ends).
+
+    A symbolic link is followed (its target is replaced, the link stays); a FIFO or a
+    device is written to in place, as a user who names ``/dev/stdout`` expects; any other
+    kind of file that is not a regular one (a directory, a socket) is refused.
+    """
     target = Path(path)
     payload = data.encode("utf-8") if isinstance(data, str) else data
+    if target.is_symlink():
+        target = target.resolve()
+    if _stream_in_place(target):
+        try:
+            with open(target, "wb") as out:
+                out.write(payload)
+        except OSError as err:
+            raise UsageError(f"cannot write '{path}': {err.strerror or err}") from None
+        return
+    if target.exists() and not target.is_file():
+        raise UsageError(f"cannot write '{path}': it is not a regular file")
     tmp: str | None = None
     try:
         folder = target.parent if str(target.parent) else Path(".")

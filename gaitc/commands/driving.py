@@ -13,6 +13,7 @@ from typing import Any
 
 import gaitc
 from diagnostics import UsageError
+from gaitc.commands.arguments import positive_seconds
 from gaitc.commands.simulating import environment_of, report_run
 from gaitc.exitcodes import ExitCode, exit_code_help
 from gaitc.simulation import Session
@@ -55,7 +56,7 @@ def register(sub: Any) -> None:
                    help="sim (default) or serial")
     p.add_argument("--port", metavar="URL", help="serial port or pyserial URL (serial backend)")
     p.add_argument("--baud", type=int, default=115200, metavar="N", help="baud rate (115200)")
-    p.add_argument("--timeout", type=float, default=1.0, metavar="S",
+    p.add_argument("--timeout", type=positive_seconds, default=1.0, metavar="S",
                    help="seconds to wait for each board answer (1)")
     p.add_argument("--channels", metavar="LIST",
                    help="board channel of each robot valve, e.g. 7,6,5,4,3,2,1,0 "

@@ -13,6 +13,7 @@ from typing import Any
 
 import gaitc
 from diagnostics import UsageError
+from gaitc.commands.arguments import positive_seconds
 from gaitc.exitcodes import ExitCode, exit_code_help
 from ltlcompiler.encoding import ENCODINGS
 
@@ -35,7 +36,7 @@ def register(sub: Any) -> None:
     p.add_argument("spec", metavar="SPEC")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("--no-repairs", action="store_true", help="skip the search for repairs")
-    p.add_argument("--timeout", type=float, metavar="SECONDS",
+    p.add_argument("--timeout", type=positive_seconds, metavar="SECONDS",
                    help="stop the whole analysis after this long (exit 4)")
     p.add_argument("--out", metavar="FILE", help="save the play as .jsonl or .csv "
                    "(draw it with 'gaitc render map SPEC --run FILE')")
@@ -52,8 +53,6 @@ def exit_code(why: Any) -> ExitCode:
 
 
 def run_explain(args: argparse.Namespace) -> int:
-    if args.timeout is not None and args.timeout <= 0:
-        raise UsageError("--timeout must be positive")
     semantics = "robotics" if args.robotics_semantics else "default"
     spec = gaitc.load(args.spec, args.encoding)
     why = gaitc.explain(spec, semantics, args.timeout, not args.no_repairs)

@@ -15,6 +15,7 @@ from typing import Any
 
 import gaitc
 from diagnostics import GaitcError, SolverError, UsageError, render_error
+from gaitc.commands.arguments import positive_seconds
 from gaitc.exitcodes import ExitCode, exit_code_help
 from gaitc.solving import SOLVERS, recorded_encoding
 from gr1.controller import load_controller
@@ -49,7 +50,8 @@ def _common(p: argparse.ArgumentParser, solver: bool = True) -> None:
         return
     p.add_argument("--solver", choices=SOLVERS, default="embedded")
     p.add_argument("--slugs", metavar="PATH", help="the SLUGS binary (else $SLUGS or PATH)")
-    p.add_argument("--timeout", type=float, metavar="SECONDS", help="stop after this long")
+    p.add_argument("--timeout", type=positive_seconds, metavar="SECONDS",
+                   help="stop after this long")
     p.add_argument(
         "--memory-limit", type=int, metavar="MB", help="stop when the solver needs more memory"
     )
@@ -203,7 +205,11 @@ def run_synth(args: argparse.Namespace) -> int:
         print(f"{args.spec}: unrealizable ({found.seconds:.2f} s); no controller written")
         print("  hint: 'gaitc counter' shows how the environment wins", file=sys.stderr)
         return ExitCode.UNREALIZABLE
-    found.save(args.output)
+    if found.report is not None and not found.report.ok:
+        print(f"{args.spec}: realizable ({found.seconds:.2f} s), but the controller failed "
+              f"verification; {args.output} was not written")
+        return _print_report(found.report)
+    found.save(args.output)  # only a verified controller (or one --no-verify asked for)
     print(
         f"{args.spec}: realizable ({found.seconds:.2f} s); wrote {args.output} "
         f"({len(found.controller.nodes)} nodes)"
