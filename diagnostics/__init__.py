@@ -3,7 +3,8 @@
 Every stage of gaitc (the .gait front end, the SLUGS format readers, the solver,
 the simulator) raises subclasses of :class:`GaitcError`; the CLI turns them into
 ``file:line:col: message`` followed by the source line and a caret. :mod:`diagnostics.files`
-writes result files atomically. Every package may import this one; it imports none of them.
+writes result files atomically; :mod:`diagnostics.yamltext` reads YAML inputs safely.
+Every package may import this one; it imports none of them.
 """
 
 from __future__ import annotations

@@ -13,6 +13,7 @@ from pathlib import Path
 import yaml
 
 from diagnostics import GaitcError, Span
+from diagnostics.yamltext import compose, decode
 
 
 class RobotFileError(GaitcError):
@@ -208,20 +209,15 @@ def load_robot(path: str | Path) -> Robot:
     """Read and validate a robot YAML file; raise :class:`RobotFileError` on any problem."""
     name = str(path)
     try:
-        text = Path(path).read_text(encoding="utf-8")
+        data = Path(path).read_bytes()
     except OSError as err:
         raise RobotFileError(f"cannot read robot file {name}: {err.strerror}") from None
-    return parse_robot(text, name)
+    return parse_robot(decode(data, name, RobotFileError, "robot file"), name)
 
 
 def parse_robot(text: str, path: str = "<robot>") -> Robot:
     """Validate the YAML text of a robot description."""
-    try:
-        root = yaml.compose(text)
-    except yaml.MarkedYAMLError as err:
-        mark = err.problem_mark
-        span = Span(path, mark.line + 1, mark.column + 1) if mark is not None else None
-        raise RobotFileError(f"robot file is not valid YAML: {err.problem}", span) from None
+    root = compose(text, path, RobotFileError, "robot file")
     r = _Reader(path)
     if root is None:
         raise RobotFileError("robot file is empty", Span(path, 1, 1))

@@ -11,6 +11,7 @@ from pathlib import Path
 import yaml
 
 from diagnostics import ScenarioError, Span
+from diagnostics.yamltext import compose, decode
 from gaitsim.domain import State
 from gaitsim.environments import Environment, Move, Request, Situation
 from ltlcompiler.model import Model
@@ -136,12 +137,7 @@ class _Reader:
 
 def parse_scenario(text: str, model: Model, file: str = "<scenario>") -> Scenario:
     """Check a scenario's YAML against ``model`` (leg and hazard names, levels, keys)."""
-    try:
-        root = yaml.compose(text, Loader=yaml.SafeLoader)
-    except yaml.MarkedYAMLError as err:
-        mark = err.problem_mark or err.context_mark
-        span = Span(file, mark.line + 1, mark.column + 1) if mark else Span(file, 1, 1)
-        raise ScenarioError(f"scenario is not valid YAML: {err.problem}", span) from None
+    root = compose(text, file, ScenarioError, "scenario")
     reader = _Reader(file, model)
     if root is None:
         raise ScenarioError("scenario is empty; it needs a 'steps' list", Span(file, 1, 1))
@@ -161,10 +157,10 @@ def load_scenario(path: str | Path, model: Model) -> Scenario:
     """Read and check a scenario file."""
     file = str(path)
     try:
-        text = Path(path).read_text(encoding="utf-8")
+        data = Path(path).read_bytes()
     except OSError as err:
         raise ScenarioError(f"cannot read scenario: {err.strerror}", Span(file, 1, 1)) from None
-    return parse_scenario(text, model, file)
+    return parse_scenario(decode(data, file, ScenarioError, "scenario"), model, file)
 
 
 class ScriptedEnvironment(Environment):

@@ -198,13 +198,17 @@ def controller_from_dict(
             f"node {k}: 'trans' must list node ids between 0 and {count - 1}",
             span,
         )
-        _need(isinstance(rank, int), f"node {k}: 'rank' must be an integer", span)
+        _need(isinstance(rank, int) and not isinstance(rank, bool),
+              f"node {k}: 'rank' must be an integer", span)
         nodes.append(ControllerNode(rank, tuple(state), tuple(sorted(set(trans)))))
     extras = data.get("gaitc")
     names = tuple(variables)
     if isinstance(extras, dict):
-        inputs = tuple(extras.get("inputs", ()))
-        outputs = tuple(extras.get("outputs", ()))
+        raw_in, raw_out = extras.get("inputs", ()), extras.get("outputs", ())
+        for key, value in (("inputs", raw_in), ("outputs", raw_out)):
+            _need(isinstance(value, (list, tuple)) and all(isinstance(v, str) for v in value),
+                  f"'gaitc.{key}' must be a list of bit names", span)
+        inputs, outputs = tuple(raw_in), tuple(raw_out)
         _need(
             set(inputs) | set(outputs) == set(names) and not set(inputs) & set(outputs),
             "'gaitc.inputs' and 'gaitc.outputs' must split 'variables' between the players",
@@ -213,7 +217,8 @@ def controller_from_dict(
         initial = extras.get("initial", [])
         _need(
             isinstance(initial, list)
-            and all(isinstance(t, int) and 0 <= t < count for t in initial),
+            and all(isinstance(t, int) and not isinstance(t, bool) and 0 <= t < count
+                    for t in initial),
             "'gaitc.initial' must list node ids",
             span,
         )
@@ -259,15 +264,27 @@ def controller_from_dict(
 def load_controller(path: str, spec: GR1Spec | None = None) -> Controller:
     """Read a controller JSON file; raises :class:`ControllerError` when it is malformed."""
     try:
-        text = Path(path).read_text(encoding="utf-8")
+        raw = Path(path).read_bytes()
     except OSError as err:
         raise ControllerError(
             f"cannot read controller file: {err.strerror}", Span(path, 1, 1)
         ) from None
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError as err:
+        before = raw[: err.start]
+        line, column = before.count(b"\n") + 1, err.start - (before.rfind(b"\n") + 1) + 1
+        raise ControllerError(f"not UTF-8 text (byte 0x{raw[err.start]:02x}); a controller "
+                              "file is JSON in UTF-8", Span(path, line, column)) from None
     try:
         data = json.loads(text)
     except json.JSONDecodeError as err:
         raise ControllerError(
             f"not valid JSON: {err.msg}", Span(path, err.lineno, err.colno)
         ) from None
+    except RecursionError:
+        raise ControllerError("the JSON nests too deeply to be a controller file",
+                              Span(path, 1, 1)) from None
+    except ValueError as err:  # e.g. an integer of thousands of digits
+        raise ControllerError(f"not a controller file: {err}", Span(path, 1, 1)) from None
     return controller_from_dict(data, path, spec)

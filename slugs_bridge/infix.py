@@ -34,7 +34,7 @@ from gr1.formula import (
     Xor,
 )
 from slugs_bridge.names import KEYWORDS as KEYWORDS
-from slugs_bridge.shapes import primed
+from slugs_bridge.shapes import checked_int, primed
 
 IDENT = re.compile(r"[A-Za-z_.@][A-Za-z0-9_.@]*'?")
 _LEXEME = re.compile(
@@ -203,7 +203,8 @@ class InfixParser:
             self.ops.append(_Op(tok.text, tok.span, 0, term=terms))
             return True
         if tok.kind == "num":
-            self.values.append(_Value(IntConst(int(tok.text), span=tok.span), True, tok))
+            value = IntConst(checked_int(tok.text, tok.span), span=tok.span)
+            self.values.append(_Value(value, True, tok))
             return False
         if tok.kind == "ident" and tok.text not in KEYWORDS:
             self.values.append(self.atom(tok, terms))

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 from typing import cast
 
+from diagnostics import SlugsFormatError, Span
 from gr1.formula import (
     Add,
     And,
@@ -87,3 +88,18 @@ def prefix_exact(expr: Expr) -> bool:
         isinstance(n, (Iff, Implies)) or (isinstance(n, (And, Or)) and len(n.args) < 2)
         for n in walk(expr)
     )
+
+
+MAX_DIGITS = 18  # integer constants and range ends; no BDD could hold a wider range
+
+
+def checked_int(text: str, span: Span | None) -> int:
+    """``text`` (ASCII digits, an optional minus) as an int, at most :data:`MAX_DIGITS`
+    digits long; a positioned :class:`SlugsFormatError` otherwise."""
+    digits = text.strip().removeprefix("-")
+    if not (digits.isascii() and digits.isdigit()):
+        raise SlugsFormatError(f"'{text}' is not a whole number", span)
+    if len(digits) > MAX_DIGITS:
+        raise SlugsFormatError(f"the number has {len(digits)} digits; the limit is "
+                               f"{MAX_DIGITS}", span)
+    return int(text)

@@ -50,6 +50,9 @@ class _Frame:
     args: list[Expr]
 
 
+MAX_COUNT_DIGITS = 9  # '$ N' and '? N' counts: at most 999,999,999
+
+
 def _span(filename: str, line: int, match: re.Match[str]) -> Span:
     return Span(filename, line, match.start() + 1, line, match.end())
 
@@ -60,8 +63,12 @@ def _parse_count(
     if index >= len(matches):
         raise SlugsFormatError(f"missing operand: {what}, but the line ends here", op)
     text = matches[index].group()
-    if not text.isdigit():
+    if not (text.isascii() and text.isdigit()):
         raise SlugsFormatError(f"{what}, found '{text}'", _span(filename, line, matches[index]))
+    if len(text) > MAX_COUNT_DIGITS:
+        raise SlugsFormatError(f"{what}, found a number of {len(text)} digits; the limit is "
+                               f"{MAX_COUNT_DIGITS} digits", _span(filename, line,
+                                                                   matches[index]))
     return int(text)
 
 

@@ -25,7 +25,7 @@ from slugs_bridge.sections import (
     read_sections,
     write_sections,
 )
-from slugs_bridge.shapes import prefix_exact, tree_size
+from slugs_bridge.shapes import MAX_DIGITS, prefix_exact, tree_size
 from slugs_bridge.slugsin import emit_formula, has_shared_subformulas, parse_prefix
 
 #: A shared formula whose tree would have more nodes than this is written in prefix form
@@ -74,8 +74,8 @@ def _declaration(src: SourceLine) -> Variable:
     _check_structured_name(name, span)
     ends = bounds.split("...")
     try:
-        if len(ends) != 2:
-            raise ValueError
+        if len(ends) != 2 or any(len(e.strip().lstrip("-")) > MAX_DIGITS for e in ends):
+            raise ValueError  # (a range beyond MAX_DIGITS digits could never be solved)
         low, high = int(ends[0]), int(ends[1])
     except ValueError:
         raise SlugsFormatError(

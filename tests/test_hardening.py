@@ -1,0 +1,112 @@
+"""Regressions for the hostile inputs of issue 9 that are fixed: each is a positioned error
+(exit 1), never an internal error (exit 70)."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+
+from gaitc.cli import main
+
+ROOT = Path(__file__).resolve().parent.parent
+PATROL = str(ROOT / "specs" / "patrol_2x2.gait")
+BIG = "1" * 5000
+
+
+def _run(capsys: pytest.CaptureFixture[str], *argv: str) -> tuple[int, str]:
+    code = main(list(argv))
+    return code, capsys.readouterr().err
+
+
+@pytest.mark.parametrize(("line", "message"), [
+    ("$ ² b b", "found '²'"),
+    (f"$ {BIG} a", "found a number of 5000 digits; the limit is 9 digits"),
+])
+def test_slugsin_counts(tmp_path: Path, capsys: pytest.CaptureFixture[str], line: str,
+                        message: str) -> None:
+    path = tmp_path / "bad.slugsin"
+    path.write_text(f"[INPUT]\na\nb\n[OUTPUT]\nc\n[SYS_TRANS]\n{line}\n", encoding="utf-8")
+    code, err = _run(capsys, "check", str(path))
+    assert code == 1 and f"{path}:7:3: error:" in err and message in err
+
+
+@pytest.mark.parametrize(("text", "where", "message"), [
+    (f"[INPUT]\nx:0...3\n[OUTPUT]\nc\n[SYS_TRANS]\nx = {BIG}\n", ":6:5:",
+     "the number has 5000 digits; the limit is 18"),
+    (f"[INPUT]\nx:0...{BIG}\n[OUTPUT]\nc\n", ":2:1:", "bad integer range"),
+])
+def test_structuredslugs_huge_numbers(tmp_path: Path, capsys: pytest.CaptureFixture[str],
+                                      text: str, where: str, message: str) -> None:
+    path = tmp_path / "bad.structuredslugs"
+    path.write_text(text, encoding="utf-8")
+    code, err = _run(capsys, "check", str(path))
+    assert code == 1 and where in err and message in err
+
+
+@pytest.fixture(scope="module")
+def controller(tmp_path_factory: pytest.TempPathFactory) -> dict[str, object]:
+    out = tmp_path_factory.mktemp("c") / "c.json"
+    assert main(["synth", PATROL, "-o", str(out)]) == 0
+    data: dict[str, object] = json.loads(out.read_text(encoding="utf-8"))
+    return data
+
+
+def _mutated(controller: dict[str, object], key: str, value: object) -> bytes:
+    data = json.loads(json.dumps(controller))
+    data["gaitc"][key] = value
+    return json.dumps(data).encode("utf-8")
+
+
+@pytest.mark.parametrize("case", ["inputs-nested", "inputs-number", "not-utf8", "deep",
+                                  "huge-rank", "bool-initial", "bogus-semantics"])
+def test_controller_files(tmp_path: Path, capsys: pytest.CaptureFixture[str],
+                          controller: dict[str, object], case: str) -> None:
+    raw = {
+        "inputs-nested": lambda: _mutated(controller, "inputs", [[1]]),
+        "inputs-number": lambda: _mutated(controller, "inputs", 5),
+        "not-utf8": lambda: b'{"a": "\xff\xfe"}',
+        "deep": lambda: b"[" * 100_000 + b"]" * 100_000,
+        "huge-rank": lambda: json.dumps(controller).replace(
+            '"rank": 0', '"rank": ' + BIG, 1).encode("utf-8"),
+        "bool-initial": lambda: _mutated(controller, "initial", [True]),
+        "bogus-semantics": lambda: _mutated(controller, "semantics", "bogus"),
+    }[case]()
+    path = tmp_path / "bad.json"
+    path.write_bytes(raw)
+    for command in ("verify", "simulate"):
+        code, err = _run(capsys, command, PATROL, str(path))
+        assert code == 1, (command, err)
+        assert f"{path}:1:" in err and "internal error" not in err
+
+
+SCENARIO_HEAD = "steps:\n"
+
+
+@pytest.mark.parametrize(("raw", "where", "message"), [
+    (b"s\xc3tart: {}\n", ":1:2:", "scenario is not UTF-8 text (byte 0xc3)"),
+    (b"steps:\n  - {note: a\x00}\n", ":2:", "which YAML does not allow"),
+    (b"steps: " + b"[" * 1000 + b"]" * 1000 + b"\n", ":1:", "nests"),
+    (b"steps: !!python/object:os.system {}\n", ":1:8:", "'steps' must be a list"),
+])
+def test_scenario_files(tmp_path: Path, capsys: pytest.CaptureFixture[str], raw: bytes,
+                        where: str, message: str) -> None:
+    path = tmp_path / "bad.yaml"
+    path.write_bytes(raw)
+    code, err = _run(capsys, "simulate", PATROL, "--env", "scripted", str(path))
+    assert code == 1, err
+    assert f"{path}{where}" in err and message in err
+
+
+def test_robot_files_use_the_safe_loader(tmp_path: Path) -> None:
+    from diagnostics import GaitcError
+    from gaitgraph.robot import load_robot
+
+    path = tmp_path / "evil.yaml"
+    path.write_text("robot: !!python/object/apply:os.system ['true']\n", encoding="utf-8")
+    with pytest.raises(GaitcError, match="robot file has no 'chassis' section"):
+        load_robot(str(path))  # composed as plain nodes, never constructed: nothing runs
+    path.write_bytes(b"robot: \xff\n")
+    with pytest.raises(GaitcError, match="not UTF-8"):
+        load_robot(str(path))
