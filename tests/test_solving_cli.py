@@ -47,7 +47,7 @@ def test_check_reports_a_broken_file_as_a_user_error(
 
 
 def test_check_timeout_is_a_solver_failure(capsys: pytest.CaptureFixture[str]) -> None:
-    assert main(["check", "--timeout", "-1", REALIZABLE]) == 4
+    assert main(["check", "--timeout", "1e-9", REALIZABLE]) == 4  # -1 is a usage error now
     assert "time limit" in capsys.readouterr().err
 
 
