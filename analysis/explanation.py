@@ -31,7 +31,7 @@ from analysis.play import (
 from analysis.repairs import Repair, repairs
 from analysis.sanity import Warning_, sanity
 from analysis.units import Unit
-from diagnostics import render
+from diagnostics import render, source_lines
 from gr1.controller import Controller
 from gr1.spec import GR1Spec
 
@@ -68,7 +68,7 @@ class Explanation:
         return "realizable" if self.realizable else "unrealizable"
 
     def core_json(self) -> list[dict[str, Any]]:
-        lines = self.source.splitlines()
+        lines = source_lines(self.source)
         out = []
         for unit in self.core:
             span = unit.span
@@ -141,7 +141,7 @@ class Explanation:
         marked = {u.span.line for u in self.core if u.span is not None}
         if self.source and marked:
             rows = []
-            for number, line in enumerate(self.source.splitlines(), 1):
+            for number, line in enumerate(source_lines(self.source), 1):
                 style = " style='background:#fde0dd'" if number in marked else ""
                 rows.append(f"<span{style}>{number:4d}  {html.escape(line)}</span>")
             parts.append("<pre>" + "\n".join(rows) + "</pre>")

@@ -13,7 +13,7 @@ from collections.abc import Iterator
 from dataclasses import dataclass
 
 from analysis.oracle import Oracle
-from diagnostics import GaitcError
+from diagnostics import GaitcError, source_lines
 from gr1.formula import Var
 from ltlcompiler.frontend import model_from_text
 from ltlcompiler.lowering import lower
@@ -123,7 +123,7 @@ def _goal_edits(model: Model, lines: list[str]) -> Iterator[_Edit]:
 
 def candidate_edits(model: Model, text: str, visited: list[str]) -> list[_Edit]:
     """Every single edit tried, cheapest first (``visited`` regions get caches first)."""
-    lines = text.splitlines()
+    lines = source_lines(text)
     edits = [*_health_edits(model, lines), *_cache_edits(model, visited),
              *_hazard_edits(model, lines), *_goal_edits(model, lines)]
     return sorted(edits, key=lambda e: e.cost)
@@ -132,7 +132,7 @@ def candidate_edits(model: Model, text: str, visited: list[str]) -> list[_Edit]:
 def repairs(model: Model, text: str, filename: str, encoding: str, oracle: Oracle,
             visited: list[str]) -> tuple[Repair, ...]:
     """The verified single-edit repairs, cheapest first; for each leg only its least raise."""
-    lines = text.splitlines()
+    lines = source_lines(text)
     found: list[Repair] = []
     raised: set[str] = set()
     for edit in candidate_edits(model, text, visited):

@@ -75,6 +75,16 @@ class UsageError(GaitcError):
     """The command line asks for something that cannot be done (exit code 2)."""
 
 
+def source_lines(text: str) -> list[str]:
+    """The lines of a source text as every reader and the error printer count them: only
+    ``\\n`` ends a line (a ``\\r`` before it is dropped), so a form feed, ``\\x1c``, ``\\x85``
+    or U+2028 inside a line never shifts the line shown under a caret."""
+    lines = text.split("\n")
+    if lines and lines[-1] == "":
+        lines.pop()
+    return [line[:-1] if line.endswith("\r") else line for line in lines]
+
+
 @dataclass(frozen=True)
 class Diagnostic:
     """A non-fatal finding (a warning), reported with the same layout as errors."""
@@ -94,7 +104,7 @@ def _source_line(span: Span, sources: dict[str, str] | None) -> str | None:
             text = Path(span.file).read_text(encoding="utf-8", errors="replace")
         except OSError:
             return None
-    lines = text.splitlines()
+    lines = source_lines(text)
     if 1 <= span.line <= len(lines):
         return lines[span.line - 1]
     return None

@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from diagnostics import GaitcError, ScenarioError, Span, UsageError
+from diagnostics import GaitcError, ScenarioError, Span, UsageError, source_lines
 from diagnostics.files import write_atomically
 
 if TYPE_CHECKING:
@@ -160,7 +160,7 @@ def read_jsonl(path: str | Path) -> Run:
     except OSError as err:
         raise ScenarioError(f"cannot read run file: {err.strerror}", Span(file, 1, 1)) from None
     run = Run(legs=())
-    for number, line in enumerate(text.splitlines(), 1):
+    for number, line in enumerate(source_lines(text), 1):
         if not line.strip():
             continue
         try:

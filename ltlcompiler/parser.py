@@ -23,7 +23,7 @@ from lark.exceptions import (
 )
 from lark.lexer import PatternStr
 
-from diagnostics import FormulaError, GaitcError, Span, SpecSyntaxError
+from diagnostics import FormulaError, GaitcError, Span, SpecSyntaxError, source_lines
 from ltlcompiler import syntax as s
 from ltlcompiler.parse_tree import build, token_span
 
@@ -136,7 +136,7 @@ def _describe_token(tok: Token) -> str:
 
 
 def _end_span(text: str, file: str) -> Span:
-    lines = text.splitlines() or [""]
+    lines = source_lines(text) or [""]
     return Span(file, len(lines), len(lines[-1]) + 1)
 
 

@@ -12,7 +12,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from pathlib import Path
 
-from diagnostics import SlugsFormatError, Span
+from diagnostics import SlugsFormatError, Span, source_lines
 from gr1.formula import Compare, Expr, IntVar, walk
 from gr1.spec import Clause, GR1Spec, Origin, Section, Variable, section_named
 from slugs_bridge.infix import parse_infix
@@ -109,7 +109,7 @@ class _Line:
 def _lines(text: str) -> tuple[list[_Line], dict[str, _Line]]:
     body: list[_Line] = []
     declared: dict[str, _Line] = {}
-    for number, raw in enumerate(text.splitlines(), start=1):
+    for number, raw in enumerate(source_lines(text), start=1):
         stripped = raw.strip()
         for field, marker in _DECLARED.items():
             if stripped.startswith(marker) and not body and field not in declared:

@@ -15,7 +15,7 @@ import re
 from collections.abc import Iterable, Mapping
 from typing import Final, Literal
 
-from diagnostics import SlugsFormatError, Span
+from diagnostics import SlugsFormatError, Span, source_lines
 
 NameFormat = Literal["structuredslugs", "slugsin", "ltl"]
 #: The words of the infix formats (SLUGS's structuredslugs lexer and the LTL text).
@@ -87,7 +87,7 @@ def renaming_comment(renamed: Mapping[str, str]) -> list[str]:
 
 def one_line(text: str) -> str:
     """``text`` with its line breaks (any that ``str.splitlines`` knows) turned into spaces."""
-    lines = text.splitlines()
+    lines = source_lines(text)
     return text if lines == [text] else " ".join(lines)
 
 
@@ -97,7 +97,7 @@ def read_renaming(text: str, filename: str) -> tuple[dict[str, str], Span | None
     Only ``#`` lines (and blank lines) before the first other line are searched; without
     the comment the renaming is empty and every name stands for itself.
     """
-    for number, raw in enumerate(text.splitlines(), start=1):
+    for number, raw in enumerate(source_lines(text), start=1):
         stripped = raw.strip()
         if not stripped:
             continue

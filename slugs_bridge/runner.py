@@ -20,7 +20,7 @@ import time
 from dataclasses import dataclass, replace
 from pathlib import Path
 
-from diagnostics import SolverError, Span
+from diagnostics import SolverError, Span, source_lines
 from gr1.bitblast import bitblast
 from gr1.bits import spec_bits
 from gr1.controller import (
@@ -221,7 +221,7 @@ def counterstrategy_from_slugs_text(
     trans: dict[int, tuple[int, ...]] = {}
     dead: set[int] = set()
     current: int | None = None
-    for number, line in enumerate(text.splitlines(), 1):
+    for number, line in enumerate(source_lines(text), 1):
         span = Span(filename, number, 1)
         stripped = line.rstrip()
         if not stripped:

@@ -110,3 +110,30 @@ def test_robot_files_use_the_safe_loader(tmp_path: Path) -> None:
     path.write_bytes(b"robot: \xff\n")
     with pytest.raises(GaitcError, match="not UTF-8"):
         load_robot(str(path))
+
+
+@pytest.mark.parametrize("odd", ["\x0c", "\x0b", "\x1c", "\x1d", "\x1e", "\x85", "\u2028",
+                                 "\u2029"])
+def test_odd_line_separators_do_not_shift_the_caret(tmp_path: Path,
+                                                     capsys: pytest.CaptureFixture[str],
+                                                     odd: str) -> None:
+    text = (f"# a comment with {odd} inside\nlegs L1 health 2\n"
+            "gait g uses L9 moves north\ngrid 2 x 1\nstart r0\n")
+    path = tmp_path / "odd.gait"
+    path.write_text(text, encoding="utf-8")
+    code, err = _run(capsys, "lint", str(path))
+    assert code == 1
+    assert f"{path}:3:13: error: unknown leg 'L9'" in err
+    assert err.splitlines()[1].strip() == "gait g uses L9 moves north"
+
+
+def test_a_robot_name_with_a_line_separator_round_trips(tmp_path: Path,
+                                                        capsys: pytest.CaptureFixture[str]
+                                                        ) -> None:
+    spec = tmp_path / "named.gait"
+    spec.write_text('robot "a\u2028b"\nlegs L1 health 2\ngait g uses L1 moves north\n'
+                    "grid 2 x 1\nstart r0\n", encoding="utf-8")
+    for fmt in ("structuredslugs", "slugsin", "ltl"):
+        out = tmp_path / f"named.{fmt}"
+        assert main(["compile", str(spec), "-o", str(out), "--format", fmt]) == 0
+        assert main(["check", str(out)]) == 0, capsys.readouterr().err
