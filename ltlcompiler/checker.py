@@ -40,6 +40,9 @@ def _line(span: Span | None) -> int:
     return span.line if span is not None else 0
 
 
+MAX_HEALTH = 100  # health levels per leg
+
+
 class _Checker:
     def __init__(self, spec: s.SpecFile) -> None:
         self.spec = spec
@@ -89,6 +92,11 @@ class _Checker:
                 f"health must be at least 1 (1 means permanently failed), not {st.health}",
                 st.health_span,
             )
+        if st.health > MAX_HEALTH:
+            raise SpecSemanticError(
+                f"health {st.health} is more than the {MAX_HEALTH} levels gaitc supports",
+                st.health_span, hint="the thesis's robots have at most 5 levels; every level "
+                "adds a state per leg to the game")
         for name in expand_all(st.legs):
             self.ns.declare(name, "leg")
             self.health[name.text] = st.health

@@ -14,7 +14,7 @@ from typing import Any
 from lark import Token, Tree
 from lark.tree import Meta
 
-from diagnostics import FormulaError, Span
+from diagnostics import FormulaError, Span, SpecSyntaxError
 from gr1 import formula as f
 from gr1.traversal import Memo, fold
 from ltlcompiler import syntax as s
@@ -30,6 +30,18 @@ def meta_span(file: str, meta: Meta) -> Span | None:
     if getattr(meta, "empty", True):
         return None
     return Span(file, meta.line, meta.column, meta.end_line, meta.end_column - 1)
+
+
+MAX_DIGITS = 9  # numbers in a .gait file (health levels, grid sizes, cells): below 10**9
+
+
+def number(file: str, tok: Token) -> int:
+    """The value of a NUMBER token, refused with its position when it has too many digits."""
+    text = str(tok)
+    if len(text) > MAX_DIGITS:
+        raise SpecSyntaxError(f"the number has {len(text)} digits; numbers in a .gait file "
+                              f"have at most {MAX_DIGITS}", token_span(file, tok))
+    return int(text)
 
 
 def token_span(file: str, tok: Token) -> Span:
@@ -68,7 +80,7 @@ class _Builder:
         return tuple(self._item(c) for c in ch)
 
     def cell(self, meta: Meta, ch: list[Token]) -> s.Cell:
-        return s.Cell(int(ch[0]), int(ch[1]), span=self._sp(meta))
+        return s.Cell(number(self.file, ch[0]), number(self.file, ch[1]), span=self._sp(meta))
 
     # statements
     def start(self, meta: Meta, ch: list[s.Statement]) -> s.SpecFile:
@@ -80,7 +92,8 @@ class _Builder:
     def legs_decl(self, meta: Meta, ch: list[Any]) -> s.LegsDecl:
         health: Token = ch[1]
         return s.LegsDecl(
-            ch[0], int(health), health_span=token_span(self.file, health), span=self._sp(meta)
+            ch[0], number(self.file, health), health_span=token_span(self.file, health),
+            span=self._sp(meta),
         )
 
     def uses(self, meta: Meta, ch: list[Any]) -> tuple[s.NameItem, ...]:
@@ -124,7 +137,8 @@ class _Builder:
         )
 
     def grid_decl(self, meta: Meta, ch: list[Any]) -> s.GridDecl:
-        return s.GridDecl(int(ch[0]), int(ch[1]), ch[2], span=self._sp(meta))
+        return s.GridDecl(number(self.file, ch[0]), number(self.file, ch[1]), ch[2],
+                          span=self._sp(meta))
 
     def block_decl(self, meta: Meta, ch: list[Any]) -> s.BlockDecl:
         return s.BlockDecl(ch[0], span=self._sp(meta))
@@ -163,7 +177,7 @@ class _Builder:
         value: Token = ch[1]
         return s.HealthInit(
             self._item(ch[0]),
-            int(value),
+            number(self.file, value),
             value_span=token_span(self.file, value),
             span=self._sp(meta),
         )
@@ -235,7 +249,7 @@ class _Builder:
         return f.Compare(
             op,
             f.IntVar(str(leg), span=token_span(self.file, leg)),
-            f.IntConst(int(value), span=token_span(self.file, value)),
+            f.IntConst(number(self.file, value), span=token_span(self.file, value)),
             span=self._sp(meta),
         )
 

@@ -137,3 +137,18 @@ def test_a_robot_name_with_a_line_separator_round_trips(tmp_path: Path,
         out = tmp_path / f"named.{fmt}"
         assert main(["compile", str(spec), "-o", str(out), "--format", fmt]) == 0
         assert main(["check", str(out)]) == 0, capsys.readouterr().err
+
+
+@pytest.mark.parametrize(("health", "message"), [
+    ("100000", "health 100000 is more than the 100 levels gaitc supports"),
+    ("1000000000", "the number has 10 digits; numbers in a .gait file have at most 9"),
+    (BIG, "the number has 5000 digits"),
+])
+def test_huge_health_is_refused_before_any_bdd(tmp_path: Path,
+                                               capsys: pytest.CaptureFixture[str],
+                                               health: str, message: str) -> None:
+    path = tmp_path / "huge.gait"
+    path.write_text(f"legs L1 health {health}\ngait g uses L1 moves north\ngrid 2 x 1\n"
+                    "start r0\n", encoding="utf-8")
+    code, err = _run(capsys, "check", str(path), "--timeout", "2")
+    assert code == 1 and f"{path}:1:16: error: {message}" in err
