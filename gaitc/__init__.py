@@ -20,13 +20,53 @@ notebook (see ``docs/api.md``):
 The command line (:mod:`gaitc.cli`) is a thin layer over these functions.
 """
 
-from gaitc.emission import FORMATS, emit
-from gaitc.explaining import explain
-from gaitc.linting import lint
-from gaitc.loading import Spec, load, parse
-from gaitc.resilient import resilience
-from gaitc.simulation import Session, session, simulate
-from gaitc.solving import SOLVERS, Synthesis, Verdict, check, counterstrategy, synthesize, verify
+from __future__ import annotations
+
+import importlib
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from gaitc.emission import FORMATS, emit
+    from gaitc.explaining import explain
+    from gaitc.linting import lint
+    from gaitc.loading import Spec, load, parse
+    from gaitc.resilient import resilience
+    from gaitc.simulation import Session, session, simulate
+    from gaitc.solving import (
+        SOLVERS,
+        Synthesis,
+        Verdict,
+        check,
+        counterstrategy,
+        synthesize,
+        verify,
+    )
+
+#: Where each public name lives; modules load on first use, so ``gaitc --help`` and a
+#: Ctrl-C at start-up do not wait for the solver, the parser and the gait graph to import.
+_HOMES = {
+    "FORMATS": "gaitc.emission", "emit": "gaitc.emission", "explain": "gaitc.explaining",
+    "lint": "gaitc.linting", "Spec": "gaitc.loading", "load": "gaitc.loading",
+    "parse": "gaitc.loading", "resilience": "gaitc.resilient", "Session": "gaitc.simulation",
+    "session": "gaitc.simulation", "simulate": "gaitc.simulation", "SOLVERS": "gaitc.solving",
+    "Synthesis": "gaitc.solving", "Verdict": "gaitc.solving", "check": "gaitc.solving",
+    "counterstrategy": "gaitc.solving", "synthesize": "gaitc.solving",
+    "verify": "gaitc.solving",
+}
+
+
+def __getattr__(name: str) -> Any:
+    home = _HOMES.get(name)
+    if home is None:
+        raise AttributeError(f"module 'gaitc' has no attribute {name!r}")
+    value = getattr(importlib.import_module(home), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted([*globals(), *_HOMES])
+
 
 __version__ = "0.1.0"
 

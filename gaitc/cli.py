@@ -12,7 +12,6 @@ import traceback
 from collections.abc import Sequence
 
 from diagnostics import GaitcError, SolverError, UsageError, render_error
-from gaitc.commands import COMMAND_MODULES
 from gaitc.exitcodes import ExitCode, exit_code_help
 
 
@@ -32,6 +31,8 @@ def build_parser() -> argparse.ArgumentParser:
 
     parser.add_argument("--version", action="version", version=f"gaitc {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
+    from gaitc.commands import COMMAND_MODULES
+
     for module in COMMAND_MODULES:
         module.register(sub)
     return parser
@@ -39,8 +40,8 @@ def build_parser() -> argparse.ArgumentParser:
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Run gaitc with ``argv`` (default: ``sys.argv[1:]``) and return the exit code."""
-    parser = build_parser()
     try:
+        parser = build_parser()
         args = parser.parse_args(list(sys.argv[1:] if argv is None else argv))
         if getattr(args, "run", None) is None:
             parser.print_help(sys.stderr)

@@ -152,3 +152,20 @@ def test_huge_health_is_refused_before_any_bdd(tmp_path: Path,
                     "start r0\n", encoding="utf-8")
     code, err = _run(capsys, "check", str(path), "--timeout", "2")
     assert code == 1 and f"{path}:1:16: error: {message}" in err
+
+
+@pytest.mark.parametrize("delay", [0.5, 1.0, 2.0])  # once the interpreter has started
+def test_ctrl_c_at_any_moment_is_one_line_and_exit_130(delay: float) -> None:
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    proc = subprocess.Popen([sys.executable, "-m", "gaitc", "explain",
+                             "specs/thesis_robot_a_health2.gait"], cwd=ROOT,
+                            stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    time.sleep(delay)
+    proc.send_signal(signal.SIGINT)
+    _, err = proc.communicate(timeout=60)
+    assert proc.returncode == 130, err
+    assert err.strip() == "gaitc: interrupted"
