@@ -13,7 +13,19 @@ import stat
 import tempfile
 from pathlib import Path
 
-from diagnostics import UsageError
+from diagnostics import GaitcError, Span, UsageError
+
+
+def decode_text(data: bytes, file: str, error: type[GaitcError]) -> str:
+    """``data`` as UTF-8 text; a positioned ``error`` at the first byte that is not."""
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError as err:
+        before = data[: err.start]
+        line = before.count(b"\n") + 1
+        column = err.start - (before.rfind(b"\n") + 1) + 1
+        raise error(f"'{file}' is not UTF-8 text (byte 0x{data[err.start]:02x} at offset "
+                    f"{err.start}); save the file as UTF-8", Span(file, line, column)) from None
 
 
 def _ordinary_mode(target: Path) -> int:

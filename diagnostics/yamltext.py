@@ -53,15 +53,3 @@ def _check_depth(root: yaml.Node, file: str, error: type[GaitcError], what: str)
             stack.extend((child, depth + 1) for child in node.value)
         elif isinstance(node, yaml.MappingNode):
             stack.extend((child, depth + 1) for pair in node.value for child in pair)
-
-
-def decode(data: bytes, file: str, error: type[GaitcError], what: str) -> str:
-    """``data`` as UTF-8 text; a positioned ``error`` at the first byte that is not."""
-    try:
-        return data.decode("utf-8")
-    except UnicodeDecodeError as err:
-        before = data[: err.start]
-        line = before.count(b"\n") + 1
-        column = err.start - (before.rfind(b"\n") + 1) + 1
-        raise error(f"{what} is not UTF-8 text (byte 0x{data[err.start]:02x}); save it as "
-                    "UTF-8", Span(file, line, column)) from None

@@ -13,7 +13,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from diagnostics import Diagnostic, SlugsFormatError, Span, SpecSyntaxError, UsageError
+from diagnostics import Diagnostic, SlugsFormatError, SpecSyntaxError, UsageError
+from diagnostics.files import decode_text
 from gaitc.presentation import table
 from gr1.spec import SECTIONS, GR1Spec
 from ltlcompiler.encoding import ENCODINGS
@@ -102,16 +103,8 @@ def _read(path: str) -> bytes:
 
 
 def _decode(data: bytes, path: str, suffix: str) -> str:
-    try:
-        return data.decode("utf-8")
-    except UnicodeDecodeError as err:
-        before = data[: err.start]
-        line = before.count(b"\n") + 1
-        column = err.start - (before.rfind(b"\n") + 1) + 1
-        message = (f"'{path}' is not UTF-8 text (byte 0x{data[err.start]:02x} at offset "
-                   f"{err.start}); save the file as UTF-8")
-        error = SpecSyntaxError if suffix in GAIT_SUFFIXES else SlugsFormatError
-        raise error(message, Span(path, line, column)) from None
+    return decode_text(data, path, SpecSyntaxError if suffix in GAIT_SUFFIXES
+                       else SlugsFormatError)
 
 
 def load(path: str | Path, encoding: str = "onehot", kind: str | None = None) -> Spec:

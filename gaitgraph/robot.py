@@ -13,7 +13,8 @@ from pathlib import Path
 import yaml
 
 from diagnostics import GaitcError, Span
-from diagnostics.yamltext import compose, decode
+from diagnostics.files import decode_text
+from diagnostics.yamltext import compose
 
 
 class RobotFileError(GaitcError):
@@ -212,7 +213,7 @@ def load_robot(path: str | Path) -> Robot:
         data = Path(path).read_bytes()
     except OSError as err:
         raise RobotFileError(f"cannot read robot file {name}: {err.strerror}") from None
-    return parse_robot(decode(data, name, RobotFileError, "robot file"), name)
+    return parse_robot(decode_text(data, name, RobotFileError), name)
 
 
 def parse_robot(text: str, path: str = "<robot>") -> Robot:

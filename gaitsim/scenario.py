@@ -11,7 +11,8 @@ from pathlib import Path
 import yaml
 
 from diagnostics import ScenarioError, Span
-from diagnostics.yamltext import compose, decode
+from diagnostics.files import decode_text
+from diagnostics.yamltext import compose
 from gaitsim.domain import State
 from gaitsim.environments import Environment, Move, Request, Situation
 from ltlcompiler.model import Model
@@ -160,7 +161,7 @@ def load_scenario(path: str | Path, model: Model) -> Scenario:
         data = Path(path).read_bytes()
     except OSError as err:
         raise ScenarioError(f"cannot read scenario: {err.strerror}", Span(file, 1, 1)) from None
-    return parse_scenario(decode(data, file, ScenarioError, "scenario"), model, file)
+    return parse_scenario(decode_text(data, file, ScenarioError), model, file)
 
 
 class ScriptedEnvironment(Environment):

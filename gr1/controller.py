@@ -15,6 +15,7 @@ from pathlib import Path
 from typing import Any
 
 from diagnostics import ControllerError, Span
+from diagnostics.files import decode_text
 from gr1.bits import bit_name, parse_first_bit, spec_bits
 from gr1.spec import SEMANTICS, GR1Spec
 
@@ -269,13 +270,7 @@ def load_controller(path: str, spec: GR1Spec | None = None) -> Controller:
         raise ControllerError(
             f"cannot read controller file: {err.strerror}", Span(path, 1, 1)
         ) from None
-    try:
-        text = raw.decode("utf-8")
-    except UnicodeDecodeError as err:
-        before = raw[: err.start]
-        line, column = before.count(b"\n") + 1, err.start - (before.rfind(b"\n") + 1) + 1
-        raise ControllerError(f"not UTF-8 text (byte 0x{raw[err.start]:02x}); a controller "
-                              "file is JSON in UTF-8", Span(path, line, column)) from None
+    text = decode_text(raw, path, ControllerError)
     try:
         data = json.loads(text)
     except json.JSONDecodeError as err:

@@ -4,27 +4,14 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from diagnostics import SlugsFormatError, Span
+from diagnostics import SlugsFormatError
+from diagnostics.files import decode_text
 from gr1.spec import GR1Spec
 from slugs_bridge.slugsin import parse_slugsin
 from slugs_bridge.structured import parse_structuredslugs
 
 PREFIX_EXTENSIONS = (".slugsin", ".txt")
 INFIX_EXTENSIONS = (".structuredslugs", ".structureslugs")
-
-
-def _decode(data: bytes, path: str) -> str:
-    try:
-        return data.decode("utf-8")
-    except UnicodeDecodeError as err:
-        before = data[: err.start]
-        line = before.count(b"\n") + 1
-        column = err.start - (before.rfind(b"\n") + 1) + 1
-        raise SlugsFormatError(
-            f"'{path}' is not UTF-8 text (byte 0x{data[err.start]:02x} at offset {err.start}); "
-            "save the file as UTF-8",
-            Span(path, line, column),
-        ) from None
 
 
 def load_spec_file(path: str) -> GR1Spec:
@@ -42,7 +29,7 @@ def load_spec_file(path: str) -> GR1Spec:
         raise SlugsFormatError(f"cannot read '{path}': no such file") from None
     except OSError as err:
         raise SlugsFormatError(f"cannot read '{path}': {err.strerror or err}") from None
-    text = _decode(data, path)
+    text = decode_text(data, path, SlugsFormatError)
     if suffix in PREFIX_EXTENSIONS:
         return parse_slugsin(text, path)
     return parse_structuredslugs(text, path)

@@ -85,7 +85,7 @@ SCENARIO_HEAD = "steps:\n"
 
 
 @pytest.mark.parametrize(("raw", "where", "message"), [
-    (b"s\xc3tart: {}\n", ":1:2:", "scenario is not UTF-8 text (byte 0xc3)"),
+    (b"s\xc3tart: {}\n", ":1:2:", "is not UTF-8 text (byte 0xc3 at offset 1)"),
     (b"steps:\n  - {note: a\x00}\n", ":2:", "which YAML does not allow"),
     (b"steps: " + b"[" * 1000 + b"]" * 1000 + b"\n", ":1:", "nests"),
     (b"steps: !!python/object:os.system {}\n", ":1:8:", "'steps' must be a list"),
