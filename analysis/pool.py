@@ -62,7 +62,7 @@ class Pool:
                 raise UsageError("--dask needs the 'distributed' package: pip install "
                                  "'dask[distributed]' (scripts/setup.sh installs it)") from None
             try:
-                self._client = Client(self.dask, timeout=10)  # type: ignore[no-untyped-call]
+                self._client = Client(self.dask, timeout=10)  # type: ignore[no-untyped-call,unused-ignore]
             except (OSError, TimeoutError) as err:
                 raise UsageError(f"cannot reach the Dask scheduler at {self.dask}: {err}"
                                  ) from None
