@@ -12,11 +12,11 @@ import itertools
 from collections.abc import Iterable, Mapping
 from dataclasses import replace
 
-from gr1.formula import Expr, Implies, Not, Var, conj, disj
+from gr1.formula import Const, Expr, Implies, Not, Var, conj, disj, substitute
 from gr1.spec import Clause, GR1Spec, Origin, Variable
 from ltlcompiler.encoding import make_encoding
 from ltlcompiler.lowering import lower
-from ltlcompiler.model import GaitKind, Model
+from ltlcompiler.model import GaitKind, Model, UserFormula
 
 BROKEN = "gaitc_broken_"
 MAX_SUBSETS = 20_000  # at-most-k over this many (k+1)-sets is written out clause by clause
@@ -43,8 +43,18 @@ def with_caches(model: Model, caches: Iterable[str]) -> Model:
 
 
 def with_hazards(model: Model, keep: Iterable[str]) -> Model:
+    """``model`` with only the hazard sets ``keep``: the others are never active, so the
+    assumptions and guarantees that name them read them as false."""
     names = set(keep)
-    return replace(model, hazards=tuple(h for h in model.hazards if h.name in names))
+    gone: dict[tuple[str, bool], Expr] = {(h.name, primed): Const(False)
+                                          for h in model.hazards if h.name not in names
+                                          for primed in (False, True)}
+
+    def drop(formulas: tuple[UserFormula, ...]) -> tuple[UserFormula, ...]:
+        return tuple(replace(uf, formula=substitute(uf.formula, gone)) for uf in formulas)
+
+    return replace(model, hazards=tuple(h for h in model.hazards if h.name in names),
+                   assumptions=drop(model.assumptions), guarantees=drop(model.guarantees))
 
 
 _DIRECTIONS = {(-1, 0): "north", (1, 0): "south", (0, 1): "east", (0, -1): "west"}
