@@ -11,11 +11,11 @@ from __future__ import annotations
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import replace
 
-from gr1.formula import Expr, Iff, Implies, Not, Var, conj
+from gr1.formula import Const, Expr, Iff, Implies, Not, Var, conj, substitute
 from gr1.spec import Clause, GR1Spec, Origin, Variable
 from ltlcompiler.encoding import make_encoding
 from ltlcompiler.lowering import lower
-from ltlcompiler.model import GaitKind, Model
+from ltlcompiler.model import GaitKind, Model, UserFormula
 
 BROKEN = "gaitc_broken_"
 BREAKABLE = "gaitc_breakable_"
@@ -42,8 +42,18 @@ def with_caches(model: Model, caches: Iterable[str]) -> Model:
 
 
 def with_hazards(model: Model, keep: Iterable[str]) -> Model:
+    """``model`` with only the hazard sets ``keep``: the others are never active, so the
+    assumptions and guarantees that name them read them as false."""
     names = set(keep)
-    return replace(model, hazards=tuple(h for h in model.hazards if h.name in names))
+    gone: dict[tuple[str, bool], Expr] = {(h.name, primed): Const(False)
+                                          for h in model.hazards if h.name not in names
+                                          for primed in (False, True)}
+
+    def drop(formulas: tuple[UserFormula, ...]) -> tuple[UserFormula, ...]:
+        return tuple(replace(uf, formula=substitute(uf.formula, gone)) for uf in formulas)
+
+    return replace(model, hazards=tuple(h for h in model.hazards if h.name in names),
+                   assumptions=drop(model.assumptions), guarantees=drop(model.guarantees))
 
 
 _DIRECTIONS = {(-1, 0): "north", (1, 0): "south", (0, 1): "east", (0, -1): "west"}
