@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Set up gaitc on a fresh machine: Graphviz (for rendering), a virtual environment in .venv,
-# and gaitc installed into it with its test tools.  Safe to run again.
+# and gaitc installed into it with its test tools and Dask ('gaitc resilience --dask').
+# Safe to run again.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -19,4 +20,4 @@ PYTHON="${PYTHON:-python3}"
 if [ ! -x .venv/bin/python ]; then
     "$PYTHON" -m venv .venv
 fi
-.venv/bin/python -m pip install -q --disable-pip-version-check -e '.[test]'
+.venv/bin/python -m pip install -q --disable-pip-version-check -e '.[test,cluster]'
