@@ -18,10 +18,11 @@ from dataclasses import dataclass, replace
 
 from gr1.formula import Compare, Expr, Implies, IntConst, IntVar, conj, disj
 from gr1.spec import Clause, GR1Spec, Origin, Variable
-from ltlcompiler.encoding import make_encoding
+from ltlcompiler.encoding import health_prop, make_encoding
 from ltlcompiler.lowering import lower
 from ltlcompiler.model import Model
 from solver.game import Game
+from solver.ordering import variable_order
 from solver.symbolic import BDDNode, Options, SymbolicSpec
 
 PREFIX = "gaitc_cap_"
@@ -82,35 +83,142 @@ def _rule(clause: Clause) -> str:
     return clause.origin.rule if clause.origin is not None else ""
 
 
+#: Cap vectors up to which the caps sit at the top of the BDD order, and up to which they
+#: keep the solver's own order (one block above the health variables); beyond, each cap
+#: sits right above its leg.  With every cap above every health variable, the cache's
+#: reset (each leg to its cap) has a node per cap vector.  Measured (binary encoding):
+#: robot A's failure sets (2^8 vectors) 0.6 s on top, 2.0 s as a block, 10.6 s
+#: interleaved; radial12's health front (3^12) 134 s, 65 s, over 300 s; centipede24's
+#: failure sets (2^24) out of memory on top and as a block, 3.5 s interleaved.
+TOP_LIMIT = 1 << 16
+BLOCK_LIMIT = 1 << 20
+
+
+def cap_order(model: Model, encoding: str, spec: GR1Spec,
+              domains: Mapping[str, Sequence[int]]) -> tuple[str, ...]:
+    """``Options.first`` for the game of ``spec`` (see :data:`TOP_LIMIT`)."""
+    vectors = 1
+    for leg in model.legs:
+        vectors *= len(set(domains[leg.name]))
+    if vectors <= TOP_LIMIT:
+        return tuple(cap_name(leg.name) for leg in model.legs)
+    if vectors <= BLOCK_LIMIT:
+        return ()
+    owner: dict[str, str] = {}
+    for leg in model.legs:
+        owner[leg.name] = leg.name  # binary: the leg's integer
+        for j in range(1, max(domains[leg.name]) + 1):
+            owner[health_prop(leg.name, j)] = leg.name  # onehot: its levels
+    placed: set[str] = set()
+    order: list[str] = []
+    for v in variable_order(spec, "guards"):
+        if v.name.startswith(PREFIX):
+            continue
+        name = owner.get(v.name)
+        if name is not None and name not in placed:
+            placed.add(name)
+            order.append(cap_name(name))
+        order.append(v.name)
+    return tuple(order)
+
+
+@dataclass
+class _Solved:
+    sym: SymbolicSpec
+    good: BDDNode  # the winning cap vectors, over the cap bits
+    bits: list[str]  # every cap bit, leg by leg
+    peak_nodes: int
+
+
+def _solve(model: Model, encoding: str, domains: Mapping[str, Sequence[int]],
+           semantics: str) -> _Solved:
+    spec = parametric_spec(model, encoding, domains)
+    sym = SymbolicSpec(spec, Options(first=cap_order(model, encoding, spec, domains)))
+    result = Game(sym).solve()
+    param_bits = [b for leg in model.legs for b in sym.var_bits[cap_name(leg.name)]]
+    good = winning_parameters(sym, result.winning, param_bits, semantics)
+    return _Solved(sym, good, param_bits, result.stats.peak_nodes)
+
+
+def _vectors(solved: _Solved, legs: tuple[str, ...], domains: Mapping[str, Sequence[int]],
+             points: BDDNode) -> set[tuple[int, ...]]:
+    """The cap vectors (within the domains) of a BDD over the cap bits."""
+    sym = solved.sym
+    lows = {leg: min(domains[leg]) for leg in legs}
+    domain_sets = {leg: set(domains[leg]) for leg in legs}
+    vectors = set()
+    for point in sym.bdd.pick_iter(points, care_vars=set(solved.bits)):
+        vector = tuple(lows[leg] + sum(int(point[b]) << k for k, b in
+                                       enumerate(sym.var_bits[cap_name(leg)])) for leg in legs)
+        if all(x in domain_sets[leg] for x, leg in zip(vector, legs, strict=True)):
+            vectors.add(vector)
+    return vectors
+
+
 def winning_caps(model: Model, encoding: str, domains: Mapping[str, Sequence[int]],
                  semantics: str = "default", minimal_only: bool = False) -> ParametricResult:
     """Every cap vector (one value per leg, in ``model.legs`` order) the robot wins from;
     with ``minimal_only``, just the minimal ones (the Pareto front of an upward-closed set
     over contiguous domains), computed on the BDD before anything is enumerated."""
     started = time.monotonic()
-    spec = parametric_spec(model, encoding, domains)
-    sym = SymbolicSpec(spec, Options(first=tuple(cap_name(leg.name) for leg in model.legs)))
-    result = Game(sym).solve()
-    winning = result.winning
-    bdd = sym.bdd
+    solved = _solve(model, encoding, domains, semantics)
     legs = tuple(leg.name for leg in model.legs)
-    param_bits = [b for leg in legs for b in sym.var_bits[cap_name(leg)]]
-    good = winning_parameters(sym, winning, param_bits, semantics)
-    if minimal_only:
-        good = _minimal(sym, good, legs, domains)
-    vectors = set()
-    lows = {leg: min(domains[leg]) for leg in legs}
-    for point in bdd.pick_iter(good, care_vars=set(param_bits)):
-        vector = []
-        for leg in legs:
-            bits = sym.var_bits[cap_name(leg)]
-            vector.append(lows[leg] + sum(int(point[b]) << k for k, b in enumerate(bits)))
-        vectors.add(tuple(vector))
-    domain_sets = {leg: set(domains[leg]) for leg in legs}
-    vectors = {v for v in vectors if all(x in domain_sets[leg]
-                                         for x, leg in zip(v, legs, strict=True))}
+    good = _minimal(solved.sym, solved.good, legs, domains) if minimal_only else solved.good
+    vectors = _vectors(solved, legs, domains, good)
     return ParametricResult(legs, frozenset(vectors), time.monotonic() - started,
-                            result.stats.peak_nodes)
+                            solved.peak_nodes)
+
+
+@dataclass(frozen=True)
+class FailureSets:
+    """Minimal fatal and maximal survivable sets of legs failed from the start."""
+
+    minimal_fatal: tuple[frozenset[str], ...]
+    maximal_survivable: tuple[frozenset[str], ...]
+    seconds: float
+    peak_nodes: int
+
+
+def failure_sets(model: Model, encoding: str, semantics: str = "default") -> FailureSets:
+    """The failure sets from one game whose caps range over {1, full}, read off the BDD.
+
+    Flipping leg L between failed and full negates the bits of its cap that are 1 in
+    ``full - 1`` (value 1 is all bits 0); a fatal vector is minimal when every flip of a
+    failed leg wins, a winning one maximal when every flip of a working leg loses. Only
+    those vectors are enumerated, never the whole table of survivors.
+    """
+    started = time.monotonic()
+    domains = {leg.name: ((1, leg.health) if leg.health > 1 else (1,)) for leg in model.legs}
+    solved = _solve(model, encoding, domains, semantics)
+    sym, good = solved.sym, solved.good
+    bdd = sym.bdd
+    inside = bdd.true
+    minimal = ~good
+    maximal = good
+    for leg in model.legs:
+        bits = sym.var_bits[cap_name(leg.name)]
+        failed = bdd.true
+        for b in bits:
+            failed &= ~bdd.var(b)
+        full = bdd.true
+        for k, b in enumerate(bits):
+            full &= bdd.var(b) if (leg.health - 1) >> k & 1 else ~bdd.var(b)
+        inside &= failed | full
+        if leg.health == 1:
+            continue
+        flip = {b: ~bdd.var(b) for k, b in enumerate(bits) if (leg.health - 1) >> k & 1}
+        flipped = bdd.let(flip, good)
+        minimal &= ~failed | flipped
+        maximal &= failed | ~flipped
+    legs = tuple(leg.name for leg in model.legs)
+
+    def sets(points: BDDNode) -> tuple[frozenset[str], ...]:
+        return tuple(frozenset(leg.name for leg, cap in zip(model.legs, v, strict=True)
+                               if cap == 1 and leg.health > 1)
+                     for v in _vectors(solved, legs, domains, points & inside))
+
+    return FailureSets(sets(minimal), sets(maximal), time.monotonic() - started,
+                       solved.peak_nodes)
 
 
 def winning_parameters(sym: SymbolicSpec, winning: BDDNode, param_bits: Sequence[str],

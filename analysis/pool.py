@@ -32,10 +32,12 @@ def variant_realizable(model: Model, encoding: str, semantics: str) -> bool:
     return synthesis.check(lower(model, encoding), semantics).realizable
 
 
-def spec_realizable(spec: GR1Spec, semantics: str) -> bool:
+def spec_realizable(spec: GR1Spec, semantics: str, first: tuple[str, ...] = ()) -> bool:
+    """Decide a ready-made spec, ``first`` pinned to the top of the BDD order."""
     from solver import synthesis
+    from solver.symbolic import Options
 
-    return synthesis.check(spec, semantics).realizable
+    return synthesis.check(spec, semantics, options=Options(first=first)).realizable
 
 
 @dataclass
@@ -90,9 +92,10 @@ class Pool:
         return self._run(variant_realizable, [(m, self.encoding, self.semantics)
                                               for m in variants])
 
-    def specs(self, variants: Sequence[GR1Spec]) -> list[bool]:
-        """Realizability of ready-made specs, in order."""
-        return self._run(spec_realizable, [(s, self.semantics) for s in variants])
+    def specs(self, variants: Sequence[GR1Spec], first: tuple[str, ...] = ()) -> list[bool]:
+        """Realizability of ready-made specs, in order; ``first``: variables to put at the
+        top of the BDD order (names a spec lacks are ignored)."""
+        return self._run(spec_realizable, [(s, self.semantics, first) for s in variants])
 
     def _run(self, fn: Callable[..., bool], args: list[tuple[Any, ...]]) -> list[bool]:
         self._check_time()
