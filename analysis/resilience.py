@@ -41,6 +41,10 @@ from ltlcompiler.model import Model
 METHODS: Final = ("parametric", "lattice")
 MAX_PLACEMENTS = 5_000
 DIRECT_DEFEATS = 64  # up to this many (k+1)-sets are checked one by one
+#: Health vectors (levels ** legs) up to which the health front is searched. The parametric
+#: game over 3^12 vectors (radial12) takes about a minute; over 3^24 (centipede24) it did
+#: not finish in ten, and the lattice search would need a solver call per front vector.
+MAX_HEALTH_VECTORS = 3 ** 12
 
 
 @dataclass(frozen=True)
@@ -61,7 +65,7 @@ class Resilience:
     defeating_sets: tuple[tuple[str, ...], ...] = ()
     health_bound: int | None = None
     min_uniform_health: int | None = None
-    health_front: tuple[tuple[tuple[str, int], ...], ...] = ()
+    health_front: tuple[tuple[tuple[str, int], ...], ...] | None = ()  # None: not searched
     essential_caches: tuple[str, ...] = ()
     cache_placements: tuple[tuple[str, ...], ...] = ()
     placed: int | None = None
@@ -85,7 +89,8 @@ class Resilience:
             "any_time_k": self.any_time_k,
             "defeating_sets": [list(s) for s in self.defeating_sets],
             "health_bound": self.health_bound, "min_uniform_health": self.min_uniform_health,
-            "health_front": [dict(v) for v in self.health_front],
+            "health_front": (None if self.health_front is None
+                             else [dict(v) for v in self.health_front]),
             "essential_caches": list(self.essential_caches),
             "cache_placements": [list(s) for s in self.cache_placements],
             "hazards_survived_alone": list(self.hazards_survived_alone),
@@ -126,12 +131,14 @@ class Resilience:
         out.append(f"3. health (levels 1..{self.health_bound})")
         out.append("   least uniform health: " + (str(self.min_uniform_health)
                                                   if self.min_uniform_health else "none"))
-        out.append(f"   Pareto front ({len(self.health_front)} vectors, no leg can lose a "
-                   "level):")
-        out.extend("     " + " ".join(f"{leg}={h}" for leg, h in v)
-                   for v in self.health_front[:40])
-        if len(self.health_front) > 40:
-            out.append(f"     ... and {len(self.health_front) - 40} more (--json lists all)")
+        front = self.health_front
+        if front is None:
+            out.append("   Pareto front: not searched (see the notes)")
+        else:
+            out.append(f"   Pareto front ({len(front)} vectors, no leg can lose a level):")
+            out.extend("     " + " ".join(f"{leg}={h}" for leg, h in v) for v in front[:40])
+            if len(front) > 40:
+                out.append(f"     ... and {len(front) - 40} more (--json lists all)")
         out.append("")
         out.append("4. caches and hazards")
         out.append("   essential caches: " + (", ".join(self.essential_caches) or "none"))
@@ -287,6 +294,12 @@ def _health(report: Resilience, model: Model, encoding: str, semantics: str, met
             uniform = h
             break
     front: tuple[tuple[int, ...], ...] = ()
+    vectors = top ** len(names)
+    if vectors > MAX_HEALTH_VECTORS:
+        notes.append(f"health front skipped: {top}^{len(names)} = {vectors:,} health vectors "
+                     f"is more than the {MAX_HEALTH_VECTORS:,} searched; a lower "
+                     "--health-bound narrows it")
+        return _with(report, health_bound=top, min_uniform_health=uniform, health_front=None)
     try:
         if method == "parametric":
             caps = winning_caps(model, encoding, {n: tuple(range(1, top + 1)) for n in names},
@@ -298,6 +311,7 @@ def _health(report: Resilience, model: Model, encoding: str, semantics: str, met
                 [with_health(model, dict(zip(names, v, strict=True)))])[0]).minimal
     except ValueError as err:
         notes.append(f"health front skipped: {err}")
+        return _with(report, health_bound=top, min_uniform_health=uniform, health_front=None)
     return _with(report, health_bound=top, min_uniform_health=uniform,
                  health_front=tuple(tuple(zip(names, v, strict=True)) for v in front))
 

@@ -22,6 +22,7 @@ class ExitCode(IntEnum):
     WARNING = 5
     INTERNAL = 70
     INTERRUPTED = 130
+    TERMINATED = 143
 
 
 MEANINGS: Mapping[ExitCode, str] = {
@@ -34,9 +35,10 @@ MEANINGS: Mapping[ExitCode, str] = {
     ExitCode.WARNING: "explain, lint --deep: realizable, with a sanity warning",
     ExitCode.INTERNAL: "a bug in gaitc (GAITC_DEBUG=1 prints the traceback)",
     ExitCode.INTERRUPTED: "interrupted (Ctrl-C)",
+    ExitCode.TERMINATED: "terminated (SIGTERM); no file is left half-written",
 }
 
-#: The codes every command's help lists; 70 and 130 are described once, in ``gaitc --help``.
+#: The codes every command's help lists; 70, 130 and 143 are described once, in ``gaitc --help``.
 _LISTED = (ExitCode.OK, ExitCode.USER, ExitCode.USAGE, ExitCode.UNREALIZABLE, ExitCode.SOLVER)
 
 

@@ -24,13 +24,17 @@ Progress = Callable[[str], None]
 
 @dataclass
 class Limits:
-    """A wall-clock deadline and a progress callback, checked inside the fixpoint loops."""
+    """A wall-clock deadline, a memory check and a progress callback, checked inside the
+    fixpoint loops and the extraction."""
 
     timeout: float | None = None
     progress: Progress | None = None
     started: float = field(default_factory=time.monotonic)
+    memory: Callable[[], None] | None = None  # raises MemoryError near the memory budget
 
     def check(self) -> None:
+        if self.memory is not None:
+            self.memory()
         if self.timeout is not None and time.monotonic() - self.started > self.timeout:
             raise SolverError(
                 f"synthesis stopped after the time limit of {self.timeout:g} s",

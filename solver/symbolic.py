@@ -7,9 +7,10 @@ Each bit sits next to its primed copy and the bits of an integer stay together, 
 
 from __future__ import annotations
 
+import warnings
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, Final
 
 import dd.cudd as cudd
 
@@ -50,8 +51,14 @@ class Options:
     partitioned: bool = False  # ρs as clusters with early quantification (slow: see bench)
     recycle: bool = False  # start inner X fixpoints from the previous round's values (slower here)
     cluster_limit: int = 2500  # node limit when merging ρs parts into clusters
-    memory_mb: int | None = None  # CUDD max memory
+    memory_mb: int | None = None  # CUDD's hard memory limit (its own tables and caches)
     first: tuple[str, ...] = ()  # variables pinned to the top of the order (rigid parameters)
+
+
+#: Of CUDD's memory budget (``Options.memory_mb``), the share at which the solver gives up:
+#: near its limit CUDD stops growing its tables and collects garbage at every step, so the
+#: operation that finally fails can come minutes later (a 30 x 30 grid at 100 MB: over 60 s).
+MEMORY_STOP: Final = 0.9
 
 
 class SymbolicSpec:
@@ -66,11 +73,16 @@ class SymbolicSpec:
         """``deadline`` is called between building steps; it raises to stop (a timeout)."""
         self.spec = spec
         self.options = options or Options()
-        self._deadline = deadline or (lambda: None)
-        self.bdd = cudd.BDD()
+        self._given_deadline = deadline or (lambda: None)
+        self._budget = None if self.options.memory_mb is None else (
+            self.options.memory_mb * 1024 * 1024)
+        if self.options.memory_mb is None:
+            self.bdd = cudd.BDD()
+        else:  # CUDD sizes its caches from the estimate and fails cleanly at the maximum
+            budget = self.options.memory_mb * 1024 * 1024
+            self.bdd = cudd.BDD(memory_estimate=budget)
+            self.bdd.configure(max_memory=budget)
         self.bdd.configure(reordering=False)
-        if self.options.memory_mb is not None:
-            self.bdd.configure(max_memory=self.options.memory_mb * 1024 * 1024)
         self.input_bits, self.output_bits = spec_bits(spec)
         self.var_bits: dict[str, list[str]] = {}
         ins, outs = iter(self.input_bits), iter(self.output_bits)
@@ -170,6 +182,21 @@ class SymbolicSpec:
             out &= item
         return out
 
+    def check_memory(self) -> None:
+        """Raise MemoryError once CUDD holds :data:`MEMORY_STOP` of its budget."""
+        if self._budget is None:
+            return
+        with warnings.catch_warnings():  # dd warns that 'mem' is in bytes since 0.5.7
+            warnings.simplefilter("ignore")
+            used = float(self.bdd.statistics()["mem"])
+        if used > MEMORY_STOP * self._budget:
+            raise MemoryError(f"CUDD holds {used / 2**20:.0f} MB of its "
+                              f"{self._budget / 2**20:.0f} MB")
+
+    def _checkpoint(self) -> None:
+        self._given_deadline()
+        self.check_memory()
+
     def _conj_under(self, base: BDDNode, items: Sequence[BDDNode]) -> BDDNode:
         """``base`` ∧ every item, as a balanced tree over the products ``base ∧ item``.
 
@@ -178,11 +205,11 @@ class SymbolicSpec:
         """
         level = []
         for item in items:
-            self._deadline()
+            self._checkpoint()
             level.append(base & item)
         level = level or [base]
         while len(level) > 1:
-            self._deadline()
+            self._checkpoint()
             paired = [a & b for a, b in zip(level[::2], level[1::2], strict=False)]
             level = paired + ([level[-1]] if len(level) % 2 else [])
         return level[0]

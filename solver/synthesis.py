@@ -8,6 +8,8 @@ Each call builds a fresh :class:`~solver.symbolic.SymbolicSpec`, solves the game
 from __future__ import annotations
 
 import time
+from collections.abc import Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 
 from diagnostics import FormulaError, SolverError
@@ -35,10 +37,26 @@ def _check_semantics(semantics: str) -> None:
 
 
 def _symbolic(spec: GR1Spec, options: Options | None, limits: Limits) -> SymbolicSpec:
-    try:
+    with memory_guard():
         return SymbolicSpec(spec, options, limits.check)
+
+
+#: What dd.cudd raises when a CUDD operation returns NULL (its memory limit was reached).
+_CUDD_FAILURES = ("`DdNode *node` is `NULL` pointer", "CUDD appears to have run out of memory")
+
+
+@contextmanager
+def memory_guard() -> Iterator[None]:
+    """Turn running out of memory (Python's MemoryError, or a CUDD operation failing at
+    ``Options.memory_mb``) into the solver error the CLI reports with exit 4."""
+    try:
+        yield
     except MemoryError:
         raise _out_of_memory() from None
+    except (ValueError, RuntimeError) as err:
+        if any(text in str(err) for text in _CUDD_FAILURES):
+            raise _out_of_memory() from None
+        raise
 
 
 def _out_of_memory() -> SolverError:
@@ -61,6 +79,7 @@ def _game(
     _check_env_trans(spec)
     limits = Limits(timeout, progress) if started is None else Limits(timeout, progress, started)
     sym = _symbolic(spec, options, limits)
+    limits.memory = sym.check_memory
     return sym, Game(sym, limits), limits
 
 
@@ -88,11 +107,9 @@ def check(
     """Decide realizability of ``spec`` under ``semantics`` ("default" or "robotics")."""
     started = time.monotonic()
     _, game, _ = _game(spec, semantics, timeout, progress, options, started)
-    try:
+    with memory_guard():
         result = game.solve(stop_if_lost=semantics)
         ok = game.initially_winning(result.winning, semantics)
-    except MemoryError:
-        raise _out_of_memory() from None
     return CheckResult(ok, time.monotonic() - started, result.stats)
 
 
@@ -106,14 +123,12 @@ def synthesize(
 ) -> Controller | None:
     """An explicit Mealy controller for ``spec``, or None when it is unrealizable."""
     sym, game, limits = _game(spec, semantics, timeout, progress, options)
-    try:
+    with memory_guard():
         result = game.solve(keep_layers=True)
         if not game.initially_winning(result.winning, semantics):
             return None
         limits.report("extracting the explicit controller")
         return extract_strategy(sym, result, semantics, limits, max_nodes)
-    except MemoryError:
-        raise _out_of_memory() from None
 
 
 def counterstrategy(
@@ -126,11 +141,9 @@ def counterstrategy(
 ) -> Controller | None:
     """The environment's winning strategy for an unrealizable ``spec``; None if realizable."""
     sym, game, limits = _game(spec, semantics, timeout, progress, options)
-    try:
+    with memory_guard():
         result = game.solve()
         if game.initially_winning(result.winning, semantics):
             return None
         limits.report("extracting the counter-strategy")
         return extract_counterstrategy(sym, result.winning, semantics, limits, max_nodes)
-    except MemoryError:
-        raise _out_of_memory() from None

@@ -17,3 +17,15 @@ def positive_seconds(value: str) -> float:
         raise argparse.ArgumentTypeError(
             f"must be a positive, finite number of seconds, not {value}")
     return seconds
+
+
+def positive_megabytes(value: str) -> int:
+    """A positive whole number of megabytes (``--memory-limit``)."""
+    try:
+        mb = int(value)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"'{value}' is not a whole number of megabytes"
+                                         ) from None
+    if mb <= 0:
+        raise argparse.ArgumentTypeError(f"must be a positive number of megabytes, not {value}")
+    return mb

@@ -7,16 +7,17 @@ Each parses its options, calls :func:`gaitc.check`, :func:`gaitc.synthesize`,
 from __future__ import annotations
 
 import argparse
+import functools
 import json
-import resource
 import sys
 import time
 from typing import Any
 
 import gaitc
 from diagnostics import GaitcError, SolverError, UsageError, render_error
-from gaitc.commands.arguments import positive_seconds
+from gaitc.commands.arguments import positive_megabytes, positive_seconds
 from gaitc.exitcodes import ExitCode, exit_code_help
+from gaitc.isolation import HardLimits, cudd_budget_mb, run_limited
 from gaitc.solving import SOLVERS, recorded_encoding
 from gr1.controller import load_controller
 from ltlcompiler.encoding import ENCODINGS
@@ -51,10 +52,11 @@ def _common(p: argparse.ArgumentParser, solver: bool = True) -> None:
     p.add_argument("--solver", choices=SOLVERS, default="embedded")
     p.add_argument("--slugs", metavar="PATH", help="the SLUGS binary (else $SLUGS or PATH)")
     p.add_argument("--timeout", type=positive_seconds, metavar="SECONDS",
-                   help="stop after this long")
-    p.add_argument(
-        "--memory-limit", type=int, metavar="MB", help="stop when the solver needs more memory"
-    )
+                   help="stop after this long (exit 4; the solver is killed at most "
+                   "half a second later)")
+    p.add_argument("--memory-limit", type=positive_megabytes, metavar="MB",
+                   help="the most memory the solver process may take (exit 4 when it needs "
+                   "more)")
 
 
 def register(sub: Any) -> None:
@@ -127,22 +129,13 @@ def _progress() -> Progress | None:
     return show
 
 
-def _limit_memory(args: argparse.Namespace) -> None:
-    mb = getattr(args, "memory_limit", None)
-    if mb is None:
-        return
-    if mb <= 0:
-        raise UsageError("--memory-limit must be a positive number of megabytes")
-    limit = mb * 1024 * 1024
-    try:
-        _, hard = resource.getrlimit(resource.RLIMIT_AS)
-        resource.setrlimit(resource.RLIMIT_AS, (limit, hard))
-    except (ValueError, OSError) as err:
-        raise UsageError(f"cannot set a memory limit of {mb} MB: {err}") from None
+def _limits(args: argparse.Namespace) -> HardLimits:
+    return HardLimits(args.timeout, getattr(args, "memory_limit", None))
 
 
 def _options(args: argparse.Namespace) -> Options:
-    return Options(memory_mb=getattr(args, "memory_limit", None))
+    mb = getattr(args, "memory_limit", None)
+    return Options(memory_mb=None if mb is None else cudd_budget_mb(mb))
 
 
 def _solver_args(args: argparse.Namespace) -> dict[str, Any]:
@@ -152,24 +145,19 @@ def _solver_args(args: argparse.Namespace) -> dict[str, Any]:
 
 # ---------------------------------------------------------------- commands
 def run_check(args: argparse.Namespace) -> int:
-    _limit_memory(args)
     worst = ExitCode.OK
     for path in args.specs:
         started = time.monotonic()
         record: dict[str, Any] = {"file": path, "semantics": _semantics(args)}
         try:
-            verdict = gaitc.check(gaitc.load(path, args.encoding), **_solver_args(args))
+            _options(args)  # a memory limit too small fails here, before the fork
+            verdict = run_limited(functools.partial(_check_one, path, args), _limits(args))
             record.update(
                 verdict="realizable" if verdict.realizable else "unrealizable",
                 seconds=round(verdict.seconds, 3),
                 solver=args.solver,
             )
             code = ExitCode.OK if verdict.realizable else ExitCode.UNREALIZABLE
-        except MemoryError:
-            err: GaitcError = SolverError("synthesis ran out of memory (see --memory-limit)")
-            record.update(verdict="error", error=str(err))
-            code = ExitCode.SOLVER
-            print(render_error(err), file=sys.stderr)
         except UsageError:
             raise
         except GaitcError as err:
@@ -185,18 +173,26 @@ def run_check(args: argparse.Namespace) -> int:
     return worst
 
 
+def _check_one(path: str, args: argparse.Namespace) -> gaitc.Verdict:
+    """Load and decide one spec (in the limited child process when there are limits; CUDD's
+    share of the memory limit is what is left once the spec is loaded)."""
+    spec = gaitc.load(path, args.encoding)
+    return gaitc.check(spec, **_solver_args(args))
+
+
 _SEVERITY = (ExitCode.OK, ExitCode.UNREALIZABLE, ExitCode.USER, ExitCode.SOLVER)
 
 
 def _solve(args: argparse.Namespace, kind: str) -> tuple[gaitc.Spec, gaitc.Synthesis]:
-    _limit_memory(args)
-    spec = gaitc.load(args.spec, args.encoding)
     make = gaitc.synthesize if kind == "strategy" else gaitc.counterstrategy
-    try:
-        found = make(spec, verify=not getattr(args, "no_verify", False), **_solver_args(args))
-    except MemoryError:
-        raise SolverError("synthesis ran out of memory (see --memory-limit)") from None
-    return spec, found
+    _options(args)  # a memory limit too small fails here, before the fork
+
+    def work() -> tuple[gaitc.Spec, gaitc.Synthesis]:
+        spec = gaitc.load(args.spec, args.encoding)
+        return spec, make(spec, verify=not getattr(args, "no_verify", False),
+                          **_solver_args(args))
+
+    return run_limited(work, _limits(args))
 
 
 def run_synth(args: argparse.Namespace) -> int:

@@ -1,0 +1,122 @@
+"""``--timeout`` and ``--memory-limit`` hold on every kind of input the solver reads (issue 9).
+
+Each case runs gaitc as a user does, in its own process, on a task far too big for the
+limit: the thesis-style 30 x 30 grid of bench/bench_solver.py in both encodings and as a
+.slugsin file, and robot A's synthesis (limited during extraction and verification). The
+command must end with exit 4, one message and its JSON record, within one second of the
+time limit (the record's own clock; the process as a whole also pays Python's start-up),
+and below the memory limit (the largest resident size of any process it started).
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import resource
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+import gaitc
+
+ROOT = Path(__file__).resolve().parent.parent
+GRID = ROOT / "tests" / "data" / "limits" / "grid30_h5.gait"
+ROBOT_A = ROOT / "specs" / "thesis_robot_a.gait"
+STARTUP = 1.5  # seconds a loaded CI machine may need to start Python and import gaitc
+
+
+def gaitc_run(*argv: str, cwd: Path | None = None) -> tuple[int, str, str, float]:
+    started = time.monotonic()
+    proc = subprocess.run([sys.executable, "-m", "gaitc", *argv], capture_output=True,
+                          text=True, cwd=cwd, timeout=120, check=False)
+    return proc.returncode, proc.stdout, proc.stderr, time.monotonic() - started
+
+
+@pytest.fixture(scope="module")
+def grid_slugsin(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    path = tmp_path_factory.mktemp("limits") / "grid30_h5.slugsin"
+    path.write_text(gaitc.emit(gaitc.load(GRID, "binary"), "slugsin"), encoding="utf-8")
+    return path
+
+
+def _inputs(grid_slugsin: Path) -> dict[str, list[str]]:
+    return {"onehot": [str(GRID), "--encoding", "onehot"],
+            "binary": [str(GRID), "--encoding", "binary"],
+            "slugsin": [str(grid_slugsin)]}
+
+
+@pytest.mark.parametrize("kind", ["onehot", "binary", "slugsin"])
+def test_timeout_stops_check_within_a_second(kind: str, grid_slugsin: Path) -> None:
+    code, out, err, wall = gaitc_run("check", *_inputs(grid_slugsin)[kind], "--timeout", "1",
+                                     "--json")
+    assert code == 4, err
+    record = json.loads(out)
+    assert record["verdict"] == "error"
+    assert record["error"] == "synthesis stopped after the time limit of 1 s"
+    assert record["seconds"] <= 2.0
+    assert wall <= 2.0 + STARTUP
+    assert err.count("error:") == 1
+
+
+def test_timeout_stops_synthesis_and_writes_nothing(tmp_path: Path) -> None:
+    out_file = tmp_path / "a.json"
+    code, _, err, wall = gaitc_run("synth", str(ROBOT_A), "--timeout", "0.5", "-o",
+                                   str(out_file))
+    assert code == 4, err
+    assert "time limit of 0.5 s" in err
+    assert wall <= 1.5 + STARTUP
+    assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize("kind", ["onehot", "binary"])
+def test_memory_limit_is_exit_4_below_the_bound(kind: str, grid_slugsin: Path) -> None:
+    before = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss
+    code, out, err, _ = gaitc_run("check", *_inputs(grid_slugsin)[kind], "--memory-limit",
+                                  "100", "--timeout", "60", "--json")
+    peak_mb = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024
+    assert code == 4, err
+    record = json.loads(out)
+    assert record["error"] == "synthesis ran out of memory"
+    assert "hint: raise --memory-limit" in err
+    if before / 1024 < 100:  # else an earlier child of this test process set the maximum
+        assert peak_mb <= 100
+
+
+def test_a_memory_limit_below_gaitc_itself_says_how_much_is_needed() -> None:
+    code, out, err, _ = gaitc_run("check", str(ROBOT_A), "--memory-limit", "20", "--json")
+    assert code == 4
+    record = json.loads(out)
+    assert record["error"].startswith("a memory limit of 20 MB is too small: gaitc itself "
+                                      "takes ")
+    assert "hint: give --memory-limit at least" in err
+
+
+def test_a_sufficient_memory_limit_changes_nothing(tmp_path: Path) -> None:
+    code, out, err, _ = gaitc_run("synth", str(ROBOT_A), "--memory-limit", "2000",
+                                  "--timeout", "100", "-o", str(tmp_path / "a.json"))
+    assert code == 0, err
+    assert "realizable" in out and "verified" in out
+    assert json.loads((tmp_path / "a.json").read_text(encoding="utf-8"))["nodes"]
+
+
+@pytest.mark.parametrize(("value", "message"), [
+    ("0", "must be a positive number of megabytes, not 0"),
+    ("-5", "must be a positive number of megabytes, not -5"),
+    ("1.5", "'1.5' is not a whole number of megabytes"),
+    ("lots", "'lots' is not a whole number of megabytes"),
+])
+def test_bad_memory_limits_are_usage_errors(value: str, message: str) -> None:
+    code, _, err, _ = gaitc_run("check", str(ROBOT_A), f"--memory-limit={value}")
+    assert code == 2
+    assert message in err
+
+
+def test_no_limit_runs_in_process() -> None:
+    """Without limits nothing is forked (the library's answer is the command's)."""
+    from gaitc.isolation import HardLimits, run_limited
+
+    assert run_limited(os.getpid, HardLimits()) == os.getpid()
+    assert run_limited(os.getpid, HardLimits(seconds=10)) != os.getpid()

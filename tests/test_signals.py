@@ -1,0 +1,88 @@
+"""No output file is ever half-written, unverified or of the wrong mode, whatever signal
+ends gaitc and whenever it comes (issue 9).
+
+``gaitc synth`` runs on thesis robot B (about 2.5 s: start-up, lowering, solving, extraction,
+verification, writing), with and without ``--timeout`` (with it, the solver runs in a child
+process that must die with its parent). SIGINT, SIGTERM and SIGKILL arrive at moments
+spread over the whole run. Afterwards the controller file is either absent or complete,
+verified and of the ordinary mode; SIGINT and SIGTERM end with one line and 130 or 143 and
+leave no temporary file; no process of the run outlives it.
+"""
+
+from __future__ import annotations
+
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+import gaitc
+from gr1.controller import load_controller
+
+ROOT = Path(__file__).resolve().parent.parent
+ROBOT_B = ROOT / "specs" / "thesis_robot_b.gait"
+DELAYS = (0.4, 1.0, 1.6, 2.2)
+ENDINGS = {signal.SIGINT: (130, "gaitc: interrupted"),
+           signal.SIGTERM: (143, "gaitc: terminated"),
+           signal.SIGKILL: (-signal.SIGKILL, "")}
+
+
+def _umask() -> int:
+    mask = os.umask(0)
+    os.umask(mask)
+    return mask
+
+
+def _survivors(marker: str) -> list[str]:
+    """Processes whose command line names ``marker`` (the run's unique output path)."""
+    found = []
+    for entry in Path("/proc").iterdir():
+        if not entry.name.isdigit():
+            continue
+        try:
+            cmdline = (entry / "cmdline").read_bytes().decode("utf-8", "replace")
+        except OSError:
+            continue
+        if marker in cmdline:
+            found.append(entry.name)
+    return found
+
+
+@pytest.mark.parametrize("limited", [False, True], ids=["in-process", "with-timeout"])
+@pytest.mark.parametrize("delay", DELAYS)
+@pytest.mark.parametrize("signum", list(ENDINGS), ids=[s.name for s in ENDINGS])
+def test_a_signal_at_any_moment_leaves_no_bad_file(tmp_path: Path, signum: signal.Signals,
+                                                  delay: float, limited: bool) -> None:
+    out = tmp_path / "robot_b.controller.json"
+    argv = [sys.executable, "-m", "gaitc", "synth", str(ROBOT_B), "-o", str(out)]
+    if limited:
+        argv += ["--timeout", "60"]
+    proc = subprocess.Popen(argv, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
+                            text=True)
+    time.sleep(delay)
+    proc.send_signal(signum)
+    _, err = proc.communicate(timeout=60)
+    code, line = ENDINGS[signum]
+    if proc.returncode == 0:  # it finished first
+        assert out.exists()
+    else:
+        assert proc.returncode == code, err
+        assert err.strip() == line
+    if out.exists():
+        assert out.stat().st_mode & 0o777 == 0o666 & ~_umask()
+        spec = gaitc.load(ROBOT_B)
+        assert gaitc.verify(spec, load_controller(str(out), spec.gr1)).ok
+    leftovers = sorted(p.name for p in tmp_path.iterdir() if p != out)
+    if signum == signal.SIGKILL:  # nothing can clean up after SIGKILL: at most a temp file
+        assert all(name.startswith(f".{out.name}.") and name.endswith(".tmp")
+                   for name in leftovers)
+    else:
+        assert leftovers == []
+    deadline = time.monotonic() + 2.0
+    while _survivors(str(out)) and time.monotonic() < deadline:
+        time.sleep(0.05)
+    assert _survivors(str(out)) == []
