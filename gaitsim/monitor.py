@@ -3,15 +3,17 @@
 Independent of the controller that produced the run: it sees only variable valuations.
 Safety clauses (init, trans) must hold at every step; liveness clauses (□◇, eqs. 3.7 and
 the liveness part of GR(1), Bloem et al. JCSS 2012) are counted, since a finite run cannot
-violate them.  Clauses are compiled to Python closures once, with results cached per pair of
-states, so checking costs little per step; :func:`gr1.evaluation.evaluate` is the
-reference semantics the compiled closures agree with.
+violate them.  Clauses are compiled once to nested Python closures (built by a fold over the
+formula, no ``eval``), with results cached per pair of states, so checking costs little per
+step; :func:`gr1.evaluation.evaluate` is the reference semantics the closures agree with.
 """
 
 from __future__ import annotations
 
+import operator
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
+from typing import Any
 
 from diagnostics import FormulaError, Span
 from gr1.evaluation import evaluate
@@ -30,9 +32,10 @@ from gr1.formula import (
     Term,
     Var,
     Xor,
+    atoms,
 )
 from gr1.spec import SECTIONS, Clause, GR1Spec
-from gr1.traversal import Node, Text, fold, join_text, separated
+from gr1.traversal import Node, fold, height
 
 Values = tuple[int, ...]
 Check = Callable[[Sequence[int]], bool]
@@ -67,8 +70,21 @@ def clause_rule(clause: Clause, section: str, index: int) -> str:
     return f"{section}[{index}]"
 
 
+Fn = Callable[[Sequence[int]], Any]  # a compiled term or formula: its value on ``v``
+
+#: Formulas deeper than this are evaluated by :func:`gr1.evaluation.evaluate` (iterative)
+#: instead: a compiled closure calls one Python frame per level.
+MAX_COMPILED_DEPTH = 200
+
+_COMPARE: Mapping[str, Callable[[int, int], bool]] = {
+    "=": operator.eq, "!=": operator.ne, "<": operator.lt, "<=": operator.le,
+    ">": operator.gt, ">=": operator.ge,
+}
+
+
 class _Compiler:
-    """Turns a next-free formula into Python source over a tuple ``v`` of current+next values."""
+    """Turns a formula into nested closures over a tuple ``v`` of current+next values (no
+    source text and no ``eval``: a fold builds each closure from its operands' closures)."""
 
     def __init__(self, index: Mapping[str, int], width: int) -> None:
         self.index = index
@@ -79,43 +95,71 @@ class _Compiler:
             raise FormulaError(f"clause mentions '{name}', which the spec does not declare")
         return self.index[name] + (self.width if primed else 0)
 
-    def expr(self, e: Expr) -> str:
-        """Python source for ``e`` (a fold, so any depth; shared nodes written out again)."""
-        return join_text(fold(e, self._source, _operands))
+    def closure(self, e: Expr) -> Fn:
+        fn: Fn = fold(e, self._build, _operands)
+        return fn
 
-    def _source(self, node: Node, parts: list[Text]) -> Text:
+    def _build(self, node: Node, parts: list[Fn]) -> Fn:
         if isinstance(node, Const):
-            return "True" if node.value else "False"
+            value = node.value
+            return lambda v: value
         if isinstance(node, Var):
-            return f"(v[{self.slot(node.name, node.primed)}] != 0)"
+            i = self.slot(node.name, node.primed)
+            return lambda v: v[i] != 0
         if isinstance(node, IntConst):
-            return repr(node.value)
+            number = node.value
+            return lambda v: number
         if isinstance(node, IntVar):
-            return f"v[{self.slot(node.name, node.primed)}]"
-        if isinstance(node, Add):
-            return ("(", parts[0], " + ", parts[1], ")")
+            i = self.slot(node.name, node.primed)
+            return lambda v: v[i]
         if isinstance(node, Not):
-            return ("(not ", parts[0], ")")
+            (a,) = parts
+            return lambda v: not a(v)
         if isinstance(node, (And, Or)):
-            if not parts:  # the empty conjunction holds, the empty disjunction does not
-                return "True" if isinstance(node, And) else "False"
-            word = " and " if isinstance(node, And) else " or "
-            return ("(", separated(word, parts), ")")
-        if isinstance(node, Xor):
-            return ("(", parts[0], " != ", parts[1], ")")
-        if isinstance(node, Iff):
-            return ("(", parts[0], " == ", parts[1], ")")
-        if isinstance(node, Implies):
-            return ("((not ", parts[0], ") or ", parts[1], ")")
-        if isinstance(node, Compare):
-            return ("(", parts[0], f" {_OPS[node.op]} ", parts[1], ")")
+            return _all(parts) if isinstance(node, And) else _any(parts)
+        if isinstance(node, (Add, Xor, Iff, Implies, Compare)):
+            a, b = parts
+            if isinstance(node, Add):
+                return lambda v: a(v) + b(v)
+            if isinstance(node, Xor):
+                return lambda v: a(v) != b(v)
+            if isinstance(node, Iff):
+                return lambda v: a(v) == b(v)
+            if isinstance(node, Implies):
+                return lambda v: not a(v) or b(v)
+            compare = _COMPARE[node.op]
+            return lambda v: compare(a(v), b(v))
         if isinstance(node, Term):
             raise TypeError(f"not a term: {node!r}")
         raise TypeError(f"cannot compile {type(node).__name__}")
 
 
+def _all(parts: Sequence[Fn]) -> Fn:
+    if not parts:  # the empty conjunction holds
+        return lambda v: True
+    if len(parts) == 1:
+        return lambda v: bool(parts[0](v))
+    if len(parts) == 2:
+        a, b = parts
+        return lambda v: bool(a(v)) and bool(b(v))
+    items = tuple(parts)
+    return lambda v: all(p(v) for p in items)
+
+
+def _any(parts: Sequence[Fn]) -> Fn:
+    if not parts:  # the empty disjunction does not
+        return lambda v: False
+    if len(parts) == 1:
+        return lambda v: bool(parts[0](v))
+    if len(parts) == 2:
+        a, b = parts
+        return lambda v: bool(a(v)) or bool(b(v))
+    items = tuple(parts)
+    return lambda v: any(p(v) for p in items)
+
+
 def _operands(node: Node) -> Sequence[Node]:
-    """What :class:`_Compiler` writes inside ``node``: operands of operators and sums."""
+    """What :class:`_Compiler` builds into ``node``: operands of operators and sums."""
     if isinstance(node, (Not, And, Or, Xor, Iff, Implies, Compare, Add)):
         return node.children()
     return ()
@@ -124,25 +168,25 @@ def _operands(node: Node) -> Sequence[Node]:
 def compile_formula(expr: Expr, variables: Sequence[str]) -> Check:
     """A closure deciding ``expr`` on ``current + next`` values laid out as ``variables`` twice.
 
-    Agrees with :func:`gr1.evaluation.evaluate`; falls back to it for formulas too deep
-    for Python's compiler.
+    Agrees with :func:`gr1.evaluation.evaluate`, which it falls back to for formulas deeper
+    than :data:`MAX_COMPILED_DEPTH`.
     """
     index = {name: i for i, name in enumerate(variables)}
     width = len(variables)
-    try:
-        source = _Compiler(index, width).expr(expr)
-        code = compile(f"lambda v: {source}", "<gaitsim.monitor>", "eval")
-        fn: Check = eval(code, {"__builtins__": {}})
-        return fn
-    except (RecursionError, SyntaxError, MemoryError, TypeError):
-        names = list(variables)
+    compiler = _Compiler(index, width)
+    if height(expr) <= MAX_COMPILED_DEPTH:
+        fn = compiler.closure(expr)
+        return lambda v: bool(fn(v))
+    for name, primed in atoms(expr):
+        compiler.slot(name, primed)  # an undeclared name fails here, as when compiled
+    names = list(variables)
 
-        def slow(v: Sequence[int]) -> bool:
-            valuation = {name: v[i] for i, name in enumerate(names)}
-            valuation.update({name + "'": v[width + i] for i, name in enumerate(names)})
-            return evaluate(expr, valuation)
+    def slow(v: Sequence[int]) -> bool:
+        valuation = {name: v[i] for i, name in enumerate(names)}
+        valuation.update({name + "'": v[width + i] for i, name in enumerate(names)})
+        return evaluate(expr, valuation)
 
-        return slow
+    return slow
 
 
 @dataclass(frozen=True)

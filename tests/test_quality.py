@@ -69,3 +69,18 @@ def test_lark_stays_in_the_parser() -> None:
                 if line.strip().startswith(("import lark", "from lark")):
                     offenders.append(f"{path.relative_to(ROOT)}:{number}")
     assert not offenders, "\n".join(offenders)
+
+
+def test_no_eval_or_exec_anywhere() -> None:
+    """Issue 9: no ``eval``, ``exec`` or ``compile`` of source text in the code base."""
+    import ast
+
+    found = []
+    for package in [*PACKAGES, "bench", "tools"]:
+        for path in sorted((ROOT / package).rglob("*.py")):
+            tree = ast.parse(path.read_text(encoding="utf-8"))
+            for node in ast.walk(tree):
+                if (isinstance(node, ast.Call) and isinstance(node.func, ast.Name)
+                        and node.func.id in ("eval", "exec", "compile")):
+                    found.append(f"{path.relative_to(ROOT)}:{node.lineno}: {node.func.id}")
+    assert found == []
