@@ -16,7 +16,6 @@ which may run in parallel (:mod:`analysis.pool`).
 from __future__ import annotations
 
 import itertools
-import math
 import time
 from dataclasses import dataclass, field
 from typing import Any, Final
@@ -211,7 +210,7 @@ def resilience(model: Model, encoding: str, file: str = "", semantics: str = "de
             minimal, maximal = lattice.minimal_fatal, lattice.maximal_survivable
         report = _with(report, minimal_fatal_sets=minimal, maximal_survivable_sets=maximal,
                        single_points_of_failure=tuple(s[0] for s in minimal if len(s) == 1))
-        k, defeating = _any_time(model, encoding, candidates, pool, semantics)
+        k, defeating = _any_time(model, encoding, candidates, pool, semantics, minimal)
         report = _with(report, any_time_k=k, defeating_sets=defeating)
         report = _health(report, model, encoding, semantics, method, health_bound, pool,
                          notes)
@@ -244,11 +243,13 @@ def _ordered(sets: tuple[frozenset[str], ...], elements: list[str]
     return tuple(sorted(items, key=lambda t: (len(t), [rank[x] for x in t])))
 
 
-def _any_time(model: Model, encoding: str, legs: list[str], pool: Pool, semantics: str
+def _any_time(model: Model, encoding: str, legs: list[str], pool: Pool, semantics: str,
+              minimal_fatal: tuple[tuple[str, ...], ...] = ()
               ) -> tuple[int, tuple[tuple[str, ...], ...]]:
     """The largest k with any k legs breaking survived (one game per k), and the sets of
-    k + 1 breakable legs that defeat the robot: one game per set when there are few, else
-    one parametric game over which legs may break, read for the sets of exactly k + 1."""
+    k + 1 breakable legs that defeat the robot: one game per candidate set when there are
+    few (:func:`defeat_candidates`), else one parametric game over which legs may break,
+    read for the sets of exactly k + 1."""
     # The broken flags on top of the BDD order: centipede24's k = 2 game takes 17 s there,
     # 266 s in the solver's own order.
     first = tuple(broken_name(leg) for leg in legs)
@@ -257,12 +258,32 @@ def _any_time(model: Model, encoding: str, legs: list[str], pool: Pool, semantic
         k += 1
     if k == len(legs):
         return k, ()
-    if math.comb(len(legs), k + 1) <= DIRECT_DEFEATS:
-        combos = list(itertools.combinations(legs, k + 1))
+    combos = defeat_candidates(model, legs, k + 1, minimal_fatal)
+    if len(combos) <= DIRECT_DEFEATS:
         answers = pool.specs([anytime_spec(model, encoding, k + 1, c) for c in combos], first)
         return k, tuple(c for c, ok in zip(combos, answers, strict=True) if not ok)
     pool.calls += 1
     return k, _defeating(model, encoding, legs, k + 1, semantics)
+
+
+def defeat_candidates(model: Model, legs: list[str], size: int,
+                      minimal_fatal: tuple[tuple[str, ...], ...],
+                      prune_above: int = DIRECT_DEFEATS) -> list[tuple[str, ...]]:
+    """The sets of ``size`` legs that may defeat the robot by breaking during the run.
+
+    A set that survives failing from the start also survives breaking during the run: the
+    robot plays its strategy for the failed legs, which never uses them, and the
+    compiler's own rules give the environment nothing more when a leg merely breaks. So
+    when the spec has no assumptions or guarantees of its own (which could speak of a
+    broken leg's health), only the sets that hold a minimal fatal set are candidates; else,
+    or when there are at most ``prune_above`` sets anyway, every set is.
+    ``tests/test_resilience_methods.py`` solves the sets pruned away on the small specs.
+    """
+    combos = list(itertools.combinations(legs, size))
+    if model.assumptions or model.guarantees or len(combos) <= prune_above:
+        return combos
+    fatal = [frozenset(s) for s in minimal_fatal]
+    return [c for c in combos if any(f <= frozenset(c) for f in fatal)]
 
 
 def _defeating(model: Model, encoding: str, legs: list[str], size: int, semantics: str

@@ -8,6 +8,7 @@ Each call builds a fresh :class:`~solver.symbolic.SymbolicSpec`, solves the game
 from __future__ import annotations
 
 import time
+import weakref
 from collections.abc import Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass, field
@@ -79,7 +80,16 @@ def _game(
     _check_env_trans(spec)
     limits = Limits(timeout, progress) if started is None else Limits(timeout, progress, started)
     sym = _symbolic(spec, options, limits)
-    limits.memory = sym.check_memory
+    # A weak reference: sym already holds limits.check, and a cycle would leave the BDD
+    # manager to the garbage collector, which may free it before its nodes.
+    check_memory = weakref.WeakMethod(sym.check_memory)
+
+    def memory() -> None:
+        method = check_memory()
+        if method is not None:
+            method()
+
+    limits.memory = memory
     return sym, Game(sym, limits), limits
 
 
