@@ -27,17 +27,19 @@ Progress = Callable[[int, int, float], None]  # (done, total, seconds so far)
 
 def variant_realizable(model: Model, encoding: str, semantics: str) -> bool:
     """Lower ``model`` and decide it (the unit of work sent to workers)."""
-    from solver import synthesis
-
-    return synthesis.check(lower(model, encoding), semantics).realizable
+    return spec_realizable(lower(model, encoding), semantics)
 
 
 def spec_realizable(spec: GR1Spec, semantics: str, first: tuple[str, ...] = ()) -> bool:
-    """Decide a ready-made spec, ``first`` pinned to the top of the BDD order."""
+    """Decide a ready-made spec, ``first`` pinned to the top of the BDD order. The static
+    order, without the solver's race (solver.portfolio): variants of a robot's task are
+    the family it is tuned for, and the workers of --jobs and --dask already fill the
+    machine."""
     from solver import synthesis
     from solver.symbolic import Options
 
-    return synthesis.check(spec, semantics, options=Options(first=first)).realizable
+    options = Options(first=first, reordering=False)
+    return synthesis.check(spec, semantics, options=options).realizable
 
 
 @dataclass

@@ -15,32 +15,29 @@ given a limit, the run therefore happens in a forked child process:
 Either way the command ends with a :class:`~diagnostics.SolverError` (exit 4, a message and
 its JSON record), never with a half-finished file: the child writes nothing, and the
 parent writes output files only after the child has answered. The child dies with the
-parent (``PR_SET_PDEATHSIG``), and Ctrl-C kills it before the parent exits with 130.
+parent, and Ctrl-C kills it before the parent exits with 130
+(:mod:`diagnostics.processes`).
 """
 
 from __future__ import annotations
 
-import ctypes
-import multiprocessing
 import os
 import resource
 import signal
 import sys
 import time
-import traceback
 from collections.abc import Callable
 from dataclasses import dataclass
-from multiprocessing.connection import Connection
 from typing import Any, Final, TypeVar
 
 from diagnostics import GaitcError, SolverError
+from diagnostics.processes import Outcome, can_fork, first_success
 
 T = TypeVar("T")
 
 GRACE: Final = 0.5  # seconds past the time limit before the child is killed
 MIN_ROOM_MB: Final = 32  # the least memory a solver run may have beyond gaitc's own
 CUDD_SHARE: Final = 0.75  # of that room, what CUDD's tables may take (the rest: Python)
-_PR_SET_PDEATHSIG: Final = 1
 
 
 @dataclass(frozen=True)
@@ -83,90 +80,43 @@ def cudd_budget_mb(memory_mb: int) -> int:
 def run_limited(work: Callable[[], T], limits: HardLimits) -> T:
     """``work()``, in a child process bounded by ``limits`` when there are any (and the
     platform can fork); its exceptions are raised here as they were raised there."""
-    if not limits.any or not hasattr(os, "fork"):
+    if not limits.any or not can_fork():
         return work()
-    context = multiprocessing.get_context("fork")
-    receiver, sender = context.Pipe(duplex=False)
-    child = context.Process(target=_child, args=(work, limits, sender), daemon=True)
-    child.start()
-    sender.close()
-    try:
-        outcome = _wait(child, receiver, limits)
-    finally:
-        if child.is_alive():
-            child.kill()
-        child.join()
-        receiver.close()
-    answer: T = _unpack(outcome)
-    return answer
-
-
-def _wait(child: Any, receiver: Connection, limits: HardLimits) -> tuple[Any, ...]:
     deadline = None if limits.seconds is None else time.monotonic() + limits.seconds + GRACE
-    while True:
-        left = None if deadline is None else max(0.0, deadline - time.monotonic())
-        step = 0.2 if left is None else min(0.2, left)
-        try:
-            if receiver.poll(step):
-                outcome: tuple[Any, ...] = receiver.recv()
-                return outcome
-        except EOFError:
-            pass
-        if not child.is_alive() and not receiver.poll(0):
-            return ("died", child.exitcode)
-        if deadline is not None and time.monotonic() >= deadline:
-            return ("timeout", limits.seconds)
 
-
-def _unpack(outcome: tuple[Any, ...]) -> Any:
-    kind = outcome[0]
-    if kind == "ok":
-        return outcome[1]
-    if kind == "raise":
-        err, text = outcome[1], outcome[2]
-        if not isinstance(err, GaitcError) and os.environ.get("GAITC_DEBUG"):
-            print(text, file=sys.stderr, end="")
-        raise err
-    if kind == "timeout":
-        raise SolverError(f"synthesis stopped after the time limit of {outcome[1]:g} s",
-                          hint="raise --timeout, or shrink the specification")
-    code = outcome[1]
-    if code in (1, -signal.SIGKILL):  # CUDD's exit(1) on a failed malloc; the OOM killer
-        raise SolverError("synthesis ran out of memory",
-                          hint="raise --memory-limit, or shrink the specification (grid, "
-                               "health levels, encoding)")
-    raise SolverError(f"the solver process ended without an answer (exit status {code})")
-
-
-def _child(work: Callable[[], Any], limits: HardLimits, sender: Connection) -> None:
-    signal.signal(signal.SIGINT, signal.SIG_IGN)  # the parent handles Ctrl-C and kills us
-    signal.signal(signal.SIGTERM, signal.SIG_DFL)
-    _die_with_parent()
-    try:
+    def setup() -> None:
         if limits.memory_mb is not None:
             limit = limits.memory_mb * 2**20
             _, hard = resource.getrlimit(resource.RLIMIT_AS)
             if hard != resource.RLIM_INFINITY:
                 limit = min(limit, hard)
             resource.setrlimit(resource.RLIMIT_AS, (limit, hard))
-        outcome: tuple[Any, ...] = ("ok", work())
-    except MemoryError:
-        outcome = ("raise", SolverError("synthesis ran out of memory", hint=(
-            "raise --memory-limit, or shrink the specification")), "")
-    except BaseException as err:  # every exception goes back to the parent
-        outcome = ("raise", err, traceback.format_exc())
-    try:
-        sender.send(outcome)
-    except Exception as err:  # an answer that cannot be pickled
-        sender.send(("raise", SolverError(f"the solver's answer could not be passed back: "
-                                          f"{type(err).__name__}: {err}"), ""))
-    finally:
-        sender.close()
+
+    _, outcome = first_success([work], deadline, setup)
+    answer: T = _unpack(outcome, limits)
+    return answer
 
 
-def _die_with_parent() -> None:
-    try:
-        libc = ctypes.CDLL(None, use_errno=True)
-        libc.prctl(_PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0)
-    except (OSError, AttributeError):
-        pass  # not Linux: the parent still kills the child when it stops waiting
+def _unpack(outcome: Outcome, limits: HardLimits) -> Any:
+    kind = outcome[0]
+    if kind == "ok":
+        return outcome[1]
+    if kind == "raise":
+        err, text = outcome[1], outcome[2]
+        if isinstance(err, MemoryError):
+            raise _out_of_memory()
+        if not isinstance(err, GaitcError) and os.environ.get("GAITC_DEBUG"):
+            print(text, file=sys.stderr, end="")
+        raise err
+    if kind == "timeout":
+        raise SolverError(f"synthesis stopped after the time limit of {limits.seconds:g} s",
+                          hint="raise --timeout, or shrink the specification")
+    code = outcome[1]
+    if code in (1, -signal.SIGKILL):  # CUDD's exit(1) on a failed malloc; the OOM killer
+        raise _out_of_memory()
+    raise SolverError(f"the solver process ended without an answer (exit status {code})")
+
+
+def _out_of_memory() -> SolverError:
+    return SolverError("synthesis ran out of memory", hint="raise --memory-limit, or shrink "
+                       "the specification (grid, health levels, encoding)")

@@ -41,6 +41,7 @@ class Verdict:
     semantics: str = "default"
     solver: str = "embedded"
     stats: GameStats | None = field(default=None, repr=False)
+    engine: str = ""  # embedded solver: the configuration that answered (solver.portfolio)
 
     def __repr__(self) -> str:
         word = "realizable" if self.realizable else "unrealizable"
@@ -51,6 +52,8 @@ class Verdict:
         rows = [("verdict", "realizable" if self.realizable else "unrealizable"),
                 ("seconds", f"{self.seconds:.3f}"), ("solver", self.solver),
                 ("semantics", self.semantics)]
+        if self.engine:
+            rows.append(("engine", self.engine))
         if self.stats is not None:
             rows.append(("peak BDD nodes", str(self.stats.peak_nodes)))
         return table(f"realizability of {self.file}", rows)
@@ -173,7 +176,7 @@ def check(spec: Spec | GR1Spec, semantics: str = "default", solver: str = "embed
     except MemoryError:
         raise _out_of_memory() from None
     return Verdict(_name(spec), checked.realizable, time.monotonic() - started, semantics,
-                   solver, checked.stats)
+                   solver, checked.stats, checked.engine)
 
 
 def synthesize(spec: Spec | GR1Spec, semantics: str = "default", solver: str = "embedded",

@@ -46,7 +46,7 @@ class Options:
 
     order: str = "guards"  # see solver.ordering.ORDERS
     care: bool = True  # solve modulo the invariants of ρe/ρs (see SymbolicSpec.care)
-    reordering: bool = False  # CUDD dynamic reordering (sifting) while solving
+    reordering: bool | None = None  # CUDD's dynamic group sifting; None: solver.portfolio
     reorder_once: bool = False  # one sifting run after building ρ, then the order is fixed
     partitioned: bool = False  # ρs as clusters with early quantification (slow: see bench)
     recycle: bool = False  # start inner X fixpoints from the previous round's values (slower here)
@@ -106,9 +106,10 @@ class SymbolicSpec:
         self.post_outputs = {b + "'" for b in self.output_bits}
         self._memo: Memo[BDDNode] = {}
         self._build()
-        if self.options.reorder_once:
+        if self.options.reorder_once or self.options.reordering:
             for bit in self.input_bits + self.output_bits:
-                self.bdd.group({bit: 2})
+                self.bdd.group({bit: 2})  # sifting moves a bit and its primed copy together
+        if self.options.reorder_once:
             self.bdd.reorder()
         if self.options.reordering:
             self.bdd.configure(reordering=True)

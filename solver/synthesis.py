@@ -11,7 +11,7 @@ import time
 import weakref
 from collections.abc import Iterator
 from contextlib import contextmanager
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 from diagnostics import FormulaError, SolverError
 from gr1.controller import Controller
@@ -19,6 +19,7 @@ from gr1.formula import atoms
 from gr1.spec import SEMANTICS, GR1Spec
 from solver.counter import extract_counterstrategy
 from solver.game import Game, GameStats, Limits, Progress
+from solver.portfolio import STATIC, solve_chosen
 from solver.strategy import extract_strategy
 from solver.symbolic import Options, SymbolicSpec
 
@@ -30,6 +31,7 @@ class CheckResult:
     realizable: bool
     seconds: float
     stats: GameStats = field(default_factory=GameStats)
+    engine: str = STATIC  # the configuration that answered (solver.portfolio)
 
 
 def _check_semantics(semantics: str) -> None:
@@ -67,18 +69,11 @@ def _out_of_memory() -> SolverError:
     )
 
 
-def _game(
-    spec: GR1Spec,
-    semantics: str,
-    timeout: float | None,
-    progress: Progress | None,
-    options: Options | None,
-    started: float | None = None,
-) -> tuple[SymbolicSpec, Game, Limits]:
+def _game(spec: GR1Spec, semantics: str, options: Options, limits: Limits
+          ) -> tuple[SymbolicSpec, Game]:
     """The symbolic game of ``spec``, after the checks the game relies on."""
     _check_semantics(semantics)
     _check_env_trans(spec)
-    limits = Limits(timeout, progress) if started is None else Limits(timeout, progress, started)
     sym = _symbolic(spec, options, limits)
     # A weak reference: sym already holds limits.check, and a cycle would leave the BDD
     # manager to the garbage collector, which may free it before its nodes.
@@ -90,7 +85,7 @@ def _game(
             method()
 
     limits.memory = memory
-    return sym, Game(sym, limits), limits
+    return sym, Game(sym, limits)
 
 
 def _check_env_trans(spec: GR1Spec) -> None:
@@ -115,12 +110,18 @@ def check(
     options: Options | None = None,
 ) -> CheckResult:
     """Decide realizability of ``spec`` under ``semantics`` ("default" or "robotics")."""
-    started = time.monotonic()
-    _, game, _ = _game(spec, semantics, timeout, progress, options, started)
-    with memory_guard():
-        result = game.solve(stop_if_lost=semantics)
-        ok = game.initially_winning(result.winning, semantics)
-    return CheckResult(ok, time.monotonic() - started, result.stats)
+    limits = Limits(timeout, progress)
+
+    def run(chosen: Options, lim: Limits) -> CheckResult:
+        _, game = _game(spec, semantics, chosen, lim)
+        with memory_guard():
+            result = game.solve(stop_if_lost=semantics)
+            ok = game.initially_winning(result.winning, semantics)
+        return CheckResult(ok, time.monotonic() - limits.started, result.stats)
+
+    _check_semantics(semantics)
+    result, engine = solve_chosen(run, options or Options(), limits)
+    return replace(result, seconds=time.monotonic() - limits.started, engine=engine)
 
 
 def synthesize(
@@ -132,13 +133,18 @@ def synthesize(
     max_nodes: int | None = None,
 ) -> Controller | None:
     """An explicit Mealy controller for ``spec``, or None when it is unrealizable."""
-    sym, game, limits = _game(spec, semantics, timeout, progress, options)
-    with memory_guard():
-        result = game.solve(keep_layers=True)
-        if not game.initially_winning(result.winning, semantics):
-            return None
-        limits.report("extracting the explicit controller")
-        return extract_strategy(sym, result, semantics, limits, max_nodes)
+
+    def run(chosen: Options, lim: Limits) -> Controller | None:
+        sym, game = _game(spec, semantics, chosen, lim)
+        with memory_guard():
+            result = game.solve(keep_layers=True)
+            if not game.initially_winning(result.winning, semantics):
+                return None
+            lim.report("extracting the explicit controller")
+            return extract_strategy(sym, result, semantics, lim, max_nodes)
+
+    _check_semantics(semantics)
+    return solve_chosen(run, options or Options(), Limits(timeout, progress))[0]
 
 
 def counterstrategy(
@@ -150,10 +156,15 @@ def counterstrategy(
     max_nodes: int | None = None,
 ) -> Controller | None:
     """The environment's winning strategy for an unrealizable ``spec``; None if realizable."""
-    sym, game, limits = _game(spec, semantics, timeout, progress, options)
-    with memory_guard():
-        result = game.solve()
-        if game.initially_winning(result.winning, semantics):
-            return None
-        limits.report("extracting the counter-strategy")
-        return extract_counterstrategy(sym, result.winning, semantics, limits, max_nodes)
+
+    def run(chosen: Options, lim: Limits) -> Controller | None:
+        sym, game = _game(spec, semantics, chosen, lim)
+        with memory_guard():
+            result = game.solve()
+            if game.initially_winning(result.winning, semantics):
+                return None
+            lim.report("extracting the counter-strategy")
+            return extract_counterstrategy(sym, result.winning, semantics, lim, max_nodes)
+
+    _check_semantics(semantics)
+    return solve_chosen(run, options or Options(), Limits(timeout, progress))[0]

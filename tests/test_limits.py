@@ -146,12 +146,15 @@ def test_a_solved_game_is_freed_without_the_garbage_collector() -> None:
     import gc
     import weakref
 
+    from solver.game import Limits
+    from solver.symbolic import Options
     from solver.synthesis import _game
 
     spec = gaitc.load(ROOT / "specs" / "patrol_2x2.gait").gr1
     gc.disable()
     try:
-        sym, game, limits = _game(spec, "default", 10.0, None, None)
+        limits = Limits(10.0)
+        sym, game = _game(spec, "default", Options(), limits)
         game.solve()
         limits.check()
         alive = weakref.ref(sym)

@@ -157,6 +157,8 @@ def run_check(args: argparse.Namespace) -> int:
                 seconds=round(verdict.seconds, 3),
                 solver=args.solver,
             )
+            if verdict.engine:
+                record["engine"] = verdict.engine
             code = ExitCode.OK if verdict.realizable else ExitCode.UNREALIZABLE
         except UsageError:
             raise

@@ -1,0 +1,105 @@
+"""The engine's choice of configuration (solver.portfolio): head start, then a race.
+
+The race itself is tested with stand-in solvers (one that never finishes, one that fails,
+one that answers), and for real by forcing the race from the first step on the shipped
+specs: verdicts and controllers must not depend on which configuration answered.
+"""
+
+from __future__ import annotations
+
+import time
+from pathlib import Path
+
+import pytest
+
+import gaitc
+from diagnostics import SolverError
+from solver import portfolio, synthesis
+from solver.game import Limits
+from solver.portfolio import DYNAMIC, STATIC, solve_chosen
+from solver.symbolic import Options
+from verifier.strategy import verify
+
+ROOT = Path(__file__).resolve().parent.parent
+SPECS = ["patrol_2x2", "unrealizable_2x2", "thesis_robot_b", "corridor_hazard"]
+
+
+def _slow_unless_reordering(options: Options, limits: Limits) -> str:
+    while not options.reordering:  # the static configuration never finishes
+        limits.check()
+        time.sleep(0.01)
+    return "answer"
+
+
+def test_a_spec_the_static_order_cannot_decide_is_won_by_the_other_racer(
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setattr(portfolio, "HEAD_START", 0.1)
+    started = time.monotonic()
+    answer, engine = solve_chosen(_slow_unless_reordering, Options(), Limits(timeout=30))
+    assert (answer, engine) == ("answer", DYNAMIC)
+    assert time.monotonic() - started < 10
+
+
+def test_a_quick_spec_is_decided_in_the_head_start_without_a_race() -> None:
+    calls: list[Options] = []
+
+    def run(options: Options, limits: Limits) -> int:
+        calls.append(options)
+        return 7
+
+    assert solve_chosen(run, Options(), Limits()) == (7, STATIC)
+    assert calls == [Options(reordering=False)]
+
+
+def test_an_explicit_choice_or_a_memory_budget_is_never_raced() -> None:
+    seen: list[Options] = []
+
+    def run(options: Options, limits: Limits) -> bool:
+        seen.append(options)
+        return bool(options.reordering)
+
+    assert solve_chosen(run, Options(reordering=True), Limits()) == (True, DYNAMIC)
+    assert solve_chosen(run, Options(memory_mb=100), Limits()) == (False, STATIC)
+    assert [o.reordering for o in seen] == [True, None]
+
+
+def test_the_race_keeps_the_time_limit(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setattr(portfolio, "HEAD_START", 0.1)
+
+    def never(options: Options, limits: Limits) -> None:
+        while True:  # checks only the head start's hand-off, never the time limit
+            if limits.handoff is not None:
+                limits.check()
+            time.sleep(0.05)
+
+    started = time.monotonic()
+    with pytest.raises(SolverError, match="time limit of 1 s"):
+        solve_chosen(never, Options(), Limits(timeout=1))
+    assert time.monotonic() - started < 2.5
+
+
+def test_when_both_racers_fail_the_first_error_is_raised(
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setattr(portfolio, "HEAD_START", 0.0)
+
+    def broken(options: Options, limits: Limits) -> None:
+        limits.check()
+        raise SolverError(f"failed with reordering={options.reordering}")
+
+    with pytest.raises(SolverError, match="failed with reordering=False"):
+        solve_chosen(broken, Options(), Limits())
+
+
+@pytest.mark.parametrize("name", SPECS)
+def test_verdicts_and_controllers_do_not_depend_on_the_winner(
+        name: str, monkeypatch: pytest.MonkeyPatch) -> None:
+    gr1 = gaitc.load(ROOT / "specs" / f"{name}.gait", "binary").gr1
+    alone = synthesis.check(gr1).realizable
+    monkeypatch.setattr(portfolio, "HEAD_START", 0.0)  # race from the first step
+    raced = synthesis.check(gr1)
+    assert raced.realizable == alone
+    assert raced.engine in (STATIC, DYNAMIC)
+    controller = synthesis.synthesize(gr1)
+    assert (controller is not None) == alone
+    if controller is not None:
+        assert verify(gr1, controller).ok
