@@ -19,12 +19,13 @@ import signal
 import time
 import traceback
 from collections.abc import Callable, Sequence
+from multiprocessing import connection
 from multiprocessing.connection import Connection
 from typing import Any, Final
 
 Outcome = tuple[Any, ...]
 _PR_SET_PDEATHSIG: Final = 1
-_POLL: Final = 0.05  # seconds between looks at the children
+_POLL: Final = 0.2  # the longest wait between looks at the children
 
 
 def can_fork() -> bool:
@@ -32,75 +33,109 @@ def can_fork() -> bool:
 
 
 def first_success(works: Sequence[Callable[[], Any]], deadline: float | None = None,
-                  setup: Callable[[], None] | None = None) -> tuple[int, Outcome]:
+                  setup: Callable[[], None] | None = None,
+                  delays: Sequence[float] = (),
+                  relay: Callable[[Any], None] | None = None) -> tuple[int, Outcome]:
     """Run each of ``works`` in its own forked child (after ``setup`` there) and return the
     index and outcome of the first to answer ``ok``; when none does, the first other
-    outcome. ``deadline`` is a :func:`time.monotonic` time: past it, ``("timeout",)``."""
+    outcome. Work ``i`` starts ``delays[i]`` seconds after the first (default 0), or at once
+    when an earlier work has failed, and only while no answer has come. ``deadline`` is a
+    :func:`time.monotonic` time: past it, ``("timeout",)``. What a child passes to
+    :func:`to_parent` is handed to ``relay`` here (progress messages), as it arrives."""
     context = multiprocessing.get_context("fork")
-    children = []
-    for work in works:
-        receiver, sender = context.Pipe(duplex=False)
-        # Not daemonic: a child may race children of its own (solver.portfolio inside the
-        # child of gaitc.isolation); every child is killed and joined below anyway.
-        child = context.Process(target=_child, args=(work, setup, sender), daemon=False)
-        child.start()
-        sender.close()
-        children.append((child, receiver))
+    started_at = time.monotonic()
+    starts = [started_at + (delays[i] if i < len(delays) else 0.0) for i in range(len(works))]
+    children: dict[int, tuple[Any, Connection]] = {}
+    failures: dict[int, Outcome] = {}
+
+    def start_due() -> None:
+        for i, work in enumerate(works):
+            if i not in children and time.monotonic() >= starts[i]:
+                receiver, sender = context.Pipe(duplex=False)
+                # Not daemonic: a child may race children of its own (solver.portfolio in
+                # the child of gaitc.isolation); every child is killed and joined below.
+                child = context.Process(target=_child, args=(work, setup, sender),
+                                        daemon=False)
+                child.start()
+                sender.close()
+                children[i] = (child, receiver)
+
     try:
-        return _wait(children, deadline)
+        while True:
+            start_due()
+            for i, (child, receiver) in children.items():
+                if i in failures:
+                    continue
+                outcome = _outcome(child, receiver, relay)
+                if outcome is not None and outcome[0] == "ok":
+                    return i, outcome
+                if outcome is not None:
+                    failures[i] = outcome
+                    starts = [min(t, time.monotonic()) for t in starts]
+            if len(failures) == len(works):
+                first = min(failures)
+                return first, failures[first]
+            now = time.monotonic()
+            if deadline is not None and now >= deadline:
+                return 0, ("timeout",)
+            wake = [t for i, t in enumerate(starts) if i not in children]
+            if deadline is not None:
+                wake.append(deadline)
+            timeout = max(0.0, min(wake) - now) if wake else None
+            connection.wait([r for i, (_, r) in children.items() if i not in failures],
+                            timeout if timeout is None else min(timeout, _POLL))
     finally:
-        for child, receiver in children:
+        for child, receiver in children.values():
             if child.is_alive():
                 child.kill()
             child.join()
             receiver.close()
 
 
-def _wait(children: list[tuple[Any, Connection]], deadline: float | None
-          ) -> tuple[int, Outcome]:
-    failures: dict[int, Outcome] = {}
+def _outcome(child: Any, receiver: Connection, relay: Callable[[Any], None] | None
+             ) -> Outcome | None:
+    """The child's answer, ``("died", status)`` when it ended without one, else None;
+    messages for :func:`to_parent` on the way are relayed."""
     while True:
-        for index, (child, receiver) in enumerate(children):
-            if index in failures:
-                continue
-            outcome = _outcome(child, receiver)
-            if outcome is None:
-                continue
-            if outcome[0] == "ok":
-                return index, outcome
-            failures[index] = outcome
-        if len(failures) == len(children):
-            first = min(failures)
-            return first, failures[first]
-        if deadline is not None and time.monotonic() >= deadline:
-            return 0, ("timeout",)
-        time.sleep(_POLL)
-
-
-def _outcome(child: Any, receiver: Connection) -> Outcome | None:
-    """The child's answer, ``("died", status)`` when it ended without one, else None."""
-    try:
-        if receiver.poll(0):
-            answer: Outcome = receiver.recv()
-            return answer
-    except EOFError:
-        pass
+        try:
+            if not receiver.poll(0):
+                break
+            item: Outcome = receiver.recv()
+        except EOFError:
+            break
+        if item[0] != "message":
+            return item
+        if relay is not None:
+            relay(item[1])
     if child.is_alive():
         return None
     try:
         if receiver.poll(0):
             late: Outcome = receiver.recv()
-            return late
+            if late[0] != "message":
+                return late
     except EOFError:
         pass
     return ("died", child.exitcode)
 
 
+_parent: Connection | None = None  # in a child: the pipe to the parent
+
+
+def to_parent(message: Any) -> None:
+    """In a child of :func:`first_success`: pass ``message`` to the parent's ``relay``."""
+    if _parent is not None:
+        with contextlib.suppress(OSError, ValueError):
+            _parent.send(("message", message))
+
+
 def _child(work: Callable[[], Any], setup: Callable[[], None] | None,
            sender: Connection) -> None:
+    global _parent
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # the parent handles Ctrl-C and kills us
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
     die_with_parent()
+    _parent = sender
     try:
         if setup is not None:
             setup()

@@ -40,8 +40,11 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
-class Terminated(Exception):
-    """SIGTERM arrived: unwind (temporary files are removed, nothing is half-written)."""
+class Terminated(BaseException):
+    """SIGTERM arrived: unwind (temporary files are removed, nothing is half-written).
+
+    A BaseException, as KeyboardInterrupt is, so that no ``except Exception`` in library
+    code (networkx's generators, for one) swallows it halfway through."""
 
 
 def _terminate(signum: int, frame: object) -> None:

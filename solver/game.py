@@ -22,10 +22,6 @@ from solver.symbolic import BDDNode, SymbolicSpec
 Progress = Callable[[str], None]
 
 
-class HandOff(Exception):
-    """The head start of :mod:`solver.portfolio` is over: stop, the race takes it from here."""
-
-
 @dataclass
 class Limits:
     """A wall-clock deadline, a memory check and a progress callback, checked inside the
@@ -35,13 +31,10 @@ class Limits:
     progress: Progress | None = None
     started: float = field(default_factory=time.monotonic)
     memory: Callable[[], None] | None = None  # raises MemoryError near the memory budget
-    handoff: float | None = None  # a time.monotonic() time: past it, raise HandOff
 
     def check(self) -> None:
         if self.memory is not None:
             self.memory()
-        if self.handoff is not None and time.monotonic() > self.handoff:
-            raise HandOff
         if self.timeout is not None and time.monotonic() - self.started > self.timeout:
             raise SolverError(
                 f"synthesis stopped after the time limit of {self.timeout:g} s",

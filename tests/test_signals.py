@@ -69,6 +69,8 @@ def test_a_signal_at_any_moment_leaves_no_bad_file(tmp_path: Path, signum: signa
     code, line = ENDINGS[signum]
     if proc.returncode == 0:  # it finished first
         assert out.exists()
+    elif proc.returncode == -signum and out.exists():
+        pass  # the signal came after the work, while Python shut down
     else:
         assert proc.returncode == code, err
         assert err.strip() == line
