@@ -7,6 +7,7 @@ the benchmark's job, not a unit test's.
 
 from __future__ import annotations
 
+import os
 import sys
 from dataclasses import replace
 from pathlib import Path
@@ -17,12 +18,14 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
 from bench.families.amba import amba_sections, amba_text  # noqa: E402
+from gaitc.emission import emit  # noqa: E402
 from gaitc.loading import parse  # noqa: E402
 from gr1.spec import GR1Spec  # noqa: E402
 from solver.symbolic import Options  # noqa: E402
 from solver.synthesis import check  # noqa: E402
 
 REORDER = Options(reordering=True)
+LIVE_SLUGS = os.environ.get("SLUGS")
 
 
 def _gr1(text: str) -> GR1Spec:
@@ -72,3 +75,19 @@ def test_out_of_range_sizes_are_refused() -> None:
     for n in (0, 17):
         with pytest.raises(ValueError, match="1 to 16 masters"):
             amba_sections(n)
+
+
+@pytest.mark.slugs
+def test_slugs_agrees_on_small_arbiters_and_on_the_weakened_ones() -> None:
+    from slugs_bridge.runner import find_slugs, run_slugs_check
+
+    binary = find_slugs(LIVE_SLUGS)
+    if binary is None or Path(binary).name != "slugs":
+        pytest.skip("no slugs binary on PATH or in $SLUGS")
+    full = amba_sections(2)
+    cases = [(amba_text(n), True) for n in (1, 2, 3)] + [
+        (replace(full, env_liveness=[line]).text("one assumption"), False)
+        for line in full.env_liveness]
+    for text, expected in cases:
+        slugsin = emit(parse(text, "amba.structuredslugs"), "slugsin")
+        assert run_slugs_check(slugsin, slugs=binary, timeout=600).realizable == expected
