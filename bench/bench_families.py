@@ -20,6 +20,7 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
+import gaitc
 from bench.families import catalogue, timing
 from bench.families.catalogue import Instance
 from bench.families.timing import Outcome
@@ -160,6 +161,7 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument("--amba", type=int, action="append", help="only AMBA with N masters")
     args = parser.parse_args(argv)
     families = tuple(args.family or catalogue.FAMILIES)
+    gaitc.load(str(catalogue.ROOT / "specs" / "patrol_2x2.gait"))  # warm up: grammar, imports
     with tempfile.TemporaryDirectory(prefix="bench-families-") as tmp:
         rows = catalogue.instances(Path(tmp), args.quick, families, args.amba)
         (ablation if args.ablation else table)(rows, args)
