@@ -1,9 +1,8 @@
 """Benchmark of ``gaitc check`` on thesis-style tasks at growing grids and health levels.
 
-Each task scales thesis robot A (specs/thesis_robot_a.gait): eight legs, three gaits per
-direction on two legs each, caches on a lattice of corridors close enough for the legs'
-health (a leg survives health-1 moves, two gait families give 2(health-1) moves in a row),
-hazard sets only off the corridors, goals in two far corners; so every task is realizable.
+Each task scales thesis robot A (bench/families/thesis.py: eight legs, three gaits per
+direction, caches on a lattice of corridors, hazards off them, goals in two far corners);
+every task is realizable.
 Times are CPU seconds (``time.process_time``, best of ``--repeat``), lowering included; the
 table also shows the verdict and CUDD's peak of live nodes, and SLUGS's time when $SLUGS is
 set.  ``--ablation`` compares solver options on a few tasks (docs/performance.md).
@@ -23,18 +22,11 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
 import gaitc
+from bench.families.thesis import HEALTH, SIZES, gait_text
 from diagnostics import SolverError
 from solver.symbolic import Options
 
 ROOT = Path(__file__).resolve().parent.parent
-SIZES = [(4, 5), (6, 6), (10, 10), (15, 15), (20, 20), (30, 30)]
-HEALTH = [2, 3, 4, 5]
-GAITS = {
-    "north": ["L4, L6", "L4, L7", "L3, L6"],
-    "east": ["L2, L4", "L2, L5", "L1, L4"],
-    "south": ["L2, L8", "L3, L8", "L2, L7"],
-    "west": ["L6, L8", "L1, L6", "L5, L8"],
-}
 ABLATION = {
     "default": Options(),
     "no-care": Options(care=False),
@@ -45,39 +37,6 @@ ABLATION = {
     "no-recycle": Options(recycle=False),
     "clustered": Options(partitioned=True),
 }
-
-
-def _lines(n: int, step: int) -> list[int]:
-    out = list(range(0, n, step))
-    return out if out[-1] == n - 1 else [*out, n - 1]
-
-
-def gait_text(rows: int, cols: int, health: int) -> str:
-    """A realizable thesis-style task on a ``rows`` x ``cols`` grid (see the module doc)."""
-    step = max(1, 2 * (health - 1))
-    row_lines, col_lines = _lines(rows, step), _lines(cols, step)
-    caches = [(i, j) for i in row_lines for j in col_lines]
-    interior = [
-        (i, j)
-        for i in range(rows)
-        for j in range(cols)
-        if i not in row_lines and j not in col_lines
-    ]
-
-    def cells(items: list[tuple[int, int]]) -> str:
-        return ", ".join(f"({i}, {j})" for i, j in items)
-
-    out = [f'robot "bench {rows}x{cols} h{health}"', f"legs L1..L8 health {health}"]
-    for direction, pairs in GAITS.items():
-        for k, legs in enumerate(pairs):
-            out.append(f"gait {direction}_{'abc'[k]} uses {legs} moves {direction}")
-    out += [f"grid {rows} x {cols}", f"cache {cells(caches)}"]
-    for name, first in (("blue", 0), ("red", 3)):
-        chosen = interior[first::7][:6]
-        if chosen:
-            out.append(f"hazard {name}: {cells(chosen)}")
-    out += ["start (0, 0)", f"visit ({rows - 1}, {cols - 1}), ({rows - 1}, 0) infinitely often"]
-    return "\n".join(out) + "\n"
 
 
 @dataclass

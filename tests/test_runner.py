@@ -31,6 +31,9 @@ RECORDED = HERE / "data" / "slugs_recorded"
 EXAMPLES = HERE / "data" / "slugs_examples"
 NAMES = ["simple_safety_example", "semantics_diference"]
 SEMANTICS = ["default", "robotics"]
+#: The live binary named by $SLUGS when the tests start (read before ``_no_ambient_slugs``
+#: removes $SLUGS from every test's environment).
+LIVE_SLUGS = os.environ.get("SLUGS")
 
 
 def recorded_verdicts() -> dict[tuple[str, str], bool]:
@@ -186,12 +189,17 @@ def test_malformed_strategy_outputs(monkeypatch: pytest.MonkeyPatch) -> None:
 
 
 # ---------------------------------------------------------------- the real binary
+def _live_binary() -> str:
+    binary = find_slugs(LIVE_SLUGS)
+    if binary is None or Path(binary).resolve() == Path(FAKE).resolve():
+        pytest.skip("no slugs binary on PATH or in $SLUGS")
+    return binary
+
+
 @pytest.mark.slugs
 @pytest.mark.parametrize("semantics", SEMANTICS)
 def test_live_slugs_agrees_with_recorded_verdicts(semantics: str) -> None:
-    binary = find_slugs(os.environ.get("SLUGS"))
-    if binary is None or Path(binary).resolve() == Path(FAKE).resolve():
-        pytest.skip("no slugs binary on PATH or in $SLUGS")
+    binary = _live_binary()
     verdicts = recorded_verdicts()
     for path in sorted(EXAMPLES.glob("*.slugsin")):
         name = path.stem
@@ -205,6 +213,23 @@ def test_live_slugs_agrees_with_recorded_verdicts(semantics: str) -> None:
             assert synth.output is not None
             assert verify(spec, controller_from_slugs_json(synth.output, spec, semantics),
                           semantics).ok
+
+
+@pytest.mark.slugs
+@pytest.mark.parametrize("semantics", SEMANTICS)
+def test_live_slugs_agrees_on_gaitcs_translation_of_every_example(semantics: str) -> None:
+    """Every example, in whichever format, read by gaitc and written back as slugsin."""
+    from gaitc.emission import emit
+    from gaitc.loading import load
+
+    binary = _live_binary()
+    verdicts = recorded_verdicts()
+    paths = sorted(p for p in EXAMPLES.iterdir() if p.name != "verdicts.tsv")
+    assert len(paths) == len({name for name, _ in verdicts}) >= 26
+    for path in paths:
+        result = run_slugs_check(emit(load(str(path)), "slugsin"), semantics=semantics,
+                                 slugs=binary, timeout=600)
+        assert result.realizable == verdicts[(path.name.rsplit(".", 1)[0], semantics)], path.name
 
 
 # ---------------------------------------------------------------- through the command line
