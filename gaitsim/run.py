@@ -15,7 +15,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from diagnostics import GaitcError, ScenarioError, Span, UsageError, source_lines
-from diagnostics.files import write_atomically
+from diagnostics.files import decode_text, write_atomically
 
 if TYPE_CHECKING:
     from ltlcompiler.model import Model
@@ -156,9 +156,10 @@ def read_jsonl(path: str | Path) -> Run:
     """Read a run written by :func:`write_jsonl` (the summary line is kept as is)."""
     file = str(path)
     try:
-        text = Path(path).read_text(encoding="utf-8")
+        raw = Path(path).read_bytes()  # bytes: universal newlines would split at a lone \r
     except OSError as err:
         raise ScenarioError(f"cannot read run file: {err.strerror}", Span(file, 1, 1)) from None
+    text = decode_text(raw, file, ScenarioError)
     run = Run(legs=())
     for number, line in enumerate(source_lines(text), 1):
         if not line.strip():
@@ -180,7 +181,8 @@ def read_jsonl(path: str | Path) -> Run:
                     _strs(data.get("failed", [])), _strs(data.get("repaired", [])),
                     tuple((str(k), int(v)) for k, v in dict(data.get("values", {})).items()),
                 ))
-        except (json.JSONDecodeError, KeyError, TypeError, ValueError, AttributeError):
+        except (json.JSONDecodeError, KeyError, TypeError, ValueError, AttributeError,
+                RecursionError):  # ValueError: also an integer of thousands of digits
             raise ScenarioError(
                 "not a run written by 'gaitc simulate --out FILE.jsonl'",
                 Span(file, number, 1),
