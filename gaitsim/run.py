@@ -161,6 +161,7 @@ def read_jsonl(path: str | Path) -> Run:
         raise ScenarioError(f"cannot read run file: {err.strerror}", Span(file, 1, 1)) from None
     text = decode_text(raw, file, ScenarioError)
     run = Run(legs=())
+    numbers: list[int] = []  # the line of each step
     for number, line in enumerate(source_lines(text), 1):
         if not line.strip():
             continue
@@ -181,12 +182,19 @@ def read_jsonl(path: str | Path) -> Run:
                     _strs(data.get("failed", [])), _strs(data.get("repaired", [])),
                     tuple((str(k), int(v)) for k, v in dict(data.get("values", {})).items()),
                 ))
+                numbers.append(number)
         except (json.JSONDecodeError, KeyError, TypeError, ValueError, AttributeError,
-                RecursionError):  # ValueError: also an integer of thousands of digits
+                RecursionError, OverflowError):  # an integer of 5,000 digits, int(1e400)
             raise ScenarioError(
                 "not a run written by 'gaitc simulate --out FILE.jsonl'",
                 Span(file, number, 1),
             ) from None
     if not run.legs and run.steps:
         run.legs = tuple(leg for leg, _ in run.steps[0].health)
+    for step, number in zip(run.steps, numbers, strict=True):
+        if sorted(leg for leg, _ in step.health) != sorted(run.legs):
+            raise ScenarioError(
+                f"step {step.index} gives the health of {', '.join(k for k, _ in step.health)}"
+                f" but the run's legs are {', '.join(run.legs)}", Span(file, number, 1),
+                "a run file is written by 'gaitc simulate --out FILE.jsonl'")
     return run
