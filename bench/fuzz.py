@@ -6,8 +6,8 @@ Usage: python bench/fuzz.py --per-kind N [--hours H] [--kinds a,b] [--jobs J] [-
 Each worker process runs commands in-process (``gaitc.cli.main``) on mutants made from
 ``(seed, kind, index)`` alone, so a run is deterministic given ``--seed``. A run past its
 wall-clock limit is counted, and a worker stuck at three times the limit is killed and
-replaced. With ``--hours``, each kind gets an equal share of the time (and at most N
-mutants). Reproducers of every failure (the mutant and a README line with the command)
+replaced. With ``--hours``, each kind gets an equal share of the time still left (and
+at most N mutants). Reproducers of every failure (the mutant and a README line with the command)
 go to ``--reproducers``. The table goes to stdout; docs/reliability.md shows a run.
 """
 
@@ -176,11 +176,13 @@ def main(argv: list[str] | None = None) -> int:
     if unknown or args.per_kind < 1 or args.jobs < 1:
         parser.error(f"unknown kinds {unknown}" if unknown else "--per-kind/--jobs must be ≥ 1")
     tallies = {kind: Tally() for kind in chosen}
-    share = None if args.hours is None else args.hours * 3600 / len(chosen)
+    deadline = None if args.hours is None else time.monotonic() + args.hours * 3600
     with tempfile.TemporaryDirectory(prefix="gaitc-fuzz-") as tmp:
         pool = Pool(args.jobs, Path(tmp), args.limit)
-        for kind in chosen:
+        for number, kind in enumerate(chosen):
             start, sent, done = time.monotonic(), 0, 0
+            # an equal share of the time left, so a kind that finishes early gives time back
+            share = None if deadline is None else (deadline - start) / (len(chosen) - number)
             while done < sent or sent < args.per_kind:
                 out_of_time = share is not None and time.monotonic() - start > share
                 for slot in pool.idle():

@@ -133,10 +133,63 @@ def repeat_token(data: bytes, chooser: Chooser, _donors: Sequence[bytes]) -> byt
     return data[:m.start()] + glue.join([m.group()] * times) + data[m.end():]
 
 
+# Values of the wrong type, size or shape, for the structure-aware mutations below.
+ODD_JSON: tuple[object, ...] = (
+    [[1]], 5, -1, "bogus", None, {}, [], True, 1.5, 10**30, "x" * 300, {"a": [None]},
+    [1] * 500, "\u2028", float("inf"),
+)
+ODD_YAML: tuple[bytes, ...] = (
+    b"[[1]]", b"{a: 1}", b"-5", b"~", b"!!binary AAAA", b"&x 1", b"*x", b"'\u2028'",
+    b"1e999", b".nan", b"!!python/object:os.system {}", b"|\n  text", b"? a", b"yes",
+    b"99999999999999999999999", b"[L1, L1]", b"{h: [1, 2]}", b"-", b"''",
+)
+
+
+def _json_values(node: object, out: list[tuple[object, object]]) -> None:
+    """Every (container, key) of a parsed JSON value, in document order."""
+    stack = [node]
+    while stack:
+        item = stack.pop()
+        pairs: list[tuple[object, object]] = []
+        if isinstance(item, dict):
+            pairs = [(item, k) for k in item]
+        elif isinstance(item, list):
+            pairs = [(item, i) for i in range(len(item))]
+        out.extend(pairs)
+        stack.extend(c[k] for c, k in pairs if isinstance(c[k], (dict, list)))  # type: ignore[index]
+
+
+def odd_json_value(data: bytes, chooser: Chooser, donors: Sequence[bytes]) -> bytes:
+    """One value of a JSON document replaced by one of another type or size."""
+    import json
+
+    try:
+        doc = json.loads(data)
+    except (ValueError, RecursionError):
+        return odd_yaml_value(data, chooser, donors)
+    places: list[tuple[object, object]] = []
+    _json_values(doc, places)
+    if not places:
+        return insert_odd(data, chooser, donors)
+    container, key = places[chooser.randint(0, len(places) - 1)]
+    container[key] = ODD_JSON[chooser.randint(0, len(ODD_JSON) - 1)]  # type: ignore[index]
+    return json.dumps(doc, indent=chooser.randint(0, 2) or None).encode()
+
+
+def odd_yaml_value(data: bytes, chooser: Chooser, donors: Sequence[bytes]) -> bytes:
+    """The value after one ``key:`` (or ``- ``) replaced by an odd YAML value."""
+    found = list(re.finditer(rb"(?:: |- )([^\n,{}\[\]#]+)", data))
+    if not found:
+        return insert_odd(data, chooser, donors)
+    m = found[chooser.randint(0, len(found) - 1)]
+    return data[:m.start(1)] + _pick(chooser, ODD_YAML) + data[m.end(1):]
+
+
 Mutation = Callable[[bytes, Chooser, Sequence[bytes]], bytes]
 MUTATIONS: tuple[Mutation, ...] = (
     flip_byte, insert_odd, delete_range, duplicate_range, truncate, delete_line,
     duplicate_line, swap_lines, splice_line, odd_number, deep_nesting, repeat_token,
+    odd_json_value, odd_yaml_value,
 )
 # Mutants stay below this size so that a run's time measures the reader, not the disk.
 MAX_MUTANT = 200_000
