@@ -139,7 +139,7 @@ ODD_JSON: tuple[object, ...] = (
     [1] * 500, "\u2028", float("inf"),
 )
 ODD_YAML: tuple[bytes, ...] = (
-    b"[[1]]", b"{a: 1}", b"-5", b"~", b"!!binary AAAA", b"&x 1", b"*x", b"'\u2028'",
+    b"[[1]]", b"{a: 1}", b"-5", b"~", b"!!binary AAAA", b"&x 1", b"*x", "'\u2028'".encode(),
     b"1e999", b".nan", b"!!python/object:os.system {}", b"|\n  text", b"? a", b"yes",
     b"99999999999999999999999", b"[L1, L1]", b"{h: [1, 2]}", b"-", b"''",
 )
