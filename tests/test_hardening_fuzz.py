@@ -171,3 +171,19 @@ def test_run_file_steps_are_checked(tmp_path: Path, capsys: pytest.CaptureFixtur
     code, err = _run(capsys, "render", "map", PATROL, "--run", str(path),
                      "-o", str(tmp_path / "m.dot"))
     assert code == 1 and err[0].startswith(f"{path}:3:1: error: {message}"), err
+
+
+@pytest.mark.parametrize(("robot", "message"), [
+    ("a" * 300 + ".yaml", "not found"),  # OSError: File name too long was an internal error
+    ("a\x00b.yaml", "not found"),
+    (".", "is a folder"),  # was an error without a position
+])
+def test_primitive_robot_names_the_system_refuses(tmp_path: Path,
+                                                  capsys: pytest.CaptureFixture[str],
+                                                  robot: str, message: str) -> None:
+    path = tmp_path / "p.gait"
+    path.write_text(f'legs L1 health 2\ngait g uses L1 moves north primitive "{robot}" '
+                    "direction +y\ngrid 2 x 1\nstart r0\n", encoding="utf-8")
+    code, err = _run(capsys, "lint", str(path))
+    located = [line for line in err if line.startswith(f"{path}:2:28: error: gait g: robot")]
+    assert code == 1 and located and message in located[0], err
