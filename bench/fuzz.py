@@ -31,8 +31,8 @@ from fuzz_mutate import mutate
 from fuzz_oracle import OUTCOMES, Verdict
 from fuzz_serial import EXCHANGES, exchange
 
-ALL_KINDS = ("gait", "slugsin", "structuredslugs", "robot", "scenario", "controller", "run",
-             "serial")
+ALL_KINDS = ("gait", "slugsin", "structuredslugs", "ltl", "robot", "scenario", "controller",
+             "run", "serial")
 SERIAL_COMMANDS = ("board",)
 
 

@@ -31,6 +31,7 @@ SCENARIOS: tuple[tuple[str, str], ...] = (
 )
 HAZARD_SPEC = ROOT / "tests" / "data" / "hazard_patrol.gait"
 PATROL = SPECS / "patrol_2x2.gait"
+LTL_SOURCES = (PATROL, SPECS / "thesis_robot_a.gait", GOLDEN / "features.gait")
 # One gait bound to a stored primitive of the robot file (a search when it has none).
 ROBOT_USER = """legs L1..L8 health 2
 gait north_a uses L6, L8 moves north primitive "{robot}" direction +y
@@ -63,6 +64,13 @@ class Fixtures:
         ]
         if made != [0, 0, 0]:
             raise RuntimeError(f"could not prepare the fuzz fixtures in {folder}: {made}")
+        self.ltl: list[Path] = []  # the readable LTL text 'compile --format ltl' writes
+        for spec in LTL_SOURCES:
+            self.ltl.append(folder / f"{spec.stem}.ltl")
+            made.append(_quiet(["compile", str(spec), "--format", "ltl",
+                                "-o", str(self.ltl[-1])]))
+        if made != [0] * len(made):
+            raise RuntimeError(f"could not prepare the .ltl fuzz seeds in {folder}: {made}")
         self.out = folder / "out"
         self.out.mkdir(exist_ok=True)
 
@@ -95,7 +103,7 @@ def _gait_commands(path: Path, _seed: str, fx: Fixtures) -> list[tuple[str, list
     ]
 
 
-def _slugs_commands(path: Path, _seed: str, _fx: Fixtures) -> list[tuple[str, list[str]]]:
+def _check_commands(path: Path, _seed: str, _fx: Fixtures) -> list[tuple[str, list[str]]]:
     return [("check", ["check", str(path), "--timeout", CHECK_TIMEOUT])]
 
 
@@ -142,10 +150,11 @@ def kinds(fx: Fixtures) -> dict[str, Kind]:
     found = [
         Kind("gait", ".gait", _files((SPECS, "*.gait"), (GOLDEN, "*.gait")), _gait_commands),
         Kind("slugsin", ".slugsin",
-             _files((GOLDEN, "*.slugsin"), (SLUGS_EXAMPLES, "*.slugsin")), _slugs_commands),
+             _files((GOLDEN, "*.slugsin"), (SLUGS_EXAMPLES, "*.slugsin")), _check_commands),
         Kind("structuredslugs", ".structuredslugs",
              _files((GOLDEN, "*.structuredslugs"), (SLUGS_EXAMPLES, "*.structuredslugs")),
-             _slugs_commands),
+             _check_commands),
+        Kind("ltl", ".ltl", tuple((p.name, p.read_bytes()) for p in fx.ltl), _check_commands),
         Kind("robot", ".yaml", _files((SPECS / "robots", "*.yaml")), _robot_commands, 3.0),
         Kind("scenario", ".yaml", tuple((n, t.encode()) for n, t in SCENARIOS),
              _scenario_commands),
