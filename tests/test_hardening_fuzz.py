@@ -187,3 +187,21 @@ def test_primitive_robot_names_the_system_refuses(tmp_path: Path,
     code, err = _run(capsys, "lint", str(path))
     located = [line for line in err if line.startswith(f"{path}:2:28: error: gait g: robot")]
     assert code == 1 and located and message in located[0], err
+
+
+BIG = "1" * 5000
+
+
+@pytest.mark.parametrize(("legs", "gait_leg", "message"), [
+    (f"L{BIG}..L4", "L1", "1:6: error: range L1111111111111111111..L4: a number of 5000 "
+                          "digits; the names of a range end in numbers of at most 9 digits"),
+    (f"L1, L{BIG}", "L9", "2:13: error: unknown leg 'L9' in gait g; declared legs are L1, "
+                          "L111"),  # the list of names said int() of 5000 digits
+])
+def test_names_with_huge_numbers(tmp_path: Path, capsys: pytest.CaptureFixture[str],
+                                 legs: str, gait_leg: str, message: str) -> None:
+    path = tmp_path / "n.gait"
+    path.write_text(f"legs {legs} health 2\ngait g uses {gait_leg} moves north\n"
+                    "grid 2 x 1\nstart r0\n", encoding="utf-8")
+    code, err = _run(capsys, "lint", str(path))
+    assert code == 1 and err[0].startswith(f"{path}:{message}"), err[0][:300]
