@@ -135,7 +135,13 @@ def render(
     hint: str | None = None,
     sources: dict[str, str] | None = None,
 ) -> str:
-    """Format a message as ``file:line:col: severity: message``, source line and caret."""
+    """Format a message as ``file:line:col: severity: message``, source line and caret.
+
+    A line break inside the message or the hint (from a value quoted out of the input) is
+    shown as ``\\n``, so the message stays one line and the source line follows it.
+    """
+    message = message.replace("\r", "\\r").replace("\n", "\\n")
+    hint = hint.replace("\r", "\\r").replace("\n", "\\n") if hint else hint
     if span is None:
         out = [f"gaitc: {severity}: {message}"]
     else:

@@ -205,3 +205,12 @@ def test_names_with_huge_numbers(tmp_path: Path, capsys: pytest.CaptureFixture[s
                     "grid 2 x 1\nstart r0\n", encoding="utf-8")
     code, err = _run(capsys, "lint", str(path))
     assert code == 1 and err[0].startswith(f"{path}:{message}"), err[0][:300]
+
+
+def test_a_value_with_a_line_break_keeps_the_message_on_one_line(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    path = tmp_path / "s.yaml"
+    path.write_text("steps:\n  - {fail: L2 | L2\n\n     | L2}\n", encoding="utf-8")
+    code, err = _run(capsys, "simulate", HAZARD, "--env", "scripted", str(path))
+    assert code == 1 and err[0].startswith(f"{path}:2:12: error: unknown leg 'L2 | L2\\n| L2'")
+    assert err[1] == "      - {fail: L2 | L2"  # the source line comes right after the message
