@@ -85,6 +85,23 @@ def source_lines(text: str) -> list[str]:
     return [line[:-1] if line.endswith("\r") else line for line in lines]
 
 
+def span_at(text: str, file: str, offset: int) -> Span:
+    """The span of character ``offset`` of ``text`` by the rule of :func:`source_lines`.
+
+    An offset at the very end (a reader that ran out of text after the last ``\n``)
+    points just past the end of the last line, which exists, rather than at a line after it.
+    """
+    offset = max(0, min(offset, len(text)))
+    if offset == len(text) and text.endswith("\n"):
+        offset -= 2 if text.endswith("\r\n") else 1
+    before = text[:offset]
+    start = before.rfind("\n") + 1
+    column = offset - start + 1
+    if column > 1 and text[start:offset].endswith("\r") and text[offset:offset + 1] in ("\n", ""):
+        column -= 1  # the \r that source_lines drops before a \n
+    return Span(file, before.count("\n") + 1, column)
+
+
 @dataclass(frozen=True)
 class Diagnostic:
     """A non-fatal finding (a warning), reported with the same layout as errors."""
@@ -101,7 +118,8 @@ def _source_line(span: Span, sources: dict[str, str] | None) -> str | None:
         text = sources[span.file]
     else:
         try:
-            text = Path(span.file).read_text(encoding="utf-8", errors="replace")
+            # bytes, not read_text: universal newlines would make a lone \r end a line
+            text = Path(span.file).read_bytes().decode("utf-8", errors="replace")
         except OSError:
             return None
     lines = source_lines(text)
@@ -117,7 +135,13 @@ def render(
     hint: str | None = None,
     sources: dict[str, str] | None = None,
 ) -> str:
-    """Format a message as ``file:line:col: severity: message``, source line and caret."""
+    """Format a message as ``file:line:col: severity: message``, source line and caret.
+
+    A line break inside the message or the hint (from a value quoted out of the input) is
+    shown as ``\\n``, so the message stays one line and the source line follows it.
+    """
+    message = message.replace("\r", "\\r").replace("\n", "\\n")
+    hint = hint.replace("\r", "\\r").replace("\n", "\\n") if hint else hint
     if span is None:
         out = [f"gaitc: {severity}: {message}"]
     else:

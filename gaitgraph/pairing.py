@@ -52,9 +52,17 @@ def _robot(gait: Gait, spec_dir: str) -> Robot | None:
     path = Path(prim.robot)
     if not path.is_absolute():
         path = Path(spec_dir) / path
-    if not path.exists():
+    try:
+        folder = path.is_dir()
+        found = path.is_file()
+    except (OSError, ValueError):  # a name too long for the system, or holding a NUL
+        folder = found = False
+    if folder:
+        raise SpecSemanticError(f"gait {gait.name}: robot file {prim.robot!r} is a folder",
+                                prim.span or gait.span)
+    if not found:
         raise SpecSemanticError(
-            f"gait {gait.name}: robot file {prim.robot!r} not found (looked for {path})",
+            f"gait {gait.name}: robot file {prim.robot!r} not found (looked for {str(path)!r})",
             prim.span or gait.span,
             "robot paths are relative to the .gait file",
         )

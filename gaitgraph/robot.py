@@ -213,6 +213,9 @@ def load_robot(path: str | Path) -> Robot:
         data = Path(path).read_bytes()
     except OSError as err:
         raise RobotFileError(f"cannot read robot file {name}: {err.strerror}") from None
+    except ValueError:  # a NUL byte in the name
+        raise RobotFileError(f"cannot read robot file {name!r}: the name holds a NUL "
+                             "character") from None
     return parse_robot(decode_text(data, name, RobotFileError), name)
 
 

@@ -11,12 +11,14 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from diagnostics import UsageError
 from gaitgraph.cycles import GaitCycle, driving_edges, synthesize
 from gaitgraph.graph import GaitGraph, full_graph, random_states
 from gaitgraph.resets import reset_gaits, stance_variants
 from gaitgraph.robot import Robot
 
 METHODS = ("full", "random", "reset")
+FULL_LIMIT = 16  # chambers the full search enumerates at most (2^16 valve states)
 
 
 @dataclass(frozen=True)
@@ -25,6 +27,7 @@ class SearchResult:
     graph: GaitGraph
     gaits: list[GaitCycle]
     states_added: int
+    limit_reached: bool = False  # stopped at ``max_states`` before trying every valve state
 
 
 def search(
@@ -40,16 +43,24 @@ def search(
 
     ``random`` adds batches of 100 random valve states and searches after each batch;
     ``reset`` does the same until steady driving edges exist, then searches around them.
+    No method adds more than ``max_states`` valve states: ``full`` refuses a robot with
+    more (a :class:`~diagnostics.UsageError`), the others stop there and say so in
+    :attr:`SearchResult.limit_reached`.
     """
     rng = np.random.default_rng(seed)
     total = 1 << robot.valve_count
     if method == "full":
-        graph = full_graph(robot)
+        if total > max_states and robot.valve_count <= FULL_LIMIT:  # beyond: full_graph says
+            raise UsageError(
+                f"the full search enumerates all 2^{robot.valve_count} = {total} valve states "
+                f"of robot {robot.name}, more than --max-states {max_states}; raise "
+                f"--max-states to {total} or use --method random or reset")
+        graph = full_graph(robot, FULL_LIMIT)
         return SearchResult(
             method, graph, synthesize(graph, direction, candidates), len(graph.states)
         )
     graph = GaitGraph(robot)
-    if robot.valve_count <= 8:
+    if total <= min(max_states, 256):
         graph.add_states(range(total))
     tried: set[int] = set()
     while True:
@@ -64,8 +75,13 @@ def search(
             gaits, around = reset_gaits(graph, drivers, direction, budget)
             result = SearchResult(method, around, gaits, len(graph.states))
         if gaits or len(graph.states) >= min(max_states, total):
-            return result
+            limited = not gaits and len(graph.states) < total
+            return SearchResult(result.method, result.graph, result.gaits,
+                                result.states_added, limited)
         start = len(graph)
-        graph.add_states(random_states(robot, rng, 100, graph.states))
+        batch = min(100, max_states - len(graph.states))
+        graph.add_states(random_states(robot, rng, batch, graph.states))
         if method == "reset":
-            graph.add_states(stance_variants(graph, start))
+            room = max(0, max_states - len(graph.states))
+            graph.add_states([s for s in stance_variants(graph, start)
+                              if s not in graph.states][:room])

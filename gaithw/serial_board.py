@@ -15,6 +15,15 @@ from typing import Any
 from gaithw.backend import Backend, HardwareError, SensorReading, where
 
 FIRMWARE_PREFIX = "PONG"
+MAX_REPLY = 256  # bytes in one reply line, its \n included; a longer one is garbled
+MAX_DIGITS = 6  # in a valve count or a health level of a reply
+
+
+def _count(text: str) -> int | None:
+    """A reply's number: ASCII digits only (``str.isdigit`` takes ``²`` and ``٣``), short."""
+    if not (text.isascii() and text.isdigit()) or len(text) > MAX_DIGITS:
+        return None
+    return int(text)
 
 
 class Garbled(Exception):
@@ -26,10 +35,10 @@ def parse_pong(line: str) -> tuple[str, int]:
     words = line.split()
     if len(words) != 3 or words[0] != FIRMWARE_PREFIX or not words[2].startswith("valves="):
         raise Garbled(line)
-    count = words[2][len("valves="):]
-    if not count.isdigit() or int(count) < 1:
+    count = _count(words[2][len("valves="):])
+    if count is None or count < 1:
         raise Garbled(line)
-    return words[1], int(count)
+    return words[1], count
 
 
 def parse_sensors(line: str, legs: Sequence[str]) -> SensorReading:
@@ -43,12 +52,13 @@ def parse_sensors(line: str, legs: Sequence[str]) -> SensorReading:
         if not sep or key not in ("h", "hazard", "region") or key in fields or not value:
             raise Garbled(line)
         fields[key] = value
-    levels = fields.get("h", "").split(",")
-    if len(levels) != len(legs) or not all(v.isdigit() for v in levels):
+    levels = [_count(v) for v in fields.get("h", "").split(",")]
+    if len(levels) != len(legs) or None in levels:
         raise Garbled(line)
     hazard = fields.get("hazard", "-")
     region = fields.get("region", "-")
-    return SensorReading(tuple(zip(legs, (int(v) for v in levels), strict=True)),
+    return SensorReading(tuple((leg, v) for leg, v in zip(legs, levels, strict=True)
+                               if v is not None),
                          None if hazard == "-" else hazard, None if region == "-" else region)
 
 
@@ -178,7 +188,7 @@ class SerialValveBoard(Backend):
             self._port.reset_input_buffer()
             self._port.write(f"V {'0' * self.board_valves}\n".encode("ascii"))
             self._port.flush()
-            self._port.readline()
+            self._port.readline(MAX_REPLY)
         except Exception:  # the board may be gone; venting must never mask the first error
             pass
 
@@ -192,10 +202,14 @@ class SerialValveBoard(Backend):
                 self._port.reset_input_buffer()
                 self._port.write(f"{command}\n".encode("ascii"))
                 self._port.flush()
-                raw = self._port.readline()
+                raw = self._port.readline(MAX_REPLY)  # bounded: a board may babble
             except (serial.SerialException, OSError) as err:
                 raise HardwareError(f"lost the valve board at {self.url}: {err}",
                                     where(self.name)) from None
+            if len(raw) >= MAX_REPLY and not raw.endswith(b"\n"):
+                problem = (f"garbled answer to '{command.split()[0]}': longer than "
+                           f"{MAX_REPLY} bytes without an end of line")
+                continue
             if not raw.endswith(b"\n"):
                 problem = (f"no answer to '{command.split()[0]}' within {self.timeout:g} s"
                            if not raw else f"incomplete answer {raw!r} to '{command.split()[0]}'")

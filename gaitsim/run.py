@@ -15,7 +15,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from diagnostics import GaitcError, ScenarioError, Span, UsageError, source_lines
-from diagnostics.files import write_atomically
+from diagnostics.files import decode_text, write_atomically
 
 if TYPE_CHECKING:
     from ltlcompiler.model import Model
@@ -156,10 +156,12 @@ def read_jsonl(path: str | Path) -> Run:
     """Read a run written by :func:`write_jsonl` (the summary line is kept as is)."""
     file = str(path)
     try:
-        text = Path(path).read_text(encoding="utf-8")
+        raw = Path(path).read_bytes()  # bytes: universal newlines would split at a lone \r
     except OSError as err:
         raise ScenarioError(f"cannot read run file: {err.strerror}", Span(file, 1, 1)) from None
+    text = decode_text(raw, file, ScenarioError)
     run = Run(legs=())
+    numbers: list[int] = []  # the line of each step
     for number, line in enumerate(source_lines(text), 1):
         if not line.strip():
             continue
@@ -180,11 +182,19 @@ def read_jsonl(path: str | Path) -> Run:
                     _strs(data.get("failed", [])), _strs(data.get("repaired", [])),
                     tuple((str(k), int(v)) for k, v in dict(data.get("values", {})).items()),
                 ))
-        except (json.JSONDecodeError, KeyError, TypeError, ValueError, AttributeError):
+                numbers.append(number)
+        except (json.JSONDecodeError, KeyError, TypeError, ValueError, AttributeError,
+                RecursionError, OverflowError):  # an integer of 5,000 digits, int(1e400)
             raise ScenarioError(
                 "not a run written by 'gaitc simulate --out FILE.jsonl'",
                 Span(file, number, 1),
             ) from None
     if not run.legs and run.steps:
         run.legs = tuple(leg for leg, _ in run.steps[0].health)
+    for step, number in zip(run.steps, numbers, strict=True):
+        if sorted(leg for leg, _ in step.health) != sorted(run.legs):
+            raise ScenarioError(
+                f"step {step.index} gives the health of {', '.join(k for k, _ in step.health)}"
+                f" but the run's legs are {', '.join(run.legs)}", Span(file, number, 1),
+                "a run file is written by 'gaitc simulate --out FILE.jsonl'")
     return run

@@ -84,7 +84,9 @@ class _Reader:
 
     def leg(self, node: yaml.Node) -> str:
         if not isinstance(node, yaml.ScalarNode) or node.value not in self.legs:
-            raise self.fail(f"unknown leg '{getattr(node, 'value', '?')}'; the robot's legs are "
+            shown = node.value if isinstance(node, yaml.ScalarNode) else "(a list or mapping)"
+            shown = shown if len(shown) <= 40 else shown[:37] + "..."
+            raise self.fail(f"unknown leg '{shown}'; the robot's legs are "
                             f"{', '.join(self.legs)}", node)
         return str(node.value)
 

@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from diagnostics import ControllerError, Span
+from diagnostics import ControllerError, Span, span_at
 from diagnostics.files import decode_text
 from gr1.bits import bit_name, parse_first_bit, spec_bits
 from gr1.spec import SEMANTICS, GR1Spec
@@ -275,7 +275,7 @@ def load_controller(path: str, spec: GR1Spec | None = None) -> Controller:
         data = json.loads(text)
     except json.JSONDecodeError as err:
         raise ControllerError(
-            f"not valid JSON: {err.msg}", Span(path, err.lineno, err.colno)
+            f"not valid JSON: {err.msg}", span_at(text, path, err.pos)
         ) from None
     except RecursionError:
         raise ControllerError("the JSON nests too deeply to be a controller file",

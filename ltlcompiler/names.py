@@ -14,7 +14,8 @@ from diagnostics import Span, SpecSemanticError
 from ltlcompiler import syntax as s
 
 MAX_RANGE = 10_000
-_NUMBERED = re.compile(r"^(.*?)(\d+)$")
+MAX_NUMBER_DIGITS = 9  # in the number ending a range's names, as in other .gait numbers
+_NUMBERED = re.compile(r"^(.*?)([0-9]+)$")  # ASCII digits: \d also takes '٣'
 
 
 def _where(span: Span | None) -> str:
@@ -33,6 +34,11 @@ def expand(item: s.NameItem) -> list[s.Name]:
             f"number, like L1..L8",
             item.span,
         )
+    longest = max(len(m1.group(2)), len(m2.group(2)))
+    if longest > MAX_NUMBER_DIGITS:
+        raise SpecSemanticError(
+            f"range {first[:20]}..{last[:20]}: a number of {longest} digits; the names of a "
+            f"range end in numbers of at most {MAX_NUMBER_DIGITS} digits", item.span)
     low, high = int(m1.group(2)), int(m2.group(2))
     if low > high:
         raise SpecSemanticError(
@@ -67,7 +73,8 @@ def describe(names: Iterable[str], limit: int = 12) -> str:
 
     for name in names:
         m = _NUMBERED.match(name)
-        key = (m.group(1), int(m.group(2)), name) if m else None
+        numbered = m is not None and len(m.group(2)) <= MAX_NUMBER_DIGITS
+        key = (m.group(1), int(m.group(2)), name) if m and numbered else None
         if key and run and run[-1][0] == key[0] and run[-1][1] + 1 == key[1]:
             run.append(key)
             continue

@@ -20,7 +20,7 @@ import time
 from dataclasses import dataclass, replace
 from pathlib import Path
 
-from diagnostics import SolverError, Span, source_lines
+from diagnostics import SolverError, Span, source_lines, span_at
 from gr1.bitblast import bitblast
 from gr1.bits import spec_bits
 from gr1.controller import (
@@ -190,7 +190,7 @@ def controller_from_slugs_json(
     except json.JSONDecodeError as err:
         raise SolverError(
             f"SLUGS wrote a strategy that is not valid JSON: {err.msg}",
-            Span(filename, err.lineno, err.colno),
+            span_at(text, filename, err.pos),
         ) from None
     boolean = bitblast(spec)
     if isinstance(data, dict) and "gaitc" not in data and isinstance(data.get("variables"), list):

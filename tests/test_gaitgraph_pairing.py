@@ -45,7 +45,6 @@ def test_all_shipped_robots_load() -> None:
             "Z",
             "unknown leg 'Z'",
         ),
-        ("robot: [unclosed\n", 2, "", "not valid YAML"),
     ],
 )
 def test_robot_file_errors_have_positions(text: str, line: int, token: str, words: str) -> None:
@@ -53,8 +52,14 @@ def test_robot_file_errors_have_positions(text: str, line: int, token: str, word
         parse_robot(text, "r.yaml")
     err = info.value
     assert words in err.message
-    lines = [*text.splitlines(), ""]
+    lines = text.splitlines()
     assert err.span == Span("r.yaml", line, lines[line - 1].index(token) + 1)
+
+
+def test_a_robot_file_cut_short_has_its_error_on_its_last_line() -> None:
+    with pytest.raises(RobotFileError, match="not valid YAML") as info:
+        parse_robot("robot: [unclosed\n", "r.yaml")
+    assert info.value.span == Span("r.yaml", 1, 17)  # past the end of line 1, not line 2
 
 
 def _gait(name: str, legs: tuple[str, ...], prim: Primitive | None) -> Gait:

@@ -79,7 +79,7 @@ def _error(world: World, text: str) -> ScenarioError:
     ("steps: 3\n", "s.yaml:1:8", "'steps' must be a list, one item per step"),
     ("start: {hazard: h}\n", "s.yaml:1:1", "scenario needs a 'steps' list"),
     ("", "s.yaml:1:1", "scenario is empty; it needs a 'steps' list"),
-    ("steps:\n  - [\n", "s.yaml:3:1",
+    ("steps:\n  - [\n", "s.yaml:2:6",  # the end of the last line, not a line after it
      "scenario is not valid YAML: expected the node content, but found '<stream end>'"),
     ("start: {degrade: [L1]}\nsteps: []\n", "s.yaml:1:9",
      "unknown key 'degrade' in 'start'; expected one of hazard, health, note"),

@@ -30,7 +30,7 @@ def search_arguments(p: argparse.ArgumentParser) -> None:
         "--method",
         choices=("full", "random", "reset"),
         default=None,
-        help="default: full for at most 12 chambers, else random",
+        help="default: full for at most 12 chambers and --max-states valve states, else random",
     )
     p.add_argument("--seed", type=int, default=0)
     p.add_argument("--max-states", type=int, default=10_000, help="valve states to try at most")
@@ -56,7 +56,8 @@ def run(args: argparse.Namespace) -> int:
         direction = parse_direction(args.direction)
     except SpecSemanticError as err:  # no file to point at: a usage error
         raise UsageError(f"--direction: unknown direction {args.direction!r}") from err
-    method = args.method or ("full" if robot.valve_count <= 12 else "random")
+    full = robot.valve_count <= 12 and 1 << robot.valve_count <= args.max_states
+    method = args.method or ("full" if full else "random")
     result = search(robot, direction, method, args.seed, args.max_states)
     print(
         f"robot {robot.name}: {robot.valve_count} chambers, method {method}, "
@@ -67,6 +68,9 @@ def run(args: argparse.Namespace) -> int:
         print(gait_table(robot, result.gaits))
     else:
         print(f"no gait towards {args.direction} found")
+    if result.limit_reached:
+        print(f"the search stopped at --max-states {args.max_states} of the "
+              f"{1 << robot.valve_count} valve states")
     if args.output:
         write_atomically(args.output, gaits_json(robot, result, args.direction, args.seed))
     if args.svg:

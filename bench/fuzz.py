@@ -1,0 +1,219 @@
+"""Long fuzz mode (issue 9): N mutants of every input kind through every command reading it.
+
+Usage: python bench/fuzz.py --per-kind N [--hours H] [--kinds a,b] [--jobs J] [--seed S]
+       [--limit SECONDS] [--reproducers DIR]
+
+Each worker process runs commands in-process (``gaitc.cli.main``) on mutants made from
+``(seed, kind, index)`` alone, so a run is deterministic given ``--seed``. A run past its
+wall-clock limit is counted, and a worker stuck at three times the limit is killed and
+replaced. With ``--hours``, each kind gets an equal share of the time still left (and
+at most N mutants). Reproducers of every failure (the mutant and a README line with the command)
+go to ``--reproducers``. The table goes to stdout; docs/reliability.md shows a run.
+"""
+
+from __future__ import annotations
+
+import argparse
+import multiprocessing
+import multiprocessing.connection
+import random
+import sys
+import tempfile
+import time
+from collections import Counter
+from dataclasses import dataclass, field
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
+
+from fuzz_cases import Fixtures, kinds, run_case
+from fuzz_mutate import mutate
+from fuzz_oracle import OUTCOMES, Verdict
+from fuzz_serial import EXCHANGES, exchange
+
+ALL_KINDS = ("gait", "slugsin", "structuredslugs", "ltl", "robot", "scenario", "controller",
+             "run", "serial")
+SERIAL_COMMANDS = ("board",)
+
+
+def mutant_of(seeds: tuple[tuple[str, bytes], ...], seed: int, kind: str,
+              index: int) -> tuple[str, bytes]:
+    """The ``index``-th mutant of ``kind``: (seed file name, bytes)."""
+    rng = random.Random(f"{seed}:{kind}:{index}")
+    name, data = seeds[rng.randint(0, len(seeds) - 1)]
+    return name, mutate(data, rng, [d for _, d in seeds])
+
+
+def _worker(conn: multiprocessing.connection.Connection, folder: str, limit: float) -> None:
+    fx = Fixtures(Path(folder))
+    table = kinds(fx)
+    while True:
+        job = conn.recv()
+        if job is None:
+            return
+        kind, seed, index = job
+        current = Path(folder) / "current.bin"  # the parent's copy if this run never ends
+        if kind == "serial":
+            name, data = mutant_of(EXCHANGES, seed, kind, index)
+            current.write_bytes(data)
+            verdicts = [exchange(data, limit)]
+        else:
+            name, data = mutant_of(table[kind].seeds, seed, kind, index)
+            current.write_bytes(data)
+            verdicts = run_case(table[kind], fx, name, data, limit)
+        conn.send((kind, index, name, data, [(v.command, v.code, v.seconds, v.problems)
+                                             for v in verdicts]))
+
+
+@dataclass
+class Tally:
+    """Counts for one input kind."""
+
+    inputs: int = 0
+    outcomes: Counter[str] = field(default_factory=Counter)
+    seconds: float = 0.0
+
+
+class Pool:
+    """``jobs`` worker processes, each with its own fixtures folder."""
+
+    def __init__(self, jobs: int, root: Path, limit: float) -> None:
+        self.root, self.limit = root, limit
+        self.workers: list[tuple[multiprocessing.Process,
+                                 multiprocessing.connection.Connection]] = []
+        self.busy: dict[int, tuple[tuple[str, int, int], float]] = {}
+        for slot in range(jobs):
+            self.workers.append(self._start(slot))
+
+    def _start(self, slot: int) -> tuple[multiprocessing.Process,
+                                         multiprocessing.connection.Connection]:
+        parent, child = multiprocessing.Pipe()
+        proc = multiprocessing.Process(target=_worker, daemon=True,
+                                       args=(child, str(self.root / f"w{slot}"), self.limit))
+        proc.start()
+        return proc, parent
+
+    def send(self, slot: int, job: tuple[str, int, int]) -> None:
+        self.workers[slot][1].send(job)
+        self.busy[slot] = (job, time.monotonic())
+
+    def idle(self) -> list[int]:
+        return [s for s in range(len(self.workers)) if s not in self.busy]
+
+    def collect(self) -> list[tuple[object, ...]]:
+        """Results that arrived (waiting a little); a stuck worker is killed, its job failed."""
+        results: list[tuple[object, ...]] = []
+        conns = {self.workers[s][1]: s for s in self.busy}
+        for ready in multiprocessing.connection.wait(list(conns), timeout=0.5):
+            conn = next(c for c in conns if c is ready)
+            slot = conns[conn]
+            try:
+                results.append(conn.recv())
+            except EOFError:  # the worker died (killed by the OS, or a C library exited)
+                results.append(self._lost(slot, "the worker process died"))
+            self.busy.pop(slot, None)
+        now = time.monotonic()
+        for slot, (_job, started) in list(self.busy.items()):
+            if now - started > 10 * self.limit + 10:
+                results.append(self._lost(slot, f"killed after {now - started:.0f} s"))
+                self.busy.pop(slot)
+        return results
+
+    def _lost(self, slot: int, why: str) -> tuple[object, ...]:
+        (kind, _seed, index), started = self.busy[slot]
+        proc, _conn = self.workers[slot]
+        proc.kill()
+        proc.join()
+        self.workers[slot] = self._start(slot)
+        seconds = time.monotonic() - started
+        current = self.root / f"w{slot}" / "current.bin"
+        data = current.read_bytes() if current.exists() else b""
+        return (kind, index, "?", data, [("(worker)", -1, seconds, [f"past limit: {why}"])])
+
+    def close(self) -> None:
+        for proc, conn in self.workers:
+            conn.send(None)
+            proc.join(timeout=5)
+
+
+def table(tallies: dict[str, Tally]) -> str:
+    """The per-kind table: inputs, runs, and the runs of each outcome."""
+    head = ["kind", "inputs", "runs", *OUTCOMES, "seconds"]
+    rows = [head]
+    for kind, t in tallies.items():
+        rows.append([kind, str(t.inputs), str(sum(t.outcomes.values())),
+                     *[str(t.outcomes[o]) for o in OUTCOMES], f"{t.seconds:.0f}"])
+    widths = [max(len(r[i]) for r in rows) for i in range(len(head))]
+    lines = ["| " + " | ".join(c.ljust(w) for c, w in zip(r, widths, strict=True)) + " |"
+             for r in rows]
+    lines.insert(1, "|" + "|".join("-" * (w + 2) for w in widths) + "|")
+    return "\n".join(lines)
+
+
+def save_reproducer(folder: Path, kind: str, index: int, seed_name: str, data: bytes,
+                    verdicts: list[Verdict]) -> None:
+    folder.mkdir(parents=True, exist_ok=True)
+    stem = f"{kind}-{index:06d}"
+    (folder / f"{stem}.bin").write_bytes(data)
+    with open(folder / "README.txt", "a", encoding="utf-8") as out:
+        for v in verdicts:
+            for problem in v.problems:
+                out.write(f"{stem}.bin (from {seed_name}) {v.command}: {problem}\n")
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--per-kind", type=int, default=100_000, help="mutants per kind")
+    parser.add_argument("--hours", type=float, default=None, help="stop after this long")
+    parser.add_argument("--kinds", default=",".join(ALL_KINDS))
+    parser.add_argument("--jobs", type=int, default=1)
+    parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--limit", type=float, default=6.0, help="seconds per run")
+    parser.add_argument("--reproducers", type=Path, default=Path("fuzz-reproducers"))
+    args = parser.parse_args(argv)
+    chosen = [k for k in args.kinds.split(",") if k]
+    unknown = sorted(set(chosen) - set(ALL_KINDS))
+    if unknown or args.per_kind < 1 or args.jobs < 1:
+        parser.error(f"unknown kinds {unknown}" if unknown else "--per-kind/--jobs must be ≥ 1")
+    tallies = {kind: Tally() for kind in chosen}
+    deadline = None if args.hours is None else time.monotonic() + args.hours * 3600
+    with tempfile.TemporaryDirectory(prefix="gaitc-fuzz-") as tmp:
+        pool = Pool(args.jobs, Path(tmp), args.limit)
+        for number, kind in enumerate(chosen):
+            start, sent, done = time.monotonic(), 0, 0
+            # an equal share of the time left, so a kind that finishes early gives time back
+            share = None if deadline is None else (deadline - start) / (len(chosen) - number)
+            while done < sent or sent < args.per_kind:
+                out_of_time = share is not None and time.monotonic() - start > share
+                for slot in pool.idle():
+                    if sent < args.per_kind and not out_of_time:
+                        pool.send(slot, (kind, args.seed, sent))
+                        sent += 1
+                if out_of_time and done == sent:
+                    break
+                for result in pool.collect():
+                    done += 1
+                    _record(tallies, args.reproducers, result)
+            tallies[kind].seconds = time.monotonic() - start
+            print(f"{kind}: {tallies[kind].inputs} inputs in {tallies[kind].seconds:.0f} s",
+                  file=sys.stderr, flush=True)
+        pool.close()
+    print(f"seed {args.seed}, per-run limit {args.limit:g} s, {args.jobs} job(s)")
+    print(table(tallies))
+    bad = sum(t.outcomes[o] for t in tallies.values() for o in OUTCOMES[3:])
+    return 1 if bad else 0
+
+
+def _record(tallies: dict[str, Tally], folder: Path, result: tuple[object, ...]) -> None:
+    kind, index, seed_name, data, raw = result
+    assert isinstance(kind, str) and isinstance(index, int) and isinstance(data, bytes)
+    verdicts = [Verdict(c, code, s, list(p)) for c, code, s, p in raw]  # type: ignore[attr-defined]
+    tally = tallies[kind]
+    tally.inputs += 1
+    tally.outcomes.update(v.outcome for v in verdicts)
+    if any(v.problems for v in verdicts):
+        save_reproducer(folder, kind, index, str(seed_name), data, verdicts)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
