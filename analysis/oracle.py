@@ -13,6 +13,8 @@ from diagnostics import SolverError
 from gr1.controller import Controller
 from gr1.spec import GR1Spec
 from solver import synthesis
+from solver.portfolio import engine_options
+from solver.symbolic import Options
 
 
 @dataclass
@@ -24,6 +26,9 @@ class Oracle:
     calls: int = 0
     seconds: float = 0.0
     _memo: dict[GR1Spec, bool] = field(default_factory=dict, repr=False)
+    # The configuration that won the first call's race (solver.portfolio): the variants
+    # are the same problem, so they reuse it without racing (no fork per call).
+    _options: Options | None = field(default=None, repr=False)
 
     @classmethod
     def within(cls, semantics: str, timeout: float | None) -> Oracle:
@@ -54,7 +59,10 @@ class Oracle:
         started = time.monotonic()
         self.calls += 1
         try:
-            answer = synthesis.check(spec, self.semantics, self._left()).realizable
+            result = synthesis.check(spec, self.semantics, self._left(), options=self._options)
+            if self._options is None:
+                self._options = engine_options(result.engine)
+            answer = result.realizable
         except SolverError as err:
             raise self._timed_out(err) from None
         finally:
@@ -67,7 +75,8 @@ class Oracle:
         started = time.monotonic()
         self.calls += 1
         try:
-            return synthesis.counterstrategy(spec, self.semantics, self._left())
+            return synthesis.counterstrategy(spec, self.semantics, self._left(),
+                                             options=self._options)
         except SolverError as err:
             raise self._timed_out(err) from None
         finally:

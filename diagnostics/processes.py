@@ -29,7 +29,9 @@ _POLL: Final = 0.2  # the longest wait between looks at the children
 
 
 def can_fork() -> bool:
-    return hasattr(os, "fork")
+    """Whether this process may start children: it can fork, and it is not itself a
+    daemonic multiprocessing worker (those may not have children)."""
+    return hasattr(os, "fork") and not multiprocessing.current_process().daemon
 
 
 def first_success(works: Sequence[Callable[[], Any]], deadline: float | None = None,

@@ -104,17 +104,24 @@ def resolve_primitive(
                 chosen.valves, robot.leg_of_valve, f"robot file gait {chosen.name}"
             )
     method = prim.method or "reset"
-    result = search(robot, direction, method, seed)
+    result = search(robot, direction, method, seed, max_states=PAIRING_STATES)
     if not result.gaits:
+        within = (f" within {PAIRING_STATES} valve states" if result.limit_reached else "")
         raise SpecSemanticError(
             f"gait {gait.name}: no {method} gait towards {prim.direction} found for robot "
-            f"{robot.name}",
+            f"{robot.name}{within}",
             span,
-            "try another --method, or give the valve sequence inline",
+            "try another method, store the gait in the robot file ('gaitc gaits' searches "
+            "further with --max-states), or give the valve sequence inline",
         )
     return ValveSequence(
         result.gaits[0].valves, robot.leg_of_valve, f"synthesised ({method}, {prim.direction})"
     )
+
+
+#: Valve states a gait search for a primitive may add (``compile``, ``lint``): the search
+#: runs on every compile, so it is bounded; ``gaitc gaits --max-states`` searches further.
+PAIRING_STATES = 500
 
 
 def check_gaits(

@@ -116,7 +116,7 @@ class _Compiler:
             (a,) = parts
             return lambda v: not a(v)
         if isinstance(node, (And, Or)):
-            return _all(parts) if isinstance(node, And) else _any(parts)
+            return _junction(parts, isinstance(node, And))
         if isinstance(node, (Add, Xor, Iff, Implies, Compare)):
             a, b = parts
             if isinstance(node, Add):
@@ -134,27 +134,22 @@ class _Compiler:
         raise TypeError(f"cannot compile {type(node).__name__}")
 
 
-def _all(parts: Sequence[Fn]) -> Fn:
-    if not parts:  # the empty conjunction holds
-        return lambda v: True
+def _junction(parts: Sequence[Fn], conjunction: bool) -> Fn:
+    """``and`` (``conjunction``) or ``or`` over ``parts``; the empty conjunction holds and
+    the empty disjunction does not."""
+    if not parts:
+        return lambda v: conjunction
     if len(parts) == 1:
-        return lambda v: bool(parts[0](v))
+        (a,) = parts
+        return lambda v: bool(a(v))
     if len(parts) == 2:
         a, b = parts
-        return lambda v: bool(a(v)) and bool(b(v))
-    items = tuple(parts)
-    return lambda v: all(p(v) for p in items)
-
-
-def _any(parts: Sequence[Fn]) -> Fn:
-    if not parts:  # the empty disjunction does not
-        return lambda v: False
-    if len(parts) == 1:
-        return lambda v: bool(parts[0](v))
-    if len(parts) == 2:
-        a, b = parts
+        if conjunction:
+            return lambda v: bool(a(v)) and bool(b(v))
         return lambda v: bool(a(v)) or bool(b(v))
     items = tuple(parts)
+    if conjunction:
+        return lambda v: all(p(v) for p in items)
     return lambda v: any(p(v) for p in items)
 
 

@@ -48,6 +48,15 @@ STATIC: Final = "static order"
 DYNAMIC: Final = "dynamic reordering"
 
 
+def engine_options(engine: str, base: Options | None = None) -> Options:
+    """The options of the racer named ``engine`` (to solve variants of a spec without a
+    race once the race on the spec itself has chosen)."""
+    base = base or Options()
+    if engine == DYNAMIC:
+        return replace(base, reordering=True, order="occurrence")
+    return replace(base, reordering=False)
+
+
 def solve_chosen(run: Callable[[Options, Limits], T], options: Options, limits: Limits
                  ) -> tuple[T, str]:
     """``run(options, limits)`` in the configuration the engine chooses, and its name."""
@@ -56,8 +65,7 @@ def solve_chosen(run: Callable[[Options, Limits], T], options: Options, limits: 
     # The static racer's progress comes back through the pipe; the other racer is quiet.
     reporting = replace(limits, progress=None if limits.progress is None else to_parent)
     quiet = replace(limits, progress=None)
-    static = replace(options, reordering=False)
-    dynamic = replace(options, reordering=True, order="occurrence")
+    static, dynamic = engine_options(STATIC, options), engine_options(DYNAMIC, options)
     works = [lambda: run(static, reporting), lambda: run(dynamic, quiet)]
     deadline = None if limits.timeout is None else limits.started + limits.timeout + GRACE
     index, outcome = first_success(works, deadline, delays=(0.0, HEAD_START),

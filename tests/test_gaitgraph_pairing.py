@@ -92,3 +92,26 @@ def test_robot_file_primitives(tmp_path: Path) -> None:
     assert [d.message.split(" ")[1].rstrip(":") for d in diags] == ["east", "y"]
     assert all(d.severity == "error" for d in diags)
     assert "not found" in diags[1].message
+
+
+def test_the_gait_search_of_a_primitive_is_bounded(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Fuzzing found a robot without a gait on which lint's search ran for over 100 s: the
+    search of a primitive adds at most PAIRING_STATES valve states, and says so."""
+    import gaitgraph.search as search_module
+    from diagnostics import SpecSemanticError
+    from gaitgraph import pairing
+    from gaitgraph.graph import GaitGraph
+
+    asked: list[int] = []
+
+    def bounded(robot: object, direction: object, method: str, seed: int,
+                max_states: int = 10_000) -> search_module.SearchResult:
+        asked.append(max_states)
+        return search_module.SearchResult(method, GaitGraph(robot), [], max_states, True)  # type: ignore[arg-type]
+
+    monkeypatch.setattr(search_module, "search", bounded)
+    searched = _gait("north", ("L1", "L2"), Primitive(robot="robots/radial8.yaml",
+                                                      direction="+y", method="reset"))
+    with pytest.raises(SpecSemanticError, match=f"within {pairing.PAIRING_STATES} valve states"):
+        resolve_primitive(searched, str(ROBOTS.parent))
+    assert asked == [pairing.PAIRING_STATES]

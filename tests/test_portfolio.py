@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import time
 from pathlib import Path
+from typing import Any
 
 import pytest
 
@@ -106,3 +107,24 @@ def test_verdicts_and_controllers_do_not_depend_on_the_winner(
     assert (controller is not None) == alone
     if controller is not None:
         assert verify(gr1, controller).ok
+
+
+def _decide_in_a_daemon(queue: Any) -> None:
+    gr1 = gaitc.load(ROOT / "specs" / "patrol_2x2.gait").gr1
+    result = synthesis.check(gr1)
+    queue.put((result.realizable, result.engine))
+
+
+def test_a_daemonic_worker_solves_without_a_race() -> None:
+    """Daemonic processes (bench/fuzz.py's workers) may not have children: the solver then
+    runs the static order in the worker itself instead of failing."""
+    import multiprocessing
+
+    context = multiprocessing.get_context("fork")
+    queue = context.Queue()
+    worker = context.Process(target=_decide_in_a_daemon, args=(queue,), daemon=True)
+    worker.start()
+    answer = queue.get(timeout=60)
+    worker.join(timeout=60)
+    assert answer == (True, STATIC)
+    assert worker.exitcode == 0
