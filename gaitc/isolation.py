@@ -32,6 +32,7 @@ from typing import Any, Final, TypeVar
 
 from diagnostics import GaitcError, SolverError
 from diagnostics.processes import Outcome, can_fork, first_success
+from solver.game import out_of_memory, time_limit_error
 
 T = TypeVar("T")
 
@@ -104,19 +105,13 @@ def _unpack(outcome: Outcome, limits: HardLimits) -> Any:
     if kind == "raise":
         err, text = outcome[1], outcome[2]
         if isinstance(err, MemoryError):
-            raise _out_of_memory()
+            raise out_of_memory()
         if not isinstance(err, GaitcError) and os.environ.get("GAITC_DEBUG"):
             print(text, file=sys.stderr, end="")
         raise err
     if kind == "timeout":
-        raise SolverError(f"synthesis stopped after the time limit of {limits.seconds:g} s",
-                          hint="raise --timeout, or shrink the specification")
+        raise time_limit_error(limits.seconds or 0.0)
     code = outcome[1]
     if code in (1, -signal.SIGKILL):  # CUDD's exit(1) on a failed malloc; the OOM killer
-        raise _out_of_memory()
+        raise out_of_memory()
     raise SolverError(f"the solver process ended without an answer (exit status {code})")
-
-
-def _out_of_memory() -> SolverError:
-    return SolverError("synthesis ran out of memory", hint="raise --memory-limit, or shrink "
-                       "the specification (grid, health levels, encoding)")

@@ -22,6 +22,23 @@ from solver.symbolic import BDDNode, SymbolicSpec
 Progress = Callable[[str], None]
 
 
+def time_limit_error(seconds: float) -> SolverError:
+    """The error of a solver run stopped by its time limit (here, or killed by a parent)."""
+    return SolverError(
+        f"synthesis stopped after the time limit of {seconds:g} s",
+        hint="raise --timeout, or simplify the specification (fewer grid cells or health "
+        "levels, the binary encoding)",
+    )
+
+
+def out_of_memory() -> SolverError:
+    """The error of a solver run that ran out of memory (CUDD's limit, Python's, the OS's)."""
+    return SolverError(
+        "synthesis ran out of memory",
+        hint="raise --memory-limit, or shrink the specification (grid, health levels, encoding)",
+    )
+
+
 @dataclass
 class Limits:
     """A wall-clock deadline, a memory check and a progress callback, checked inside the
@@ -36,11 +53,7 @@ class Limits:
         if self.memory is not None:
             self.memory()
         if self.timeout is not None and time.monotonic() - self.started > self.timeout:
-            raise SolverError(
-                f"synthesis stopped after the time limit of {self.timeout:g} s",
-                hint="raise --timeout, or simplify the specification (fewer grid cells or "
-                "health levels, the binary encoding)",
-            )
+            raise time_limit_error(self.timeout)
 
     def report(self, message: str) -> None:
         if self.progress is not None:

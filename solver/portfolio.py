@@ -37,7 +37,7 @@ from typing import Final, TypeVar
 
 from diagnostics import GaitcError, SolverError
 from diagnostics.processes import can_fork, first_success, to_parent
-from solver.game import Limits
+from solver.game import Limits, out_of_memory, time_limit_error
 from solver.symbolic import Options
 
 T = TypeVar("T")
@@ -77,12 +77,11 @@ def solve_chosen(run: Callable[[Options, Limits], T], options: Options, limits: 
     if outcome[0] == "raise":
         err = outcome[1]
         if isinstance(err, MemoryError):
-            raise SolverError("synthesis ran out of memory")
+            raise out_of_memory()
         if not isinstance(err, GaitcError) and os.environ.get("GAITC_DEBUG"):
             print(outcome[2], file=sys.stderr, end="")
         raise err
     if outcome[0] == "timeout":
-        raise SolverError(f"synthesis stopped after the time limit of {limits.timeout:g} s",
-                          hint="raise --timeout, or simplify the specification")
+        raise time_limit_error(limits.timeout or 0.0)
     raise SolverError(f"both solver processes ended without an answer (exit status "
                       f"{outcome[1]}); the machine may be out of memory")

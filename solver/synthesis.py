@@ -13,12 +13,12 @@ from collections.abc import Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass, field, replace
 
-from diagnostics import FormulaError, SolverError
+from diagnostics import FormulaError
 from gr1.controller import Controller
 from gr1.formula import atoms
 from gr1.spec import SEMANTICS, GR1Spec
 from solver.counter import extract_counterstrategy
-from solver.game import Game, GameStats, Limits, Progress
+from solver.game import Game, GameStats, Limits, Progress, out_of_memory
 from solver.portfolio import STATIC, solve_chosen
 from solver.strategy import extract_strategy
 from solver.symbolic import Options, SymbolicSpec
@@ -55,18 +55,11 @@ def memory_guard() -> Iterator[None]:
     try:
         yield
     except MemoryError:
-        raise _out_of_memory() from None
+        raise out_of_memory() from None
     except (ValueError, RuntimeError) as err:
         if any(text in str(err) for text in _CUDD_FAILURES):
-            raise _out_of_memory() from None
+            raise out_of_memory() from None
         raise
-
-
-def _out_of_memory() -> SolverError:
-    return SolverError(
-        "synthesis ran out of memory",
-        hint="raise --memory-limit, or shrink the specification (grid, health levels, encoding)",
-    )
 
 
 def _game(spec: GR1Spec, semantics: str, options: Options, limits: Limits
