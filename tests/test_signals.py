@@ -4,9 +4,8 @@ ends gaitc and whenever it comes (issue 9).
 ``gaitc synth`` runs on thesis robot B (about 2.5 s: start-up, lowering, solving, extraction,
 verification, writing), with and without ``--timeout`` (with it, the solver runs in a child
 process that must die with its parent). SIGINT, SIGTERM and SIGKILL arrive at moments
-spread over the whole run, timed from when gaitc's own code starts (tests/started.py).
-Afterwards the controller file is either absent or complete, verified and of the ordinary
-mode; SIGINT and SIGTERM end with one line and 130 or 143 and
+spread over the whole run. Afterwards the controller file is either absent or complete,
+verified and of the ordinary mode; SIGINT and SIGTERM end with one line and 130 or 143 and
 leave no temporary file; no process of the run outlives it.
 """
 
@@ -20,7 +19,6 @@ import time
 from pathlib import Path
 
 import pytest
-from started import wait_until_started
 
 import gaitc
 from gr1.controller import load_controller
@@ -65,7 +63,6 @@ def test_a_signal_at_any_moment_leaves_no_bad_file(tmp_path: Path, signum: signa
         argv += ["--timeout", "60"]
     proc = subprocess.Popen(argv, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
                             text=True)
-    wait_until_started(proc)  # a signal during Python's own start-up is not gaitc's
     time.sleep(delay)
     proc.send_signal(signum)
     _, err = proc.communicate(timeout=60)
