@@ -22,7 +22,7 @@ from gaitsim.environments import Environment, Request, Situation
 from gaitsim.monitor import Monitor
 from gaitsim.run import Run
 from gaitsim.simulator import Simulator
-from gaitsim.strategy import InputKey, Strategy
+from gaitsim.strategy import InputKey, StrategyView
 from ltlcompiler.model import GaitKind, Model
 
 
@@ -72,7 +72,7 @@ def valve_count(primitives: Mapping[str, ValveSequence], default: int) -> int:
 class Driver:
     """Runs a controller on a backend, one sensed input and one gait per step."""
 
-    def __init__(self, strategy: Strategy, domain: Domain, monitor: Monitor,
+    def __init__(self, strategy: StrategyView, domain: Domain, monitor: Monitor,
                  primitives: Mapping[str, ValveSequence], backend: Backend,
                  step_delay: float = 0.0, cycles: int = 1,
                  progress: Callable[[str], None] | None = None) -> None:

@@ -15,7 +15,7 @@ from gaitsim.domain import Domain, Goal, State
 from gaitsim.environments import Environment, Situation
 from gaitsim.monitor import Monitor
 from gaitsim.simulator import Simulator
-from gaitsim.strategy import Strategy
+from gaitsim.strategy import StrategyView
 
 
 class ScenarioFinished(HardwareError):
@@ -27,7 +27,7 @@ class SimulatedRobot(Backend):
 
     name = "simulated robot"
 
-    def __init__(self, strategy: Strategy, domain: Domain, monitor: Monitor,
+    def __init__(self, strategy: StrategyView, domain: Domain, monitor: Monitor,
                  environment: Environment, valve_count: int) -> None:
         super().__init__(valve_count)
         self.view = Simulator(strategy, domain, monitor)

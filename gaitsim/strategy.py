@@ -9,12 +9,50 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Protocol, TypeVar
 
 from diagnostics import ControllerError, Span
-from gr1.controller import Controller, load_controller
+from gr1.bddfile import SymbolicController, is_symbolic, symbolic_from_dict
+from gr1.controller import Controller, controller_from_dict, read_controller_json
 from gr1.spec import GR1Spec
 
 InputKey = tuple[int, ...]
+T_co = TypeVar("T_co", covariant=True)
+
+
+class Indexed(Protocol[T_co]):
+    """What a run reads of a controller's per-node data: item ``k`` of node ``k``."""
+
+    def __getitem__(self, k: int, /) -> T_co: ...
+
+
+class StrategyView(Protocol):
+    """A controller as a run sees it: explicit (:class:`Strategy`) or symbolic
+    (:class:`gaitsim.symbolic_view.SymbolicStrategy`, whose nodes are found as it runs)."""
+
+    @property
+    def variables(self) -> tuple[str, ...]: ...
+    @property
+    def n_inputs(self) -> int: ...
+    @property
+    def values(self) -> Indexed[tuple[int, ...]]: ...
+    @property
+    def successors(self) -> Indexed[tuple[int, ...]]: ...
+    @property
+    def ranks(self) -> Indexed[int]: ...
+    @property
+    def initial(self) -> tuple[int, ...]: ...
+    @property
+    def kind(self) -> str: ...
+    @property
+    def file(self) -> str: ...
+    @property
+    def inputs(self) -> tuple[str, ...]: ...
+    def __len__(self) -> int: ...
+    def input_key(self, node: int) -> InputKey: ...
+    def valuation(self, node: int) -> dict[str, int]: ...
+    def options(self, node: int) -> dict[InputKey, int]: ...
+    def initial_options(self) -> dict[InputKey, int]: ...
 
 
 @dataclass(frozen=True)
@@ -128,6 +166,31 @@ def _check_ranges(
                 )
 
 
-def load_strategy(path: str | Path, spec: GR1Spec) -> Strategy:
-    """Read a controller JSON file (either solver) and check it against ``spec``."""
-    return strategy_from_controller(load_controller(str(path), spec), spec, str(path))
+def view_of(controller: Controller | SymbolicController, spec: GR1Spec, file: str = ""
+            ) -> StrategyView:
+    """The run view of a controller of either form, checked against ``spec``."""
+    if isinstance(controller, Controller):
+        return strategy_from_controller(controller, spec, file)
+    from gaitsim.symbolic_view import SymbolicStrategy
+
+    return SymbolicStrategy(controller, spec, file)
+
+
+def load_strategy(path: str | Path, spec: GR1Spec) -> StrategyView:
+    """Read a controller file (explicit from either solver, or symbolic) and check it
+    against ``spec``."""
+    data = read_controller_json(str(path))
+    if is_symbolic(data):
+        return view_of(symbolic_from_dict(data, str(path)), spec, str(path))
+    return strategy_from_controller(controller_from_dict(data, str(path), spec), spec, str(path))
+
+
+def explicit(view: StrategyView, what: str) -> Strategy:
+    """``view`` as an explicit automaton, for ``what`` needs every node listed."""
+    if isinstance(view, Strategy):
+        return view
+    raise ControllerError(
+        f"{what} needs an explicit controller, and {view.file or 'this one'} is symbolic "
+        "(its nodes are found by running it)", _where(view.file),
+        hint="synthesize an explicit controller with 'gaitc synth' (without --symbolic), or "
+        "draw a run of this one with 'render map --run'")

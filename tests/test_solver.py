@@ -13,6 +13,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from diagnostics import FormulaError
+from gr1.bddwalk import holds_at as holds
 from gr1.evaluation import evaluate
 from gr1.formula import (
     Expr,
@@ -22,7 +23,7 @@ from gr1.formula import (
 from gr1.spec import SEMANTICS, Clause, GR1Spec, Variable
 from solver import synthesis
 from solver.game import Game
-from solver.strategy import holds, smallest
+from solver.strategy import smallest
 from solver.symbolic import Options, SymbolicSpec
 from verifier.counterstrategy import verify_counterstrategy
 from verifier.strategy import verify
