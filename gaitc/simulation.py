@@ -122,7 +122,7 @@ def _counter_play(bound: Session, env: object, steps: int | None, seed: int) -> 
 
 
 def simulate(spec: Spec | Session | str | Path,
-             controller: Controller | Synthesis | str | Path | None = None,
+             controller: Controller | SymbolicController | Synthesis | str | Path | None = None,
              env: str | Scenario | Environment = "random", steps: int | None = None,
              seed: int = 0, semantics: str = "default") -> Run:
     """Run ``controller`` (synthesized when None) for ``spec`` against ``env`` for ``steps``

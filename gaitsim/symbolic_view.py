@@ -126,13 +126,14 @@ class SymbolicStrategy:
         at = dict(zip(self.pre, map(bool, state), strict=True))
         here = bdd.let(at, self.strategies[goal])
         env_here = bdd.let(at, self.env_trans)
+        keeping = here & env_here  # the moves that also keep ρe, preferred
         out = []
         for x in all_assignments(bdd, bdd.exist(set(self.post_out), env_here), self.post_in):
             at_x = dict(zip(self.post_in, map(bool, x), strict=True))
-            choices = bdd.let(at_x, here)
-            preferred = choices & bdd.let(at_x, env_here)
-            y = first_assignment(bdd, preferred if preferred != bdd.false else choices,
-                                 self.post_out, self.rank)
+            choices = bdd.let(at_x, keeping)
+            if choices == bdd.false:
+                choices = bdd.let(at_x, here)
+            y = first_assignment(bdd, choices, self.post_out, self.rank)
             if y is None:
                 raise ControllerError(
                     f"the symbolic controller has no move at node {node} for an input ρe "
