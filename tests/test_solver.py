@@ -23,6 +23,7 @@ from gr1.formula import (
 from gr1.spec import SEMANTICS, Clause, GR1Spec, Variable
 from solver import synthesis
 from solver.game import Game
+from solver.portfolio import DYNAMIC, engine_options
 from solver.strategy import smallest
 from solver.symbolic import Options, SymbolicSpec
 from verifier.counterstrategy import verify_counterstrategy
@@ -61,8 +62,9 @@ def _holds(sym: SymbolicSpec, u: object, point: dict[str, bool]) -> bool:
         Options(reordering=True),
         Options(reorder_once=True, order="declaration"),
         Options(care=False, recycle=False),
+        engine_options(DYNAMIC),
     ],
-    ids=["plain", "clustered", "reordering", "reorder-once", "no-care"],
+    ids=["plain", "clustered", "reordering", "reorder-once", "no-care", "race-second"],
 )
 @settings(max_examples=25, deadline=None)
 @given(spec=st.one_of(tiny_specs(), one_hot_specs()))
