@@ -9,8 +9,8 @@ reordering is 100x faster. No cheap test tells the two apart before solving, so:
    within :data:`HEAD_START` seconds, at the cost of one fork (a few milliseconds);
 2. if not, a second process joins the race with dynamic reordering (group sifting, each
    bit kept with its primed copy) started from the occurrence order, without the invariant
-   care set; the first answer wins and the other process is killed. The machines gaitc targets have two cores, so
-   each racer runs at full speed.
+   care set; the first answer wins and the other process is killed. The machines gaitc
+   targets have two cores, so each racer runs at full speed.
 
 The static solve runs in a child, not in this process, because one CUDD operation can
 take minutes and holds the interpreter lock: on AMBA with 5 masters, simplifying the
