@@ -10,6 +10,7 @@ from gaitc.commands import (
     compiling,
     driving,
     explaining,
+    firmware,
     gaits,
     rendering,
     resilient,
@@ -18,4 +19,4 @@ from gaitc.commands import (
 )
 
 COMMAND_MODULES = (compiling, solving, explaining, resilient, simulating, rendering, gaits,
-                   driving)
+                   driving, firmware)

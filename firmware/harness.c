@@ -1,0 +1,326 @@
+/*
+ * gaitboard-sim: runs the real gaitboard firmware image (an ELF file) in simavr, in real
+ * time, as the valve board of `gaitc drive --backend serial`.
+ *
+ *   gaitboard-sim FIRMWARE.elf [--record FILE] [--watchdog-ms N] [--adc MV]
+ *
+ * The board's UART is a pseudo-terminal whose path is the first line printed.  Every
+ * change of the valve pins (PD2..PD7, PB0..PB1) is written to FILE as a JSON line
+ * {"t_ms": simulated milliseconds, "valves": "0101..."} (valve 0 first; changes less than
+ * COALESCE_US apart, such as the two port writes of one valve command, are one line).
+ * Standard input is a control channel, one command a line:
+ *   adc CH MV        waveguide input CH (0..7) now reads MV millivolts (0..5000)
+ *   contact I 0|1    contact input I (0..3) touching (1) or not (0)
+ *   time             prints "t_ms=<simulated ms>"
+ * It runs until killed (SIGTERM and SIGINT end it cleanly).
+ */
+#define _GNU_SOURCE
+#include <errno.h>
+#include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <termios.h>
+#include <time.h>
+#include <unistd.h>
+
+#include <simavr/avr_adc.h>
+#include <simavr/avr_ioport.h>
+#include <simavr/avr_uart.h>
+#include <simavr/sim_avr.h>
+#include <simavr/sim_elf.h>
+
+#define VALVES 8
+#define LEGS 8
+#define CONTACTS 4
+#define FREQUENCY 16000000UL
+#define COALESCE_US 50
+#define BATCH 2000 /* instructions between looks at the pty, stdin and the clock */
+
+static const char valve_port[VALVES] = {'D', 'D', 'D', 'D', 'D', 'D', 'B', 'B'};
+static const int valve_bit[VALVES] = {2, 3, 4, 5, 6, 7, 0, 1};
+
+static avr_t *avr;
+static avr_irq_t *uart_in;
+static avr_irq_t *adc_in[LEGS];
+static avr_irq_t *contact_in[CONTACTS];
+static int master = -1;
+static int xon = 1;
+static FILE *record;
+static char pins[VALVES + 1], written[VALVES + 1];
+static avr_cycle_count_t pending_since, pending_at;
+static int pending;
+static volatile sig_atomic_t stopping;
+static avr_cycle_count_t cycle_base, last_cycle; /* simavr may restart its count on reset */
+static char boot_reply[128];
+static size_t boot_len;
+static int booting = 1;
+
+static avr_cycle_count_t now_cycles(void)
+{
+    if (avr->cycle < last_cycle) cycle_base += last_cycle;
+    last_cycle = avr->cycle;
+    return cycle_base + avr->cycle;
+}
+
+static double to_ms(avr_cycle_count_t cycles) { return (double)cycles * 1000.0 / FREQUENCY; }
+
+static void on_pin(struct avr_irq_t *irq, uint32_t value, void *param)
+{
+    (void)irq;
+    int valve = (int)(intptr_t)param;
+    char bit = value ? '1' : '0';
+    if (pins[valve] == bit) return;
+    pins[valve] = bit;
+    if (!pending) pending_at = now_cycles();
+    pending = 1;
+    pending_since = now_cycles();
+}
+
+static void flush_pins(int force)
+{
+    if (!pending) return;
+    if (!force && now_cycles() - pending_since < FREQUENCY / 1000000 * COALESCE_US) return;
+    pending = 0;
+    if (strcmp(pins, written) == 0) return;
+    memcpy(written, pins, sizeof pins);
+    if (record) {
+        fprintf(record, "{\"t_ms\": %.3f, \"valves\": \"%s\"}\n", to_ms(pending_at), pins);
+        fflush(record);
+    }
+}
+
+static void on_uart_out(struct avr_irq_t *irq, uint32_t value, void *param)
+{
+    (void)irq;
+    (void)param;
+    unsigned char c = (unsigned char)value;
+    if (booting) {
+        if (boot_len < sizeof boot_reply - 1) boot_reply[boot_len++] = (char)c;
+        return;
+    }
+    if (write(master, &c, 1) < 0) {
+        /* nobody reads the pty and its buffer is full: the byte is lost, as on a wire */
+    }
+}
+
+static void on_xon(struct avr_irq_t *irq, uint32_t value, void *param)
+{
+    (void)irq, (void)value, (void)param;
+    xon = 1;
+}
+
+static void on_xoff(struct avr_irq_t *irq, uint32_t value, void *param)
+{
+    (void)irq, (void)value, (void)param;
+    xon = 0;
+}
+
+static double wall_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec * 1000.0 + ts.tv_nsec / 1e6;
+}
+
+static void run_batch(void)
+{
+    for (int i = 0; i < BATCH; i++) {
+        int state = avr_run(avr);
+        if (state == cpu_Done || state == cpu_Crashed) {
+            fprintf(stderr, "gaitboard-sim: the firmware stopped (state %d)\n", state);
+            flush_pins(1);
+            exit(1);
+        }
+    }
+    flush_pins(0);
+}
+
+static void feed_uart(void)
+{
+    unsigned char buf[1];
+    while (xon) {
+        ssize_t n = read(master, buf, 1);
+        if (n <= 0) return; /* EAGAIN, or EIO while no program has the pty open */
+        avr_raise_irq(uart_in, buf[0]);
+    }
+}
+
+static void control(char *cmd)
+{
+    int a, b;
+    if (sscanf(cmd, "adc %d %d", &a, &b) == 2 && a >= 0 && a < LEGS && b >= 0 && b <= 5000) {
+        avr_raise_irq(adc_in[a], (uint32_t)b);
+    } else if (sscanf(cmd, "contact %d %d", &a, &b) == 2 && a >= 0 && a < CONTACTS &&
+               (b == 0 || b == 1)) {
+        avr_raise_irq(contact_in[a], b ? 0 : 1); /* touching pulls the input low */
+    } else if (strncmp(cmd, "time", 4) == 0) {
+        printf("t_ms=%.3f\n", to_ms(now_cycles()));
+        fflush(stdout);
+    } else if (cmd[0]) {
+        fprintf(stderr, "gaitboard-sim: unknown control command '%s'\n", cmd);
+    }
+}
+
+static void read_control(void)
+{
+    static char buf[256];
+    static size_t len;
+    static int closed;
+    char c;
+    struct pollfd ready = {STDIN_FILENO, POLLIN, 0};
+    while (!closed && poll(&ready, 1, 0) > 0) {
+        ssize_t n = read(STDIN_FILENO, &c, 1);
+        if (n == 0) closed = 1;
+        if (n <= 0) return;
+        if (c == '\n' || len == sizeof buf - 1) {
+            buf[len] = 0;
+            control(buf);
+            len = 0;
+        } else {
+            buf[len++] = c;
+        }
+    }
+}
+
+static void stop(int sig)
+{
+    (void)sig;
+    stopping = 1;
+}
+
+static int open_pty(void)
+{
+    int fd = posix_openpt(O_RDWR | O_NOCTTY);
+    if (fd < 0 || grantpt(fd) || unlockpt(fd)) return -1;
+    /* hold the terminal side open (raw) so that a host closing it never loses our settings */
+    int slave = open(ptsname(fd), O_RDWR | O_NOCTTY);
+    struct termios raw;
+    if (slave < 0 || tcgetattr(slave, &raw)) return -1;
+    cfmakeraw(&raw);
+    tcsetattr(slave, TCSANOW, &raw);
+    fcntl(fd, F_SETFL, fcntl(fd, F_GETFL) | O_NONBLOCK);
+    return fd;
+}
+
+static void boot(int watchdog_ms)
+{
+    double until = to_ms(now_cycles()) + 20; /* let the firmware start */
+    while (to_ms(now_cycles()) < until) run_batch();
+    if (watchdog_ms) {
+        char cmd[32];
+        snprintf(cmd, sizeof cmd, "W %d\n", watchdog_ms);
+        for (char *p = cmd; *p; p++) {
+            avr_raise_irq(uart_in, (uint8_t)*p);
+            run_batch();
+        }
+        until = to_ms(now_cycles()) + 20;
+        while (to_ms(now_cycles()) < until) run_batch();
+        if (!strstr(boot_reply, "OK wd=")) {
+            fprintf(stderr, "gaitboard-sim: the firmware refused --watchdog-ms %d: %s\n",
+                    watchdog_ms, boot_reply);
+            exit(2);
+        }
+    }
+    booting = 0;
+}
+
+int main(int argc, char **argv)
+{
+    const char *image = NULL, *record_path = NULL;
+    int watchdog_ms = 0, adc_mv = 4000;
+    for (int i = 1; i < argc; i++) {
+        if (!strcmp(argv[i], "--record") && i + 1 < argc) record_path = argv[++i];
+        else if (!strcmp(argv[i], "--watchdog-ms") && i + 1 < argc) watchdog_ms = atoi(argv[++i]);
+        else if (!strcmp(argv[i], "--adc") && i + 1 < argc) adc_mv = atoi(argv[++i]);
+        else if (!image && argv[i][0] != '-') image = argv[i];
+        else {
+            fprintf(stderr, "usage: gaitboard-sim FIRMWARE.elf [--record FILE] "
+                            "[--watchdog-ms N] [--adc MV]\n");
+            return 2;
+        }
+    }
+    if (!image) {
+        fprintf(stderr, "gaitboard-sim: no firmware image given\n");
+        return 2;
+    }
+    elf_firmware_t fw;
+    memset(&fw, 0, sizeof fw);
+    fflush(stdout);
+    int out = dup(STDOUT_FILENO), null = open("/dev/null", O_WRONLY);
+    dup2(null, STDOUT_FILENO); /* simavr's loader chats on stdout; the pty path is line 1 */
+    int unreadable = elf_read_firmware(image, &fw);
+    if (!unreadable && (avr = avr_make_mcu_by_name("atmega328p")) && !avr_init(avr)) {
+        avr->log = 0;
+        avr_load_firmware(avr, &fw);
+    }
+    fflush(stdout);
+    dup2(out, STDOUT_FILENO);
+    close(out);
+    close(null);
+    if (unreadable) {
+        fprintf(stderr, "gaitboard-sim: cannot read the firmware image %s\n", image);
+        return 1;
+    }
+    if (!avr) {
+        fprintf(stderr, "gaitboard-sim: simavr has no atmega328p\n");
+        return 1;
+    }
+    avr->frequency = FREQUENCY;
+    avr->avcc = avr->vcc = 5000;
+    avr->log = 0;
+    if (record_path && !(record = fopen(record_path, "w"))) {
+        fprintf(stderr, "gaitboard-sim: cannot write %s: %s\n", record_path, strerror(errno));
+        return 1;
+    }
+    memset(pins, '0', VALVES);
+    memcpy(written, pins, sizeof pins);
+    if (record) fprintf(record, "{\"t_ms\": 0.000, \"valves\": \"%s\"}\n", pins), fflush(record);
+    for (int v = 0; v < VALVES; v++)
+        avr_irq_register_notify(
+            avr_io_getirq(avr, AVR_IOCTL_IOPORT_GETIRQ(valve_port[v]), valve_bit[v]), on_pin,
+            (void *)(intptr_t)v);
+    for (int c = 0; c < CONTACTS; c++) {
+        contact_in[c] = avr_io_getirq(avr, AVR_IOCTL_IOPORT_GETIRQ('B'), 2 + c);
+        avr_raise_irq(contact_in[c], 1);
+    }
+    for (int l = 0; l < LEGS; l++) {
+        adc_in[l] = avr_io_getirq(avr, AVR_IOCTL_ADC_GETIRQ, ADC_IRQ_ADC0 + l);
+        avr_raise_irq(adc_in[l], (uint32_t)adc_mv);
+    }
+    uint32_t flags = 0; /* no stdio echo, no host sleep while the firmware polls */
+    avr_ioctl(avr, AVR_IOCTL_UART_SET_FLAGS('0'), &flags);
+    uart_in = avr_io_getirq(avr, AVR_IOCTL_UART_GETIRQ('0'), UART_IRQ_INPUT);
+    avr_irq_register_notify(avr_io_getirq(avr, AVR_IOCTL_UART_GETIRQ('0'), UART_IRQ_OUTPUT),
+                            on_uart_out, NULL);
+    avr_irq_register_notify(avr_io_getirq(avr, AVR_IOCTL_UART_GETIRQ('0'), UART_IRQ_OUT_XON),
+                            on_xon, NULL);
+    avr_irq_register_notify(avr_io_getirq(avr, AVR_IOCTL_UART_GETIRQ('0'), UART_IRQ_OUT_XOFF),
+                            on_xoff, NULL);
+    if ((master = open_pty()) < 0) {
+        fprintf(stderr, "gaitboard-sim: cannot create a pseudo-terminal: %s\n", strerror(errno));
+        return 1;
+    }
+    signal(SIGTERM, stop);
+    signal(SIGINT, stop);
+    signal(SIGPIPE, SIG_IGN);
+    boot(watchdog_ms);
+    printf("%s\n", ptsname(master));
+    fflush(stdout);
+    double start_wall = wall_ms(), start_sim = to_ms(now_cycles());
+    while (!stopping) {
+        run_batch();
+        feed_uart();
+        read_control();
+        double ahead = (to_ms(now_cycles()) - start_sim) - (wall_ms() - start_wall);
+        if (ahead > 1.0) {
+            struct timespec ts = {0, (long)(ahead * 1e6)};
+            nanosleep(&ts, NULL);
+        }
+    }
+    flush_pins(1);
+    if (record) fclose(record);
+    return 0;
+}
