@@ -15,7 +15,7 @@ from dataclasses import dataclass
 
 from diagnostics import SpecSemanticError
 from gaitgraph.pairing import ValveSequence, resolve_primitive
-from gaithw.backend import Backend, HardwareError, SensorReading, where
+from gaithw.backend import Backend, HardwareError, Interrupted, SensorReading, where
 from gaithw.simulated import ScenarioFinished
 from gaitsim.domain import Domain, State
 from gaitsim.environments import Environment, Request, Situation
@@ -85,6 +85,7 @@ class Driver:
         self.progress = progress
         self.executed: list[Executed] = []
         self.interrupted = False
+        self.interruption = ""  # Ctrl-C, SIGTERM or SIGHUP
         self.no_gait = next(g.name for g in domain.model.gaits if g.kind is GaitKind.NONE)
         self._ran_up_to = -1  # index of the last step whose gait was run
 
@@ -99,12 +100,14 @@ class Driver:
                     last = run.steps[-1]
                     if last.index > self._ran_up_to:
                         self.execute(last.index, last.gait)
-            except KeyboardInterrupt:
+            except KeyboardInterrupt as stop:
+                self.interruption = interruption_name(stop)
                 self.backend.vent()
                 raise
         if self.interrupted and run.summary is not None:
             run.summary = dataclasses.replace(
-                run.summary, stopped="interrupted (Ctrl-C); all valves vented")
+                run.summary,
+                stopped=f"interrupted ({self.interruption}); {self.backend.safety_note()}")
         return run
 
     def execute(self, step: int, gait: str) -> None:
@@ -122,6 +125,8 @@ class Driver:
         for valves in states:
             self.backend.apply(valves)
             self.backend.wait(self.step_delay)
+        if "1" in states[-1]:  # no valve stays open outside its gait's step
+            self.backend.vent()
         self.executed.append(Executed(step, gait, states))
         self._ran_up_to = step
 
@@ -180,11 +185,17 @@ class SensedEnvironment(Environment):
             reading = driver.backend.read_sensors()
         except ScenarioFinished:
             return None
-        except KeyboardInterrupt:
+        except KeyboardInterrupt as stop:
             driver.interrupted = True
+            driver.interruption = interruption_name(stop)
             driver.backend.vent()
             return None
         return driver.sensed_input(reading, situation.state)
+
+
+def interruption_name(stop: KeyboardInterrupt) -> str:
+    """How a run was interrupted: ``Ctrl-C``, ``SIGTERM`` or ``SIGHUP``."""
+    return stop.name if isinstance(stop, Interrupted) else "Ctrl-C"
 
 
 def applied_states(executed: Sequence[Executed]) -> list[str]:

@@ -21,7 +21,14 @@ from gaitc.simulation import Session, session
 from gaitgraph.pairing import resolve_primitive
 from gaithw.backend import HardwareError, SensorReading, level_from_waveguide
 from gaithw.driver import Driver, applied_states, bind_primitives, valve_count
-from gaithw.serial_board import Garbled, SerialValveBoard, parse_pong, parse_sensors
+from gaithw.serial_board import (
+    BoardInfo,
+    Garbled,
+    SerialValveBoard,
+    default_thresholds,
+    parse_pong,
+    parse_sensors,
+)
 from gaithw.simulated import SimulatedRobot
 from gaitsim.environments import AdversarialEnvironment, RandomEnvironment
 from gaitsim.run import read_jsonl
@@ -83,9 +90,11 @@ class FakeBoard:
         if len(self.received) > self.silent_after:
             return None
         if line == "PING":
-            return f"PONG fake-1.0 valves={self.valves}"
+            return f"PONG fake-1.0 proto=2 valves={self.valves}"
         if self.mode == "garbage":
             return "#@!~ 0x7f"
+        if line == "HB":
+            return "OK"
         if line.startswith("V "):
             if self.mode == "refuse":
                 return "ERR pressure rail empty"
@@ -145,17 +154,22 @@ def test_simulated_radial8_runs_the_primitives_of_the_chosen_gaits(radial8: Sess
     assert run.error is None and len(run.steps) == 16
     legs = [leg.name for leg in radial8.model.legs]
     expected = ["00000000"]  # vented when the driver starts
+    executed: list[str] = []
     for step in run.steps:
         gait = radial8.model.gait(step.gait)
         if gait.kind is GaitKind.NONE:
             expected.append("00000000")
+            executed.append("00000000")
             continue
         seq = resolve_primitive(gait, str(RADIAL8.parent), legs)
         assert set(seq.pressurised_legs()) == set(step.legs_used)
         expected.extend(seq.states)
+        executed.extend(seq.states)
+        if "1" in seq.states[-1]:
+            expected.append("00000000")  # no valve stays open after its gait's step
     expected.append("00000000")  # vented on close
     assert robot.applied == expected
-    assert applied_states(driver.executed) == expected[1:-1]
+    assert applied_states(driver.executed) == executed
     assert [e.gait for e in driver.executed] == [s.gait for s in run.steps]
     assert any(s.gait != "noGait" for s in run.steps)
 
@@ -234,14 +248,22 @@ def test_missing_primitives_are_listed(tmp_path: Path) -> None:
 
 # ---------------------------------------------------------------------------- protocol
 def test_protocol_parsers() -> None:
-    assert parse_pong("PONG gaitboard-2.1 valves=16") == ("gaitboard-2.1", 16)
+    assert parse_pong("PONG gaitboard-2.1 valves=16") == BoardInfo("gaitboard-2.1", 1, 16)
+    assert parse_pong("PONG gaitboard/2.0 proto=2 valves=8 legs=8 contacts=4 wd=500 "
+                      "reset=power") == BoardInfo("gaitboard/2.0", 2, 8, 8, 4, 500, "power")
+    reading = parse_sensors("S a=1023,400,0 lo=1,1,1 c=0000", ["L1", "L2", "L3"],
+                            {leg: default_thresholds(3) for leg in ("L1", "L2", "L3")})
+    assert reading == SensorReading((("L1", 3), ("L2", 2), ("L3", 1)), None, None)
+    with pytest.raises(Garbled):  # raw values but no thresholds to grade them
+        parse_sensors("S a=1023,400", ["L1", "L2"])
     reading = parse_sensors("S h=3,2 hazard=blue region=r12", ["L1", "L2"])
     assert reading == SensorReading((("L1", 3), ("L2", 2)), "blue", "r12")
     assert parse_sensors("S h=1,1 hazard=- region=-", ["L1", "L2"]).region is None
     for bad in ("S h=3 hazard=-", "S h=3,x", "X h=3,3", "S h=3,3 h=3,3", "S h=3,3 foo=1"):
         with pytest.raises(Garbled):
             parse_sensors(bad, ["L1", "L2"])
-    for bad in ("PONG", "PONG v1 valves=0", "PING v1 valves=8", "PONG v1 count=8"):
+    for bad in ("PONG", "PONG v1 valves=0", "PING v1 valves=8", "PONG v1 count=8",
+                "PONG v1 proto=2", "PONG v1 proto=x valves=8", "PONG v1 valves=8 valves=8"):
         with pytest.raises(Garbled):
             parse_pong(bad)
 
@@ -292,7 +314,8 @@ def test_serial_garbled_answers_are_retried_then_fail_vented(
     hw = SerialValveBoard(board.url, 8, ["L1"], timeout=1.0, retries=2)
     hw.open()
     with pytest.raises(HardwareError,
-                       match=r"garbled answer .* \(after 3 attempts\); all valves vented"):
+                       match=r"garbled answer .* \(after 3 attempts\); the vent was not "
+                       r"acknowledged; the board's watchdog vents within 500 ms"):
         hw.apply("10000000")
     hw.close()
     wait_for(board, 6)
@@ -307,7 +330,9 @@ def test_serial_board_that_stops_answering_times_out_vented(
     hw.apply("01000000")
     with pytest.raises(HardwareError, match=r"no answer to 'V' within 0.2 s") as caught:
         hw.apply("00100000")
-    assert caught.value.span is not None and "vented" in caught.value.message
+    assert caught.value.span is not None  # the silent board acknowledged no vent: say so
+    assert caught.value.message.endswith("; link lost; the board's watchdog vents within "
+                                         "500 ms")
     hw.close()
     wait_for(board, 5)
     assert board.commands("V")[-1] == "V 00000000"

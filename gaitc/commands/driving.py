@@ -18,7 +18,7 @@ from gaitc.commands.simulating import environment_of, report_run
 from gaitc.exitcodes import ExitCode, exit_code_help
 from gaitc.simulation import Session
 from gaitc.solving import recorded_encoding
-from gaithw.backend import Backend
+from gaithw.backend import Backend, interrupt_on_signals
 from gaitsim.environments import Environment
 from gaitsim.scenario import ScriptedEnvironment
 from ltlcompiler.encoding import ENCODINGS
@@ -28,8 +28,10 @@ EPILOG = """backends:
                      from --env (random, adversarial or a scripted scenario), within the
                      spec's assumptions
   --backend serial   a valve board on --port (a device such as /dev/ttyUSB0, or
-                     socket://HOST:PORT) speaking the gaitc line protocol (docs/hardware.md);
-                     every valve is vented on exit, on any error and on Ctrl-C
+                     socket://HOST:PORT) speaking the gaitc line protocol v2
+                     (docs/hardware.md); every valve is vented on exit, on any error, on
+                     Ctrl-C, SIGTERM and SIGHUP; a heartbeat keeps the board's watchdog fed
+                     while valves are open (try it with 'gaitc firmware simulate')
 
 """
 EPILOG += exit_code_help({
@@ -110,7 +112,7 @@ def _backend(args: argparse.Namespace, loaded: Session, valves: int) -> tuple[Ba
 
         channels = parse_channels(args.channels) if args.channels else None
         return SerialValveBoard(args.port, valves, loaded.domain.legs, args.baud, args.timeout,
-                                channels=channels), steps
+                                channels=channels, levels=loaded.domain.full), steps
     from gaithw.simulated import SimulatedRobot
 
     environment, scripted = _environment(args, loaded)
@@ -142,7 +144,8 @@ def run_drive(args: argparse.Namespace) -> int:
     live = None if args.quiet or args.backend == "sim" else _print_flush
     driver = Driver(loaded.strategy, loaded.domain, loaded.monitor, primitives, backend,
                     delay, args.cycles, live)
-    run = driver.run(steps, args.spec)
+    with interrupt_on_signals():  # SIGTERM and SIGHUP vent and keep the run, as Ctrl-C does
+        run = driver.run(steps, args.spec)
     return report_run(run, dict(loaded.domain.full), backend.name, args.quiet, args.out)
 
 
