@@ -16,6 +16,7 @@
  */
 #include <avr/interrupt.h>
 #include <avr/io.h>
+#include <avr/sleep.h>
 #include <avr/wdt.h>
 #include <stdint.h>
 
@@ -55,8 +56,8 @@ static uint16_t wd_period = WD_DEFAULT;
 static uint32_t last_valid;
 static uint8_t valves;       /* bit i = valve i */
 
-static uint16_t adc_now[LEGS], adc_low[LEGS];
-static uint8_t adc_channel;
+static uint16_t adc_filtered[LEGS]; /* x16: exponential average, a new sample weighs 1/8 */
+static uint8_t adc_channel, adc_primed;
 
 ISR(TIMER0_COMPA_vect) { now_ms++; }
 
@@ -81,13 +82,20 @@ static uint32_t millis(void)
     return t;
 }
 
+static volatile uint16_t adc_now[LEGS], adc_low[LEGS];
+
+/* Valve i actuates leg i: when it opens, a new actuation cycle of that leg's waveguide
+ * starts and its lowest value is measured afresh. */
 static void set_valves(uint8_t bits)
 {
+    uint8_t opened = (uint8_t)(bits & (uint8_t)~valves), i;
     uint8_t d = (uint8_t)((PORTD & 0x03) | (uint8_t)((bits & 0x3F) << 2));
     uint8_t b = (uint8_t)((PORTB & (uint8_t)~0x03) | ((bits >> 6) & 0x03));
     cli();
     PORTD = d;
     PORTB = b;
+    for (i = 0; i < LEGS; i++)
+        if (opened & (1 << i)) adc_low[i] = adc_now[i];
     sei();
     valves = bits;
 }
@@ -134,15 +142,33 @@ static void adc_start(uint8_t channel)
     ADCSRA |= (1 << ADSC);
 }
 
-/* One waveguide sample per call when a conversion has finished; round robin over legs. */
-static void adc_poll(void)
+/* A conversion finished: one waveguide sample, round robin over the legs (about 0.8 ms per
+ * leg).  The samples are filtered (time constant about 7 ms) and the lowest filtered value
+ * since the leg's valve last opened is kept: the dip of its last actuation cycle. */
+ISR(ADC_vect)
 {
-    if (ADCSRA & (1 << ADSC)) return;
-    uint16_t v = ADC;
+    uint16_t sample = ADC;
+    uint16_t *f = &adc_filtered[adc_channel];
+    if (adc_primed < LEGS) {
+        *f = (uint16_t)(sample << 4);
+        adc_primed++;
+    } else {
+        *f = (uint16_t)(*f - (*f >> 3) + (sample << 1));
+    }
+    uint16_t v = (uint16_t)((*f + 8) >> 4);
     adc_now[adc_channel] = v;
     if (v < adc_low[adc_channel]) adc_low[adc_channel] = v;
     adc_channel = (uint8_t)((adc_channel + 1) % LEGS);
     adc_start(adc_channel);
+}
+
+static uint16_t read_adc(volatile uint16_t *value)
+{
+    uint16_t v;
+    cli();
+    v = *value;
+    sei();
+    return v;
 }
 
 static void reply_sensors(void)
@@ -151,13 +177,12 @@ static void reply_sensors(void)
     puts_("S a=");
     for (i = 0; i < LEGS; i++) {
         if (i) put(',');
-        put_uint(adc_now[i]);
+        put_uint(read_adc(&adc_now[i]));
     }
     puts_(" lo=");
     for (i = 0; i < LEGS; i++) {
         if (i) put(',');
-        put_uint(adc_low[i]);
-        adc_low[i] = adc_now[i];   /* the next S reports the lowest since this one */
+        put_uint(read_adc(&adc_low[i]));
     }
     puts_(" c=");
     for (i = 0; i < CONTACTS; i++) put((PINB & (1 << (PB2 + i))) ? '0' : '1');
@@ -292,14 +317,14 @@ int main(void)
     UBRR0 = 16;
     UCSR0B = (1 << RXEN0) | (1 << TXEN0) | (1 << RXCIE0);
     UCSR0C = (1 << UCSZ01) | (1 << UCSZ00);
-    ADCSRA = (1 << ADEN) | (1 << ADPS2) | (1 << ADPS1) | (1 << ADPS0);
+    ADCSRA = (1 << ADEN) | (1 << ADIE) | (1 << ADPS2) | (1 << ADPS1) | (1 << ADPS0);
     for (i = 0; i < LEGS; i++) adc_low[i] = 0x3FF;
     adc_start(0);
     wdt_enable(WDTO_250MS);
     sei();
+    set_sleep_mode(SLEEP_MODE_IDLE);
     for (;;) {
         wdt_reset();
-        adc_poll();
         while (rx_tail != rx_head) {
             uint8_t c = rx_buf[rx_tail];
             rx_tail = (uint8_t)((rx_tail + 1) & (RX_SIZE - 1));
@@ -311,5 +336,15 @@ int main(void)
             discarding = 1;
         }
         if (valves && millis() - last_valid >= wd_period) vent();
+        /* idle until the next interrupt (the 1 ms tick at the latest); no byte is missed:
+         * interrupts are enabled only by the instruction before sleep */
+        cli();
+        if (rx_tail == rx_head && !rx_overrun) {
+            sleep_enable();
+            sei();
+            sleep_cpu();
+            sleep_disable();
+        }
+        sei();
     }
 }

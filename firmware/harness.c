@@ -2,14 +2,20 @@
  * gaitboard-sim: runs the real gaitboard firmware image (an ELF file) in simavr, in real
  * time, as the valve board of `gaitc drive --backend serial`.
  *
- *   gaitboard-sim FIRMWARE.elf [--record FILE] [--watchdog-ms N] [--adc MV]
+ *   gaitboard-sim FIRMWARE.elf [--record FILE] [--watchdog-ms N] [--adc MV] [--depth D]
+ *                 [--noise MV]
  *
  * The board's UART is a pseudo-terminal whose path is the first line printed.  Every
  * change of the valve pins (PD2..PD7, PB0..PB1) is written to FILE as a JSON line
  * {"t_ms": simulated milliseconds, "valves": "0101..."} (valve 0 first; changes less than
  * COALESCE_US apart, such as the two port writes of one valve command, are one line).
+ * Each waveguide input follows its leg's valve (valve i bends leg i), as an actuator would:
+ *   mV = rest * (1 - depth * bend) + noise,  bend -> valve state with a 10 ms time constant,
+ * so a pressurised healthy leg (depth 0.6) dims its waveguide by 60 % and a damaged one less
+ * (thesis section 3.4.2, Figure 3.5).
  * Standard input is a control channel, one command a line:
- *   adc CH MV        waveguide input CH (0..7) now reads MV millivolts (0..5000)
+ *   adc CH MV        waveguide CH (0..7) reads MV millivolts at rest (0..5000)
+ *   depth CH D       leg CH dims its waveguide by the fraction D (0..1) when fully bent
  *   contact I 0|1    contact input I (0..3) touching (1) or not (0)
  *   time             prints "t_ms=<simulated ms>"
  * It runs until killed (SIGTERM and SIGINT end it cleanly).
@@ -17,6 +23,7 @@
 #define _GNU_SOURCE
 #include <errno.h>
 #include <fcntl.h>
+#include <math.h>
 #include <poll.h>
 #include <signal.h>
 #include <stdio.h>
@@ -27,6 +34,7 @@
 #include <unistd.h>
 
 #include <simavr/avr_adc.h>
+#include <simavr/avr_extint.h>
 #include <simavr/avr_ioport.h>
 #include <simavr/avr_uart.h>
 #include <simavr/sim_avr.h>
@@ -38,6 +46,10 @@
 #define FREQUENCY 16000000UL
 #define COALESCE_US 50
 #define BATCH 2000 /* instructions between looks at the pty, stdin and the clock */
+#define SLICE_US 200
+
+#define BEND_TAU_MS 10.0
+#define INPUT_EVERY_MS 0.25
 
 static const char valve_port[VALVES] = {'D', 'D', 'D', 'D', 'D', 'D', 'B', 'B'};
 static const int valve_bit[VALVES] = {2, 3, 4, 5, 6, 7, 0, 1};
@@ -57,6 +69,9 @@ static avr_cycle_count_t cycle_base, last_cycle; /* simavr may restart its count
 static char boot_reply[128];
 static size_t boot_len;
 static int booting = 1;
+static double rest_mv[LEGS], depth[LEGS], bend[LEGS], noise_mv;
+static uint32_t shown_mv[LEGS], noise_state = 12345;
+static avr_cycle_count_t inputs_at;
 
 static avr_cycle_count_t now_cycles(void)
 {
@@ -125,9 +140,21 @@ static double wall_ms(void)
     return ts.tv_sec * 1000.0 + ts.tv_nsec / 1e6;
 }
 
+static void update_inputs(int force);
+
+/* simavr's own sleep callback would sleep in real time too; the main loop paces instead */
+static void no_sleep(avr_t *core, avr_cycle_count_t how_long)
+{
+    (void)core;
+    (void)how_long;
+}
+
+/* Up to BATCH instructions, and no more than SLICE_US of simulated time (a sleeping
+ * firmware skips ahead from one interrupt to the next in one step). */
 static void run_batch(void)
 {
-    for (int i = 0; i < BATCH; i++) {
+    avr_cycle_count_t end = now_cycles() + FREQUENCY / 1000000 * SLICE_US;
+    for (int i = 0; i < BATCH && now_cycles() < end; i++) {
         int state = avr_run(avr);
         if (state == cpu_Done || state == cpu_Crashed) {
             fprintf(stderr, "gaitboard-sim: the firmware stopped (state %d)\n", state);
@@ -136,6 +163,33 @@ static void run_batch(void)
         }
     }
     flush_pins(0);
+    update_inputs(0);
+}
+
+static double noise(void)
+{
+    noise_state = noise_state * 1103515245u + 12345u; /* deterministic */
+    return ((double)((noise_state >> 8) & 0xFFFF) / 32767.5 - 1.0) * noise_mv;
+}
+
+/* The waveguides: each leg bends toward its valve's state and dims its light. */
+static void update_inputs(int force)
+{
+    avr_cycle_count_t now = now_cycles();
+    double dt = to_ms(now - inputs_at);
+    if (!force && dt < INPUT_EVERY_MS) return;
+    inputs_at = now;
+    double keep = exp(-dt / BEND_TAU_MS);
+    for (int l = 0; l < LEGS; l++) {
+        double target = pins[l] == '1' ? 1.0 : 0.0;
+        bend[l] = target + (bend[l] - target) * keep;
+        double mv = rest_mv[l] * (1.0 - depth[l] * bend[l]) + noise();
+        uint32_t out = mv < 0 ? 0 : mv > 5000 ? 5000 : (uint32_t)(mv + 0.5);
+        if (force || out != shown_mv[l]) {
+            shown_mv[l] = out;
+            avr_raise_irq(adc_in[l], out);
+        }
+    }
 }
 
 static void feed_uart(void)
@@ -151,8 +205,13 @@ static void feed_uart(void)
 static void control(char *cmd)
 {
     int a, b;
+    double d;
     if (sscanf(cmd, "adc %d %d", &a, &b) == 2 && a >= 0 && a < LEGS && b >= 0 && b <= 5000) {
-        avr_raise_irq(adc_in[a], (uint32_t)b);
+        rest_mv[a] = b;
+        update_inputs(1);
+    } else if (sscanf(cmd, "depth %d %lf", &a, &d) == 2 && a >= 0 && a < LEGS && d >= 0 &&
+               d <= 1) {
+        depth[a] = d;
     } else if (sscanf(cmd, "contact %d %d", &a, &b) == 2 && a >= 0 && a < CONTACTS &&
                (b == 0 || b == 1)) {
         avr_raise_irq(contact_in[a], b ? 0 : 1); /* touching pulls the input low */
@@ -231,14 +290,17 @@ int main(int argc, char **argv)
 {
     const char *image = NULL, *record_path = NULL;
     int watchdog_ms = 0, adc_mv = 4000;
+    double start_depth = 0.6;
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--record") && i + 1 < argc) record_path = argv[++i];
         else if (!strcmp(argv[i], "--watchdog-ms") && i + 1 < argc) watchdog_ms = atoi(argv[++i]);
         else if (!strcmp(argv[i], "--adc") && i + 1 < argc) adc_mv = atoi(argv[++i]);
+        else if (!strcmp(argv[i], "--depth") && i + 1 < argc) start_depth = atof(argv[++i]);
+        else if (!strcmp(argv[i], "--noise") && i + 1 < argc) noise_mv = atof(argv[++i]);
         else if (!image && argv[i][0] != '-') image = argv[i];
         else {
             fprintf(stderr, "usage: gaitboard-sim FIRMWARE.elf [--record FILE] "
-                            "[--watchdog-ms N] [--adc MV]\n");
+                            "[--watchdog-ms N] [--adc MV] [--depth D] [--noise MV]\n");
             return 2;
         }
     }
@@ -271,6 +333,11 @@ int main(int argc, char **argv)
     avr->frequency = FREQUENCY;
     avr->avcc = avr->vcc = 5000;
     avr->log = 0;
+    avr->sleep = no_sleep;
+    /* INT0/INT1 are valve pins here and never enabled as interrupts; simavr would otherwise
+     * poll their low level on every cycle */
+    avr_extint_set_strict_lvl_trig(avr, 0, 0);
+    avr_extint_set_strict_lvl_trig(avr, 1, 0);
     if (record_path && !(record = fopen(record_path, "w"))) {
         fprintf(stderr, "gaitboard-sim: cannot write %s: %s\n", record_path, strerror(errno));
         return 1;
@@ -288,8 +355,10 @@ int main(int argc, char **argv)
     }
     for (int l = 0; l < LEGS; l++) {
         adc_in[l] = avr_io_getirq(avr, AVR_IOCTL_ADC_GETIRQ, ADC_IRQ_ADC0 + l);
-        avr_raise_irq(adc_in[l], (uint32_t)adc_mv);
+        rest_mv[l] = adc_mv;
+        depth[l] = start_depth;
     }
+    update_inputs(1);
     uint32_t flags = 0; /* no stdio echo, no host sleep while the firmware polls */
     avr_ioctl(avr, AVR_IOCTL_UART_SET_FLAGS('0'), &flags);
     uart_in = avr_io_getirq(avr, AVR_IOCTL_UART_GETIRQ('0'), UART_IRQ_INPUT);

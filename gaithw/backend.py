@@ -109,6 +109,11 @@ class Backend(ABC):
     def wait(self, seconds: float) -> None:
         """Let ``seconds`` pass between valve states (a simulation may skip it)."""
 
+    def step_context(self, in_use: tuple[str, ...], in_cache: bool) -> None:
+        """Before a reading: the legs the step's gait used and whether the robot is in a
+        cache, for a backend that grades health from its sensors (the default ignores it)."""
+        del in_use, in_cache
+
     def safety_note(self) -> str:
         """What is known of the valves after the last vent (for messages)."""
         return "all valves vented"

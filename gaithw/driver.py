@@ -130,6 +130,11 @@ class Driver:
         self.executed.append(Executed(step, gait, states))
         self._ran_up_to = step
 
+    def moving_legs(self, gait: str) -> tuple[str, ...]:
+        """The legs ``gait`` may degrade (eq. 3.5): a move gait's legs; none for the others."""
+        found = next((g for g in self.domain.model.gaits if g.name == gait), None)
+        return found.legs if found is not None and found.kind is GaitKind.MOVE else ()
+
     def sensed_input(self, reading: SensorReading, here: State | None) -> Request:
         """The environment input that ``reading`` stands for, after checking it."""
         domain = self.domain
@@ -179,9 +184,12 @@ class SensedEnvironment(Environment):
 
     def choose(self, situation: Situation) -> Request | None:
         driver = self.driver
+        state = situation.state
         try:
-            if situation.state is not None:
-                driver.execute(situation.step - 1, situation.state.gait)
+            if state is not None:
+                driver.execute(situation.step - 1, state.gait)
+                driver.backend.step_context(driver.moving_legs(state.gait),
+                                            state.region in driver.domain.model.caches)
             reading = driver.backend.read_sensors()
         except ScenarioFinished:
             return None

@@ -96,14 +96,17 @@ def build(out_dir: str | Path, simulator: bool = True) -> Image:
     sim = None
     if simulator:
         sim = out / "gaitboard-sim"
-        _run(["gcc", *HOST_FLAGS, "-o", str(sim), str(SOURCES / "harness.c"), "-lsimavr"],
+        _run(["gcc", *HOST_FLAGS, "-o", str(sim), str(SOURCES / "harness.c"), "-lsimavr",
+              "-lm"],
              "gcc harness.c (libsimavr)")
     return Image(elf, hexfile, sim)
 
 
 def simulator_argv(image: Image, record: str | Path | None = None,
-                   watchdog_ms: int | None = None, adc_mv: int | None = None) -> list[str]:
-    """The command line that runs ``image`` in the harness."""
+                   watchdog_ms: int | None = None, adc_mv: int | None = None,
+                   depth: float | None = None, noise_mv: float | None = None) -> list[str]:
+    """The command line that runs ``image`` in the harness: ``adc_mv`` each waveguide's
+    at-rest millivolts, ``depth`` how far a bent leg dims it, ``noise_mv`` added noise."""
     if image.simulator is None:
         raise FirmwareError("the firmware was built without its simulator",
                             _where("firmware simulate"))
@@ -114,6 +117,10 @@ def simulator_argv(image: Image, record: str | Path | None = None,
         argv += ["--watchdog-ms", str(watchdog_ms)]
     if adc_mv is not None:
         argv += ["--adc", str(adc_mv)]
+    if depth is not None:
+        argv += ["--depth", f"{depth:g}"]
+    if noise_mv is not None:
+        argv += ["--noise", f"{noise_mv:g}"]
     return argv
 
 
@@ -125,9 +132,10 @@ class SimulatedBoard:
     """
 
     def __init__(self, image: Image, record: str | Path, watchdog_ms: int | None = None,
-                 adc_mv: int | None = None) -> None:
+                 adc_mv: int | None = None, depth: float | None = None,
+                 noise_mv: float | None = None) -> None:
         self.record_path = Path(record)
-        argv = simulator_argv(image, record, watchdog_ms, adc_mv)
+        argv = simulator_argv(image, record, watchdog_ms, adc_mv, depth, noise_mv)
         self.process = subprocess.Popen(argv, stdin=subprocess.PIPE, stdout=subprocess.PIPE,
                                         stderr=subprocess.PIPE)
         self.port = self._line(START_TIMEOUT)
@@ -164,6 +172,10 @@ class SimulatedBoard:
     def set_adc(self, channel: int, millivolts: int) -> None:
         """Waveguide input ``channel`` now reads ``millivolts`` (0..5000)."""
         self._send(f"adc {channel} {millivolts}")
+
+    def set_depth(self, leg: int, depth: float) -> None:
+        """Leg ``leg`` dims its waveguide by the fraction ``depth`` when fully bent."""
+        self._send(f"depth {leg} {depth:g}")
 
     def set_contact(self, index: int, touching: bool) -> None:
         """Contact input ``index`` touches the ground (or not)."""

@@ -3,8 +3,9 @@
 Line protocol v2 (ASCII, one command a line, one answer line each; docs/hardware.md):
 ``PING`` → ``PONG <firmware> proto=2 valves=<n> [legs= contacts= wd= reset=]``; ``V <bits>``
 → ``OK``; ``HB`` (heartbeat) → ``OK``; ``W <ms>`` → ``OK wd=<ms>``; ``S`` → ``S a=<adc,..>
-[lo=] [c=]`` or ``S h=<levels>`` (a board that grades legs itself), with ``hazard=`` and
-``region=``; any refusal is ``ERR <text>``.  The board vents on its own when no valid command
+lo=<adc,..> c=<bits>`` (graded into health levels by :mod:`gaithw.sensing`) or ``S
+h=<levels>`` (a board that grades legs itself), with ``hazard=`` and ``region=``; any
+refusal is ``ERR <text>``.  The board vents on its own when no valid command
 arrives for its watchdog period, so the host sends a heartbeat while valves are open.  Every
 read is bounded in bytes and by a deadline of ``timeout`` seconds; garbled replies are
 retried, and every valve is vented on close and on any error.  Messages say whether a vent
@@ -19,7 +20,8 @@ from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any, TypeVar
 
-from gaithw.backend import Backend, HardwareError, SensorReading, level_from_waveguide, where
+from gaithw.backend import Backend, HardwareError, SensorReading, where
+from gaithw.sensing import HealthSensing, LegCalibration
 
 PROTOCOL = 2
 FIRMWARE_PREFIX = "PONG"
@@ -82,15 +84,20 @@ def parse_pong(line: str) -> BoardInfo:
                      numbers.get("contacts"), numbers.get("wd"), fields.get("reset"))
 
 
-def default_thresholds(levels: int) -> tuple[float, ...]:
-    """Evenly spaced thresholds on the normalised waveguide value for ``levels`` levels."""
-    return tuple((levels - k) / levels for k in range(1, levels))
+Grader = Callable[[dict[str, float], dict[str, float]], Mapping[str, int]]
 
 
-def parse_sensors(line: str, legs: Sequence[str],
-                  thresholds: Mapping[str, Sequence[float]] | None = None) -> SensorReading:
+def _adc(text: str, legs: Sequence[str], line: str) -> dict[str, float]:
+    values = [_count(v) for v in text.split(",")]
+    if len(values) < len(legs) or any(v is None or v > ADC_FULL for v in values):
+        raise Garbled(line)
+    return {leg: float(v) for leg, v in zip(legs, values, strict=False) if v is not None}
+
+
+def parse_sensors(line: str, legs: Sequence[str], grade: Grader | None = None) -> SensorReading:
     """``S h=3,3,2 hazard=- region=r12`` (levels graded by the board) or ``S a=1023,512
-    lo=.. c=..`` (raw waveguide values, graded here with ``thresholds``) → a reading."""
+    lo=330,512 c=..`` (each leg's waveguide now and its lowest in its last actuation, graded
+    here by ``grade``, which is called only once the whole line is valid) → a reading."""
     words = line.split()
     if not words or words[0] != "S":
         raise Garbled(line)
@@ -105,15 +112,15 @@ def parse_sensors(line: str, legs: Sequence[str],
         levels = [_count(v) for v in fields["h"].split(",")]
         if len(levels) != len(legs):
             raise Garbled(line)
-    elif "a" in fields and thresholds is not None:
-        raw = [_count(v) for v in fields["a"].split(",")]
-        if len(raw) < len(legs) or any(v is None or v > ADC_FULL for v in raw):
+        if None in levels:
             raise Garbled(line)
-        levels = [level_from_waveguide(v / ADC_FULL, thresholds[leg])
-                  for leg, v in zip(legs, raw, strict=False) if v is not None]
+    elif "a" in fields and "lo" in fields and grade is not None:
+        now, lowest = _adc(fields["a"], legs, line), _adc(fields["lo"], legs, line)
+        if "c" in fields and set(fields["c"]) - {"0", "1"}:
+            raise Garbled(line)
+        graded = grade(now, lowest)
+        levels = [graded[leg] for leg in legs]
     else:
-        raise Garbled(line)
-    if None in levels:
         raise Garbled(line)
     hazard = fields.get("hazard", "-")
     region = fields.get("region", "-")
@@ -139,7 +146,8 @@ class SerialValveBoard(Backend):
     def __init__(self, url: str, valve_count: int, legs: Sequence[str], baudrate: int = 115200,
                  timeout: float = 1.0, retries: int = 2,
                  channels: Sequence[int] | None = None,
-                 levels: Mapping[str, int] | None = None) -> None:
+                 levels: Mapping[str, int] | None = None,
+                 calibration: Mapping[str, LegCalibration] | None = None) -> None:
         super().__init__(valve_count)
         self.url = url
         self.name = f"serial board {url}"
@@ -148,7 +156,9 @@ class SerialValveBoard(Backend):
         self.timeout = timeout
         self.retries = retries
         self.channels = tuple(channels) if channels is not None else None
-        self.thresholds = {leg: default_thresholds(n) for leg, n in (levels or {}).items()}
+        self.sensing = HealthSensing(levels, calibration) if levels else None
+        self.in_use: tuple[str, ...] = ()  # the legs the step's gait pressurised
+        self.in_cache = False
         self.info: BoardInfo | None = None
         self.firmware = ""
         self.board_valves = 0
@@ -199,7 +209,7 @@ class SerialValveBoard(Backend):
         if info.valves > MAX_VALVES:
             raise HardwareError(f"the board claims {info.valves} valves; protocol v2 drives "
                                 f"at most {MAX_VALVES}", where(self.name))
-        if info.legs is not None and self.thresholds and info.legs < len(self.legs):
+        if info.legs is not None and self.sensing and info.legs < len(self.legs):
             raise HardwareError(f"the spec has {len(self.legs)} legs but the board "
                                 f"({info.firmware}) senses {info.legs}", where(self.name))
 
@@ -252,9 +262,15 @@ class SerialValveBoard(Backend):
         self._guarded(f"V {board}", _expect_ok)
         self.state = board
 
+    def step_context(self, in_use: tuple[str, ...], in_cache: bool) -> None:
+        self.in_use, self.in_cache = in_use, in_cache
+
     def read_sensors(self) -> SensorReading:
-        reading: SensorReading = self._guarded(
-            "S", lambda line: parse_sensors(line, self.legs, self.thresholds or None))
+        sensing = self.sensing
+        grade = None if sensing is None else (
+            lambda now, low: sensing.update(now, low, self.in_use, self.in_cache))
+        reading: SensorReading = self._guarded("S", lambda line: parse_sensors(line, self.legs,
+                                                                               grade))
         return reading
 
     def wait(self, seconds: float) -> None:

@@ -21,11 +21,11 @@ from gaitc.simulation import Session, session
 from gaitgraph.pairing import resolve_primitive
 from gaithw.backend import HardwareError, SensorReading, level_from_waveguide
 from gaithw.driver import Driver, applied_states, bind_primitives, valve_count
+from gaithw.sensing import HealthSensing
 from gaithw.serial_board import (
     BoardInfo,
     Garbled,
     SerialValveBoard,
-    default_thresholds,
     parse_pong,
     parse_sensors,
 )
@@ -251,11 +251,18 @@ def test_protocol_parsers() -> None:
     assert parse_pong("PONG gaitboard-2.1 valves=16") == BoardInfo("gaitboard-2.1", 1, 16)
     assert parse_pong("PONG gaitboard/2.0 proto=2 valves=8 legs=8 contacts=4 wd=500 "
                       "reset=power") == BoardInfo("gaitboard/2.0", 2, 8, 8, 4, 500, "power")
-    reading = parse_sensors("S a=1023,400,0 lo=1,1,1 c=0000", ["L1", "L2", "L3"],
-                            {leg: default_thresholds(3) for leg in ("L1", "L2", "L3")})
+    legs = ("L1", "L2", "L3")
+    sensing = HealthSensing(dict.fromkeys(legs, 3))  # default thresholds 0.4, 0.2
+
+    def grade(now: dict[str, float], low: dict[str, float]) -> dict[str, int]:
+        return sensing.update(now, low, legs, in_cache=False)
+
+    reading = parse_sensors("S a=1000,1000,1000 lo=400,700,950 c=0000", legs, grade)
     assert reading == SensorReading((("L1", 3), ("L2", 2), ("L3", 1)), None, None)
-    with pytest.raises(Garbled):  # raw values but no thresholds to grade them
-        parse_sensors("S a=1023,400", ["L1", "L2"])
+    for bad in ("S a=1023,400", "S a=1023,400,2 lo=1,1", "S a=1,1,1 lo=1,1,1024",
+                "S a=1,1,1 lo=1,1,1 c=2"):
+        with pytest.raises(Garbled):  # raw values without a grader, or malformed
+            parse_sensors(bad, legs, grade if "lo" in bad else None)
     reading = parse_sensors("S h=3,2 hazard=blue region=r12", ["L1", "L2"])
     assert reading == SensorReading((("L1", 3), ("L2", 2)), "blue", "r12")
     assert parse_sensors("S h=1,1 hazard=- region=-", ["L1", "L2"]).region is None
