@@ -16,6 +16,8 @@
  * Standard input is a control channel, one command a line:
  *   adc CH MV        waveguide CH (0..7) reads MV millivolts at rest (0..5000)
  *   depth CH D       leg CH dims its waveguide by the fraction D (0..1) when fully bent
+ *   wear CH D1 D2 .. the depth of leg CH's next actuation cycles, one per cycle (up to 16;
+ *                    the last one stays): a progressively damaged actuator (Figure 3.5)
  *   contact I 0|1    contact input I (0..3) touching (1) or not (0)
  *   time             prints "t_ms=<simulated ms>"
  * It runs until killed (SIGTERM and SIGINT end it cleanly).
@@ -72,6 +74,9 @@ static int booting = 1;
 static double rest_mv[LEGS], depth[LEGS], bend[LEGS], noise_mv;
 static uint32_t shown_mv[LEGS], noise_state = 12345;
 static avr_cycle_count_t inputs_at;
+#define WEAR_MAX 16
+static double wear[LEGS][WEAR_MAX];
+static int wear_len[LEGS], wear_next[LEGS];
 
 static avr_cycle_count_t now_cycles(void)
 {
@@ -89,6 +94,8 @@ static void on_pin(struct avr_irq_t *irq, uint32_t value, void *param)
     char bit = value ? '1' : '0';
     if (pins[valve] == bit) return;
     pins[valve] = bit;
+    if (bit == '1' && valve < LEGS && wear_next[valve] < wear_len[valve])
+        depth[valve] = wear[valve][wear_next[valve]++]; /* a new actuation cycle begins */
     if (!pending) pending_at = now_cycles();
     pending = 1;
     pending_since = now_cycles();
@@ -109,8 +116,7 @@ static void flush_pins(int force)
 
 static void on_uart_out(struct avr_irq_t *irq, uint32_t value, void *param)
 {
-    (void)irq;
-    (void)param;
+    (void)irq, (void)param;
     unsigned char c = (unsigned char)value;
     if (booting) {
         if (boot_len < sizeof boot_reply - 1) boot_reply[boot_len++] = (char)c;
@@ -121,16 +127,11 @@ static void on_uart_out(struct avr_irq_t *irq, uint32_t value, void *param)
     }
 }
 
-static void on_xon(struct avr_irq_t *irq, uint32_t value, void *param)
+/* the UART's receive FIFO has room (param 1) or is full (param 0) */
+static void on_flow(struct avr_irq_t *irq, uint32_t value, void *param)
 {
-    (void)irq, (void)value, (void)param;
-    xon = 1;
-}
-
-static void on_xoff(struct avr_irq_t *irq, uint32_t value, void *param)
-{
-    (void)irq, (void)value, (void)param;
-    xon = 0;
+    (void)irq, (void)value;
+    xon = (int)(intptr_t)param;
 }
 
 static double wall_ms(void)
@@ -145,8 +146,7 @@ static void update_inputs(int force);
 /* simavr's own sleep callback would sleep in real time too; the main loop paces instead */
 static void no_sleep(avr_t *core, avr_cycle_count_t how_long)
 {
-    (void)core;
-    (void)how_long;
+    (void)core, (void)how_long;
 }
 
 /* Up to BATCH instructions, and no more than SLICE_US of simulated time (a sleeping
@@ -212,6 +212,12 @@ static void control(char *cmd)
     } else if (sscanf(cmd, "depth %d %lf", &a, &d) == 2 && a >= 0 && a < LEGS && d >= 0 &&
                d <= 1) {
         depth[a] = d;
+    } else if (sscanf(cmd, "wear %d %n", &a, &b) == 1 && a >= 0 && a < LEGS) {
+        char *p = cmd + b, *end;
+        wear_len[a] = wear_next[a] = 0;
+        for (double w = strtod(p, &end); end != p && wear_len[a] < WEAR_MAX;
+             p = end, w = strtod(p, &end))
+            if (w >= 0 && w <= 1) wear[a][wear_len[a]++] = w;
     } else if (sscanf(cmd, "contact %d %d", &a, &b) == 2 && a >= 0 && a < CONTACTS &&
                (b == 0 || b == 1)) {
         avr_raise_irq(contact_in[a], b ? 0 : 1); /* touching pulls the input low */
@@ -298,14 +304,11 @@ int main(int argc, char **argv)
         else if (!strcmp(argv[i], "--depth") && i + 1 < argc) start_depth = atof(argv[++i]);
         else if (!strcmp(argv[i], "--noise") && i + 1 < argc) noise_mv = atof(argv[++i]);
         else if (!image && argv[i][0] != '-') image = argv[i];
-        else {
-            fprintf(stderr, "usage: gaitboard-sim FIRMWARE.elf [--record FILE] "
-                            "[--watchdog-ms N] [--adc MV] [--depth D] [--noise MV]\n");
-            return 2;
-        }
+        else image = NULL, i = argc;
     }
     if (!image) {
-        fprintf(stderr, "gaitboard-sim: no firmware image given\n");
+        fprintf(stderr, "usage: gaitboard-sim FIRMWARE.elf [--record FILE] "
+                        "[--watchdog-ms N] [--adc MV] [--depth D] [--noise MV]\n");
         return 2;
     }
     elf_firmware_t fw;
@@ -365,9 +368,9 @@ int main(int argc, char **argv)
     avr_irq_register_notify(avr_io_getirq(avr, AVR_IOCTL_UART_GETIRQ('0'), UART_IRQ_OUTPUT),
                             on_uart_out, NULL);
     avr_irq_register_notify(avr_io_getirq(avr, AVR_IOCTL_UART_GETIRQ('0'), UART_IRQ_OUT_XON),
-                            on_xon, NULL);
+                            on_flow, (void *)1);
     avr_irq_register_notify(avr_io_getirq(avr, AVR_IOCTL_UART_GETIRQ('0'), UART_IRQ_OUT_XOFF),
-                            on_xoff, NULL);
+                            on_flow, (void *)0);
     if ((master = open_pty()) < 0) {
         fprintf(stderr, "gaitboard-sim: cannot create a pseudo-terminal: %s\n", strerror(errno));
         return 1;

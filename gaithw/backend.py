@@ -16,6 +16,7 @@ from dataclasses import dataclass
 from types import FrameType, TracebackType
 
 from diagnostics import GaitcError, Span
+from gaitsim.environments import Move
 
 
 class HardwareError(GaitcError):
@@ -113,6 +114,11 @@ class Backend(ABC):
         """Before a reading: the legs the step's gait used and whether the robot is in a
         cache, for a backend that grades health from its sensors (the default ignores it)."""
         del in_use, in_cache
+
+    def accepted(self, move: Move) -> None:
+        """The input the controller took for the last reading (it may stand for a reading that
+        broke an assumption, see ``--on-violation``): a backend that keeps state syncs it."""
+        del move
 
     def safety_note(self) -> str:
         """What is known of the valves after the last vent (for messages)."""

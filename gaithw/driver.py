@@ -18,7 +18,7 @@ from gaitgraph.pairing import ValveSequence, resolve_primitive
 from gaithw.backend import Backend, HardwareError, Interrupted, SensorReading, where
 from gaithw.simulated import ScenarioFinished
 from gaitsim.domain import Domain, State
-from gaitsim.environments import Environment, Request, Situation
+from gaitsim.environments import Environment, Move, Request, Situation
 from gaitsim.monitor import Monitor
 from gaitsim.run import Run
 from gaitsim.simulator import Simulator
@@ -75,7 +75,10 @@ class Driver:
     def __init__(self, strategy: Strategy, domain: Domain, monitor: Monitor,
                  primitives: Mapping[str, ValveSequence], backend: Backend,
                  step_delay: float = 0.0, cycles: int = 1,
-                 progress: Callable[[str], None] | None = None) -> None:
+                 progress: Callable[[str], None] | None = None,
+                 on_violation: str = "stop") -> None:
+        if on_violation not in VIOLATION_POLICIES:
+            raise ValueError(f"on_violation must be one of {', '.join(VIOLATION_POLICIES)}")
         self.simulator = Simulator(strategy, domain, monitor)
         self.domain = domain
         self.primitives = dict(primitives)
@@ -86,6 +89,8 @@ class Driver:
         self.executed: list[Executed] = []
         self.interrupted = False
         self.interruption = ""  # Ctrl-C, SIGTERM or SIGHUP
+        self.on_violation = on_violation
+        self.violations: list[str] = []  # readings that broke an assumption, as handled
         self.no_gait = next(g.name for g in domain.model.gaits if g.kind is GaitKind.NONE)
         self._ran_up_to = -1  # index of the last step whose gait was run
 
@@ -125,8 +130,9 @@ class Driver:
         for valves in states:
             self.backend.apply(valves)
             self.backend.wait(self.step_delay)
-        if "1" in states[-1]:  # no valve stays open outside its gait's step
-            self.backend.vent()
+        if "1" in states[-1]:  # no valve stays open outside its gait's step; the actuators
+            self.backend.vent()  # relax before the sensors are read
+            self.backend.wait(self.step_delay)
         self.executed.append(Executed(step, gait, states))
         self._ran_up_to = step
 
@@ -161,6 +167,30 @@ class Driver:
         values = domain.encode(State(expected, gait, reading.health, reading.hazard))
         inputs: InputKey = tuple(int(values[name]) for name in self.simulator.strategy.inputs)
         return Request(inputs, describe(reading, here))
+
+
+VIOLATION_POLICIES = ("stop", "hold", "worst")
+
+
+def substitute(moves: Sequence[Move], reading: SensorReading, here: State | None,
+               policy: str) -> Move:
+    """The accepted input that stands for a reading which breaks an assumption: ``hold``
+    keeps the levels the controller had (closest to them, then to the reading); ``worst``
+    takes the lowest levels the assumptions allow (then closest to the reading).  The
+    sensed hazard is kept when an accepted input has it."""
+    sensed = dict(reading.health)
+    before = dict(here.health) if here is not None else sensed
+
+    def distance(move: Move, to: Mapping[str, int]) -> int:
+        return sum(abs(level - to[leg]) for leg, level in move.state.health)
+
+    def rank(move: Move) -> tuple[int, int, int, InputKey]:
+        other_hazard = int(move.state.hazard != reading.hazard)
+        first = (distance(move, before) if policy == "hold"
+                 else sum(level for _, level in move.state.health))
+        return other_hazard, first, distance(move, sensed), move.inputs
+
+    return min(moves, key=rank)
 
 
 def describe(reading: SensorReading, here: State | None) -> str:
@@ -198,7 +228,22 @@ class SensedEnvironment(Environment):
             driver.interruption = interruption_name(stop)
             driver.backend.vent()
             return None
-        return driver.sensed_input(reading, situation.state)
+        request = driver.sensed_input(reading, state)
+        moves = {m.inputs: m for m in situation.moves}
+        move = moves.get(request.inputs)
+        if move is None and driver.on_violation != "stop" and situation.moves:
+            move = substitute(situation.moves, reading, state, driver.on_violation)
+            used = ", ".join(f"{leg} {level}" for leg, level in move.state.health)
+            note = (f"step {situation.step}: {request.what} breaks an assumption; "
+                    f"{driver.on_violation}: taken as {used}, hazard "
+                    f"{move.state.hazard or 'none'}")
+            driver.violations.append(note)
+            if driver.progress is not None:
+                driver.progress(note)
+            request = Request(move.inputs, f"{request.what} ({driver.on_violation}: {used})")
+        if move is not None:
+            driver.backend.accepted(move)
+        return request
 
 
 def interruption_name(stop: KeyboardInterrupt) -> str:

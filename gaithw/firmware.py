@@ -177,6 +177,11 @@ class SimulatedBoard:
         """Leg ``leg`` dims its waveguide by the fraction ``depth`` when fully bent."""
         self._send(f"depth {leg} {depth:g}")
 
+    def set_wear(self, leg: int, depths: list[float]) -> None:
+        """Leg ``leg``'s next actuation cycles dim its waveguide by ``depths``, one per cycle
+        (the last stays): a progressively damaged actuator, as in Figure 3.5."""
+        self._send(f"wear {leg} " + " ".join(f"{d:g}" for d in depths))
+
     def set_contact(self, index: int, touching: bool) -> None:
         """Contact input ``index`` touches the ground (or not)."""
         self._send(f"contact {index} {int(touching)}")

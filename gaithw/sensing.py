@@ -126,6 +126,68 @@ class HealthSensing:
         return dict(self.levels)
 
 
+# ---------------------------------------------------------------------------- synthetic curves
+FIGURE_3_5_DEPTHS = (0.62, 0.61, 0.60, 0.60, 0.58, 0.36, 0.33, 0.30, 0.06)
+"""Dip depths of nine cycles of a progressively damaged actuator, shaped like Figure 3.5
+(cycles 1-5 healthy, 6-8 degraded, 9 inoperable; the thesis gives the curves, not numbers)."""
+
+
+def synthetic_cycle(depth: float, rest: float = 800.0, noise: float = 0.0, seed: int = 0,
+                    samples: int = 60) -> tuple[float, ...]:
+    """One actuation cycle of a waveguide: at rest, a smooth dip to ``rest * (1 - depth)``,
+    held, and back; plus uniform noise of ``noise`` counts (deterministic in ``seed``)."""
+    state = seed * 2654435761 % 2**32 or 1
+
+    def jitter() -> float:
+        nonlocal state
+        state = (state * 1103515245 + 12345) % 2**31
+        return (state / 2**30 - 1.0) * noise
+
+    out = []
+    ramp = samples // 6
+    for i in range(samples):
+        if i < ramp or i >= samples - ramp:
+            bend = 0.0
+        elif i < 2 * ramp:
+            bend = 0.5 - 0.5 * math.cos(math.pi * (i - ramp) / ramp)
+        elif i >= samples - 2 * ramp:
+            bend = 0.5 + 0.5 * math.cos(math.pi * (i - (samples - 2 * ramp)) / ramp)
+        else:
+            bend = 1.0
+        out.append(rest * (1.0 - depth * bend) + jitter())
+    return tuple(out)
+
+
+def figure_3_5_cycles(legs: Sequence[str], seed: int, noise: float, repeats: int = 3
+                      ) -> list[Cycle]:
+    """Figure 3.5's nine cycles for each leg, ``repeats`` times, with a cycle-to-cycle spread
+    of the depth (±0.01), a rest value per leg and sensor noise of ``noise`` counts."""
+    levels = (3, 3, 3, 3, 3, 2, 2, 2, 1)
+    cycles = []
+    for k, leg in enumerate(legs):
+        for r in range(repeats):
+            for i, (depth, level) in enumerate(zip(FIGURE_3_5_DEPTHS, levels, strict=True)):
+                spread = 0.01 * ((i + r + k) % 3 - 1)
+                samples = synthetic_cycle(depth + spread, 700.0 + 50 * k, noise,
+                                          seed * 1000 + r * 100 + i * 10 + k)
+                cycles.append(Cycle(leg, level, samples))
+    return cycles
+
+
+def confusion(calibration: Mapping[str, LegCalibration], cycles: Iterable[Cycle]
+              ) -> list[list[int]]:
+    """How ``cycles`` of known level are classified (each from the healthy level, so one
+    cycle's feature alone decides): ``matrix[i][j]`` counts true level ``top - i`` taken as
+    level ``top - j``."""
+    top = max(cal.levels for cal in calibration.values())
+    matrix = [[0] * top for _ in range(top)]
+    for cycle in cycles:
+        cal = calibration[cycle.leg]
+        level = grade(cal, cal.levels, curve_feature(cycle.samples))
+        matrix[top - cycle.level][top - level] += 1
+    return matrix
+
+
 # ---------------------------------------------------------------------------- calibration
 @dataclass(frozen=True)
 class Cycle:

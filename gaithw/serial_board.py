@@ -22,6 +22,7 @@ from typing import Any, TypeVar
 
 from gaithw.backend import Backend, HardwareError, SensorReading, where
 from gaithw.sensing import HealthSensing, LegCalibration
+from gaitsim.environments import Move
 
 PROTOCOL = 2
 FIRMWARE_PREFIX = "PONG"
@@ -264,6 +265,10 @@ class SerialValveBoard(Backend):
 
     def step_context(self, in_use: tuple[str, ...], in_cache: bool) -> None:
         self.in_use, self.in_cache = in_use, in_cache
+
+    def accepted(self, move: Move) -> None:
+        if self.sensing is not None:  # grade the next reading from the controller's levels
+            self.sensing.levels.update(move.state.health)
 
     def read_sensors(self) -> SensorReading:
         sensing = self.sensing

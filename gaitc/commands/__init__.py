@@ -7,6 +7,7 @@ parser default; the function returns an exit code (see :mod:`gaitc.cli`).
 from __future__ import annotations
 
 from gaitc.commands import (
+    calibrating,
     compiling,
     driving,
     explaining,
@@ -19,4 +20,4 @@ from gaitc.commands import (
 )
 
 COMMAND_MODULES = (compiling, solving, explaining, resilient, simulating, rendering, gaits,
-                   driving, firmware)
+                   driving, firmware, calibrating)

@@ -19,6 +19,7 @@ from gaitc.exitcodes import ExitCode, exit_code_help
 from gaitc.simulation import Session
 from gaitc.solving import recorded_encoding
 from gaithw.backend import Backend, interrupt_on_signals
+from gaithw.driver import VIOLATION_POLICIES
 from gaitsim.environments import Environment
 from gaitsim.scenario import ScriptedEnvironment
 from ltlcompiler.encoding import ENCODINGS
@@ -73,6 +74,12 @@ def register(sub: Any) -> None:
                    help="sim backend: random (default) | adversarial | scripted FILE.yaml")
     p.add_argument("--seed", type=int, default=0, help="seed of the random environment")
     p.add_argument("--out", metavar="FILE", help="save the run as .jsonl or .csv")
+    p.add_argument("--on-violation", choices=VIOLATION_POLICIES, default="stop",
+                   help="a reading that breaks the spec's assumptions: stop the run (default), "
+                   "hold the levels the controller had, or take the worst levels the "
+                   "assumptions allow")
+    p.add_argument("--sensing", metavar="FILE",
+                   help="serial backend: waveguide thresholds per leg (from 'gaitc calibrate')")
     p.add_argument("--encoding", choices=ENCODINGS,
                    help="encoding of the spec (default: the one recorded in the controller)")
     p.add_argument("--robotics-semantics", action="store_true",
@@ -95,8 +102,8 @@ def _check_options(args: argparse.Namespace) -> None:
         if args.env:
             raise UsageError("--env chooses the simulated robot's environment; the serial "
                              "backend reads real sensors")
-    elif args.port or args.channels:
-        raise UsageError("--port and --channels are for --backend serial")
+    elif args.port or args.channels or args.sensing:
+        raise UsageError("--port, --channels and --sensing are for --backend serial")
 
 
 def _environment(args: argparse.Namespace, bound: Session) -> tuple[Environment, int | None]:
@@ -108,11 +115,14 @@ def _environment(args: argparse.Namespace, bound: Session) -> tuple[Environment,
 def _backend(args: argparse.Namespace, loaded: Session, valves: int) -> tuple[Backend, int]:
     steps: int = 20 if args.steps is None else args.steps
     if args.backend == "serial":
+        from gaithw.sensing import read_sensing
         from gaithw.serial_board import SerialValveBoard, parse_channels
 
         channels = parse_channels(args.channels) if args.channels else None
+        calibration = read_sensing(args.sensing) if args.sensing else None
         return SerialValveBoard(args.port, valves, loaded.domain.legs, args.baud, args.timeout,
-                                channels=channels, levels=loaded.domain.full), steps
+                                channels=channels, levels=loaded.domain.full,
+                                calibration=calibration), steps
     from gaithw.simulated import SimulatedRobot
 
     environment, scripted = _environment(args, loaded)
@@ -143,9 +153,14 @@ def run_drive(args: argparse.Namespace) -> int:
         0.5 if args.backend == "serial" else 0.0)
     live = None if args.quiet or args.backend == "sim" else _print_flush
     driver = Driver(loaded.strategy, loaded.domain, loaded.monitor, primitives, backend,
-                    delay, args.cycles, live)
+                    delay, args.cycles, live, args.on_violation)
     with interrupt_on_signals():  # SIGTERM and SIGHUP vent and keep the run, as Ctrl-C does
         run = driver.run(steps, args.spec)
+    if driver.violations and live is None:
+        print(f"readings that broke an assumption ({args.on_violation}): "
+              f"{len(driver.violations)}")
+        for note in driver.violations:
+            print(f"  {note}")
     return report_run(run, dict(loaded.domain.full), backend.name, args.quiet, args.out)
 
 
