@@ -27,7 +27,9 @@ from gaitc.cli import main
 from gaitc.simulation import session
 from gaithw.driver import bind_primitives
 from gaithw.firmware import Image, SimulatedBoard, build, missing_tools, vented_after
-from gaitsim.run import read_jsonl
+from gaithw.sensing import FIGURE_3_5_DEPTHS
+from gaithw.serial_board import SerialValveBoard
+from gaitsim.run import Step, read_jsonl
 
 pytestmark = [
     pytest.mark.firmware,
@@ -264,8 +266,49 @@ def test_a_lost_link_says_the_watchdog_vents(board: SimulatedBoard,
     assert "all valves vented" not in stderr
 
 
+def test_waveguide_wear_degrades_the_level_as_in_figure_3_5(board: SimulatedBoard) -> None:
+    board.set_wear(0, list(FIGURE_3_5_DEPTHS))  # leg L1's actuator, damaged cycle by cycle
+    legs = [f"L{i}" for i in range(1, 9)]
+    levels = []
+    with SerialValveBoard(board.port, 8, legs, levels=dict.fromkeys(legs, 3)) as hw:
+        hw.read_sensors()
+        for _ in FIGURE_3_5_DEPTHS:
+            hw.apply("10000000")
+            hw.wait(0.08)
+            hw.vent()
+            hw.wait(0.08)  # the actuator relaxes
+            hw.step_context(("L1",), in_cache=False)
+            levels.append(dict(hw.read_sensors().health)["L1"])
+    assert levels == [3, 3, 3, 3, 3, 2, 2, 2, 1]  # cycles 1-5 healthy, 6-8 degraded, 9 failed
+
+
+def expected_levels(steps: list[Step], caches: tuple[str, ...], gait_legs: dict[str, tuple[
+        str, ...]], worn_from: int) -> list[dict[str, int]]:
+    """Each step's levels when every actuator bends fully for its first ``worn_from - 1``
+    cycles and to the degraded depth from then on: a leg the step's gait used is graded
+    (degraded once worn), the others keep theirs, and a cache resets every leg."""
+    level = dict(steps[0].health)
+    uses = dict.fromkeys(level, 0)
+    out = [dict(level)]
+    for before in steps[:-1]:
+        used = gait_legs.get(before.gait, ())
+        for leg in used:
+            uses[leg] += 1
+        if before.region in caches:
+            level = dict.fromkeys(level, 3)
+        else:
+            level.update({leg: 2 for leg in used if uses[leg] >= worn_from})
+        out.append(dict(level))
+    return out
+
+
 def test_radial8_patrol_on_the_simulated_firmware(board: SimulatedBoard,
                                                   tmp_path: Path) -> None:
+    """The full patrol on the real firmware: every actuator wears to the degraded depth on
+    its third cycle; the levels sensed from the waveguides follow, the controller takes
+    them, and the pins show each gait's valve sequence step by step."""
+    for leg in range(8):
+        board.set_wear(leg, [0.6, 0.6, 0.33])
     controller, out = tmp_path / "radial8.json", tmp_path / "run.jsonl"
     assert main(["synth", str(RADIAL8), "-o", str(controller)]) == 0
     host = drive(RADIAL8, controller, board, "--steps", "12", "--step-delay", "0.05",
@@ -276,3 +319,10 @@ def test_radial8_patrol_on_the_simulated_firmware(board: SimulatedBoard,
     pins = collapse([v for _, v in board.record()])
     assert pins == expected_pins(RADIAL8, out, 0)
     assert sum("1" in v for v in pins) >= 12  # two valve states per moving gait
+    loaded = session(str(RADIAL8), None)
+    assert loaded is not None
+    steps = read_jsonl(str(out)).steps
+    legs = {g.name: g.legs for g in loaded.model.gaits}
+    sensed = [dict(step.health) for step in steps]
+    assert sensed == expected_levels(steps, tuple(loaded.model.caches), legs, 3)
+    assert any(2 in levels.values() for levels in sensed)  # some actuator did wear

@@ -77,9 +77,9 @@ def test_calibration_separates_the_levels_and_classifies_fresh_cycles() -> None:
 
 def test_heavy_noise_confuses_only_neighbouring_levels() -> None:
     calibration = calibrate(recorded(seed=1, noise=12.0))
-    matrix = confusion(calibration, recorded(seed=3, noise=60.0))
+    matrix = confusion(calibration, recorded(seed=2, noise=100.0))
     assert matrix[0][2] == 0 and matrix[2][0] == 0  # never healthy for inoperable
-    assert sum(matrix[i][i] for i in range(3)) >= 0.8 * 81
+    assert 0.9 * 81 <= sum(matrix[i][i] for i in range(3)) < 81  # noise now costs a few
 
 
 def test_noise_near_a_threshold_does_not_flap_the_level() -> None:
