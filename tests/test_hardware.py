@@ -6,10 +6,12 @@ valve board served on a local socket (``socket://`` URL) by a thread.
 
 from __future__ import annotations
 
+import contextlib
 import itertools
 import json
 import socket
 import threading
+import time
 from collections.abc import Iterator
 from pathlib import Path
 
@@ -74,8 +76,9 @@ class FakeBoard:
     """A valve board on a local TCP port speaking the gaitc line protocol."""
 
     def __init__(self, valves: int = 8, mode: str = "ok", silent_after: int = 10**6,
-                 health: str = "2,2", region: str = "-") -> None:
+                 health: str = "2,2", region: str = "-", proto: str = " proto=2") -> None:
         self.valves = valves
+        self.proto = proto
         self.mode = mode
         self.silent_after = silent_after
         self.health = health
@@ -90,7 +93,7 @@ class FakeBoard:
         if len(self.received) > self.silent_after:
             return None
         if line == "PING":
-            return f"PONG fake-1.0 proto=2 valves={self.valves}"
+            return f"PONG fake-1.0{self.proto} valves={self.valves}"
         if self.mode == "garbage":
             return "#@!~ 0x7f"
         if line == "HB":
@@ -110,10 +113,24 @@ class FakeBoard:
             for raw in stream:
                 line = raw.decode("ascii").strip()
                 self.received.append(line)
+                if self.mode == "drop" and len(self.received) > self.silent_after:
+                    return  # the link drops: the connection closes
+                if self.mode in ("trickle", "flood") and line.startswith("V "):
+                    self._babble(conn)
+                    continue
                 answer = self.reply(line)
                 if answer is not None:
                     stream.write(answer.encode("ascii") + b"\n")
                     stream.flush()
+
+    def _babble(self, conn: socket.socket) -> None:
+        with contextlib.suppress(OSError):  # the host may hang up first
+            if self.mode == "flood":  # 2 MB without an end of line
+                conn.sendall(b"x" * 2_000_000)
+                return
+            for _ in range(4):  # one byte every 0.3 s, never a line
+                conn.sendall(b"O")
+                threading.Event().wait(0.3)
 
     def commands(self, prefix: str) -> list[str]:
         return [c for c in self.received if c.startswith(prefix)]
@@ -379,6 +396,64 @@ def test_driver_stops_when_localisation_disagrees(tiny: Session, tmp_path: Path,
     assert isinstance(run.error, HardwareError)
     assert "localisation reports region b but the controller expects a" in run.error.message
     assert run.steps == []
+
+
+@pytest.mark.parametrize("mode", ["trickle", "flood"])
+def test_a_babbling_board_is_bounded_by_the_timeout(board_factory: type[FakeBoard],
+                                                    mode: str) -> None:
+    board = board_factory(valves=8, mode=mode)
+    hw = SerialValveBoard(board.url, 8, ["L1"], timeout=0.3, retries=2)
+    hw.open()
+    start = time.monotonic()
+    with pytest.raises(HardwareError, match=r"the vent was not acknowledged|link lost"):
+        hw.apply("10000000")
+    hw.close()
+    assert time.monotonic() - start < 3 * 0.3 + 2 * 0.3 + 1.0  # 3 tries, 2 vents, slack
+
+
+def test_a_dropped_link_says_only_the_watchdog_can_vent(board_factory: type[FakeBoard]
+                                                        ) -> None:
+    board = board_factory(valves=2, mode="drop", silent_after=2)
+    hw = SerialValveBoard(board.url, 2, ["L1"], timeout=0.3)
+    hw.open()
+    hw.apply("10")
+    with pytest.raises(HardwareError) as caught:
+        hw.apply("01")
+    assert caught.value.message.endswith("link lost; the board's watchdog vents within 500 ms")
+    assert "all valves vented" not in caught.value.message
+    hw.close()
+    assert hw.safety_note() == "link lost; the board's watchdog vents within 500 ms"
+
+
+def test_the_board_is_checked_before_any_valve_opens(board_factory: type[FakeBoard]) -> None:
+    for kwargs, message in [({"valves": 999999}, "claims 999999 valves; protocol v2 drives "
+                             "at most 32"), ({"proto": ""}, "speaks protocol v1; this gaitc "
+                                             "speaks v2")]:
+        board = board_factory(**kwargs)
+        start = time.monotonic()
+        with pytest.raises(HardwareError, match=message):
+            SerialValveBoard(board.url, 2, ["L1"], channels=(0, 1)).open()
+        assert time.monotonic() - start < 2
+        wait_for(board, 1)
+        assert board.commands("V") == []
+
+
+def test_heartbeats_while_valves_are_open_only(tiny: Session, tmp_path: Path,
+                                              board_factory: type[FakeBoard]) -> None:
+    board = board_factory(valves=2, health="2,2")
+    hw = SerialValveBoard(board.url, 2, tiny.domain.legs, timeout=1.0)
+    run = Driver(tiny.strategy, tiny.domain, tiny.monitor,
+                 bind_primitives(tiny.model, str(tmp_path)), hw, step_delay=0.3).run(2)
+    assert run.error is None
+    wait_for(board, len(board.received) + 1)
+    state, beats = "", 0
+    for command in board.received:
+        if command.startswith("V "):
+            state = command[2:]
+        elif command == "HB":
+            assert "1" in state  # a heartbeat only holds an open valve state
+            beats += 1
+    assert beats >= 2  # 0.3 s with a valve open: a heartbeat every 125 ms
 
 
 # ---------------------------------------------------------------------------- CLI
