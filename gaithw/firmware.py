@@ -86,6 +86,10 @@ def build(out_dir: str | Path, simulator: bool = True) -> Image:
                             _where("firmware build"),
                             "on Debian: apt-get install gcc-avr avr-libc simavr libsimavr-dev "
                             "libsimavrparts1 (scripts/setup.sh does it when run as root)")
+    if not (SOURCES / "gaitboard.c").exists():
+        raise FirmwareError(f"the firmware sources are not in {SOURCES}",
+                            _where("firmware build"),
+                            "run gaitc from a checkout of the repository (pip install -e .)")
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     elf, hexfile = out / "gaitboard.elf", out / "gaitboard.hex"

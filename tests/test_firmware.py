@@ -13,6 +13,7 @@ Marked ``firmware``; skipped without gcc-avr, avr-libc or libsimavr-dev.
 from __future__ import annotations
 
 import itertools
+import json
 import signal
 import subprocess
 import sys
@@ -129,6 +130,27 @@ def test_build_writes_the_image_and_cli(tmp_path: Path, capsys: pytest.CaptureFi
     printed = capsys.readouterr().out.split()
     assert printed == [str(tmp_path / "gaitboard.elf"), str(tmp_path / "gaitboard.hex")]
     assert (tmp_path / "gaitboard.hex").read_text(encoding="ascii").startswith(":")
+
+
+def test_cli_simulate_prints_the_pty_first_and_records_the_pins(tmp_path: Path) -> None:
+    record = tmp_path / "pins.jsonl"
+    sim = subprocess.Popen([sys.executable, "-m", "gaitc", "firmware", "simulate", "--record",
+                            str(record), "--watchdog-ms", "200"], stdout=subprocess.PIPE,
+                           stdin=subprocess.PIPE, text=True, cwd=ROOT)
+    try:
+        assert sim.stdout is not None
+        pty = sim.stdout.readline().strip()
+        assert pty.startswith("/dev/pts/")
+        link = serial.Serial(pty, 115200, timeout=1.0)
+        assert b" wd=200 " in ask(link, b"PING\n")
+        assert ask(link, b"V 01000000\n") == b"OK\r\n"
+        time.sleep(0.4)  # silence: the board vents after 200 ms
+        lines = record.read_text(encoding="ascii").splitlines()
+        assert [json.loads(line)["valves"] for line in lines] == [VENTED, "01000000", VENTED]
+    finally:
+        sim.terminate()
+        sim.wait(10)
+    assert main(["firmware", "simulate", "--watchdog-ms", "20"]) == 2
 
 
 def test_valve_command_sets_the_pins_and_errors_vent(board: SimulatedBoard) -> None:
