@@ -78,6 +78,12 @@ def register(sub: Any) -> None:
                    help="a reading that breaks the spec's assumptions: stop the run (default), "
                    "hold the levels the controller had, or take the worst levels the "
                    "assumptions allow")
+    p.add_argument("--pose", metavar="URL",
+                   help="take the region from a tracker's pose stream: udp://HOST:PORT "
+                   "(listen) or tcp://HOST:PORT (connect), JSON {\"x\": .., \"y\": ..}")
+    p.add_argument("--map", metavar="FILE", help="--pose: region polygons (YAML)")
+    p.add_argument("--cell-size", type=float, metavar="S",
+                   help="--pose without --map: the side of a grid cell (1)")
     p.add_argument("--sensing", metavar="FILE",
                    help="serial backend: waveguide thresholds per leg (from 'gaitc calibrate')")
     p.add_argument("--encoding", choices=ENCODINGS,
@@ -102,7 +108,13 @@ def _check_options(args: argparse.Namespace) -> None:
         if args.env:
             raise UsageError("--env chooses the simulated robot's environment; the serial "
                              "backend reads real sensors")
-    elif args.port or args.channels or args.sensing:
+    if (args.map or args.cell_size is not None) and not args.pose:
+        raise UsageError("--map and --cell-size place the poses of --pose")
+    if args.map and args.cell_size is not None:
+        raise UsageError("give --map or --cell-size, not both")
+    if args.cell_size is not None and not args.cell_size > 0:
+        raise UsageError("--cell-size must be positive")
+    if args.backend != "serial" and (args.port or args.channels or args.sensing):
         raise UsageError("--port, --channels and --sensing are for --backend serial")
 
 
@@ -132,6 +144,15 @@ def _backend(args: argparse.Namespace, loaded: Session, valves: int) -> tuple[Ba
                           valves), steps
 
 
+def _localised(args: argparse.Namespace, backend: Backend, loaded: Session) -> Backend:
+    from gaithw.localisation import Localised, PoseStream, RegionMap
+
+    model = loaded.domain.model
+    regions = (RegionMap.from_file(args.map, loaded.domain.regions) if args.map
+               else RegionMap.from_grid(model, args.cell_size or 1.0))
+    return Localised(backend, PoseStream(args.pose, args.timeout), regions)
+
+
 def run_drive(args: argparse.Namespace) -> int:
     from gaithw.driver import Driver, bind_primitives, valve_count
 
@@ -149,6 +170,8 @@ def run_drive(args: argparse.Namespace) -> int:
         print(f"{args.spec}: unrealizable: no controller to drive", file=sys.stderr)
         return ExitCode.UNREALIZABLE
     backend, steps = _backend(args, loaded, valve_count(primitives, len(loaded.domain.legs)))
+    if args.pose:
+        backend = _localised(args, backend, loaded)
     delay = args.step_delay if args.step_delay is not None else (
         0.5 if args.backend == "serial" else 0.0)
     live = None if args.quiet or args.backend == "sim" else _print_flush
