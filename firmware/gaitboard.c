@@ -51,7 +51,8 @@ static volatile uint8_t rx_head, rx_tail, rx_overrun;
 
 static char line[LINE_MAX + 1];
 static uint8_t line_len;
-static uint8_t discarding;   /* 0, or the reason the rest of the line is thrown away */
+static uint8_t discarding;   /* why the rest of the line is thrown away: 0 it is not,
+                              * 1 too long, 2 a malformed byte, 3 a receive overrun */
 static uint16_t wd_period = WD_DEFAULT;
 static uint32_t last_valid;
 static uint8_t valves;       /* bit i = valve i */
@@ -283,6 +284,7 @@ static void receive(uint8_t c)
     if (c == '\n') {
         if (discarding == 1) refuse("line too long");
         else if (discarding == 2) refuse("malformed byte");
+        else if (discarding == 3) refuse("receive overrun");
         else if (line_len) {
             line[line_len] = 0;
             execute();
@@ -333,7 +335,7 @@ int main(void)
         if (rx_overrun) {
             rx_overrun = 0;
             vent();
-            discarding = 1;
+            discarding = 3;
         }
         if (valves && millis() - last_valid >= wd_period) vent();
         /* idle until the next interrupt (the 1 ms tick at the latest); no byte is missed:
