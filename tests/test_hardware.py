@@ -498,3 +498,17 @@ def test_cli_drive_serial(tiny_spec: Path, board_factory: type[FakeBoard],
     assert "step 1: " in out and "summary: 3 steps" in out
     wait_for(board, 8)
     assert board.received[0] == "PING" and board.commands("V")[-1] == "V 00"
+
+
+def test_firmware_build_says_which_packages_are_missing(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
+        capsys: pytest.CaptureFixture[str]) -> None:
+    import gaithw.firmware
+
+    monkeypatch.setattr(gaithw.firmware.shutil, "which", lambda name: None)
+    missing = gaithw.firmware.missing_tools()
+    assert missing[0] == "gcc-avr" and "gcc" in missing
+    assert main(["firmware", "build", "-o", str(tmp_path)]) == 1
+    err = capsys.readouterr().err
+    assert "cannot build the firmware: missing gcc-avr" in err
+    assert "apt-get install gcc-avr avr-libc simavr" in err

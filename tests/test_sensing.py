@@ -179,3 +179,17 @@ def test_a_reading_that_breaks_an_assumption_is_held_or_taken_at_worst(
     steps = getattr(run, "steps", [])
     assert dict(steps[2].health)["L1"] == l1
     assert run.summary.assumptions_held  # type: ignore[attr-defined]
+
+
+def test_cli_on_violation(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    spec = tmp_path / "s.gait"
+    spec.write_text(SPEC3, encoding="utf-8")
+    scenario = tmp_path / "jump.yaml"
+    scenario.write_text("steps:\n  - {}\n  - fail: [L1]\n", encoding="utf-8")
+    argv = ["drive", str(spec), "--env", "scripted", str(scenario)]
+    assert main([*argv, "--on-violation", "worst"]) == 0
+    out = capsys.readouterr().out
+    assert "readings that broke an assumption (worst): 1" in out
+    assert "worst: taken as L1 2, L2 3, hazard none" in out
+    assert main(argv) == 1  # stop, the default
+    assert "breaks the assumption 'eq. 3.5" in capsys.readouterr().err
