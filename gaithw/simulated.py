@@ -12,7 +12,7 @@ import time
 
 from gaithw.backend import Backend, HardwareError, SensorReading, where
 from gaitsim.domain import Domain, Goal, State
-from gaitsim.environments import Environment, Situation
+from gaitsim.environments import Environment, Move, Situation
 from gaitsim.monitor import Monitor
 from gaitsim.simulator import Simulator
 from gaitsim.strategy import StrategyView
@@ -82,6 +82,9 @@ class SimulatedRobot(Backend):
         reading = SensorReading(sensed.health, sensed.hazard, region)
         self.readings.append(reading)
         return reading
+
+    def accepted(self, move: Move) -> None:
+        self._node = move.node  # the driver may stand a move in for a refused reading
 
     def _next_goal(self) -> Goal | None:
         goals = self.domain.goals

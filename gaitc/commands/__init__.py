@@ -7,9 +7,11 @@ parser default; the function returns an exit code (see :mod:`gaitc.cli`).
 from __future__ import annotations
 
 from gaitc.commands import (
+    calibrating,
     compiling,
     driving,
     explaining,
+    firmware,
     gaits,
     rendering,
     resilient,
@@ -18,4 +20,4 @@ from gaitc.commands import (
 )
 
 COMMAND_MODULES = (compiling, solving, explaining, resilient, simulating, rendering, gaits,
-                   driving)
+                   driving, firmware, calibrating)
