@@ -130,7 +130,7 @@ def _check(loop: _Loop, roots: dict[str, Any], semantics: str) -> VerificationRe
             problems.append(f"goal {g + 1}: a move from a reachable state violates sys_trans")
     env_goals = loop.goals("env_liveness")
     for rule, goal in _goal_rules(loop):
-        if reach & _fair_avoiding(loop, trans & ~goal, env_goals) != b.false:
+        if reach & _fair_avoiding(loop, reach & trans & ~goal, env_goals) != b.false:
             problems.append(f"a reachable state starts a run that satisfies every environment "
                             f"liveness assumption infinitely often but never {rule}")
     count = int(b.count(reach, nvars=len(loop.pre)))
