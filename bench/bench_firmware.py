@@ -26,15 +26,8 @@ from gaitc.cli import main
 from gaithw.firmware import Image, SimulatedBoard, build, missing_tools, vented_after
 
 ROOT = Path(__file__).resolve().parent.parent
-SPEC = """robot "bench"
-legs L1..L2 health 2
-gait east uses L1 moves east valves 10, 00
-gait west uses L2 moves west valves 01, 00
-grid 1 x 2 cells a, b
-cache a
-start a
-visit a, b infinitely often
-"""
+SPEC = (Path(__file__).resolve().parent.parent / "specs" / "shuttle_2leg.gait").read_text(
+    encoding="utf-8")  # two legs, two valves: short runs on the simulated board
 LOOP_MS = 10.0  # one firmware loop with a reply in progress (about 90 bytes at 115200 baud)
 
 

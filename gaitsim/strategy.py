@@ -55,8 +55,34 @@ class StrategyView(Protocol):
     def initial_options(self) -> dict[InputKey, int]: ...
 
 
+class NodeReading:
+    """What both kinds of controller answer alike from their per-node values."""
+
+    variables: tuple[str, ...]
+    n_inputs: int
+    values: Indexed[tuple[int, ...]]
+    initial: tuple[int, ...]
+
+    @property
+    def inputs(self) -> tuple[str, ...]:
+        return self.variables[: self.n_inputs]
+
+    def input_key(self, node: int) -> InputKey:
+        return self.values[node][: self.n_inputs]
+
+    def valuation(self, node: int) -> dict[str, int]:
+        return dict(zip(self.variables, self.values[node], strict=True))
+
+    def initial_options(self) -> dict[InputKey, int]:
+        """The environment's possible first inputs → initial node (lowest id)."""
+        found: dict[InputKey, int] = {}
+        for node in self.initial:
+            found.setdefault(self.input_key(node), node)
+        return dict(sorted(found.items()))
+
+
 @dataclass(frozen=True)
-class Strategy:
+class Strategy(NodeReading):
     """An explicit Mealy machine over the spec's variables (inputs first, then outputs)."""
 
     variables: tuple[str, ...]
@@ -71,18 +97,8 @@ class Strategy:
         default_factory=dict, compare=False, repr=False
     )
 
-    @property
-    def inputs(self) -> tuple[str, ...]:
-        return self.variables[: self.n_inputs]
-
     def __len__(self) -> int:
         return len(self.values)
-
-    def input_key(self, node: int) -> InputKey:
-        return self.values[node][: self.n_inputs]
-
-    def valuation(self, node: int) -> dict[str, int]:
-        return dict(zip(self.variables, self.values[node], strict=True))
 
     def options(self, node: int) -> dict[InputKey, int]:
         """The environment's possible moves at ``node``: input values → successor (lowest id)."""
@@ -94,13 +110,6 @@ class Strategy:
             found = dict(sorted(found.items()))
             self._options[node] = found
         return found
-
-    def initial_options(self) -> dict[InputKey, int]:
-        """The environment's possible first inputs → initial node (lowest id)."""
-        found: dict[InputKey, int] = {}
-        for node in self.initial:
-            found.setdefault(self.input_key(node), node)
-        return dict(sorted(found.items()))
 
 
 def _where(file: str) -> Span:

@@ -17,6 +17,7 @@ from typing import Any, Generic, TypeVar
 import dd.cudd as cudd
 
 from diagnostics import ControllerError, Span
+from gaitsim.strategy import NodeReading
 from gr1.bddfile import SymbolicController, materialize
 from gr1.bddwalk import State, all_assignments, first_assignment, holds_at
 from gr1.bits import spec_bits
@@ -26,7 +27,7 @@ InputKey = tuple[int, ...]
 T = TypeVar("T")
 
 
-class SymbolicStrategy:
+class SymbolicStrategy(NodeReading):
     """The interface of :class:`gaitsim.strategy.Strategy`, over a symbolic controller."""
 
     kind = "strategy"
@@ -67,19 +68,9 @@ class SymbolicStrategy:
         self.initial = tuple(self._node(s, 0) for s in self._initial_states())
 
     # ------------------------------------------------------------ Strategy interface
-    @property
-    def inputs(self) -> tuple[str, ...]:
-        return self.variables[: self.n_inputs]
-
     def __len__(self) -> int:
         """The nodes discovered so far (a symbolic controller is never enumerated)."""
         return len(self._nodes)
-
-    def input_key(self, node: int) -> InputKey:
-        return self.values[node][: self.n_inputs]
-
-    def valuation(self, node: int) -> dict[str, int]:
-        return dict(zip(self.variables, self.values[node], strict=True))
 
     def options(self, node: int) -> dict[InputKey, int]:
         """The environment's possible moves at ``node``: input values → successor."""
@@ -88,12 +79,6 @@ class SymbolicStrategy:
             found = dict(sorted((self.input_key(n), n) for n in self._expand(node)))
             self._options[node] = found
         return found
-
-    def initial_options(self) -> dict[InputKey, int]:
-        found: dict[InputKey, int] = {}
-        for node in self.initial:
-            found.setdefault(self.input_key(node), node)
-        return dict(sorted(found.items()))
 
     # ------------------------------------------------------------ stepping
     def _node(self, state: State, goal: int) -> int:

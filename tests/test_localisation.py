@@ -22,15 +22,8 @@ from gaitsim.environments import RandomEnvironment
 
 ROOT = Path(__file__).resolve().parent.parent
 RADIAL8 = ROOT / "specs" / "radial8_patrol.gait"
-TINY = """robot "tiny"
-legs L1..L2 health 2
-gait east uses L1 moves east valves 10, 00
-gait west uses L2 moves west valves 01, 00
-grid 1 x 2 cells a, b
-cache a
-start a
-visit a, b infinitely often
-"""
+TINY = (Path(__file__).resolve().parent.parent / "specs" / "shuttle_2leg.gait").read_text(
+    encoding="utf-8")  # two legs, two valves: short runs on the simulated board
 
 
 @pytest.fixture()
