@@ -46,6 +46,10 @@ T = TypeVar("T")
 
 HEAD_START: Final = 0.25  # seconds the static configuration runs alone
 GRACE: Final = 0.5  # seconds past the time limit before a racer is killed
+#: The second racer runs at a lower priority: on an idle two-core machine it still gets its
+#: own core, and on a busy one it does not slow the first down (thesis robot A on a loaded
+#: machine: 1.64 s raced at equal priority against 1.02 s for the static order alone).
+SECOND_NICENESS: Final = 10
 STATIC: Final = "static order"
 DYNAMIC: Final = "dynamic reordering"
 
@@ -68,7 +72,11 @@ def solve_chosen(run: Callable[[Options, Limits], T], options: Options, limits: 
     reporting = replace(limits, progress=None if limits.progress is None else to_parent)
     quiet = replace(limits, progress=None)
     static, dynamic = engine_options(STATIC, options), engine_options(DYNAMIC, options)
-    works = [lambda: run(static, reporting), lambda: run(dynamic, quiet)]
+    def second() -> T:
+        os.nice(SECOND_NICENESS)  # in its own process: yields the CPU it would steal
+        return run(dynamic, quiet)
+
+    works = [lambda: run(static, reporting), second]
     deadline = None if limits.timeout is None else limits.started + limits.timeout + GRACE
     index, outcome = first_success(works, deadline, delays=(0.0, HEAD_START),
                                    relay=limits.progress)
