@@ -17,13 +17,12 @@ from typing import Any, Generic, TypeVar
 import dd.cudd as cudd
 
 from diagnostics import ControllerError, Span
-from gaitsim.strategy import NodeReading
+from gaitsim.view import InputKey, NodeReading
 from gr1.bddfile import SymbolicController, materialize
 from gr1.bddwalk import State, all_assignments, first_assignment, holds_at
 from gr1.bits import spec_bits
 from gr1.spec import GR1Spec
 
-InputKey = tuple[int, ...]
 T = TypeVar("T")
 
 
