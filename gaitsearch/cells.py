@@ -1,0 +1,140 @@
+"""The configuration-space lattice of hybrid graph search (thesis 5.2.2).
+
+Planar chassis displacement (dx, dy, dθ) is cut into cells of ``size`` mm and ``angle``
+degrees; a search node is a pose of the gait graph in a cell, packed in one integer.  Cell
+adjacency comes from propagating the gait graph's transitions from the cell's centre, so the
+graph is the same whichever path reaches a node (which LPA* needs; the thesis and Dolgov et
+al.'s hybrid A* propagate from the path's own continuous state).  The heuristic is the
+larger of two lower bounds on the transitions still needed: hops back to the start pose, and
+distance to the goal over the longest step (both consistent).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from diagnostics import UsageError
+from gaitsearch.goals import Goal, angle_difference
+from gaitsearch.transitions import Floats, Ints, TransitionModel
+
+_OFF = 1 << 15
+_MASK = (1 << 16) - 1
+
+
+class Lattice:
+    """Cells of ``size`` mm × ``size`` mm × ``angle`` degrees around a start pose."""
+
+    def __init__(
+        self,
+        model: TransitionModel,
+        start: int,
+        goal: Goal,
+        size: float = 2.0,
+        angle: float = 2.0,
+        slip_cost: float = 0.05,
+    ) -> None:
+        if size <= 0 or angle <= 0:
+            raise UsageError("the cell size and angle must be positive")
+        turns = 360.0 / angle
+        if abs(turns - round(turns)) > 1e-9:
+            raise UsageError(f"the cell angle must divide 360 degrees, not {angle:g}")
+        if not 0 <= start < model.poses:
+            raise UsageError(f"start pose {start} is not a pose of the gait graph")
+        self.model, self.start, self.goal = model, start, goal
+        self.size, self.angle, self.turns = size, angle, round(turns)
+        self.slip_cost = slip_cost
+        self.costs = 1.0 + slip_cost * model.slip
+        self.hops = model.hops_to(start).astype(np.float64)
+        self.hops[self.hops < 0] = math.inf
+        self.reach = 0.0
+        self.turn = 0.0
+        self.refresh_bounds()
+
+    def refresh_bounds(self) -> bool:
+        """Recompute the step bounds of the heuristic; True when they grew."""
+        longest, turn = self.model.largest_step()
+        reach = longest + self.size * math.sqrt(2) / 2 + 1e-9
+        turn = turn + self.angle / 2 + 1e-9
+        grew = reach > self.reach or turn > self.turn
+        self.reach, self.turn = max(reach, self.reach), max(turn, self.turn)
+        return grew
+
+    def pack(self, pose: int, ix: int, iy: int, it: int) -> int:
+        return (pose << 48) | ((ix + _OFF) << 32) | ((iy + _OFF) << 16) | (it % self.turns)
+
+    def unpack(self, node: int) -> tuple[int, int, int, int]:
+        return (
+            node >> 48,
+            ((node >> 32) & _MASK) - _OFF,
+            ((node >> 16) & _MASK) - _OFF,
+            node & _MASK,
+        )
+
+    def centre(self, node: int) -> tuple[int, float, float, float]:
+        """Pose, x, y (mm) and heading (degrees) of a node's cell centre."""
+        pose, ix, iy, it = self.unpack(node)
+        heading = angle_difference(it * self.angle, 0.0)
+        return pose, ix * self.size, iy * self.size, heading
+
+    @property
+    def root(self) -> int:
+        return self.pack(self.start, 0, 0, 0)
+
+    def cost(self, edge: int) -> float:
+        """One valve step plus a penalty for the slip the transition needs."""
+        return float(self.costs[edge])
+
+    def successors(self, node: int, rows: range | None = None) -> tuple[Ints, Ints]:
+        """The live out-edges of ``node`` (or of its pose's ``rows``) and their target nodes;
+        edges leaving the lattice's 16-bit range, and self-transitions, are dropped."""
+        pose, x, y, heading = self.centre(node)
+        m = self.model
+        sel = (
+            np.arange(rows.start, rows.stop)
+            if rows is not None
+            else np.arange(int(m.offsets[pose]), int(m.offsets[pose + 1]))
+        )
+        sel = sel[m.alive[sel]]
+        rad = math.radians(heading)
+        c, s = math.cos(rad), math.sin(rad)
+        nx = np.rint((x + c * m.dx[sel] - s * m.dy[sel]) / self.size).astype(np.int64)
+        ny = np.rint((y + s * m.dx[sel] + c * m.dy[sel]) / self.size).astype(np.int64)
+        nt = np.rint((heading + m.rot[sel]) / self.angle).astype(np.int64) % self.turns
+        ok = (np.abs(nx) < _OFF) & (np.abs(ny) < _OFF)
+        sel, nx, ny, nt = sel[ok], nx[ok], ny[ok], nt[ok]
+        keys = (m.dst[sel] << 48) | ((nx + _OFF) << 32) | ((ny + _OFF) << 16) | nt
+        keep = keys != node
+        return sel[keep], keys[keep]
+
+    def successor(self, node: int, edge: int) -> int | None:
+        """The target node of one edge from ``node`` (None when dead or off the lattice)."""
+        edges, keys = self.successors(node, range(edge, edge + 1))
+        return int(keys[0]) if len(edges) else None
+
+    def is_goal(self, node: int) -> bool:
+        pose, x, y, heading = self.centre(node)
+        return pose == self.start and self.goal.reached(x, y, heading)
+
+    def heuristics(self, nodes: Ints) -> Floats:
+        """:meth:`heuristic` of many nodes at once."""
+        pose = nodes >> 48
+        x = (((nodes >> 32) & _MASK) - _OFF) * self.size
+        y = (((nodes >> 16) & _MASK) - _OFF) * self.size
+        heading = (nodes & _MASK) * self.angle
+        far = np.hypot(x - self.goal.dx, y - self.goal.dy)
+        turn = np.abs((heading - self.goal.dtheta + 180.0) % 360.0 - 180.0)
+        slack = self.size * math.sqrt(2) / 2
+        by_distance = np.maximum(0.0, far - self.goal.tolerance - slack) / self.reach
+        by_turn = np.maximum(0.0, turn - self.goal.angle_tolerance - self.angle / 2) / self.turn
+        out: Floats = np.maximum(self.hops[pose], np.maximum(by_distance, by_turn))
+        return out
+
+    def heuristic(self, node: int) -> float:
+        pose, x, y, heading = self.centre(node)
+        far, turn = self.goal.error(x, y, heading)
+        slack = self.size * math.sqrt(2) / 2
+        by_distance = max(0.0, far - self.goal.tolerance - slack) / self.reach
+        by_turn = max(0.0, turn - self.goal.angle_tolerance - self.angle / 2) / self.turn
+        return max(float(self.hops[pose]), by_distance, by_turn)
