@@ -11,6 +11,8 @@ import heapq
 import math
 from dataclasses import dataclass, field
 
+import numpy as np
+
 from gaitsearch.cells import Lattice
 
 
@@ -22,7 +24,7 @@ class Route:
     edges: tuple[int, ...]
     cost: float
     expanded: int  # node expansions of the search (or of the repair) that found it
-    explored: tuple[int, ...] = field(default=(), compare=False, repr=False)
+    explored: frozenset[int] = field(default=frozenset(), compare=False, repr=False)
 
 
 class SearchBudgetExceeded(Exception):
@@ -55,9 +57,9 @@ def astar(lattice: Lattice, budget: int = 200_000) -> Route | None:
             raise SearchBudgetExceeded(budget)
         base = g[node]
         edges, keys = lattice.successors(node)
-        costs = (base + lattice.costs[edges]).tolist()
-        hs = lattice.heuristics(keys).tolist()
-        for e, v, cost, h in zip(edges.tolist(), keys.tolist(), costs, hs, strict=True):
+        costs = [base + lattice.cost_list[e] for e in edges]
+        hs = lattice.heuristics(np.array(keys, dtype=np.int64)).tolist()
+        for e, v, cost, h in zip(edges, keys, costs, hs, strict=True):
             if cost < g.get(v, math.inf) and v not in closed and h < math.inf:
                 g[v] = cost
                 parent[v] = (node, e)
@@ -73,6 +75,4 @@ def _route(
         goal, e = parent[goal]
         nodes.append(goal)
         edges.append(e)
-    return Route(
-        tuple(reversed(nodes)), tuple(reversed(edges)), cost, expanded, tuple(sorted(closed))
-    )
+    return Route(tuple(reversed(nodes)), tuple(reversed(edges)), cost, expanded, frozenset(closed))

@@ -46,6 +46,12 @@ class Lattice:
         self.size, self.angle, self.turns = size, angle, round(turns)
         self.slip_cost = slip_cost
         self.costs = 1.0 + slip_cost * model.slip
+        self.cost_list: list[float] = self.costs.tolist()
+        if model.poses >= 1 << 15:
+            raise UsageError(f"the lattice packs poses in 15 bits: {model.poses} are too many")
+        self._heading = [angle_difference(it * angle, 0.0) for it in range(self.turns)]
+        self._cos = [math.cos(math.radians(h)) for h in self._heading]
+        self._sin = [math.sin(math.radians(h)) for h in self._heading]
         self.hops = model.hops_to(start).astype(np.float64)
         self.hops[self.hops < 0] = math.inf
         self.reach = 0.0
@@ -84,34 +90,58 @@ class Lattice:
 
     def cost(self, edge: int) -> float:
         """One valve step plus a penalty for the slip the transition needs."""
-        return float(self.costs[edge])
+        return self.cost_list[edge]
 
-    def successors(self, node: int, rows: range | None = None) -> tuple[Ints, Ints]:
-        """The live out-edges of ``node`` (or of its pose's ``rows``) and their target nodes;
-        edges leaving the lattice's 16-bit range, and self-transitions, are dropped."""
-        pose, x, y, heading = self.centre(node)
+    def successors(self, node: int) -> tuple[list[int], list[int]]:
+        """The live out-edges of ``node`` and their target nodes; edges leaving the lattice's
+        16-bit range, and self-transitions, are dropped.  Small poses are done in plain
+        Python, large ones with numpy; both give the same bits (same operations, and the
+        cosines come from one table)."""
+        pose, ix, iy, it = self.unpack(node)
         m = self.model
-        sel = (
-            np.arange(rows.start, rows.stop)
-            if rows is not None
-            else np.arange(int(m.offsets[pose]), int(m.offsets[pose + 1]))
-        )
+        lo, hi = int(m.offsets[pose]), int(m.offsets[pose + 1])
+        if hi - lo <= 48:
+            edges: list[int] = []
+            targets: list[int] = []
+            for e in range(lo, hi):
+                key = self._target(ix, iy, it, e)
+                if key is not None and key != node:
+                    edges.append(e)
+                    targets.append(key)
+            return edges, targets
+        x, y = ix * self.size, iy * self.size
+        c, s, heading = self._cos[it], self._sin[it], self._heading[it]
+        sel = np.arange(lo, hi)
         sel = sel[m.alive[sel]]
-        rad = math.radians(heading)
-        c, s = math.cos(rad), math.sin(rad)
         nx = np.rint((x + c * m.dx[sel] - s * m.dy[sel]) / self.size).astype(np.int64)
         ny = np.rint((y + s * m.dx[sel] + c * m.dy[sel]) / self.size).astype(np.int64)
         nt = np.rint((heading + m.rot[sel]) / self.angle).astype(np.int64) % self.turns
         ok = (np.abs(nx) < _OFF) & (np.abs(ny) < _OFF)
         sel, nx, ny, nt = sel[ok], nx[ok], ny[ok], nt[ok]
-        keys = (m.dst[sel] << 48) | ((nx + _OFF) << 32) | ((ny + _OFF) << 16) | nt
-        keep = keys != node
-        return sel[keep], keys[keep]
+        packed: Ints = (m.dst[sel] << 48) | ((nx + _OFF) << 32) | ((ny + _OFF) << 16) | nt
+        keep = packed != node
+        return sel[keep].tolist(), packed[keep].tolist()
+
+    def _target(self, ix: int, iy: int, it: int, e: int) -> int | None:
+        m = self.model
+        if not m.alive_list[e]:
+            return None
+        x, y = ix * self.size, iy * self.size
+        c, s = self._cos[it], self._sin[it]
+        dx, dy = m.dx_list[e], m.dy_list[e]
+        nx = round((x + c * dx - s * dy) / self.size)
+        ny = round((y + s * dx + c * dy) / self.size)
+        if abs(nx) >= _OFF or abs(ny) >= _OFF:
+            return None
+        nt = round((self._heading[it] + m.rot_list[e]) / self.angle) % self.turns
+        return (m.dst_list[e] << 48) | ((nx + _OFF) << 32) | ((ny + _OFF) << 16) | nt
 
     def successor(self, node: int, edge: int) -> int | None:
-        """The target node of one edge from ``node`` (None when dead or off the lattice)."""
-        edges, keys = self.successors(node, range(edge, edge + 1))
-        return int(keys[0]) if len(edges) else None
+        """The target node of one edge from ``node`` (None when dead, off the lattice or a
+        self-transition)."""
+        _, ix, iy, it = self.unpack(node)
+        key = self._target(ix, iy, it, edge)
+        return None if key == node else key
 
     def is_goal(self, node: int) -> bool:
         pose, x, y, heading = self.centre(node)

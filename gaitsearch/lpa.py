@@ -91,7 +91,7 @@ class LifelongPlanner:
         """(edge, target) of ``node``; generating them the first time records the preds."""
         lattice = self.lattice
         edges, keys = lattice.successors(node)
-        out = list(zip(edges.tolist(), keys.tolist(), strict=True))
+        out = list(zip(edges, keys, strict=True))
         if node != self.root and lattice.is_goal(node):
             out.append((-1, GOAL))
         pose = node >> 48
@@ -170,8 +170,11 @@ class LifelongPlanner:
             tuple(reversed(edges)),
             g[GOAL],
             self.expanded,
-            tuple(sorted(n for n in g if n != GOAL and g[n] < _INF)),
         )
+
+    def explored(self) -> frozenset[int]:
+        """Every node with a finite g (the cells the search has settled)."""
+        return frozenset(n for n, v in self.g.items() if n != GOAL and v < _INF)
 
     # -- changes of the gait graph -----------------------------------------------------
     def update_transition(self, edge: int, step: Step | None) -> None:

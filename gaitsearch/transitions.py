@@ -8,7 +8,6 @@ robot really did (thesis 5.2.2) or remove when the robot did not make the transi
 from __future__ import annotations
 
 import math
-from collections import deque
 from dataclasses import dataclass
 
 import numpy as np
@@ -64,21 +63,50 @@ class TransitionModel:
         self.rot = np.asarray(rot, np.float64)[order].copy()
         self.slip = np.asarray(slip, np.float64)[order].copy()
         self.alive = np.ones(len(self.src), dtype=bool)
+        self._mirror()
         self.original = np.asarray(order, np.int64)  # row in the source arrays
         self.offsets = np.searchsorted(self.src, np.arange(poses + 1)).astype(np.int64)
         self.labels = labels or [f"p{i}" for i in range(poses)]
+        self.groups: tuple[int, ...] = ()  # chambers per leg, to print valve states by leg
 
     def __len__(self) -> int:
         return len(self.src)
+
+    def _mirror(self) -> None:
+        """Plain lists of the arrays, for the per-edge loops of small poses."""
+        self.dx_list: list[float] = self.dx.tolist()
+        self.dy_list: list[float] = self.dy.tolist()
+        self.rot_list: list[float] = self.rot.tolist()
+        self.dst_list: list[int] = self.dst.tolist()
+        self.alive_list: list[bool] = self.alive.tolist()
 
     @staticmethod
     def from_graph(graph: GaitGraph) -> TransitionModel:
         e = graph.edges
         count = graph.robot.valve_count
         labels = [valve_string(int(s), count) for s in graph.poses.state]
-        return TransitionModel(
+        model = TransitionModel(
             len(graph), e.src, e.dst, e.dx, e.dy, np.degrees(e.rot), e.slip, labels
         )
+        model.groups = tuple(len(leg.chambers) for leg in graph.robot.legs)
+        return model
+
+    def copy(self) -> TransitionModel:
+        """An independent copy (the walker keeps the original predictions)."""
+        out = TransitionModel(
+            self.poses,
+            self.src,
+            self.dst,
+            self.dx,
+            self.dy,
+            self.rot,
+            self.slip,
+            list(self.labels),
+        )
+        out.alive = self.alive.copy()
+        out.alive_list = self.alive.tolist()
+        out.groups = self.groups
+        return out
 
     def rows(self, pose: int) -> range:
         return range(int(self.offsets[pose]), int(self.offsets[pose + 1]))
@@ -94,9 +122,15 @@ class TransitionModel:
 
     def set_motion(self, edge: int, step: Step) -> None:
         self.dx[edge], self.dy[edge], self.rot[edge] = step.dx, step.dy, step.rotation
+        self.dx_list[edge], self.dy_list[edge], self.rot_list[edge] = (
+            float(self.dx[edge]),
+            float(self.dy[edge]),
+            float(self.rot[edge]),
+        )
 
     def remove(self, edge: int) -> None:
         self.alive[edge] = False
+        self.alive_list[edge] = False
 
     def largest_step(self) -> tuple[float, float]:
         """The longest translation (mm) and largest |rotation| (deg) of any live edge."""
@@ -106,17 +140,19 @@ class TransitionModel:
         return float(np.hypot(self.dx[a], self.dy[a]).max()), float(np.abs(self.rot[a]).max())
 
     def hops_to(self, target: int) -> Ints:
-        """Fewest transitions from every pose to ``target`` (-1 when it cannot be reached)."""
+        """Fewest live transitions from every pose to ``target`` (-1 when it cannot be
+        reached); breadth-first by levels over the edge arrays."""
         hops = np.full(self.poses, -1, dtype=np.int64)
-        incoming: dict[int, list[int]] = {}
-        for e in np.nonzero(self.alive)[0].tolist():
-            incoming.setdefault(int(self.dst[e]), []).append(int(self.src[e]))
         hops[target] = 0
-        queue = deque([target])
-        while queue:
-            v = queue.popleft()
-            for u in incoming.get(v, []):
-                if hops[u] < 0:
-                    hops[u] = hops[v] + 1
-                    queue.append(u)
+        frontier = np.zeros(self.poses, dtype=bool)
+        frontier[target] = True
+        level = 0
+        while frontier.any():
+            level += 1
+            into = self.alive & frontier[self.dst]
+            fresh = np.zeros(self.poses, dtype=bool)
+            fresh[self.src[into]] = True
+            fresh &= hops < 0
+            hops[fresh] = level
+            frontier = fresh
         return hops

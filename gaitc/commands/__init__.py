@@ -11,6 +11,7 @@ from gaitc.commands import (
     driving,
     explaining,
     gaits,
+    learning,
     rendering,
     resilient,
     simulating,
@@ -18,4 +19,4 @@ from gaitc.commands import (
 )
 
 COMMAND_MODULES = (compiling, solving, explaining, resilient, simulating, rendering, gaits,
-                   driving)
+                   learning, driving)
