@@ -96,7 +96,11 @@ def first_planner(
         plan = planner.plan()
         if plan is not None:
             plan = dataclasses.replace(plan, graph=(len(graph.states), len(graph), len(model)))
-        if (plan is not None and plan.reached) or added >= len(order):
+        # a lattice route reaches the goal's cells by construction (its continuous
+        # displacement may still miss by the snapping, which the plan reports); an MCTS
+        # cycle is only as good as its rollouts
+        found = plan is not None and (plan.reached or method != "mcts")
+        if found or added >= len(order):
             return planner, bot, plan
 
 
@@ -112,8 +116,9 @@ def plan_gait(
 
     ``method`` is ``astar``, ``lpa`` (hybrid graph search, thesis 5.2.2) or ``mcts``
     (5.2.4).  The graph grows by ``batch`` random valve states (all of them for a robot of
-    at most 12 chambers) until a plan reaches the goal's tolerance; returns that plan, else
-    the last graph's plan (MCTS: its best cycle, which misses the goal), else None.  Raises
+    at most 12 chambers) until a search finds a gait; returns it, else the last graph's
+    plan (MCTS: its best cycle, which misses the goal), else None.  ``GaitPlan.reached``
+    says whether the continuous predicted displacement is within the tolerance.  Raises
     :class:`~gaitsearch.planners.SearchLimitError` when a search runs out of budget.
     """
     return first_planner(robot, goal, method, settings, max_states, batch)[2]

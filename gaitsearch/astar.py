@@ -41,6 +41,11 @@ def astar(lattice: Lattice, budget: int = 200_000) -> Route | None:
     Raises :class:`SearchBudgetExceeded` after ``budget`` expansions.  Ties are broken by the
     larger g, then the smaller node number, so the result is deterministic.
     """
+    return astar_counted(lattice, budget)[0]
+
+
+def astar_counted(lattice: Lattice, budget: int = 200_000) -> tuple[Route | None, int]:
+    """:func:`astar` and the number of nodes it expanded (also when there is no route)."""
     root = lattice.root
     g: dict[int, float] = {root: 0.0}
     parent: dict[int, tuple[int, int]] = {}
@@ -51,7 +56,7 @@ def astar(lattice: Lattice, budget: int = 200_000) -> Route | None:
         if node in closed:
             continue
         if node != root and lattice.is_goal(node):
-            return _route(node, parent, g[node], len(closed), closed)
+            return _route(node, parent, g[node], len(closed), closed), len(closed)
         closed.add(node)
         if len(closed) > budget:
             raise SearchBudgetExceeded(budget)
@@ -64,7 +69,7 @@ def astar(lattice: Lattice, budget: int = 200_000) -> Route | None:
                 g[v] = cost
                 parent[v] = (node, e)
                 heapq.heappush(heap, (cost + h, -cost, v))
-    return None
+    return None, len(closed)
 
 
 def _route(

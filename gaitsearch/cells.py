@@ -34,6 +34,7 @@ class Lattice:
         size: float = 2.0,
         angle: float = 2.0,
         slip_cost: float = 0.05,
+        radius: float | None = None,
     ) -> None:
         if size <= 0 or angle <= 0:
             raise UsageError("the cell size and angle must be positive")
@@ -57,6 +58,17 @@ class Lattice:
         self.reach = 0.0
         self.turn = 0.0
         self.refresh_bounds()
+        span = math.hypot(goal.dx, goal.dy)
+        if radius is None:  # room for a cycle to swing out and come back
+            radius = max(3.0 * span, span + 2.0 * self.reach)
+        self.radius = radius
+        if radius / size >= _OFF - 1:
+            raise UsageError(
+                f"the lattice would reach {radius:g} mm, too far for {size:g} mm cells",
+                None,
+                "use a coarser --cell or a nearer --goal",
+            )
+        self._cells = (radius / size) ** 2  # squared radius in cells
 
     def refresh_bounds(self) -> bool:
         """Recompute the step bounds of the heuristic; True when they grew."""
@@ -94,7 +106,7 @@ class Lattice:
 
     def successors(self, node: int) -> tuple[list[int], list[int]]:
         """The live out-edges of ``node`` and their target nodes; edges leaving the lattice's
-        16-bit range, and self-transitions, are dropped.  Small poses are done in plain
+        disc of ``radius`` mm, and self-transitions, are dropped.  Small poses are done in plain
         Python, large ones with numpy; both give the same bits (same operations, and the
         cosines come from one table)."""
         pose, ix, iy, it = self.unpack(node)
@@ -116,7 +128,7 @@ class Lattice:
         nx = np.rint((x + c * m.dx[sel] - s * m.dy[sel]) / self.size).astype(np.int64)
         ny = np.rint((y + s * m.dx[sel] + c * m.dy[sel]) / self.size).astype(np.int64)
         nt = np.rint((heading + m.rot[sel]) / self.angle).astype(np.int64) % self.turns
-        ok = (np.abs(nx) < _OFF) & (np.abs(ny) < _OFF)
+        ok = nx * nx + ny * ny <= self._cells
         sel, nx, ny, nt = sel[ok], nx[ok], ny[ok], nt[ok]
         packed: Ints = (m.dst[sel] << 48) | ((nx + _OFF) << 32) | ((ny + _OFF) << 16) | nt
         keep = packed != node
@@ -131,7 +143,7 @@ class Lattice:
         dx, dy = m.dx_list[e], m.dy_list[e]
         nx = round((x + c * dx - s * dy) / self.size)
         ny = round((y + s * dx + c * dy) / self.size)
-        if abs(nx) >= _OFF or abs(ny) >= _OFF:
+        if nx * nx + ny * ny > self._cells:
             return None
         nt = round((self._heading[it] + m.rot_list[e]) / self.angle) % self.turns
         return (m.dst_list[e] << 48) | ((nx + _OFF) << 32) | ((ny + _OFF) << 16) | nt

@@ -9,8 +9,10 @@ predictions changed).  x points right, y up, millimetres, equal scale.
 from __future__ import annotations
 
 from collections.abc import Sequence
+from typing import TYPE_CHECKING
 
-from gaitsearch.plans import GaitPlan
+if TYPE_CHECKING:
+    from gaitsearch.plans import GaitPlan
 
 Point = tuple[float, float]
 _COLOURS = ("#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2")

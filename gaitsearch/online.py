@@ -18,7 +18,7 @@ from typing import Any
 
 from gaitgraph.robot import Robot
 from gaitsearch.goals import Goal
-from gaitsearch.planners import Planner, Settings
+from gaitsearch.planners import Planner, SearchLimitError, Settings
 from gaitsearch.plans import GaitPlan
 from gaitsearch.transitions import Step, TransitionModel, compose
 from gaitsearch.walker import Mismatch, SimulatedWalker
@@ -55,6 +55,7 @@ class Learned:
     executed: tuple[float, float, float] | None  # mean measured displacement per cycle
     verify_cycles: int
     changed: tuple[tuple[Point, Point], ...] = field(default=(), repr=False)
+    stopped: str = "converged"  # or: no gait, search budget, iteration limit
 
     @property
     def error(self) -> tuple[float, float] | None:
@@ -64,7 +65,7 @@ class Learned:
         return self.first.goal.error(*self.executed)
 
     def summary(self) -> str:
-        state = "converged" if self.converged else "did not converge"
+        state = "converged" if self.converged else f"did not converge ({self.stopped})"
         lines = [f"{self.first.method}: {state} after {len(self.iterations)} iterations"]
         if self.final is not None and self.executed is not None and self.error is not None:
             x, y, th = self.executed
@@ -91,6 +92,7 @@ class Learned:
             "robot": self.first.robot,
             "goal": self.first.to_dict()["goal"],
             "converged": self.converged,
+            "stopped": self.stopped,
             "iterations": [
                 {
                     "index": it.index,
@@ -178,7 +180,7 @@ def learn(
     plan_seconds = plan.seconds if plan is not None else time.perf_counter() - began
     if plan is None:
         raise _no_gait(planner.goal)
-    first, converged = plan, False
+    first, converged, stopped = plan, False, "iteration limit"
     with walker:
         for index in range(1, max_iterations + 1):
             if all(e in measured for e in plan.edges):
@@ -223,14 +225,20 @@ def learn(
             if progress is not None:
                 progress(_line(iterations[-1], len(seen)))
             began = time.perf_counter()
-            nxt = planner.plan(explored=False)
+            try:
+                nxt = planner.plan(explored=False)
+            except SearchLimitError:
+                nxt, stopped = None, "search budget"
             plan_seconds = time.perf_counter() - began
             if nxt is None:
+                stopped = "no gait" if stopped != "search budget" else stopped
                 plan = None
                 break
             plan = nxt
         if plan is not None and not converged:
             converged = all(e in measured for e in plan.edges)
+        if converged:
+            stopped = "converged"
         final_executed = _verify(walker, model, plan, verify) if plan is not None else None
     if plan is not None:
         plan = planner.plan()  # the same gait (nothing changed), with the explored cells

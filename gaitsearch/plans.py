@@ -11,7 +11,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from gaitsearch.goals import Goal
-from gaitsearch.transitions import TransitionModel, compose
+from gaitsearch.transitions import Step, TransitionModel, compose
 
 
 @dataclass(frozen=True)
@@ -145,9 +145,7 @@ def _r(x: float) -> float:
     return 0.0 if value == 0 else value
 
 
-def _step(s: PlanStep) -> Any:
-    from gaitsearch.transitions import Step
-
+def _step(s: PlanStep) -> Step:
     return Step(s.dx, s.dy, s.rotation)
 
 
