@@ -70,6 +70,19 @@ class Lattice:
             )
         self._cells = (radius / size) ** 2  # squared radius in cells
 
+    def cover(self, edge: int) -> bool:
+        """Make the step bounds cover one (changed) edge; True when they had to grow (by a
+        quarter more than needed, so that a run of growing edges re-keys seldom)."""
+        m = self.model
+        reach = math.hypot(m.dx_list[edge], m.dy_list[edge]) + self.size * math.sqrt(2) / 2
+        turn = abs(m.rot_list[edge]) + self.angle / 2
+        grew = False
+        if reach > self.reach:
+            self.reach, grew = 1.25 * reach, True
+        if turn > self.turn:
+            self.turn, grew = 1.25 * turn, True
+        return grew
+
     def refresh_bounds(self) -> bool:
         """Recompute the step bounds of the heuristic; True when they grew."""
         longest, turn = self.model.largest_step()

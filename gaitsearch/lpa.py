@@ -14,6 +14,8 @@ import heapq
 import math
 from collections import defaultdict
 
+import numpy as np
+
 from gaitsearch.astar import Route, SearchBudgetExceeded
 from gaitsearch.cells import Lattice
 from gaitsearch.transitions import Step
@@ -92,6 +94,11 @@ class LifelongPlanner:
         lattice = self.lattice
         edges, keys = lattice.successors(node)
         out = list(zip(edges, keys, strict=True))
+        if len(keys) > 48:  # heuristics of a large fan-out at once
+            fresh = [k for k in keys if k not in self._h]
+            if fresh:
+                values = lattice.heuristics(np.array(fresh, dtype=np.int64)).tolist()
+                self._h.update(zip(fresh, values, strict=True))
         if node != self.root and lattice.is_goal(node):
             out.append((-1, GOAL))
         pose = node >> 48
@@ -188,7 +195,7 @@ class LifelongPlanner:
             model.remove(edge)
         else:
             model.set_motion(edge, step)
-        if lattice.refresh_bounds():
+        if step is not None and lattice.cover(edge):
             self._rekey()
         cost = self._cost(edge)
         for u, old in zip(nodes, before, strict=True):
