@@ -15,7 +15,7 @@ if TYPE_CHECKING:
     from gaitsearch.plans import GaitPlan
 
 Point = tuple[float, float]
-_COLOURS = ("#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2")
+_COLOURS = ("#ff7f0e", "#2ca02c", "#9467bd", "#8c564b", "#e377c2", "#17becf", "#bcbd22")
 
 
 class _Canvas:
@@ -28,7 +28,7 @@ class _Canvas:
         self.scale = (width - 2 * pad) / span
         self.pad = pad
         self.width = width
-        self.height = (self.y1 - self.y0) * self.scale + 2 * pad + 54
+        self.height = (self.y1 - self.y0) * self.scale + 2 * pad + 68
         self.parts: list[str] = []
 
     def pt(self, p: Point) -> tuple[float, float]:
@@ -129,11 +129,8 @@ def learning_svg(
     canvas.line(final_path, "#1f77b4", "", 2.5)
     canvas.dots(final_path, "#1f77b4", 3)
     canvas.dots([(0.0, 0.0)], "black", 4)
-    canvas.text(
-        -1,
-        "grey dashed: first plan; thin: executed cycles; red: predicted step end "
-        "-> measured (black); blue: final plan; green: goal",
-    )
+    canvas.text(-2, "grey dashed: first plan; blue: final plan; green: goal; thin: each")
+    canvas.text(-1, "executed cycle; red dotted: predicted step end -> measured (black)")
     canvas.text(
         0,
         f"{final.method} {final.robot}: {len(executed)} executed cycles, "

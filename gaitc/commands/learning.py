@@ -9,6 +9,7 @@ from typing import Any
 
 from diagnostics import UsageError
 from diagnostics.files import write_atomically
+from gaitc.exitcodes import ExitCode, exit_code_help
 
 BACKENDS = ("sim", "physics", "serial")
 
@@ -53,6 +54,16 @@ def register(sub: Any) -> None:
         "the backend, feed the measured displacement of every transition back into the search "
         "(LPA* repairs, MCTS prunes) and repeat until every transition of the gait has been "
         "executed (Algorithms 2 and 3).",
+        epilog=exit_code_help(
+            {
+                ExitCode.OK: "the loop converged: every transition of the gait was executed",
+                ExitCode.USER: "the robot file is wrong, or the loop did not converge (no gait "
+                "left, a later search spent its budget, the iteration limit)",
+                ExitCode.SOLVER: "the first search spent --budget node expansions",
+            },
+            codes=(ExitCode.OK, ExitCode.USER, ExitCode.USAGE, ExitCode.SOLVER),
+        ),
+        formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     p.add_argument("robot", metavar="ROBOT.yaml")
     p.add_argument(
@@ -155,10 +166,16 @@ def run_global(args: argparse.Namespace) -> int:
         f"{states} valve states, {poses} poses, {edges} transitions"
     )
     print(plan.table())
-    if not plan.reached:
+    if not plan.reached and args.method == "mcts":
         print(
             f"the best cycle found misses the goal's tolerance ({goal.tolerance:g} mm, "
-            f"{goal.angle_tolerance:g} deg)"
+            f"{goal.angle_tolerance:g} deg); more --iterations or a longer --horizon may help"
+        )
+    elif not plan.reached:
+        print(
+            f"the route reaches the goal's cells, but its continuous displacement misses the "
+            f"tolerance ({goal.tolerance:g} mm, {goal.angle_tolerance:g} deg): every "
+            "transition is propagated from a cell centre; a finer --cell helps"
         )
     if args.output:
         write_atomically(args.output, plan.to_json())
