@@ -33,7 +33,9 @@ class LifelongPlanner:
         self.root = lattice.root
         self.g: dict[int, float] = {}
         self.rhs: dict[int, float] = {self.root: 0.0}
-        self.pred: dict[int, list[tuple[int, int]]] = defaultdict(list)  # (u, edge); GOAL: -1
+        # predecessors (u, edge, cost) of every generated node; the goal edges are -1
+        self.pred: dict[int, list[tuple[int, int, float]]] = defaultdict(list)
+        self.parent: dict[int, tuple[int, int]] = {}  # the predecessor rhs came from
         self.by_pose: dict[int, list[int]] = defaultdict(list)  # nodes whose edges are known
         self._h: dict[int, float] = {}
         self._heap: list[tuple[float, float, int]] = []
@@ -78,16 +80,29 @@ class LifelongPlanner:
 
     def _recompute(self, node: int) -> None:
         if node != self.root:
-            g = self.g
-            self.rhs[node] = min(
-                (g.get(u, _INF) + self._cost(e) for u, e in self.pred[node]), default=_INF
-            )
+            get = self.g.get
+            best, arg = _INF, None
+            for u, e, c in self.pred[node]:
+                value = get(u, _INF) + c
+                if value < best:
+                    best, arg = value, (u, e)
+            self.rhs[node] = best
+            if arg is None:
+                self.parent.pop(node, None)
+            else:
+                self.parent[node] = arg
         self._push(node)
 
-    def _relax(self, node: int, value: float) -> None:
+    def _relax(self, node: int, value: float, u: int, e: int) -> None:
         if node != self.root and value < self.rhs.get(node, _INF):
             self.rhs[node] = value
+            self.parent[node] = (u, e)
             self._push(node)
+
+    def _through(self, node: int, u: int) -> bool:
+        """Whether ``node``'s rhs came from ``u``."""
+        came = self.parent.get(node)
+        return came is not None and came[0] == u
 
     def _successors(self, node: int) -> list[tuple[int, int]]:
         """(edge, target) of ``node``; generating them the first time records the preds."""
@@ -106,7 +121,7 @@ class LifelongPlanner:
             self._known.add(node)
             self.by_pose[pose].append(node)
             for e, v in out:
-                self.pred[v].append((node, e))
+                self.pred[v].append((node, e, self._cost(e)))
         return out
 
     def compute(self) -> Route | None:
@@ -142,35 +157,33 @@ class LifelongPlanner:
             if g.get(u, _INF) > rhs.get(u, _INF):
                 g[u] = base = rhs[u]
                 for e, v in self._successors(u):
-                    self._relax(v, base + self._cost(e))
+                    self._relax(v, base + self._cost(e), u, e)
             else:
-                old = g.get(u, _INF)
                 g[u] = _INF
-                for e, v in self._successors(u):
-                    if rhs.get(v, _INF) == old + self._cost(e):
+                for _e, v in self._successors(u):
+                    if self._through(v, u):
                         self._recompute(v)
                 self._recompute(u)
         self.total_expanded += self.expanded
         return self.route()
 
     def route(self) -> Route | None:
-        """The current cheapest route (following the cheapest predecessors back)."""
+        """The current cheapest route, following each node's rhs back to the root."""
         g = self.g
         if g.get(GOAL, _INF) == _INF:
             return None
-        nodes, edges = [], []
+        nodes: list[int] = []
+        edges: list[int] = []
         v = GOAL
         while v != self.root:
-            u, e = min(
-                ((g.get(u, _INF) + self._cost(e), u, e) for u, e in self.pred[v]),
-                default=(_INF, 0, 0),
-            )[1:]
+            came = self.parent.get(v)
+            if came is None or len(nodes) > len(g):  # cannot happen on consistent values
+                return None
+            u, e = came
             if v != GOAL:
                 nodes.append(v)
                 edges.append(e)
             v = u
-            if len(nodes) > len(g):  # cannot happen on consistent g values
-                return None
         nodes.append(self.root)
         return Route(
             tuple(reversed(nodes)),
@@ -203,12 +216,12 @@ class LifelongPlanner:
             if new == old:
                 continue
             if old is not None:
-                self.pred[old].remove((u, edge))
-                if self.rhs.get(old, _INF) == self.g.get(u, _INF) + cost:
+                self.pred[old].remove((u, edge, cost))
+                if self.parent.get(old) == (u, edge):
                     self._recompute(old)
             if new is not None:
-                self.pred[new].append((u, edge))
-                self._relax(new, self.g.get(u, _INF) + cost)
+                self.pred[new].append((u, edge, cost))
+                self._relax(new, self.g.get(u, _INF) + cost, u, edge)
 
     def _rekey(self) -> None:
         """The heuristic's step bounds grew: recompute h and every queued key."""
