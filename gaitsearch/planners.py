@@ -84,8 +84,10 @@ class HybridPlanner:
 
     def _plan(self, route: Route, seconds: float, with_cells: bool) -> GaitPlan:
         lattice = self.lattice
-        nodes = route.explored if self.lpa is None else self.lpa.explored()
-        explored = sorted({lattice.centre(n)[1:3] for n in nodes}) if with_cells else []
+        explored = []
+        if with_cells:
+            nodes = route.explored if self.lpa is None else self.lpa.explored()
+            explored = sorted({lattice.centre(n)[1:3] for n in nodes})
         return make_plan(
             self.model,
             self.robot,
