@@ -1,4 +1,5 @@
-"""The functions the CLI and notebooks call: :func:`plan_gait` and :func:`learn_gait`.
+"""What the CLI and notebooks call to plan: :func:`plan_gait` (and :func:`first_planner`,
+which :func:`gaitsearch.online.learn_gait` starts from).
 
 The gait graph comes from :mod:`gaitgraph` (thesis chapter 2): every valve state of a small
 robot, else batches of 100 random valve states (2.5.1) with the vented state first, and a

@@ -39,7 +39,8 @@ def angle_difference(a: float, b: float) -> float:
     return (a - b + 180.0) % 360.0 - 180.0
 
 
-def _numbers(text: str, option: str, low: int, high: int) -> list[float]:
+def numbers(text: str, option: str, low: int, high: int) -> list[float]:
+    """``low`` to ``high`` comma-separated finite numbers of ``option``, or a UsageError."""
     parts = [p.strip() for p in text.split(",")]
     if not low <= len(parts) <= high:
         want = f"{low}" if low == high else f"{low} to {high}"
@@ -61,7 +62,7 @@ def parse_goal(text: str, tolerance: str | None = None) -> Goal:
 
     Raises :class:`~diagnostics.UsageError` with the reason when either is malformed.
     """
-    values = _numbers(text, "--goal", 2, 3)
+    values = numbers(text, "--goal", 2, 3)
     dtheta = values[2] if len(values) == 3 else 0.0
     if abs(dtheta) >= 180.0:
         raise UsageError(
@@ -69,7 +70,7 @@ def parse_goal(text: str, tolerance: str | None = None) -> Goal:
         )
     if tolerance is None:
         return Goal(values[0], values[1], dtheta)
-    tol = _numbers(tolerance, "--tolerance", 1, 2)
+    tol = numbers(tolerance, "--tolerance", 1, 2)
     if any(t <= 0 for t in tol):
         raise UsageError(f"--tolerance: must be positive, got {tolerance!r}")
     return Goal(values[0], values[1], dtheta, tol[0], tol[1] if len(tol) == 2 else 5.0)

@@ -114,9 +114,9 @@ def register(sub: Any) -> None:
 
 
 def _pair(text: str, option: str, default_angle: float) -> tuple[float, float]:
-    from gaitsearch.goals import _numbers
+    from gaitsearch.goals import numbers
 
-    values = _numbers(text, option, 1, 2)
+    values = numbers(text, option, 1, 2)
     if any(v <= 0 for v in values):
         raise UsageError(f"{option}: must be positive, got {text!r}")
     return values[0], values[1] if len(values) == 2 else default_angle
