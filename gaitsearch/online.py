@@ -16,6 +16,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
+from diagnostics import GaitcError
 from gaitgraph.robot import Robot
 from gaitsearch.goals import Goal
 from gaitsearch.planners import Planner, SearchLimitError, Settings
@@ -277,10 +278,12 @@ def _line(it: Iteration, tried: int) -> str:
     )
 
 
-def _no_gait(goal: Goal) -> Exception:
-    from diagnostics import SolverError
+class NoGaitError(GaitcError):
+    """The gait graph has no cycle to start learning from (the CLI exits with 1)."""
 
-    return SolverError(
+
+def _no_gait(goal: Goal) -> Exception:
+    return NoGaitError(
         f"no gait for goal {goal} in the gait graph",
         None,
         "loosen --tolerance or allow more --max-states",

@@ -13,7 +13,7 @@ import pytest
 from gaitc.cli import main
 from gaitsearch import Mismatch, Settings, learn_gait, plan_gait
 from gaitsearch.goals import Goal
-from gaitsearch.online import learn
+from gaitsearch.online import NoGaitError, learn
 from gaitsearch.planners import HybridPlanner, TreePlanner
 from gaitsearch.transitions import TransitionModel
 from gaitsearch.walker import SimulatedWalker
@@ -199,3 +199,22 @@ def test_an_exhausted_budget_is_a_solver_error(capsys: pytest.CaptureFixture[str
     err = capsys.readouterr().err
     assert "no gait for goal (400 mm, 0 mm, 0 deg) within 5 node expansions (astar)" in err
     assert "Traceback" not in err
+
+
+def test_learning_without_a_first_gait_is_an_error() -> None:
+    model = toy()
+    goal = Goal(0.0, 30.0, 0.0, 2.0, 2.0)  # every cycle of the toy graph walks along x
+    walker = SimulatedWalker(model.copy(), 0, 3, ("L1", "L2", "L3"), Mismatch(0.0, 0.0))
+    planner = HybridPlanner(model, "toy", 0, goal, Settings(cell=1.0, cell_angle=1.0))
+    with pytest.raises(NoGaitError, match=r"no gait for goal \(0 mm, 30 mm, 0 deg\)"):
+        learn(planner, walker)
+
+
+def test_the_chapter_2_search_is_the_default_and_unchanged(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    assert main(["gaits", ROBOT]) == 0
+    default = capsys.readouterr().out
+    assert main(["gaits", ROBOT, "--method", "chapter2"]) == 0
+    assert capsys.readouterr().out == default
+    assert default.startswith("robot symmetric6: 24 chambers, method random, 100 valve states")

@@ -57,8 +57,9 @@ def register(sub: Any) -> None:
         epilog=exit_code_help(
             {
                 ExitCode.OK: "the loop converged: every transition of the gait was executed",
-                ExitCode.USER: "the robot file is wrong, or the loop did not converge (no gait "
-                "left, a later search spent its budget, the iteration limit)",
+                ExitCode.USER: "the robot file is wrong, the graph has no first gait, or the "
+                "loop did not converge (no gait left, a later search spent its budget, the "
+                "iteration limit)",
                 ExitCode.SOLVER: "the first search spent --budget node expansions",
             },
             codes=(ExitCode.OK, ExitCode.USER, ExitCode.USAGE, ExitCode.SOLVER),
