@@ -184,42 +184,53 @@ class MonteCarloPlanner:
     # -- what the robot revealed ---------------------------------------------------------
     def observe(self, edge: int, step: Step | None, rollouts: int = 1, prune: bool = True) -> int:
         """Set transition ``edge`` to the motion the robot made (``None``: it could not make
-        it), prune every branch through it, re-score the cycles found, and run ``rollouts``
-        new rollouts from each pruned branch's parent.  Returns the branches pruned."""
+        it) and re-score the cycles through it; with ``prune`` (the motion differs), cut every
+        branch through it and run ``rollouts`` new rollouts from each cut branch's parent.
+        Returns the branches pruned."""
         if step is None:
             self.model.remove(edge)
             self.hops = self.model.hops_to(self.start)
         else:
             self.model.set_motion(edge, step)
+        parents = self._prune(edge, again=step is not None) if prune else []
+        self.pruned += len(parents)
+        self._rescore(edge)
+        for parent in parents:
+            if parent.pruned:  # cut off later in the same pass, under another branch
+                continue
+            for _ in range(rollouts):
+                self.iterate(parent)
+        return len(parents)
+
+    def _prune(self, edge: int, again: bool) -> list[TreeNode]:
+        """Cut every live branch entered through ``edge``, taking its visits and rewards off
+        its ancestors; ``again`` puts the transition back among its parent's untried ones."""
         parents: list[TreeNode] = []
-        for child in [] if not prune else self.by_edge.pop(edge, []):
+        for child in self.by_edge.pop(edge, []):
             parent = child.parent
             if parent is None or child.pruned:
                 continue  # already cut off with an ancestor
             del parent.children[edge]
-            child.pruned = True
-            self._forget(child)
+            for node in self._subtree(child):
+                node.pruned = True
             climb: TreeNode | None = parent
             while climb is not None:
                 climb.visits -= child.visits
                 climb.reward -= child.reward
                 climb = climb.parent
-            if step is not None:
+            if again:
                 parent.untried.append(edge)
             parents.append(parent)
-        self.pruned += len(parents)
-        self._rescore(edge)
-        for parent in parents:
-            for _ in range(rollouts):
-                self.iterate(parent)
-        return len(parents)
+        return parents
 
-    def _forget(self, node: TreeNode) -> None:
-        stack = list(node.children.values())
+    @staticmethod
+    def _subtree(node: TreeNode) -> list[TreeNode]:
+        out, stack = [], [node]
         while stack:
-            child = stack.pop()
-            child.pruned = True
-            stack.extend(child.children.values())
+            top = stack.pop()
+            out.append(top)
+            stack.extend(top.children.values())
+        return out
 
     def _rescore(self, edge: int) -> None:
         """Recompute the displacement and reward of every cycle through ``edge``."""
