@@ -55,8 +55,8 @@ class Learned:
     converged: bool
     executed: tuple[float, float, float] | None  # mean measured displacement per cycle
     verify_cycles: int
+    stopped: str  # converged, no gait, search budget or iteration limit
     changed: tuple[tuple[Point, Point], ...] = field(default=(), repr=False)
-    stopped: str = "converged"  # or: no gait, search budget, iteration limit
 
     @property
     def error(self) -> tuple[float, float] | None:
@@ -244,7 +244,14 @@ def learn(
     if plan is not None:
         plan = planner.plan()  # the same gait (nothing changed), with the explored cells
     return Learned(
-        first, plan, tuple(iterations), converged, final_executed, verify, tuple(changed)
+        first,
+        plan,
+        tuple(iterations),
+        converged,
+        final_executed,
+        verify,
+        stopped,
+        tuple(changed),
     )
 
 

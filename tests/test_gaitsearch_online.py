@@ -201,6 +201,19 @@ def test_an_exhausted_budget_is_a_solver_error(capsys: pytest.CaptureFixture[str
     assert "Traceback" not in err
 
 
+def test_the_loop_says_why_it_stopped() -> None:
+    model = toy()
+    goal = Goal(30.0, 0.0, 0.0, 2.0, 2.0)
+    walker = SimulatedWalker(model.copy(), 0, 3, ("L1", "L2", "L3"), Mismatch(0.0, 0.0))
+    for a, b in ((0, 1), (1, 0)):
+        walker.true_dx[model.find(a, b)] = 10.0
+    planner = HybridPlanner(model, "toy", 0, goal, Settings(cell=1.0, cell_angle=1.0))
+    result = learn(planner, walker, max_iterations=1)
+    assert not result.converged and result.stopped == "iteration limit"
+    assert result.summary().startswith("lpa: did not converge (iteration limit) after 1 iter")
+    assert json.loads(result.to_json())["stopped"] == "iteration limit"
+
+
 def test_learning_without_a_first_gait_is_an_error() -> None:
     model = toy()
     goal = Goal(0.0, 30.0, 0.0, 2.0, 2.0)  # every cycle of the toy graph walks along x
