@@ -196,3 +196,42 @@ def test_lpa_repairs_expand_fewer_nodes_than_astar_on_the_symmetric_robot() -> N
         assert (route is None) == (fresh is None)
         assert route is None or fresh is None or math.isclose(route.cost, fresh.cost)
     assert repairs < scratch
+
+
+@st.composite
+def skewed_graphs(
+    draw: st.DrawFn,
+) -> tuple[list[tuple[int, int, float, float, float, float]], list]:  # type: ignore[type-arg]
+    """Motions that are no multiple of the cell: every step snaps."""
+    n = draw(st.integers(3, 5))
+    step = st.floats(-12, 12, allow_nan=False)
+    turn = st.floats(-40, 40, allow_nan=False)
+    edges = {}
+    for _ in range(draw(st.integers(n, 3 * n))):
+        a, b = draw(st.integers(0, n - 1)), draw(st.integers(0, n - 1))
+        if a != b:
+            edges[(a, b)] = (draw(step), draw(step), draw(turn), draw(st.floats(0, 2)))
+    for a in range(n):
+        edges.setdefault((a, (a + 1) % n), (7.0, 1.0, 3.0, 0.0))
+    rows = [(a, b, *v) for (a, b), v in sorted(edges.items())]
+    motion = st.one_of(st.none(), st.tuples(step, step, turn))
+    changes = draw(st.lists(st.tuples(st.integers(0, len(rows) - 1), motion), max_size=6))
+    return rows, changes
+
+
+@settings(max_examples=30, deadline=None)
+@given(skewed_graphs())
+def test_lpa_matches_astar_when_every_step_snaps(case) -> None:  # type: ignore[no-untyped-def]
+    rows, changes = case
+    goal = Goal(15.0, 0.0, 0.0, 3.0, 10.0)
+    m = model(rows)
+    planner = LifelongPlanner(Lattice(m, 0, goal, 3.0, 10.0, radius=25.0), budget=10**7)
+    planner.compute()
+    for row, motion in changes:
+        edge = int(np.nonzero(m.original == row)[0][0])
+        planner.update_transition(edge, None if motion is None else Step(*motion))
+        got = planner.compute()
+        fresh = astar(Lattice(m.copy(), 0, goal, 3.0, 10.0, radius=25.0), 10**7)
+        assert (got is None) == (fresh is None)
+        if got is not None and fresh is not None:
+            assert math.isclose(got.cost, fresh.cost, abs_tol=1e-9)
