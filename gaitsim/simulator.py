@@ -18,7 +18,7 @@ from gaitsim.domain import Domain, State
 from gaitsim.environments import Environment, Move, Request, Situation
 from gaitsim.monitor import Monitor, Violation
 from gaitsim.run import Run, Step, Summary
-from gaitsim.strategy import InputKey, Strategy
+from gaitsim.strategy import InputKey, StrategyView
 
 MAX_REPORTED = 20
 
@@ -26,7 +26,7 @@ MAX_REPORTED = 20
 class Simulator:
     """Runs one environment against one controller; decodes and checks every step."""
 
-    def __init__(self, strategy: Strategy, domain: Domain, monitor: Monitor) -> None:
+    def __init__(self, strategy: StrategyView, domain: Domain, monitor: Monitor) -> None:
         if strategy.variables != monitor.variables:
             raise ControllerError("controller and spec list different variables")
         self.strategy = strategy
@@ -214,7 +214,7 @@ class Simulator:
         )
 
 
-def simulate(strategy: Strategy, domain: Domain, monitor: Monitor, environment: Environment,
+def simulate(strategy: StrategyView, domain: Domain, monitor: Monitor, environment: Environment,
              steps: int = 50, spec_file: str = "") -> Run:
     """Simulate ``environment`` against ``strategy`` for up to ``steps`` steps."""
     return Simulator(strategy, domain, monitor).run(environment, steps, spec_file)

@@ -29,3 +29,14 @@ def positive_megabytes(value: str) -> int:
     if mb <= 0:
         raise argparse.ArgumentTypeError(f"must be a positive number of megabytes, not {value}")
     return mb
+
+
+def positive_count(value: str) -> int:
+    """A positive whole number (``--max-nodes``)."""
+    try:
+        count = int(value)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"'{value}' is not a whole number") from None
+    if count <= 0:
+        raise argparse.ArgumentTypeError(f"must be a positive whole number, not {value}")
+    return count
