@@ -13,6 +13,7 @@ from gaitc.commands import (
     explaining,
     firmware,
     gaits,
+    learning,
     rendering,
     resilient,
     simulating,
@@ -20,4 +21,4 @@ from gaitc.commands import (
 )
 
 COMMAND_MODULES = (compiling, solving, explaining, resilient, simulating, rendering, gaits,
-                   driving, firmware, calibrating)
+                   learning, driving, firmware, calibrating)
