@@ -174,8 +174,9 @@ def test_cli_drive_missing_primitives(tmp_path: Path, capsys: pytest.CaptureFixt
     spec.write_text(TINY.replace(" valves 01, 00", ""), encoding="utf-8")
     assert main(["drive", str(spec)]) == 1
     err = capsys.readouterr().err
-    assert f"{spec}:4:1: error: cannot drive the robot: 1 gait(s) have no valve primitive: " \
-           "west" in err
+    line = next(k for k, text in enumerate(TINY.splitlines(), 1) if text.startswith("gait west"))
+    assert f"{spec}:{line}:1: error: cannot drive the robot: 1 gait(s) have no valve " \
+           "primitive: west" in err
     assert "bind one to each gait" in err
 
 
