@@ -116,7 +116,7 @@ def _timeline(steps: Sequence[Step], legs: Sequence[str], full: dict[str, int],
             level = s.level(leg)
             colour = HEALTHY if level >= full.get(leg, level) else (
                 FAILED if level == 1 else DEGRADED)
-            text = "✗" if leg in s.failed else str(level)
+            text = "✗" if leg in s.failed else f"{level}↓" if leg in s.degraded else str(level)
             border = f' COLOR="{IN_USE}" BORDER="3"' if leg in s.legs_used else ' BORDER="1"'
             cells.append(f'<TD BGCOLOR="{colour}"{border} WIDTH="22">{text}</TD>')
         rows.append(f'<TR><TD ALIGN="LEFT"><B>{html(leg)}</B></TD>{"".join(cells)}</TR>')
@@ -144,18 +144,22 @@ def _legend(model: Model, with_run: bool) -> str:
     if with_run:
         rows += [f'<TR><TD BGCOLOR="{HEALTHY}"> </TD><TD ALIGN="LEFT">healthy leg</TD></TR>',
                  f'<TR><TD BGCOLOR="{DEGRADED}"> </TD><TD ALIGN="LEFT">degraded</TD></TR>',
-                 f'<TR><TD BGCOLOR="{FAILED}">✗</TD><TD ALIGN="LEFT">failed (✗: this step)'
-                 "</TD></TR>",
+                 f'<TR><TD BGCOLOR="{FAILED}"> </TD><TD ALIGN="LEFT">failed</TD></TR>',
+                 '<TR><TD>✗ ↓</TD><TD ALIGN="LEFT">this step\'s gait fails / degrades the '
+                 "leg (its level drops on the next step)</TD></TR>",
                  f'<TR><TD COLOR="{IN_USE}" BORDER="3"> </TD><TD ALIGN="LEFT">leg in use'
                  "</TD></TR>",
                  f'<TR><TD><FONT COLOR="{PATH_FAIL}">→</FONT></TD><TD ALIGN="LEFT">'
-                 "step with a leg failing (↓ degrading)</TD></TR>"]
+                 "move whose gait fails a leg (↓ degrades one)</TD></TR>"]
     return ('<<TABLE BORDER="1" COLOR="#bbbbbb" CELLBORDER="0" CELLSPACING="2">'
             + "".join(rows) + "</TABLE>>")
 
 
 def _path(graph: pydot.Dot, steps: Sequence[Step]) -> None:
-    """Edges for the run: one per directed region pair, labelled with its step numbers."""
+    """Edges for the run: one per directed region pair, labelled with its step numbers.
+
+    The edge into step t is the move made with step t's gait, so it carries the marks of
+    the legs that gait wears out (their level drops at step t + 1, see Run.add)."""
     moves: dict[tuple[str, str], list[Step]] = {}
     for before, after in pairwise(steps):
         moves.setdefault((before.region, after.region), []).append(after)
