@@ -13,6 +13,7 @@ import pydot
 
 from gaitsim.domain import model_goals
 from gaitsim.graphics import Picture, html
+from gaitsim.placement import positions
 from ltlcompiler.model import NO_GAIT, Model
 
 if TYPE_CHECKING:
@@ -28,24 +29,8 @@ DEFAULT_MAX_STEPS = 30
 
 
 def _positions(model: Model) -> dict[str, tuple[float, float]]:
-    """Region centres in inches: grid coordinates, else a seeded spring layout of τ."""
-    regions = [r.name for r in model.regions]
-    if all(r.row is not None and r.col is not None for r in model.regions):
-        return {r.name: (float(r.col or 0) * CELL, -float(r.row or 0) * CELL)
-                for r in model.regions}
-    import networkx as nx
-
-    graph = nx.Graph()
-    graph.add_nodes_from(regions)
-    graph.add_edges_from((t.source, t.target) for t in model.transitions
-                         if t.source != t.target)
-    fixed = {r.name: (float(r.col or 0), -float(r.row or 0)) for r in model.regions
-             if r.row is not None and r.col is not None}
-    layout = nx.spring_layout(graph, pos=fixed or None, fixed=list(fixed) or None, seed=7,
-                              k=1.2 if fixed else None, scale=None if fixed else 1.0)
-    span = 1.0 if fixed else max(1.0, len(regions) ** 0.5)
-    return {name: (round(float(layout[name][0]) * span * CELL, 3),
-                   round(float(layout[name][1]) * span * CELL, 3)) for name in regions}
+    """Region centres in inches (:func:`gaitsim.placement.positions`)."""
+    return positions(model, CELL)
 
 
 def _graph(name: str) -> pydot.Dot:
