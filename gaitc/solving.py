@@ -8,6 +8,7 @@ decides and synthesizes; every automaton is then proved by the independent check
 from __future__ import annotations
 
 import time
+from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Final, Literal, get_args
@@ -17,6 +18,7 @@ from diagnostics.files import write_atomically
 from gaitc.loading import Spec, as_gr1
 from gaitc.presentation import table
 from gr1.controller import Controller, controller_to_json, load_controller
+from gr1.costs import Cost
 from gr1.spec import SEMANTICS, GR1Spec
 from solver.game import GameStats, Progress
 from solver.symbolic import Options
@@ -182,10 +184,18 @@ def check(spec: Spec | GR1Spec, semantics: str = "default", solver: str = "embed
 def synthesize(spec: Spec | GR1Spec, semantics: str = "default", solver: str = "embedded",
                timeout: float | None = None, slugs: str | None = None,
                options: Options | None = None, progress: Progress | None = None,
-               verify: bool = True) -> Synthesis:
+               verify: bool = True, prefer: str | Sequence[str] | None = None) -> Synthesis:
     """A controller for ``spec``, proved by the independent verifier unless ``verify`` is
-    False; ``.controller`` is None when the spec is unrealizable."""
-    return _solve(spec, "strategy", semantics, solver, timeout, slugs, options, progress, verify)
+    False; ``.controller`` is None when the spec is unrealizable.
+
+    ``prefer`` orders the move preferences among the winning moves (``solver.preferences``:
+    ``hazard``, ``health``, ``goal``, ``switches``; a list or comma-separated text): None is
+    all four in that order, ``"none"`` the solver's first move (the behaviour before them).
+    They apply to the embedded solver; ``hazard``, ``health`` and ``switches`` need a
+    ``.gait`` spec.
+    """
+    return _solve(spec, "strategy", semantics, solver, timeout, slugs, options, progress, verify,
+                  prefer)
 
 
 def counterstrategy(spec: Spec | GR1Spec, semantics: str = "default",
@@ -200,17 +210,28 @@ def counterstrategy(spec: Spec | GR1Spec, semantics: str = "default",
 
 def _solve(spec: Spec | GR1Spec, kind: Kind, semantics: str, solver: str,
            timeout: float | None, slugs: str | None, options: Options | None,
-           progress: Progress | None, check_it: bool) -> Synthesis:
+           progress: Progress | None, check_it: bool,
+           prefer: str | Sequence[str] | None = None) -> Synthesis:
+    from solver.preferences import preference_order
+
     gr1, started = as_gr1(spec), time.monotonic()
     _semantics(semantics)
+    order = preference_order(prefer)
     try:
         if _solver(solver) == "slugs":
+            if prefer is not None and order:
+                raise UsageError("move preferences need the embedded solver; use --prefer "
+                                 "none with --solver slugs")
             automaton = _slugs_automaton(gr1, kind, semantics, timeout, slugs)
         else:
             from solver import synthesis
 
-            make = synthesis.synthesize if kind == "strategy" else synthesis.counterstrategy
-            automaton = make(gr1, semantics, timeout, progress, options)
+            if kind == "strategy":
+                automaton = synthesis.synthesize(gr1, semantics, timeout, progress, options,
+                                                 prefer=order, costs=_costs(spec, order))
+            else:
+                automaton = synthesis.counterstrategy(gr1, semantics, timeout, progress,
+                                                      options)
     except MemoryError:
         raise _out_of_memory() from None
     seconds = time.monotonic() - started
@@ -221,6 +242,15 @@ def _solve(spec: Spec | GR1Spec, kind: Kind, semantics: str, solver: str,
         if check_it:
             report = verify(spec, automaton, semantics)
     return Synthesis(spec, kind, automaton, report, seconds, semantics, solver)
+
+
+def _costs(spec: Spec | GR1Spec, order: Sequence[str]) -> tuple[Cost, ...]:
+    """The robot model's move costs (:mod:`ltlcompiler.costs`) when ``order`` needs them."""
+    if not isinstance(spec, Spec) or spec.model is None or set(order) <= {"goal"}:
+        return ()
+    from ltlcompiler.costs import model_costs
+
+    return model_costs(spec.model, spec.encoding or "onehot")
 
 
 def _slugs_automaton(gr1: GR1Spec, kind: Kind, semantics: str, timeout: float | None,

@@ -68,7 +68,7 @@ class SimulatedRobot(Backend):
         situation = Situation(
             self._step, node, here, moves, self.domain, self._next_goal(), self.view.monitor,
             None if node is None else strategy.values[node],
-            tuple(strategy.values[m.node] for m in moves))
+            tuple(strategy.values[m.node] for m in moves), strategy)
         request = self.environment.choose(situation)
         if request is None:
             raise ScenarioFinished("the simulated environment has no more steps",

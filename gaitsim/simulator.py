@@ -152,7 +152,7 @@ class Simulator:
             situation = Situation(
                 index, node, here, moves, self.domain, goals[goal_index] if goals else None,
                 self.monitor, None if node is None else self.strategy.values[node],
-                self._successor_values(node, moves))
+                self._successor_values(node, moves), self.strategy)
             try:
                 if node is not None and not moves:
                     raise self._refuse(index, node, Request(()))

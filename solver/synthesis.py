@@ -9,17 +9,19 @@ from __future__ import annotations
 
 import time
 import weakref
-from collections.abc import Iterator
+from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass, field, replace
 
 from diagnostics import FormulaError
 from gr1.controller import Controller
+from gr1.costs import Cost
 from gr1.formula import atoms
 from gr1.spec import SEMANTICS, GR1Spec
 from solver.counter import extract_counterstrategy
 from solver.game import Game, GameStats, Limits, Progress, out_of_memory
 from solver.portfolio import STATIC, solve_chosen
+from solver.preferences import MovePreferences
 from solver.strategy import extract_strategy
 from solver.symbolic import Options, SymbolicSpec
 
@@ -124,8 +126,14 @@ def synthesize(
     progress: Progress | None = None,
     options: Options | None = None,
     max_nodes: int | None = None,
+    prefer: Sequence[str] = (),
+    costs: Sequence[Cost] = (),
 ) -> Controller | None:
-    """An explicit Mealy controller for ``spec``, or None when it is unrealizable."""
+    """An explicit Mealy controller for ``spec``, or None when it is unrealizable.
+
+    ``prefer`` orders the preferences of :mod:`solver.preferences` (empty: the first move in
+    BDD order); ``costs`` gives the terms of the cost-based ones (e.g. a robot model's).
+    """
 
     def run(chosen: Options, lim: Limits) -> Controller | None:
         sym, game = _game(spec, semantics, chosen, lim)
@@ -134,7 +142,8 @@ def synthesize(
             if not game.initially_winning(result.winning, semantics):
                 return None
             lim.report("extracting the explicit controller")
-            return extract_strategy(sym, result, semantics, lim, max_nodes)
+            moves = MovePreferences(sym, result, costs, prefer, lim) if prefer else None
+            return extract_strategy(sym, result, semantics, lim, max_nodes, moves)
 
     _check_semantics(semantics)
     return solve_chosen(run, options or Options(), Limits(timeout, progress))[0]

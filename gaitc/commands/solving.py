@@ -15,7 +15,7 @@ from typing import Any
 
 import gaitc
 from diagnostics import GaitcError, SolverError, UsageError, render_error
-from gaitc.commands.arguments import positive_megabytes, positive_seconds
+from gaitc.commands.arguments import add_prefer, positive_megabytes, positive_seconds
 from gaitc.exitcodes import ExitCode, exit_code_help
 from gaitc.isolation import HardLimits, cudd_budget_mb, run_limited
 from gaitc.solving import SOLVERS, recorded_encoding
@@ -85,6 +85,7 @@ def register(sub: Any) -> None:
     p.add_argument("spec", metavar="SPEC")
     p.add_argument("-o", "--output", required=True, metavar="FILE")
     p.add_argument("--no-verify", action="store_true", help="skip the verification step")
+    add_prefer(p)
     _common(p)
     p.set_defaults(run=run_synth)
 
@@ -191,8 +192,9 @@ def _solve(args: argparse.Namespace, kind: str) -> tuple[gaitc.Spec, gaitc.Synth
 
     def work() -> tuple[gaitc.Spec, gaitc.Synthesis]:
         spec = gaitc.load(args.spec, args.encoding)
+        extra = {"prefer": args.prefer} if kind == "strategy" else {}
         return spec, make(spec, verify=not getattr(args, "no_verify", False),
-                          **_solver_args(args))
+                          **_solver_args(args), **extra)
 
     return run_limited(work, _limits(args))
 
