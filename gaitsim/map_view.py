@@ -140,21 +140,47 @@ def _legend(model: Model, with_run: bool) -> str:
             + "".join(rows) + "</TABLE>>")
 
 
-def _path(graph: pydot.Dot, steps: Sequence[Step]) -> None:
+def _path(graph: pydot.Dot, steps: Sequence[Step]) -> list[tuple[str, str, str, str]]:
     """Edges for the run: one per directed region pair, labelled with its step numbers.
 
     The edge into step t is the move made with step t's gait, so it carries the marks of
-    the legs that gait wears out (their level drops at step t + 1, see Run.add)."""
+    the legs that gait wears out (their level drops at step t + 1, see Run.add).  A busy
+    edge (more than two steps) and a pair travelled both ways, whose labels would lie on
+    top of each other, get a letter at the arrow head instead; the letters and their
+    steps are returned as rows (key, source, target, steps) for a side table."""
     moves: dict[tuple[str, str], list[Step]] = {}
     for before, after in pairwise(steps):
         moves.setdefault((before.region, after.region), []).append(after)
+    keyed: list[tuple[str, str, str, str]] = []
     for (src, dst), taken in moves.items():
         words = [f"{s.index}{'✗' if s.failed else '↓' if s.degraded else ''}" for s in taken]
-        lines = [", ".join(words[i:i + 4]) for i in range(0, len(words), 4)]
         colour = PATH_FAIL if any(s.failed for s in taken) else (
             PATH_DEGRADE if any(s.degraded for s in taken) else PATH)
-        graph.add_edge(pydot.Edge(src, dst, label="\n".join(lines), color=colour,
-                                  fontcolor=colour, penwidth="2.2", arrowsize="0.8"))
+        extra: dict[str, str] = {}
+        if len(taken) > 2 or (src != dst and (dst, src) in moves):
+            key = _key(len(keyed))
+            keyed.append((key, src, dst, ", ".join(words)))
+            extra = {"headlabel": key, "labeldistance": "1.6", "labelfontsize": "10"}
+        else:
+            extra = {"label": ", ".join(words)}
+        edge = pydot.Edge(src, dst, color=colour, fontcolor=colour, penwidth="2.2",
+                          arrowsize="0.8")
+        for name, value in extra.items():
+            edge.set(name, value)
+        graph.add_edge(edge)
+    return keyed
+
+
+def _key(index: int) -> str:
+    letters = "ABCDEFGHIJKLMNOPQRSTUVWXYZ"
+    return letters[index % 26] * (1 + index // 26)
+
+
+def _moves_table(rows: Sequence[tuple[str, str, str, str]]) -> str:
+    cells = "".join(f'<TR><TD><B>{html(k)}</B></TD><TD ALIGN="LEFT">{html(a)} → {html(b)}'
+                    f'</TD><TD ALIGN="LEFT">{html(steps)}</TD></TR>' for k, a, b, steps in rows)
+    return ('<<TABLE BORDER="1" COLOR="#bbbbbb" CELLBORDER="0" CELLSPACING="2">'
+            '<TR><TD COLSPAN="3"><B>moves (steps)</B></TD></TR>' + cells + "</TABLE>>")
 
 
 def map_view(model: Model, run: Run | None = None,
@@ -176,7 +202,12 @@ def map_view(model: Model, run: Run | None = None,
     notes: list[str] = []
     x0, x1, y0, y1 = _bounds(pos)
     if steps:
-        _path(graph, steps)
+        keyed = _path(graph, steps)
+        if keyed:
+            graph.add_node(pydot.Node(
+                "moves", shape="plaintext", label=_moves_table(keyed),
+                pos=f"{x1 + 0.9 + _table_width(steps) / 2:.2f},"
+                    f"{y0 - 0.9 - 0.1 * len(keyed):.2f}!"))
         full = {leg.name: leg.health for leg in model.legs}
         colours = {h.name: HAZARD_COLOURS[i % len(HAZARD_COLOURS)][0]
                    for i, h in enumerate(model.hazards)}

@@ -86,3 +86,18 @@ def test_goal_visits_and_liveness_counts_agree(adversarial: bool) -> None:
         for (goal, count), (rule, times) in zip(visits.items(), held.items(), strict=True):
             assert goal in rule and count == times, (path.name, goal, count, rule, times)
         assert sum(visits.values()) == sum(len(s.goals) for s in run.steps)
+
+
+def test_busy_or_two_way_map_edges_list_their_steps_in_a_side_table(hazard_run: Run) -> None:
+    assert hazard_run.model is not None
+    dot = map_view(hazard_run.model, hazard_run, max_steps=40).graph.to_string()
+    pairs: dict[tuple[str, str], list[int]] = {}
+    for a, b in zip(hazard_run.steps[:41], hazard_run.steps[1:41], strict=False):
+        pairs.setdefault((a.region, b.region), []).append(b.index)
+    busy = [k for k, v in pairs.items() if len(v) > 2 or (k[0] != k[1] and (k[1], k[0]) in pairs)]
+    assert busy, "the patrol walks some edge often"
+    assert "moves (steps)" in dot and ("headlabel=A," in dot or 'headlabel="A"' in dot)
+    for src, dst in busy:  # no step list on the edge itself, which would overlap
+        for line in dot.splitlines():
+            if line.strip().startswith(f"{src} -> {dst} "):
+                assert "headlabel=" in line and " label=" not in line
