@@ -6,7 +6,9 @@ corpus as one row of totals.  Columns: gaitc wall seconds (embedded solver, defa
 ``--timeout`` per instance), the verdict (``!`` marks a verdict that differs from SLUGS's
 recorded or live one), SLUGS's seconds when $SLUGS is set (``> T`` past its own limit), the
 gaitc/SLUGS ratio, and how long past ``--lag-limit`` ``gaitc check --timeout`` returned on
-instances slower than that limit.  ``--ablation`` times solver options per row instead.
+instances slower than that limit.  ``--ablation`` times solver options per row instead:
+the default (the race), each of its two racers alone, sifting from the guards order, and
+the static occurrence and declaration orders.
 Run: .venv/bin/python bench/bench_families.py [--quick] [--ablation] [--family F] [--amba N]
 """
 
@@ -24,14 +26,16 @@ import gaitc
 from bench.families import catalogue, timing
 from bench.families.catalogue import Instance
 from bench.families.timing import Outcome
+from solver.portfolio import DYNAMIC, STATIC, engine_options
 from solver.symbolic import Options
 
 ABLATION = {
-    "default": Options(),
+    "default": Options(),  # the race of solver/portfolio.py
+    "static": engine_options(STATIC),
+    "race-2nd": engine_options(DYNAMIC),
     "reorder": Options(reordering=True),
-    "once": Options(reorder_once=True),
-    "occurrence": Options(order="occurrence"),
-    "declaration": Options(order="declaration"),
+    "occurrence": Options(order="occurrence", reordering=False),
+    "declaration": Options(order="declaration", reordering=False),
 }
 WIDTHS = (9, 34, 9, 14, 9, 7, 7)
 HEADER = ("family", "instance", "gaitc s", "verdict", "slugs s", "ratio", "lag s")

@@ -19,7 +19,8 @@ from gaitc.solving import Synthesis, recorded_encoding, synthesize
 from gaitsim.domain import Domain
 from gaitsim.environments import AdversarialEnvironment, Environment, RandomEnvironment
 from gaitsim.monitor import Monitor
-from gaitsim.strategy import Strategy, load_strategy, strategy_from_controller
+from gaitsim.strategy import StrategyView, explicit, load_strategy, view_of
+from gr1.bddfile import SymbolicController
 from gr1.controller import Controller
 
 if TYPE_CHECKING:
@@ -38,7 +39,7 @@ class Session:
 
     spec: Spec
     model: Model = field(repr=False)
-    strategy: Strategy = field(repr=False)
+    strategy: StrategyView = field(repr=False)
     domain: Domain = field(repr=False)
     monitor: Monitor = field(repr=False)
 
@@ -52,8 +53,9 @@ class Session:
                 f"nodes, {len(self.model.legs)} legs>")
 
 
-def session(spec: Spec | str | Path, controller: Controller | Synthesis | str | Path | None
-            = None, encoding: str | None = None, semantics: str = "default",
+def session(spec: Spec | str | Path,
+            controller: Controller | SymbolicController | Synthesis | str | Path | None = None,
+            encoding: str | None = None, semantics: str = "default",
             prefer: str | Sequence[str] | None = None) -> Session | None:
     """Bind ``spec`` (a ``.gait`` :class:`Spec` or path) to ``controller`` (an automaton, a
     :class:`Synthesis` or a controller file); synthesize one when ``controller`` is None
@@ -77,7 +79,7 @@ def session(spec: Spec | str | Path, controller: Controller | Synthesis | str | 
         automaton = controller.controller if isinstance(controller, Synthesis) else controller
         if automaton is None:
             return None
-        strategy = strategy_from_controller(automaton, spec.gr1, "<synthesized>")
+        strategy = view_of(automaton, spec.gr1, "<synthesized>")
     domain = Domain(spec.model, spec.encoding or "onehot")
     return Session(spec, spec.model, strategy, domain, Monitor(spec.gr1))
 
@@ -118,22 +120,22 @@ def _counter_play(bound: Session, env: object, steps: int | None, seed: int) -> 
     ``random`` (with ``seed``) or ``adversarial`` (it avoids forced deadlocks)."""
     from gaitsim.counterplay import careful_chooser, play, random_chooser
 
+    counter = explicit(bound.strategy, "a counter-play")
     if env == "random":
         choose, name = random_chooser(seed), f"counter-strategy, robot random --seed {seed}"
     elif env == "adversarial":
-        choose, name = careful_chooser(bound.strategy), "counter-strategy, robot careful"
+        choose, name = careful_chooser(counter), "counter-strategy, robot careful"
     else:
         raise UsageError("a counter-strategy is the environment: choose how the robot answers "
                          "with 'random' or 'adversarial' (it avoids forced deadlocks)")
     count = DEFAULT_STEPS if steps is None else steps
     if count < 0:
         raise UsageError("the number of steps must not be negative")
-    return play(bound.strategy, bound.domain, bound.monitor, count, choose, bound.spec.path,
-                name)
+    return play(counter, bound.domain, bound.monitor, count, choose, bound.spec.path, name)
 
 
 def simulate(spec: Spec | Session | str | Path,
-             controller: Controller | Synthesis | str | Path | None = None,
+             controller: Controller | SymbolicController | Synthesis | str | Path | None = None,
              env: str | Scenario | Environment = "random", steps: int | None = None,
              seed: int = 0, semantics: str = "default",
              prefer: str | Sequence[str] | None = None) -> Run:

@@ -17,11 +17,18 @@ from diagnostics import SolverError, UsageError
 from diagnostics.files import write_atomically
 from gaitc.loading import Spec, as_gr1
 from gaitc.presentation import table
-from gr1.controller import Controller, controller_to_json, load_controller
+from gr1.bddfile import SymbolicController, is_symbolic, symbolic_from_dict, symbolic_to_json
+from gr1.controller import (
+    Controller,
+    controller_from_dict,
+    controller_to_json,
+    read_controller_json,
+)
 from gr1.costs import Cost
 from gr1.spec import SEMANTICS, GR1Spec
 from solver.game import GameStats, Progress
 from solver.symbolic import Options
+from solver.synthesis import FORMS
 from verifier.strategy import VerificationReport
 
 if TYPE_CHECKING:
@@ -31,6 +38,8 @@ SolverName = Literal["embedded", "slugs"]
 #: ``embedded``: the BDD solver in :mod:`solver`; ``slugs``: an installed SLUGS binary.
 SOLVERS: Final[tuple[SolverName, ...]] = get_args(SolverName)
 Kind = Literal["strategy", "counterstrategy"]
+#: Above this many nodes ``synthesize`` keeps the controller symbolic (form ``auto``).
+MAX_NODES: Final = 100_000
 
 
 @dataclass(frozen=True)
@@ -71,7 +80,7 @@ class Synthesis:
 
     spec: Spec | GR1Spec = field(repr=False)
     kind: Kind
-    controller: Controller | None
+    controller: Controller | SymbolicController | None
     report: VerificationReport | None
     seconds: float
     semantics: str = "default"
@@ -88,12 +97,24 @@ class Synthesis:
         """An automaton exists and the independent verifier accepted it."""
         return self.report is not None and self.report.ok
 
+    @property
+    def size(self) -> str:
+        """The controller's size in words: explicit nodes, or a symbolic one's BDD nodes."""
+        if self.controller is None:
+            return "none"
+        if isinstance(self.controller, SymbolicController):
+            return f"symbolic, {len(self.controller.nodes)} BDD nodes"
+        return f"{len(self.controller.nodes)} nodes"
+
     def save(self, path: str | Path) -> None:
-        """Write the automaton as JSON (docs/controller-format.md), atomically."""
+        """Write the controller as JSON (docs/controller-format.md), atomically."""
         if self.controller is None:
             raise UsageError(f"there is no {self.kind} to save: the spec is "
                              f"{'realizable' if self.realizable else 'unrealizable'}")
-        write_atomically(path, controller_to_json(self.controller))
+        if isinstance(self.controller, SymbolicController):
+            write_atomically(path, symbolic_to_json(self.controller))
+        else:
+            write_atomically(path, controller_to_json(self.controller))
 
     def picture(self) -> Picture:
         """The automaton drawn in domain terms (needs a ``.gait`` spec and Graphviz)."""
@@ -103,6 +124,9 @@ class Synthesis:
 
         if self.controller is None:
             raise UsageError(f"there is no {self.kind} to draw")
+        if isinstance(self.controller, SymbolicController):
+            raise UsageError("a symbolic controller has no automaton to draw; draw a run of "
+                             "it (gaitc.simulate(...).picture())")
         if not isinstance(self.spec, Spec) or self.spec.model is None:
             raise UsageError("drawing an automaton needs a .gait spec, which says what its "
                              "variables mean")
@@ -117,15 +141,15 @@ class Synthesis:
             return f"<gaitc.Synthesis {file!r}: {word}, no {self.kind} ({self.seconds:.2f} s)>"
         proof = "not verified" if self.report is None else (
             "verified" if self.report.ok else "FAILED verification")
-        return (f"<gaitc.Synthesis {file!r}: {self.kind} of {len(self.controller.nodes)} "
-                f"nodes, {proof} ({self.seconds:.2f} s, {self.solver} solver)>")
+        return (f"<gaitc.Synthesis {file!r}: {self.kind} ({self.size}), {proof} "
+                f"({self.seconds:.2f} s, {self.solver} solver)>")
 
     def _repr_html_(self) -> str:
         rows = [("kind", self.kind), ("realizable", str(self.realizable)),
                 ("seconds", f"{self.seconds:.3f}"), ("solver", self.solver),
                 ("semantics", self.semantics)]
         if self.controller is not None:
-            rows.append(("nodes", str(len(self.controller.nodes))))
+            rows.append(("size", self.size))
         if self.report is not None:
             rows.append(("verification", self.report.summary()))
         return table(repr(self)[1:-1], rows)
@@ -184,18 +208,28 @@ def check(spec: Spec | GR1Spec, semantics: str = "default", solver: str = "embed
 def synthesize(spec: Spec | GR1Spec, semantics: str = "default", solver: str = "embedded",
                timeout: float | None = None, slugs: str | None = None,
                options: Options | None = None, progress: Progress | None = None,
-               verify: bool = True, prefer: str | Sequence[str] | None = None) -> Synthesis:
+               verify: bool = True, form: str = "auto",
+               max_nodes: int | None = MAX_NODES,
+               prefer: str | Sequence[str] | None = None) -> Synthesis:
     """A controller for ``spec``, proved by the independent verifier unless ``verify`` is
     False; ``.controller`` is None when the spec is unrealizable.
 
-    ``prefer`` orders the move preferences among the winning moves (``solver.preferences``:
-    ``hazard``, ``health``, ``goal``, ``switches``; a list or comma-separated text): None is
-    all four in that order, ``"none"`` the solver's first move (the behaviour before them).
-    They apply to the embedded solver; ``hazard``, ``health`` and ``switches`` need a
-    ``.gait`` spec.
+    ``form`` (:data:`solver.synthesis.FORMS`): ``explicit`` an automaton, ``symbolic`` BDDs
+    (:mod:`gr1.bddfile`), ``auto`` an automaton unless it would pass ``max_nodes`` nodes.
+
+    ``prefer`` orders the move preferences of an explicit controller among the winning
+    moves (``solver.preferences``: ``hazard``, ``health``, ``goal``, ``switches``; a list or
+    comma-separated text): None is all four in that order, ``"none"`` the solver's first
+    move (the behaviour before them).  They apply to the embedded solver; ``hazard``,
+    ``health`` and ``switches`` need a ``.gait`` spec.
     """
+    if form not in FORMS:
+        raise UsageError(f"unknown controller form '{form}'; use one of {', '.join(FORMS)}")
+    if form == "symbolic" and solver != "embedded":
+        raise UsageError("symbolic controllers come from the embedded solver; drop --solver "
+                         "slugs or --symbolic")
     return _solve(spec, "strategy", semantics, solver, timeout, slugs, options, progress, verify,
-                  prefer)
+                  form, max_nodes, prefer)
 
 
 def counterstrategy(spec: Spec | GR1Spec, semantics: str = "default",
@@ -205,33 +239,35 @@ def counterstrategy(spec: Spec | GR1Spec, semantics: str = "default",
     """The environment's winning strategy for an unrealizable ``spec``, verified;
     ``.controller`` is None when the spec is realizable."""
     return _solve(spec, "counterstrategy", semantics, solver, timeout, slugs, options,
-                  progress, verify)
+                  progress, verify, "explicit", None)
 
 
 def _solve(spec: Spec | GR1Spec, kind: Kind, semantics: str, solver: str,
            timeout: float | None, slugs: str | None, options: Options | None,
-           progress: Progress | None, check_it: bool,
-           prefer: str | Sequence[str] | None = None) -> Synthesis:
+           progress: Progress | None, check_it: bool, form: str,
+           max_nodes: int | None, prefer: str | Sequence[str] | None = None) -> Synthesis:
     from solver.preferences import preference_order
 
     gr1, started = as_gr1(spec), time.monotonic()
     _semantics(semantics)
     order = preference_order(prefer)
+    automaton: Controller | SymbolicController | None
     try:
         if _solver(solver) == "slugs":
             if prefer is not None and order:
                 raise UsageError("move preferences need the embedded solver; use --prefer "
                                  "none with --solver slugs")
             automaton = _slugs_automaton(gr1, kind, semantics, timeout, slugs)
+        elif kind == "strategy":
+            from solver import synthesis
+
+            automaton = synthesis.synthesize_controller(gr1, semantics, timeout, progress,
+                                                        options, max_nodes, form, order,
+                                                        _costs(spec, order))
         else:
             from solver import synthesis
 
-            if kind == "strategy":
-                automaton = synthesis.synthesize(gr1, semantics, timeout, progress, options,
-                                                 prefer=order, costs=_costs(spec, order))
-            else:
-                automaton = synthesis.counterstrategy(gr1, semantics, timeout, progress,
-                                                      options)
+            automaton = synthesis.counterstrategy(gr1, semantics, timeout, progress, options)
     except MemoryError:
         raise _out_of_memory() from None
     seconds = time.monotonic() - started
@@ -275,21 +311,27 @@ def _out_of_memory() -> SolverError:
                        hint="raise the memory limit, or shrink the specification")
 
 
-def verify(spec: Spec | GR1Spec, controller: Controller | Synthesis | str | Path,
+def verify(spec: Spec | GR1Spec,
+           controller: Controller | SymbolicController | Synthesis | str | Path,
            semantics: str | None = None) -> VerificationReport:
-    """Prove independently that ``controller`` (a strategy) realizes ``spec``, or that a
-    counter-strategy defeats it; a path is read as a controller file. ``semantics`` defaults
-    to the one recorded in the controller."""
+    """Prove independently that ``controller`` (a strategy, explicit or symbolic) realizes
+    ``spec``, or that a counter-strategy defeats it; a path is read as a controller file.
+    ``semantics`` defaults to the one recorded in the controller."""
     gr1 = as_gr1(spec)
+    automaton: Controller | SymbolicController
     if isinstance(controller, Synthesis):
         if controller.controller is None:
             raise UsageError(f"there is no {controller.kind} to verify")
         automaton = controller.controller
-    elif isinstance(controller, Controller):
+    elif isinstance(controller, (Controller, SymbolicController)):
         automaton = controller
     else:
-        automaton = load_controller(str(controller), gr1)
+        automaton = read_controller(controller, gr1)
     chosen = _semantics(semantics or automaton.semantics)
+    if isinstance(automaton, SymbolicController):
+        from verifier.symbolic import verify_symbolic
+
+        return verify_symbolic(gr1, automaton, chosen)
     if automaton.kind == "counterstrategy":
         from verifier.counterstrategy import verify_counterstrategy
 
@@ -297,6 +339,15 @@ def verify(spec: Spec | GR1Spec, controller: Controller | Synthesis | str | Path
     from verifier.strategy import verify as verify_strategy
 
     return verify_strategy(gr1, automaton, chosen)
+
+
+def read_controller(path: str | Path, spec: GR1Spec | None = None
+                    ) -> Controller | SymbolicController:
+    """A controller file of either form: an explicit automaton or a symbolic controller."""
+    data = read_controller_json(str(path))
+    if is_symbolic(data):
+        return symbolic_from_dict(data, str(path))
+    return controller_from_dict(data, str(path), spec)
 
 
 def recorded_encoding(path: str | Path) -> str | None:

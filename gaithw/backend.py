@@ -7,16 +7,46 @@ waveguide curvature thresholds of thesis section 3.4.2), the active hazard and t
 
 from __future__ import annotations
 
+import contextlib
+import signal
+import threading
 from abc import ABC, abstractmethod
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
-from types import TracebackType
+from types import FrameType, TracebackType
 
 from diagnostics import GaitcError, Span
+from gaitsim.environments import Move
 
 
 class HardwareError(GaitcError):
     """The valve board or the robot failed: port missing, no answer, protocol error, timeout."""
+
+
+class Interrupted(KeyboardInterrupt):
+    """SIGTERM or SIGHUP arrived during a drive: handled as Ctrl-C is (vent, keep the run)."""
+
+    def __init__(self, name: str) -> None:
+        super().__init__(name)
+        self.name = name
+
+
+@contextlib.contextmanager
+def interrupt_on_signals() -> Iterator[None]:
+    """While inside, SIGTERM and SIGHUP raise :class:`Interrupted` (in the main thread)."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+
+    def interrupt(signum: int, frame: FrameType | None) -> None:
+        raise Interrupted(signal.Signals(signum).name)
+
+    kept = {sig: signal.signal(sig, interrupt) for sig in (signal.SIGTERM, signal.SIGHUP)}
+    try:
+        yield
+    finally:
+        for sig, handler in kept.items():
+            signal.signal(sig, handler)
 
 
 @dataclass(frozen=True)
@@ -79,6 +109,20 @@ class Backend(ABC):
     @abstractmethod
     def wait(self, seconds: float) -> None:
         """Let ``seconds`` pass between valve states (a simulation may skip it)."""
+
+    def step_context(self, in_use: tuple[str, ...], in_cache: bool) -> None:
+        """Before a reading: the legs the step's gait used and whether the robot is in a
+        cache, for a backend that grades health from its sensors (the default ignores it)."""
+        del in_use, in_cache
+
+    def accepted(self, move: Move) -> None:
+        """The input the controller took for the last reading (it may stand for a reading that
+        broke an assumption, see ``--on-violation``): a backend that keeps state syncs it."""
+        del move
+
+    def safety_note(self) -> str:
+        """What is known of the valves after the last vent (for messages)."""
+        return "all valves vented"
 
     def vent(self) -> None:
         """Vent every valve."""

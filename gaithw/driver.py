@@ -15,14 +15,14 @@ from dataclasses import dataclass
 
 from diagnostics import SpecSemanticError
 from gaitgraph.pairing import ValveSequence, resolve_primitive
-from gaithw.backend import Backend, HardwareError, SensorReading, where
+from gaithw.backend import Backend, HardwareError, Interrupted, SensorReading, where
 from gaithw.simulated import ScenarioFinished
 from gaitsim.domain import Domain, State
-from gaitsim.environments import Environment, Request, Situation
+from gaitsim.environments import Environment, Move, Request, Situation
 from gaitsim.monitor import Monitor
 from gaitsim.run import Run
 from gaitsim.simulator import Simulator
-from gaitsim.strategy import InputKey, Strategy
+from gaitsim.strategy import InputKey, StrategyView
 from ltlcompiler.model import GaitKind, Model
 
 
@@ -72,10 +72,13 @@ def valve_count(primitives: Mapping[str, ValveSequence], default: int) -> int:
 class Driver:
     """Runs a controller on a backend, one sensed input and one gait per step."""
 
-    def __init__(self, strategy: Strategy, domain: Domain, monitor: Monitor,
+    def __init__(self, strategy: StrategyView, domain: Domain, monitor: Monitor,
                  primitives: Mapping[str, ValveSequence], backend: Backend,
                  step_delay: float = 0.0, cycles: int = 1,
-                 progress: Callable[[str], None] | None = None) -> None:
+                 progress: Callable[[str], None] | None = None,
+                 on_violation: str = "stop") -> None:
+        if on_violation not in VIOLATION_POLICIES:
+            raise ValueError(f"on_violation must be one of {', '.join(VIOLATION_POLICIES)}")
         self.simulator = Simulator(strategy, domain, monitor)
         self.domain = domain
         self.primitives = dict(primitives)
@@ -85,6 +88,9 @@ class Driver:
         self.progress = progress
         self.executed: list[Executed] = []
         self.interrupted = False
+        self.interruption = ""  # Ctrl-C, SIGTERM or SIGHUP
+        self.on_violation = on_violation
+        self.violations: list[str] = []  # readings that broke an assumption, as handled
         self.no_gait = next(g.name for g in domain.model.gaits if g.kind is GaitKind.NONE)
         self._ran_up_to = -1  # index of the last step whose gait was run
 
@@ -99,12 +105,14 @@ class Driver:
                     last = run.steps[-1]
                     if last.index > self._ran_up_to:
                         self.execute(last.index, last.gait)
-            except KeyboardInterrupt:
+            except KeyboardInterrupt as stop:
+                self.interruption = interruption_name(stop)
                 self.backend.vent()
                 raise
         if self.interrupted and run.summary is not None:
             run.summary = dataclasses.replace(
-                run.summary, stopped="interrupted (Ctrl-C); all valves vented")
+                run.summary,
+                stopped=f"interrupted ({self.interruption}); {self.backend.safety_note()}")
         return run
 
     def execute(self, step: int, gait: str) -> None:
@@ -122,8 +130,16 @@ class Driver:
         for valves in states:
             self.backend.apply(valves)
             self.backend.wait(self.step_delay)
+        if "1" in states[-1]:  # no valve stays open outside its gait's step; the actuators
+            self.backend.vent()  # relax before the sensors are read
+            self.backend.wait(self.step_delay)
         self.executed.append(Executed(step, gait, states))
         self._ran_up_to = step
+
+    def moving_legs(self, gait: str) -> tuple[str, ...]:
+        """The legs ``gait`` may degrade (eq. 3.5): a move gait's legs; none for the others."""
+        found = next((g for g in self.domain.model.gaits if g.name == gait), None)
+        return found.legs if found is not None and found.kind is GaitKind.MOVE else ()
 
     def sensed_input(self, reading: SensorReading, here: State | None) -> Request:
         """The environment input that ``reading`` stands for, after checking it."""
@@ -153,6 +169,30 @@ class Driver:
         return Request(inputs, describe(reading, here))
 
 
+VIOLATION_POLICIES = ("stop", "hold", "worst")
+
+
+def substitute(moves: Sequence[Move], reading: SensorReading, here: State | None,
+               policy: str) -> Move:
+    """The accepted input that stands for a reading which breaks an assumption: ``hold``
+    keeps the levels the controller had (closest to them, then to the reading); ``worst``
+    takes the lowest levels the assumptions allow (then closest to the reading).  The
+    sensed hazard is kept when an accepted input has it."""
+    sensed = dict(reading.health)
+    before = dict(here.health) if here is not None else sensed
+
+    def distance(move: Move, to: Mapping[str, int]) -> int:
+        return sum(abs(level - to[leg]) for leg, level in move.state.health)
+
+    def rank(move: Move) -> tuple[int, int, int, InputKey]:
+        other_hazard = int(move.state.hazard != reading.hazard)
+        first = (distance(move, before) if policy == "hold"
+                 else sum(level for _, level in move.state.health))
+        return other_hazard, first, distance(move, sensed), move.inputs
+
+    return min(moves, key=rank)
+
+
 def describe(reading: SensorReading, here: State | None) -> str:
     """A short account of a reading, for messages: the legs that changed and the hazard."""
     before = dict(here.health) if here is not None else {}
@@ -174,17 +214,41 @@ class SensedEnvironment(Environment):
 
     def choose(self, situation: Situation) -> Request | None:
         driver = self.driver
+        state = situation.state
         try:
-            if situation.state is not None:
-                driver.execute(situation.step - 1, situation.state.gait)
+            if state is not None:
+                driver.execute(situation.step - 1, state.gait)
+                driver.backend.step_context(driver.moving_legs(state.gait),
+                                            state.region in driver.domain.model.caches)
             reading = driver.backend.read_sensors()
         except ScenarioFinished:
             return None
-        except KeyboardInterrupt:
+        except KeyboardInterrupt as stop:
             driver.interrupted = True
+            driver.interruption = interruption_name(stop)
             driver.backend.vent()
             return None
-        return driver.sensed_input(reading, situation.state)
+        request = driver.sensed_input(reading, state)
+        moves = {m.inputs: m for m in situation.moves}
+        move = moves.get(request.inputs)
+        if move is None and driver.on_violation != "stop" and situation.moves:
+            move = substitute(situation.moves, reading, state, driver.on_violation)
+            used = ", ".join(f"{leg} {level}" for leg, level in move.state.health)
+            note = (f"step {situation.step}: {request.what} breaks an assumption; "
+                    f"{driver.on_violation}: taken as {used}, hazard "
+                    f"{move.state.hazard or 'none'}")
+            driver.violations.append(note)
+            if driver.progress is not None:
+                driver.progress(note)
+            request = Request(move.inputs, f"{request.what} ({driver.on_violation}: {used})")
+        if move is not None:
+            driver.backend.accepted(move)
+        return request
+
+
+def interruption_name(stop: KeyboardInterrupt) -> str:
+    """How a run was interrupted: ``Ctrl-C``, ``SIGTERM`` or ``SIGHUP``."""
+    return stop.name if isinstance(stop, Interrupted) else "Ctrl-C"
 
 
 def applied_states(executed: Sequence[Executed]) -> list[str]:

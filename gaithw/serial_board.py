@@ -1,22 +1,39 @@
 """A valve board on a serial line (pyserial URL: a device, ``socket://``, ``loop://``).
 
-The line protocol (ASCII, one command per line, docs/hardware.md): ``PING`` → ``PONG
-<firmware> valves=<n>``; ``V <bits>`` → ``OK`` or ``ERR <text>``; ``S`` → ``S h=<levels>
-hazard=<name|-> region=<name|->``.  Garbled replies are retried, silence times out, and
-every valve is vented on close and on any error (safety first).
+Line protocol v2 (ASCII, one command a line, one answer line each; docs/hardware.md):
+``PING`` → ``PONG <firmware> proto=2 valves=<n> [legs= contacts= wd= reset=]``; ``V <bits>``
+→ ``OK``; ``HB`` (heartbeat) → ``OK``; ``W <ms>`` → ``OK wd=<ms>``; ``S`` → ``S a=<adc,..>
+lo=<adc,..> c=<bits>`` (graded into health levels by :mod:`gaithw.sensing`) or ``S
+h=<levels>`` (a board that grades legs itself), with ``hazard=`` and ``region=``; any
+refusal is ``ERR <text>``.  The board vents on its own when no valid command
+arrives for its watchdog period, so the host sends a heartbeat while valves are open.  Every
+read is bounded in bytes and by a deadline of ``timeout`` seconds; garbled replies are
+retried, and every valve is vented on close and on any error.  Messages say whether a vent
+was acknowledged or only the board's watchdog is left to vent.
 """
 
 from __future__ import annotations
 
 import contextlib
-from collections.abc import Sequence
-from typing import Any
+import time
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass
+from typing import Any, TypeVar
 
 from gaithw.backend import Backend, HardwareError, SensorReading, where
+from gaithw.sensing import HealthSensing, LegCalibration
+from gaitsim.environments import Move
 
+PROTOCOL = 2
 FIRMWARE_PREFIX = "PONG"
 MAX_REPLY = 256  # bytes in one reply line, its \n included; a longer one is garbled
-MAX_DIGITS = 6  # in a valve count or a health level of a reply
+MAX_DRAIN = 4096  # stale bytes thrown away before a command, at most
+MAX_DIGITS = 6  # in a number of a reply
+MAX_VALVES = 32  # a V command must fit the board's 48-character line
+ADC_FULL = 1023  # a 10-bit converter
+POLL = 0.02  # seconds of one port read inside a deadline
+DEFAULT_WATCHDOG_MS = 500
+T = TypeVar("T")
 
 
 def _count(text: str) -> int | None:
@@ -30,30 +47,81 @@ class Garbled(Exception):
     """A reply that does not fit the protocol (internal: retried, then a HardwareError)."""
 
 
-def parse_pong(line: str) -> tuple[str, int]:
-    """``PONG <firmware> valves=<n>`` → (firmware, n)."""
+@dataclass(frozen=True)
+class BoardInfo:
+    """What the board says of itself at the handshake."""
+
+    firmware: str
+    protocol: int
+    valves: int
+    legs: int | None = None
+    contacts: int | None = None
+    watchdog_ms: int | None = None
+    reset: str | None = None
+
+
+_PONG_NUMBERS = ("proto", "valves", "legs", "contacts", "wd")
+
+
+def parse_pong(line: str) -> BoardInfo:
+    """``PONG gaitboard/2.0 proto=2 valves=8 legs=8 contacts=4 wd=500 reset=power``; a
+    v1 board (``PONG <firmware> valves=<n>``) parses as protocol 1."""
     words = line.split()
-    if len(words) != 3 or words[0] != FIRMWARE_PREFIX or not words[2].startswith("valves="):
+    if len(words) < 3 or words[0] != FIRMWARE_PREFIX:
         raise Garbled(line)
-    count = _count(words[2][len("valves="):])
-    if count is None or count < 1:
+    fields: dict[str, str] = {}
+    for word in words[2:]:
+        key, sep, value = word.partition("=")
+        if not sep or not value or key in fields or key not in (*_PONG_NUMBERS, "reset"):
+            raise Garbled(line)
+        fields[key] = value
+    numbers = {key: _count(fields[key]) for key in _PONG_NUMBERS if key in fields}
+    if None in numbers.values() or "valves" not in numbers:
         raise Garbled(line)
-    return words[1], count
+    valves = numbers["valves"]
+    if valves is None or valves < 1:
+        raise Garbled(line)
+    return BoardInfo(words[1], numbers.get("proto") or 1, valves, numbers.get("legs"),
+                     numbers.get("contacts"), numbers.get("wd"), fields.get("reset"))
 
 
-def parse_sensors(line: str, legs: Sequence[str]) -> SensorReading:
-    """``S h=3,3,2 hazard=- region=r12`` → a reading; ``-`` means none or unknown."""
+Grader = Callable[[dict[str, float], dict[str, float]], Mapping[str, int]]
+
+
+def _adc(text: str, legs: Sequence[str], line: str) -> dict[str, float]:
+    values = [_count(v) for v in text.split(",")]
+    if len(values) < len(legs) or any(v is None or v > ADC_FULL for v in values):
+        raise Garbled(line)
+    return {leg: float(v) for leg, v in zip(legs, values, strict=False) if v is not None}
+
+
+def parse_sensors(line: str, legs: Sequence[str], grade: Grader | None = None) -> SensorReading:
+    """``S h=3,3,2 hazard=- region=r12`` (levels graded by the board) or ``S a=1023,512
+    lo=330,512 c=..`` (each leg's waveguide now and its lowest in its last actuation, graded
+    here by ``grade``, which is called only once the whole line is valid) → a reading."""
     words = line.split()
     if not words or words[0] != "S":
         raise Garbled(line)
     fields: dict[str, str] = {}
     for word in words[1:]:
         key, sep, value = word.partition("=")
-        if not sep or key not in ("h", "hazard", "region") or key in fields or not value:
+        if (not sep or key not in ("h", "a", "lo", "c", "hazard", "region") or key in fields
+                or not value):
             raise Garbled(line)
         fields[key] = value
-    levels = [_count(v) for v in fields.get("h", "").split(",")]
-    if len(levels) != len(legs) or None in levels:
+    if "h" in fields:
+        levels = [_count(v) for v in fields["h"].split(",")]
+        if len(levels) != len(legs):
+            raise Garbled(line)
+        if None in levels:
+            raise Garbled(line)
+    elif "a" in fields and "lo" in fields and grade is not None:
+        now, lowest = _adc(fields["a"], legs, line), _adc(fields["lo"], legs, line)
+        if "c" in fields and set(fields["c"]) - {"0", "1"}:
+            raise Garbled(line)
+        graded = grade(now, lowest)
+        levels = [graded[leg] for leg in legs]
+    else:
         raise Garbled(line)
     hazard = fields.get("hazard", "-")
     region = fields.get("region", "-")
@@ -74,11 +142,13 @@ def parse_channels(text: str, span_name: str = "--channels") -> tuple[int, ...]:
 
 
 class SerialValveBoard(Backend):
-    """The valve board behind a pyserial URL, speaking the gaitc line protocol."""
+    """The valve board behind a pyserial URL, speaking the gaitc line protocol v2."""
 
     def __init__(self, url: str, valve_count: int, legs: Sequence[str], baudrate: int = 115200,
                  timeout: float = 1.0, retries: int = 2,
-                 channels: Sequence[int] | None = None) -> None:
+                 channels: Sequence[int] | None = None,
+                 levels: Mapping[str, int] | None = None,
+                 calibration: Mapping[str, LegCalibration] | None = None) -> None:
         super().__init__(valve_count)
         self.url = url
         self.name = f"serial board {url}"
@@ -87,28 +157,62 @@ class SerialValveBoard(Backend):
         self.timeout = timeout
         self.retries = retries
         self.channels = tuple(channels) if channels is not None else None
+        self.sensing = HealthSensing(levels, calibration) if levels else None
+        self.in_use: tuple[str, ...] = ()  # the legs the step's gait pressurised
+        self.in_cache = False
+        self.info: BoardInfo | None = None
         self.firmware = ""
         self.board_valves = 0
+        self.state = ""  # the last valve state the board acknowledged
+        self.vent_acknowledged = True
+        self.link_lost = False  # the last vent got no answer at all
         self._port: Any = None
+
+    @property
+    def watchdog_ms(self) -> int:
+        """The board's watchdog period (its own report, else the firmware default)."""
+        reported = self.info.watchdog_ms if self.info is not None else None
+        return reported or DEFAULT_WATCHDOG_MS
+
+    def safety_note(self) -> str:
+        if self.vent_acknowledged:
+            return "all valves vented"
+        known = "link lost" if self.link_lost else "the vent was not acknowledged"
+        return f"{known}; the board's watchdog vents within {self.watchdog_ms} ms"
 
     # ------------------------------------------------------------------ connection
     def open(self) -> None:
         import serial
 
         try:
-            self._port = serial.serial_for_url(self.url, baudrate=self.baudrate,
-                                               timeout=self.timeout)
+            self._port = serial.serial_for_url(self.url, baudrate=self.baudrate, timeout=POLL,
+                                               write_timeout=self.timeout)
         except (serial.SerialException, ValueError, OSError) as err:
             raise HardwareError(
                 f"cannot open the valve board at {self.url}: {err}", where(self.name),
                 "check --port (a device such as /dev/ttyUSB0, or socket://HOST:PORT) and that "
                 "the board is plugged in") from None
         try:
-            self.firmware, self.board_valves = self._ask("PING", parse_pong)
+            info = self.info = self._ask("PING", parse_pong)
+            self.firmware, self.board_valves = info.firmware, info.valves
+            self._check_board(info)
             self._check_channels()
         except BaseException:
             self._shut()
             raise
+
+    def _check_board(self, info: BoardInfo) -> None:
+        if info.protocol != PROTOCOL:
+            raise HardwareError(
+                f"the board ({info.firmware}) speaks protocol v{info.protocol}; this gaitc "
+                f"speaks v{PROTOCOL}", where(self.name),
+                "flash the current firmware (gaitc firmware build, docs/hardware.md)")
+        if info.valves > MAX_VALVES:
+            raise HardwareError(f"the board claims {info.valves} valves; protocol v2 drives "
+                                f"at most {MAX_VALVES}", where(self.name))
+        if info.legs is not None and self.sensing and info.legs < len(self.legs):
+            raise HardwareError(f"the spec has {len(self.legs)} legs but the board "
+                                f"({info.firmware}) senses {info.legs}", where(self.name))
 
     def _check_channels(self) -> None:
         if self.channels is None:
@@ -140,7 +244,7 @@ class SerialValveBoard(Backend):
     def _shut(self) -> None:
         port, self._port = self._port, None
         if port is not None:
-            with contextlib.suppress(OSError):
+            with contextlib.suppress(Exception):  # a dead link must not mask the first error
                 port.close()
 
     # ------------------------------------------------------------------ commands
@@ -155,19 +259,39 @@ class SerialValveBoard(Backend):
 
     def apply(self, valves: str) -> None:
         self.check_valves(valves)
-        self._guarded(f"V {self.board_state(valves)}", _expect_ok)
+        board = self.board_state(valves)
+        self._guarded(f"V {board}", _expect_ok)
+        self.state = board
+
+    def step_context(self, in_use: tuple[str, ...], in_cache: bool) -> None:
+        self.in_use, self.in_cache = in_use, in_cache
+
+    def accepted(self, move: Move) -> None:
+        if self.sensing is not None:  # grade the next reading from the controller's levels
+            self.sensing.levels.update(move.state.health)
 
     def read_sensors(self) -> SensorReading:
-        reading: SensorReading = self._guarded("S", lambda line: parse_sensors(line, self.legs))
+        sensing = self.sensing
+        grade = None if sensing is None else (
+            lambda now, low: sensing.update(now, low, self.in_use, self.in_cache))
+        reading: SensorReading = self._guarded("S", lambda line: parse_sensors(line, self.legs,
+                                                                               grade))
         return reading
 
     def wait(self, seconds: float) -> None:
-        import time
+        """Let ``seconds`` pass; while a valve is open, send a heartbeat every quarter of the
+        board's watchdog period so that the board keeps the state."""
+        end = time.monotonic() + max(0.0, seconds)
+        beat = self.watchdog_ms / 4000.0
+        while True:
+            left = end - time.monotonic()
+            if left <= 0:
+                return
+            time.sleep(min(left, beat) if "1" in self.state else left)
+            if "1" in self.state and end - time.monotonic() > 0:
+                self._guarded("HB", _expect_ok)
 
-        if seconds > 0:
-            time.sleep(seconds)
-
-    def _guarded(self, command: str, parse: Any) -> Any:
+    def _guarded(self, command: str, parse: Callable[[str], T]) -> T:
         """Run one command; on any failure vent every valve before the error propagates."""
         if self._port is None:
             raise HardwareError("the valve board is not open", where(self.name))
@@ -175,44 +299,73 @@ class SerialValveBoard(Backend):
             return self._ask(command, parse)
         except HardwareError as err:
             self._vent_quietly()
-            raise HardwareError(f"{err.message}; all valves vented", err.span, err.hint) from None
+            raise HardwareError(f"{err.message}; {self.safety_note()}", err.span,
+                                err.hint) from None
         except BaseException:
             self._vent_quietly()
             raise
 
     def _vent_quietly(self) -> None:
-        """Best effort: send the all-vented state once, ignoring any failure."""
+        """Best effort: send the all-vented state once; record whether the board said OK."""
+        self.vent_acknowledged, self.link_lost = False, True
         if self._port is None or self.board_valves == 0:
             return
         try:
-            self._port.reset_input_buffer()
+            self._drain()
             self._port.write(f"V {'0' * self.board_valves}\n".encode("ascii"))
             self._port.flush()
-            self._port.readline(MAX_REPLY)
+            answer = self._read_line(time.monotonic() + self.timeout)
         except Exception:  # the board may be gone; venting must never mask the first error
-            pass
+            return
+        self.link_lost = not answer
+        if answer.strip() == b"OK":
+            self.vent_acknowledged = True
+            self.state = "0" * self.board_valves
 
-    def _ask(self, command: str, parse: Any) -> Any:
+    def _drain(self) -> None:
+        """Throw away stale input: at most MAX_DRAIN bytes, so a babbling board cannot stall."""
+        dropped = 0
+        while dropped < MAX_DRAIN:
+            waiting = min(self._port.in_waiting, MAX_DRAIN - dropped)
+            if waiting <= 0:
+                return
+            dropped += len(self._port.read(waiting))
+
+    def _read_line(self, deadline: float) -> bytes:
+        """One line, its ``\\n`` included, of at most MAX_REPLY bytes, read by ``deadline``;
+        shorter when the board is silent, longer lines are cut at MAX_REPLY."""
+        line = bytearray()
+        while len(line) < MAX_REPLY and time.monotonic() < deadline:
+            want = max(1, min(self._port.in_waiting, MAX_REPLY - len(line)))
+            line += self._port.read(want)
+            end = line.find(b"\n")
+            if end >= 0:
+                return bytes(line[:end + 1])
+        return bytes(line)
+
+    def _ask(self, command: str, parse: Callable[[str], T]) -> T:
         """Send ``command`` and parse the reply; retry garbled or missing replies."""
         import serial
 
         problem = ""
+        verb = command.split()[0]
         for _attempt in range(self.retries + 1):
             try:
-                self._port.reset_input_buffer()
+                self._drain()
                 self._port.write(f"{command}\n".encode("ascii"))
                 self._port.flush()
-                raw = self._port.readline(MAX_REPLY)  # bounded: a board may babble
+                raw = self._read_line(time.monotonic() + self.timeout)  # bounded both ways
             except (serial.SerialException, OSError) as err:
                 raise HardwareError(f"lost the valve board at {self.url}: {err}",
                                     where(self.name)) from None
             if len(raw) >= MAX_REPLY and not raw.endswith(b"\n"):
-                problem = (f"garbled answer to '{command.split()[0]}': longer than "
-                           f"{MAX_REPLY} bytes without an end of line")
+                problem = (f"garbled answer to '{verb}': longer than {MAX_REPLY} bytes "
+                           "without an end of line")
                 continue
             if not raw.endswith(b"\n"):
-                problem = (f"no answer to '{command.split()[0]}' within {self.timeout:g} s"
-                           if not raw else f"incomplete answer {raw!r} to '{command.split()[0]}'")
+                problem = (f"no answer to '{verb}' within {self.timeout:g} s" if not raw
+                           else f"incomplete answer {raw[:40]!r} to '{verb}' within "
+                           f"{self.timeout:g} s")
                 continue
             line = raw.decode("ascii", errors="replace").strip()
             if line.startswith("ERR"):
@@ -221,7 +374,7 @@ class SerialValveBoard(Backend):
             try:
                 return parse(line)
             except Garbled:
-                problem = f"garbled answer {line!r} to '{command.split()[0]}'"
+                problem = f"garbled answer {line[:80]!r} to '{verb}'"
         hint = ("check the baud rate (--baud) and the cable" if "garbled" in problem
                 else "check that the board is powered and running gaitc firmware")
         raise HardwareError(f"valve board at {self.url}: {problem} "

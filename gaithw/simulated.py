@@ -12,10 +12,10 @@ import time
 
 from gaithw.backend import Backend, HardwareError, SensorReading, where
 from gaitsim.domain import Domain, Goal, State
-from gaitsim.environments import Environment, Situation
+from gaitsim.environments import Environment, Move, Situation
 from gaitsim.monitor import Monitor
 from gaitsim.simulator import Simulator
-from gaitsim.strategy import Strategy
+from gaitsim.strategy import Strategy, StrategyView
 
 
 class ScenarioFinished(HardwareError):
@@ -27,7 +27,7 @@ class SimulatedRobot(Backend):
 
     name = "simulated robot"
 
-    def __init__(self, strategy: Strategy, domain: Domain, monitor: Monitor,
+    def __init__(self, strategy: StrategyView, domain: Domain, monitor: Monitor,
                  environment: Environment, valve_count: int) -> None:
         super().__init__(valve_count)
         self.view = Simulator(strategy, domain, monitor)
@@ -68,7 +68,8 @@ class SimulatedRobot(Backend):
         situation = Situation(
             self._step, node, here, moves, self.domain, self._next_goal(), self.view.monitor,
             None if node is None else strategy.values[node],
-            tuple(strategy.values[m.node] for m in moves), strategy)
+            tuple(strategy.values[m.node] for m in moves),
+            strategy if isinstance(strategy, Strategy) else None)
         request = self.environment.choose(situation)
         if request is None:
             raise ScenarioFinished("the simulated environment has no more steps",
@@ -82,6 +83,9 @@ class SimulatedRobot(Backend):
         reading = SensorReading(sensed.health, sensed.hazard, region)
         self.readings.append(reading)
         return reading
+
+    def accepted(self, move: Move) -> None:
+        self._node = move.node  # the driver may stand a move in for a refused reading
 
     def _next_goal(self) -> Goal | None:
         goals = self.domain.goals

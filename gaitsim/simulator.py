@@ -18,7 +18,7 @@ from gaitsim.domain import Domain, State
 from gaitsim.environments import Environment, Move, Request, Situation
 from gaitsim.monitor import Monitor, Violation
 from gaitsim.run import Run, Step, Summary
-from gaitsim.strategy import InputKey, Strategy
+from gaitsim.strategy import InputKey, Strategy, StrategyView
 
 MAX_REPORTED = 20
 
@@ -26,7 +26,7 @@ MAX_REPORTED = 20
 class Simulator:
     """Runs one environment against one controller; decodes and checks every step."""
 
-    def __init__(self, strategy: Strategy, domain: Domain, monitor: Monitor) -> None:
+    def __init__(self, strategy: StrategyView, domain: Domain, monitor: Monitor) -> None:
         if strategy.variables != monitor.variables:
             raise ControllerError("controller and spec list different variables")
         self.strategy = strategy
@@ -152,7 +152,8 @@ class Simulator:
             situation = Situation(
                 index, node, here, moves, self.domain, goals[goal_index] if goals else None,
                 self.monitor, None if node is None else self.strategy.values[node],
-                self._successor_values(node, moves), self.strategy)
+                self._successor_values(node, moves),
+                self.strategy if isinstance(self.strategy, Strategy) else None)
             try:
                 if node is not None and not moves:
                     raise self._refuse(index, node, Request(()))
@@ -210,7 +211,7 @@ class Simulator:
         )
 
 
-def simulate(strategy: Strategy, domain: Domain, monitor: Monitor, environment: Environment,
+def simulate(strategy: StrategyView, domain: Domain, monitor: Monitor, environment: Environment,
              steps: int = 50, spec_file: str = "") -> Run:
     """Simulate ``environment`` against ``strategy`` for up to ``steps`` steps."""
     return Simulator(strategy, domain, monitor).run(environment, steps, spec_file)

@@ -11,14 +11,17 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from diagnostics import ControllerError, Span
-from gr1.controller import Controller, load_controller
+from gaitsim.view import Indexed, InputKey, NodeReading, StrategyView
+from gr1.bddfile import SymbolicController, is_symbolic, symbolic_from_dict
+from gr1.controller import Controller, controller_from_dict, read_controller_json
 from gr1.spec import GR1Spec
 
-InputKey = tuple[int, ...]
+__all__ = ["Indexed", "InputKey", "NodeReading", "Strategy", "StrategyView", "explicit",
+           "load_strategy", "strategy_from_controller", "view_of"]
 
 
 @dataclass(frozen=True)
-class Strategy:
+class Strategy(NodeReading):
     """An explicit Mealy machine over the spec's variables (inputs first, then outputs)."""
 
     variables: tuple[str, ...]
@@ -33,18 +36,8 @@ class Strategy:
         default_factory=dict, compare=False, repr=False
     )
 
-    @property
-    def inputs(self) -> tuple[str, ...]:
-        return self.variables[: self.n_inputs]
-
     def __len__(self) -> int:
         return len(self.values)
-
-    def input_key(self, node: int) -> InputKey:
-        return self.values[node][: self.n_inputs]
-
-    def valuation(self, node: int) -> dict[str, int]:
-        return dict(zip(self.variables, self.values[node], strict=True))
 
     def options(self, node: int) -> dict[InputKey, int]:
         """The environment's possible moves at ``node``: input values → successor (lowest id)."""
@@ -56,13 +49,6 @@ class Strategy:
             found = dict(sorted(found.items()))
             self._options[node] = found
         return found
-
-    def initial_options(self) -> dict[InputKey, int]:
-        """The environment's possible first inputs → initial node (lowest id)."""
-        found: dict[InputKey, int] = {}
-        for node in self.initial:
-            found.setdefault(self.input_key(node), node)
-        return dict(sorted(found.items()))
 
 
 def _where(file: str) -> Span:
@@ -128,6 +114,31 @@ def _check_ranges(
                 )
 
 
-def load_strategy(path: str | Path, spec: GR1Spec) -> Strategy:
-    """Read a controller JSON file (either solver) and check it against ``spec``."""
-    return strategy_from_controller(load_controller(str(path), spec), spec, str(path))
+def view_of(controller: Controller | SymbolicController, spec: GR1Spec, file: str = ""
+            ) -> StrategyView:
+    """The run view of a controller of either form, checked against ``spec``."""
+    if isinstance(controller, Controller):
+        return strategy_from_controller(controller, spec, file)
+    from gaitsim.symbolic_view import SymbolicStrategy
+
+    return SymbolicStrategy(controller, spec, file)
+
+
+def load_strategy(path: str | Path, spec: GR1Spec) -> StrategyView:
+    """Read a controller file (explicit from either solver, or symbolic) and check it
+    against ``spec``."""
+    data = read_controller_json(str(path))
+    if is_symbolic(data):
+        return view_of(symbolic_from_dict(data, str(path)), spec, str(path))
+    return strategy_from_controller(controller_from_dict(data, str(path), spec), spec, str(path))
+
+
+def explicit(view: StrategyView, what: str) -> Strategy:
+    """``view`` as an explicit automaton, for ``what`` needs every node listed."""
+    if isinstance(view, Strategy):
+        return view
+    raise ControllerError(
+        f"{what} needs an explicit controller, and {view.file or 'this one'} is symbolic "
+        "(its nodes are found by running it)", _where(view.file),
+        hint="synthesize an explicit controller with 'gaitc synth' (without --symbolic), or "
+        "draw a run of this one with 'render map --run'")

@@ -21,6 +21,8 @@ from gr1.spec import SEMANTICS, GR1Spec
 
 FORMAT_VERSION = 1
 KINDS = ("strategy", "counterstrategy")
+#: ``gaitc.format`` of a symbolic controller file (:mod:`gr1.bddfile`).
+SYMBOLIC_FORMAT = "symbolic-strategy"
 
 
 @dataclass(frozen=True)
@@ -262,8 +264,8 @@ def controller_from_dict(
     )
 
 
-def load_controller(path: str, spec: GR1Spec | None = None) -> Controller:
-    """Read a controller JSON file; raises :class:`ControllerError` when it is malformed."""
+def read_controller_json(path: str) -> Any:
+    """The parsed JSON of a controller file (explicit or symbolic), with positioned errors."""
     try:
         raw = Path(path).read_bytes()
     except OSError as err:
@@ -272,7 +274,7 @@ def load_controller(path: str, spec: GR1Spec | None = None) -> Controller:
         ) from None
     text = decode_text(raw, path, ControllerError)
     try:
-        data = json.loads(text)
+        return json.loads(text)
     except json.JSONDecodeError as err:
         raise ControllerError(
             f"not valid JSON: {err.msg}", span_at(text, path, err.pos)
@@ -282,4 +284,16 @@ def load_controller(path: str, spec: GR1Spec | None = None) -> Controller:
                               Span(path, 1, 1)) from None
     except ValueError as err:  # e.g. an integer of thousands of digits
         raise ControllerError(f"not a controller file: {err}", Span(path, 1, 1)) from None
+
+
+def load_controller(path: str, spec: GR1Spec | None = None) -> Controller:
+    """Read an explicit controller JSON file; raises :class:`ControllerError` when it is
+    malformed or holds a symbolic controller (read those with :mod:`gr1.bddfile`)."""
+    data = read_controller_json(path)
+    extras = data.get("gaitc") if isinstance(data, dict) else None
+    if isinstance(extras, dict) and extras.get("format") == SYMBOLIC_FORMAT:
+        raise ControllerError("this is a symbolic controller, where an explicit automaton is "
+                              "needed", Span(path, 1, 1),
+                              hint="synthesize an explicit one with 'gaitc synth' (without "
+                              "--symbolic)")
     return controller_from_dict(data, path, spec)

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Set up gaitc on a fresh machine: Graphviz (for rendering), a virtual environment in .venv,
+# Set up gaitc on a fresh machine: Graphviz (for rendering), the AVR toolchain and simavr (for
+# the valve-board firmware), a virtual environment in .venv,
 # and gaitc installed into it with its test tools and Dask ('gaitc resilience --dask').
 # Safe to run again.
 set -euo pipefail
@@ -13,6 +14,21 @@ if ! command -v dot >/dev/null 2>&1; then
     else
         echo "setup: Graphviz 'dot' not found; rendering to svg/png/pdf needs it" >&2
         echo "       (Debian/Ubuntu: sudo apt-get install graphviz, macOS: brew install graphviz)" >&2
+    fi
+fi
+
+# The valve-board firmware (gaitc firmware, tests/test_firmware.py): avr-gcc and simavr.
+AVR_PACKAGES="gcc-avr avr-libc simavr libsimavr-dev libsimavrparts1"
+if ! command -v avr-gcc >/dev/null 2>&1 || [ ! -e /usr/include/simavr/sim_avr.h ]; then
+    if command -v apt-get >/dev/null 2>&1 && [ "$(id -u)" = 0 ]; then
+        echo "setup: installing the AVR toolchain and simavr with apt-get" >&2
+        # shellcheck disable=SC2086
+        apt-get install -y -qq $AVR_PACKAGES >/dev/null 2>&1 \
+            || { apt-get update -qq >/dev/null 2>&1 && apt-get install -y -qq $AVR_PACKAGES >/dev/null 2>&1; } \
+            || echo "setup: could not install $AVR_PACKAGES; the firmware tests will be skipped" >&2
+    else
+        echo "setup: avr-gcc or simavr not found; 'gaitc firmware' and its tests need them" >&2
+        echo "       (Debian/Ubuntu: sudo apt-get install $AVR_PACKAGES)" >&2
     fi
 fi
 

@@ -17,7 +17,7 @@ import dd.cudd as cudd
 
 from diagnostics import SolverError
 from gr1.controller import Controller, ControllerNode
-from solver.game import Limits
+from solver.game import Limits, too_large
 from solver.strategy import assignments, fix, primed, smallest, spec_integers
 from solver.symbolic import BDDNode, SymbolicSpec
 
@@ -143,7 +143,7 @@ def extract_counterstrategy(
         key = (state, j, i)
         if key not in index:
             if max_nodes is not None and len(nodes) >= max_nodes:
-                raise SolverError(f"the counter-strategy has more than {max_nodes} nodes")
+                raise too_large("counter-strategy", max_nodes)
             index[key] = len(nodes)
             nodes.append(key)
             trans.append([])

@@ -39,6 +39,17 @@ def out_of_memory() -> SolverError:
     )
 
 
+class ControllerTooLarge(SolverError):
+    """An explicit automaton would pass its node limit (a symbolic one may still fit)."""
+
+
+def too_large(what: str, max_nodes: int) -> ControllerTooLarge:
+    """The error of an explicit ``what`` (controller, counter-strategy) over ``max_nodes``."""
+    return ControllerTooLarge(f"the {what} has more than {max_nodes} nodes",
+                              hint="raise --max-nodes, or write a symbolic controller "
+                              "(synth --symbolic)")
+
+
 @dataclass
 class Limits:
     """A wall-clock deadline, a memory check and a progress callback, checked inside the

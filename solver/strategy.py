@@ -15,47 +15,25 @@ from collections.abc import Iterable, Sequence
 from typing import TYPE_CHECKING
 
 from diagnostics import SolverError
+from gr1.bddwalk import State, all_assignments, first_assignment, holds_at
 from gr1.controller import Controller, ControllerNode, IntegerVar, integers_of
-from solver.game import GameResult, Limits
+from solver.game import GameResult, Limits, too_large
 from solver.symbolic import BDDNode, SymbolicSpec
 
 if TYPE_CHECKING:  # solver.preferences builds on this module (goal_strategies)
     from solver.preferences import MovePreferences
 
-State = tuple[int, ...]
-
 
 # ---------------------------------------------------------------- canonical choices
 def assignments(sym: SymbolicSpec, u: BDDNode, bits: Sequence[str]) -> list[State]:
     """Every assignment to ``bits`` (a superset of ``u``'s support), sorted."""
-    if u == sym.bdd.false:
-        return []
-    out = {tuple(int(a[b]) for b in bits) for a in sym.bdd.pick_iter(u, care_vars=set(bits))}
-    return sorted(out)
+    return all_assignments(sym.bdd, u, bits)
 
 
 def smallest(sym: SymbolicSpec, u: BDDNode, bits: Sequence[str]) -> State | None:
-    """The smallest assignment to ``bits`` inside ``u`` (None if empty).
-
-    Smallest in the BDD's variable order: a walk from the root that takes the 0-branch
-    whenever it is not empty, so one step per level instead of a cofactor per bit.  ``u``
-    must not depend on variables outside ``bits``.
-    """
-    if u == sym.bdd.false:
-        return None
-    false = sym.bdd.false
-    wanted = set(bits)
-    chosen: dict[str, int] = {}
-    while u.var is not None:
-        if u.var not in wanted:
-            raise ValueError(f"smallest: {u.var!r} is not among the bits to choose")
-        low, high = (~u.low, ~u.high) if u.negated else (u.low, u.high)
-        if low != false:
-            u = low
-        else:
-            chosen[u.var] = 1
-            u = high
-    return tuple(chosen.get(b, 0) for b in bits)
+    """The smallest assignment to ``bits`` inside ``u`` (None if empty), bits compared in
+    the static order whatever the current BDD order (:attr:`SymbolicSpec.choice_rank`)."""
+    return first_assignment(sym.bdd, u, bits, sym.choice_rank)
 
 
 def fix(sym: SymbolicSpec, u: BDDNode, bits: Sequence[str], values: Iterable[int]) -> BDDNode:
@@ -107,21 +85,12 @@ def goal_strategies(sym: SymbolicSpec, result: GameResult) -> list[BDDNode]:
     return out
 
 
-def holds(u: BDDNode, values: dict[str, bool]) -> bool:
-    """Whether ``u`` is true at ``values`` (which assigns every variable of its support)."""
-    negated = False
-    while u.var is not None:
-        negated ^= u.negated
-        u = u.high if values[u.var] else u.low
-    return bool((u == u.bdd.true) != negated)
-
-
 def next_goal(sym: SymbolicSpec, goal: int, move: dict[str, bool]) -> int:
     """Advance past every goal that ``move`` (a full pre/post assignment) satisfies."""
     n = len(sym.sys_live)
     current = goal
     first = True
-    while (current != goal or first) and holds(sym.sys_live[current], move):
+    while (current != goal or first) and holds_at(sym.sys_live[current], move):
         current = (current + 1) % n
         first = False
     return current
@@ -151,7 +120,7 @@ def extract_strategy(
         key = (state, goal)
         if key not in index:
             if max_nodes is not None and len(nodes) >= max_nodes:
-                raise SolverError(f"the controller has more than {max_nodes} nodes")
+                raise too_large("controller", max_nodes)
             index[key] = len(nodes)
             nodes.append(key)
             trans.append([])

@@ -91,13 +91,12 @@ class SymbolicSpec:
         for v in spec.outputs:
             self.var_bits[v.name] = [next(outs) for _ in range(v.bits if v.is_integer else 1)]
         self.variables = {v.name: v for v in spec.variables()}
-        order: list[str] = []
-        ordered = variable_order(spec, self.options.order)
-        pinned = [v for name in self.options.first for v in ordered if v.name == name]
-        for v in pinned + [v for v in ordered if v not in pinned]:
-            for bit in self.var_bits[v.name]:
-                order += [bit, bit + "'"]
+        order = self._bit_order(self.options.order)
         self.bdd.declare(*order)
+        # Choices (the smallest move, the first initial state) are made in the static order
+        # whatever the engine, so that a controller does not depend on which racer won.
+        static = order if self.options.order == "guards" else self._bit_order("guards")
+        self.choice_rank = {bit: k for k, bit in enumerate(static)}
         self.prime_map = {b: b + "'" for b in self.input_bits + self.output_bits}
         self.unprime_map = {p: b for b, p in self.prime_map.items()}
         self.pre_inputs = set(self.input_bits)
@@ -113,6 +112,16 @@ class SymbolicSpec:
             self.bdd.reorder()
         if self.options.reordering:
             self.bdd.configure(reordering=True)
+
+    def _bit_order(self, how: str) -> list[str]:
+        """Every bit and its primed copy, top to bottom, for variable order ``how``."""
+        order: list[str] = []
+        ordered = variable_order(self.spec, how)
+        pinned = [v for name in self.options.first for v in ordered if v.name == name]
+        for v in pinned + [v for v in ordered if v not in pinned]:
+            for bit in self.var_bits[v.name]:
+                order += [bit, bit + "'"]
+        return order
 
     # ------------------------------------------------------------ building
     def _build(self) -> None:

@@ -12,18 +12,21 @@ import weakref
 from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass, field, replace
+from typing import Final
 
 from diagnostics import FormulaError
+from gr1.bddfile import SymbolicController
 from gr1.controller import Controller
 from gr1.costs import Cost
 from gr1.formula import atoms
 from gr1.spec import SEMANTICS, GR1Spec
 from solver.counter import extract_counterstrategy
-from solver.game import Game, GameStats, Limits, Progress, out_of_memory
+from solver.game import ControllerTooLarge, Game, GameStats, Limits, Progress, out_of_memory
 from solver.portfolio import STATIC, solve_chosen
 from solver.preferences import MovePreferences
 from solver.strategy import extract_strategy
 from solver.symbolic import Options, SymbolicSpec
+from solver.symbolic_strategy import symbolic_controller
 
 
 @dataclass(frozen=True)
@@ -119,6 +122,12 @@ def check(
     return replace(result, seconds=time.monotonic() - limits.started, engine=engine)
 
 
+#: The forms a controller can take: ``explicit`` (an automaton, docs/controller-format.md),
+#: ``symbolic`` (BDDs, :mod:`gr1.bddfile`), or ``auto``: explicit unless it would pass
+#: ``max_nodes``, then symbolic.
+FORMS: Final = ("explicit", "symbolic", "auto")
+
+
 def synthesize(
     spec: GR1Spec,
     semantics: str = "default",
@@ -134,16 +143,44 @@ def synthesize(
     ``prefer`` orders the preferences of :mod:`solver.preferences` (empty: the first move in
     BDD order); ``costs`` gives the terms of the cost-based ones (e.g. a robot model's).
     """
+    found = synthesize_controller(spec, semantics, timeout, progress, options, max_nodes,
+                                  "explicit", prefer, costs)
+    assert not isinstance(found, SymbolicController)
+    return found
 
-    def run(chosen: Options, lim: Limits) -> Controller | None:
+
+def synthesize_controller(
+    spec: GR1Spec,
+    semantics: str = "default",
+    timeout: float | None = None,
+    progress: Progress | None = None,
+    options: Options | None = None,
+    max_nodes: int | None = None,
+    form: str = "auto",
+    prefer: Sequence[str] = (),
+    costs: Sequence[Cost] = (),
+) -> Controller | SymbolicController | None:
+    """A controller for ``spec`` in ``form`` (:data:`FORMS`), or None when unrealizable;
+    an explicit one chooses its moves by ``prefer`` and ``costs`` (see :func:`synthesize`)."""
+    if form not in FORMS:
+        raise ValueError(f"form must be one of {FORMS}, not {form!r}")
+
+    def run(chosen: Options, lim: Limits) -> Controller | SymbolicController | None:
         sym, game = _game(spec, semantics, chosen, lim)
         with memory_guard():
             result = game.solve(keep_layers=True)
             if not game.initially_winning(result.winning, semantics):
                 return None
-            lim.report("extracting the explicit controller")
-            moves = MovePreferences(sym, result, costs, prefer, lim) if prefer else None
-            return extract_strategy(sym, result, semantics, lim, max_nodes, moves)
+            if form != "symbolic":
+                lim.report("extracting the explicit controller")
+                moves = MovePreferences(sym, result, costs, prefer, lim) if prefer else None
+                try:
+                    return extract_strategy(sym, result, semantics, lim, max_nodes, moves)
+                except ControllerTooLarge:
+                    if form == "explicit":
+                        raise
+                    lim.report(f"over {max_nodes} nodes: keeping the controller symbolic")
+            return symbolic_controller(sym, result, semantics)
 
     _check_semantics(semantics)
     return solve_chosen(run, options or Options(), Limits(timeout, progress))[0]

@@ -115,6 +115,10 @@ def _robot_commands(path: Path, _seed: str, fx: Fixtures) -> list[tuple[str, lis
         ("gaits random", ["gaits", str(path), "--method", "random", "--max-states", "30",
                           "--direction", "+y"]),
         ("gaits full", ["gaits", str(path), "--method", "full", "--max-states", "64"]),
+        ("gaits lpa", ["gaits", str(path), "--method", "lpa", "--goal", "20,0",
+                       "--max-states", "30", "--budget", "3000"]),
+        ("gaits mcts", ["gaits", str(path), "--method", "mcts", "--goal", "20,0",
+                        "--max-states", "30", "--iterations", "100"]),
         ("lint", ["lint", str(spec)]),
     ]
 

@@ -17,11 +17,14 @@ from gaithw.serial_board import SerialValveBoard, parse_pong
 
 LEGS = tuple(f"L{i}" for i in range(1, 9))
 EXCHANGES: tuple[tuple[str, bytes], ...] = (
-    ("plain.txt", b"PONG gaitc-fw-1.2 valves=8\nS h=3,3,2,1,3,3,2,1 hazard=- region=r12\n"
-                  b"OK\nOK\n"),
-    ("hazard.txt", b"PONG fw valves=8\nS hazard=blue h=1,1,1,1,1,1,1,1 region=-\nOK\nOK\n"),
-    ("retry.txt", b"PONX fw valves=8\nPONG fw valves=8\nS h=0,0,0,0,0,0,0,0\r\n"
+    ("plain.txt", b"PONG gaitc-fw-1.2 proto=2 valves=8\nS h=3,3,2,1,3,3,2,1 hazard=- "
+                  b"region=r12\nOK\nOK\n"),
+    ("hazard.txt", b"PONG fw proto=2 valves=8\nS hazard=blue h=1,1,1,1,1,1,1,1 region=-\n"
+                   b"OK\nOK\n"),
+    ("retry.txt", b"PONX fw valves=8\nPONG fw proto=2 valves=8 wd=500\nS h=0,0,0,0,0,0,0,0\r\n"
                   b"ERR valve 3 stuck\nOK\n"),
+    ("raw.txt", b"PONG gaitboard/2.0 proto=2 valves=8 legs=8 contacts=4 wd=500 reset=power\r\n"
+                b"S a=1023,818,400,0,1,2,3,4 lo=1,1,1,1,1,1,1,1 c=0101\r\nOK\r\nOK\r\n"),
 )
 
 
@@ -36,6 +39,14 @@ class ReplayPort:
     def reset_input_buffer(self) -> None:
         self.buffer = b""
 
+    @property
+    def in_waiting(self) -> int:
+        return len(self.buffer)
+
+    def read(self, size: int = 1) -> bytes:
+        data, self.buffer = self.buffer[:size], self.buffer[size:]
+        return data
+
     def write(self, data: bytes) -> int:
         self.written.append(data)
         if self.replies:
@@ -46,21 +57,14 @@ class ReplayPort:
     def flush(self) -> None:
         pass
 
-    def readline(self, size: int = -1) -> bytes:
-        end = self.buffer.find(b"\n")
-        cut = len(self.buffer) if end < 0 else end + 1
-        if size >= 0:
-            cut = min(cut, size)
-        line, self.buffer = self.buffer[:cut], self.buffer[cut:]
-        return line
-
     def close(self) -> None:
         pass
 
 
 def board_over(port: ReplayPort) -> SerialValveBoard:
     """A board object talking to ``port`` (no pyserial URL is opened)."""
-    board = SerialValveBoard("replay://fuzz", 8, LEGS, timeout=0.01, retries=2)
+    board = SerialValveBoard("replay://fuzz", 8, LEGS, timeout=0.01, retries=2,
+                             levels=dict.fromkeys(LEGS, 3))
     board._port = port  # the fake stands in for serial_for_url
     return board
 
@@ -72,7 +76,8 @@ def exchange(stream: bytes, limit: float = 2.0) -> Verdict:
     start = time.perf_counter()
     code, problems = 0, []
     try:
-        board.firmware, board.board_valves = board._ask("PING", parse_pong)
+        info = board.info = board._ask("PING", parse_pong)
+        board.firmware, board.board_valves = info.firmware, info.valves
         board.read_sensors()
         board.apply("10000001")
     except GaitcError:

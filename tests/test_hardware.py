@@ -1,27 +1,24 @@
 """Tests of the hardware layer (gaithw) and ``gaitc drive``, without hardware.
 
-The simulated robot runs the radial8 patrol end to end; the serial backend talks to a fake
-valve board served on a local socket (``socket://`` URL) by a thread.
+The simulated robot runs the radial8 patrol end to end; the serial backend's tests, on a
+fake valve board, are in test_serial_board.py, the real firmware's in test_firmware.py.
 """
 
 from __future__ import annotations
 
 import itertools
 import json
-import socket
-import threading
-from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
+from fake_board import TINY
 
 from diagnostics import SpecSemanticError
 from gaitc.cli import main
 from gaitc.simulation import Session, session
 from gaitgraph.pairing import resolve_primitive
-from gaithw.backend import HardwareError, SensorReading, level_from_waveguide
+from gaithw.backend import SensorReading
 from gaithw.driver import Driver, applied_states, bind_primitives, valve_count
-from gaithw.serial_board import Garbled, SerialValveBoard, parse_pong, parse_sensors
 from gaithw.simulated import SimulatedRobot
 from gaitsim.environments import AdversarialEnvironment, RandomEnvironment
 from gaitsim.run import read_jsonl
@@ -30,15 +27,7 @@ from ltlcompiler.model import GaitKind
 
 ROOT = Path(__file__).resolve().parent.parent
 RADIAL8 = ROOT / "specs" / "radial8_patrol.gait"
-TINY = """robot "tiny"
-legs L1..L2 health 2
-gait east uses L1 moves east valves 10, 00
-gait west uses L2 moves west valves 01, 00
-grid 1 x 2 cells a, b
-cache a
-start a
-visit a, b infinitely often
-"""
+
 
 
 # ---------------------------------------------------------------------------- fixtures
@@ -63,78 +52,6 @@ def tiny(tiny_spec: Path) -> Session:
     return loaded
 
 
-class FakeBoard:
-    """A valve board on a local TCP port speaking the gaitc line protocol."""
-
-    def __init__(self, valves: int = 8, mode: str = "ok", silent_after: int = 10**6,
-                 health: str = "2,2", region: str = "-") -> None:
-        self.valves = valves
-        self.mode = mode
-        self.silent_after = silent_after
-        self.health = health
-        self.region = region
-        self.received: list[str] = []
-        self.server = socket.create_server(("127.0.0.1", 0))
-        self.url = f"socket://127.0.0.1:{self.server.getsockname()[1]}"
-        self.thread = threading.Thread(target=self._serve, daemon=True)
-        self.thread.start()
-
-    def reply(self, line: str) -> str | None:
-        if len(self.received) > self.silent_after:
-            return None
-        if line == "PING":
-            return f"PONG fake-1.0 valves={self.valves}"
-        if self.mode == "garbage":
-            return "#@!~ 0x7f"
-        if line.startswith("V "):
-            if self.mode == "refuse":
-                return "ERR pressure rail empty"
-            return "OK" if len(line) == 2 + self.valves else "ERR bad length"
-        if line == "S":
-            return f"S h={self.health} hazard=- region={self.region}"
-        return "ERR unknown command"
-
-    def _serve(self) -> None:
-        conn, _ = self.server.accept()
-        conn.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
-        with conn, conn.makefile("rwb") as stream:
-            for raw in stream:
-                line = raw.decode("ascii").strip()
-                self.received.append(line)
-                answer = self.reply(line)
-                if answer is not None:
-                    stream.write(answer.encode("ascii") + b"\n")
-                    stream.flush()
-
-    def commands(self, prefix: str) -> list[str]:
-        return [c for c in self.received if c.startswith(prefix)]
-
-    def close(self) -> None:
-        self.server.close()
-
-
-@pytest.fixture()
-def board_factory() -> Iterator[type[FakeBoard]]:
-    boards: list[FakeBoard] = []
-
-    class Tracked(FakeBoard):
-        def __init__(self, *args: object, **kwargs: object) -> None:
-            super().__init__(*args, **kwargs)  # type: ignore[arg-type]
-            boards.append(self)
-
-    yield Tracked
-    for board in boards:
-        board.close()
-
-
-def wait_for(board: FakeBoard, count: int) -> None:
-    """Let the board thread record ``count`` commands (the last vent has no reply read)."""
-    for _ in range(200):
-        if len(board.received) >= count:
-            return
-        threading.Event().wait(0.01)
-
-
 # ---------------------------------------------------------------------------- simulated
 def test_simulated_radial8_runs_the_primitives_of_the_chosen_gaits(radial8: Session) -> None:
     prims = bind_primitives(radial8.model, str(RADIAL8.parent))
@@ -145,17 +62,22 @@ def test_simulated_radial8_runs_the_primitives_of_the_chosen_gaits(radial8: Sess
     assert run.error is None and len(run.steps) == 16
     legs = [leg.name for leg in radial8.model.legs]
     expected = ["00000000"]  # vented when the driver starts
+    executed: list[str] = []
     for step in run.steps:
         gait = radial8.model.gait(step.gait)
         if gait.kind is GaitKind.NONE:
             expected.append("00000000")
+            executed.append("00000000")
             continue
         seq = resolve_primitive(gait, str(RADIAL8.parent), legs)
         assert set(seq.pressurised_legs()) == set(step.legs_used)
         expected.extend(seq.states)
+        executed.extend(seq.states)
+        if "1" in seq.states[-1]:
+            expected.append("00000000")  # no valve stays open after its gait's step
     expected.append("00000000")  # vented on close
     assert robot.applied == expected
-    assert applied_states(driver.executed) == expected[1:-1]
+    assert applied_states(driver.executed) == executed
     assert [e.gait for e in driver.executed] == [s.gait for s in run.steps]
     assert any(s.gait != "noGait" for s in run.steps)
 
@@ -232,123 +154,6 @@ def test_missing_primitives_are_listed(tmp_path: Path) -> None:
         bind_primitives(loaded.model, str(tmp_path))
 
 
-# ---------------------------------------------------------------------------- protocol
-def test_protocol_parsers() -> None:
-    assert parse_pong("PONG gaitboard-2.1 valves=16") == ("gaitboard-2.1", 16)
-    reading = parse_sensors("S h=3,2 hazard=blue region=r12", ["L1", "L2"])
-    assert reading == SensorReading((("L1", 3), ("L2", 2)), "blue", "r12")
-    assert parse_sensors("S h=1,1 hazard=- region=-", ["L1", "L2"]).region is None
-    for bad in ("S h=3 hazard=-", "S h=3,x", "X h=3,3", "S h=3,3 h=3,3", "S h=3,3 foo=1"):
-        with pytest.raises(Garbled):
-            parse_sensors(bad, ["L1", "L2"])
-    for bad in ("PONG", "PONG v1 valves=0", "PING v1 valves=8", "PONG v1 count=8"):
-        with pytest.raises(Garbled):
-            parse_pong(bad)
-
-
-def test_level_from_waveguide() -> None:
-    assert [level_from_waveguide(x, (0.8, 0.3)) for x in (1.0, 0.8, 0.5, 0.29, 0.0)] == \
-        [3, 3, 2, 1, 1]
-
-
-# ---------------------------------------------------------------------------- serial
-def test_serial_handshake_valves_through_channel_map_and_sensors(
-        board_factory: type[FakeBoard]) -> None:
-    board = board_factory(valves=4, health="2,1", region="b")
-    with SerialValveBoard(board.url, 2, ["L1", "L2"], timeout=1.0, channels=(3, 1)) as hw:
-        assert isinstance(hw, SerialValveBoard)
-        assert (hw.firmware, hw.board_valves) == ("fake-1.0", 4)
-        hw.apply("10")
-        hw.apply("01")
-        assert hw.read_sensors() == SensorReading((("L1", 2), ("L2", 1)), None, "b")
-    wait_for(board, 5)
-    assert board.received[0] == "PING"
-    assert board.commands("V") == ["V 0001", "V 0100", "V 0000"]
-
-
-def test_serial_wrong_valve_count(board_factory: type[FakeBoard]) -> None:
-    board = board_factory(valves=16)
-    hw = SerialValveBoard(board.url, 8, ["L1"], timeout=1.0)
-    with pytest.raises(HardwareError, match="the robot has 8 valves but the board"):
-        hw.open()
-    with pytest.raises(HardwareError, match="not open"):
-        hw.apply("00000000")
-    with pytest.raises(HardwareError, match=r"distinct channels in 0\.\.15"):
-        SerialValveBoard(board_factory(valves=16).url, 2, ["L1"], channels=(0, 16)).open()
-
-
-def test_serial_rejects_a_valve_state_of_the_wrong_length(board_factory: type[FakeBoard]) -> None:
-    board = board_factory(valves=8)
-    with SerialValveBoard(board.url, 8, ["L1"]) as hw, \
-            pytest.raises(HardwareError, match="has 4 valves but the robot has 8"):
-        hw.apply("1000")
-    wait_for(board, 2)
-    assert board.commands("V") == ["V 00000000"]  # only the vent on close reached it
-
-
-def test_serial_garbled_answers_are_retried_then_fail_vented(
-        board_factory: type[FakeBoard]) -> None:
-    board = board_factory(valves=8, mode="garbage")
-    hw = SerialValveBoard(board.url, 8, ["L1"], timeout=1.0, retries=2)
-    hw.open()
-    with pytest.raises(HardwareError,
-                       match=r"garbled answer .* \(after 3 attempts\); all valves vented"):
-        hw.apply("10000000")
-    hw.close()
-    wait_for(board, 6)
-    assert board.commands("V") == ["V 10000000"] * 3 + ["V 00000000"] * 2
-
-
-def test_serial_board_that_stops_answering_times_out_vented(
-        board_factory: type[FakeBoard]) -> None:
-    board = board_factory(valves=8, silent_after=2)
-    hw = SerialValveBoard(board.url, 8, ["L1"], timeout=0.2, retries=1)
-    hw.open()
-    hw.apply("01000000")
-    with pytest.raises(HardwareError, match=r"no answer to 'V' within 0.2 s") as caught:
-        hw.apply("00100000")
-    assert caught.value.span is not None and "vented" in caught.value.message
-    hw.close()
-    wait_for(board, 5)
-    assert board.commands("V")[-1] == "V 00000000"
-
-
-def test_serial_board_error_reply_and_missing_port(board_factory: type[FakeBoard]) -> None:
-    board = board_factory(valves=2, mode="refuse")
-    with SerialValveBoard(board.url, 2, ["L1"]) as hw, \
-            pytest.raises(HardwareError, match="refused 'V 10': pressure rail empty"):
-        hw.apply("10")
-    with pytest.raises(HardwareError, match="cannot open the valve board at /dev/nonexistent"):
-        SerialValveBoard("/dev/nonexistent-gaitc", 2, ["L1"]).open()
-
-
-def test_driver_on_a_serial_board(tiny: Session, tmp_path: Path,
-                                  board_factory: type[FakeBoard]) -> None:
-    board = board_factory(valves=2, health="2,2")
-    prims = bind_primitives(tiny.model, str(tmp_path))
-    hw = SerialValveBoard(board.url, 2, tiny.domain.legs, timeout=1.0)
-    run = Driver(tiny.strategy, tiny.domain, tiny.monitor, prims, hw).run(4)
-    assert run.error is None and len(run.steps) == 5
-    expected = ["V 00"]
-    for step in run.steps:
-        gait = step.gait
-        expected += ["V 00"] if gait == "noGait" else [f"V {v}" for v in prims[gait].states]
-    wait_for(board, 1 + len(expected) + 1 + 5)
-    assert board.commands("V") == [*expected, "V 00"]
-    assert len(board.commands("S")) == 5
-
-
-def test_driver_stops_when_localisation_disagrees(tiny: Session, tmp_path: Path,
-                                                  board_factory: type[FakeBoard]) -> None:
-    board = board_factory(valves=2, health="2,2", region="b")  # the robot starts in a
-    hw = SerialValveBoard(board.url, 2, tiny.domain.legs, timeout=1.0)
-    run = Driver(tiny.strategy, tiny.domain, tiny.monitor,
-                 bind_primitives(tiny.model, str(tmp_path)), hw).run(3)
-    assert isinstance(run.error, HardwareError)
-    assert "localisation reports region b but the controller expects a" in run.error.message
-    assert run.steps == []
-
-
 # ---------------------------------------------------------------------------- CLI
 def test_cli_drive_sim(tiny_spec: Path, tmp_path: Path,
                        capsys: pytest.CaptureFixture[str]) -> None:
@@ -381,13 +186,3 @@ def test_cli_drive_usage_errors(tiny_spec: Path, capsys: pytest.CaptureFixture[s
     assert main(["drive", str(tiny_spec), "--steps", "-1"]) == 2
 
 
-def test_cli_drive_serial(tiny_spec: Path, board_factory: type[FakeBoard],
-                          capsys: pytest.CaptureFixture[str]) -> None:
-    board = board_factory(valves=2, health="2,2", region="-")
-    code = main(["drive", str(tiny_spec), "--backend", "serial", "--port", board.url,
-                 "--steps", "3", "--step-delay", "0"])
-    out = capsys.readouterr().out
-    assert code == 0
-    assert "step 1: " in out and "summary: 3 steps" in out
-    wait_for(board, 8)
-    assert board.received[0] == "PING" and board.commands("V")[-1] == "V 00"

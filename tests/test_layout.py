@@ -20,6 +20,7 @@ LAYERS: list[tuple[str, ...]] = [
     ("gaitgraph",),
     ("gaitsim",),
     ("analysis", "gaithw"),
+    ("gaitsearch",),
     ("gaitc",),
 ]
 PACKAGES = [name for layer in LAYERS for name in layer]

@@ -12,7 +12,7 @@ import pytest
 ROOT = Path(__file__).resolve().parent.parent
 PACKAGES = [
     "diagnostics", "gr1", "solver", "verifier", "slugs_bridge", "ltlcompiler",
-    "gaitgraph", "gaitsim", "analysis", "gaithw", "gaitc",
+    "gaitgraph", "gaitsearch", "gaitsim", "analysis", "gaithw", "gaitc",
 ]
 MAX_LINES = 400
 

@@ -13,6 +13,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from diagnostics import FormulaError
+from gr1.bddwalk import holds_at as holds
 from gr1.evaluation import evaluate
 from gr1.formula import (
     Expr,
@@ -22,7 +23,8 @@ from gr1.formula import (
 from gr1.spec import SEMANTICS, Clause, GR1Spec, Variable
 from solver import synthesis
 from solver.game import Game
-from solver.strategy import holds, smallest
+from solver.portfolio import DYNAMIC, engine_options
+from solver.strategy import smallest
 from solver.symbolic import Options, SymbolicSpec
 from verifier.counterstrategy import verify_counterstrategy
 from verifier.strategy import verify
@@ -60,8 +62,9 @@ def _holds(sym: SymbolicSpec, u: object, point: dict[str, bool]) -> bool:
         Options(reordering=True),
         Options(reorder_once=True, order="declaration"),
         Options(care=False, recycle=False),
+        engine_options(DYNAMIC),
     ],
-    ids=["plain", "clustered", "reordering", "reorder-once", "no-care"],
+    ids=["plain", "clustered", "reordering", "reorder-once", "no-care", "race-second"],
 )
 @settings(max_examples=25, deadline=None)
 @given(spec=st.one_of(tiny_specs(), one_hot_specs()))

@@ -40,7 +40,7 @@ from gr1.formula import (
 from gr1.spec import Clause, GR1Spec, Origin, Variable
 from gr1.traversal import Node, Text, fold, height, join_text, rebuild, separated
 from solver.symbolic import SymbolicSpec
-from verifier.strategy import _Logic
+from verifier.logic import Logic
 
 NAMES = ("a", "b", "c")
 KEYS = [*NAMES, *(n + "'" for n in NAMES)]
@@ -129,7 +129,7 @@ def test_bdd_translations_agree_with_the_truth_table(f: Expr) -> None:
     deep = deepened(f)
     sym = SymbolicSpec(SPEC)
     solver_bdd = sym.translate(deep)
-    logic = _Logic(SPEC)
+    logic = Logic(SPEC)
     verifier_bdd = logic.translate(deep)
     for v, value in zip(ALL, expected, strict=True):
         point = {k: bool(b) for k, b in v.items()}

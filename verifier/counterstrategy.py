@@ -12,7 +12,8 @@ from typing import Any
 
 from gr1.controller import Controller
 from gr1.spec import GR1Spec
-from verifier.strategy import Bits, Check, VerificationReport, few_nodes
+from verifier.logic import Bits
+from verifier.strategy import Check, VerificationReport, few_nodes
 
 
 def verify_counterstrategy(

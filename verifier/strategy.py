@@ -7,24 +7,19 @@ here, safety is checked node by node (every ρe-allowed input has a successor, e
 
 from __future__ import annotations
 
-import functools
 import html
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
-import dd.cudd as cudd
 import networkx as nx
 
-from diagnostics import FormulaError
 from gr1.bitblast import bitblast
 from gr1.controller import Controller
-from gr1.formula import And, Const, Expr, Iff, Implies, Not, Or, Var, Xor
-from gr1.spec import SEMANTICS, Clause, GR1Spec
-from gr1.traversal import Memo, Node, fold
+from gr1.spec import SEMANTICS, GR1Spec
+from verifier.logic import Bits, Logic
 
 MAX_PROBLEMS = 60
-Bits = tuple[int, ...]
 
 
 @dataclass(frozen=True)
@@ -39,6 +34,7 @@ class VerificationReport:
     sccs: int = 0
     kind: str = "strategy"
     semantics: str = "default"
+    symbolic: bool = False  # checked by fixpoints over BDDs (verifier.symbolic), no graph
 
     def __repr__(self) -> str:
         return f"<VerificationReport: {self.summary()}>"
@@ -51,105 +47,13 @@ class VerificationReport:
 
     def summary(self) -> str:
         verdict = "ok" if self.ok else f"{len(self.problems)} problem(s)"
+        if self.symbolic:
+            return (f"symbolic {self.kind} {verdict}: {self.nodes} reachable (state, goal) "
+                    "pairs, safety and fair goal-avoiding cycles checked by fixpoints "
+                    f"({self.semantics} semantics)")
         return (f"{self.kind} {verdict}: {self.nodes} reachable nodes, {self.edges} edges, "
                 f"{self.sccs} goal-avoiding cycle component(s) examined for fairness "
                 f"({self.semantics} semantics)")
-
-
-def _rule(section: str, index: int, clause: Clause) -> str:
-    origin, span = clause.origin, clause.origin and clause.origin.span
-    where = f" '{origin.rule}'" if origin is not None else ""
-    return f"{section} clause #{index + 1}{where}" + (f" ({span})" if span else "")
-
-
-class _Logic:
-    """BDDs of the spec's clauses over unprimed and primed (``x'``) bits, cached evaluation.
-
-    Every BDD whose id is a cache key passes through :meth:`support`, which keeps it
-    referenced, so CUDD cannot reuse the id for another function.
-    """
-
-    def __init__(self, spec: GR1Spec) -> None:
-        self.spec = spec
-        self.inputs = tuple(v.name for v in spec.inputs)
-        self.outputs = tuple(v.name for v in spec.outputs)
-        self.bdd = cudd.BDD()
-        self.bdd.configure(reordering=False)
-        for name in self.inputs + self.outputs:
-            self.bdd.declare(name, name + "'")
-        self._memo: Memo[Any] = {}
-        self._lets: dict[tuple[int, Bits], Any] = {}
-        self._support: dict[int, tuple[Any, tuple[str, ...]]] = {}
-        self._clauses: dict[str, list[tuple[str, Any]]] = {}
-
-    def clauses(self, section: str) -> list[tuple[str, Any]]:
-        """``(description, BDD)`` of every clause of ``section``."""
-        if section not in self._clauses:
-            items = self.spec.section(section)
-            self._clauses[section] = [
-                (_rule(section, k, c), self.translate(c.formula)) for k, c in enumerate(items)
-            ]
-        return self._clauses[section]
-
-    def translate(self, expr: Expr) -> Any:
-        """The BDD of a Boolean formula (memoised on node identity, so DAGs stay cheap)."""
-        return fold(expr, self._translate, lambda n: n.children() if isinstance(
-            n, (Not, And, Or, Xor, Iff, Implies)) else (), self._memo)  # others: rejected
-
-    def _translate(self, expr: Node, args: list[Any]) -> Any:
-        b = self.bdd
-        if isinstance(expr, Const):
-            return b.true if expr.value else b.false
-        if isinstance(expr, Var):
-            name = expr.name + ("'" if expr.primed else "")
-            if name not in b.vars:
-                raise FormulaError(f"'{expr.name}' is not a variable of the specification",
-                                   expr.span)
-            return b.var(name)
-        if isinstance(expr, Not):
-            return ~args[0]
-        if isinstance(expr, (And, Or)):
-            op, unit = ("and", b.true) if isinstance(expr, And) else ("or", b.false)
-            return functools.reduce(lambda x, y: b.apply(op, x, y), args, unit)
-        if isinstance(expr, (Xor, Iff, Implies)):
-            op = {Xor: "xor", Iff: "equiv", Implies: "implies"}[type(expr)]
-            return b.apply(op, args[0], args[1])
-        raise FormulaError(f"the verifier cannot check {type(expr).__name__} formulas; "
-                           "bit-blast integers first", expr.span)
-
-    def support(self, u: Any) -> tuple[str, ...]:
-        key = int(u)
-        if key not in self._support:  # keeps ``u`` alive: its id is a key of the other caches
-            self._support[key] = (u, tuple(sorted(self.bdd.support(u))))
-        return self._support[key][1]
-
-    def _let(self, u: Any, values: Mapping[str, bool], names: tuple[str, ...]) -> Any:
-        key = (int(u), tuple(int(values[n]) for n in names))
-        found = self._lets.get(key)
-        if found is None:
-            found = self._lets[key] = self.bdd.let({n: values[n] for n in names}, u)
-        return found
-
-    def holds(self, u: Any, valuation: Mapping[str, bool]) -> bool:
-        """Truth of ``u`` under ``valuation`` (must cover its support); cached on the support."""
-        names = self.support(u)
-        return bool((self._let(u, valuation, names) if names else u) == self.bdd.true)
-
-    def restrict(self, u: Any, current: Mapping[str, bool]) -> Any:
-        """``u`` with its unprimed bits fixed to ``current`` (cached on those bits)."""
-        key = -int(u)
-        if key not in self._support:
-            self._support[key] = (u, tuple(n for n in self.support(u) if not n.endswith("'")))
-        names = self._support[key][1]
-        return self._let(u, current, names) if names else u
-
-    def pick(self, u: Any, names: Sequence[str], primed: bool) -> tuple[dict[str, bool], int]:
-        """One assignment of ``u`` to ``names`` (unprimed keys) and how many there are."""
-        suffix = "'" if primed else ""
-        care = {n + suffix for n in names}
-        example = self.bdd.pick(u, care_vars=care) or {}
-        chosen = {n: bool(example.get(n + suffix, False)) for n in names}
-        return chosen, int(self.bdd.count(u, nvars=len(care)))
 
 
 class Check:
@@ -160,7 +64,7 @@ class Check:
             raise ValueError(f"unknown semantics {semantics!r}; use one of {', '.join(SEMANTICS)}")
         self.semantics, self.ctrl = semantics, controller
         self.spec = bitblast(spec)  # a format transformation, shared on purpose
-        self.logic = _Logic(self.spec)
+        self.logic = Logic(self.spec)
         self.problems: list[str] = []
         self.notes: list[str] = []
         self.reachable: list[int] = []

@@ -7,10 +7,13 @@ parser default; the function returns an exit code (see :mod:`gaitc.cli`).
 from __future__ import annotations
 
 from gaitc.commands import (
+    calibrating,
     compiling,
     driving,
     explaining,
+    firmware,
     gaits,
+    learning,
     rendering,
     resilient,
     simulating,
@@ -18,4 +21,4 @@ from gaitc.commands import (
 )
 
 COMMAND_MODULES = (compiling, solving, explaining, resilient, simulating, rendering, gaits,
-                   driving)
+                   learning, driving, firmware, calibrating)

@@ -31,6 +31,17 @@ def positive_megabytes(value: str) -> int:
     return mb
 
 
+def positive_count(value: str) -> int:
+    """A positive whole number (``--max-nodes``)."""
+    try:
+        count = int(value)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"'{value}' is not a whole number") from None
+    if count <= 0:
+        raise argparse.ArgumentTypeError(f"must be a positive whole number, not {value}")
+    return count
+
+
 def preference_list(value: str) -> tuple[str, ...]:
     """``--prefer``: a comma-separated order of the move preferences, or ``none``."""
     from diagnostics import UsageError

@@ -18,7 +18,8 @@ from gaitc.commands.simulating import environment_of, report_run
 from gaitc.exitcodes import ExitCode, exit_code_help
 from gaitc.simulation import Session
 from gaitc.solving import recorded_encoding
-from gaithw.backend import Backend
+from gaithw.backend import Backend, interrupt_on_signals
+from gaithw.driver import VIOLATION_POLICIES
 from gaitsim.environments import Environment
 from gaitsim.scenario import ScriptedEnvironment
 from ltlcompiler.encoding import ENCODINGS
@@ -28,8 +29,10 @@ EPILOG = """backends:
                      from --env (random, adversarial or a scripted scenario), within the
                      spec's assumptions
   --backend serial   a valve board on --port (a device such as /dev/ttyUSB0, or
-                     socket://HOST:PORT) speaking the gaitc line protocol (docs/hardware.md);
-                     every valve is vented on exit, on any error and on Ctrl-C
+                     socket://HOST:PORT) speaking the gaitc line protocol v2
+                     (docs/hardware.md); every valve is vented on exit, on any error, on
+                     Ctrl-C, SIGTERM and SIGHUP; a heartbeat keeps the board's watchdog fed
+                     while valves are open (try it with 'gaitc firmware simulate')
 
 """
 EPILOG += exit_code_help({
@@ -71,6 +74,18 @@ def register(sub: Any) -> None:
                    help="sim backend: random (default) | adversarial | scripted FILE.yaml")
     p.add_argument("--seed", type=int, default=0, help="seed of the random environment")
     p.add_argument("--out", metavar="FILE", help="save the run as .jsonl or .csv")
+    p.add_argument("--on-violation", choices=VIOLATION_POLICIES, default="stop",
+                   help="a reading that breaks the spec's assumptions: stop the run (default), "
+                   "hold the levels the controller had, or take the worst levels the "
+                   "assumptions allow")
+    p.add_argument("--pose", metavar="URL",
+                   help="take the region from a tracker's pose stream: udp://HOST:PORT "
+                   "(listen) or tcp://HOST:PORT (connect), JSON {\"x\": .., \"y\": ..}")
+    p.add_argument("--map", metavar="FILE", help="--pose: region polygons (YAML)")
+    p.add_argument("--cell-size", type=float, metavar="S",
+                   help="--pose without --map: the side of a grid cell (1)")
+    p.add_argument("--sensing", metavar="FILE",
+                   help="serial backend: waveguide thresholds per leg (from 'gaitc calibrate')")
     p.add_argument("--encoding", choices=ENCODINGS,
                    help="encoding of the spec (default: the one recorded in the controller)")
     p.add_argument("--robotics-semantics", action="store_true",
@@ -94,8 +109,14 @@ def _check_options(args: argparse.Namespace) -> None:
         if args.env:
             raise UsageError("--env chooses the simulated robot's environment; the serial "
                              "backend reads real sensors")
-    elif args.port or args.channels:
-        raise UsageError("--port and --channels are for --backend serial")
+    if (args.map or args.cell_size is not None) and not args.pose:
+        raise UsageError("--map and --cell-size place the poses of --pose")
+    if args.map and args.cell_size is not None:
+        raise UsageError("give --map or --cell-size, not both")
+    if args.cell_size is not None and not args.cell_size > 0:
+        raise UsageError("--cell-size must be positive")
+    if args.backend != "serial" and (args.port or args.channels or args.sensing):
+        raise UsageError("--port, --channels and --sensing are for --backend serial")
 
 
 def _environment(args: argparse.Namespace, bound: Session) -> tuple[Environment, int | None]:
@@ -107,11 +128,14 @@ def _environment(args: argparse.Namespace, bound: Session) -> tuple[Environment,
 def _backend(args: argparse.Namespace, loaded: Session, valves: int) -> tuple[Backend, int]:
     steps: int = 20 if args.steps is None else args.steps
     if args.backend == "serial":
+        from gaithw.sensing import read_sensing
         from gaithw.serial_board import SerialValveBoard, parse_channels
 
         channels = parse_channels(args.channels) if args.channels else None
+        calibration = read_sensing(args.sensing) if args.sensing else None
         return SerialValveBoard(args.port, valves, loaded.domain.legs, args.baud, args.timeout,
-                                channels=channels), steps
+                                channels=channels, levels=loaded.domain.full,
+                                calibration=calibration), steps
     from gaithw.simulated import SimulatedRobot
 
     environment, scripted = _environment(args, loaded)
@@ -119,6 +143,15 @@ def _backend(args: argparse.Namespace, loaded: Session, valves: int) -> tuple[Ba
         steps = scripted
     return SimulatedRobot(loaded.strategy, loaded.domain, loaded.monitor, environment,
                           valves), steps
+
+
+def _localised(args: argparse.Namespace, backend: Backend, loaded: Session) -> Backend:
+    from gaithw.localisation import Localised, PoseStream, RegionMap
+
+    model = loaded.domain.model
+    regions = (RegionMap.from_file(args.map, loaded.domain.regions) if args.map
+               else RegionMap.from_grid(model, args.cell_size or 1.0))
+    return Localised(backend, PoseStream(args.pose, args.timeout), regions)
 
 
 def run_drive(args: argparse.Namespace) -> int:
@@ -138,12 +171,20 @@ def run_drive(args: argparse.Namespace) -> int:
         print(f"{args.spec}: unrealizable: no controller to drive", file=sys.stderr)
         return ExitCode.UNREALIZABLE
     backend, steps = _backend(args, loaded, valve_count(primitives, len(loaded.domain.legs)))
+    if args.pose:
+        backend = _localised(args, backend, loaded)
     delay = args.step_delay if args.step_delay is not None else (
         0.5 if args.backend == "serial" else 0.0)
     live = None if args.quiet or args.backend == "sim" else _print_flush
     driver = Driver(loaded.strategy, loaded.domain, loaded.monitor, primitives, backend,
-                    delay, args.cycles, live)
-    run = driver.run(steps, args.spec)
+                    delay, args.cycles, live, args.on_violation)
+    with interrupt_on_signals():  # SIGTERM and SIGHUP vent and keep the run, as Ctrl-C does
+        run = driver.run(steps, args.spec)
+    if driver.violations and live is None:
+        print(f"readings that broke an assumption ({args.on_violation}): "
+              f"{len(driver.violations)}")
+        for note in driver.violations:
+            print(f"  {note}")
     return report_run(run, dict(loaded.domain.full), backend.name, args.quiet, args.out)
 
 

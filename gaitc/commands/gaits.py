@@ -1,4 +1,9 @@
-"""``gaitc gaits``: synthesise gait primitives for a robot file (thesis chapter 2)."""
+"""``gaitc gaits``: synthesise gait primitives for a robot file (thesis chapters 2 and 5).
+
+``--method full|random|reset`` (or ``chapter2``, the default) is the chapter 2 search of
+:mod:`gaitgraph`; ``astar``, ``lpa`` and ``mcts`` search the global frame toward ``--goal``
+with :mod:`gaitsearch` (:func:`run_global`, in :mod:`gaitc.commands.learning`).
+"""
 
 from __future__ import annotations
 
@@ -28,12 +33,16 @@ def search_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--direction", default="+x", help="+x, -x, +y, -y or an angle in degrees")
     p.add_argument(
         "--method",
-        choices=("full", "random", "reset"),
+        choices=("chapter2", "full", "random", "reset", "astar", "lpa", "mcts"),
         default=None,
-        help="default: full for at most 12 chambers and --max-states valve states, else random",
+        help="chapter 2 (default): full for at most 12 chambers and --max-states valve "
+        "states, else random; astar, lpa, mcts: chapter 5 searches toward --goal",
     )
     p.add_argument("--seed", type=int, default=0)
     p.add_argument("--max-states", type=int, default=10_000, help="valve states to try at most")
+    from gaitc.commands.learning import goal_arguments
+
+    goal_arguments(p)
 
 
 def run_render(args: argparse.Namespace) -> int:
@@ -43,6 +52,15 @@ def run_render(args: argparse.Namespace) -> int:
 
 
 def run(args: argparse.Namespace) -> int:
+    if args.method in ("astar", "lpa", "mcts"):
+        from gaitc.commands.learning import run_global
+
+        return run_global(args)
+    if args.goal is not None:
+        raise UsageError(
+            f"--goal is for --method astar, lpa or mcts; the chapter 2 search "
+            f"(--method {args.method or 'chapter2'}) takes --direction"
+        )
     from gaitgraph.cycles import parse_direction
     from gaitgraph.drawing import write_drawings
     from gaitgraph.report import gait_table, gaits_json
@@ -57,7 +75,8 @@ def run(args: argparse.Namespace) -> int:
     except SpecSemanticError as err:  # no file to point at: a usage error
         raise UsageError(f"--direction: unknown direction {args.direction!r}") from err
     full = robot.valve_count <= 12 and 1 << robot.valve_count <= args.max_states
-    method = args.method or ("full" if full else "random")
+    method = args.method if args.method not in (None, "chapter2") else (
+        "full" if full else "random")
     result = search(robot, direction, method, args.seed, args.max_states)
     print(
         f"robot {robot.name}: {robot.valve_count} chambers, method {method}, "

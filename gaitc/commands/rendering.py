@@ -94,6 +94,7 @@ def _model(path: str) -> Any:
 
 def run_automaton(args: argparse.Namespace) -> int:
     from gaitsim.automaton_view import automaton_view
+    from gaitsim.strategy import explicit
 
     output_format(args.output, args.format)  # fail on a bad format before synthesizing
     if args.max_nodes < 1:
@@ -102,7 +103,8 @@ def run_automaton(args: argparse.Namespace) -> int:
     if loaded is None:
         print(f"{args.spec}: unrealizable: no controller to draw", file=sys.stderr)
         return ExitCode.UNREALIZABLE
-    view = automaton_view(loaded.strategy, loaded.domain, args.quotient, args.max_nodes)
+    strategy = explicit(loaded.strategy, "drawing the automaton")
+    view = automaton_view(strategy, loaded.domain, args.quotient, args.max_nodes)
     if args.quotient == "none" and len(loaded.strategy) > args.max_nodes:
         print(f"gaitc: the automaton has {len(loaded.strategy)} nodes; --quotient region-gait "
               "or --quotient region draws a smaller picture", file=sys.stderr)

@@ -15,11 +15,15 @@ from typing import Any
 
 import gaitc
 from diagnostics import GaitcError, SolverError, UsageError, render_error
-from gaitc.commands.arguments import add_prefer, positive_megabytes, positive_seconds
+from gaitc.commands.arguments import (
+    add_prefer,
+    positive_count,
+    positive_megabytes,
+    positive_seconds,
+)
 from gaitc.exitcodes import ExitCode, exit_code_help
 from gaitc.isolation import HardLimits, cudd_budget_mb, run_limited
-from gaitc.solving import SOLVERS, recorded_encoding
-from gr1.controller import load_controller
+from gaitc.solving import MAX_NODES, SOLVERS, read_controller, recorded_encoding
 from ltlcompiler.encoding import ENCODINGS
 from solver.game import Progress
 from solver.symbolic import Options
@@ -85,6 +89,12 @@ def register(sub: Any) -> None:
     p.add_argument("spec", metavar="SPEC")
     p.add_argument("-o", "--output", required=True, metavar="FILE")
     p.add_argument("--no-verify", action="store_true", help="skip the verification step")
+    p.add_argument("--symbolic", action="store_true",
+                   help="write the strategy as BDDs (docs/controller-format.md, symbolic "
+                   "controllers); simulate, drive, verify and render map read it")
+    p.add_argument("--max-nodes", type=positive_count, default=MAX_NODES, metavar="N",
+                   help=f"keep the controller symbolic when the explicit automaton would pass "
+                   f"N nodes (default {MAX_NODES:,})")
     add_prefer(p)
     _common(p)
     p.set_defaults(run=run_synth)
@@ -187,14 +197,16 @@ _SEVERITY = (ExitCode.OK, ExitCode.UNREALIZABLE, ExitCode.USER, ExitCode.SOLVER)
 
 
 def _solve(args: argparse.Namespace, kind: str) -> tuple[gaitc.Spec, gaitc.Synthesis]:
-    make = gaitc.synthesize if kind == "strategy" else gaitc.counterstrategy
     _options(args)  # a memory limit too small fails here, before the fork
 
     def work() -> tuple[gaitc.Spec, gaitc.Synthesis]:
         spec = gaitc.load(args.spec, args.encoding)
-        extra = {"prefer": args.prefer} if kind == "strategy" else {}
-        return spec, make(spec, verify=not getattr(args, "no_verify", False),
-                          **_solver_args(args), **extra)
+        if kind == "counterstrategy":
+            return spec, gaitc.counterstrategy(spec, **_solver_args(args))
+        form = "symbolic" if args.symbolic else "auto"
+        return spec, gaitc.synthesize(spec, verify=not args.no_verify, form=form,
+                                      max_nodes=args.max_nodes, prefer=args.prefer,
+                                      **_solver_args(args))
 
     return run_limited(work, _limits(args))
 
@@ -212,7 +224,7 @@ def run_synth(args: argparse.Namespace) -> int:
     found.save(args.output)  # only a verified controller (or one --no-verify asked for)
     print(
         f"{args.spec}: realizable ({found.seconds:.2f} s); wrote {args.output} "
-        f"({len(found.controller.nodes)} nodes)"
+        f"({found.size})"
     )
     if found.report is None:
         return ExitCode.OK
@@ -242,6 +254,6 @@ def run_counter(args: argparse.Namespace) -> int:
 def run_verify(args: argparse.Namespace) -> int:
     encoding = args.encoding or recorded_encoding(args.controller) or "onehot"
     spec = gaitc.load(args.spec, encoding)
-    controller = load_controller(args.controller, spec.gr1)
+    controller = read_controller(args.controller, spec.gr1)
     semantics = "robotics" if args.robotics_semantics else controller.semantics
     return _print_report(gaitc.verify(spec, controller, semantics))

@@ -1,0 +1,138 @@
+"""Benchmark of the chapter 5 gait searches (issue 16): time to a first gait, per edge update.
+
+For the symmetric and asymmetric six-leg robots (24 chambers; 100 and 1,000 random valve
+states plus the vented one) and the symmetric robot with 10,000 valve states: the chapter 2
+search (Algorithm 1 toward the goal's direction) and A*, LPA*, MCTS toward the goal.  An
+edge update is what the online loop does, one transition at a time: a transition of the
+current gait not updated before gets its true motion on the simulated robot (20 % model
+mismatch, seeded; no noise), then the gait is re-planned: A* from scratch, LPA* by repair,
+MCTS by pruning and one rollout per pruned branch's parent.  The updates stop early when
+every transition of the gait has been updated (the loop has converged).  Target: an LPA*
+update under 10 ms (the thesis, 5.2.3: about 15 minutes).
+Run: ``.venv/bin/python bench/bench_gait_search.py [--quick] [--updates N]``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import statistics
+import time
+from pathlib import Path
+
+import numpy as np
+
+from gaitgraph.cycles import synthesize
+from gaitgraph.graph import GaitGraph, random_states
+from gaitgraph.robot import load_robot
+from gaitsearch.api import start_pose
+from gaitsearch.goals import Goal
+from gaitsearch.planners import Settings, make_planner
+from gaitsearch.plans import GaitPlan
+from gaitsearch.transitions import TransitionModel
+from gaitsearch.walker import Mismatch, SimulatedWalker
+
+ROBOTS = Path(__file__).resolve().parent.parent / "specs" / "robots"
+GOAL = Goal(40.0, 0.0)
+HEAD = (
+    f"{'robot':<12} {'states':>6} {'poses':>6} {'edges':>8} {'method':<8} {'first s':>8} "
+    f"{'work':>7} {'trans':>5} {'dx mm':>7} {'dy mm':>7} {'rot':>6} {'upd med ms':>10} "
+    f"{'upd max ms':>10} {'upds':>4}"
+)
+
+
+def build(name: str, states: int) -> tuple[GaitGraph, float]:
+    robot = load_robot(ROBOTS / f"{name}.yaml")
+    graph = GaitGraph(robot)
+    began = time.perf_counter()
+    graph.add_states([0, *random_states(robot, np.random.default_rng(0), states - 1, {0})])
+    return graph, time.perf_counter() - began
+
+
+def row(
+    graph: GaitGraph,
+    method: str,
+    first: float,
+    work: int,
+    plan: tuple[int, float, float, float] | None,
+    updates: list[float],
+) -> str:
+    name = graph.robot.name
+    size = f"{name:<12} {len(graph.states):>6} {len(graph):>6} {len(graph.edges):>8}"
+    if plan is None:
+        return f"{size} {method:<8} {first:8.2f} {work:>7}  no gait"
+    n, x, y, th = plan
+    upd = (
+        f"{statistics.median(updates) * 1000:10.1f} {max(updates) * 1000:10.1f}"
+        if updates
+        else f"{'-':>10} {'-':>10}"
+    )
+    return f"{size} {method:<8} {first:8.3f} {work:>7} {n:>5} {x:7.1f} {y:7.1f} {th:6.1f} {upd}"
+
+
+def chapter2(graph: GaitGraph) -> str:
+    began = time.perf_counter()
+    direction = (GOAL.dx / math.hypot(GOAL.dx, GOAL.dy), GOAL.dy / math.hypot(GOAL.dx, GOAL.dy))
+    gaits = synthesize(graph, direction)
+    seconds = time.perf_counter() - began
+    if not gaits:
+        return row(graph, "chapter2", seconds, 0, None, [])
+    g = gaits[0]
+    plan = (len(g.poses), g.displacement[0], g.displacement[1], g.rotation)
+    return row(graph, "chapter2", seconds, len(gaits), plan, [])
+
+
+def chapter5(graph: GaitGraph, method: str, updates: int) -> str:
+    model = TransitionModel.from_graph(graph)
+    settings = Settings(budget=400_000)
+    planner = make_planner(method, model, graph.robot.name, start_pose(graph), GOAL, settings)
+    began = time.perf_counter()
+    plan = planner.plan(explored=False)
+    first = time.perf_counter() - began
+    if plan is None:
+        return row(graph, method, first, planner.expanded, None, [])
+    summary = (len(plan.steps), *plan.displacement)
+    work = planner.expanded
+    rng = np.random.default_rng(7)
+    truth = SimulatedWalker(model.copy(), 0, 1, (), Mismatch(0.2, 0.0, 0.0, 7))
+    times: list[float] = []
+    done: set[int] = set()
+    current: GaitPlan | None = plan
+    for _ in range(updates):
+        todo = [] if current is None else [e for e in current.edges if e not in done]
+        if not todo:
+            break
+        edge = todo[int(rng.integers(len(todo)))]
+        done.add(edge)
+        began = time.perf_counter()
+        planner.observe(edge, truth.true_step(edge), True)
+        current = planner.plan(explored=False)
+        times.append(time.perf_counter() - began)
+    return row(graph, method, first, work, summary, times) + f" {len(times):>4}"
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--quick", action="store_true", help="skip the 10,000-state graph")
+    parser.add_argument("--updates", type=int, default=20, help="edge updates per method at most")
+    args = parser.parse_args()
+    cases = [("symmetric6", 100), ("asymmetric6", 100), ("symmetric6", 1000), ("asymmetric6", 1000)]
+    if not args.quick:
+        cases.append(("symmetric6", 10_000))
+    print(
+        f"goal {GOAL} within {GOAL.tolerance:g} mm, {GOAL.angle_tolerance:g} deg; cells 2 mm, "
+        f"2 deg; at most {args.updates} edge updates per method (upds: how many)"
+    )
+    print("work: lattice expansions (A*, LPA*), MCTS iterations, chapter 2: gaits ranked")
+    print(HEAD)
+    for name, states in cases:
+        graph, seconds = build(name, states)
+        print(f"# {name}, {states} valve states: gait graph built in {seconds:.1f} s", flush=True)
+        print(chapter2(graph), flush=True)
+        for method in ("astar", "lpa", "mcts"):
+            print(chapter5(graph, method, args.updates), flush=True)
+    print("target: LPA* edge update < 10 ms (thesis 5.2.3: about 15 minutes)")
+
+
+if __name__ == "__main__":
+    main()

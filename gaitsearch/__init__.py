@@ -1,0 +1,29 @@
+"""Gait synthesis in the global frame, refined online (thesis chapter 5).
+
+Pipeline: :mod:`transitions` (the gait graph's predicted motions, mutable) →
+:mod:`cells` (the (dx, dy, dθ) lattice of 5.2.2) → :mod:`astar` / :mod:`lpa` (hybrid graph
+search) or :mod:`mcts` (5.2.4), behind :mod:`planners` → :mod:`plans` (results);
+:mod:`walker` (the simulated robot with model mismatch) and :mod:`online` (Algorithms 2
+and 3); :mod:`drawing` (pictures); :mod:`api` (what the CLI and notebooks call).
+"""
+
+from __future__ import annotations
+
+from gaitsearch.api import plan_gait
+from gaitsearch.goals import Goal, parse_goal
+from gaitsearch.online import Learned, learn_gait
+from gaitsearch.planners import METHODS, Settings
+from gaitsearch.plans import GaitPlan
+from gaitsearch.walker import Mismatch
+
+__all__ = [
+    "METHODS",
+    "GaitPlan",
+    "Goal",
+    "Learned",
+    "Mismatch",
+    "Settings",
+    "learn_gait",
+    "parse_goal",
+    "plan_gait",
+]

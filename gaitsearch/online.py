@@ -1,0 +1,324 @@
+"""The online loop of thesis Algorithms 2 (hybrid graph search) and 3 (MCTS).
+
+Synthesize a gait, run it on the robot, estimate each executed transition's displacement,
+give it to the search (LPA* repairs, MCTS prunes and rolls out again), and repeat until every
+transition of the returned gait has been executed and its prediction is the robot's own
+measured mean.  Finally the learned gait is run ``verify`` more cycles and its measured
+displacement per cycle compared with the goal.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Any
+
+from diagnostics import GaitcError
+from gaitgraph.robot import Robot
+from gaitsearch.goals import Goal
+from gaitsearch.planners import Planner, SearchLimitError, Settings
+from gaitsearch.plans import GaitPlan
+from gaitsearch.transitions import Step, TransitionModel, compose
+from gaitsearch.walker import Mismatch, SimulatedWalker
+
+Point = tuple[float, float]
+
+
+@dataclass(frozen=True)
+class Iteration:
+    """One pass of the loop: the gait tried, what it was predicted and measured to do."""
+
+    index: int
+    edges: tuple[int, ...]
+    valves: tuple[str, ...]
+    predicted: tuple[float, float, float]
+    executed: tuple[float, float, float] | None  # None: the cycle broke off
+    completed: int  # transitions executed as planned
+    newly_explored: int
+    changed: int  # transitions whose prediction moved by more than the change threshold
+    failed: int | None  # the transition the robot did not make as planned
+    plan_seconds: float = field(compare=False)
+    update_seconds: float = field(compare=False)
+    path: tuple[Point, ...] = field(default=(), compare=False, repr=False)
+
+
+@dataclass(frozen=True)
+class Learned:
+    """Result of :func:`learn_gait`: the first and final plans and every iteration."""
+
+    first: GaitPlan
+    final: GaitPlan | None
+    iterations: tuple[Iteration, ...]
+    converged: bool
+    executed: tuple[float, float, float] | None  # mean measured displacement per cycle
+    verify_cycles: int
+    stopped: str  # converged, no gait, search budget or iteration limit
+    changed: tuple[tuple[Point, Point], ...] = field(default=(), repr=False)
+
+    @property
+    def error(self) -> tuple[float, float] | None:
+        """Distance (mm) and angle (deg) of the executed displacement from the goal."""
+        if self.executed is None:
+            return None
+        return self.first.goal.error(*self.executed)
+
+    def summary(self) -> str:
+        state = "converged" if self.converged else f"did not converge ({self.stopped})"
+        lines = [f"{self.first.method}: {state} after {len(self.iterations)} iterations"]
+        if self.final is not None and self.executed is not None and self.error is not None:
+            x, y, th = self.executed
+            lines.append(
+                f"learned gait: {len(self.final.steps)} transitions; executed {x:.1f} mm, "
+                f"{y:.1f} mm, {th:.2f} deg per cycle (mean of {self.verify_cycles}); "
+                f"{self.error[0]:.1f} mm, {self.error[1]:.1f} deg from the goal"
+            )
+        return "\n".join(lines)
+
+    def __repr__(self) -> str:
+        return self.summary()
+
+    def _repr_svg_(self) -> str:
+        from gaitsearch.drawing import learning_svg
+
+        final = self.final or self.first
+        return learning_svg(self.first, final, [it.path for it in self.iterations], self.changed)
+
+    def to_json(self) -> str:
+        """The log: every iteration (no timings, so a seeded run gives the same bytes)."""
+        doc: dict[str, Any] = {
+            "method": self.first.method,
+            "robot": self.first.robot,
+            "goal": self.first.to_dict()["goal"],
+            "converged": self.converged,
+            "stopped": self.stopped,
+            "iterations": [
+                {
+                    "index": it.index,
+                    "edges": list(it.edges),
+                    "valves": list(it.valves),
+                    "predicted": [_r(v) for v in it.predicted],
+                    "executed": None if it.executed is None else [_r(v) for v in it.executed],
+                    "completed": it.completed,
+                    "newly_explored": it.newly_explored,
+                    "changed": it.changed,
+                    "failed": it.failed,
+                }
+                for it in self.iterations
+            ],
+            "final": None if self.final is None else self.final.to_dict(),
+            "executed": None if self.executed is None else [_r(v) for v in self.executed],
+            "verify_cycles": self.verify_cycles,
+        }
+        return json.dumps(doc, indent=2, sort_keys=True) + "\n"
+
+
+def _r(x: float) -> float:
+    value = round(x, 3)
+    return 0.0 if value == 0 else value
+
+
+def _mean(steps: list[Step]) -> Step:
+    n = len(steps)
+    return Step(
+        sum(s.dx for s in steps) / n,
+        sum(s.dy for s in steps) / n,
+        sum(s.rotation for s in steps) / n,
+    )
+
+
+def _differs(a: Step, b: Step, threshold: float) -> bool:
+    return math.hypot(a.dx - b.dx, a.dy - b.dy) > threshold or abs(a.rotation - b.rotation) > (
+        threshold
+    )
+
+
+def run_cycle(
+    walker: SimulatedWalker, model: TransitionModel, edges: tuple[int, ...]
+) -> tuple[
+    list[tuple[int, Step | None]],
+    list[tuple[float, float, float]],
+    tuple[float, float, float] | None,
+]:
+    """Run one cycle from the rest pose; per planned edge what was measured (None: the robot
+    did not make it, and the cycle stops there), the measured chassis poses, the net
+    displacement."""
+    walker.reset()
+    x = y = h = 0.0
+    path = [(0.0, 0.0, 0.0)]
+    seen: list[tuple[int, Step | None]] = []
+    for e in edges:
+        walker.apply(model.labels[int(model.dst[e])])
+        out = walker.last
+        if out is None or out.edge != e or out.measured is None:
+            seen.append((e, None))
+            return seen, path, None
+        seen.append((e, out.measured))
+        x, y, h = compose(x, y, h, out.measured)
+        path.append((x, y, h))
+    return seen, path, (x, y, h)
+
+
+def learn(
+    planner: Planner,
+    walker: SimulatedWalker,
+    plan: GaitPlan | None = None,
+    max_iterations: int = 40,
+    verify: int = 5,
+    threshold: float = 0.5,
+    progress: Callable[[str], None] | None = None,
+) -> Learned:
+    """Algorithms 2 and 3 with ``planner`` on ``walker``; ``threshold`` (mm and deg) is the
+    change in a prediction that counts as "observed to differ"."""
+    model = planner.model
+    measured: dict[int, list[Step]] = {}
+    iterations: list[Iteration] = []
+    changed: list[tuple[Point, Point]] = []
+    began = time.perf_counter()
+    plan = plan or planner.plan()
+    plan_seconds = plan.seconds if plan is not None else time.perf_counter() - began
+    if plan is None:
+        raise _no_gait(planner.goal)
+    first, converged, stopped = plan, False, "iteration limit"
+    with walker:
+        for index in range(1, max_iterations + 1):
+            if all(e in measured for e in plan.edges):
+                converged = True
+                break
+            seen, path, executed = run_cycle(walker, model, plan.edges)
+            began = time.perf_counter()
+            fresh = moved = 0
+            failed = None
+            for i, (e, step) in enumerate(seen):
+                before = model.step(e)
+                if step is None:
+                    failed = e
+                    planner.observe(e, None)
+                    continue
+                fresh += e not in measured
+                measured.setdefault(e, []).append(step)
+                estimate = _mean(measured[e])
+                differs = _differs(before, estimate, threshold)
+                if differs:
+                    moved += 1
+                    guess = compose(*path[i], before)
+                    changed.append(((guess[0], guess[1]), (path[i + 1][0], path[i + 1][1])))
+                planner.observe(e, estimate, differs)
+            update_seconds = time.perf_counter() - began
+            iterations.append(
+                Iteration(
+                    index,
+                    plan.edges,
+                    plan.valves,
+                    plan.displacement,
+                    executed,
+                    sum(s is not None for _, s in seen),
+                    fresh,
+                    moved,
+                    failed,
+                    plan_seconds,
+                    update_seconds,
+                    tuple((p[0], p[1]) for p in path),
+                )
+            )
+            if progress is not None:
+                progress(_line(iterations[-1], len(seen)))
+            began = time.perf_counter()
+            try:
+                nxt = planner.plan(explored=False)
+            except SearchLimitError:
+                nxt, stopped = None, "search budget"
+            plan_seconds = time.perf_counter() - began
+            if nxt is None:
+                stopped = "no gait" if stopped != "search budget" else stopped
+                plan = None
+                break
+            plan = nxt
+        if plan is not None and not converged:
+            converged = all(e in measured for e in plan.edges)
+        if converged:
+            stopped = "converged"
+        final_executed = _verify(walker, model, plan, verify) if plan is not None else None
+    if plan is not None:
+        plan = planner.plan()  # the same gait (nothing changed), with the explored cells
+    return Learned(
+        first,
+        plan,
+        tuple(iterations),
+        converged,
+        final_executed,
+        verify,
+        stopped,
+        tuple(changed),
+    )
+
+
+def _verify(
+    walker: SimulatedWalker, model: TransitionModel, plan: GaitPlan, cycles: int
+) -> tuple[float, float, float] | None:
+    runs = []
+    for _ in range(cycles):
+        _, _, executed = run_cycle(walker, model, plan.edges)
+        if executed is None:
+            return None
+        runs.append(executed)
+    if not runs:
+        return None
+    n = len(runs)
+    return (sum(r[0] for r in runs) / n, sum(r[1] for r in runs) / n, sum(r[2] for r in runs) / n)
+
+
+def _line(it: Iteration, tried: int) -> str:
+    x, y, th = it.predicted
+    done = (
+        "broke off"
+        if it.executed is None
+        else (f"executed {it.executed[0]:.1f}, {it.executed[1]:.1f} mm, {it.executed[2]:.1f} deg")
+    )
+    return (
+        f"iteration {it.index}: {len(it.edges)} transitions predicted {x:.1f}, {y:.1f} mm, "
+        f"{th:.1f} deg; {done} ({it.completed}/{tried}); {it.newly_explored} newly explored, "
+        f"{it.changed} changed; plan {it.plan_seconds * 1000:.1f} ms, "
+        f"update {it.update_seconds * 1000:.1f} ms"
+    )
+
+
+class NoGaitError(GaitcError):
+    """The gait graph has no cycle to start learning from (the CLI exits with 1)."""
+
+
+def _no_gait(goal: Goal) -> Exception:
+    return NoGaitError(
+        f"no gait for goal {goal} in the gait graph",
+        None,
+        "loosen --tolerance or allow more --max-states",
+    )
+
+
+def learn_gait(
+    robot: Robot | str,
+    goal: Goal | str,
+    method: str = "lpa",
+    mismatch: Mismatch | None = None,
+    settings: Settings | None = None,
+    max_states: int = 10_000,
+    max_iterations: int = 40,
+    verify: int = 5,
+    progress: Callable[[str], None] | None = None,
+) -> Learned:
+    """Learn a gait on the simulated robot (``gaitc learn --backend sim``): the first plan
+    of :func:`~gaitsearch.api.plan_gait`'s graph, then the loop of :func:`learn`."""
+    from gaitsearch.api import first_planner
+
+    settings = settings or Settings()
+    planner, bot, plan = first_planner(robot, goal, method, settings, max_states)
+    walker = SimulatedWalker(
+        planner.model.copy(),
+        planner.start,
+        bot.valve_count,
+        tuple(leg.name for leg in bot.legs),
+        mismatch or Mismatch(seed=settings.seed),
+    )
+    return learn(planner, walker, plan, max_iterations, verify, progress=progress)

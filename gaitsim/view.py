@@ -1,0 +1,75 @@
+"""What a run reads of a controller, whichever its form: per-node values, successors, inputs.
+
+:class:`StrategyView` is the interface the simulator, the driver and the environments use;
+:class:`gaitsim.strategy.Strategy` (an explicit automaton) and
+:class:`gaitsim.symbolic_view.SymbolicStrategy` (BDDs, nodes found as a run goes) both
+provide it, sharing the look-ups of :class:`NodeReading`.
+"""
+
+from __future__ import annotations
+
+from typing import Protocol, TypeVar
+
+InputKey = tuple[int, ...]
+T_co = TypeVar("T_co", covariant=True)
+
+
+class Indexed(Protocol[T_co]):
+    """What a run reads of a controller's per-node data: item ``k`` of node ``k``."""
+
+    def __getitem__(self, k: int, /) -> T_co: ...
+
+
+class StrategyView(Protocol):
+    """A controller as a run sees it: explicit (:class:`Strategy`) or symbolic
+    (:class:`gaitsim.symbolic_view.SymbolicStrategy`, whose nodes are found as it runs)."""
+
+    @property
+    def variables(self) -> tuple[str, ...]: ...
+    @property
+    def n_inputs(self) -> int: ...
+    @property
+    def values(self) -> Indexed[tuple[int, ...]]: ...
+    @property
+    def successors(self) -> Indexed[tuple[int, ...]]: ...
+    @property
+    def ranks(self) -> Indexed[int]: ...
+    @property
+    def initial(self) -> tuple[int, ...]: ...
+    @property
+    def kind(self) -> str: ...
+    @property
+    def file(self) -> str: ...
+    @property
+    def inputs(self) -> tuple[str, ...]: ...
+    def __len__(self) -> int: ...
+    def input_key(self, node: int) -> InputKey: ...
+    def valuation(self, node: int) -> dict[str, int]: ...
+    def options(self, node: int) -> dict[InputKey, int]: ...
+    def initial_options(self) -> dict[InputKey, int]: ...
+
+
+class NodeReading:
+    """What both kinds of controller answer alike from their per-node values."""
+
+    variables: tuple[str, ...]
+    n_inputs: int
+    values: Indexed[tuple[int, ...]]
+    initial: tuple[int, ...]
+
+    @property
+    def inputs(self) -> tuple[str, ...]:
+        return self.variables[: self.n_inputs]
+
+    def input_key(self, node: int) -> InputKey:
+        return self.values[node][: self.n_inputs]
+
+    def valuation(self, node: int) -> dict[str, int]:
+        return dict(zip(self.variables, self.values[node], strict=True))
+
+    def initial_options(self) -> dict[InputKey, int]:
+        """The environment's possible first inputs → initial node (lowest id)."""
+        found: dict[InputKey, int] = {}
+        for node in self.initial:
+            found.setdefault(self.input_key(node), node)
+        return dict(sorted(found.items()))

@@ -1,0 +1,35 @@
+"""The strategy of a solved game kept as BDDs: a :class:`~gr1.bddfile.SymbolicController`.
+
+The per-goal move relations are those of the explicit extraction (:func:`solver.strategy.
+goal_strategies`, after Bloem et al., JCSS 78(3) 2012, Sect. 5): for goal j and every
+state and input, the moves of the first layer of the last Z round that covers the case.  A
+run that keeps to them reaches goal j, whatever the environment does within ρe and its
+goals; a runtime picks one move per step (:mod:`gaitsim.symbolic_view`).  Nothing is
+enumerated here, so the controller's size is that of its BDDs, not of its state space.
+"""
+
+from __future__ import annotations
+
+from gr1.bddfile import SymbolicController, node_table
+from solver.game import GameResult
+from solver.strategy import goal_strategies, spec_integers
+from solver.symbolic import SymbolicSpec
+
+
+def symbolic_controller(sym: SymbolicSpec, result: GameResult,
+                        semantics: str) -> SymbolicController:
+    """The symbolic controller of a realizable game (``result`` needs its layers)."""
+    strategies = goal_strategies(sym, result)
+    roots = {
+        "winning": result.winning,
+        "env_init": sym.env_init,
+        "sys_init": sym.sys_init,
+        "env_trans": sym.env_trans,
+        "goals": list(sym.sys_live),
+        "strategies": strategies,
+    }
+    order, nodes, refs = node_table(sym.bdd, roots)
+    return SymbolicController(
+        inputs=tuple(sym.input_bits), outputs=tuple(sym.output_bits), order=order,
+        nodes=nodes, roots=refs, integers=spec_integers(sym), semantics=semantics,
+        choice=tuple(sorted(sym.input_bits + sym.output_bits, key=sym.choice_rank.__getitem__)))
