@@ -139,8 +139,8 @@ def _sentence(step: Step, previous: Step | None) -> str:
         parts.append(f"hazard {previous.hazard} off")
     if step.failed:
         parts.append(f"{_legs(step.failed)} fail{'s' if len(step.failed) == 1 else ''}")
-    for leg in step.degraded:
-        parts.append(f"{leg} drops to level {step.level(leg)}")
+    for leg in step.degraded:  # marked on the move that wears it; the drop shows next step
+        parts.append(f"{leg} drops to level {step.level(leg) - 1}")
     if step.repaired:
         parts.append(f"{_legs(step.repaired)} repaired")
     if step.goals:

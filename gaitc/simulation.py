@@ -8,6 +8,7 @@ a :class:`gaitsim.run.Run` checked against every assumption and guarantee.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Final
@@ -54,9 +55,11 @@ class Session:
 
 def session(spec: Spec | str | Path,
             controller: Controller | SymbolicController | Synthesis | str | Path | None = None,
-            encoding: str | None = None, semantics: str = "default") -> Session | None:
+            encoding: str | None = None, semantics: str = "default",
+            prefer: str | Sequence[str] | None = None) -> Session | None:
     """Bind ``spec`` (a ``.gait`` :class:`Spec` or path) to ``controller`` (an automaton, a
-    :class:`Synthesis` or a controller file); synthesize one when ``controller`` is None.
+    :class:`Synthesis` or a controller file); synthesize one when ``controller`` is None
+    (with the move preferences ``prefer``, see :func:`gaitc.synthesize`).
 
     A path is loaded with ``encoding``, else the encoding the controller file records, else
     onehot. Returns None when no controller was given and the spec is unrealizable.
@@ -72,13 +75,23 @@ def session(spec: Spec | str | Path,
         strategy = load_strategy(controller, spec.gr1)
     else:
         if controller is None:
-            controller = synthesize(spec, semantics, verify=False)
+            controller = synthesize(spec, semantics, verify=False, prefer=prefer)
         automaton = controller.controller if isinstance(controller, Synthesis) else controller
         if automaton is None:
             return None
         strategy = view_of(automaton, spec.gr1, "<synthesized>")
     domain = Domain(spec.model, spec.encoding or "onehot")
     return Session(spec, spec.model, strategy, domain, Monitor(spec.gr1))
+
+
+def counter_session(spec: Spec | str | Path, semantics: str = "default") -> Session | None:
+    """``spec`` bound to its counter-strategy (the environment's winning strategy), for the
+    adversarial environment of an unrealizable spec; None when the spec is realizable."""
+    from gaitc.solving import counterstrategy
+
+    loaded = spec if isinstance(spec, Spec) else load(spec, "onehot")
+    found = counterstrategy(loaded, semantics, verify=False)
+    return None if found.controller is None else session(loaded, found, None, semantics)
 
 
 def environment(kind: str | Scenario | Environment, bound: Session, seed: int = 0
@@ -124,12 +137,14 @@ def _counter_play(bound: Session, env: object, steps: int | None, seed: int) -> 
 def simulate(spec: Spec | Session | str | Path,
              controller: Controller | SymbolicController | Synthesis | str | Path | None = None,
              env: str | Scenario | Environment = "random", steps: int | None = None,
-             seed: int = 0, semantics: str = "default") -> Run:
+             seed: int = 0, semantics: str = "default",
+             prefer: str | Sequence[str] | None = None) -> Run:
     """Run ``controller`` (synthesized when None) for ``spec`` against ``env`` for ``steps``
     steps (default 50, or the scenario's length) and check every step against the spec.
 
     A counter-strategy (``gaitc counter``) plays the environment itself; ``env`` then says
-    how the robot answers (``random`` or ``adversarial``).
+    how the robot answers (``random`` or ``adversarial``).  ``prefer``: the move
+    preferences of a controller synthesized here (:func:`gaitc.synthesize`).
 
     >>> import gaitc
     >>> run = gaitc.simulate("specs/patrol_2x2.gait", env="adversarial", steps=6)
@@ -139,7 +154,10 @@ def simulate(spec: Spec | Session | str | Path,
     from gaitsim.scenario import ScriptedEnvironment
     from gaitsim.simulator import simulate as run_simulation
 
-    bound = spec if isinstance(spec, Session) else session(spec, controller, None, semantics)
+    bound = spec if isinstance(spec, Session) else session(spec, controller, None, semantics,
+                                                           prefer)
+    if bound is None and env == "adversarial" and not isinstance(spec, Session):
+        bound = counter_session(spec, semantics)
     if bound is None:
         path = spec.path if isinstance(spec, Spec) else str(spec)
         raise UsageError(f"'{path}' is unrealizable: there is no controller to simulate")

@@ -8,6 +8,7 @@ decides and synthesizes; every automaton is then proved by the independent check
 from __future__ import annotations
 
 import time
+from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Final, Literal, get_args
@@ -23,6 +24,7 @@ from gr1.controller import (
     controller_to_json,
     read_controller_json,
 )
+from gr1.costs import Cost
 from gr1.spec import SEMANTICS, GR1Spec
 from solver.game import GameStats, Progress
 from solver.symbolic import Options
@@ -207,12 +209,19 @@ def synthesize(spec: Spec | GR1Spec, semantics: str = "default", solver: str = "
                timeout: float | None = None, slugs: str | None = None,
                options: Options | None = None, progress: Progress | None = None,
                verify: bool = True, form: str = "auto",
-               max_nodes: int | None = MAX_NODES) -> Synthesis:
+               max_nodes: int | None = MAX_NODES,
+               prefer: str | Sequence[str] | None = None) -> Synthesis:
     """A controller for ``spec``, proved by the independent verifier unless ``verify`` is
     False; ``.controller`` is None when the spec is unrealizable.
 
     ``form`` (:data:`solver.synthesis.FORMS`): ``explicit`` an automaton, ``symbolic`` BDDs
     (:mod:`gr1.bddfile`), ``auto`` an automaton unless it would pass ``max_nodes`` nodes.
+
+    ``prefer`` orders the move preferences of an explicit controller among the winning
+    moves (``solver.preferences``: ``hazard``, ``health``, ``goal``, ``switches``; a list or
+    comma-separated text): None is all four in that order, ``"none"`` the solver's first
+    move (the behaviour before them).  They apply to the embedded solver; ``hazard``,
+    ``health`` and ``switches`` need a ``.gait`` spec.
     """
     if form not in FORMS:
         raise UsageError(f"unknown controller form '{form}'; use one of {', '.join(FORMS)}")
@@ -220,7 +229,7 @@ def synthesize(spec: Spec | GR1Spec, semantics: str = "default", solver: str = "
         raise UsageError("symbolic controllers come from the embedded solver; drop --solver "
                          "slugs or --symbolic")
     return _solve(spec, "strategy", semantics, solver, timeout, slugs, options, progress, verify,
-                  form, max_nodes)
+                  form, max_nodes, prefer)
 
 
 def counterstrategy(spec: Spec | GR1Spec, semantics: str = "default",
@@ -236,18 +245,25 @@ def counterstrategy(spec: Spec | GR1Spec, semantics: str = "default",
 def _solve(spec: Spec | GR1Spec, kind: Kind, semantics: str, solver: str,
            timeout: float | None, slugs: str | None, options: Options | None,
            progress: Progress | None, check_it: bool, form: str,
-           max_nodes: int | None) -> Synthesis:
+           max_nodes: int | None, prefer: str | Sequence[str] | None = None) -> Synthesis:
+    from solver.preferences import preference_order
+
     gr1, started = as_gr1(spec), time.monotonic()
     _semantics(semantics)
+    order = preference_order(prefer)
     automaton: Controller | SymbolicController | None
     try:
         if _solver(solver) == "slugs":
+            if prefer is not None and order:
+                raise UsageError("move preferences need the embedded solver; use --prefer "
+                                 "none with --solver slugs")
             automaton = _slugs_automaton(gr1, kind, semantics, timeout, slugs)
         elif kind == "strategy":
             from solver import synthesis
 
             automaton = synthesis.synthesize_controller(gr1, semantics, timeout, progress,
-                                                        options, max_nodes, form)
+                                                        options, max_nodes, form, order,
+                                                        _costs(spec, order))
         else:
             from solver import synthesis
 
@@ -262,6 +278,15 @@ def _solve(spec: Spec | GR1Spec, kind: Kind, semantics: str, solver: str,
         if check_it:
             report = verify(spec, automaton, semantics)
     return Synthesis(spec, kind, automaton, report, seconds, semantics, solver)
+
+
+def _costs(spec: Spec | GR1Spec, order: Sequence[str]) -> tuple[Cost, ...]:
+    """The robot model's move costs (:mod:`ltlcompiler.costs`) when ``order`` needs them."""
+    if not isinstance(spec, Spec) or spec.model is None or set(order) <= {"goal"}:
+        return ()
+    from ltlcompiler.costs import model_costs
+
+    return model_costs(spec.model, spec.encoding or "onehot")
 
 
 def _slugs_automaton(gr1: GR1Spec, kind: Kind, semantics: str, timeout: float | None,

@@ -7,11 +7,14 @@ goes through pydot, rendered by Graphviz's ``dot`` when it is installed, else ke
 from __future__ import annotations
 
 import shutil
+import subprocess
+from collections import deque
 from pathlib import Path
 
 import numpy as np
 import pydot
 
+from diagnostics import GaitcError
 from gaitgraph.cycles import GaitCycle
 from gaitgraph.graph import GaitGraph, PoseKey
 from gaitgraph.kinematics import Array, forward, leg_polyline, valve_int
@@ -99,29 +102,93 @@ def pose_svg(robot: Robot, key: PoseKey, title: str = "") -> str:
     return "\n".join(out) + "\n"
 
 
+#: The most poses a gait-graph drawing shows (beyond it Graphviz takes minutes and the
+#: picture is a hairball); and how long Graphviz may take for one picture.
+MAX_DRAWN = 40
+DOT_SECONDS = 20.0
+
+
+def _adjacent(graph: GaitGraph) -> dict[int, list[int]]:
+    out: dict[int, list[int]] = {}
+    for a, b in zip(graph.edges.src, graph.edges.dst, strict=False):
+        out.setdefault(int(a), []).append(int(b))
+        out.setdefault(int(b), []).append(int(a))
+    return out
+
+
+def drawn_poses(graph: GaitGraph, gait: GaitCycle | None, window: int | None,
+                cap: int = MAX_DRAWN) -> tuple[list[int], str]:
+    """The poses to draw and a note on what was left out: the gait and its ``window``-edge
+    neighbourhood, else the poses nearest the first one; breadth-first, at most ``cap``."""
+    if len(graph) == 0:
+        return [], ""
+    adjacent = _adjacent(graph)
+    seeds = list(dict.fromkeys(gait.poses)) if gait is not None else [0]
+    depth = {n: 0 for n in seeds}
+    order = list(seeds)
+    queue = deque(seeds)
+    limit = window if gait is not None and window is not None else len(graph)
+    while queue and len(order) < cap:
+        here = queue.popleft()
+        if depth[here] >= limit:
+            continue
+        for there in sorted(adjacent.get(here, ())):
+            if there not in depth and len(order) < cap:
+                depth[there] = depth[here] + 1
+                order.append(there)
+                queue.append(there)
+    whole = len(graph) if gait is None or window is None else None
+    note = ""
+    if whole is not None and len(order) < whole:
+        note = (f"drawing {len(order)} of {whole} poses (those nearest pose 0"
+                f"{'' if gait is None else ' and the gait'}; at most {cap})")
+    elif len(order) >= cap:
+        note = f"drawing {cap} poses of the gait's neighbourhood (at most {cap})"
+    return order, note
+
+
+def _drawn_edges(graph: GaitGraph, nodes: set[int], gait_edges: set[tuple[int, int]],
+                 cap: int = 2 * MAX_DRAWN) -> list[int]:
+    """The transitions to draw: the gait's, then one per pose pair among the drawn poses,
+    first those linking a pose to a new one, at most ``cap`` in all (the rest is noise)."""
+    first: dict[tuple[int, int], int] = {}
+    for i, (a, b) in enumerate(zip(graph.edges.src, graph.edges.dst, strict=False)):
+        key = (int(a), int(b))
+        if key[0] in nodes and key[1] in nodes and key[0] != key[1]:
+            first.setdefault(key, i)
+    chosen = [first[k] for k in sorted(first) if k in gait_edges]
+    linked = {p for k in sorted(first) if k in gait_edges for p in k}
+    rest = [k for k in sorted(first) if k not in gait_edges]
+    for key in rest:  # a spanning forest first: every drawn pose gets an edge
+        if len(chosen) >= cap:
+            break
+        if key[0] not in linked or key[1] not in linked:
+            chosen.append(first[key])
+            linked.update(key)
+    taken = set(chosen)
+    for key in rest:
+        if len(chosen) >= cap:
+            break
+        if first[key] not in taken:
+            chosen.append(first[key])
+            taken.add(first[key])
+    return sorted(chosen)
+
+
 def graph_dot(graph: GaitGraph, gait: GaitCycle | None = None, window: int | None = 1) -> pydot.Dot:
-    """The gait graph, or with ``gait`` and ``window`` only poses within ``window`` edges of
-    the gait; the gait's poses and transitions are drawn in red."""
-    nodes = set(range(len(graph)))
+    """The gait graph around ``gait`` (poses within ``window`` edges of it), or without a gait
+    the poses nearest the first; at most :data:`MAX_DRAWN` poses (see :func:`drawn_poses`);
+    the gait's poses and transitions are drawn in red."""
+    order, note = drawn_poses(graph, gait, window)
+    nodes = set(order)
     on_gait = set(gait.poses) if gait is not None else set()
     gait_edges = set()
     if gait is not None:
         gait_edges = {(m.source, m.target) for m in gait.motions}
-        if window is not None:
-            nodes = set(on_gait)
-            for _ in range(window):
-                near = {
-                    int(b)
-                    for a, b in zip(graph.edges.src, graph.edges.dst, strict=False)
-                    if int(a) in nodes
-                }
-                near |= {
-                    int(a)
-                    for a, b in zip(graph.edges.src, graph.edges.dst, strict=False)
-                    if int(b) in nodes
-                }
-                nodes |= near
     dot = pydot.Dot("gait_graph", graph_type="digraph", rankdir="LR")
+    if note:
+        dot.set("label", f'"{note}"')
+        dot.set("labelloc", "t")
     for n in sorted(nodes):
         valves, contacts = graph.key(n)
         color = "red" if n in on_gait else "black"
@@ -134,7 +201,7 @@ def graph_dot(graph: GaitGraph, gait: GaitCycle | None = None, window: int | Non
                 fontname="monospace",
             )
         )
-    for i in range(len(graph.edges)):
+    for i in _drawn_edges(graph, nodes, gait_edges):
         m = graph.motion(i)
         if m.source in nodes and m.target in nodes:
             red = (m.source, m.target) in gait_edges
@@ -159,13 +226,36 @@ def write_drawings(
     written = []
     best = gaits[0] if gaits and all(p < len(graph) for p in gaits[0].poses) else None
     dot = graph_dot(graph, best, 1 if best is not None else None)
-    if shutil.which("dot") is not None:
-        path = out / "gait-graph.svg"
-        dot.write(str(path), format="svg")
-    else:
-        path = out / "gait-graph.dot"
-        path.write_text(dot.to_string(), encoding="utf-8")
+    text = dot.to_string()
+    path = out / "gait-graph.dot"
+    path.write_text(text, encoding="utf-8")
     written.append(str(path))
+    exe = shutil.which("dot")
+    if exe is not None:
+        for fmt in ("svg", "png"):
+            picture = out / f"gait-graph.{fmt}"
+            _render(exe, text, fmt, picture)
+            written.append(str(picture))
+    return written + _pose_drawings(robot, gaits, out)
+
+
+def _render(exe: str, text: str, fmt: str, path: Path) -> None:
+    """Run Graphviz on ``text`` with a time limit; a clear error when it is exceeded."""
+    try:
+        result = subprocess.run([exe, f"-T{fmt}", "-o", str(path)], input=text.encode("utf-8"),
+                                capture_output=True, check=False, timeout=DOT_SECONDS)
+    except subprocess.TimeoutExpired:
+        raise GaitcError(f"Graphviz took more than {DOT_SECONDS:g} s to draw {path.name}; "
+                         f"the graph is kept as {path.with_suffix('.dot').name}",
+                         hint="draw it yourself with 'dot', or search with a smaller "
+                         "--max-states") from None
+    if result.returncode != 0:
+        message = result.stderr.decode("utf-8", "replace").strip().splitlines()
+        raise GaitcError("Graphviz failed: " + (message[0] if message else "no message"))
+
+
+def _pose_drawings(robot: Robot, gaits: list[GaitCycle], out: Path) -> list[str]:
+    written = []
     for rank, gait in enumerate(gaits, 1):
         for i, key in enumerate(gait.keys):
             p = out / f"gait{rank}-pose{i}.svg"

@@ -15,7 +15,7 @@ from gaitsim.domain import Domain, Goal, State
 from gaitsim.environments import Environment, Move, Situation
 from gaitsim.monitor import Monitor
 from gaitsim.simulator import Simulator
-from gaitsim.strategy import StrategyView
+from gaitsim.strategy import Strategy, StrategyView
 
 
 class ScenarioFinished(HardwareError):
@@ -68,7 +68,8 @@ class SimulatedRobot(Backend):
         situation = Situation(
             self._step, node, here, moves, self.domain, self._next_goal(), self.view.monitor,
             None if node is None else strategy.values[node],
-            tuple(strategy.values[m.node] for m in moves))
+            tuple(strategy.values[m.node] for m in moves),
+            strategy if isinstance(strategy, Strategy) else None)
         request = self.environment.choose(situation)
         if request is None:
             raise ScenarioFinished("the simulated environment has no more steps",

@@ -80,16 +80,18 @@ def path_run(strategy: Strategy, domain: Domain, monitor: Monitor, path: Sequenc
     previous: Step | None = None
     for index, node in enumerate(path):
         values = strategy.values[node]
-        if previous is None:
+        before = None if previous is None else strategy.values[previous.node]
+        if before is None:
             violations.extend(monitor.check_initial(values))
         else:
-            check = monitor.check_step(strategy.values[previous.node], values)
+            check = monitor.check_step(before, values)
             violations.extend(monitor.violation(index, "env_trans", i) for i in check.env_failed)
             violations.extend(monitor.violation(index, "sys_trans", i) for i in check.sys_failed)
-            env_live.update(check.env_live)
-            sys_live.update(check.sys_live)
+        held_env, held_sys = monitor.liveness_at(before, values)
+        env_live.update(held_env)
+        sys_live.update(held_sys)
         previous = sim.step(index, node, previous)
-        run.steps.append(previous)
+        run.add(previous)
     summary = sim.summarize(run, violations, env_live, sys_live)
     if stopped is not None:
         from dataclasses import replace

@@ -12,9 +12,10 @@ import random
 from abc import ABC, abstractmethod
 from dataclasses import dataclass
 
+from gaitsim.adversary import DISCOUNT, harm_table
 from gaitsim.domain import Domain, Goal, State
 from gaitsim.monitor import Monitor
-from gaitsim.strategy import InputKey
+from gaitsim.strategy import InputKey, Strategy
 from gr1.formula import has_primes
 
 INFINITY = 10**6
@@ -42,6 +43,7 @@ class Situation:
     monitor: Monitor | None = None
     values: tuple[int, ...] | None = None  # spec-level values of ``node``
     successor_values: tuple[tuple[int, ...], ...] = ()  # of each move's node
+    strategy: Strategy | None = None  # the whole controller, for environments that plan
 
 
 @dataclass(frozen=True)
@@ -96,22 +98,37 @@ def nearest_hazard(domain: Domain, region: str) -> str | None:
 
 
 class AdversarialEnvironment(Environment):
-    """Hostile within the assumptions, greedily, one step ahead.
+    """Hostile within the assumptions, planning over the whole controller.
 
-    Among the inputs the controller accepts it prefers, in this order: (1) the most health
-    levels lost (every leg in use degrades, or fails in an active hazard); (2) the hazard set
+    Given the controller (``Situation.strategy``), it takes the move with the most harm it
+    can force from there (:func:`gaitsim.adversary.harm_table`: health levels lost over the
+    next steps, discounted, and distance from the next goal).  Ties, and every choice when
+    it cannot see the controller, go to the one-step order: (1) the most health levels
+    lost (every leg in use degrades, or fails in an active hazard); (2) the hazard set
     nearest the robot active; (3) the controller's answer farthest (in region transitions)
-    from the goal the robot is heading for; ties go to the smallest input valuation.
+    from the goal the robot is heading for; then the smallest input valuation.
     It stays fair: when a □◇ assumption has waited ``patience`` steps, only moves that
     satisfy it are considered (the assumptions' liveness part, in turn).
     """
 
     name = "adversarial"
 
-    def __init__(self, patience: int = 3) -> None:
+    def __init__(self, patience: int = 3, plan: bool = True) -> None:
         self.patience = patience
+        self.plan = plan  # False: the one-step order alone
         self.pending = 0
         self.waiting = 0
+        self._harm: tuple[Strategy, list[float]] | None = None
+
+    def _harm_of(self, situation: Situation) -> list[float] | None:
+        strategy = situation.strategy
+        if strategy is None or not self.plan:
+            return None
+        if self._harm is None or self._harm[0] is not strategy:
+            domain = situation.domain
+            states = [domain.decode(strategy.valuation(n)) for n in range(len(strategy))]
+            self._harm = (strategy, harm_table(strategy, domain, states))
+        return self._harm[1]
 
     def _fair(self, situation: Situation) -> tuple[tuple[Move, ...], list[bool]]:
         monitor, here = situation.monitor, situation.values
@@ -144,13 +161,15 @@ class AdversarialEnvironment(Environment):
         region = here.region if here is not None else moves[0].state.region
         wanted = nearest_hazard(domain, region)
         goal_regions = situation.next_goal.regions if situation.next_goal is not None else ()
-        best: tuple[int, int, int] | None = None
+        harm = self._harm_of(situation)
+        best: tuple[float, int, int, int] | None = None
         chosen = moves[0]
         for move in moves:
             lost = levels_lost(here, move.state) if here is not None else 0
             hazard = int(wanted is not None and move.state.hazard == wanted)
             far = domain.region_distance(move.state.region, goal_regions) if goal_regions else 0
-            score = (lost, hazard, min(far, INFINITY))
+            planned = 0.0 if harm is None else round(lost + DISCOUNT * harm[move.node], 6)
+            score = (planned, lost, hazard, min(far, INFINITY))
             if best is None or score > best:
                 best, chosen = score, move
         return chosen

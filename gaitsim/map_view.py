@@ -13,6 +13,7 @@ import pydot
 
 from gaitsim.domain import model_goals
 from gaitsim.graphics import Picture, html
+from gaitsim.placement import positions
 from ltlcompiler.model import NO_GAIT, Model
 
 if TYPE_CHECKING:
@@ -28,24 +29,8 @@ DEFAULT_MAX_STEPS = 30
 
 
 def _positions(model: Model) -> dict[str, tuple[float, float]]:
-    """Region centres in inches: grid coordinates, else a seeded spring layout of τ."""
-    regions = [r.name for r in model.regions]
-    if all(r.row is not None and r.col is not None for r in model.regions):
-        return {r.name: (float(r.col or 0) * CELL, -float(r.row or 0) * CELL)
-                for r in model.regions}
-    import networkx as nx
-
-    graph = nx.Graph()
-    graph.add_nodes_from(regions)
-    graph.add_edges_from((t.source, t.target) for t in model.transitions
-                         if t.source != t.target)
-    fixed = {r.name: (float(r.col or 0), -float(r.row or 0)) for r in model.regions
-             if r.row is not None and r.col is not None}
-    layout = nx.spring_layout(graph, pos=fixed or None, fixed=list(fixed) or None, seed=7,
-                              k=1.2 if fixed else None, scale=None if fixed else 1.0)
-    span = 1.0 if fixed else max(1.0, len(regions) ** 0.5)
-    return {name: (round(float(layout[name][0]) * span * CELL, 3),
-                   round(float(layout[name][1]) * span * CELL, 3)) for name in regions}
+    """Region centres in inches (:func:`gaitsim.placement.positions`)."""
+    return positions(model, CELL)
 
 
 def _graph(name: str) -> pydot.Dot:
@@ -116,7 +101,7 @@ def _timeline(steps: Sequence[Step], legs: Sequence[str], full: dict[str, int],
             level = s.level(leg)
             colour = HEALTHY if level >= full.get(leg, level) else (
                 FAILED if level == 1 else DEGRADED)
-            text = "✗" if leg in s.failed else str(level)
+            text = "✗" if leg in s.failed else f"{level}↓" if leg in s.degraded else str(level)
             border = f' COLOR="{IN_USE}" BORDER="3"' if leg in s.legs_used else ' BORDER="1"'
             cells.append(f'<TD BGCOLOR="{colour}"{border} WIDTH="22">{text}</TD>')
         rows.append(f'<TR><TD ALIGN="LEFT"><B>{html(leg)}</B></TD>{"".join(cells)}</TR>')
@@ -144,28 +129,58 @@ def _legend(model: Model, with_run: bool) -> str:
     if with_run:
         rows += [f'<TR><TD BGCOLOR="{HEALTHY}"> </TD><TD ALIGN="LEFT">healthy leg</TD></TR>',
                  f'<TR><TD BGCOLOR="{DEGRADED}"> </TD><TD ALIGN="LEFT">degraded</TD></TR>',
-                 f'<TR><TD BGCOLOR="{FAILED}">✗</TD><TD ALIGN="LEFT">failed (✗: this step)'
-                 "</TD></TR>",
+                 f'<TR><TD BGCOLOR="{FAILED}"> </TD><TD ALIGN="LEFT">failed</TD></TR>',
+                 '<TR><TD>✗ ↓</TD><TD ALIGN="LEFT">this step\'s gait fails / degrades the '
+                 "leg (its level drops on the next step)</TD></TR>",
                  f'<TR><TD COLOR="{IN_USE}" BORDER="3"> </TD><TD ALIGN="LEFT">leg in use'
                  "</TD></TR>",
                  f'<TR><TD><FONT COLOR="{PATH_FAIL}">→</FONT></TD><TD ALIGN="LEFT">'
-                 "step with a leg failing (↓ degrading)</TD></TR>"]
+                 "move whose gait fails a leg (↓ degrades one)</TD></TR>"]
     return ('<<TABLE BORDER="1" COLOR="#bbbbbb" CELLBORDER="0" CELLSPACING="2">'
             + "".join(rows) + "</TABLE>>")
 
 
-def _path(graph: pydot.Dot, steps: Sequence[Step]) -> None:
-    """Edges for the run: one per directed region pair, labelled with its step numbers."""
+def _path(graph: pydot.Dot, steps: Sequence[Step]) -> list[tuple[str, str, str, str]]:
+    """Edges for the run: one per directed region pair, labelled with its step numbers.
+
+    The edge into step t is the move made with step t's gait, so it carries the marks of
+    the legs that gait wears out (their level drops at step t + 1, see Run.add).  A busy
+    edge (more than two steps) and a pair travelled both ways, whose labels would lie on
+    top of each other, get a letter at the arrow head instead; the letters and their
+    steps are returned as rows (key, source, target, steps) for a side table."""
     moves: dict[tuple[str, str], list[Step]] = {}
     for before, after in pairwise(steps):
         moves.setdefault((before.region, after.region), []).append(after)
+    keyed: list[tuple[str, str, str, str]] = []
     for (src, dst), taken in moves.items():
         words = [f"{s.index}{'✗' if s.failed else '↓' if s.degraded else ''}" for s in taken]
-        lines = [", ".join(words[i:i + 4]) for i in range(0, len(words), 4)]
         colour = PATH_FAIL if any(s.failed for s in taken) else (
             PATH_DEGRADE if any(s.degraded for s in taken) else PATH)
-        graph.add_edge(pydot.Edge(src, dst, label="\n".join(lines), color=colour,
-                                  fontcolor=colour, penwidth="2.2", arrowsize="0.8"))
+        extra: dict[str, str] = {}
+        if len(taken) > 2 or (src != dst and (dst, src) in moves):
+            key = _key(len(keyed))
+            keyed.append((key, src, dst, ", ".join(words)))
+            extra = {"headlabel": key, "labeldistance": "1.6", "labelfontsize": "10"}
+        else:
+            extra = {"label": ", ".join(words)}
+        edge = pydot.Edge(src, dst, color=colour, fontcolor=colour, penwidth="2.2",
+                          arrowsize="0.8")
+        for name, value in extra.items():
+            edge.set(name, value)
+        graph.add_edge(edge)
+    return keyed
+
+
+def _key(index: int) -> str:
+    letters = "ABCDEFGHIJKLMNOPQRSTUVWXYZ"
+    return letters[index % 26] * (1 + index // 26)
+
+
+def _moves_table(rows: Sequence[tuple[str, str, str, str]]) -> str:
+    cells = "".join(f'<TR><TD><B>{html(k)}</B></TD><TD ALIGN="LEFT">{html(a)} → {html(b)}'
+                    f'</TD><TD ALIGN="LEFT">{html(steps)}</TD></TR>' for k, a, b, steps in rows)
+    return ('<<TABLE BORDER="1" COLOR="#bbbbbb" CELLBORDER="0" CELLSPACING="2">'
+            '<TR><TD COLSPAN="3"><B>moves (steps)</B></TD></TR>' + cells + "</TABLE>>")
 
 
 def map_view(model: Model, run: Run | None = None,
@@ -187,7 +202,12 @@ def map_view(model: Model, run: Run | None = None,
     notes: list[str] = []
     x0, x1, y0, y1 = _bounds(pos)
     if steps:
-        _path(graph, steps)
+        keyed = _path(graph, steps)
+        if keyed:
+            graph.add_node(pydot.Node(
+                "moves", shape="plaintext", label=_moves_table(keyed),
+                pos=f"{x1 + 0.9 + _table_width(steps) / 2:.2f},"
+                    f"{y0 - 0.9 - 0.1 * len(keyed):.2f}!"))
         full = {leg.name: leg.health for leg in model.legs}
         colours = {h.name: HAZARD_COLOURS[i % len(HAZARD_COLOURS)][0]
                    for i, h in enumerate(model.hazards)}

@@ -33,6 +33,7 @@ from gr1.formula import (
     Var,
     Xor,
     atoms,
+    has_primes,
 )
 from gr1.spec import SECTIONS, Clause, GR1Spec
 from gr1.traversal import Node, fold, height
@@ -208,6 +209,8 @@ class Monitor:
                 compile_formula(c.formula, self.variables) for c in clauses
             )
         self._step_cache: dict[tuple[Values, Values], StepCheck] = {}
+        self._primed = {section: tuple(has_primes(c.formula) for c in spec.section(section))
+                        for section in ("env_liveness", "sys_liveness")}
 
     def values(self, valuation: Mapping[str, int]) -> Values:
         """Lay out a name → value mapping in the monitor's variable order (missing: 0)."""
@@ -247,6 +250,25 @@ class Monitor:
         )
         self._step_cache[key] = result
         return result
+
+    def liveness_at(self, previous: Values | None, state: Values
+                    ) -> tuple[tuple[int, ...], tuple[int, ...]]:
+        """The □◇ assumptions and guarantees that hold at ``state`` (indices).
+
+        The one reading of "held on a step" that the run summary uses everywhere: a clause
+        without next-state variables holds at a state when it is true there; a clause with
+        them holds at a state when it is true on the move into it (at the first state, on
+        the state itself), as the goals of :meth:`gaitsim.domain.Domain.goals_reached`.
+        """
+        before = state if previous is None else previous
+        moved, still = before + state, state + state
+
+        def holding(section: str) -> tuple[int, ...]:
+            primed = self._primed[section]
+            return tuple(i for i, fn in enumerate(self._compiled[section])
+                         if fn(moved if primed[i] else still))
+
+        return holding("env_liveness"), holding("sys_liveness")
 
     def failed_assumptions(self, current: Values, nxt_inputs: Mapping[str, int]) -> list[int]:
         """Indices of ``env_trans`` clauses that forbid the environment's next ``nxt_inputs``.

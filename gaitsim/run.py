@@ -10,7 +10,7 @@ import csv
 import io
 import json
 from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -23,7 +23,14 @@ if TYPE_CHECKING:
 
 @dataclass(frozen=True)
 class Step:
-    """One state of a run; ``degraded``/``failed``/``repaired`` compare with the previous step."""
+    """One state of a run.
+
+    ``degraded``/``failed`` belong to the move into this state and its gait: the legs that
+    this step's gait wears out (Mealy turn order: the environment lowers their level on the
+    next step, eq. 3.5, or fails them there when this step entered an active hazard region,
+    eq. 3.9), so the mark sits on the move that caused it.  ``repaired`` lists the legs whose
+    level went up on the step into this state (a cache, eq. 3.6).
+    """
 
     index: int
     node: int
@@ -33,8 +40,8 @@ class Step:
     health: tuple[tuple[str, int], ...]  # (leg, level) in leg order; 1 = failed
     hazard: str | None
     goals: tuple[str, ...] = ()  # labels of the goals this state satisfies
-    degraded: tuple[str, ...] = ()  # legs that lost a level but still work
-    failed: tuple[str, ...] = ()  # legs that reached level 1 on the step into this state
+    degraded: tuple[str, ...] = ()  # legs this step's gait makes lose a level (still working)
+    failed: tuple[str, ...] = ()  # legs this step's gait makes fail (level 1 on the next step)
     repaired: tuple[str, ...] = ()  # legs whose level went up (cache)
     values: tuple[tuple[str, int], ...] = ()  # spec-level variable values, sorted by name
 
@@ -79,6 +86,18 @@ class Summary:
         }
 
 
+def wear(before: Step, after: Step) -> tuple[tuple[str, ...], tuple[str, ...]]:
+    """The legs whose level drops from ``before`` to ``after``: (degraded, failed)."""
+    now = dict(after.health)
+    degraded: list[str] = []
+    failed: list[str] = []
+    for leg, level in before.health:
+        new = now.get(leg, level)
+        if new < level:
+            (failed if new == 1 else degraded).append(leg)
+    return tuple(degraded), tuple(failed)
+
+
 @dataclass
 class Run:
     """The steps of a simulation, its summary, and the error that stopped it (if any)."""
@@ -107,8 +126,16 @@ class Run:
 
         return run_view(self).svg()
 
+    def add(self, step: Step) -> None:
+        """Append ``step``; the level drops it shows are put on the step before it (the
+        move whose gait caused them)."""
+        if self.steps:
+            degraded, failed = wear(self.steps[-1], step)
+            self.steps[-1] = replace(self.steps[-1], degraded=degraded, failed=failed)
+        self.steps.append(step)
+
     def header(self) -> dict[str, Any]:
-        return {"kind": "run", "format": 1, "legs": list(self.legs),
+        return {"kind": "run", "format": 2, "legs": list(self.legs),
                 "environment": self.environment, "spec": self.spec_file}
 
 

@@ -18,7 +18,7 @@ from gaitsim.domain import Domain, State
 from gaitsim.environments import Environment, Move, Request, Situation
 from gaitsim.monitor import Monitor, Violation
 from gaitsim.run import Run, Step, Summary
-from gaitsim.strategy import InputKey, StrategyView
+from gaitsim.strategy import InputKey, Strategy, StrategyView
 
 MAX_REPORTED = 20
 
@@ -98,21 +98,15 @@ class Simulator:
 
     def _new_step(self, node: int, previous: Step | None) -> Step:
         st = self.state(node)
-        degraded: list[str] = []
-        failed: list[str] = []
         repaired: list[str] = []
         if previous is not None:
             before = dict(previous.health)
-            for leg, level in st.health:
-                old = before.get(leg, level)
-                if level < old:
-                    (failed if level == 1 else degraded).append(leg)
-                elif level > old:
-                    repaired.append(leg)
+            repaired = [leg for leg, level in st.health if level > before.get(leg, level)]
         prev_state = None if previous is None else self.state(previous.node)
+        # degraded/failed are set on this step once the next one is known (Run.add)
         return Step(0, node, st.region, st.gait, self.domain.legs_used(st.gait), st.health,
-                    st.hazard, self.domain.goals_reached(st, prev_state), tuple(degraded),
-                    tuple(failed), tuple(repaired), self._named(node))
+                    st.hazard, self.domain.goals_reached(st, prev_state), (), (),
+                    tuple(repaired), self._named(node))
 
     def _input_names(self, inputs: InputKey) -> dict[str, int]:
         return dict(zip(self.strategy.inputs, inputs, strict=True))
@@ -158,7 +152,8 @@ class Simulator:
             situation = Situation(
                 index, node, here, moves, self.domain, goals[goal_index] if goals else None,
                 self.monitor, None if node is None else self.strategy.values[node],
-                self._successor_values(node, moves))
+                self._successor_values(node, moves),
+                self.strategy if isinstance(self.strategy, Strategy) else None)
             try:
                 if node is not None and not moves:
                     raise self._refuse(index, node, Request(()))
@@ -172,18 +167,20 @@ class Simulator:
                 run.error = err
                 break
             values = self.strategy.values[chosen.node]
-            if node is None:
+            before = None if node is None else self.strategy.values[node]
+            if before is None:
                 violations.extend(self.monitor.check_initial(values))
             else:
-                check = self.monitor.check_step(self.strategy.values[node], values)
+                check = self.monitor.check_step(before, values)
                 for i in check.env_failed:
                     violations.append(self.monitor.violation(index, "env_trans", i))
                 for i in check.sys_failed:
                     violations.append(self.monitor.violation(index, "sys_trans", i))
-                env_live.update(check.env_live)
-                sys_live.update(check.sys_live)
+            held_env, held_sys = self.monitor.liveness_at(before, values)
+            env_live.update(held_env)
+            sys_live.update(held_sys)
             step = self._step(index, chosen.node, previous)
-            run.steps.append(step)
+            run.add(step)
             for _ in goals:
                 if goals[goal_index].label not in step.goals:
                     break

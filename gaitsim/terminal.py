@@ -40,12 +40,15 @@ def _health_cell(step: Step, leg: str, full: int, style: _Style) -> str:
     text = f"{level}{'*' if used else ' '}"
     if leg in step.failed:
         text = f"{level}!"
+    elif leg in step.degraded:
+        text = f"{level}↓"
     return style(text, kind, *(("bold",) if used else ()))
 
 
 def step_table(run: Run, full: dict[str, int] | None = None, colour: bool = False,
                steps: Sequence[Step] | None = None) -> str:
-    """The steps of ``run`` as an aligned table; ``*`` marks legs in use, ``!`` a new failure."""
+    """The steps of ``run`` as an aligned table; ``*`` marks legs in use, ``!`` (``↓``) a leg
+    that this step's gait fails (degrades): its level drops on the next row."""
     style = _Style(colour)
     rows = list(run.steps if steps is None else steps)
     legs = list(run.legs)

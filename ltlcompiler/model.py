@@ -79,6 +79,8 @@ class Transition:
     target: str
     gaits: tuple[str, ...]
     span: Span | None = field(default=None, compare=False, repr=False)
+    # the compass direction of an explicit ``edge A -> B north`` (for drawing the map only)
+    direction: str | None = field(default=None, compare=False, repr=False)
 
 
 @dataclass(frozen=True)

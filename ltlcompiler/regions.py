@@ -135,11 +135,15 @@ class _Moves:
     def __init__(self) -> None:
         self.gaits: dict[tuple[str, str], set[str]] = {}
         self.spans: dict[tuple[str, str], Span | None] = {}
+        self.directions: dict[tuple[str, str], str] = {}  # compass direction of an edge
 
-    def add(self, source: str, target: str, gait: str, span: Span | None) -> None:
+    def add(self, source: str, target: str, gait: str, span: Span | None,
+            direction: str | None = None) -> None:
         key = (source, target)
         self.gaits.setdefault(key, set()).add(gait)
         self.spans.setdefault(key, span)
+        if direction is not None:
+            self.directions.setdefault(key, direction)
 
 
 def build_transitions(
@@ -173,7 +177,7 @@ def build_transitions(
     keys = sorted(moves.gaits, key=lambda k: (index[k[0]], index[k[1]]))
     return tuple(
         Transition(src, dst, tuple(sorted(moves.gaits[(src, dst)], key=order.__getitem__)),
-                   span=moves.spans[(src, dst)])
+                   span=moves.spans[(src, dst)], direction=moves.directions.get((src, dst)))
         for src, dst in keys
     )
 
@@ -241,7 +245,7 @@ def _edge_moves(
             else:
                 names = [_edge_gait(g, ns) for g in edge.gaits]
             for gait in names:
-                moves.add(a, b, gait, edge.span)
+                moves.add(a, b, gait, edge.span, direction)
 
 
 def _edge_gait(name: s.Name, ns: Namespace) -> str:

@@ -94,6 +94,7 @@ class GameResult:
     stats: GameStats
     care: BDDNode  # ``winning`` is exact on these states (all states without a care set)
     decided_early: bool = False  # stopped once the initial states were lost (check only)
+    rings: list[list[BDDNode]] = field(default_factory=list)  # with layers: Y_0 ⊆ Y_1 ⊆ ...
 
 
 class Game:
@@ -138,6 +139,7 @@ class Game:
         while True:
             st.z_iterations += 1
             layers = [[] for _ in range(n_goals)]
+            rings: list[list[BDDNode]] = [[] for _ in range(n_goals)]
             z_primed = sym.prime(z)
             next_z = bdd.true
             for j in range(n_goals):
@@ -170,6 +172,8 @@ class Game:
                         if keep_layers:
                             layers[j].append(paths)
                     first_middle = False
+                    if keep_layers:
+                        rings[j].append(good)
                     if good == y:
                         break
                     y = good
@@ -183,15 +187,16 @@ class Game:
             z = next_z
             if stop_if_lost is not None and not self.initially_winning(z, stop_if_lost):
                 return self._result(z, layers, decided_early=True)
-        return self._result(z, layers, decided_early=False)
+        return self._result(z, layers, decided_early=False, rings=rings)
 
-    def _result(self, z: BDDNode, layers: list[list[BDDNode]], decided_early: bool) -> GameResult:
+    def _result(self, z: BDDNode, layers: list[list[BDDNode]], decided_early: bool,
+                rings: list[list[BDDNode]] | None = None) -> GameResult:
         self.stats.winning_nodes = z.dag_size
         with warnings.catch_warnings():  # dd warns that the unrelated 'mem' field changed unit
             warnings.simplefilter("ignore")
             peak = int(self.sym.bdd.statistics()["peak_live_nodes"])
         self.stats.peak_nodes = max(self.stats.peak_nodes, peak)
-        return GameResult(z, layers, self.stats, self.sym.care, decided_early)
+        return GameResult(z, layers, self.stats, self.sym.care, decided_early, rings or [])
 
     def _track(self, message: str) -> None:
         nodes = self.sym.node_count()

@@ -4,20 +4,24 @@ Follows the construction of Bloem et al. (JCSS 2012, Sect. 5) as SLUGS implement
 (``extensionExtractExplicitStrategy``): per system goal j, prefer transitions that reach the
 goal, else a lower Y ring, else stay in the X layer of an environment goal; the goal index
 advances past every goal the chosen transition satisfies.  Nodes are (state, goal) pairs,
-explored breadth-first from the initial states; every choice is the smallest assignment
-in the BDD's variable order.
+explored breadth-first from the initial states; among the allowed moves the preferences of
+:mod:`solver.preferences` choose, then the smallest assignment in the BDD's variable order.
 """
 
 from __future__ import annotations
 
 from collections import deque
 from collections.abc import Iterable, Sequence
+from typing import TYPE_CHECKING
 
 from diagnostics import SolverError
 from gr1.bddwalk import State, all_assignments, first_assignment, holds_at
 from gr1.controller import Controller, ControllerNode, IntegerVar, integers_of
 from solver.game import GameResult, Limits, too_large
 from solver.symbolic import BDDNode, SymbolicSpec
+
+if TYPE_CHECKING:  # solver.preferences builds on this module (goal_strategies)
+    from solver.preferences import MovePreferences
 
 
 # ---------------------------------------------------------------- canonical choices
@@ -98,8 +102,10 @@ def extract_strategy(
     semantics: str,
     limits: Limits | None = None,
     max_nodes: int | None = None,
+    prefer: MovePreferences | None = None,
 ) -> Controller:
-    """The explicit Mealy controller of a realizable game (``result`` needs its layers)."""
+    """The explicit Mealy controller of a realizable game (``result`` needs its layers);
+    ``prefer`` picks among the moves each step allows (:mod:`solver.preferences`)."""
     limits = limits or Limits()
     ins, outs = list(sym.input_bits), list(sym.output_bits)
     pre = ins + outs
@@ -129,13 +135,18 @@ def extract_strategy(
         state, goal = nodes[k]
         at = dict(zip(pre, map(bool, state), strict=True))
         here = bdd.let(at, strategies[goal])
+        if prefer is not None:
+            here = prefer.allowed(at, goal, here)
         env_here = bdd.let(at, sym.env_trans)
         targets = set()
         for x in assignments(sym, bdd.exist(sym.post_outputs, env_here), post_in):
             at_x = dict(zip(post_in, map(bool, x), strict=True))
             choices = bdd.let(at_x, here)
             preferred = choices & bdd.let(at_x, env_here)
-            y = smallest(sym, preferred if preferred != bdd.false else choices, post_out)
+            preferred = preferred if preferred != bdd.false else choices
+            if prefer is not None and preferred != bdd.false:
+                preferred = prefer.choose(at | at_x, goal, preferred)
+            y = smallest(sym, preferred, post_out)
             if y is None:
                 raise SolverError(
                     "internal error: the strategy has no move for an allowed input",

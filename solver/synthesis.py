@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import time
 import weakref
-from collections.abc import Iterator
+from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass, field, replace
 from typing import Final
@@ -17,11 +17,13 @@ from typing import Final
 from diagnostics import FormulaError
 from gr1.bddfile import SymbolicController
 from gr1.controller import Controller
+from gr1.costs import Cost
 from gr1.formula import atoms
 from gr1.spec import SEMANTICS, GR1Spec
 from solver.counter import extract_counterstrategy
 from solver.game import ControllerTooLarge, Game, GameStats, Limits, Progress, out_of_memory
 from solver.portfolio import STATIC, solve_chosen
+from solver.preferences import MovePreferences
 from solver.strategy import extract_strategy
 from solver.symbolic import Options, SymbolicSpec
 from solver.symbolic_strategy import symbolic_controller
@@ -133,10 +135,16 @@ def synthesize(
     progress: Progress | None = None,
     options: Options | None = None,
     max_nodes: int | None = None,
+    prefer: Sequence[str] = (),
+    costs: Sequence[Cost] = (),
 ) -> Controller | None:
-    """An explicit Mealy controller for ``spec``, or None when it is unrealizable."""
+    """An explicit Mealy controller for ``spec``, or None when it is unrealizable.
+
+    ``prefer`` orders the preferences of :mod:`solver.preferences` (empty: the first move in
+    BDD order); ``costs`` gives the terms of the cost-based ones (e.g. a robot model's).
+    """
     found = synthesize_controller(spec, semantics, timeout, progress, options, max_nodes,
-                                  "explicit")
+                                  "explicit", prefer, costs)
     assert not isinstance(found, SymbolicController)
     return found
 
@@ -149,8 +157,11 @@ def synthesize_controller(
     options: Options | None = None,
     max_nodes: int | None = None,
     form: str = "auto",
+    prefer: Sequence[str] = (),
+    costs: Sequence[Cost] = (),
 ) -> Controller | SymbolicController | None:
-    """A controller for ``spec`` in ``form`` (:data:`FORMS`), or None when unrealizable."""
+    """A controller for ``spec`` in ``form`` (:data:`FORMS`), or None when unrealizable;
+    an explicit one chooses its moves by ``prefer`` and ``costs`` (see :func:`synthesize`)."""
     if form not in FORMS:
         raise ValueError(f"form must be one of {FORMS}, not {form!r}")
 
@@ -162,8 +173,9 @@ def synthesize_controller(
                 return None
             if form != "symbolic":
                 lim.report("extracting the explicit controller")
+                moves = MovePreferences(sym, result, costs, prefer, lim) if prefer else None
                 try:
-                    return extract_strategy(sym, result, semantics, lim, max_nodes)
+                    return extract_strategy(sym, result, semantics, lim, max_nodes, moves)
                 except ControllerTooLarge:
                     if form == "explicit":
                         raise

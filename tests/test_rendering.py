@@ -104,7 +104,7 @@ def test_automaton_svg_is_well_formed_with_expected_labels(patrol: Session) -> N
 def test_map_svg_with_run_shows_regions_path_and_timeline(patrol: Session, run: Run) -> None:
     svg = map_view(patrol.model, run).svg()
     nodes = _svg_nodes(svg)
-    assert len(nodes) == 4 + 2  # regions, timeline, legend
+    assert len(nodes) == 4 + 2 + ("moves (steps)" in svg)  # regions, timeline, legend, moves
     texts = [t for lines in nodes for t in lines]
     for region in ("nw", "ne", "sw", "se"):
         assert region in texts
@@ -112,6 +112,7 @@ def test_map_svg_with_run_shows_regions_path_and_timeline(patrol: Session, run: 
     root = ET.fromstring(svg)
     edge_labels = " ".join(t.text or "" for g in root.iter(f"{SVG}g") if g.get("class") == "edge"
                            for t in g.iter(f"{SVG}text"))
+    edge_labels += " " + " ".join(texts)  # busy edges list their steps in the moves table
     moves = [s for a, s in zip(run.steps, run.steps[1:], strict=False) if a.region != s.region]
     for step in moves:
         assert str(step.index) in edge_labels

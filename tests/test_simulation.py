@@ -143,13 +143,15 @@ def test_adversarial_environment_stays_within_the_assumptions_and_hurts(
 
 
 def test_adversarial_environment_activates_the_nearest_hazard(hazard: Setup) -> None:
-    run = simulate(hazard.strategy, hazard.domain, hazard.monitor, AdversarialEnvironment(), 30)
+    run = simulate(hazard.strategy, hazard.domain, hazard.monitor,
+                   AdversarialEnvironment(plan=False), 30)
     active = [s.hazard == "h" for s in run.steps[1:]]
     # the only set is on, except when fairness (□◇ !h) makes the adversary switch it off
     assert sum(active) >= 0.7 * len(active)
     assert not any(not a and not b for a, b in itertools.pairwise(active))
+    off = sum(s.hazard != "h" for s in run.steps)  # at every step, the first one too
     assert run.summary is not None and dict(run.summary.env_liveness) == {
-        "assumption (line 17): !h": len(active) - sum(active)}
+        "assumption (line 17): !h": off}
 
 
 def test_summary_counts_goals_caches_and_failures(patrol: Setup) -> None:
@@ -306,11 +308,16 @@ def test_step_table_colours_health_only_when_asked(patrol: Setup) -> None:
     plain = step_table(run, full, colour=False)
     coloured = step_table(run, full, colour=True)
     assert "\x1b[" not in plain
-    assert "\x1b[31m1!" in coloured  # a leg failing on this step, in red
+    assert "\x1b[34m\x1b[1m2!" in coloured  # a leg in use that this step's gait fails
+    assert "\x1b[31m1 " in coloured  # failed legs in red
     assert "\x1b[34m" in coloured  # healthy legs in blue
     failed = next(s for s in run.steps if s.failed)
+    leg = failed.failed[0]
     row = plain.splitlines()[failed.index + 1].split()
-    assert row[0] == str(failed.index) and f"{failed.level(failed.failed[0])}!" in row
+    assert row[0] == str(failed.index) and f"{failed.level(leg)}!" in row
+    assert leg in failed.legs_used  # marked on the row whose gait used it
+    after = plain.splitlines()[failed.index + 2].split()
+    assert run.steps[failed.index + 1].level(leg) == 1 and after[0] == str(failed.index + 1)
     assert run.summary is not None
     text = summary_text(run.summary, "adversarial")
     assert "legs failed:" in text and "(none)" not in text.split("legs failed:")[1].splitlines()[0]

@@ -40,3 +40,25 @@ def positive_count(value: str) -> int:
     if count <= 0:
         raise argparse.ArgumentTypeError(f"must be a positive whole number, not {value}")
     return count
+
+
+def preference_list(value: str) -> tuple[str, ...]:
+    """``--prefer``: a comma-separated order of the move preferences, or ``none``."""
+    from diagnostics import UsageError
+    from solver.preferences import preference_order
+
+    try:
+        return preference_order(value)
+    except UsageError as err:
+        raise argparse.ArgumentTypeError(err.message) from None
+
+
+def add_prefer(parser: argparse.ArgumentParser, when: str = "") -> None:
+    """The ``--prefer`` option (default: every preference, in the documented order)."""
+    from solver.preferences import PREFERENCES
+
+    parser.add_argument(
+        "--prefer", type=preference_list, metavar="LIST",
+        help=f"{when}the order of the move preferences among winning moves, comma-separated "
+        f"(default {','.join(PREFERENCES)}; 'none': the solver's first move; "
+        "docs/simulation.md)")

@@ -13,7 +13,7 @@ from typing import Any
 
 import gaitc
 from diagnostics import UsageError
-from gaitc.commands.arguments import positive_seconds
+from gaitc.commands.arguments import add_prefer, positive_seconds
 from gaitc.commands.simulating import environment_of, report_run
 from gaitc.exitcodes import ExitCode, exit_code_help
 from gaitc.simulation import Session
@@ -91,6 +91,7 @@ def register(sub: Any) -> None:
     p.add_argument("--robotics-semantics", action="store_true",
                    help="semantics when synthesizing on the fly")
     p.add_argument("--quiet", action="store_true", help="print only the summary")
+    add_prefer(p, "without CONTROLLER: ")
     p.set_defaults(run=run_drive)
 
 
@@ -165,7 +166,7 @@ def run_drive(args: argparse.Namespace) -> int:
                          "valve primitives")
     primitives = bind_primitives(checked.model, str(Path(args.spec).parent))
     semantics = "robotics" if args.robotics_semantics else "default"
-    loaded = gaitc.session(checked, args.controller, semantics=semantics)
+    loaded = gaitc.session(checked, args.controller, semantics=semantics, prefer=args.prefer)
     if loaded is None:
         print(f"{args.spec}: unrealizable: no controller to drive", file=sys.stderr)
         return ExitCode.UNREALIZABLE

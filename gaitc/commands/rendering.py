@@ -10,6 +10,7 @@ from typing import Any
 
 import gaitc
 from diagnostics import UsageError
+from gaitc.commands.arguments import add_prefer
 from gaitc.exitcodes import ExitCode
 from gaitsim.graphics import FORMATS, Picture, output_format
 
@@ -42,6 +43,7 @@ def register(sub: Any) -> None:
     p.add_argument("--max-nodes", type=int, default=40, metavar="N",
                    help="size above which a quotient is drawn (default 40)")
     p.add_argument("--encoding", choices=("onehot", "binary"))
+    add_prefer(p, "without CONTROLLER: ")
     _output(p)
     p.set_defaults(run=run_automaton)
 
@@ -97,7 +99,7 @@ def run_automaton(args: argparse.Namespace) -> int:
     output_format(args.output, args.format)  # fail on a bad format before synthesizing
     if args.max_nodes < 1:
         raise UsageError("--max-nodes must be at least 1")
-    loaded = gaitc.session(args.spec, args.controller, args.encoding)
+    loaded = gaitc.session(args.spec, args.controller, args.encoding, prefer=args.prefer)
     if loaded is None:
         print(f"{args.spec}: unrealizable: no controller to draw", file=sys.stderr)
         return ExitCode.UNREALIZABLE

@@ -13,6 +13,7 @@ from typing import Any
 
 import gaitc
 from diagnostics import UsageError
+from gaitc.commands.arguments import add_prefer
 from gaitc.exitcodes import ExitCode, exit_code_help
 from gaitc.simulation import ENVIRONMENTS, Session, environment
 from gaitsim.environments import Environment
@@ -21,8 +22,9 @@ from ltlcompiler.encoding import ENCODINGS
 
 EPILOG = """environments:
   --env random [--seed N]   uniform among the inputs the controller accepts (default, seed 0)
-  --env adversarial         degrades every leg in use, activates the nearest hazard set,
-                            keeps the robot from its next goal (docs/simulation.md)
+  --env adversarial         plans over the controller for the most health lost and the
+                            farthest from the next goal (docs/simulation.md); for an
+                            unrealizable spec without CONTROLLER, plays its counter-strategy
   --env scripted FILE.yaml  a scenario: per step the hazard and the legs that degrade/fail
 A counter-strategy (from 'gaitc counter') is the environment itself; --env random or
 adversarial then says how the robot answers (adversarial: it avoids forced deadlocks).
@@ -59,6 +61,7 @@ def register(sub: Any) -> None:
     p.add_argument("--robotics-semantics", action="store_true",
                    help="semantics when synthesizing on the fly")
     p.add_argument("--quiet", action="store_true", help="print only the summary")
+    add_prefer(p, "without CONTROLLER: ")
     p.set_defaults(run=run_simulate)
 
 
@@ -80,7 +83,14 @@ def run_simulate(args: argparse.Namespace) -> int:
     semantics = "robotics" if args.robotics_semantics else "default"
     if args.steps is not None and args.steps < 0:
         raise UsageError("--steps must not be negative")
-    bound = gaitc.session(args.spec, args.controller, args.encoding, semantics)
+    bound = gaitc.session(args.spec, args.controller, args.encoding, semantics, args.prefer)
+    if bound is None and (args.env or ["random"])[0] == "adversarial":
+        from gaitc.simulation import counter_session
+
+        bound = counter_session(gaitc.load(args.spec, args.encoding or "onehot"), semantics)
+        if bound is not None:  # the environment plays its winning strategy
+            run = gaitc.simulate(bound, env="adversarial", steps=args.steps)
+            return report_run(run, bound.full_health, run.environment, args.quiet, args.out)
     if bound is None:
         print(f"{args.spec}: unrealizable: no controller to simulate", file=sys.stderr)
         return ExitCode.UNREALIZABLE

@@ -15,7 +15,12 @@ from typing import Any
 
 import gaitc
 from diagnostics import GaitcError, SolverError, UsageError, render_error
-from gaitc.commands.arguments import positive_count, positive_megabytes, positive_seconds
+from gaitc.commands.arguments import (
+    add_prefer,
+    positive_count,
+    positive_megabytes,
+    positive_seconds,
+)
 from gaitc.exitcodes import ExitCode, exit_code_help
 from gaitc.isolation import HardLimits, cudd_budget_mb, run_limited
 from gaitc.solving import MAX_NODES, SOLVERS, read_controller, recorded_encoding
@@ -90,6 +95,7 @@ def register(sub: Any) -> None:
     p.add_argument("--max-nodes", type=positive_count, default=MAX_NODES, metavar="N",
                    help=f"keep the controller symbolic when the explicit automaton would pass "
                    f"N nodes (default {MAX_NODES:,})")
+    add_prefer(p)
     _common(p)
     p.set_defaults(run=run_synth)
 
@@ -199,7 +205,8 @@ def _solve(args: argparse.Namespace, kind: str) -> tuple[gaitc.Spec, gaitc.Synth
             return spec, gaitc.counterstrategy(spec, **_solver_args(args))
         form = "symbolic" if args.symbolic else "auto"
         return spec, gaitc.synthesize(spec, verify=not args.no_verify, form=form,
-                                      max_nodes=args.max_nodes, **_solver_args(args))
+                                      max_nodes=args.max_nodes, prefer=args.prefer,
+                                      **_solver_args(args))
 
     return run_limited(work, _limits(args))
 

@@ -1,0 +1,80 @@
+"""The robot's move costs: the criteria that ``--prefer`` orders, written from the model.
+
+Issue 13: among the moves a GR(1) controller may take, prefer those that do not enter a
+region of an active hazard set (eq. 3.9 would fail the gait's legs), that lose the fewest
+health levels and spare degraded legs (eqs. 3.5, 3.6), and that switch gait least.  The
+shortest way to the next goal needs no model: the solver reads it off the fixpoint's
+rings (:mod:`solver.preferences`).  The thesis has none of these; they only choose among
+winning moves, so they never change what the controller guarantees.
+"""
+
+from __future__ import annotations
+
+from gr1.costs import Cost
+from gr1.formula import Expr, Not, conj, disj
+from ltlcompiler.encoding import Encoding, make_encoding
+from ltlcompiler.model import GaitKind, Model
+
+
+def model_costs(model: Model, encoding: str = "onehot") -> tuple[Cost, ...]:
+    """The ``hazard``, ``health`` and ``switches`` costs of ``model`` in ``encoding``.
+
+    Turn order (see :func:`ltlcompiler.lowering.lower`): the next region and gait the robot
+    picks, with the next hazard the environment has just chosen, decide what the
+    environment may take from the legs one step later; so every term reads primed values.
+    """
+    enc = make_encoding(model, encoding)
+    return (_hazard(model, enc), _health(model, enc), _switches(model, enc))
+
+
+def _moving(model: Model) -> list[tuple[str, tuple[str, ...]]]:
+    """Gaits that wear legs (eq. 3.5): moving gaits with their legs above level 1."""
+    return [(g.name, tuple(leg for leg in g.legs if model.leg(leg).health > 1))
+            for g in model.gaits if g.kind is GaitKind.MOVE]
+
+
+def _hot(model: Model, enc: Encoding) -> Expr:
+    """The next region lies in the active hazard set and is no cache (eq. 3.9's φ_H)."""
+    return conj([disj(conj((enc.hazard(h.name, True),
+                            disj(enc.region(r, True) for r in h.regions)))
+                      for h in model.hazards),
+                 *(Not(enc.region(c, True)) for c in model.caches)])
+
+
+def _hazard(model: Model, enc: Encoding) -> Cost:
+    meaning = "do not enter (or walk in) a region of the active hazard set"
+    wearing = [g for g, legs in _moving(model) if legs]
+    if not model.hazards or not wearing:
+        return Cost("hazard", meaning)
+    return Cost("hazard", meaning,
+                ((1, conj((_hot(model, enc), disj(enc.gait(g, True) for g in wearing)))),))
+
+
+def _health(model: Model, enc: Encoding) -> Cost:
+    """Worst-case levels lost first (weight ``scale`` each), then how degraded the legs in
+    use are (one per level below full): a degraded leg is used when nothing else works."""
+    meaning = "lose the fewest health levels; use degraded legs last"
+    away = [Not(enc.region(c, True)) for c in model.caches]  # a cache restores (eq. 3.6)
+    hot = _hot(model, enc) if model.hazards else None
+    scale = 1 + sum(leg.health - 1 for leg in model.legs)
+    terms: list[tuple[int, Expr]] = []
+    for leg in model.legs:
+        gaits = [g for g, legs in _moving(model) if leg.name in legs]
+        if not gaits:
+            continue
+        using = conj([disj(enc.gait(g, True) for g in gaits), *away])
+        for level in range(2, leg.health + 1):
+            at = conj((using, enc.health(leg.name, level, True)))
+            spare = leg.health - level
+            if hot is None:
+                terms.append((scale + spare, at))
+                continue
+            terms.append((scale + spare, conj((at, Not(hot)))))
+            terms.append((scale * (level - 1) + spare, conj((at, hot))))
+    return Cost("health", meaning, tuple(terms))
+
+
+def _switches(model: Model, enc: Encoding) -> Cost:
+    terms = tuple((1, conj((enc.gait(g.name, True), Not(enc.gait(g.name)))))
+                  for g in model.gaits)
+    return Cost("switches", "switch gait as rarely as possible", terms)

@@ -1,0 +1,168 @@
+"""Move preferences: which of the moves a GR(1) strategy allows the controller takes.
+
+A GR(1) strategy may take any move of the first layer that covers the current state and
+input (Bloem et al., JCSS 2012, Sect. 5); every such move keeps the rank discipline, so any
+non-empty subset of them is still winning.  :class:`MovePreferences` narrows the candidate
+set criterion by criterion, in the order asked for, keeping at each criterion the cheapest
+candidates: the costs of :mod:`gr1.costs` (weighted terms over the move), and ``goal``,
+the fewest Y rings between the next state and the goal pursued (the fixpoint's own
+distance measure).  With ``hazard`` it also solves the game without the hazard moves: in
+that game's winning region its strategy is played instead (it never leaves the region,
+so the composed controller is still winning; the verifier checks it like any other).
+Issue 13; SLUGS's cost-annotated specs are the neighbouring idea.
+"""
+
+from __future__ import annotations
+
+import copy
+from collections.abc import Iterable, Mapping, Sequence
+from typing import Final
+
+from diagnostics import UsageError
+from gr1.costs import Cost
+from solver.game import Game, GameResult, Limits
+from solver.symbolic import BDDNode, SymbolicSpec
+
+#: Every preference, in the default order (``--prefer`` reorders or drops them).
+PREFERENCES: Final = ("hazard", "health", "goal", "switches")
+MEANINGS: Final = {
+    "hazard": "do not enter a region of the active hazard set",
+    "health": "lose the fewest health levels; use degraded legs last",
+    "goal": "take the shortest way to the next goal (the fixpoint's Y rings)",
+    "switches": "switch gait as rarely as possible",
+}
+NONE: Final = "none"
+
+
+def preference_order(asked: str | Iterable[str] | None) -> tuple[str, ...]:
+    """The preferences ``asked`` names, in order: None is the default order, ``"none"`` (or
+    an empty list) none at all, else a comma-separated text or a list of names."""
+    if asked is None:
+        return PREFERENCES
+    names = [n.strip() for n in asked.split(",")] if isinstance(asked, str) else list(asked)
+    if names == [NONE] or not names:
+        return ()
+    for name in names:
+        if name not in PREFERENCES:
+            raise UsageError(f"unknown preference '{name}'; use a comma-separated order of "
+                             f"{', '.join(PREFERENCES)}, or '{NONE}'")
+    if len(set(names)) != len(names):
+        raise UsageError(f"a preference is named twice in '{','.join(names)}'")
+    return tuple(names)
+
+
+class MovePreferences:
+    """The preferences of one extraction: term BDDs and the primed Y rings, built once."""
+
+    def __init__(self, sym: SymbolicSpec, result: GameResult, costs: Sequence[Cost],
+                 order: Sequence[str], limits: Limits | None = None) -> None:
+        self.sym = sym
+        self.order = tuple(order)
+        by_name = {c.name: c for c in costs}
+        self.terms: dict[str, list[tuple[int, BDDNode]]] = {}
+        for name in self.order:
+            if name == "goal":
+                continue
+            cost = by_name.get(name)
+            terms = [] if cost is None else cost.terms
+            self.terms[name] = [(w, sym.translate(t)) for w, t in terms]
+        self.goals = list(sym.sys_live)
+        self.rings: list[list[BDDNode]] = []
+        if "goal" in self.order:
+            self.rings = [[sym.prime(y) for y in _distinct(rings)] for rings in result.rings]
+        self.safe: BDDNode = sym.bdd.false  # where the robot can avoid hazards for ever
+        self.safe_strategies: list[BDDNode] = []
+        hazard = self.terms.get("hazard", [])
+        if hazard:
+            self._avoiding_game([t for _, t in hazard], limits)
+
+    def _avoiding_game(self, hazards: Sequence[BDDNode], limits: Limits | None) -> None:
+        """Solve the game without the hazard moves: where it is won, its strategy avoids
+        every active hazard for ever and still reaches every goal."""
+        from solver.strategy import goal_strategies
+
+        sym = self.sym
+        avoid = sym.bdd.true
+        for term in hazards:
+            avoid &= ~term
+        strict = copy.copy(sym)
+        strict.sys_trans = sym.sys_trans & avoid
+        strict.game_sys_trans = sym.game_sys_trans & avoid
+        strict.sys_clusters = []
+        result = Game(strict, limits).solve(keep_layers=True)
+        self.safe = result.winning
+        self.safe_strategies = goal_strategies(strict, result)
+
+    def allowed(self, at: Mapping[str, bool], goal: int, moves: BDDNode) -> BDDNode:
+        """The moves to choose from at the state ``at`` (pre variables) for goal ``goal``:
+        inside the hazard-avoiding game's winning region its strategy's (which never
+        leave it), else ``moves``, the strategy's own (a BDD over post variables)."""
+        if self.safe == self.sym.bdd.false or not holds_at(self.safe, at):
+            return moves
+        return self.sym.bdd.let(dict(at), self.safe_strategies[goal])
+
+    def choose(self, at: Mapping[str, bool], goal: int, choices: BDDNode) -> BDDNode:
+        """The preferred non-empty part of ``choices`` (a BDD over the primed outputs, the
+        moves allowed at the state and next input ``at``) for the goal index ``goal``."""
+        for name in self.order:
+            if name == "goal":
+                choices = self._nearest(at, goal, choices)
+            else:
+                choices = self._cheapest(at, self.terms[name], choices)
+        return choices
+
+    def _cheapest(self, at: Mapping[str, bool], terms: Sequence[tuple[int, BDDNode]],
+                  choices: BDDNode) -> BDDNode:
+        """The candidates of least total weight (weights of the terms that hold)."""
+        bdd = self.sym.bdd
+        buckets: dict[int, BDDNode] = {0: choices}
+        for weight, term in terms:
+            here = bdd.let(dict(at), term)
+            if here == bdd.false:
+                continue
+            moved: dict[int, BDDNode] = {}
+            for cost, part in buckets.items():
+                hit = part & here
+                if hit == bdd.false:
+                    moved[cost] = moved.get(cost, bdd.false) | part
+                    continue
+                moved[cost + weight] = moved.get(cost + weight, bdd.false) | hit
+                rest = part & ~here
+                if rest != bdd.false:
+                    moved[cost] = moved.get(cost, bdd.false) | rest
+            buckets = moved
+        return buckets[min(buckets)]
+
+    def _nearest(self, at: Mapping[str, bool], goal: int, choices: BDDNode) -> BDDNode:
+        """The candidates that reach the goal on this move, else those whose next state
+        lies in the lowest Y ring (rings grow, so a binary search finds it)."""
+        bdd = self.sym.bdd
+        reach = choices & bdd.let(dict(at), self.goals[goal])
+        if reach != bdd.false:
+            return reach
+        rings = self.rings[goal] if goal < len(self.rings) else []
+        inputs = {k: v for k, v in at.items() if k in self.sym.post_inputs}
+        low, high = 0, len(rings)  # the answer is the first ring meeting choices (or none)
+        while low < high:
+            mid = (low + high) // 2
+            if choices & bdd.let(inputs, rings[mid]) != bdd.false:
+                high = mid
+            else:
+                low = mid + 1
+        if low == len(rings):
+            return choices
+        return choices & bdd.let(inputs, rings[low])
+
+
+def holds_at(u: BDDNode, values: Mapping[str, bool]) -> bool:
+    """Whether ``u`` (over the variables ``values`` assigns) is true at ``values``."""
+    return bool(u.bdd.let(dict(values), u) == u.bdd.true)
+
+
+def _distinct(rings: Sequence[BDDNode]) -> list[BDDNode]:
+    """The rings without repeats (the last Y iteration repeats the fixpoint)."""
+    out: list[BDDNode] = []
+    for ring in rings:
+        if not out or ring != out[-1]:
+            out.append(ring)
+    return out
