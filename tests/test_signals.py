@@ -61,8 +61,11 @@ def test_a_signal_at_any_moment_leaves_no_bad_file(tmp_path: Path, signum: signa
     argv = [sys.executable, "-m", "gaitc", "synth", str(ROBOT_B), "-o", str(out)]
     if limited:
         argv += ["--timeout", "60"]
+    # SIGINT as a terminal delivers it, even when the suite runs as a background job of a
+    # shell without job control (which starts it ignored, and children inherit that)
     proc = subprocess.Popen(argv, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
-                            text=True)
+                            text=True,
+                            preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
     time.sleep(delay)
     proc.send_signal(signum)
     _, err = proc.communicate(timeout=60)
