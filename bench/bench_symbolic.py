@@ -21,6 +21,8 @@ import time
 from dataclasses import dataclass
 from pathlib import Path
 
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
+
 import gaitc
 from bench.families.hazard_grid import hazard_grid_text
 from gaitsim.environments import RandomEnvironment
