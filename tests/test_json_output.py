@@ -279,6 +279,15 @@ def test_check_puts_a_syntax_error_in_the_files_record(
     assert f"{spec}:2:22: error: unexpected character" in err
 
 
+def test_a_missing_file_stops_check_with_an_error_object_last(
+    capsys: pytest.CaptureFixture[str]
+) -> None:
+    code, objects, _ = run_json(["check", PATROL, "missing.gait", "--json"], capsys)
+    assert code == 2 and objects[0]["verdict"] == "realizable"
+    assert set(objects[1]) == COMMON | {"error"}
+    assert objects[1]["error"]["message"] == "cannot read 'missing.gait': no such file"
+
+
 def test_a_broken_robot_file_is_an_error_object(tmp_path: Path,
                                                 capsys: pytest.CaptureFixture[str]) -> None:
     robot = tmp_path / "r.yaml"
