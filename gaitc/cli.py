@@ -19,11 +19,13 @@ from gaitc.exitcodes import ExitCode, exit_code_help
 
 
 class _Parser(argparse.ArgumentParser):
+    commands: tuple[str, ...] = ()  # the subcommands' names (the top-level parser's)
+
     def error(self, message: str) -> None:  # type: ignore[override]
         raise UsageError(message)
 
 
-def build_parser() -> argparse.ArgumentParser:
+def build_parser() -> _Parser:
     parser = _Parser(
         prog="gaitc",
         description="Compile .gait robot specifications to GR(1), synthesize and run controllers.",
@@ -38,6 +40,7 @@ def build_parser() -> argparse.ArgumentParser:
 
     for module in COMMAND_MODULES:
         module.register(sub)
+    parser.commands = tuple(sub.choices)
     return parser
 
 
@@ -69,7 +72,7 @@ def _run(argv: Sequence[str] | None) -> int:
     as_json, command = reporting.json_requested(words), None
     try:
         parser = build_parser()
-        command = reporting.command_named(words, _commands(parser))
+        command = reporting.command_named(words, parser.commands)
         args = parser.parse_args(words)
         as_json = bool(getattr(args, "json", False))
         if getattr(args, "run", None) is None:
@@ -106,14 +109,6 @@ def _run(argv: Sequence[str] | None) -> int:
             reporting.print_json(reporting.document(command, {
                 "error": reporting.internal_error_json(err)}))
         return ExitCode.INTERNAL
-
-
-def _commands(parser: argparse.ArgumentParser) -> list[str]:
-    """The names of the subcommands (for the ``command`` key of an early error)."""
-    for action in parser._actions:
-        if isinstance(action, argparse._SubParsersAction):
-            return list(action.choices)
-    return []
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import argparse
 import sys
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import gaitc
 from diagnostics import Diagnostic, UsageError, render_diagnostic
@@ -18,6 +18,9 @@ from gaitc.exitcodes import ExitCode
 from gaitc.loading import Spec, load
 from gaitc.reporting import compilation_json, document, lint_json, print_json
 from ltlcompiler.encoding import ENCODINGS
+
+if TYPE_CHECKING:
+    from analysis.explanation import Explanation
 
 
 def register(subparsers: Any) -> None:
@@ -70,7 +73,7 @@ def run_lint(args: argparse.Namespace) -> int:
 
 
 def _lint_verdict(args: argparse.Namespace, diagnostics: list[Diagnostic]
-                  ) -> tuple[ExitCode, Any]:
+                  ) -> tuple[ExitCode, Explanation | None]:
     """The exit code of ``lint`` and, with ``--deep``, the explanation behind it."""
     if any(d.severity == "error" for d in diagnostics):
         return ExitCode.USER, None
