@@ -248,6 +248,8 @@ def _synth_json(args: argparse.Namespace, found: gaitc.Synthesis) -> int:
     print_json(document("synth" if strategy else "counter",
                         {**found.to_json(), "output": args.output if written else None}))
     if found.controller is None:
+        if strategy:
+            print("  hint: 'gaitc counter' shows how the environment wins", file=sys.stderr)
         return ExitCode.UNREALIZABLE
     return ExitCode.OK if verified else ExitCode.USER
 
