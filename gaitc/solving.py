@@ -236,7 +236,7 @@ def synthesize(spec: Spec | GR1Spec, semantics: str = "default", solver: str = "
     ``form`` (:data:`solver.synthesis.FORMS`): ``explicit`` an automaton, ``symbolic`` BDDs
     (:mod:`gr1.bddfile`), ``auto`` an automaton unless it would pass ``max_nodes`` nodes.
 
-    ``prefer`` orders the move preferences of an explicit controller among the winning
+    ``prefer`` orders the move preferences of the controller (either form) among the winning
     moves (``solver.preferences``: ``hazard``, ``health``, ``goal``, ``switches``; a list or
     comma-separated text): None is all four in that order, ``"none"`` the solver's first
     move (the behaviour before them).  They apply to the embedded solver; ``hazard``,

@@ -161,7 +161,7 @@ def synthesize_controller(
     costs: Sequence[Cost] = (),
 ) -> Controller | SymbolicController | None:
     """A controller for ``spec`` in ``form`` (:data:`FORMS`), or None when unrealizable;
-    an explicit one chooses its moves by ``prefer`` and ``costs`` (see :func:`synthesize`)."""
+    either form chooses its moves by ``prefer`` and ``costs`` (see :func:`synthesize`)."""
     if form not in FORMS:
         raise ValueError(f"form must be one of {FORMS}, not {form!r}")
 
@@ -171,16 +171,16 @@ def synthesize_controller(
             result = game.solve(keep_layers=True)
             if not game.initially_winning(result.winning, semantics):
                 return None
+            moves = MovePreferences(sym, result, costs, prefer, lim) if prefer else None
             if form != "symbolic":
                 lim.report("extracting the explicit controller")
-                moves = MovePreferences(sym, result, costs, prefer, lim) if prefer else None
                 try:
                     return extract_strategy(sym, result, semantics, lim, max_nodes, moves)
                 except ControllerTooLarge:
                     if form == "explicit":
                         raise
                     lim.report(f"over {max_nodes} nodes: keeping the controller symbolic")
-            return symbolic_controller(sym, result, semantics)
+            return symbolic_controller(sym, result, semantics, moves)
 
     _check_semantics(semantics)
     return solve_chosen(run, options or Options(), Limits(timeout, progress))[0]
