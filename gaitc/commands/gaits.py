@@ -24,6 +24,9 @@ def register(subparsers: Any) -> None:
     search_arguments(p)
     p.add_argument("-o", "--output", metavar="gaits.json", help="write the gaits as JSON")
     p.add_argument("--svg", metavar="DIR", help="write the gait graph and pose top views here")
+    from gaitc.commands.predicted import model_arguments
+
+    model_arguments(p)
     p.set_defaults(run=run)
 
 
@@ -52,6 +55,10 @@ def run_render(args: argparse.Namespace) -> int:
 
 
 def run(args: argparse.Namespace) -> int:
+    if getattr(args, "model", None) is not None:
+        from gaitc.commands.predicted import run_model_gaits
+
+        return run_model_gaits(args)
     if args.method in ("astar", "lpa", "mcts"):
         from gaitc.commands.learning import run_global
 
