@@ -172,9 +172,9 @@ def parse_spring_damper(text: str, path: str = "<robot>") -> SpringDamperRobot:
         raise f.fail(node, "model spring_damper needs 'limbs', one per leg")
     limbs = tuple(_limb(f, item, defaults, robot) for item in f.sequence(sec["limbs"], "limbs"))
     named = [limb.name for limb in limbs]
-    for limb, item in zip(limbs, sec["limbs"].value, strict=True):
-        if named.count(limb.name) > 1:
-            raise f.fail(item, f"limb {limb.name} is described twice")
+    for i, item in enumerate(sec["limbs"].value):
+        if named[i] in named[:i]:
+            raise f.fail(item, f"limb {named[i]} is described twice")
     for leg in robot.legs:
         if leg.name not in named:
             raise f.fail(sec["limbs"], f"leg {leg.name} has no limb in model spring_damper")

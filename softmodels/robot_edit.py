@@ -44,18 +44,27 @@ def _limb_node(text: str, path: str, limb: str) -> yaml.MappingNode:
     raise f.fail(limbs, f"model spring_damper has no limb {limb}")
 
 
+def _end(node: yaml.Node) -> int:
+    """Where a value ends: a block collection's own end mark lies past the lines after it."""
+    while isinstance(node, yaml.MappingNode | yaml.SequenceNode) and not node.flow_style:
+        if not node.value:
+            break
+        last = node.value[-1]
+        node = last[1] if isinstance(last, tuple) else last
+    return int(node.end_mark.index)
+
+
 def set_field(text: str, path: str, limb: str, key: str, value: str) -> str:
     """``text`` with ``key: value`` (flow YAML) set in the entry of ``limb``."""
     node = _limb_node(text, path, limb)
     for k, v in node.value:
         if k.value == key:
-            return text[: v.start_mark.index] + value + text[v.end_mark.index :]
+            return text[: v.start_mark.index] + value + text[_end(v) :]
     if node.flow_style:
         close = text.rindex("}", 0, node.end_mark.index)
         return text[:close] + f", {key}: {value}" + text[close:]
-    last = node.value[-1][1]
     indent = " " * node.value[0][0].start_mark.column
-    at = last.end_mark.index
+    at = _end(node)
     return text[:at] + f"\n{indent}{key}: {value}" + text[at:]
 
 
