@@ -191,9 +191,9 @@ class SpringDamperModel:
         """Eq. 4.1 at every limb with the contact and friction laws of :mod:`friction`."""
         a = self.arrays
         h = 1e-4  # s: the unloaded end-effector rate is a forward difference over h
-        px, pz = a.chain(kappa)
-        qx, qz = a.chain(kappa + h * kappa_rate)
-        rate_x, rate_z = (qx - px) / h, (qz - pz) / h
+        both_x, both_z = a.chain(np.stack([kappa, kappa + h * kappa_rate]))
+        px, pz = both_x[0], both_z[0]
+        rate_x, rate_z = (both_x[1] - px) / h, (both_z[1] - pz) / h
         theta = state.theta[:, None]
         ct, st = np.cos(theta), np.sin(theta)
         phi = theta + a.yaw
