@@ -3,7 +3,8 @@
 Health levels and hazards come from the simulated robot (:mod:`gaithw.simulated`, within the
 spec's assumptions); the chassis moves as the model predicts (thesis 4.1.1, via
 :mod:`softmodels`), each valve state held for the robot file's control period in simulated
-time.  The regions get a size and a position on the map (grid cells, or the layout of
+time, and a leg at health level 1 (inoperable) stays vented whatever its valve says.  The
+regions get a size and a position on the map (grid cells, or the layout of
 :mod:`gaitsim.placement`, as squares of ``cell`` mm), and the reading's region is the one
 under the chassis: a gait that does not carry the robot into the region the controller
 expects shows up as a run that breaks the spec, as it would on hardware.
@@ -77,6 +78,11 @@ class PhysicsRobot(Backend):
         self.name = f"physics model ({model.name}), {inner.environment.name}"
         self.placed: list[Placed] = []
         self.state: State | None = None
+        self.failed: frozenset[str] = frozenset()  # legs the last reading put at level 1
+        self._leg_of_valve = ["?"] * inner.valve_count
+        for limb in model.robot.limbs:
+            for valve in limb.valves:
+                self._leg_of_valve[valve] = limb.name
 
     def open(self) -> None:
         self.inner.open()
@@ -92,7 +98,12 @@ class PhysicsRobot(Backend):
         self.inner.apply(valves)  # checks the shape and records it
         if self.state is None:
             raise HardwareError("the physics model is not open", where(self.name))
-        self.state = self.model.run(self.state, [tuple(c == "1" for c in valves)], self.period)
+        # an inoperable actuator (health level 1) no longer moves when its valve opens
+        pressurised = tuple(
+            c == "1" and leg not in self.failed
+            for c, leg in zip(valves, self._leg_of_valve, strict=True)
+        )
+        self.state = self.model.run(self.state, [pressurised], self.period)
 
     def wait(self, seconds: float) -> None:
         del seconds  # simulated time: each valve state is held for one control period
@@ -108,6 +119,7 @@ class PhysicsRobot(Backend):
 
     def read_sensors(self) -> SensorReading:
         reading = self.inner.read_sensors()
+        self.failed = frozenset(leg for leg, level in reading.health if level == 1)
         pose = self.pose
         region = self.regions.region_at(pose.x, pose.y)
         self.placed.append(Placed(len(self.placed), pose, region))

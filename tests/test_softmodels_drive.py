@@ -8,9 +8,13 @@ from pathlib import Path
 import pytest
 
 from gaitc.cli import main
+from gaithw.backend import SensorReading
 from gaithw.localisation import RegionMap
-from gaithw.physics import centre, region_map
+from gaithw.physics import PhysicsRobot, centre, region_map
 from ltlcompiler.frontend import load_model
+from softmodels.description import load_spring_damper
+from softmodels.motion import Pose2D
+from softmodels.spring_damper import SpringDamperModel
 
 DATA = Path(__file__).parent / "data" / "softmodels"
 SHUTTLE = str(DATA / "radial8_shuttle.gait")
@@ -93,3 +97,35 @@ def test_regions_get_positions_and_sizes() -> None:
 def test_physics_options_are_checked(capsys: pytest.CaptureFixture[str]) -> None:
     assert main(["drive", SHUTTLE, "--robot", RADIAL8]) == 2
     assert "--robot is for --backend physics" in capsys.readouterr().err
+
+
+class _Sensors:
+    """Stands in for the simulated robot: fixed health levels, region ignored."""
+
+    valve_count = 8
+
+    def __init__(self, l7_level: int) -> None:
+        self.environment = type("E", (), {"name": "fixed"})()
+        self.health = tuple((f"L{i}", l7_level if i == 7 else 3) for i in range(1, 9))
+
+    def open(self) -> None: ...
+
+    def close(self) -> None: ...
+
+    def apply(self, valves: str) -> None: ...
+
+    def read_sensors(self) -> SensorReading:
+        return SensorReading(self.health, None, "a")
+
+
+@pytest.mark.parametrize(("level", "moves"), [(3, True), (1, False)])
+def test_an_inoperable_leg_does_not_move_the_robot(level: int, moves: bool) -> None:
+    model = SpringDamperModel(load_spring_damper(RADIAL8))
+    regions = RegionMap({"a": ((-500, -500), (500, -500), (500, 500), (-500, 500))})
+    robot = PhysicsRobot(_Sensors(level), model, regions, Pose2D(0, 0, 0), 6.0)  # type: ignore[arg-type]
+    robot.open()
+    robot.read_sensors()
+    robot.apply("00000010")  # L7 points south: extending it pushes the robot north
+    robot.apply("00000000")
+    assert (robot.pose.y > 15.0) is moves
+    assert abs(robot.pose.y) < 0.5 or moves

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from softmodels.characterization import step_response
-from softmodels.description import load_spring_damper
+from softmodels.description import Coefficients, ToeFriction, load_spring_damper
 from softmodels.motion import Pose2D
 from softmodels.spring_damper import SpringDamperModel
 
@@ -100,3 +100,21 @@ def test_transitions_compose_in_the_body_frame() -> None:
     assert push.y > 10.0 and abs(push.x) < 0.5  # L7 points along -y: the chassis goes +y
     back = Pose2D(1.0, 2.0, 0.5).compose(Pose2D(1.0, 2.0, 0.5).inverse())
     assert (back.x, back.y, back.theta) == pytest.approx((0.0, 0.0, 0.0), abs=1e-12)
+
+
+def test_without_friction_horizontal_and_angular_momentum_are_conserved() -> None:
+    robot = load_spring_damper(RADIAL8)
+    none = Coefficients(0.0, 0.0)
+    slippery = ToeFriction(none, none, none, none)
+    limbs = tuple(replace(limb, friction=slippery) for limb in robot.limbs)
+    model = SpringDamperModel(replace(robot, limbs=limbs))
+    valves = (False,) * 8
+    steady = model.steady_state(valves)
+    kicked = replace(steady, velocity=np.array([[0.05, -0.02, 0.01]]), omega=np.array([0.3]))
+    target = np.stack([model.arrays.targets(valves)])
+    state = kicked
+    for _ in range(500):
+        state = model.step(state, target)
+    assert state.velocity[0, :2] == pytest.approx([0.05, -0.02], abs=1e-9)
+    assert state.omega[0] == pytest.approx(0.3, abs=1e-9)
+    assert state.contact.all()  # the feet stayed on the ground and carried no shear
