@@ -59,7 +59,11 @@ def set_field(text: str, path: str, limb: str, key: str, value: str) -> str:
     node = _limb_node(text, path, limb)
     for k, v in node.value:
         if k.value == key:
-            return text[: v.start_mark.index] + value + text[_end(v) :]
+            start = v.start_mark.index
+            if isinstance(v, yaml.MappingNode | yaml.SequenceNode) and not v.flow_style:
+                start = text.index(":", k.end_mark.index) + 1  # a block value: after "key:"
+                value = " " + value
+            return text[:start] + value + text[_end(v) :]
     if node.flow_style:
         close = text.rindex("}", 0, node.end_mark.index)
         return text[:close] + f", {key}: {value}" + text[close:]
