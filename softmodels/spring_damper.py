@@ -32,6 +32,7 @@ Flags = NDArray[np.bool_]
 
 REST_SPEED = 1e-4  # m/s, rad/s: below this (and curvatures settled) the robot is at rest
 REST_TIP = 1e-4  # m: every unloaded tip this close to its steady state
+TIP_SPEED = 2e-3  # m/s: and no faster (a tip 0.1 mm away moves about this fast)
 
 
 @dataclass(frozen=True)
@@ -181,7 +182,7 @@ class SpringDamperModel:
         rate = np.abs(state.kappa_rate).max(initial=0.0) * a.max_length
         return bool(
             tip < REST_TIP
-            and rate < REST_SPEED
+            and rate < TIP_SPEED
             and np.abs(state.velocity).max() < REST_SPEED
             and np.abs(state.omega).max() < REST_SPEED
             and not state.sliding.any()
