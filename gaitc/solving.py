@@ -11,7 +11,7 @@ import time
 from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import TYPE_CHECKING, Final, Literal, get_args
+from typing import TYPE_CHECKING, Any, Final, Literal, get_args
 
 from diagnostics import SolverError, UsageError
 from diagnostics.files import write_atomically
@@ -59,6 +59,14 @@ class Verdict:
         return (f"<gaitc.Verdict {self.file!r}: {word} in {self.seconds:.2f} s "
                 f"({self.solver} solver, {self.semantics} semantics)>")
 
+    def to_json(self) -> dict[str, Any]:
+        """The verdict for ``gaitc check --json`` (docs/json.md)."""
+        out: dict[str, Any] = {
+            "file": self.file, "verdict": "realizable" if self.realizable else "unrealizable",
+            "seconds": round(self.seconds, 3), "semantics": self.semantics,
+            "solver": self.solver, "engine": self.engine or None}
+        return out
+
     def _repr_html_(self) -> str:
         rows = [("verdict", "realizable" if self.realizable else "unrealizable"),
                 ("seconds", f"{self.seconds:.3f}"), ("solver", self.solver),
@@ -105,6 +113,17 @@ class Synthesis:
         if isinstance(self.controller, SymbolicController):
             return f"symbolic, {len(self.controller.nodes)} BDD nodes"
         return f"{len(self.controller.nodes)} nodes"
+
+    def to_json(self) -> dict[str, Any]:
+        """The outcome for ``gaitc synth --json`` and ``counter --json`` (docs/json.md)."""
+        symbolic = isinstance(self.controller, SymbolicController)
+        return {
+            "file": _name(self.spec), "kind": self.kind,
+            "verdict": "realizable" if self.realizable else "unrealizable",
+            "seconds": round(self.seconds, 3), "semantics": self.semantics,
+            "solver": self.solver, "symbolic": symbolic,
+            "nodes": None if self.controller is None else len(self.controller.nodes),
+            "verification": None if self.report is None else self.report.to_json()}
 
     def save(self, path: str | Path) -> None:
         """Write the controller as JSON (docs/controller-format.md), atomically."""

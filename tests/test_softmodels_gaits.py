@@ -81,3 +81,18 @@ def test_model_options_are_checked(capsys: pytest.CaptureFixture[str]) -> None:
         == 1
     )
     assert "robot file has no 'model' section" in capsys.readouterr().err
+
+
+def test_gaits_model_json_prints_the_documented_keys(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    code = main(["gaits", RADIAL8, "--model", "spring-damper", "--direction", "+y", "--json"])
+    out = capsys.readouterr().out
+    assert code == 0
+    doc = json.loads(out)
+    table = (Path(__file__).parent.parent / "docs" / "json.md").read_text(encoding="utf-8")
+    section = table.split("### gaits --model", 1)[1].split("###", 1)[0]
+    documented = set(re.findall(r"^\| `([a-z_0-9]+)` \|", section, re.MULTILINE))
+    assert set(doc) == documented | {"schema", "command"}
+    assert doc["command"] == "gaits" and doc["valve_states"] == 9
+    assert doc["gaits"][0]["valves"] == ["00000001", "00000100"]

@@ -14,8 +14,9 @@ from typing import Any
 import gaitc
 from diagnostics import UsageError
 from gaitc.commands.arguments import add_prefer, positive_seconds
-from gaitc.commands.simulating import environment_of, report_run
+from gaitc.commands.simulating import add_json, environment_of, report_run
 from gaitc.exitcodes import ExitCode, exit_code_help
+from gaitc.reporting import document, print_json, run_json
 from gaitc.simulation import Session
 from gaitc.solving import recorded_encoding
 from gaithw.backend import Backend, interrupt_on_signals
@@ -99,6 +100,7 @@ def register(sub: Any) -> None:
     p.add_argument("--robotics-semantics", action="store_true",
                    help="semantics when synthesizing on the fly")
     p.add_argument("--quiet", action="store_true", help="print only the summary")
+    add_json(p)
     add_prefer(p, "without CONTROLLER: ")
     p.set_defaults(run=run_drive)
 
@@ -206,6 +208,9 @@ def run_drive(args: argparse.Namespace) -> int:
     loaded = gaitc.session(checked, args.controller, semantics=semantics, prefer=args.prefer)
     if loaded is None:
         print(f"{args.spec}: unrealizable: no controller to drive", file=sys.stderr)
+        if args.json:
+            print_json(document("drive", {**run_json(args.spec, None, None, None, False),
+                                          "backend": args.backend, "violations": []}))
         return ExitCode.UNREALIZABLE
     backend, steps = _backend(args, loaded, valve_count(primitives, len(loaded.domain.legs)))
     if args.pose:
@@ -214,11 +219,16 @@ def run_drive(args: argparse.Namespace) -> int:
         backend = _localised(args, backend, loaded)
     delay = args.step_delay if args.step_delay is not None else (
         0.5 if args.backend == "serial" else 0.0)
-    live = None if args.quiet or args.backend in ("sim", "physics") else _print_flush
+    live = (None if args.quiet or args.json or args.backend in ("sim", "physics")
+            else _print_flush)
     driver = Driver(loaded.strategy, loaded.domain, loaded.monitor, primitives, backend,
                     delay, args.cycles, live, args.on_violation)
     with interrupt_on_signals():  # SIGTERM and SIGHUP vent and keep the run, as Ctrl-C does
         run = driver.run(steps, args.spec)
+    if args.json:
+        extra = {"backend": args.backend, "violations": list(driver.violations)}
+        return report_run(run, dict(loaded.domain.full), backend.name, args.quiet, args.out,
+                          True, extra, command="drive")
     if driver.violations and live is None:
         print(f"readings that broke an assumption ({args.on_violation}): "
               f"{len(driver.violations)}")

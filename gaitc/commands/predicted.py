@@ -52,6 +52,16 @@ def run_model_gaits(args: argparse.Namespace) -> int:
         raise UsageError(f"--direction: unknown direction {args.direction!r}") from err
     loaded = load_model(args.model, args.robot)
     found = search_gaits(loaded, direction, args.max_open)
+    if getattr(args, "json", False):
+        from gaitc.reporting import document, print_json
+
+        written = []
+        if args.output:
+            write_atomically(args.output, _json(found, args.direction))
+            written.append(args.output)
+        body = {**json.loads(_json(found, args.direction)), "written": written}
+        print_json(document("gaits", body))
+        return 0 if found.gaits else 1
     print(
         f"robot {loaded.robot}: model {args.model}, {len(found.graph.states)} valve states, "
         f"{len(found.graph.motion)} simulated transitions of {loaded.period:g} s"
@@ -96,6 +106,8 @@ def _json(found: Any, direction: str) -> str:
         "model": found.graph.model,
         "direction": direction,
         "period": found.graph.period,
+        "valve_states": len(found.graph.states),
+        "transitions": len(found.graph.motion),
         "valve_legs": list(found.loaded.valve_legs),
         "units": {"length": "mm", "angle": "deg"},
         "gaits": gaits,
