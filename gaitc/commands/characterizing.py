@@ -77,6 +77,12 @@ def run_characterize(args: argparse.Namespace) -> int:
     if args.stiffness:
         s = fit_stiffness(args.stiffness)
         want = {p for p, _ in limb.stiffness if p}
+        if not want and len(s.matrices) > 1:
+            raise UsageError(
+                f"{args.stiffness}: states {', '.join(sorted(s.matrices))}, but limb "
+                f"{limb.name} has one stiffness matrix for every state; give one state, or "
+                "a matrix per valve pattern in the robot file"
+            )
         if want and set(s.matrices) != want:
             raise UsageError(
                 f"{args.stiffness}: states {', '.join(sorted(s.matrices))}; limb "
