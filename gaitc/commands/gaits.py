@@ -31,6 +31,9 @@ def register(subparsers: Any) -> None:
     p.add_argument("--svg", metavar="DIR", help="write the gait graph and pose top views here")
     p.add_argument("--json", action="store_true",
                    help="print the search and its gaits as one JSON object (docs/json.md)")
+    from gaitc.commands.predicted import model_arguments
+
+    model_arguments(p)
     p.set_defaults(run=run)
 
 
@@ -59,6 +62,10 @@ def run_render(args: argparse.Namespace) -> int:
 
 
 def run(args: argparse.Namespace) -> int:
+    if getattr(args, "model", None) is not None:
+        from gaitc.commands.predicted import run_model_gaits
+
+        return run_model_gaits(args)
     if args.method in ("astar", "lpa", "mcts"):
         from gaitc.commands.learning import run_global
 
