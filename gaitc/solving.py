@@ -26,7 +26,8 @@ from gr1.controller import (
 )
 from gr1.costs import Cost
 from gr1.spec import SEMANTICS, GR1Spec
-from solver.game import GameStats, Progress
+from solver.game import GameStats
+from solver.progress import Progress, Stage
 from solver.symbolic import Options
 from solver.synthesis import FORMS
 from verifier.strategy import VerificationReport
@@ -295,6 +296,8 @@ def _solve(spec: Spec | GR1Spec, kind: Kind, semantics: str, solver: str,
         source = spec.source() if isinstance(spec, Spec) else None
         automaton = replace(automaton, source=source, solver=solver)
         if check_it:
+            if progress is not None:
+                progress(Stage("checking the controller with the independent verifier"))
             report = verify(spec, automaton, semantics)
     return Synthesis(spec, kind, automaton, report, seconds, semantics, solver)
 

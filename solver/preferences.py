@@ -93,7 +93,8 @@ class MovePreferences:
         strict.sys_trans = sym.sys_trans & avoid
         strict.game_sys_trans = sym.game_sys_trans & avoid
         strict.sys_clusters = []
-        result = Game(strict, limits).solve(keep_layers=True)
+        purpose = "solving the game without entries into active hazards"
+        result = Game(strict, limits, purpose).solve(keep_layers=True)
         self.safe = result.winning
         self.safe_strategies = goal_strategies(strict, result)
 
@@ -120,18 +121,17 @@ class MovePreferences:
         """The preferred part of goal ``goal``'s move relation ``strategy`` (over the state
         and the primed inputs and outputs), for a symbolic controller: at every state and
         input it holds exactly the moves :meth:`allowed` and :meth:`choose` leave an
-        explicit extraction, after its preference for moves that keep ρe.  So a runtime
+        explicit extraction.  So a runtime
         that takes the smallest move of this relation makes the explicit controller's
         moves (tests/test_symbolic_controller.py compares them step by step)."""
-        sym, bdd = self.sym, self.sym.bdd
+        bdd = self.sym.bdd
         strategy = self._simplified(strategy)
         if self.safe != bdd.false:
             safe = self._simplified(self.safe_strategies[goal])
             strategy = self._simplified(self.safe & safe) | self._simplified(~self.safe & strategy)
+        # ρe never names a next output (solver.synthesis checks it), so every move of the
+        # strategy keeps it: the explicit extraction's preference for such moves is moot.
         moves = strategy
-        if bdd.support(sym.env_trans) & sym.post_outputs:  # ρe can forbid some moves only
-            keeping = strategy & sym.env_trans
-            moves = keeping | (strategy & ~bdd.exist(sym.post_outputs, keeping))
         for name in self.order:
             if name == "goal":
                 moves = self._nearest_relation(goal, moves)

@@ -13,20 +13,27 @@ the runtime needs nothing of them.
 from __future__ import annotations
 
 from gr1.bddfile import SymbolicController, node_table
-from solver.game import GameResult
+from solver.game import GameResult, Limits
 from solver.preferences import MovePreferences
 from solver.strategy import goal_strategies, spec_integers
 from solver.symbolic import SymbolicSpec
 
 
 def symbolic_controller(sym: SymbolicSpec, result: GameResult, semantics: str,
-                        prefer: MovePreferences | None = None) -> SymbolicController:
+                        prefer: MovePreferences | None = None,
+                        limits: Limits | None = None) -> SymbolicController:
     """The symbolic controller of a realizable game (``result`` needs its layers); with
     ``prefer`` each goal's relation keeps only the preferred moves
     (:meth:`~solver.preferences.MovePreferences.relation`)."""
     strategies = goal_strategies(sym, result)
     if prefer is not None:
-        strategies = [prefer.relation(j, s) for j, s in enumerate(strategies)]
+        narrowed = []
+        for j, strategy in enumerate(strategies):
+            if limits is not None:
+                limits.report(f"choosing the preferred moves: goal {j + 1} of "
+                              f"{len(strategies)}", fraction=j / len(strategies))
+            narrowed.append(prefer.relation(j, strategy))
+        strategies = narrowed
     roots = {
         "winning": result.winning,
         "env_init": sym.env_init,

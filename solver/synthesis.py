@@ -72,7 +72,11 @@ def _game(spec: GR1Spec, semantics: str, options: Options, limits: Limits
     """The symbolic game of ``spec``, after the checks the game relies on."""
     _check_semantics(semantics)
     _check_env_trans(spec)
+    limits.report("building the transition relation",
+                  f"{len(spec.inputs)} inputs, {len(spec.outputs)} outputs, "
+                  f"{len(spec.env_trans) + len(spec.sys_trans)} transition clauses")
     sym = _symbolic(spec, options, limits)
+    limits.report("building the transition relation", f"{sym.node_count()} live BDD nodes", 1.0)
     # A weak reference: sym already holds limits.check, and a cycle would leave the BDD
     # manager to the garbage collector, which may free it before its nodes.
     check_memory = weakref.WeakMethod(sym.check_memory)
@@ -173,14 +177,15 @@ def synthesize_controller(
                 return None
             moves = MovePreferences(sym, result, costs, prefer, lim) if prefer else None
             if form != "symbolic":
-                lim.report("extracting the explicit controller")
+                lim.report("extracting the controller")
                 try:
                     return extract_strategy(sym, result, semantics, lim, max_nodes, moves)
                 except ControllerTooLarge:
                     if form == "explicit":
                         raise
-                    lim.report(f"over {max_nodes} nodes: keeping the controller symbolic")
-            return symbolic_controller(sym, result, semantics, moves)
+                    lim.report("keeping the controller symbolic", f"over {max_nodes} nodes")
+            lim.report("writing the strategy as BDDs")
+            return symbolic_controller(sym, result, semantics, moves, lim)
 
     _check_semantics(semantics)
     return solve_chosen(run, options or Options(), Limits(timeout, progress))[0]

@@ -19,6 +19,7 @@ from gaitc.exitcodes import ExitCode, exit_code_help
 from gaitc.reporting import document, print_json, run_json
 from gaitc.simulation import Session
 from gaitc.solving import recorded_encoding
+from gaitc.status import progress_display
 from gaithw.backend import Backend, interrupt_on_signals
 from gaithw.driver import VIOLATION_POLICIES
 from gaitsim.environments import Environment
@@ -205,7 +206,9 @@ def run_drive(args: argparse.Namespace) -> int:
                          "valve primitives")
     primitives = bind_primitives(checked.model, str(Path(args.spec).parent))
     semantics = "robotics" if args.robotics_semantics else "default"
-    loaded = gaitc.session(checked, args.controller, semantics=semantics, prefer=args.prefer)
+    with progress_display() as progress:
+        loaded = gaitc.session(checked, args.controller, semantics=semantics,
+                               prefer=args.prefer, progress=progress)
     if loaded is None:
         print(f"{args.spec}: unrealizable: no controller to drive", file=sys.stderr)
         if args.json:

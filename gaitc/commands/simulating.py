@@ -17,6 +17,7 @@ from gaitc.commands.arguments import add_prefer
 from gaitc.exitcodes import ExitCode, exit_code_help
 from gaitc.reporting import document, exit_code_of, print_json, run_json
 from gaitc.simulation import ENVIRONMENTS, Session, environment
+from gaitc.status import progress_display
 from gaitsim.environments import Environment
 from gaitsim.run import Run
 from ltlcompiler.encoding import ENCODINGS
@@ -92,11 +93,15 @@ def run_simulate(args: argparse.Namespace) -> int:
     semantics = "robotics" if args.robotics_semantics else "default"
     if args.steps is not None and args.steps < 0:
         raise UsageError("--steps must not be negative")
-    bound = gaitc.session(args.spec, args.controller, args.encoding, semantics, args.prefer)
+    with progress_display() as progress:
+        bound = gaitc.session(args.spec, args.controller, args.encoding, semantics,
+                              args.prefer, progress)
     if bound is None and (args.env or ["random"])[0] == "adversarial":
         from gaitc.simulation import counter_session
 
-        bound = counter_session(gaitc.load(args.spec, args.encoding or "onehot"), semantics)
+        with progress_display() as progress:
+            bound = counter_session(gaitc.load(args.spec, args.encoding or "onehot"),
+                                    semantics, progress)
         if bound is not None:  # the environment plays its winning strategy
             run = gaitc.simulate(bound, env="adversarial", steps=args.steps)
             return report_run(run, bound.full_health, run.environment, args.quiet, args.out,

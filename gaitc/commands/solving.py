@@ -24,8 +24,9 @@ from gaitc.exitcodes import ExitCode, exit_code_help
 from gaitc.isolation import HardLimits, cudd_budget_mb, run_limited
 from gaitc.reporting import document, error_json, exit_code_of, print_json
 from gaitc.solving import MAX_NODES, SOLVERS, read_controller, recorded_encoding
+from gaitc.status import progress_display
 from ltlcompiler.encoding import ENCODINGS
-from solver.game import Progress
+from solver.progress import Progress
 from solver.symbolic import Options
 from verifier.strategy import VerificationReport
 
@@ -61,6 +62,10 @@ def _common(p: argparse.ArgumentParser, solver: bool = True) -> None:
     p.add_argument("--memory-limit", type=positive_megabytes, metavar="MB",
                    help="the most memory the solver process may take (exit 4 when it needs "
                    "more)")
+    p.add_argument("--verbose", action="store_true",
+                   help="print each stage of the solve on a line of its own, with the "
+                   "solver's figures (rounds, BDD sizes); on a terminal a status line "
+                   "shows the stage and the time elapsed")
 
 
 def register(sub: Any) -> None:
@@ -139,15 +144,6 @@ def _semantics(args: argparse.Namespace) -> str:
     return "robotics" if args.robotics_semantics else "default"
 
 
-def _progress() -> Progress | None:
-    if not sys.stderr.isatty():
-        return None
-
-    def show(message: str) -> None:
-        print(f"gaitc: {message}", file=sys.stderr, flush=True)
-
-    return show
-
 
 def _limits(args: argparse.Namespace) -> HardLimits:
     return HardLimits(args.timeout, getattr(args, "memory_limit", None))
@@ -158,9 +154,9 @@ def _options(args: argparse.Namespace) -> Options:
     return Options(memory_mb=None if mb is None else cudd_budget_mb(mb))
 
 
-def _solver_args(args: argparse.Namespace) -> dict[str, Any]:
+def _solver_args(args: argparse.Namespace, progress: Progress | None) -> dict[str, Any]:
     return {"semantics": _semantics(args), "solver": args.solver, "timeout": args.timeout,
-            "slugs": args.slugs, "options": _options(args), "progress": _progress()}
+            "slugs": args.slugs, "options": _options(args), "progress": progress}
 
 
 # ---------------------------------------------------------------- commands
@@ -194,7 +190,8 @@ def _check_one(path: str, args: argparse.Namespace) -> gaitc.Verdict:
     """Load and decide one spec (in the limited child process when there are limits; CUDD's
     share of the memory limit is what is left once the spec is loaded)."""
     spec = gaitc.load(path, args.encoding)
-    return gaitc.check(spec, **_solver_args(args))
+    with progress_display(args.verbose) as progress:
+        return gaitc.check(spec, **_solver_args(args, progress))
 
 
 _SEVERITY = (ExitCode.OK, ExitCode.UNREALIZABLE, ExitCode.USER, ExitCode.SOLVER)
@@ -205,12 +202,13 @@ def _solve(args: argparse.Namespace, kind: str) -> tuple[gaitc.Spec, gaitc.Synth
 
     def work() -> tuple[gaitc.Spec, gaitc.Synthesis]:
         spec = gaitc.load(args.spec, args.encoding)
-        if kind == "counterstrategy":
-            return spec, gaitc.counterstrategy(spec, **_solver_args(args))
-        form = "symbolic" if args.symbolic else "auto"
-        return spec, gaitc.synthesize(spec, verify=not args.no_verify, form=form,
-                                      max_nodes=args.max_nodes, prefer=args.prefer,
-                                      **_solver_args(args))
+        with progress_display(args.verbose) as progress:
+            if kind == "counterstrategy":
+                return spec, gaitc.counterstrategy(spec, **_solver_args(args, progress))
+            form = "symbolic" if args.symbolic else "auto"
+            return spec, gaitc.synthesize(spec, verify=not args.no_verify, form=form,
+                                          max_nodes=args.max_nodes, prefer=args.prefer,
+                                          **_solver_args(args, progress))
 
     return run_limited(work, _limits(args))
 
