@@ -26,7 +26,7 @@ from gr1.controller import (
 )
 from gr1.costs import Cost
 from gr1.spec import SEMANTICS, GR1Spec
-from solver.game import GameStats
+from solver.game import GameStats, out_of_memory
 from solver.progress import Progress, Stage
 from solver.symbolic import Options
 from solver.synthesis import FORMS
@@ -220,7 +220,7 @@ def check(spec: Spec | GR1Spec, semantics: str = "default", solver: str = "embed
     try:
         checked = synthesis.check(gr1, semantics, timeout, progress, options)
     except MemoryError:
-        raise _out_of_memory() from None
+        raise out_of_memory() from None
     return Verdict(_name(spec), checked.realizable, time.monotonic() - started, semantics,
                    solver, checked.stats, checked.engine)
 
@@ -289,7 +289,7 @@ def _solve(spec: Spec | GR1Spec, kind: Kind, semantics: str, solver: str,
 
             automaton = synthesis.counterstrategy(gr1, semantics, timeout, progress, options)
     except MemoryError:
-        raise _out_of_memory() from None
+        raise out_of_memory() from None
     seconds = time.monotonic() - started
     report = None
     if automaton is not None:
@@ -326,11 +326,6 @@ def _slugs_automaton(gr1: GR1Spec, kind: Kind, semantics: str, timeout: float | 
     if wanted:
         return runner.controller_from_slugs_json(result.output, gr1, semantics)
     return runner.counterstrategy_from_slugs_text(result.output, gr1, semantics)
-
-
-def _out_of_memory() -> SolverError:
-    return SolverError("synthesis ran out of memory",
-                       hint="raise the memory limit, or shrink the specification")
 
 
 def verify(spec: Spec | GR1Spec,
