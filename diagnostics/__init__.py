@@ -153,12 +153,19 @@ def render(
             if span.end_line == span.line and span.end_column is not None:
                 width = max(1, span.end_column - col + 1)
             width = min(width, max(1, len(line) - col + 1))
-            expanded = line.replace("\t", " ")
-            out.append(f"    {expanded}")
+            out.append(f"    {_printable(line)}")
             out.append("    " + " " * (col - 1) + "^" * width)
     if hint:
         out.append(f"  hint: {hint}")
     return "\n".join(out)
+
+
+def _printable(line: str) -> str:
+    """``line`` as the terminal may show it: a tab as a space, and every other control
+    character (ESC, BEL, C1 codes) as ``?``, one column each, so that a file cannot send
+    escape sequences to the terminal and the caret below still lines up."""
+    return "".join(" " if c == "\t" else "?" if ord(c) < 32 or 0x7F <= ord(c) < 0xA0 else c
+                   for c in line)
 
 
 def render_error(err: GaitcError, sources: dict[str, str] | None = None) -> str:

@@ -52,6 +52,42 @@ def _stream_in_place(target: Path) -> bool:
     return stat.S_ISFIFO(mode) or stat.S_ISCHR(mode) or stat.S_ISBLK(mode)
 
 
+def read_input(path: str | Path, what: str = "") -> bytes:
+    """The bytes of the input file ``path`` (``what`` it is, for the message: "scenario",
+    "robot file"); a file that is missing, a folder or unreadable is a usage error (exit 2,
+    as for a missing spec), named with the file and the reason in words."""
+    name = f"{what} '{path}'" if what else f"'{path}'"
+    if "\0" in str(path):
+        raise UsageError(f"cannot read {name}: the name holds a NUL character")
+    try:
+        return Path(path).read_bytes()
+    except FileNotFoundError:
+        raise UsageError(f"cannot read {name}: no such file") from None
+    except IsADirectoryError:
+        raise UsageError(f"cannot read {name}: it is a directory") from None
+    except OSError as err:
+        raise UsageError(f"cannot read {name}: {err.strerror or err}") from None
+
+
+def check_writable(path: str | Path) -> None:
+    """Refuse, before any work, an output ``path`` that :func:`write_atomically` could not
+    write: its folder is missing or not writable, or it is a folder or other non-file."""
+    target = Path(path)
+    if target.is_symlink():
+        target = target.resolve()
+    if _stream_in_place(target):
+        return
+    if target.exists() and not target.is_file():
+        raise UsageError(f"cannot write '{path}': it is not a regular file")
+    folder = target.parent if str(target.parent) else Path(".")
+    if not folder.is_dir():
+        raise UsageError(f"cannot write '{path}': there is no folder '{folder}'")
+    if not os.access(folder, os.W_OK | os.X_OK):
+        raise UsageError(f"cannot write '{path}': the folder '{folder}' is not writable")
+    if target.exists() and not os.access(target, os.W_OK):
+        raise UsageError(f"cannot write '{path}': the file is read-only")
+
+
 def write_atomically(path: str | Path, data: str | bytes) -> None:
     """Replace ``path`` by ``data`` (text is written as UTF-8 with ``\\n`` line ends).
 

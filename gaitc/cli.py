@@ -15,6 +15,7 @@ from collections.abc import Sequence
 
 from diagnostics import GaitcError, UsageError, render_error
 from gaitc import reporting
+from gaitc.commands.arguments import attach_signed_values
 from gaitc.exitcodes import ExitCode, exit_code_help
 
 
@@ -67,7 +68,7 @@ def main(argv: Sequence[str] | None = None) -> int:
 
 
 def _run(argv: Sequence[str] | None) -> int:
-    words = list(sys.argv[1:] if argv is None else argv)
+    words = attach_signed_values(list(sys.argv[1:] if argv is None else argv))
     # --json before parsing, for usage errors; after parsing, the command's own option
     as_json, command = reporting.json_requested(words), None
     try:

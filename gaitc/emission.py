@@ -46,8 +46,12 @@ def emit(spec: Spec | GR1Spec, fmt: str = "structuredslugs") -> str:
 
 
 def output_format(output: str, requested: str | None) -> str:
-    """``requested``, else the format the suffix of ``output`` names (structuredslugs)."""
+    """``requested``, else the format the suffix of ``output`` names, as the readers take
+    it (:mod:`gaitc.loading`: ``.slugsin`` and ``.txt`` are slugsin, ``.ltl`` LTL text),
+    else structuredslugs."""
     if requested is not None:
         return requested
     suffix = Path(output).suffix.lstrip(".").lower()
+    if suffix == "txt":
+        return "slugsin"
     return suffix if suffix in ("slugsin", "ltl") else "structuredslugs"

@@ -14,7 +14,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from diagnostics import Diagnostic, SlugsFormatError, SpecSyntaxError, UsageError
-from diagnostics.files import decode_text
+from diagnostics.files import decode_text, read_input
 from gaitc.presentation import table
 from gr1.spec import SECTIONS, GR1Spec
 from ltlcompiler.encoding import ENCODINGS
@@ -106,14 +106,7 @@ def _kind(name: str) -> str:
 
 
 def _read(path: str) -> bytes:
-    try:
-        return Path(path).read_bytes()
-    except FileNotFoundError:
-        raise UsageError(f"cannot read '{path}': no such file") from None
-    except IsADirectoryError:
-        raise UsageError(f"cannot read '{path}': it is a directory") from None
-    except OSError as err:
-        raise UsageError(f"cannot read '{path}': {err.strerror or err}") from None
+    return read_input(path)
 
 
 def _decode(data: bytes, path: str, suffix: str) -> str:

@@ -13,7 +13,7 @@ from pathlib import Path
 import yaml
 
 from diagnostics import GaitcError, Span
-from diagnostics.files import decode_text
+from diagnostics.files import decode_text, read_input
 from diagnostics.yamltext import compose
 
 
@@ -210,13 +210,7 @@ DIRECTIONS = ("+x", "-x", "+y", "-y")
 def load_robot(path: str | Path) -> Robot:
     """Read and validate a robot YAML file; raise :class:`RobotFileError` on any problem."""
     name = str(path)
-    try:
-        data = Path(path).read_bytes()
-    except OSError as err:
-        raise RobotFileError(f"cannot read robot file {name}: {err.strerror}") from None
-    except ValueError:  # a NUL byte in the name
-        raise RobotFileError(f"cannot read robot file {name!r}: the name holds a NUL "
-                             "character") from None
+    data = read_input(path, "robot file")
     return parse_robot(decode_text(data, name, RobotFileError), name)
 
 

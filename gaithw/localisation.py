@@ -22,6 +22,7 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
+from diagnostics.files import decode_text, read_input
 from gaithw.backend import Backend, HardwareError, SensorReading, where
 from gaitsim.environments import Move
 from ltlcompiler.model import Model
@@ -65,9 +66,10 @@ class RegionMap:
         import yaml
 
         name = str(path)
+        text = decode_text(read_input(path, "map"), name, HardwareError)
         try:
-            data = yaml.safe_load(Path(path).read_text(encoding="utf-8"))
-        except (OSError, UnicodeDecodeError, yaml.YAMLError) as err:
+            data = yaml.safe_load(text)
+        except yaml.YAMLError as err:
             raise HardwareError(f"cannot read the map {name}: {err}", where(name)) from None
         table = data.get("regions") if isinstance(data, dict) else None
         if not isinstance(table, dict):

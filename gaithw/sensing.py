@@ -21,6 +21,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from diagnostics import GaitcError, Span
+from diagnostics.files import decode_text, read_input
 
 NOMINAL_DEPTH = 0.6  # curvature feature of a healthy actuator when nothing is calibrated
 DEFAULT_HYSTERESIS = 0.03
@@ -201,10 +202,7 @@ class Cycle:
 def read_cycles(path: str | Path) -> list[Cycle]:
     """``leg,cycle,level,intensity`` rows (one per sample, in time order) → cycles."""
     name = str(path)
-    try:
-        text = Path(path).read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as err:
-        raise CalibrationError(f"cannot read {name}: {err}", _where(name)) from None
+    text = decode_text(read_input(path, "recording"), name, CalibrationError)
     rows = list(csv.reader(text.splitlines()))
     if not rows or [c.strip() for c in rows[0]] != ["leg", "cycle", "level", "intensity"]:
         raise CalibrationError("the first line must be the header leg,cycle,level,intensity",
@@ -273,9 +271,10 @@ def read_sensing(path: str | Path) -> dict[str, LegCalibration]:
     import yaml
 
     name = str(path)
+    text = decode_text(read_input(path, "sensing file"), name, CalibrationError)
     try:
-        data = yaml.safe_load(Path(path).read_text(encoding="utf-8"))
-    except (OSError, UnicodeDecodeError, yaml.YAMLError) as err:
+        data = yaml.safe_load(text)
+    except yaml.YAMLError as err:
         raise CalibrationError(f"cannot read the sensing file {name}: {err}",
                                _where(name)) from None
     legs = data.get("legs") if isinstance(data, dict) else None

@@ -15,7 +15,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from diagnostics import GaitcError, ScenarioError, Span, UsageError, source_lines
-from diagnostics.files import decode_text, write_atomically
+from diagnostics.files import decode_text, read_input, write_atomically
 
 if TYPE_CHECKING:
     from ltlcompiler.model import Model
@@ -170,15 +170,20 @@ def write_csv(run: Run) -> str:
     return out.getvalue()
 
 
-def save_run(run: Run, path: str | Path) -> None:
-    """Write ``run`` to ``path``; the extension (``.jsonl`` or ``.csv``) picks the format."""
+def run_format(path: str | Path) -> str:
+    """The run format ``path``'s extension names: ``jsonl`` (``.jsonl``, ``.json``) or
+    ``csv``; any other is a usage error."""
     suffix = Path(path).suffix.lower()
     if suffix in (".jsonl", ".json"):
-        text = write_jsonl(run)
-    elif suffix == ".csv":
-        text = write_csv(run)
-    else:
-        raise UsageError(f"cannot tell the run format from '{path}': use a .jsonl or .csv file")
+        return "jsonl"
+    if suffix == ".csv":
+        return "csv"
+    raise UsageError(f"cannot tell the run format from '{path}': use a .jsonl or .csv file")
+
+
+def save_run(run: Run, path: str | Path) -> None:
+    """Write ``run`` to ``path``; the extension (``.jsonl`` or ``.csv``) picks the format."""
+    text = write_jsonl(run) if run_format(path) == "jsonl" else write_csv(run)
     write_atomically(path, text)
 
 
@@ -189,10 +194,10 @@ def _strs(value: Any) -> tuple[str, ...]:
 def read_jsonl(path: str | Path) -> Run:
     """Read a run written by :func:`write_jsonl` (the summary line is kept as is)."""
     file = str(path)
-    try:
-        raw = Path(path).read_bytes()  # bytes: universal newlines would split at a lone \r
-    except OSError as err:
-        raise ScenarioError(f"cannot read run file: {err.strerror}", Span(file, 1, 1)) from None
+    if Path(path).suffix.lower() == ".csv":
+        raise UsageError(f"'{path}' is a CSV run, a table for spreadsheets that cannot be read "
+                         "back; save the run with --out FILE.jsonl to draw or replay it")
+    raw = read_input(path, "run file")  # bytes: universal newlines would split at a lone \r
     text = decode_text(raw, file, ScenarioError)
     run = Run(legs=())
     numbers: list[int] = []  # the line of each step

@@ -11,7 +11,7 @@ from pathlib import Path
 import yaml
 
 from diagnostics import ScenarioError, Span
-from diagnostics.files import decode_text
+from diagnostics.files import decode_text, read_input
 from diagnostics.yamltext import compose
 from gaitsim.domain import State
 from gaitsim.environments import Environment, Move, Request, Situation
@@ -159,10 +159,7 @@ def parse_scenario(text: str, model: Model, file: str = "<scenario>") -> Scenari
 def load_scenario(path: str | Path, model: Model) -> Scenario:
     """Read and check a scenario file."""
     file = str(path)
-    try:
-        data = Path(path).read_bytes()
-    except OSError as err:
-        raise ScenarioError(f"cannot read scenario: {err.strerror}", Span(file, 1, 1)) from None
+    data = read_input(path, "scenario")
     return parse_scenario(decode_text(data, file, ScenarioError), model, file)
 
 

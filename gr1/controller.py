@@ -11,11 +11,10 @@ import html
 import json
 from collections.abc import Mapping
 from dataclasses import dataclass, field
-from pathlib import Path
 from typing import Any
 
 from diagnostics import ControllerError, Span, span_at
-from diagnostics.files import decode_text
+from diagnostics.files import decode_text, read_input
 from gr1.bits import bit_name, parse_first_bit, spec_bits
 from gr1.spec import SEMANTICS, GR1Spec
 
@@ -266,12 +265,7 @@ def controller_from_dict(
 
 def read_controller_json(path: str) -> Any:
     """The parsed JSON of a controller file (explicit or symbolic), with positioned errors."""
-    try:
-        raw = Path(path).read_bytes()
-    except OSError as err:
-        raise ControllerError(
-            f"cannot read controller file: {err.strerror}", Span(path, 1, 1)
-        ) from None
+    raw = read_input(path, "controller file")
     text = decode_text(raw, path, ControllerError)
     try:
         return json.loads(text)

@@ -26,7 +26,7 @@ from numpy.typing import NDArray
 from scipy.optimize import least_squares
 
 from diagnostics import Span
-from diagnostics.files import decode_text
+from diagnostics.files import decode_text, read_input
 from softmodels.fields import ModelFileError
 
 Array = NDArray[np.float64]
@@ -55,10 +55,7 @@ def step_response(t: Array, start: float, final: float, frequency: float, zeta: 
 def read_columns(path: str | Path, columns: tuple[str, ...]) -> tuple[list[str], Array, str]:
     """The first column as text and the others as numbers (rows, columns), with the path."""
     name = str(path)
-    try:
-        data = Path(path).read_bytes()
-    except OSError as err:
-        raise CharacterizationError(f"cannot read {name}: {err.strerror}") from None
+    data = read_input(path, "recording")
     text = decode_text(data, name, CharacterizationError)
     rows = list(csv.reader(io.StringIO(text)))
     if not rows or [c.strip() for c in rows[0]] != list(columns):

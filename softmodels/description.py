@@ -23,7 +23,7 @@ import numpy as np
 import yaml
 
 from diagnostics import Span
-from diagnostics.files import decode_text
+from diagnostics.files import decode_text, read_input
 from diagnostics.yamltext import compose
 from gaitgraph.robot import Robot, parse_robot
 from softmodels.fields import Fields, ModelFileError, span_of
@@ -125,14 +125,7 @@ _FRICTION_HINT = "friction maps heel, outward, inward and lateral to [static, ki
 def load_spring_damper(path: str | Path) -> SpringDamperRobot:
     """Read a robot file and its ``model: spring_damper:`` section."""
     name = str(path)
-    try:
-        data = Path(path).read_bytes()
-    except OSError as err:
-        raise ModelFileError(f"cannot read robot file {name}: {err.strerror}") from None
-    except ValueError:
-        raise ModelFileError(
-            f"cannot read robot file {name!r}: the name holds a NUL character"
-        ) from None
+    data = read_input(path, "robot file")
     return parse_spring_damper(decode_text(data, name, ModelFileError), name)
 
 

@@ -13,7 +13,7 @@ from pathlib import Path
 
 import yaml
 
-from diagnostics.files import decode_text, write_atomically
+from diagnostics.files import decode_text, read_input, write_atomically
 from softmodels.description import parse_spring_damper, section_node
 from softmodels.fields import Fields, ModelFileError
 
@@ -77,10 +77,7 @@ def write_fields(
 ) -> str:
     """Set ``fields`` of ``limb`` in the robot file, check it, write it atomically; the text."""
     name = str(robot)
-    try:
-        data = Path(robot).read_bytes()
-    except OSError as err:
-        raise ModelFileError(f"cannot read robot file {name}: {err.strerror}") from None
+    data = read_input(robot, "robot file")
     text = decode_text(data, name, ModelFileError)
     for key, value in fields.items():
         text = set_field(text, name, limb, key, value)

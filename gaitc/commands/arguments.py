@@ -4,6 +4,32 @@ from __future__ import annotations
 
 import argparse
 import math
+from collections.abc import Sequence
+from typing import Final
+
+#: Options whose values may start with a minus sign (``--direction -y``, ``--goal -10,0``):
+#: argparse would take such a value for an option, so :func:`attach_signed_values` joins it.
+SIGNED_VALUES: Final = ("--direction", "--goal")
+
+
+def attach_signed_values(argv: Sequence[str]) -> list[str]:
+    """``argv`` with ``--direction -y`` written ``--direction=-y`` (and so for every option
+    of :data:`SIGNED_VALUES`), up to a ``--`` that ends the options."""
+    out: list[str] = []
+    k = 0
+    while k < len(argv):
+        word = argv[k]
+        if word == "--":
+            out += argv[k:]
+            break
+        if word in SIGNED_VALUES and k + 1 < len(argv) and argv[k + 1].startswith("-") \
+                and argv[k + 1] != "--":
+            out.append(f"{word}={argv[k + 1]}")
+            k += 2
+            continue
+        out.append(word)
+        k += 1
+    return out
 
 
 def positive_seconds(value: str) -> float:
@@ -39,6 +65,44 @@ def positive_count(value: str) -> int:
         raise argparse.ArgumentTypeError(f"'{value}' is not a whole number") from None
     if count <= 0:
         raise argparse.ArgumentTypeError(f"must be a positive whole number, not {value}")
+    return count
+
+
+def output_file(value: str) -> str:
+    """An output file (``-o``, ``--out``) checked before any work: its folder must exist and
+    be writable, and it must not be a folder; ``-`` is standard output."""
+    from diagnostics import UsageError
+    from diagnostics.files import check_writable
+
+    if value != "-":
+        try:
+            check_writable(value)
+        except UsageError as err:
+            raise argparse.ArgumentTypeError(err.message) from None
+    return value
+
+
+def run_file(value: str) -> str:
+    """An output run file (``--out`` of simulate, drive, explain): a writable ``.jsonl`` or
+    ``.csv`` file (:func:`output_file`)."""
+    from diagnostics import UsageError
+    from gaitsim.run import run_format
+
+    try:
+        run_format(value)
+    except UsageError as err:
+        raise argparse.ArgumentTypeError(err.message) from None
+    return output_file(value)
+
+
+def positive_whole(value: str) -> int:
+    """A whole number of at least 0 (``--max-steps``, ``--steps``)."""
+    try:
+        count = int(value)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"'{value}' is not a whole number") from None
+    if count < 0:
+        raise argparse.ArgumentTypeError(f"must not be negative, not {value}")
     return count
 
 

@@ -10,6 +10,7 @@ import argparse
 from pathlib import Path
 from typing import Any
 
+from gaitc.commands.arguments import output_file
 from gaitc.exitcodes import ExitCode, exit_code_help
 
 EPILOG = """LEGS.csv has the header leg,cycle,level,intensity and one row per sample of a
@@ -30,7 +31,7 @@ def register(sub: Any) -> None:
                        "them for 'gaitc drive --backend serial --sensing FILE'.",
                        epilog=EPILOG, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("cycles", metavar="LEGS.csv")
-    p.add_argument("-o", "--out", metavar="FILE",
+    p.add_argument("-o", "--out", metavar="FILE", type=output_file,
                    help="sensing file to write (default: LEGS.sensing.yaml)")
     p.set_defaults(run=run_calibrate)
 

@@ -11,6 +11,7 @@ import argparse
 from typing import Any
 
 from diagnostics import UsageError
+from gaitc.commands.arguments import output_file
 from gaitc.exitcodes import ExitCode, exit_code_help
 
 EPILOG = """CSV files (a header row, then one row per sample):
@@ -45,7 +46,8 @@ def register(sub: Any) -> None:
     p.add_argument("--damping", metavar="FILE", help="mass step response (time,displacement)")
     p.add_argument("--mass", type=float, metavar="G", help="--damping: the mass hung, grams")
     p.add_argument("--spring", type=float, metavar="N/mm", help="--damping: the stiffness")
-    p.add_argument("-o", "--out", metavar="FILE", help="write here instead of ROBOT.yaml")
+    p.add_argument("-o", "--out", metavar="FILE", type=output_file,
+                   help="write here instead of ROBOT.yaml")
     p.set_defaults(run=run_characterize)
 
 

@@ -13,6 +13,7 @@ from typing import TYPE_CHECKING, Any
 import gaitc
 from diagnostics import Diagnostic, UsageError, render_diagnostic
 from diagnostics.files import write_atomically
+from gaitc.commands.arguments import output_file
 from gaitc.emission import FORMATS, emit, output_format
 from gaitc.exitcodes import ExitCode
 from gaitc.loading import Spec, load
@@ -44,10 +45,11 @@ def register(subparsers: Any) -> None:
         description="Compile SPEC to a GR(1) specification (thesis eqs. 3.3-3.9). "
         "Exit 0 on success, 1 on an error in SPEC, 2 on a bad command line.")
     comp.add_argument("spec", metavar="SPEC", help="a .gait file")
-    comp.add_argument("-o", "--output", default="-", metavar="OUT",
+    comp.add_argument("-o", "--output", default="-", metavar="OUT", type=output_file,
                       help="output file, '-' for stdout (default); replaced atomically")
     comp.add_argument("--format", choices=FORMATS, default=None,
-                      help="output format (default: from the suffix of OUT, .slugsin or .ltl, "
+                      help="output format (default: from the suffix of OUT: .slugsin or .txt "
+                      "slugsin, .ltl LTL text, "
                       "else structuredslugs)")
     comp.add_argument("--encoding", choices=ENCODINGS, default="onehot",
                       help="onehot: a proposition per region/gait/health level (the thesis); "

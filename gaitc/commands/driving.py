@@ -13,7 +13,7 @@ from typing import Any
 
 import gaitc
 from diagnostics import UsageError
-from gaitc.commands.arguments import add_prefer, positive_seconds
+from gaitc.commands.arguments import add_prefer, positive_seconds, run_file
 from gaitc.commands.simulating import add_json, environment_of, report_run
 from gaitc.exitcodes import ExitCode, exit_code_help
 from gaitc.reporting import document, print_json, run_json
@@ -83,7 +83,8 @@ def register(sub: Any) -> None:
     p.add_argument("--env", nargs="+", metavar="KIND",
                    help="sim backend: random (default) | adversarial | scripted FILE.yaml")
     p.add_argument("--seed", type=int, default=0, help="seed of the random environment")
-    p.add_argument("--out", metavar="FILE", help="save the run as .jsonl or .csv")
+    p.add_argument("--out", metavar="FILE", type=run_file,
+                   help="save the run as .jsonl or .csv")
     p.add_argument("--on-violation", choices=VIOLATION_POLICIES, default="stop",
                    help="a reading that breaks the spec's assumptions: stop the run (default), "
                    "hold the levels the controller had, or take the worst levels the "

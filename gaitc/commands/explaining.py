@@ -12,7 +12,7 @@ from typing import Any
 
 import gaitc
 from diagnostics import UsageError
-from gaitc.commands.arguments import positive_seconds
+from gaitc.commands.arguments import positive_seconds, run_file
 from gaitc.exitcodes import ExitCode, exit_code_help
 from gaitc.reporting import document, print_json
 from ltlcompiler.encoding import ENCODINGS
@@ -39,8 +39,8 @@ def register(sub: Any) -> None:
     p.add_argument("--no-repairs", action="store_true", help="skip the search for repairs")
     p.add_argument("--timeout", type=positive_seconds, metavar="SECONDS",
                    help="stop the whole analysis after this long (exit 4)")
-    p.add_argument("--out", metavar="FILE", help="save the play as .jsonl or .csv "
-                   "(draw it with 'gaitc render map SPEC --run FILE')")
+    p.add_argument("--out", metavar="FILE", type=run_file, help="save the play as .jsonl (draw it "
+                   "with 'gaitc render map SPEC --run FILE') or .csv (a table)")
     p.add_argument("--encoding", choices=ENCODINGS, default="onehot")
     p.add_argument("--robotics-semantics", action="store_true",
                    help="SLUGS's --sysInitRoboticsSemantics")

@@ -12,6 +12,7 @@ from typing import TYPE_CHECKING, Any
 
 from diagnostics import SpecSemanticError, UsageError
 from diagnostics.files import write_atomically
+from gaitc.commands.arguments import output_file
 from gaitc.reporting import document, print_json
 
 if TYPE_CHECKING:
@@ -27,7 +28,8 @@ def register(subparsers: Any) -> None:
         "print them as a table and write them as JSON.",
     )
     search_arguments(p)
-    p.add_argument("-o", "--output", metavar="gaits.json", help="write the gaits as JSON")
+    p.add_argument("-o", "--output", metavar="gaits.json", type=output_file,
+                   help="write the gaits as JSON")
     p.add_argument("--svg", metavar="DIR", help="write the gait graph and pose top views here")
     p.add_argument("--json", action="store_true",
                    help="print the search and its gaits as one JSON object (docs/json.md)")

@@ -9,6 +9,7 @@ from typing import TYPE_CHECKING, Any
 
 from diagnostics import UsageError
 from diagnostics.files import write_atomically
+from gaitc.commands.arguments import output_file
 from gaitc.exitcodes import ExitCode, exit_code_help
 
 if TYPE_CHECKING:
@@ -110,7 +111,8 @@ def register(sub: Any) -> None:
         metavar="N",
         help="cycles the learned gait is run at the end (5)",
     )
-    p.add_argument("--log", metavar="FILE.json", help="write every iteration as JSON")
+    p.add_argument("--log", metavar="FILE.json", type=output_file,
+                   help="write every iteration as JSON")
     p.add_argument("--svg", metavar="FILE.svg", help="draw the search and the runs")
     p.add_argument("--quiet", action="store_true", help="print only the summary")
     goal_arguments(p)

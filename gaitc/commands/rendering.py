@@ -10,7 +10,7 @@ from typing import Any
 
 import gaitc
 from diagnostics import UsageError
-from gaitc.commands.arguments import add_prefer
+from gaitc.commands.arguments import add_prefer, output_file, positive_count
 from gaitc.exitcodes import ExitCode
 from gaitc.status import progress_display
 from gaitsim.graphics import FORMATS, Picture, output_format
@@ -20,7 +20,7 @@ FORMAT_HELP = (f"output format: {', '.join(FORMATS)} (default: from the -o exten
 
 
 def _output(p: argparse.ArgumentParser) -> None:
-    p.add_argument("-o", "--output", required=True, metavar="FILE")
+    p.add_argument("-o", "--output", required=True, metavar="FILE", type=output_file)
     p.add_argument("--format", choices=FORMATS, help=FORMAT_HELP)
 
 
@@ -55,7 +55,7 @@ def register(sub: Any) -> None:
     p.add_argument("spec", metavar="SPEC")
     p.add_argument("--run", dest="run_file", metavar="RUN.jsonl",
                    help="a run saved by 'gaitc simulate --out'")
-    p.add_argument("--max-steps", type=int, default=30, metavar="N",
+    p.add_argument("--max-steps", type=positive_count, default=30, metavar="N",
                    help="draw the first N steps of the run (default 30)")
     _output(p)
     p.set_defaults(run=run_map)

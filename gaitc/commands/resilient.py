@@ -14,6 +14,7 @@ import gaitc
 from analysis.pool import terminal_progress
 from analysis.resilience import METHODS
 from diagnostics import UsageError
+from gaitc.commands.arguments import output_file
 from gaitc.exitcodes import ExitCode, exit_code_help
 from gaitc.reporting import document, print_json
 from ltlcompiler.encoding import ENCODINGS
@@ -52,7 +53,7 @@ def register(sub: Any) -> None:
     p.add_argument("--encoding", choices=ENCODINGS, default="binary",
                    help="encoding of the spec (default binary: the parametric games use "
                    "integers)")
-    p.add_argument("-o", "--output", metavar="PICTURE",
+    p.add_argument("-o", "--output", metavar="PICTURE", type=output_file,
                    help="draw the legs coloured by criticality (.svg, .png, .pdf, .dot)")
     p.add_argument("--robotics-semantics", action="store_true")
     p.set_defaults(run=run_resilience)

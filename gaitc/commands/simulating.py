@@ -13,7 +13,7 @@ from typing import Any
 
 import gaitc
 from diagnostics import UsageError, render_error
-from gaitc.commands.arguments import add_prefer
+from gaitc.commands.arguments import add_prefer, run_file
 from gaitc.exitcodes import ExitCode, exit_code_help
 from gaitc.reporting import document, exit_code_of, print_json, run_json
 from gaitc.simulation import ENVIRONMENTS, Session, environment
@@ -57,7 +57,8 @@ def register(sub: Any) -> None:
     p.add_argument("--seed", type=int, default=0, help="seed of the random environment")
     p.add_argument("--steps", type=int, metavar="N",
                    help="number of steps (default 50; a scenario's length when scripted)")
-    p.add_argument("--out", metavar="FILE", help="save the run as .jsonl or .csv")
+    p.add_argument("--out", metavar="FILE", type=run_file,
+                   help="save the run as .jsonl or .csv")
     p.add_argument("--encoding", choices=ENCODINGS,
                    help="encoding of the spec (default: the one recorded in the controller)")
     p.add_argument("--robotics-semantics", action="store_true",

@@ -16,6 +16,7 @@ import gaitc
 from diagnostics import GaitcError, UsageError, render_error
 from gaitc.commands.arguments import (
     add_prefer,
+    output_file,
     positive_count,
     positive_megabytes,
     positive_seconds,
@@ -93,7 +94,7 @@ def register(sub: Any) -> None:
         formatter_class=fmt,
     )
     p.add_argument("spec", metavar="SPEC")
-    p.add_argument("-o", "--output", required=True, metavar="FILE")
+    p.add_argument("-o", "--output", required=True, metavar="FILE", type=output_file)
     p.add_argument("--no-verify", action="store_true", help="skip the verification step")
     _json(p)
     p.add_argument("--symbolic", action="store_true",
@@ -114,7 +115,7 @@ def register(sub: Any) -> None:
         formatter_class=fmt,
     )
     p.add_argument("spec", metavar="SPEC")
-    p.add_argument("-o", "--output", required=True, metavar="FILE")
+    p.add_argument("-o", "--output", required=True, metavar="FILE", type=output_file)
     _json(p)
     _common(p)
     p.set_defaults(run=run_counter)
