@@ -150,8 +150,7 @@ def run_automaton(args: argparse.Namespace) -> int:
 
         return _save(steps_view(loaded.strategy, loaded.domain, args.steps, args.max_nodes),
                      args)
-    strategy = explicit(loaded.strategy, "drawing the whole automaton (--steps K draws its "
-                                       "first K steps)")
+    strategy = explicit(loaded.strategy, "drawing the automaton")
     view = automaton_view(strategy, loaded.domain, args.quotient, args.max_nodes)
     if args.quotient == "none" and len(loaded.strategy) > args.max_nodes:
         print(f"gaitc: the automaton has {len(loaded.strategy)} nodes; --quotient region-gait "
