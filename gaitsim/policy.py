@@ -5,42 +5,26 @@ Every controller move is a *decision*: at node n (the robot in region R after th
 into it) the environment picks the next health and hazard, and the controller answers with
 the gait and region of the successor (the Mealy turn order of ``docs/simulation.md``).  A
 decision's *condition* is the goal n pursues, the hazard the controller sees and each leg's
-health band (healthy: full, failed: level 1, degraded: between).  Per region, the rules use
-the smallest set of condition variables that tells the moves apart as well as all of them
-do (found by trying sets in order of size, then in declaration order), group the decisions
-by their values, and merge rows that make the same moves and differ in one variable only.
-A row that still lists several moves means the controller's memory (its node) decides
-between them, not the condition; the counts say how many decisions each move covers.
+health band (healthy: full, failed: level 1, degraded: between).  Per region, the rules
+are the leaves of a decision tree over these variables (:mod:`gaitsim.condensation`), each
+as exact as the variables allow: a row that lists several moves means the controller's
+memory (its node) decides between them, not the condition.  The counts say how many
+decisions each move covers.  The rules of a region partition its decisions.
 """
 
 from __future__ import annotations
 
 import html
-import itertools
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 
+from gaitsim.condensation import Condition, Decision, Move, condense
 from gaitsim.domain import Domain, State
 from gaitsim.view import StrategyView
 
 HAZARD, GOAL = "hazard", "goal"
 BANDS = ("healthy", "degraded", "failed")
 NO_HAZARD = "none"
-#: Above this many condition variables the smallest separating set is grown greedily.
-EXACT_LIMIT = 12
-
-Condition = tuple[tuple[str, tuple[str, ...]], ...]  # (variable, allowed values), in order
-
-
-@dataclass(frozen=True)
-class Move:
-    """What the controller does: the gait it walks and the region it walks into."""
-
-    gait: str
-    target: str
-
-    def text(self, region: str) -> str:
-        return f"{self.gait} (stays)" if self.target == region else f"{self.gait} → {self.target}"
 
 
 @dataclass(frozen=True)
@@ -159,9 +143,6 @@ def goal_label(domain: Domain, rank: int) -> str:
     return labels[rank] if 0 <= rank < len(labels) else f"goal {rank + 1}"
 
 
-Decision = tuple[dict[str, str], Move]
-
-
 def decisions(
     strategy: StrategyView, domain: Domain, nodes: Iterable[int]
 ) -> dict[str, list[Decision]]:
@@ -195,102 +176,17 @@ def project(
     regions = tuple(r for r in domain.regions if r in found)
     for region in regions:
         cases = found[region]
-        used = _separating(cases, names)
-        variables[region] = used
-        rules.extend(_rules(region, cases, used, order))
+        leaves = condense(cases, names, order, (GOAL,))
+        tested = {name for condition, _ in leaves for name, _ in condition}
+        variables[region] = tuple(n for n in names if n in tested)
+        rules.extend(Rule(region, condition, _ranked(moves)) for condition, moves in leaves)
     total = sum(len(c) for c in found.values())
     return Policy(tuple(rules), regions, variables, len(chosen), total, tuple(notes))
 
 
-def _spread(cases: Sequence[Decision], used: Sequence[str]) -> list[int]:
-    """Per decision, how many moves are made under its condition read on ``used``."""
-    seen: dict[tuple[str, ...], set[Move]] = {}
-    keys = [tuple(feats[n] for n in used) for feats, _ in cases]
-    for key, (_, move) in zip(keys, cases, strict=True):
-        seen.setdefault(key, set()).add(move)
-    return [len(seen[key]) for key in keys]
-
-
-def _separating(cases: Sequence[Decision], names: Sequence[str]) -> tuple[str, ...]:
-    """The smallest set of variables that tells the moves apart as well as all do: under
-    it every decision's condition allows the same moves as under all variables.  (Fewer
-    variables only ever allow more moves, so the excess below shrinks as variables are
-    added and is 0 exactly for the sets sought.)"""
-    varying = [n for n in names if len({f[n] for f, _ in cases}) > 1]
-    base = _spread(cases, varying)
-
-    def excess(used: Sequence[str]) -> int:
-        return sum(_spread(cases, used)) - sum(base)
-
-    if len(varying) <= EXACT_LIMIT:
-        for size in range(len(varying) + 1):
-            for subset in itertools.combinations(varying, size):
-                if excess(subset) == 0:
-                    return subset
-    chosen: list[str] = []
-    while excess(chosen) > 0:
-        best = min(
-            (n for n in varying if n not in chosen),
-            key=lambda n: (excess([*chosen, n]), varying.index(n)),
-        )
-        chosen.append(best)
-    return tuple(n for n in varying if n in chosen)
-
-
-def _rules(
-    region: str,
-    cases: Sequence[Decision],
-    used: Sequence[str],
-    order: Mapping[str, Mapping[str, int]],
-) -> list[Rule]:
-    counts: dict[tuple[str, ...], dict[Move, int]] = {}
-    for feats, move in cases:
-        row = counts.setdefault(tuple(feats[n] for n in used), {})
-        row[move] = row.get(move, 0) + 1
-    rows: list[tuple[list[frozenset[str]], dict[Move, int]]] = [
-        ([frozenset([v]) for v in key], moves) for key, moves in counts.items()
-    ]
-    changed = True
-    while changed:  # merge rows with the same moves that differ in one variable
-        changed = False
-        for i in range(len(used)):
-            merged: dict[tuple[object, ...], tuple[list[frozenset[str]], dict[Move, int]]] = {}
-            for values, moves in rows:
-                key = (*values[:i], *values[i + 1 :], frozenset(moves))
-                if key in merged:
-                    old_values, old_moves = merged[key]
-                    old_values[i] = old_values[i] | values[i]
-                    for m, n in moves.items():
-                        old_moves[m] = old_moves.get(m, 0) + n
-                    changed = True
-                else:
-                    merged[key] = (list(values), dict(moves))
-            rows = list(merged.values())
-    every = {n: frozenset(f[n] for f, _ in cases) for n in used}
-    out = []
-    for values, moves in rows:
-        condition = tuple(
-            (n, tuple(_ordered(v, order[n])))
-            for n, v in zip(used, values, strict=True)
-            if v != every[n]
-        )
-        ranked = tuple(sorted(moves.items(), key=lambda mn: (-mn[1], mn[0].gait, mn[0].target)))
-        out.append(Rule(region, condition, ranked))
-    return sorted(out, key=lambda r: _rule_key(r, used, order))
-
-
-def _ordered(values: Iterable[str], order: Mapping[str, int]) -> tuple[str, ...]:
-    return tuple(sorted(values, key=lambda v: (order.get(v, len(order)), v)))
-
-
-def _rule_key(
-    rule: Rule, used: Sequence[str], order: Mapping[str, Mapping[str, int]]
-) -> tuple[tuple[int, ...], ...]:
-    given = dict(rule.condition)
-    return tuple(
-        (len(given[n]), *(order[n].get(v, 0) for v in given[n])) if n in given else (0,)
-        for n in used
-    )
+def _ranked(moves: Mapping[Move, int]) -> tuple[tuple[Move, int], ...]:
+    """Moves by how many decisions make them, then by gait and region."""
+    return tuple(sorted(moves.items(), key=lambda mn: (-mn[1], mn[0].gait, mn[0].target)))
 
 
 def _value_order(domain: Domain) -> dict[str, dict[str, int]]:
