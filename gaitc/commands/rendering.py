@@ -31,8 +31,10 @@ def _output(p: argparse.ArgumentParser) -> None:
 
 def register(sub: Any) -> None:
     render = sub.add_parser("render", help="draw automata, maps and runs",
-                            description="Draw with Graphviz: a controller automaton, the map "
-                            "(optionally with a simulated run), or a spec's regions and gaits.")
+                            description="Draw with Graphviz: a controller automaton (or its "
+                            "first steps), the controller projected on the map (policy), the "
+                            "map (optionally with a simulated run), or a spec's regions and "
+                            "gaits.")
     what = render.add_subparsers(dest="what", metavar="WHAT", parser_class=type(render))
 
     p = what.add_parser("automaton", help="a controller as a graph",
