@@ -31,7 +31,7 @@ class Move:
 
 Decision = tuple[dict[str, str], Move]  # (condition variable → value, the move made)
 Condition = tuple[tuple[str, tuple[str, ...]], ...]  # (variable, allowed values), in order
-Leaf = tuple[Condition, dict[Move, int]]
+Leaf = tuple[Condition, dict[Move, int], bool]  # condition, moves with counts, exact
 
 
 @dataclass(frozen=True)
@@ -55,12 +55,15 @@ def condense(
     names: Sequence[str],
     order: Mapping[str, Mapping[str, int]],
     context: Sequence[str] = (),
+    limit: int | None = None,
 ) -> list[Leaf]:
-    """The rules for ``cases``: leaves of the decision tree, yes-branch first.  A leaf's
-    condition lists, per variable it tests, the values it allows (in ``order``); a
-    variable whose every value the region sees is allowed is left out.  The variables in
-    ``context`` are read off the leaf even when untested (the values its decisions have),
-    so a rule says the goal it serves."""
+    """The rules for ``cases``: leaves of the decision tree, in tree order (yes-branch
+    first).  A leaf's condition lists, per variable it tests, the values it allows (in
+    ``order``); a variable whose every value the region sees is allowed is left out.  The
+    variables in ``context`` are read off the leaf even when untested (the values its
+    decisions have), so a rule says the goal it serves.  With ``limit``, the tree stops at
+    that many leaves: the most mixed leaf (largest weighted entropy of its moves, first in
+    tree order on ties) is split first, and a leaf left unsplit lists every move it covers."""
     varying = [n for n in names if len({f[n] for f, _ in cases}) > 1]
     weights: dict[tuple[tuple[str, ...], Move], int] = {}
     for feats, move in cases:
@@ -71,49 +74,46 @@ def condense(
         moves_of.setdefault(key, set()).add(move)
     grouped = [_Case(key, move, w, len(moves_of[key])) for (key, move), w in weights.items()]
     values = [_ordered({c.key[i] for c in grouped}, order[n]) for i, n in enumerate(varying)]
-    out: list[tuple[Condition, dict[Move, int], list[_Case]]] = []
-    _grow(grouped, [tuple(v) for v in values], (varying, [len(v) for v in values]), out)
-    shown = [i for i, n in enumerate(varying) if n in context]
-    return [_with_context(leaf, shown, varying, values) for leaf in out]
-
-
-def _with_context(
-    leaf: tuple[Condition, dict[Move, int], list[_Case]],
-    shown: Sequence[int],
-    varying: Sequence[str],
-    values: Sequence[Sequence[str]],
-) -> Leaf:
-    condition, moves, cases = leaf
-    given = dict(condition)
-    for i in shown:
-        present = tuple(v for v in values[i] if any(c.key[i] == v for c in cases))
-        if varying[i] not in given and len(present) < len(values[i]):
-            given[varying[i]] = present
-    return tuple((n, given[n]) for n in varying if n in given), moves
+    leaves: list[tuple[list[_Case], list[tuple[str, ...]]]] = [
+        (grouped, [tuple(v) for v in values])
+    ]
+    while limit is None or len(leaves) < limit:
+        open_ = [(k, _entropy(c)) for k, (c, _) in enumerate(leaves) if not _exact(c)]
+        if not open_:
+            break
+        k = max(open_, key=lambda ke: (ke[1], -ke[0]))[0]
+        leaves[k : k + 1] = _split(*leaves[k])
+    out = []
+    for leaf_cases, allowed in leaves:
+        given = {
+            varying[i]: allowed[i] for i in range(len(varying)) if len(allowed[i]) < len(values[i])
+        }
+        for i, name in enumerate(varying):
+            present = tuple(v for v in values[i] if any(c.key[i] == v for c in leaf_cases))
+            if name in context and name not in given and len(present) < len(values[i]):
+                given[name] = present
+        moves: dict[Move, int] = {}
+        for c in leaf_cases:
+            moves[c.move] = moves.get(c.move, 0) + c.weight
+        condition = tuple((n, given[n]) for n in varying if n in given)
+        out.append((condition, moves, _exact(leaf_cases)))
+    return out
 
 
 def _ordered(values: set[str], order: Mapping[str, int]) -> list[str]:
     return sorted(values, key=lambda v: (order.get(v, len(order)), v))
 
 
-def _grow(
-    cases: list[_Case],
-    allowed: list[tuple[str, ...]],
-    names: tuple[Sequence[str], Sequence[int]],
-    out: list[tuple[Condition, dict[Move, int], list[_Case]]],
-) -> None:
-    """Split ``cases`` (whose variable ``i`` takes the values ``allowed[i]``) until exact;
-    ``names`` holds the variables and how many values the region sees of each."""
-    moves: dict[Move, int] = {}
-    for c in cases:
-        moves[c.move] = moves.get(c.move, 0) + c.weight
-    if all(c.spread == len(moves) for c in cases):
-        variables, sizes = names
-        condition = tuple(
-            (variables[i], allowed[i]) for i in range(len(variables)) if len(allowed[i]) < sizes[i]
-        )
-        out.append((condition, moves, cases))
-        return
+def _exact(cases: Sequence[_Case]) -> bool:
+    """Whether every case's full condition allows the moves of all ``cases``."""
+    moves = len({c.move for c in cases})
+    return all(c.spread == moves for c in cases)
+
+
+def _split(
+    cases: list[_Case], allowed: list[tuple[str, ...]]
+) -> list[tuple[list[_Case], list[tuple[str, ...]]]]:
+    """The best test ``variable = value`` on ``cases`` (least entropy left), as two leaves."""
     best: tuple[float, int, str] | None = None
     for i, options in enumerate(allowed):
         present = [v for v in options if any(c.key[i] == v for c in cases)]
@@ -130,5 +130,7 @@ def _grow(
     assert best is not None  # a leaf that is not exact has two conditions to tell apart
     _, i, v = best
     rest = tuple(x for x in allowed[i] if x != v and any(c.key[i] == x for c in cases))
-    _grow([c for c in cases if c.key[i] == v], [*allowed[:i], (v,), *allowed[i + 1 :]], names, out)
-    _grow([c for c in cases if c.key[i] != v], [*allowed[:i], rest, *allowed[i + 1 :]], names, out)
+    return [
+        ([c for c in cases if c.key[i] == v], [*allowed[:i], (v,), *allowed[i + 1 :]]),
+        ([c for c in cases if c.key[i] != v], [*allowed[:i], rest, *allowed[i + 1 :]]),
+    ]

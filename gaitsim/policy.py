@@ -35,13 +35,15 @@ class Rule:
     region: str
     condition: Condition
     moves: tuple[tuple[Move, int], ...]
+    exact: bool = True  # False: a coarse rule (--max-rules) over conditions told apart
 
     def matches(self, features: Mapping[str, str]) -> bool:
         return all(features[name] in values for name, values in self.condition)
 
     def when(self) -> str:
         """The condition in words ("always" when no variable matters)."""
-        return ", ".join(_words(name, values) for name, values in self.condition) or "always"
+        words = ", ".join(_words(name, values) for name, values in self.condition) or "always"
+        return words if self.exact else f"~ {words}"
 
     def what(self) -> str:
         return ", ".join(f"{m.text(self.region)} ({n})" for m, n in self.moves)
@@ -164,9 +166,11 @@ def project(
     domain: Domain,
     nodes: Sequence[int] | None = None,
     notes: Sequence[str] = (),
+    max_rules: int | None = None,
 ) -> Policy:
     """Project ``strategy`` on the map, from ``nodes`` (default: every node, which needs an
-    explicit controller; for a symbolic one pass the nodes a bounded search reached)."""
+    explicit controller; for a symbolic one pass the nodes a bounded search reached), with
+    at most ``max_rules`` rules per region (default: as many as exact rules need)."""
     chosen = list(range(len(strategy))) if nodes is None else sorted(set(nodes))
     found = decisions(strategy, domain, chosen)
     order = _value_order(domain)
@@ -176,11 +180,19 @@ def project(
     regions = tuple(r for r in domain.regions if r in found)
     for region in regions:
         cases = found[region]
-        leaves = condense(cases, names, order, (GOAL,))
-        tested = {name for condition, _ in leaves for name, _ in condition}
+        leaves = condense(cases, names, order, (GOAL,), max_rules)
+        tested = {name for condition, _, _ in leaves for name, _ in condition}
         variables[region] = tuple(n for n in names if n in tested)
-        rules.extend(Rule(region, condition, _ranked(moves)) for condition, moves in leaves)
+        rules.extend(Rule(region, cond, _ranked(moves), exact) for cond, moves, exact in leaves)
     total = sum(len(c) for c in found.values())
+    coarse = [r for r in regions if any(not x.exact for x in rules if x.region == r)]
+    if coarse:
+        notes = [
+            *notes,
+            f"at most {max_rules} rules per region: the rules marked ~ in "
+            f"{', '.join(coarse)} join conditions under which the controller moves "
+            "differently (every move they cover is listed)",
+        ]
     return Policy(tuple(rules), regions, variables, len(chosen), total, tuple(notes))
 
 
@@ -215,16 +227,21 @@ DEFAULT_CAP = 2000
 
 
 def controller_policy(
-    strategy: StrategyView, domain: Domain, steps: int | None = None, cap: int = DEFAULT_CAP
+    strategy: StrategyView,
+    domain: Domain,
+    steps: int | None = None,
+    cap: int = DEFAULT_CAP,
+    max_rules: int | None = None,
 ) -> Policy:
     """The projected controller: from every node of an explicit controller, or from the
     nodes within ``steps`` moves of the start (at most ``cap``; a symbolic controller is
-    always bounded, by default to :data:`SYMBOLIC_STEPS` moves)."""
+    always bounded, by default to :data:`SYMBOLIC_STEPS` moves); ``max_rules`` as for
+    :func:`project`."""
     from gaitsim.steps_view import reachable  # the views share the breadth-first search
     from gaitsim.strategy import Strategy
 
     if steps is None and isinstance(strategy, Strategy):
-        return project(strategy, domain)
+        return project(strategy, domain, max_rules=max_rules)
     bound = SYMBOLIC_STEPS if steps is None else steps
     depth, capped = reachable(strategy, bound, cap)
     symbolic = "" if isinstance(strategy, Strategy) else "the controller is symbolic: "
@@ -236,4 +253,4 @@ def controller_policy(
         note += f" (stopped at {cap} nodes)"
     if symbolic and steps is None:
         note += "; --steps K widens the search"
-    return project(strategy, domain, sorted(depth), [note])
+    return project(strategy, domain, sorted(depth), [note], max_rules)

@@ -80,8 +80,11 @@ def _matching(policy: Policy, region: str, cond: Mapping[str, str]) -> list[int]
     ]
 
 
-def test_the_table_gives_the_move_the_controller_makes(loaded: Session) -> None:
-    policy = project(loaded.strategy, loaded.domain)
+@pytest.mark.parametrize("max_rules", [None, 2])
+def test_the_table_gives_the_move_the_controller_makes(
+    loaded: Session, max_rules: int | None
+) -> None:
+    policy = project(loaded.strategy, loaded.domain, max_rules=max_rules)
     moves = _moves(loaded)
     covered: dict[int, dict[Move, int]] = {}
     for region, cond, move in moves:
@@ -95,20 +98,34 @@ def test_the_table_gives_the_move_the_controller_makes(loaded: Session) -> None:
         assert dict(rule.moves) == covered.get(i), rule
     assert policy.decisions == len(moves)
     assert policy.nodes == len(_explicit(loaded))
+    if max_rules is not None:
+        for region in policy.regions:
+            assert sum(1 for r in policy.rules if r.region == region) <= max_rules
 
 
-def test_each_rule_is_as_exact_as_the_condition_allows(loaded: Session) -> None:
+@pytest.mark.parametrize("max_rules", [None, 2])
+def test_each_rule_is_as_exact_as_the_condition_allows(
+    loaded: Session, max_rules: int | None
+) -> None:
     """A rule lists exactly the moves the controller makes under the full condition of
     each decision it covers: it hides no distinction the condition variables make, and
-    rules with several moves are where the controller's memory decides."""
-    policy = project(loaded.strategy, loaded.domain)
+    rules with several moves are where the controller's memory decides.  Under
+    ``max_rules`` the rules marked not exact (~) are the ones that join such conditions."""
+    policy = project(loaded.strategy, loaded.domain, max_rules=max_rules)
     moves = _moves(loaded)
     full: dict[tuple[str, tuple[tuple[str, str], ...]], set[Move]] = {}
     for region, cond, move in moves:
         full.setdefault((region, tuple(sorted(cond.items()))), set()).add(move)
+    joined: set[int] = set()
     for region, cond, _ in moves:
-        rule = policy.rules[_matching(policy, region, cond)[0]]
-        assert {m for m, _ in rule.moves} == full[(region, tuple(sorted(cond.items())))], rule
+        k = _matching(policy, region, cond)[0]
+        rule = policy.rules[k]
+        if {m for m, _ in rule.moves} != full[(region, tuple(sorted(cond.items())))]:
+            joined.add(k)
+    assert joined == {k for k, r in enumerate(policy.rules) if not r.exact}
+    assert all(r.when().startswith("~ ") != r.exact for r in policy.rules)
+    if max_rules is None:
+        assert not joined
     assert len(policy.rules) <= len(full)
     for region, used in policy.variables.items():
         tested = {name for r in policy.rules if r.region == region for name, _ in r.condition}
@@ -245,6 +262,11 @@ def test_cli_render_policy(
     assert "--steps must be 0 or more" in capsys.readouterr().err
     assert main(["render", "policy", PATROL, "--format", "png"]) == 2
     assert "give -o FILE" in capsys.readouterr().err
+    assert main(["render", "policy", PATROL, "--max-rules", "0"]) == 2
+    assert "--max-rules must be at least 1" in capsys.readouterr().err
+    assert main(["render", "policy", PATROL, "--max-rules", "1"]) == 0
+    out = capsys.readouterr().out
+    assert "3 rules" in out and "the rules marked ~ in nw, ne, sw" in out
 
 
 def test_cli_render_automaton_steps(

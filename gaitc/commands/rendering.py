@@ -79,6 +79,9 @@ def register(sub: Any) -> None:
                    "node; symbolic controllers: 10)")
     p.add_argument("--max-nodes", type=int, default=2000, metavar="N",
                    help="with a bounded search, stop after N nodes (default 2000)")
+    p.add_argument("--max-rules", type=int, metavar="N",
+                   help="at most N rules per region: the most mixed conditions stay joined, "
+                   "marked ~, listing every move they cover (default: exact rules)")
     p.add_argument("--encoding", choices=("onehot", "binary"))
     add_prefer(p, "without CONTROLLER: ")
     p.add_argument("-o", "--output", metavar="FILE", help="write the table or picture here "
@@ -187,11 +190,14 @@ def run_policy(args: argparse.Namespace) -> int:
     if args.max_nodes < 1:
         raise UsageError("--max-nodes must be at least 1")
     _check_steps(args.steps)
+    if args.max_rules is not None and args.max_rules < 1:
+        raise UsageError("--max-rules must be at least 1")
     loaded = gaitc.session(args.spec, args.controller, args.encoding, prefer=args.prefer)
     if loaded is None:
         print(f"{args.spec}: unrealizable: no controller to project", file=sys.stderr)
         return ExitCode.UNREALIZABLE
-    policy = controller_policy(loaded.strategy, loaded.domain, args.steps, args.max_nodes)
+    policy = controller_policy(loaded.strategy, loaded.domain, args.steps, args.max_nodes,
+                               args.max_rules)
     if fmt not in TABLE_FORMATS:
         return _save(policy_view(policy, loaded.domain), args)
     text = {"text": policy.text, "md": policy.markdown, "html": policy.html}[fmt]()
