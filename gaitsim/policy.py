@@ -59,7 +59,7 @@ class Policy:
 
     rules: tuple[Rule, ...]
     regions: tuple[str, ...]  # the regions the controller is in, in map order
-    variables: dict[str, tuple[str, ...]]  # per region, the condition variables it needs
+    variables: dict[str, tuple[str, ...]]  # per region, the condition variables its rules test
     nodes: int  # controller nodes projected
     decisions: int  # controller moves projected
     notes: tuple[str, ...] = ()
@@ -245,12 +245,18 @@ def controller_policy(
     bound = SYMBOLIC_STEPS if steps is None else steps
     depth, capped = reachable(strategy, bound, cap)
     symbolic = "" if isinstance(strategy, Strategy) else "the controller is symbolic: "
-    note = (
-        f"{symbolic}projected from the {len(depth)} nodes within {bound} moves of the "
-        "start, not from every node"
+    beyond = any(
+        s not in depth for n, d in depth.items() if d == bound for s in strategy.successors[n]
     )
-    if capped:
-        note += f" (stopped at {cap} nodes)"
-    if symbolic and steps is None:
-        note += "; --steps K widens the search"
+    if not capped and not beyond:
+        note = f"{symbolic}projected from all {len(depth)} nodes a run can reach"
+    else:
+        note = (
+            f"{symbolic}projected from the {len(depth)} nodes within {bound} "
+            f"move{'s' if bound != 1 else ''} of the start, not from every node"
+        )
+        if capped:
+            note += f" (stopped at {cap} nodes)"
+        if symbolic and steps is None:
+            note += "; --steps K widens the search"
     return project(strategy, domain, sorted(depth), [note], max_rules)

@@ -235,7 +235,11 @@ def test_a_symbolic_controller_projects_as_its_explicit_twin(symbolic: str) -> N
     assert not isinstance(sym.strategy, Strategy)
     bounded = controller_policy(sym.strategy, sym.domain)
     assert bounded.rows() == project(expl.strategy, expl.domain).rows()
-    assert "symbolic" in bounded.notes[0] and "within 10 moves" in bounded.notes[0]
+    assert bounded.notes == (
+        "the controller is symbolic: projected from all 21 nodes a run can reach",
+    )
+    near = controller_policy(sym.strategy, sym.domain, steps=1)
+    assert near.nodes == 3 and "the 3 nodes within 1 move of the start" in near.notes[0]
     view = steps_view(sym.strategy, sym.domain, 3)
     twin = steps_view(expl.strategy, expl.domain, 3)
     assert len(view.depth) == len(twin.depth) and len(view.edges) == len(twin.edges)
@@ -255,7 +259,7 @@ def test_cli_render_policy(
     assert (tmp_path / "p.html").read_text().startswith("<table>")
     assert "digraph" in (tmp_path / "p.dot").read_text()
     assert main(["render", "policy", PATROL, "--steps", "1"]) == 0
-    assert "within 1 moves" in capsys.readouterr().out
+    assert "within 1 move of the start" in capsys.readouterr().out
     assert main(["render", "policy", PATROL, symbolic]) == 0
     assert "the controller is symbolic" in capsys.readouterr().out
     assert main(["render", "policy", PATROL, "--steps", "-2"]) == 2
