@@ -317,3 +317,17 @@ def test_the_policy_picture_has_a_table_per_region(tmp_path: Path) -> None:
     assert titles == set(policy.regions)
     assert main(["render", "policy", PATROL, "-o", str(tmp_path / "p.png")]) == 0
     assert (tmp_path / "p.png").read_bytes()[:4] == b"\x89PNG"
+
+
+def test_the_policy_picture_puts_each_table_where_the_map_puts_its_region() -> None:
+    s = session(PATROL, None)
+    assert s is not None
+    picture = policy_view(project(s.strategy, s.domain), s.domain)
+    pos = {
+        n.get_name().strip('"'): tuple(float(v) for v in n.get("pos").strip('"!').split(","))
+        for n in picture.graph.get_nodes()
+        if n.get("pos")
+    }
+    assert set(pos) == {"nw", "ne", "sw"}  # the robot never enters the hazard cell se
+    assert pos["nw"][0] < pos["ne"][0] and pos["nw"][1] == pos["ne"][1]  # ne east of nw
+    assert pos["sw"][1] < pos["nw"][1] and pos["sw"][0] == pos["nw"][0]  # sw south of nw
