@@ -1,4 +1,5 @@
-"""The ``render`` commands: draw a controller automaton, the region map (with a run) or the
+"""The ``render`` commands: draw a controller automaton (whole, or its first steps), the
+controller projected on the map (``render policy``), the region map (with a run) or the
 spec's region graph and gait map, with pydot and Graphviz (see :mod:`gaitsim.graphics`).
 """
 
@@ -19,6 +20,11 @@ FORMAT_HELP = (f"output format: {', '.join(FORMATS)} (default: from the -o exten
                "format but dot needs Graphviz's 'dot' program")
 
 
+TABLE_FORMATS = ("text", "md", "html")
+_TABLE_SUFFIXES = {".txt": "text", ".text": "text", ".md": "md", ".html": "html",
+                   ".htm": "html"}
+
+
 def _output(p: argparse.ArgumentParser) -> None:
     p.add_argument("-o", "--output", required=True, metavar="FILE", type=output_file)
     p.add_argument("--format", choices=FORMATS, help=FORMAT_HELP)
@@ -26,15 +32,19 @@ def _output(p: argparse.ArgumentParser) -> None:
 
 def register(sub: Any) -> None:
     render = sub.add_parser("render", help="draw automata, maps and runs",
-                            description="Draw with Graphviz: a controller automaton, the map "
-                            "(optionally with a simulated run), or a spec's regions and gaits.")
+                            description="Draw with Graphviz: a controller automaton (or its "
+                            "first steps), the controller projected on the map (policy), the "
+                            "map (optionally with a simulated run), or a spec's regions and "
+                            "gaits.")
     what = render.add_subparsers(dest="what", metavar="WHAT", parser_class=type(render))
 
     p = what.add_parser("automaton", help="a controller as a graph",
                         description="Nodes show region, gait and the goal pursued; edges the "
                         "environment's inputs (health changes, hazards); initial nodes have a "
                         "double border. Above --max-nodes the quotient by region and gait (or "
-                        "by region) is drawn and the merges are listed.")
+                        "by region) is drawn and the merges are listed. --steps K draws only "
+                        "the nodes within K moves of the initial nodes (at most --max-nodes "
+                        "of them), symbolic controllers too, and says what it cut.")
     p.add_argument("spec", metavar="SPEC")
     p.add_argument("controller", metavar="CONTROLLER", nargs="?",
                    help="controller JSON (default: synthesize one)")
@@ -42,11 +52,45 @@ def register(sub: Any) -> None:
                    help="merge nodes with the same region and gait, or region (default: "
                    "automatic above --max-nodes)")
     p.add_argument("--max-nodes", type=int, default=40, metavar="N",
-                   help="size above which a quotient is drawn (default 40)")
+                   help="size above which a quotient is drawn; with --steps, the most nodes "
+                   "drawn (default 40)")
+    p.add_argument("--steps", type=int, metavar="K",
+                   help="draw only the first K steps from the initial nodes (breadth first; "
+                   "K = 3 is a good start)")
     p.add_argument("--encoding", choices=("onehot", "binary"))
     add_prefer(p, "without CONTROLLER: ")
     _output(p)
     p.set_defaults(run=run_automaton)
+
+    p = what.add_parser("policy", help="the controller projected on the map: per region, "
+                        "which gait under which condition",
+                        description="For each region, the rules the controller follows: "
+                        "under which goal, active hazard and leg health (healthy, degraded, "
+                        "failed) it walks which gait into which region, with the number of "
+                        "controller moves each covers. Without -o a text table is printed; "
+                        "-o FILE.txt/.md/.html writes the table, .svg/.png/.pdf/.dot draws "
+                        "one table per region with arrows for its moves. A symbolic "
+                        "controller is projected from the nodes within --steps moves of the "
+                        "start (default 10), as is an explicit one when --steps is given.")
+    p.add_argument("spec", metavar="SPEC")
+    p.add_argument("controller", metavar="CONTROLLER", nargs="?",
+                   help="controller JSON (default: synthesize one)")
+    p.add_argument("--steps", type=int, metavar="K",
+                   help="project only the nodes within K moves of the start (default: every "
+                   "node; symbolic controllers: 10)")
+    p.add_argument("--max-nodes", type=int, default=2000, metavar="N",
+                   help="with a bounded search, stop after N nodes (default 2000)")
+    p.add_argument("--max-rules", type=int, metavar="N",
+                   help="at most N rules per region: the most mixed conditions stay joined, "
+                   "marked ~, listing every move they cover (default: exact rules)")
+    p.add_argument("--encoding", choices=("onehot", "binary"))
+    add_prefer(p, "without CONTROLLER: ")
+    p.add_argument("-o", "--output", metavar="FILE", type=output_file,
+                   help="write the table or picture here (default: print the table)")
+    p.add_argument("--format", choices=TABLE_FORMATS + FORMATS,
+                   help="text, md, html, or a picture format (default: from the -o "
+                   "extension; pictures other than dot need Graphviz)")
+    p.set_defaults(run=run_policy)
 
     p = what.add_parser("map", help="the region map, optionally with a run",
                         description="Regions with caches, hazard sets, goals and start; with "
@@ -100,18 +144,74 @@ def run_automaton(args: argparse.Namespace) -> int:
     output_format(args.output, args.format)  # fail on a bad format before synthesizing
     if args.max_nodes < 1:
         raise UsageError("--max-nodes must be at least 1")
+    _check_steps(args.steps)
+    if args.steps is not None and args.quotient is not None:
+        raise UsageError("--steps draws single nodes; leave out --quotient")
     with progress_display() as progress:
         loaded = gaitc.session(args.spec, args.controller, args.encoding, prefer=args.prefer,
                                progress=progress)
     if loaded is None:
         print(f"{args.spec}: unrealizable: no controller to draw", file=sys.stderr)
         return ExitCode.UNREALIZABLE
+    if args.steps is not None:
+        from gaitsim.steps_view import steps_view
+
+        return _save(steps_view(loaded.strategy, loaded.domain, args.steps, args.max_nodes),
+                     args)
     strategy = explicit(loaded.strategy, "drawing the automaton")
     view = automaton_view(strategy, loaded.domain, args.quotient, args.max_nodes)
     if args.quotient == "none" and len(loaded.strategy) > args.max_nodes:
         print(f"gaitc: the automaton has {len(loaded.strategy)} nodes; --quotient region-gait "
               "or --quotient region draws a smaller picture", file=sys.stderr)
     return _save(view, args)
+
+
+def _check_steps(steps: int | None) -> None:
+    if steps is not None and steps < 0:
+        raise UsageError(f"--steps must be 0 or more (the moves from the start), not {steps}")
+
+
+def _policy_format(path: str | None, fmt: str | None) -> str:
+    if fmt is not None:
+        return fmt
+    if path is None:
+        return "text"
+    from pathlib import Path
+
+    found = _TABLE_SUFFIXES.get(Path(path).suffix.lower())
+    return found if found is not None else output_format(path)
+
+
+def run_policy(args: argparse.Namespace) -> int:
+    from diagnostics.files import write_atomically
+    from gaitsim.policy import controller_policy
+    from gaitsim.policy_view import policy_view
+
+    fmt = _policy_format(args.output, args.format)  # fail on a bad format before synthesizing
+    if args.output is None and fmt not in TABLE_FORMATS:
+        raise UsageError(f"--format {fmt} draws a picture: give -o FILE")
+    if args.max_nodes < 1:
+        raise UsageError("--max-nodes must be at least 1")
+    _check_steps(args.steps)
+    if args.max_rules is not None and args.max_rules < 1:
+        raise UsageError("--max-rules must be at least 1")
+    with progress_display() as progress:
+        loaded = gaitc.session(args.spec, args.controller, args.encoding, prefer=args.prefer,
+                               progress=progress)
+    if loaded is None:
+        print(f"{args.spec}: unrealizable: no controller to project", file=sys.stderr)
+        return ExitCode.UNREALIZABLE
+    policy = controller_policy(loaded.strategy, loaded.domain, args.steps, args.max_nodes,
+                               args.max_rules)
+    if fmt not in TABLE_FORMATS:
+        return _save(policy_view(policy, loaded.domain), args)
+    text = {"text": policy.text, "md": policy.markdown, "html": policy.html}[fmt]()
+    if args.output is None:
+        sys.stdout.write(text)
+        return ExitCode.OK
+    write_atomically(args.output, text.encode("utf-8"))
+    print(f"wrote {args.output} ({fmt})", file=sys.stderr)
+    return ExitCode.OK
 
 
 def run_map(args: argparse.Namespace) -> int:
