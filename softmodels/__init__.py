@@ -1,0 +1,1 @@
+"""softmodels: dynamic soft-robot models of thesis chapter 4 (issue 15)."""
