@@ -164,11 +164,13 @@ class ActivePassiveModel:
         out: list[Step] = []
         before = rest.x
         shaped = first
+        centre = masses @ rest.posture.centres[0, :, :2] / masses.sum()  # in the world
         for t in times:
             done = np.array([step_response(c, np.array([t]))[0] for c in self._actuators])
+            done[done >= 1.0 - _SETTLED] = 1.0  # a settled response has reached its target
             active = first + (last - first) * done[:, None]
-            if np.allclose(active, shaped, rtol=0.0, atol=_SETTLED * _scale(first, last)):
-                new = rest  # settled: the held posture (within 0.1 % of the change)
+            if np.array_equal(active, shaped):
+                new = rest  # the shape is held
             else:
                 guess = 2.0 * rest.x - before if out else rest.x  # linear predictor
                 new = self.solver.solve(active, guess)
@@ -190,14 +192,21 @@ class ActivePassiveModel:
                 momentum,
                 dt,
             )
+            # the centre of mass moves with the momentum (exactly still without friction);
+            # the heading frame follows from it, the turn and the new shape
             turn = velocity[2] * dt
-            c, s = math.cos(turn / 2), math.sin(turn / 2)
-            move = Pose2D(
-                (c * velocity[0] - s * velocity[1]) * dt,
-                (s * velocity[0] + c * velocity[1]) * dt,
-                turn,
+            mid = pose.theta + turn / 2
+            shift = momentum[:2] / masses.sum() * dt
+            cx = centre[0] + math.cos(mid) * shift[0] - math.sin(mid) * shift[1]
+            cy = centre[1] + math.sin(mid) * shift[0] + math.cos(mid) * shift[1]
+            theta = pose.theta + turn
+            local = masses @ rho1 / masses.sum()
+            centre = np.array([cx, cy])
+            pose = Pose2D(
+                cx - math.cos(theta) * local[0] + math.sin(theta) * local[1],
+                cy - math.sin(theta) * local[0] - math.cos(theta) * local[1],
+                theta,
             )
-            pose = pose.compose(move)
             cr, sr = math.cos(turn), math.sin(turn)  # momentum into the turned heading frame
             momentum = np.array(
                 [
@@ -209,10 +218,6 @@ class ActivePassiveModel:
             out.append(Step(float(t), pose, new, loads, velocity, momentum, power))
             before, rest, previous_t = rest.x, new, float(t)
         return out
-
-
-def _scale(first: Array, last: Array) -> float:
-    return float(np.abs(last - first).max())
 
 
 def _cross(a: Array, b: Array) -> Array:

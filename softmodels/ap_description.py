@@ -193,6 +193,8 @@ def _component(r: _Reader, node: yaml.Node, robot: Robot) -> Component:
         raise r.fail(m["states"], f"states of {name} must map chamber patterns to shapes")
     for key, value in m["states"].value:
         pattern = str(key.value)
+        if pattern in {p for p, _ in states}:
+            raise r.fail(key, f"key {pattern!r} appears twice in states of {name}")
         if len(pattern) != count or set(pattern) - {"0", "1"}:
             raise r.fail(
                 key,

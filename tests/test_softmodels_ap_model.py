@@ -1,0 +1,168 @@
+"""The active/passive model (thesis 4.1.2, 4.2.2) on silicone6: constraints, momentum,
+friction, symmetry, and a brute-force search for a forward cycle."""
+
+from __future__ import annotations
+
+import itertools
+import math
+import re
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from softmodels.active_passive import ActivePassiveModel, Step, settle_time, step_response
+from softmodels.ap_description import parse_active_passive
+from softmodels.motion import MotionModel, Pose2D, ValveState
+
+ROBOT = Path(__file__).resolve().parent.parent / "specs" / "robots" / "silicone6.yaml"
+TOL = 1e-9  # mm or rad
+
+
+def valves(bits: str) -> ValveState:
+    """silicone6 valves: middle right, middle left, RL, RR, FL, FR."""
+    return tuple(b == "1" for b in bits)
+
+
+def mirror(state: ValveState) -> ValveState:
+    right, left, rl, rr, fl, fr = state
+    return (left, right, rr, rl, fr, fl)
+
+
+@pytest.fixture(scope="module")
+def model() -> ActivePassiveModel:
+    return ActivePassiveModel.from_robot_file(ROBOT, steps=4)
+
+
+@pytest.fixture(scope="module")
+def frictionless() -> ActivePassiveModel:
+    text = re.sub(r"friction: [0-9.]+", "friction: 0", ROBOT.read_text())
+    return ActivePassiveModel(parse_active_passive(text, str(ROBOT)), steps=16, cache=False)
+
+
+SEQUENCE = ["000000", "001001", "010110", "100110", "111111", "001000", "000000"]
+
+
+def _check_rest(model: ActivePassiveModel, x: np.ndarray, vertices: np.ndarray) -> None:
+    assert vertices[:, 2].min() >= -TOL  # no vertex below the ground
+    assert vertices[:, 2].min() <= TOL  # and the robot rests on it
+    for (low, high), value in zip(model.kinematics.bounds(), x, strict=True):
+        assert low is None or value >= low - TOL
+        assert high is None or value <= high + TOL
+
+
+def test_the_model_is_a_motion_model(model: ActivePassiveModel) -> None:
+    checked: MotionModel = model
+    assert checked.name == "active-passive"
+    with pytest.raises(ValueError, match="has 6 entries, not 2"):
+        model.transition((True, False), (False, False), 6.0)
+
+
+def test_vented_robot_lies_flat(model: ActivePassiveModel) -> None:
+    rest = model.steady(valves("000000"))
+    np.testing.assert_allclose(rest.x, 0.0, atol=1e-6)
+    heights = rest.posture.vertices[0, :, 2]
+    assert heights.min() == pytest.approx(0.0, abs=TOL)
+
+
+def test_constraints_hold_at_every_step_of_a_valve_sequence(model: ActivePassiveModel) -> None:
+    for a, b in itertools.pairwise(SEQUENCE):
+        start = model.steady(valves(a))
+        _check_rest(model, start.x, start.posture.vertices[0])
+        steps = model.simulate(valves(a), valves(b), 6.0)
+        assert steps and steps[-1].time == 6.0
+        for step in steps:
+            _check_rest(model, step.rest.x, step.rest.posture.vertices[0])
+            assert step.rest.converged
+
+
+def test_legs_down_lift_the_body_by_their_curl(model: ActivePassiveModel) -> None:
+    rest = model.steady(valves("001111"))
+    radius = 1 / 0.0196  # a quarter circle of 80 mm: the tip sits one radius below the base
+    assert rest.x[0] == pytest.approx(radius * (1 - math.cos(80 / radius)) + 8 - 8, rel=0.2)
+
+
+def test_friction_only_dissipates_and_the_robot_comes_to_rest(model: ActivePassiveModel) -> None:
+    for a, b in itertools.pairwise(SEQUENCE):
+        steps = model.simulate(valves(a), valves(b), 6.0)
+        assert all(s.friction_power <= 1e-6 for s in steps)
+        assert np.abs(steps[-1].velocity).max() < 1e-4  # mm/s, rad/s
+
+
+def test_mirrored_transitions_mirror_the_motion(model: ActivePassiveModel) -> None:
+    a, b = valves("001001"), valves("010110")
+    p = model.transition(a, b, 6.0)
+    q = model.transition(mirror(a), mirror(b), 6.0)
+    assert abs(p.x) + abs(p.y) > 0.5  # something moves
+    assert q.x == pytest.approx(p.x, abs=1e-4)
+    assert q.y == pytest.approx(-p.y, abs=1e-4)
+    assert q.theta == pytest.approx(-p.theta, abs=1e-6)
+
+
+def test_a_symmetric_transition_does_not_turn(model: ActivePassiveModel) -> None:
+    for a, b in [("000000", "001111"), ("001111", "110000"), ("000000", "000011")]:
+        p = model.transition(valves(a), valves(b), 6.0)
+        assert abs(p.y) < 1e-6 and abs(p.theta) < 1e-8
+
+
+def _world_centre(model: ActivePassiveModel, step: Step, frame: Pose2D) -> np.ndarray:
+    """The centre of mass after ``step`` in the frame its transition began at ``frame``."""
+    m = model.kinematics.masses
+    local = m @ step.rest.posture.centres[0, :, :2] / m.sum()
+    pose = frame.compose(step.pose).compose(Pose2D(float(local[0]), float(local[1]), 0.0))
+    return np.array([pose.x, pose.y])
+
+
+def test_without_friction_momentum_is_conserved(frictionless: ActivePassiveModel) -> None:
+    a, b = valves("001001"), valves("010100")
+    rest = frictionless.steady(a)
+    m = frictionless.kinematics.masses
+    start = m @ rest.posture.centres[0, :, :2] / m.sum()
+    steps = frictionless.simulate(a, b, 6.0)
+    origin = Pose2D(0.0, 0.0, 0.0)
+    turned = 0.0
+    for step in steps:
+        np.testing.assert_allclose(step.momentum, 0.0, atol=1e-6)  # linear and angular
+        np.testing.assert_allclose(_world_centre(frictionless, step, origin), start, atol=1e-6)
+        turned = max(turned, abs(step.pose.theta))
+    assert turned > 1e-3  # the shape change alone turns the body (a "falling cat" rotation)
+    back = frictionless.simulate(b, a, 6.0)
+    # a reciprocal shape change retraces its path: no net rotation, the centre stays put
+    total = steps[-1].pose.compose(back[-1].pose)
+    assert abs(total.theta) < 1e-4
+    np.testing.assert_allclose(
+        _world_centre(frictionless, back[-1], steps[-1].pose), start, atol=1e-6
+    )
+
+
+def test_second_order_response() -> None:
+    comp = ActivePassiveModel.from_robot_file(ROBOT).robot.component("RL")
+    t = np.array([0.0, 1.0, 2.0])
+    wn = comp.natural_frequency
+    np.testing.assert_allclose(step_response(comp, t), 1 - (1 + wn * t) * np.exp(-wn * t))
+    done = settle_time(comp)
+    assert 1 - step_response(comp, np.array([done]))[0] <= 1e-3
+    assert done == pytest.approx(9.23 / wn, rel=0.01)
+
+
+def _best_forward(model: ActivePassiveModel) -> tuple[Pose2D, tuple[str, ...]]:
+    """Every two- and three-state cycle over the salamander-like states: the middle bent
+    one way or the other, one diagonal leg pair down."""
+    states = [m + legs for m in ("10", "01") for legs in ("1001", "0110")]
+    best: tuple[Pose2D, tuple[str, ...]] = (Pose2D(0.0, 0.0, 0.0), ())
+    for k in (2, 3):
+        for cycle in itertools.permutations(states, k):
+            if cycle[0] != min(cycle):
+                continue
+            pose = model.cycle([valves(s) for s in cycle], 6.0)
+            straight = abs(pose.theta) < 0.02 and abs(pose.y) < abs(pose.x)
+            if straight and pose.x > best[0].x:
+                best = (pose, cycle)
+    return best
+
+
+def test_some_valve_cycle_moves_silicone6_forward(model: ActivePassiveModel) -> None:
+    pose, cycle = _best_forward(model)
+    assert pose.x > 0.5, (pose, cycle)  # mm per cycle, the robot's +x
+    mirrored = model.cycle([mirror(valves(s)) for s in cycle], 6.0)
+    assert mirrored.x == pytest.approx(pose.x, abs=1e-3)
