@@ -137,3 +137,44 @@ def centroid(kappa: Array, tau: Array, angle: Array, length: float) -> Array:
     """Centre of mass of a uniform segment in the actuator frame, (B, 3)."""
     out: Array = np.einsum("bij,bj->bi", bending_basis(angle), frenet_centroid(kappa, tau, length))
     return out
+
+
+def segment(
+    kappa: float, angle: float, tau: Array, s: Array, length: float
+) -> tuple[Array, Array, Array]:
+    """:func:`backbone` and :func:`centroid` at once for one curvature and a batch of
+    torsions: points (B, S, 3), frames (B, S, 3, 3), centre of mass (B, 3).  Uses
+    [D]×² = D Dᵀ − |D|² I to build the frames from the Darboux vector directly."""
+    basis = bending_basis(np.array([angle]))[0]
+    w2 = kappa * kappa + tau * tau
+    w = np.sqrt(w2)
+    flat = w2 < 1e-300
+    safe = np.where(flat, 1.0, w2)
+    a = np.where(flat, 1.0, tau * tau / safe)[:, None]
+    b = np.where(flat, 0.0, kappa * kappa / safe)[:, None]
+    u = w[:, None] * s[None, :]
+    sinc, cosc = _sinc(u), _cosc(u)
+    local = np.stack(
+        [s * (a + b * sinc), kappa * s**2 * cosc, (tau * kappa)[:, None] * s**3 * _sinc3(u)], -1
+    )
+    points = local @ basis.T
+    d = np.stack([tau, np.zeros_like(tau), np.full_like(tau, kappa)], -1) @ basis.T  # (B, 3)
+    skew = np.zeros((tau.size, 3, 3))
+    skew[:, 0, 1], skew[:, 0, 2], skew[:, 1, 2] = -d[:, 2], d[:, 1], -d[:, 0]
+    skew -= np.swapaxes(skew, 1, 2)
+    square = d[:, :, None] * d[:, None, :] - w2[:, None, None] * np.eye(3)
+    frames = (
+        np.eye(3)
+        + (s * sinc)[..., None, None] * skew[:, None]
+        + (s**2 * cosc)[..., None, None] * square[:, None]
+    )
+    ul = w * length
+    mean = np.stack(
+        [
+            a[:, 0] * length / 2 + b[:, 0] * length * _cosc(ul),
+            kappa * length**2 * _sinc3(ul),
+            tau * kappa * length**3 * _quart(ul),
+        ],
+        -1,
+    )
+    return points, frames, mean @ basis.T

@@ -16,7 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from softmodels.active_passive_frenet import backbone, centroid
+from softmodels.active_passive_frenet import segment
 from softmodels.active_passive_robot import (
     ActivePassiveRobot,
     Component,
@@ -159,15 +159,19 @@ class Kinematics:
         """Local vertices (B, V, 3), centre (B, 3) and sample frames of an actuator."""
         ky, kz, _ = active
         batch = tau.shape[0]
-        kappa = np.full(batch, float(np.hypot(ky, kz)))
-        angle = np.full(batch, float(np.arctan2(kz, ky)))
-        points, sections = backbone(kappa, tau, angle, self._samples[comp.name])
+        points, sections, centre = segment(
+            float(np.hypot(ky, kz)),
+            float(np.arctan2(kz, ky)),
+            tau,
+            self._samples[comp.name],
+            comp.length,
+        )
         rows = self._vertex_rows[comp.name]
         local = points[:, rows, None, :] + np.einsum(
             "bsij,vj->bsvi", sections[:, rows], self._sections[comp.name]
         )
         frames = np.concatenate([sections, points[..., None]], axis=-1)  # (B, S, 3, 4)
-        return local.reshape(batch, -1, 3), centroid(kappa, tau, angle, comp.length), frames
+        return local.reshape(batch, -1, 3), centre, frames
 
     def prepare(self, active: Array) -> Prepared:
         """Everything the active states fix, for :meth:`posture`."""

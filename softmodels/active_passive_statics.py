@@ -61,7 +61,9 @@ class RestSolver:
     def solve(self, active: Array, start: Array) -> Rest:
         """The rest posture, warm-started from ``start`` (its height is made feasible first)."""
         prepared = self.kin.prepare(active)
-        x0 = np.array(start, dtype=float)
+        low_b = np.array([b[0] if b[0] is not None else -np.inf for b in self._bounds])
+        high_b = np.array([b[1] if b[1] is not None else np.inf for b in self._bounds])
+        x0 = np.clip(np.array(start, dtype=float), low_b, high_b)
         low = self.kin.posture(prepared, x0[None])
         x0[0] -= float(low.vertices[0, :, 2].min())
         cache: dict[bytes, tuple[Array, Array]] = {}
@@ -91,8 +93,6 @@ class RestSolver:
             out: Array = ((h[1:] - h[0]) / _STEP).T
             return out
 
-        low_b = np.array([b[0] if b[0] is not None else -np.inf for b in self._bounds])
-        high_b = np.array([b[1] if b[1] is not None else np.inf for b in self._bounds])
         x, iterations, ok = x0, 0, True
         for _ in range(_MOVES):  # a trust region: the posture deforms continuously
             low, high = np.maximum(low_b, x - _TRUST), np.minimum(high_b, x + _TRUST)
@@ -104,7 +104,7 @@ class RestSolver:
                 method="SLSQP",
                 bounds=list(zip(low, high, strict=True)),
                 constraints=[{"type": "ineq", "fun": cons, "jac": cons_jac}],
-                options={"maxiter": 200, "ftol": 1e-9},
+                options={"maxiter": 200, "ftol": 1e-7},
             )
             iterations += int(result.nit)
             # status 8: the line search cannot improve x within the finite-difference accuracy
