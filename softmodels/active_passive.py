@@ -19,6 +19,7 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import NDArray
 
+from gaitgraph.robot import Robot
 from softmodels.active_passive_kinematics import GRAVITY, Kinematics
 from softmodels.active_passive_robot import ActivePassiveRobot, Component
 from softmodels.active_passive_statics import Rest, RestSolver, normal_loads
@@ -68,9 +69,12 @@ class ActivePassiveModel:
 
     name = "active-passive"
 
-    def __init__(self, robot: ActivePassiveRobot, steps: int = 8, cache: bool = True) -> None:
+    def __init__(
+        self, robot: ActivePassiveRobot, steps: int = 8, refine: int = 2, cache: bool = True
+    ) -> None:
         self.robot = robot
         self.steps = steps
+        self.refine = refine
         self.kinematics = Kinematics(robot)
         self.solver = RestSolver(self.kinematics)
         self._actuators = [robot.component(n) for n in self.kinematics.actuators]
@@ -80,9 +84,17 @@ class ActivePassiveModel:
         )
 
     @classmethod
-    def from_robot_file(cls, path: str | Path, steps: int = 8) -> ActivePassiveModel:
+    def from_robot_file(
+        cls, path: str | Path, steps: int = 8, refine: int = 2
+    ) -> ActivePassiveModel:
         """The model of a robot file with an ``active_passive`` section."""
-        return cls(load_active_passive(path), steps)
+        return cls(load_active_passive(path), steps, refine)
+
+    @classmethod
+    def from_robot(cls, robot: Robot, steps: int = 8, refine: int = 2) -> ActivePassiveModel:
+        """The model of a robot parsed by :func:`gaitgraph.robot.load_robot` (its file is read
+        again for the ``active_passive`` section)."""
+        return cls.from_robot_file(robot.file, steps, refine)
 
     @property
     def valve_count(self) -> int:
@@ -108,10 +120,10 @@ class ActivePassiveModel:
         return np.array(rows, dtype=float).reshape(len(self._actuators), 3)
 
     def steady(self, valves: ValveState) -> Rest:
-        """The rest posture of a valve state, solved from the flat, untwisted posture."""
+        """The rest posture of a valve state: the lowest of several starts (see
+        :meth:`RestSolver.lowest`)."""
         if valves not in self._steady:
-            start = np.zeros(self.kinematics.size)
-            self._steady[valves] = self.solver.solve(self.active(valves), start)
+            self._steady[valves] = self.solver.lowest(self.active(valves))
         return self._steady[valves]
 
     def transition(self, start: ValveState, end: ValveState, period_s: float) -> Pose2D:
@@ -134,90 +146,131 @@ class ActivePassiveModel:
 
     # ------------------------------------------------------------ the time stepping
 
-    def _times(self, first: Array, last: Array, period: float) -> tuple[Array, list[Component]]:
+    def _loads(self, rest: Rest) -> Array:
+        """Normal loads on the vertices of a rest posture."""
+        m = self.kinematics.masses
+        centre = m @ rest.posture.centres[0] / m.sum()
+        return normal_loads(
+            rest.posture.vertices[0], centre, self.solver.weight, self.robot.contact_tolerance
+        )
+
+    def _touching(self, rest: Rest) -> Array:
+        heights = rest.posture.vertices[0, :, 2]
+        touching: Array = heights <= heights.min() + self.robot.contact_tolerance
+        return touching
+
+    def _plan(self, first: Array, last: Array, period: float) -> tuple[Array, Array, Array]:
+        """Progress marks at equal shape increments and the (progress, time) table."""
         moving = [
             c
             for i, c in enumerate(self._actuators)
             if not np.allclose(first[i], last[i], rtol=0.0, atol=1e-12)
         ]
         if not moving or period <= 0.0:
-            return np.array([]), moving
+            return np.array([]), np.array([0.0]), np.array([0.0])
         horizon = min(period, max(settle_time(c) for c in moving))
         dense = np.linspace(0.0, horizon, _DENSE)
         progress = np.mean([step_response(c, dense) for c in moving], axis=0)
-        marks = np.linspace(progress[0], progress[-1], self.steps + 1)[1:]
-        times = np.interp(marks, progress, dense)
-        if period > horizon + 1e-9:
-            times = np.append(times, period)
-        return times, moving
+        return np.linspace(progress[0], progress[-1], self.steps + 1), progress, dense
 
     def simulate(self, start: ValveState, end: ValveState, period_s: float) -> list[Step]:
-        """Every time step of a transition (none when no actuator changes its state)."""
+        """Every time step of a transition (none when no actuator changes its state).
+
+        A step across which the set of touching vertices changes is halved, up to
+        ``refine`` times, so that contact events fall near a step's end."""
         first, last = self.active(start), self.active(end)
-        times, _ = self._times(first, last, period_s)
-        rest = self.steady(start)
-        masses = self.kinematics.masses
-        mu = self.kinematics.friction
-        pose = Pose2D(0.0, 0.0, 0.0)
-        momentum = np.zeros(3)
-        previous_t = 0.0
-        out: list[Step] = []
-        before = rest.x
-        shaped = first
-        centre = masses @ rest.posture.centres[0, :, :2] / masses.sum()  # in the world
-        for t in times:
+        marks, progress, dense = self._plan(first, last, period_s)
+        if marks.size == 0:
+            return []
+        track = _Track(self, self.steady(start))
+        narrowest = (marks[1] - marks[0]) / 2**self.refine
+        pending = list(marks[:0:-1])  # pop() gives the next mark
+        reached, shaped = float(marks[0]), first
+        solved: dict[float, Rest] = {}
+        while pending:
+            mark = pending.pop()
+            t = float(np.interp(mark, progress, dense))
             done = np.array([step_response(c, np.array([t]))[0] for c in self._actuators])
             done[done >= 1.0 - _SETTLED] = 1.0  # a settled response has reached its target
             active = first + (last - first) * done[:, None]
             if np.array_equal(active, shaped):
-                new = rest  # the shape is held
+                new = track.rest
+            elif mark in solved:  # solved before its step was halved
+                new = solved.pop(mark)
             else:
-                guess = 2.0 * rest.x - before if out else rest.x  # linear predictor
-                new = self.solver.solve(active, guess)
-                shaped = active
-            dt = float(t - previous_t)
-            rho0, rho1 = rest.posture.centres[0, :, :2], new.posture.centres[0, :, :2]
-            q0, q1 = rest.posture.vertices[0, :, :2], new.posture.vertices[0, :, :2]
-            centre3 = masses @ new.posture.centres[0] / masses.sum()
-            loads = normal_loads(
-                new.posture.vertices[0], centre3, self.solver.weight, self.robot.contact_tolerance
-            )
-            velocity, momentum, power = _implicit_step(
-                masses,
-                (rho0 + rho1) / 2,
-                (rho1 - rho0) / dt,
-                (q0 + q1) / 2,
-                (q1 - q0) / dt,
-                mu * loads,
-                momentum,
-                dt,
-            )
-            # the centre of mass moves with the momentum (exactly still without friction);
-            # the heading frame follows from it, the turn and the new shape
-            turn = velocity[2] * dt
-            mid = pose.theta + turn / 2
-            shift = momentum[:2] / masses.sum() * dt
-            cx = centre[0] + math.cos(mid) * shift[0] - math.sin(mid) * shift[1]
-            cy = centre[1] + math.sin(mid) * shift[0] + math.cos(mid) * shift[1]
-            theta = pose.theta + turn
-            local = masses @ rho1 / masses.sum()
-            centre = np.array([cx, cy])
-            pose = Pose2D(
-                cx - math.cos(theta) * local[0] + math.sin(theta) * local[1],
-                cy - math.sin(theta) * local[0] - math.cos(theta) * local[1],
-                theta,
-            )
-            cr, sr = math.cos(turn), math.sin(turn)  # momentum into the turned heading frame
-            momentum = np.array(
-                [
-                    cr * momentum[0] + sr * momentum[1],
-                    -sr * momentum[0] + cr * momentum[1],
-                    momentum[2],
-                ]
-            )
-            out.append(Step(float(t), pose, new, loads, velocity, momentum, power))
-            before, rest, previous_t = rest.x, new, float(t)
-        return out
+                new = self.solver.solve(active, track.guess())
+            wide = mark - reached > narrowest * 1.5
+            if wide and not np.array_equal(self._touching(track.rest), self._touching(new)):
+                solved[mark] = new
+                pending += [mark, (reached + mark) / 2]
+                continue
+            track.advance(new, t)
+            reached, shaped = mark, active
+        horizon = float(dense[-1])
+        if period_s > horizon + 1e-9:
+            # held: a posture left in another local minimum than the steady state snaps into
+            # it (so that transitions compose), then it stays
+            track.advance(self.steady(end), (horizon + period_s) / 2)
+            track.advance(track.rest, period_s)
+        return track.steps
+
+
+class _Track:
+    """The motion of the heading frame through one transition (thesis 4.2.2, "Robot Angular
+    Momentum"): momentum changes only by the friction wrench, taken implicitly."""
+
+    def __init__(self, model: ActivePassiveModel, rest: Rest) -> None:
+        self.model = model
+        self.rest = rest
+        self.loads = model._loads(rest)
+        self.before = rest.x
+        self.masses = model.kinematics.masses
+        self.pose = Pose2D(0.0, 0.0, 0.0)
+        self.momentum = np.zeros(3)
+        self.time = 0.0
+        self.centre = self.masses @ rest.posture.centres[0, :, :2] / self.masses.sum()
+        self.steps: list[Step] = []
+
+    def guess(self) -> Array:
+        """A linear predictor of the next passive state."""
+        return 2.0 * self.rest.x - self.before if self.steps else self.rest.x
+
+    def advance(self, new: Rest, t: float) -> None:
+        masses, dt = self.masses, t - self.time
+        rho0, rho1 = self.rest.posture.centres[0, :, :2], new.posture.centres[0, :, :2]
+        q0, q1 = self.rest.posture.vertices[0, :, :2], new.posture.vertices[0, :, :2]
+        loads = self.loads if new is self.rest else self.model._loads(new)
+        velocity, momentum, power = _implicit_step(
+            masses,
+            (rho0 + rho1) / 2,
+            (rho1 - rho0) / dt,
+            (q0 + q1) / 2,
+            (q1 - q0) / dt,
+            self.model.kinematics.friction * (self.loads + loads) / 2,  # trapezoid rule
+            self.momentum,
+            dt,
+        )
+        # the centre of mass moves with the momentum (exactly still without friction); the
+        # heading frame follows from it, the turn and the new shape
+        turn = velocity[2] * dt
+        mid = self.pose.theta + turn / 2
+        shift = momentum[:2] / masses.sum() * dt
+        cx = self.centre[0] + math.cos(mid) * shift[0] - math.sin(mid) * shift[1]
+        cy = self.centre[1] + math.sin(mid) * shift[0] + math.cos(mid) * shift[1]
+        theta = self.pose.theta + turn
+        local = masses @ rho1 / masses.sum()
+        self.centre = np.array([cx, cy])
+        self.pose = Pose2D(
+            cx - math.cos(theta) * local[0] + math.sin(theta) * local[1],
+            cy - math.sin(theta) * local[0] - math.cos(theta) * local[1],
+            theta,
+        )
+        cr, sr = math.cos(turn), math.sin(turn)  # momentum into the turned heading frame
+        self.momentum = np.array(
+            [cr * momentum[0] + sr * momentum[1], -sr * momentum[0] + cr * momentum[1], momentum[2]]
+        )
+        self.steps.append(Step(t, self.pose, new, loads, velocity, self.momentum, power))
+        self.before, self.rest, self.loads, self.time = self.rest.x, new, loads, t
 
 
 def _cross(a: Array, b: Array) -> Array:

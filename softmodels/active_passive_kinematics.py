@@ -28,6 +28,8 @@ Array = NDArray[np.float64]
 
 GRAVITY = 9810.0  # mm/s²
 ROOT_VARIABLES = ("height", "roll", "pitch")
+_SHAPES = 4096  # actuator shapes kept between postures
+_X, _Y = np.array([1.0, 0.0, 0.0]), np.array([0.0, 1.0, 0.0])
 
 
 @dataclass(frozen=True)
@@ -124,6 +126,12 @@ class Kinematics:
                 if j.source == c.name and j.arc is not None:
                     self._anchor_rows[j.target] = int(np.searchsorted(samples, j.arc))
         self._slots()
+        self._links = {
+            j.target: (np.array(j.offset), np.array(j.rotation), np.array(j.target_point))
+            for j in robot.connections
+        }
+        self._axes = {j.target: np.array(j.axis) for j in robot.connections}
+        self._shapes: dict[tuple[str, float, float, float], tuple[Array, Array, Array]] = {}
 
     def _slots(self) -> None:
         """Where each head's vertices and centres sit in the stacked points of a posture."""
@@ -173,6 +181,16 @@ class Kinematics:
         frames = np.concatenate([sections, points[..., None]], axis=-1)  # (B, S, 3, 4)
         return local.reshape(batch, -1, 3), centre, frames
 
+    def _still(self, comp: Component, active: Array) -> tuple[Array, Array, Array]:
+        """The shape of an actuator without passive twist (kept: legs often hold theirs)."""
+        key = (comp.name, float(active[0]), float(active[1]), float(active[2]))
+        if key not in self._shapes:
+            if len(self._shapes) > _SHAPES:
+                self._shapes.clear()
+            local, centre, frames = self._shape(comp, active, np.array([active[2]]))
+            self._shapes[key] = (local[0], centre[0], frames[0])
+        return self._shapes[key]
+
     def prepare(self, active: Array) -> Prepared:
         """Everything the active states fix, for :meth:`posture`."""
         act = {name: active[i] for i, name in enumerate(self.actuators)}
@@ -194,9 +212,7 @@ class Kinematics:
             if comp.name in self._twist_index:
                 continue  # shaped per posture
             if comp.is_actuator:
-                local, centre, fr = self._shape(comp, act[comp.name], np.array([act[comp.name][2]]))
-                frames[comp.name] = fr[0]
-                local, centre = local[0], centre[0]
+                local, centre, frames[comp.name] = self._still(comp, act[comp.name])
             else:
                 local, centre = np.array(comp.wireframe), np.array(comp.cg)
             verts[head].append(local @ rot.T + pos)
@@ -224,8 +240,8 @@ class Kinematics:
         if not isinstance(prep, Prepared):
             prep = self.prepare(prep)
         batch = x.shape[0]
-        roll = _axis_rotation(np.array([1.0, 0.0, 0.0]), x[:, 1])
-        pitch = _axis_rotation(np.array([0.0, 1.0, 0.0]), x[:, 2])
+        roll = _axis_rotation(_X, x[:, 1])
+        pitch = _axis_rotation(_Y, x[:, 2])
         world: dict[str, tuple[Array, Array]] = {}
         twisted: dict[str, Array] = {}
         points: list[Array] = []  # every head's vertices, then centres, in its own frame
@@ -241,12 +257,17 @@ class Kinematics:
                     prot, ppos = world[link.source]
                     f = twisted[link.source][:, self._anchor_rows[head]]
                     arot, apos = f[:, :, :3], f[:, :, 3]
-                    prot, ppos = prot @ arot, ppos + np.einsum("bij,bj->bi", prot, apos)
+                    prot, ppos = prot @ arot, ppos + (prot @ apos[..., None])[..., 0]
                 else:
                     hrot, hpos = world[self.head[link.source]]
                     arot, apos = prep.anchors[head]
                     prot, ppos = hrot @ arot, hpos + hrot @ apos
-                rot, pos = _link_batch(prot, ppos, link, self._hinge(head, x))
+                offset, turn, target = self._links[head]
+                pos = ppos + prot @ offset
+                rot = prot @ turn
+                if head in self._joint_index:
+                    rot = rot @ _axis_rotation(self._axes[head], x[:, self._joint_index[head]])
+                pos = pos - rot @ target
             world[head] = (rot, pos)
             if head in self._twist_index:
                 comp = self.robot.component(head)
@@ -257,16 +278,14 @@ class Kinematics:
             else:
                 group = np.concatenate([prep.vertices[head], prep.centres[head]])
                 points.append(np.broadcast_to(group, (batch, *group.shape)))
-        rots = np.stack([world[h][0] for h in self.heads], axis=1)[:, self._group_of]
-        poss = np.stack([world[h][1] for h in self.heads], axis=1)[:, self._group_of]
-        placed = np.einsum("bnij,bnj->bni", rots, np.concatenate(points, axis=1)) + poss
+        placed = np.concatenate(
+            [
+                pts @ np.swapaxes(world[h][0], 1, 2) + world[h][1][:, None]
+                for h, pts in zip(self.heads, points, strict=True)
+            ],
+            axis=1,
+        )
         return Posture(placed[:, self._vertex_slots], placed[:, self._centre_slots])
-
-    def _hinge(self, head: str, x: Array) -> Array | None:
-        if head not in self._joint_index:
-            return None
-        link = self._incoming[head]
-        return _axis_rotation(np.array(link.axis), x[:, self._joint_index[head]])
 
 
 def _link(rot: Array, pos: Array, link: Connection) -> tuple[Array, Array]:
@@ -274,13 +293,3 @@ def _link(rot: Array, pos: Array, link: Connection) -> tuple[Array, Array]:
     pos = pos + rot @ np.array(link.offset)
     rot = rot @ np.array(link.rotation)
     return rot, pos - rot @ np.array(link.target_point)
-
-
-def _link_batch(
-    rot: Array, pos: Array, link: Connection, hinge: Array | None
-) -> tuple[Array, Array]:
-    pos = pos + np.einsum("bij,j->bi", rot, np.array(link.offset))
-    rot = rot @ np.array(link.rotation)
-    if hinge is not None:
-        rot = rot @ hinge
-    return rot, pos - np.einsum("bij,j->bi", rot, np.array(link.target_point))

@@ -35,6 +35,7 @@ class Rest:
 
     x: Array
     posture: Posture
+    energy: float  # CG height plus elastic energy over the weight, mm
     iterations: int
     converged: bool
 
@@ -48,15 +49,20 @@ class RestSolver:
         self._bounds = kinematics.bounds()
         self.evaluations = 0
 
-    def _batch(self, active: Prepared, x: Array) -> tuple[Array, Array, Posture]:
-        """Energy/weight and vertex heights at x and at x + h·e_i (rows 1..n)."""
+    def _batch(self, active: Prepared, x: Array) -> tuple[Array, Array]:
+        """Energy/weight and vertex heights at x and their gradients: finite differences for
+        every variable but the height (row 0 of x + h·e_i, i ≥ 1), which lifts everything
+        by itself (∂E/∂z = 1, ∂v_z/∂z = 1)."""
         n = x.size
-        xs = np.vstack([x, x + _STEP * np.eye(n)])
+        xs = np.vstack([x, x + _STEP * np.eye(n)[1:]])
         self.evaluations += 1
         p = self.kin.posture(active, xs)
         cg = p.centres[:, :, 2] @ self.kin.masses / self.kin.masses.sum()
         energy = cg + self.kin.elastic(xs) / self.weight
-        return energy, p.vertices[:, :, 2], p
+        heights = p.vertices[:, :, 2]
+        grad = np.concatenate([[1.0], (energy[1:] - energy[0]) / _STEP])
+        jac = np.vstack([np.ones(heights.shape[1]), (heights[1:] - heights[0]) / _STEP]).T
+        return np.concatenate([[energy[0]], grad]), np.vstack([heights[0], jac.T])
 
     def solve(self, active: Array, start: Array) -> Rest:
         """The rest posture, warm-started from ``start`` (its height is made feasible first)."""
@@ -72,7 +78,7 @@ class RestSolver:
             key = x.tobytes()
             if key not in cache:
                 cache.clear()
-                energy, heights, _ = self._batch(prepared, x)
+                energy, heights = self._batch(prepared, x)
                 cache[key] = (energy, heights)
             return cache[key]
 
@@ -80,8 +86,7 @@ class RestSolver:
             return float(values(x)[0][0])
 
         def grad(x: Array) -> Array:
-            e = values(x)[0]
-            out: Array = (e[1:] - e[0]) / _STEP
+            out: Array = values(x)[0][1:]
             return out
 
         def cons(x: Array) -> Array:
@@ -89,8 +94,7 @@ class RestSolver:
             return out
 
         def cons_jac(x: Array) -> Array:
-            h = values(x)[1]
-            out: Array = ((h[1:] - h[0]) / _STEP).T
+            out: Array = values(x)[1][1:].T
             return out
 
         x, iterations, ok = x0, 0, True
@@ -120,7 +124,23 @@ class RestSolver:
         if lowest < 0.0:  # SLSQP ends within its tolerance: lift the robot onto the ground
             x[0] -= lowest
             posture = self.kin.posture(prepared, x[None])
-        return Rest(x, posture, iterations, ok)
+        cg = float(posture.centres[0, :, 2] @ self.kin.masses) / float(self.kin.masses.sum())
+        energy = cg + float(self.kin.elastic(x[None])[0]) / self.weight
+        return Rest(x, posture, energy, iterations, ok)
+
+    def lowest(self, active: Array, spread: float = 0.2) -> Rest:
+        """The lowest-energy rest found from the flat posture and from each passive variable
+        (twists, hinges) started ``spread`` rad to either side: the contact problem has
+        several local minima (a leg pair may rest on either side of its hinge)."""
+        n = self.kin.size
+        starts = [np.zeros(n)]
+        for i in range(3, n):
+            for sign in (-1.0, 1.0):
+                start = np.zeros(n)
+                start[i] = sign * spread
+                starts.append(start)
+        rests = [self.solve(active, start) for start in starts]
+        return min(rests, key=lambda rest: rest.energy)  # the first of equals: deterministic
 
 
 def normal_loads(points: Array, centre: Array, weight: float, tolerance: float) -> Array:
