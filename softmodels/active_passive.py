@@ -7,7 +7,8 @@ heading frame then follows from the particle system of component centres of mass
 linear and angular momentum change only by the viscous friction at the wireframe vertices
 (F = −μ N v, loads N from the minimum-load static problem).  Both phases are taken in one
 implicit Euler step, so stiff friction gives the quasi-static limit and zero friction gives
-exact conservation of momentum ("Robot Angular Momentum").
+exact conservation of momentum ("Robot Angular Momentum").  Steps fall at equal shape
+increments and are halved where the set of touching vertices changes.
 """
 
 from __future__ import annotations
@@ -261,9 +262,9 @@ class _Track:
         local = masses @ rho1 / masses.sum()
         self.centre = np.array([cx, cy])
         self.pose = Pose2D(
-            cx - math.cos(theta) * local[0] + math.sin(theta) * local[1],
-            cy - math.sin(theta) * local[0] - math.cos(theta) * local[1],
-            theta,
+            float(cx - math.cos(theta) * local[0] + math.sin(theta) * local[1]),
+            float(cy - math.sin(theta) * local[0] - math.cos(theta) * local[1]),
+            float(theta),
         )
         cr, sr = math.cos(turn), math.sin(turn)  # momentum into the turned heading frame
         self.momentum = np.array(
