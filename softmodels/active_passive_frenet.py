@@ -10,6 +10,8 @@ Everything here is vectorised over a leading batch axis of (κ, τ) pairs.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 from numpy.typing import NDArray
 
@@ -139,42 +141,49 @@ def centroid(kappa: Array, tau: Array, angle: Array, length: float) -> Array:
     return out
 
 
+_SKEW = np.zeros((3, 3, 3))  # [d]× = d · _SKEW
+_SKEW[0, 2, 1], _SKEW[0, 1, 2] = 1.0, -1.0
+_SKEW[1, 0, 2], _SKEW[1, 2, 0] = 1.0, -1.0
+_SKEW[2, 1, 0], _SKEW[2, 0, 1] = 1.0, -1.0
+
+
 def segment(
     kappa: float, angle: float, tau: Array, s: Array, length: float
 ) -> tuple[Array, Array, Array]:
     """:func:`backbone` and :func:`centroid` at once for one curvature and a batch of
-    torsions: points (B, S, 3), frames (B, S, 3, 3), centre of mass (B, 3).  Uses
-    [D]×² = D Dᵀ − |D|² I to build the frames from the Darboux vector directly."""
-    basis = bending_basis(np.array([angle]))[0]
+    torsions: points (B, S, 3), frames (B, S, 3, 3), centre of mass (B, 3).  One sine and
+    cosine serve every term, and [D]×² = D Dᵀ − |D|² I builds the frames from D directly."""
+    c, n = math.cos(angle), math.sin(angle)
+    basis = np.array([[1.0, 0.0, 0.0], [0.0, c, -n], [0.0, n, c]])  # columns T, N, B
     w2 = kappa * kappa + tau * tau
-    w = np.sqrt(w2)
     flat = w2 < 1e-300
     safe = np.where(flat, 1.0, w2)
     a = np.where(flat, 1.0, tau * tau / safe)[:, None]
     b = np.where(flat, 0.0, kappa * kappa / safe)[:, None]
-    u = w[:, None] * s[None, :]
-    sinc, cosc = _sinc(u), _cosc(u)
-    local = np.stack(
-        [s * (a + b * sinc), kappa * s**2 * cosc, (tau * kappa)[:, None] * s**3 * _sinc3(u)], -1
-    )
-    points = local @ basis.T
-    d = np.stack([tau, np.zeros_like(tau), np.full_like(tau, kappa)], -1) @ basis.T  # (B, 3)
-    skew = np.zeros((tau.size, 3, 3))
-    skew[:, 0, 1], skew[:, 0, 2], skew[:, 1, 2] = -d[:, 2], d[:, 1], -d[:, 0]
-    skew -= np.swapaxes(skew, 1, 2)
+    u = np.sqrt(w2)[:, None] * s
+    small = np.abs(u) < _SMALL
+    safe_u = np.where(small, 1.0, u)
+    sin, cos = np.sin(safe_u), np.cos(safe_u)
+    u2 = u * u
+    sinc = np.where(small, 1.0 - u2 / 6.0 + u2 * u2 / 120.0, sin / safe_u)
+    cosc = np.where(small, 0.5 - u2 / 24.0 + u2 * u2 / 720.0, (1.0 - cos) / safe_u**2)
+    sinc3 = np.where(small, 1.0 / 6.0 - u2 / 120.0, (safe_u - sin) / safe_u**3)
+    x = s * (a + b * sinc)
+    y = kappa * s * s * cosc
+    z = (tau * kappa)[:, None] * s**3 * sinc3
+    points = x[..., None] * basis[:, 0] + y[..., None] * basis[:, 1] + z[..., None] * basis[:, 2]
+    d = tau[:, None] * basis[:, 0] + kappa * basis[:, 2]  # the Darboux vector, (B, 3)
+    skew = np.tensordot(d, _SKEW, axes=1)
     square = d[:, :, None] * d[:, None, :] - w2[:, None, None] * np.eye(3)
     frames = (
         np.eye(3)
         + (s * sinc)[..., None, None] * skew[:, None]
-        + (s**2 * cosc)[..., None, None] * square[:, None]
+        + (s * s * cosc)[..., None, None] * square[:, None]
     )
-    ul = w * length
-    mean = np.stack(
-        [
-            a[:, 0] * length / 2 + b[:, 0] * length * _cosc(ul),
-            kappa * length**2 * _sinc3(ul),
-            tau * kappa * length**3 * _quart(ul),
-        ],
-        -1,
+    ul = np.sqrt(w2) * length
+    mean = (
+        (a[:, 0] * length / 2 + b[:, 0] * length * _cosc(ul))[:, None] * basis[:, 0]
+        + (kappa * length**2 * _sinc3(ul))[:, None] * basis[:, 1]
+        + (tau * kappa * length**3 * _quart(ul))[:, None] * basis[:, 2]
     )
-    return points, frames, mean @ basis.T
+    return points, frames, mean

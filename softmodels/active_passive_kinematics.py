@@ -30,6 +30,7 @@ GRAVITY = 9810.0  # mm/s²
 ROOT_VARIABLES = ("height", "roll", "pitch")
 _SHAPES = 4096  # actuator shapes kept between postures
 _X, _Y = np.array([1.0, 0.0, 0.0]), np.array([0.0, 1.0, 0.0])
+_TWIST_STEP = 1e-5  # rad of total twist, for central differences
 
 
 @dataclass(frozen=True)
@@ -149,6 +150,17 @@ class Kinematics:
             centre_slots += range(start + nv, start + nv + len(members))
             group += [i] * (nv + len(members))
         self._group_of = np.array(group)
+        self._subtree: dict[str, NDArray[np.intp]] = {}  # the points a hinge here turns
+        for head in self.heads:
+            below = []
+            for i, other in enumerate(self.heads):
+                walk: str | None = other
+                while walk is not None and walk != head:
+                    link = self._incoming.get(walk)
+                    walk = link.source if link is not None else None
+                if walk == head:
+                    below.append(i)
+            self._subtree[head] = np.flatnonzero(np.isin(self._group_of, below))
         self._vertex_slots = np.array(vertex_slots)
         self._centre_slots = np.array(centre_slots)
 
@@ -175,9 +187,8 @@ class Kinematics:
             comp.length,
         )
         rows = self._vertex_rows[comp.name]
-        local = points[:, rows, None, :] + np.einsum(
-            "bsij,vj->bsvi", sections[:, rows], self._sections[comp.name]
-        )
+        across = np.swapaxes(sections[:, rows] @ self._sections[comp.name].T, -1, -2)
+        local = points[:, rows, None, :] + across
         frames = np.concatenate([sections, points[..., None]], axis=-1)  # (B, S, 3, 4)
         return local.reshape(batch, -1, 3), centre, frames
 
@@ -239,10 +250,53 @@ class Kinematics:
         """Vertices and centres of mass in the heading frame for a batch ``x`` of shape (B, n)."""
         if not isinstance(prep, Prepared):
             prep = self.prepare(prep)
+        placed, _, _ = self._place(prep, x)
+        return Posture(placed[:, self._vertex_slots], placed[:, self._centre_slots])
+
+    def heights(self, prep: Prepared, x: Array) -> tuple[Array, Array, Array, Array]:
+        """Heights of the vertices (V,) and centres (C,) at one x, and their derivatives
+        (V, n), (C, n): exact for the height and every rotation (∂p/∂q = a × (p − o)),
+        central differences for the twists."""
+        twists = sorted(self._twist_index.values())
+        rows = [x]
+        for j in twists:
+            for sign in (1.0, -1.0):
+                row = x.copy()
+                row[j] += sign * _TWIST_STEP
+                rows.append(row)
+        placed, pitch, hinges = self._place(prep, np.array(rows))
+        p0 = placed[0]
+        jac = np.zeros((p0.shape[0], x.size))
+        jac[:, 0] = 1.0
+        rel = p0 - np.array([0.0, 0.0, x[0]])
+        roll_axis = pitch[0] @ _X
+        jac[:, 1] = roll_axis[0] * rel[:, 1] - roll_axis[1] * rel[:, 0]
+        jac[:, 2] = -rel[:, 0]  # about +y
+        for head, col in self._joint_index.items():
+            axis, origin = hinges[head]
+            below = self._subtree[head]
+            d = p0[below] - origin[0]
+            jac[below, col] = axis[0, 0] * d[:, 1] - axis[0, 1] * d[:, 0]
+        for i, j in enumerate(twists):
+            jac[:, j] = (placed[1 + 2 * i, :, 2] - placed[2 + 2 * i, :, 2]) / (2 * _TWIST_STEP)
+        z = p0[:, 2]
+        return (
+            z[self._vertex_slots],
+            z[self._centre_slots],
+            jac[self._vertex_slots],
+            jac[self._centre_slots],
+        )
+
+    def _place(
+        self, prep: Prepared, x: Array
+    ) -> tuple[Array, Array, dict[str, tuple[Array, Array]]]:
+        """Every point of every head, placed; the pitch rotations; each hinge's axis and
+        origin in the heading frame."""
         batch = x.shape[0]
         roll = _axis_rotation(_X, x[:, 1])
         pitch = _axis_rotation(_Y, x[:, 2])
         world: dict[str, tuple[Array, Array]] = {}
+        hinges: dict[str, tuple[Array, Array]] = {}
         twisted: dict[str, Array] = {}
         points: list[Array] = []  # every head's vertices, then centres, in its own frame
         act = {name: prep.active[i] for i, name in enumerate(self.actuators)}
@@ -266,6 +320,7 @@ class Kinematics:
                 pos = ppos + prot @ offset
                 rot = prot @ turn
                 if head in self._joint_index:
+                    hinges[head] = (rot @ self._axes[head], pos)
                     rot = rot @ _axis_rotation(self._axes[head], x[:, self._joint_index[head]])
                 pos = pos - rot @ target
             world[head] = (rot, pos)
@@ -285,7 +340,7 @@ class Kinematics:
             ],
             axis=1,
         )
-        return Posture(placed[:, self._vertex_slots], placed[:, self._centre_slots])
+        return placed, pitch, hinges
 
 
 def _link(rot: Array, pos: Array, link: Connection) -> tuple[Array, Array]:

@@ -22,7 +22,6 @@ from softmodels.active_passive_kinematics import GRAVITY, Kinematics, Posture, P
 
 Array = NDArray[np.float64]
 
-_STEP = 1e-6  # finite-difference step (mm for the height, rad for the angles)
 _BALANCE = 1e4  # weight of the balance rows against the evenness rows in the NNLS
 _LEVER = 100.0  # mm; scales the moment rows
 _TRUST = 0.15  # rad: the largest change of a passive angle in one SLSQP run
@@ -47,22 +46,20 @@ class RestSolver:
         self.kin = kinematics
         self.weight = float(kinematics.masses.sum()) * GRAVITY
         self._bounds = kinematics.bounds()
+        self._stiffness = np.array([p.stiffness for p in kinematics.passive])
         self.evaluations = 0
 
     def _batch(self, active: Prepared, x: Array) -> tuple[Array, Array]:
-        """Energy/weight and vertex heights at x and their gradients: finite differences for
-        every variable but the height (row 0 of x + h·e_i, i ≥ 1), which lifts everything
-        by itself (∂E/∂z = 1, ∂v_z/∂z = 1)."""
-        n = x.size
-        xs = np.vstack([x, x + _STEP * np.eye(n)[1:]])
+        """Energy/weight and its gradient (n + 1,), vertex heights and their Jacobian
+        (n + 1, V), from :meth:`Kinematics.heights`."""
         self.evaluations += 1
-        p = self.kin.posture(active, xs)
-        cg = p.centres[:, :, 2] @ self.kin.masses / self.kin.masses.sum()
-        energy = cg + self.kin.elastic(xs) / self.weight
-        heights = p.vertices[:, :, 2]
-        grad = np.concatenate([[1.0], (energy[1:] - energy[0]) / _STEP])
-        jac = np.vstack([np.ones(heights.shape[1]), (heights[1:] - heights[0]) / _STEP]).T
-        return np.concatenate([[energy[0]], grad]), np.vstack([heights[0], jac.T])
+        vz, cz, jv, jc = self.kin.heights(active, x)
+        masses = self.kin.masses
+        total = float(masses.sum())
+        energy = float(masses @ cz) / total + float(self.kin.elastic(x[None])[0]) / self.weight
+        grad = masses @ jc / total
+        grad[3:] += self._stiffness * x[3:] / self.weight
+        return np.concatenate([[energy], grad]), np.vstack([vz, jv.T])
 
     def solve(self, active: Array, start: Array) -> Rest:
         """The rest posture, warm-started from ``start`` (its height is made feasible first)."""

@@ -14,6 +14,7 @@ from softmodels.active_passive_frenet import (
     frenet_centroid,
     frenet_frames,
     frenet_points,
+    segment,
 )
 
 
@@ -94,3 +95,16 @@ def test_bending_angle_sets_the_direction_of_the_curl() -> None:
     )
     left = centroid(kappa, np.zeros(1), np.radians([0.0]), 80.0)[0]
     assert left[1] > 0 and abs(left[2]) < 1e-12
+
+
+@pytest.mark.parametrize("kappa", [0.0, 1e-6, 0.0196])
+def test_fused_segment_matches_backbone_and_centroid(kappa: float) -> None:
+    tau = np.array([0.0, 1e-7, 0.004, -0.01])
+    s = np.linspace(0.0, 90.0, 6)
+    angle = math.radians(-90.0)
+    points, frames, centre = segment(kappa, angle, tau, s, 90.0)
+    k, a = np.full(4, kappa), np.full(4, angle)
+    want_points, want_frames = backbone(k, tau, a, s)
+    np.testing.assert_allclose(points, want_points, atol=1e-10)
+    np.testing.assert_allclose(frames, want_frames, atol=1e-12)
+    np.testing.assert_allclose(centre, centroid(k, tau, a, 90.0), atol=1e-10)

@@ -171,3 +171,21 @@ def test_some_valve_cycle_moves_silicone6_forward(model: ActivePassiveModel) -> 
     # run backwards, the same states do not carry the robot forward as far
     backwards = model.cycle([valves(s) for s in reversed(cycle)], 6.0)
     assert backwards.x < pose.x - 0.5
+
+
+@pytest.mark.parametrize("bits", ["011001", "100110", "001111"])
+def test_height_derivatives_match_finite_differences(model: ActivePassiveModel, bits: str) -> None:
+    kin = model.kinematics
+    prepared = kin.prepare(model.active(valves(bits)))
+    x = np.array([20.0, 0.1, -0.05, 0.2, -0.1, 0.15])  # height, roll, pitch, twist, hinges
+    vz, cz, jv, jc = kin.heights(prepared, x)
+    h = 1e-6
+    rows = np.vstack([x, x + h * np.eye(x.size)])
+    posture = kin.posture(prepared, rows)
+    np.testing.assert_allclose(vz, posture.vertices[0, :, 2], atol=1e-12)
+    np.testing.assert_allclose(cz, posture.centres[0, :, 2], atol=1e-12)
+    fd_v = (posture.vertices[1:, :, 2] - posture.vertices[0, :, 2]).T / h
+    fd_c = (posture.centres[1:, :, 2] - posture.centres[0, :, 2]).T / h
+    np.testing.assert_allclose(jv, fd_v, atol=1e-4)  # mm per rad; the FD error is ~h·|p|
+    np.testing.assert_allclose(jc, fd_c, atol=1e-4)
+    assert np.abs(jv[:, 4]).max() > 1.0  # the rear hinge moves something
