@@ -29,10 +29,20 @@ def _state(index: int) -> ValveState:
     return tuple(bool(index >> (5 - i) & 1) for i in range(6))
 
 
+FORWARD = ("010110", "100000", "011001")  # the best straight cycle of bench_forward
+
+
+def _forward_x(model: ActivePassiveModel) -> float:
+    return model.cycle([tuple(c == "1" for c in s) for s in FORWARD], PERIOD).x
+
+
 def bench_speed(pairs: int, settings: list[tuple[int, int]]) -> None:
+    """Speed, and agreement with fine steps: the median and largest position error over
+    random transitions (the largest are paths that branch into another local minimum), and
+    the forward cycle's displacement."""
     rng = np.random.default_rng(0)
     chosen = [tuple(int(v) for v in rng.choice(64, 2, replace=False)) for _ in range(pairs)]
-    model = ActivePassiveModel.from_robot_file(ROBOT)
+    model = ActivePassiveModel.from_robot_file(ROBOT, cache=False)
     t0 = time.perf_counter()
     for i in range(64):
         model.steady(_state(i))
@@ -41,28 +51,30 @@ def bench_speed(pairs: int, settings: list[tuple[int, int]]) -> None:
     reference = [model.simulate(_state(a), _state(b), PERIOD)[-1].pose for a, b in chosen]
     print(
         f"silicone6: steady states of all 64 valve states in {steady:.1f} s; {pairs} random "
-        f"transitions of {PERIOD:g} s each (uncached), error against 64 even steps"
+        f"transitions of {PERIOD:g} s each (uncached); errors against 64 even steps, whose "
+        f"forward cycle {' -> '.join(FORWARD)} moves {_forward_x(model):.2f} mm"
     )
     print(
         f"{'steps':>5} {'refine':>6} {'ms/trans':>9} {'trans/s':>8} {'x real time':>12} "
-        f"{'solves':>7} {'err mean mm':>12} {'err max mm':>11} {'turn max deg':>13}  target"
+        f"{'solves':>7} {'err median mm':>14} {'err max mm':>11} {'forward mm':>11}  target"
     )
     for steps, refine in settings:
         model.steps, model.refine = steps, refine
-        solves = 0
-        poses = []
-        t1 = time.perf_counter()
-        for a, b in chosen:
-            out = model.simulate(_state(a), _state(b), PERIOD)
-            solves += len(out)
-            poses.append(out[-1].pose)
-        per = (time.perf_counter() - t1) / pairs
+        per = math.inf
+        for _ in range(2):  # the faster of two passes: the machine is shared
+            solves = 0
+            poses = []
+            t1 = time.perf_counter()
+            for a, b in chosen:
+                out = model.simulate(_state(a), _state(b), PERIOD)
+                solves += len(out)
+                poses.append(out[-1].pose)
+            per = min(per, (time.perf_counter() - t1) / pairs)
         err = [math.hypot(p.x - r.x, p.y - r.y) for p, r in zip(poses, reference, strict=True)]
-        turn = max(abs(p.theta - r.theta) for p, r in zip(poses, reference, strict=True))
         print(
             f"{steps:>5} {refine:>6} {per * 1e3:9.1f} {1 / per:8.1f} {PERIOD / per:12.1f} "
-            f"{solves / pairs:7.1f} {np.mean(err):12.3f} {max(err):11.3f} "
-            f"{math.degrees(turn):13.3f}  >= 100x"
+            f"{solves / pairs:7.1f} {np.median(err):14.3f} {max(err):11.3f} "
+            f"{_forward_x(model):11.2f}  >= 100x"
         )
     print()
 
@@ -97,7 +109,8 @@ def main() -> None:
     args = parser.parse_args()
     quick = [(4, 0), (8, 2)]
     bench_speed(
-        10 if args.quick else 40, quick if args.quick else [(4, 0), (8, 0), (4, 2), (8, 2), (16, 2)]
+        10 if args.quick else 40,
+        quick if args.quick else [(4, 0), (8, 0), (4, 2), (6, 1), (6, 2), (8, 1), (8, 2), (16, 2)],
     )
     bench_forward(8)
 

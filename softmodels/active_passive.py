@@ -86,10 +86,10 @@ class ActivePassiveModel:
 
     @classmethod
     def from_robot_file(
-        cls, path: str | Path, steps: int = 8, refine: int = 2
+        cls, path: str | Path, steps: int = 8, refine: int = 2, cache: bool = True
     ) -> ActivePassiveModel:
         """The model of a robot file with an ``active_passive`` section."""
-        return cls(load_active_passive(path), steps, refine)
+        return cls(load_active_passive(path), steps, refine, cache)
 
     @classmethod
     def from_robot(cls, robot: Robot, steps: int = 8, refine: int = 2) -> ActivePassiveModel:

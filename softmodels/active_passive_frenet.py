@@ -156,12 +156,12 @@ def segment(
     c, n = math.cos(angle), math.sin(angle)
     basis = np.array([[1.0, 0.0, 0.0], [0.0, c, -n], [0.0, n, c]])  # columns T, N, B
     w2 = kappa * kappa + tau * tau
-    flat = w2 < 1e-300
-    safe = np.where(flat, 1.0, w2)
-    a = np.where(flat, 1.0, tau * tau / safe)[:, None]
-    b = np.where(flat, 0.0, kappa * kappa / safe)[:, None]
-    u = np.sqrt(w2)[:, None] * s
-    small = np.abs(u) < _SMALL
+    if kappa == 0.0:  # straight: x = s whatever the twist
+        a, b = np.ones((tau.size, 1)), np.zeros((tau.size, 1))
+    else:
+        a, b = (tau * tau / w2)[:, None], (kappa * kappa / w2)[:, None]
+    u = np.sqrt(w2)[:, None] * s  # never negative
+    small = u < _SMALL
     safe_u = np.where(small, 1.0, u)
     sin, cos = np.sin(safe_u), np.cos(safe_u)
     u2 = u * u

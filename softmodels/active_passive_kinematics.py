@@ -43,14 +43,17 @@ class Posture:
 
 def _axis_rotation(axis: Array, angle: Array) -> Array:
     """Rotations about a unit axis, one per angle: (B, 3, 3) (Rodrigues)."""
-    x, y, z = (float(a) for a in axis)
-    k = np.array([[0.0, -z, y], [z, 0.0, -x], [-y, x, 0.0]])
-    out: Array = (
-        np.eye(3)
-        + np.multiply.outer(np.sin(angle), k)
-        + np.multiply.outer(1.0 - np.cos(angle), k @ k)
-    )
+    key = axis.tobytes()
+    if key not in _SKEWS:
+        k = np.array([[0.0, -axis[2], axis[1]], [axis[2], 0.0, -axis[0]], [-axis[1], axis[0], 0.0]])
+        _SKEWS[key] = (k, k @ k)
+    k, k2 = _SKEWS[key]
+    out: Array = _EYE + np.sin(angle)[:, None, None] * k + (1.0 - np.cos(angle))[:, None, None] * k2
     return out
+
+
+_SKEWS: dict[bytes, tuple[Array, Array]] = {}
+_EYE = np.eye(3)
 
 
 @dataclass(frozen=True)

@@ -4,7 +4,8 @@ Passive states: "a minimum-energy optimization problem ... that minimizes the he
 center of gravity of the robot but constrains the boundaries of the actuators to remain above
 the ground", with the passive hinges held within their bounds.  Here the energy is the CG
 height plus the (optional) elastic energy of the passive variables, scaled by the weight;
-solved with SLSQP, gradients by batched finite differences.
+solved with SLSQP inside a trust region, with the derivatives of
+:meth:`Kinematics.heights` (exact but for the twists).
 Normal loads ("Robot Angular Momentum"): the minimum average vertex load satisfying the static
 force and moment balance over the vertices within ε of the ground; read as the least-squares
 (most even) loads N ≥ 0 with ΣN = Mg and zero moment about the centre of gravity.
@@ -108,7 +109,7 @@ class RestSolver:
                 options={"maxiter": 200, "ftol": 1e-7},
             )
             iterations += int(result.nit)
-            # status 8: the line search cannot improve x within the finite-difference accuracy
+            # status 8: the line search cannot improve x at the solver's precision
             ok = bool(result.success or result.status == 8)
             edge = ((np.abs(result.x - low) < 1e-9) & (low > low_b)) | (
                 (np.abs(result.x - high) < 1e-9) & (high < high_b)
@@ -120,7 +121,8 @@ class RestSolver:
         lowest = float(posture.vertices[0, :, 2].min())
         if lowest < 0.0:  # SLSQP ends within its tolerance: lift the robot onto the ground
             x[0] -= lowest
-            posture = self.kin.posture(prepared, x[None])
+            lift = np.array([0.0, 0.0, -lowest])
+            posture = Posture(posture.vertices + lift, posture.centres + lift)
         cg = float(posture.centres[0, :, 2] @ self.kin.masses) / float(self.kin.masses.sum())
         energy = cg + float(self.kin.elastic(x[None])[0]) / self.weight
         return Rest(x, posture, energy, iterations, ok)
