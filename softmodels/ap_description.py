@@ -10,7 +10,6 @@ Every error is a :class:`RobotFileError` at the YAML node at fault.
 
 from __future__ import annotations
 
-import contextlib
 import math
 from pathlib import Path
 
@@ -28,62 +27,10 @@ from softmodels.active_passive_robot import (
     Connection,
     PassiveRange,
 )
+from softmodels.active_passive_yaml import Reader
 
 SECTION = "active_passive"
 NEWTON_MM = 1e6  # one N·mm in the model's energy unit g·mm²/s²
-
-
-class _Reader:
-    def __init__(self, path: str) -> None:
-        self.path = path
-
-    def fail(self, node: yaml.Node, message: str, hint: str | None = None) -> RobotFileError:
-        m = node.start_mark
-        return RobotFileError(message, Span(self.path, m.line + 1, m.column + 1), hint)
-
-    def mapping(self, node: yaml.Node, what: str, allowed: set[str]) -> dict[str, yaml.Node]:
-        if not isinstance(node, yaml.MappingNode):
-            raise self.fail(node, f"{what} must be a mapping of keys to values")
-        out: dict[str, yaml.Node] = {}
-        for key, value in node.value:
-            name = str(key.value)
-            if name not in allowed:
-                raise self.fail(
-                    key,
-                    f"unknown key {name!r} in {what}",
-                    "expected one of: " + ", ".join(sorted(allowed)),
-                )
-            if name in out:
-                raise self.fail(key, f"key {name!r} appears twice in {what}")
-            out[name] = value
-        return out
-
-    def sequence(self, node: yaml.Node, what: str) -> list[yaml.Node]:
-        if not isinstance(node, yaml.SequenceNode):
-            raise self.fail(node, f"{what} must be a list")
-        return list(node.value)
-
-    def text(self, node: yaml.Node, what: str) -> str:
-        if not isinstance(node, yaml.ScalarNode) or node.value == "":
-            raise self.fail(node, f"{what} must be a non-empty text value")
-        return str(node.value)
-
-    def number(self, node: yaml.Node, what: str, low: float | None = None) -> float:
-        value = math.nan
-        if isinstance(node, yaml.ScalarNode):
-            with contextlib.suppress(ValueError):
-                value = float(node.value)
-        if not math.isfinite(value):
-            raise self.fail(node, f"{what} must be a finite number")
-        if low is not None and value < low:
-            raise self.fail(node, f"{what} must be at least {low:g}, not {node.value}")
-        return value
-
-    def vector(self, node: yaml.Node, what: str, size: int) -> tuple[float, ...]:
-        items = self.sequence(node, what)
-        if len(items) != size:
-            raise self.fail(node, f"{what} must have {size} numbers, not {len(items)}")
-        return tuple(self.number(item, what) for item in items)
 
 
 _TOP = {"contact_tolerance", "components", "connections"}
@@ -119,7 +66,7 @@ def parse_active_passive(text: str, path: str = "<robot>") -> ActivePassiveRobot
             "model of thesis 4.1.2 needs one)",
             Span(path, 1, 1),
         )
-    r = _Reader(path)
+    r = Reader(path)
     top = r.mapping(node, SECTION, _TOP)
     for key in ("components", "connections"):
         if key not in top:
@@ -152,7 +99,7 @@ def parse_active_passive(text: str, path: str = "<robot>") -> ActivePassiveRobot
     return ActivePassiveRobot(robot, tuple(ordered), tuple(order), tol)
 
 
-def _component(r: _Reader, node: yaml.Node, robot: Robot) -> Component:
+def _component(r: Reader, node: yaml.Node, robot: Robot) -> Component:
     probe = r.mapping(node, "a component", _RIGID | _ACTUATOR)
     actuator = "leg" in probe
     m = r.mapping(
@@ -171,7 +118,7 @@ def _component(r: _Reader, node: yaml.Node, robot: Robot) -> Component:
         )
         cg = _v3(r, m["cg"], f"cg of {name}") if "cg" in m else (0.0, 0.0, 0.0)
         friction = _friction(r, m, name, len(frame))
-        return Component(name, mass, friction, wireframe=frame, cg=cg, span=_at(r, node))
+        return Component(name, mass, friction, wireframe=frame, cg=cg, span=r.span(node))
     leg_name = r.text(m["leg"], "leg")
     leg = next((x for x in robot.legs if x.name == leg_name), None)
     if leg is None:
@@ -186,7 +133,7 @@ def _component(r: _Reader, node: yaml.Node, robot: Robot) -> Component:
         _v2(r, p, f"section point of {name}")
         for p in r.sequence(m["section"], f"section of {name}")
     )
-    stations = int(r.number(m["stations"], "stations", 2.0)) if "stations" in m else 4
+    stations = r.count(m["stations"], "stations", 2) if "stations" in m else 4
     count = len(leg.chambers)
     states: list[tuple[str, ActiveShape]] = []
     if not isinstance(m["states"], yaml.MappingNode):
@@ -235,25 +182,21 @@ def _component(r: _Reader, node: yaml.Node, robot: Robot) -> Component:
         damping_ratio=r.number(response["damping_ratio"], "damping_ratio", 1.0)
         if "damping_ratio" in response
         else 1.0,
-        span=_at(r, node),
+        span=r.span(node),
     )
 
 
-def _at(r: _Reader, node: yaml.Node) -> Span:
-    return Span(r.path, node.start_mark.line + 1, node.start_mark.column + 1)
-
-
-def _v3(r: _Reader, node: yaml.Node, what: str) -> tuple[float, float, float]:
+def _v3(r: Reader, node: yaml.Node, what: str) -> tuple[float, float, float]:
     x, y, z = r.vector(node, what, 3)
     return x, y, z
 
 
-def _v2(r: _Reader, node: yaml.Node, what: str) -> tuple[float, float]:
+def _v2(r: Reader, node: yaml.Node, what: str) -> tuple[float, float]:
     x, y = r.vector(node, what, 2)
     return x, y
 
 
-def _friction(r: _Reader, m: dict[str, yaml.Node], name: str, count: int) -> tuple[float, ...]:
+def _friction(r: Reader, m: dict[str, yaml.Node], name: str, count: int) -> tuple[float, ...]:
     if count == 0:
         raise r.fail(
             m.get("wireframe", m.get("section", m["name"])),
@@ -273,7 +216,7 @@ def _friction(r: _Reader, m: dict[str, yaml.Node], name: str, count: int) -> tup
     return (r.number(node, f"friction of {name}", 0.0),) * count
 
 
-def _range(r: _Reader, node: yaml.Node, what: str, name: str) -> PassiveRange:
+def _range(r: Reader, node: yaml.Node, what: str, name: str) -> PassiveRange:
     m = r.mapping(node, what, _JOINT if what.startswith("joint") else _RANGE)
     for key in ("lower", "upper"):
         if key not in m:
@@ -291,7 +234,7 @@ def _range(r: _Reader, node: yaml.Node, what: str, name: str) -> PassiveRange:
     return PassiveRange(name, lower, upper, k * NEWTON_MM)
 
 
-def _rotation(r: _Reader, node: yaml.Node) -> tuple[tuple[float, float, float], ...]:
+def _rotation(r: Reader, node: yaml.Node) -> tuple[tuple[float, float, float], ...]:
     """R from roll, pitch, yaw in degrees (applied about x, then y, then z)."""
     roll, pitch, yaw = (math.radians(a) for a in r.vector(node, "rotation", 3))
     cx, sx, cy, sy, cz, sz = (
@@ -309,7 +252,7 @@ def _rotation(r: _Reader, node: yaml.Node) -> tuple[tuple[float, float, float], 
     return tuple((float(a), float(b), float(c)) for a, b, c in m)
 
 
-def _connection(r: _Reader, node: yaml.Node, comps: list[Component]) -> Connection:
+def _connection(r: Reader, node: yaml.Node, comps: list[Component]) -> Connection:
     m = r.mapping(node, "a connection", _CONNECTION)
     for key in ("from", "to", "at"):
         if key not in m:
@@ -369,7 +312,7 @@ def _connection(r: _Reader, node: yaml.Node, comps: list[Component]) -> Connecti
 
 
 def _tree(
-    r: _Reader, node: yaml.Node, comps: list[Component], conns: list[Connection]
+    r: Reader, node: yaml.Node, comps: list[Component], conns: list[Connection]
 ) -> tuple[list[Component], list[Connection]]:
     """Order the components from the root (the first one) along the connections."""
     incoming: dict[str, Connection] = {}

@@ -114,6 +114,11 @@ def test_a_file_without_the_section_is_refused_for_this_model() -> None:
         ),
         (
             "length: 50, mass: 5",
+            "length: 50, stations: 2.5, mass: 5",
+            "<robot>:10:49: stations must be a whole number, not 2.5",
+        ),
+        (
+            "length: 50, mass: 5",
             "length: 0, mass: 5",
             "<robot>:10:35: length of leg must be at least 1e-06, not 0",
         ),
