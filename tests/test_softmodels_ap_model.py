@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 
 from softmodels.active_passive import ActivePassiveModel, Step, settle_time, step_response
+from softmodels.active_passive_statics import normal_loads
 from softmodels.ap_description import parse_active_passive
 from softmodels.motion import MotionModel, Pose2D, ValveState
 
@@ -78,8 +79,14 @@ def test_constraints_hold_at_every_step_of_a_valve_sequence(model: ActivePassive
 
 def test_legs_down_lift_the_body_by_their_curl(model: ActivePassiveModel) -> None:
     rest = model.steady(valves("001111"))
-    radius = 1 / 0.0196  # a quarter circle of 80 mm: the tip sits one radius below the base
-    assert rest.x[0] == pytest.approx(radius * (1 - math.cos(80 / radius)) + 8 - 8, rel=0.2)
+    # every leg curls 80 mm at 0.0196 1/mm: its tip ends r(1 - cos κL) below the leg's base,
+    # which sits 8 mm above the bottom of the blocks, and the lowest corner of the 16 mm
+    # section there hangs 8 cos κL lower still; the body stays level
+    radius = 1 / 0.0196
+    bend = 80 / radius
+    drop = radius * (1 - math.cos(bend)) + 8 * math.cos(bend)
+    assert rest.x[0] == pytest.approx(drop - 8, abs=1e-6)
+    np.testing.assert_allclose(rest.x[1:], 0.0, atol=1e-6)
 
 
 def test_friction_only_dissipates_and_the_robot_comes_to_rest(model: ActivePassiveModel) -> None:
@@ -189,3 +196,16 @@ def test_height_derivatives_match_finite_differences(model: ActivePassiveModel, 
     np.testing.assert_allclose(jv, fd_v, atol=1e-4)  # mm per rad; the FD error is ~h·|p|
     np.testing.assert_allclose(jc, fd_c, atol=1e-4)
     assert np.abs(jv[:, 4]).max() > 1.0  # the rear hinge moves something
+
+
+def test_normal_loads_balance_the_weight_as_evenly_as_possible() -> None:
+    square = np.array([[1.0, 1.0, 0.0], [1.0, -1.0, 0.0], [-1.0, -1.0, 0.0], [-1.0, 1.0, 0.0]])
+    lifted = np.array([[0.0, 0.0, 3.0]])  # above the contact tolerance: no load
+    points = np.vstack([square * 50, lifted])
+    even = normal_loads(points, np.zeros(3), 100.0, 0.5)
+    np.testing.assert_allclose(even, [25, 25, 25, 25, 0], atol=1e-3)
+    # centre 25 mm towards +x: the least-norm loads are 37.5 on the front pair, 12.5 behind
+    shifted = normal_loads(points, np.array([25.0, 0.0, 10.0]), 100.0, 0.5)
+    np.testing.assert_allclose(shifted, [37.5, 37.5, 12.5, 12.5, 0], atol=1e-3)
+    moment = shifted @ (points[:, 0] - 25.0)
+    assert abs(moment) < 1e-2 and shifted.sum() == pytest.approx(100.0)
