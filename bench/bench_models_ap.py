@@ -1,7 +1,8 @@
 """Benchmark of the active/passive model (thesis 4.1.2) on silicone6: speed as tables.
 
 Target from issue 15: at least 100× real time at the thesis's 6 s control period, that is
-one valve transition (6 s of robot time) in under 60 ms.  Transitions are simulated afresh
+one valve transition (6 s of robot time) in under 60 ms.  The rates use the process's CPU
+time (the machine is shared; the wall-clock time is shown too).  Transitions are simulated afresh
 (no transition cache); the steady states of the 64 valve states are solved first and
 timed separately, as a gait graph (section 4.2.2, "Generating the gait graph") needs them
 once.  Also prints the forward cycle found by brute force over salamander-like states.
@@ -55,24 +56,27 @@ def bench_speed(pairs: int, settings: list[tuple[int, int]]) -> None:
         f"forward cycle {' -> '.join(FORWARD)} moves {_forward_x(model):.2f} mm"
     )
     print(
-        f"{'steps':>5} {'refine':>6} {'ms/trans':>9} {'trans/s':>8} {'x real time':>12} "
+        f"{'steps':>5} {'refine':>6} {'cpu ms':>7} {'wall ms':>8} {'trans/s':>8} "
+        f"{'x real time':>12} "
         f"{'solves':>7} {'err median mm':>14} {'err max mm':>11} {'forward mm':>11}  target"
     )
     for steps, refine in settings:
         model.steps, model.refine = steps, refine
-        per = math.inf
+        per = wall = math.inf
         for _ in range(2):  # the faster of two passes: the machine is shared
             solves = 0
             poses = []
-            t1 = time.perf_counter()
+            t1, c1 = time.perf_counter(), time.process_time()
             for a, b in chosen:
                 out = model.simulate(_state(a), _state(b), PERIOD)
                 solves += len(out)
                 poses.append(out[-1].pose)
-            per = min(per, (time.perf_counter() - t1) / pairs)
+            per = min(per, (time.process_time() - c1) / pairs)
+            wall = min(wall, (time.perf_counter() - t1) / pairs)
         err = [math.hypot(p.x - r.x, p.y - r.y) for p, r in zip(poses, reference, strict=True)]
         print(
-            f"{steps:>5} {refine:>6} {per * 1e3:9.1f} {1 / per:8.1f} {PERIOD / per:12.1f} "
+            f"{steps:>5} {refine:>6} {per * 1e3:7.1f} {wall * 1e3:8.1f} {1 / per:8.1f} "
+            f"{PERIOD / per:12.1f} "
             f"{solves / pairs:7.1f} {np.median(err):14.3f} {max(err):11.3f} "
             f"{_forward_x(model):11.2f}  >= 100x"
         )
