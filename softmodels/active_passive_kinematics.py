@@ -94,13 +94,13 @@ class Kinematics:
         self.head: dict[str, str] = {}
         for c in robot.components:
             link = self._incoming.get(c.name)
-            free = (
-                link is None
-                or link.joint is not None
-                or c.name in self._twist_index
-                or link.source in self._twist_index
-            )
-            self.head[c.name] = c.name if free else self.head[link.source]  # type: ignore[union-attr]
+            # a new rigid group starts at the root, at a hinge, at a twisting actuator and
+            # at whatever hangs off one
+            moved = c.name in self._twist_index
+            if link is None or link.joint is not None or moved or link.source in self._twist_index:
+                self.head[c.name] = c.name
+            else:
+                self.head[c.name] = self.head[link.source]
         self.heads = tuple(dict.fromkeys(self.head.values()))
         self.order = tuple(c for h in self.heads for c in comps if self.head[c] == h)
         self.masses = np.array([comps[n].mass for n in self.order])
