@@ -5,8 +5,8 @@ of every component as a function of its state; the mounting connections chain th
 component frames, T_to = T_from · F_f(p_f) · Trans(d) · R · Hinge(q) · Trans(−p_t).
 The passive variables x = (z, roll, pitch, twists..., hinges...) place the root component
 above the ground of a heading frame (the root's ground projection, aligned with its yaw).
-Everything is evaluated for a batch of x at once, which makes finite-difference Jacobians
-cost one call.
+Everything is evaluated for a batch of x at once; :meth:`Kinematics.heights` adds the
+derivatives of the heights (exact for rotations, central differences for twists).
 """
 
 from __future__ import annotations

@@ -27,7 +27,7 @@ _BALANCE = 1e4  # weight of the balance rows against the evenness rows in the NN
 _LEVER = 100.0  # mm; scales the moment rows
 _TRUST = 0.15  # rad: the largest change of a passive angle in one SLSQP run
 _MOVES = 8  # SLSQP runs per solve, each recentred on the last
-_FTOL = 1e-5  # mm of CG height: 1e-7 needs 70 % more evaluations and moves no result (bench)
+_FTOL = 1e-5  # mm of CG height; 1e-7 took 70 % more evaluations for the same motion
 
 
 @dataclass(frozen=True)
