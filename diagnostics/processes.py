@@ -23,6 +23,9 @@ from multiprocessing import connection
 from multiprocessing.connection import Connection
 from typing import Any, Final
 
+#: Seconds past a time limit before a worker process (a racer, a limited child) is killed.
+GRACE: Final = 0.5
+
 Outcome = tuple[Any, ...]
 _PR_SET_PDEATHSIG: Final = 1
 _POLL: Final = 0.2  # the longest wait between looks at the children

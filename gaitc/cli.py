@@ -13,16 +13,19 @@ import threading
 import traceback
 from collections.abc import Sequence
 
-from diagnostics import GaitcError, SolverError, UsageError, render_error
+from diagnostics import GaitcError, UsageError, render_error
+from gaitc import reporting
 from gaitc.exitcodes import ExitCode, exit_code_help
 
 
 class _Parser(argparse.ArgumentParser):
+    commands: tuple[str, ...] = ()  # the subcommands' names (the top-level parser's)
+
     def error(self, message: str) -> None:  # type: ignore[override]
         raise UsageError(message)
 
 
-def build_parser() -> argparse.ArgumentParser:
+def build_parser() -> _Parser:
     parser = _Parser(
         prog="gaitc",
         description="Compile .gait robot specifications to GR(1), synthesize and run controllers.",
@@ -37,6 +40,7 @@ def build_parser() -> argparse.ArgumentParser:
 
     for module in COMMAND_MODULES:
         module.register(sub)
+    parser.commands = tuple(sub.choices)
     return parser
 
 
@@ -63,20 +67,27 @@ def main(argv: Sequence[str] | None = None) -> int:
 
 
 def _run(argv: Sequence[str] | None) -> int:
+    words = list(sys.argv[1:] if argv is None else argv)
+    # --json before parsing, for usage errors; after parsing, the command's own option
+    as_json, command = reporting.json_requested(words), None
     try:
         parser = build_parser()
-        args = parser.parse_args(list(sys.argv[1:] if argv is None else argv))
+        command = reporting.command_named(words, parser.commands)
+        args = parser.parse_args(words)
+        as_json = bool(getattr(args, "json", False))
         if getattr(args, "run", None) is None:
             parser.print_help(sys.stderr)
             return ExitCode.USAGE
         code: int = args.run(args)
         return code
-    except UsageError as err:
-        print(f"gaitc: usage error: {err.message}", file=sys.stderr)
-        return ExitCode.USAGE
     except GaitcError as err:
-        print(render_error(err), file=sys.stderr)
-        return ExitCode.SOLVER if isinstance(err, SolverError) else ExitCode.USER
+        if isinstance(err, UsageError):
+            print(f"gaitc: usage error: {err.message}", file=sys.stderr)
+        else:
+            print(render_error(err), file=sys.stderr)
+        if as_json:
+            reporting.print_json(reporting.error_document(command, err))
+        return reporting.exit_code_of(err)
     except KeyboardInterrupt:
         print("gaitc: interrupted", file=sys.stderr)
         return ExitCode.INTERRUPTED
@@ -94,6 +105,9 @@ def _run(argv: Sequence[str] | None) -> int:
             "line and files (GAITC_DEBUG=1 prints the traceback)",
             file=sys.stderr,
         )
+        if as_json:
+            reporting.print_json(reporting.document(command, {
+                "error": reporting.internal_error_json(err)}))
         return ExitCode.INTERNAL
 
 

@@ -31,12 +31,11 @@ from dataclasses import dataclass
 from typing import Any, Final, TypeVar
 
 from diagnostics import GaitcError, SolverError
-from diagnostics.processes import Outcome, can_fork, first_success
+from diagnostics.processes import GRACE, Outcome, can_fork, first_success
 from solver.game import out_of_memory, time_limit_error
 
 T = TypeVar("T")
 
-GRACE: Final = 0.5  # seconds past the time limit before the child is killed
 MIN_ROOM_MB: Final = 32  # the least memory a solver run may have beyond gaitc's own
 CUDD_SHARE: Final = 0.75  # of that room, what CUDD's tables may take (the rest: Python)
 

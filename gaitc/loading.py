@@ -11,7 +11,7 @@ from __future__ import annotations
 import hashlib
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from diagnostics import Diagnostic, SlugsFormatError, SpecSyntaxError, UsageError
 from diagnostics.files import decode_text
@@ -55,6 +55,20 @@ class Spec:
     def clause_count(self) -> int:
         spec = self.gr1
         return sum(len(spec.section(name)) for name in SECTIONS)
+
+    def source_map_size(self) -> int:
+        """How many clauses the source map ties to a line of the source file."""
+        spec = self.gr1
+        return sum(1 for name in SECTIONS for clause in spec.section(name)
+                   if clause.origin is not None and clause.origin.span is not None)
+
+    def to_json(self) -> dict[str, Any]:
+        """The spec's size for ``--json`` (docs/json.md): variables, clauses per section."""
+        spec = self.gr1
+        return {"file": self.path, "sha256": self.sha256, "encoding": self.encoding,
+                "inputs": len(spec.inputs), "outputs": len(spec.outputs),
+                "clauses": {name: len(spec.section(name)) for name in SECTIONS},
+                "source_map": self.source_map_size()}
 
     def __repr__(self) -> str:
         kind = f".gait, {self.encoding} encoding" if self.model is not None else "SLUGS format"

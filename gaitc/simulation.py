@@ -22,6 +22,7 @@ from gaitsim.monitor import Monitor
 from gaitsim.strategy import StrategyView, explicit, load_strategy, view_of
 from gr1.bddfile import SymbolicController
 from gr1.controller import Controller
+from solver.progress import Progress
 
 if TYPE_CHECKING:
     from gaitsim.run import Run
@@ -56,10 +57,12 @@ class Session:
 def session(spec: Spec | str | Path,
             controller: Controller | SymbolicController | Synthesis | str | Path | None = None,
             encoding: str | None = None, semantics: str = "default",
-            prefer: str | Sequence[str] | None = None) -> Session | None:
+            prefer: str | Sequence[str] | None = None,
+            progress: Progress | None = None) -> Session | None:
     """Bind ``spec`` (a ``.gait`` :class:`Spec` or path) to ``controller`` (an automaton, a
     :class:`Synthesis` or a controller file); synthesize one when ``controller`` is None
-    (with the move preferences ``prefer``, see :func:`gaitc.synthesize`).
+    (with the move preferences ``prefer``, telling ``progress``; see
+    :func:`gaitc.synthesize`).
 
     A path is loaded with ``encoding``, else the encoding the controller file records, else
     onehot. Returns None when no controller was given and the spec is unrealizable.
@@ -75,7 +78,8 @@ def session(spec: Spec | str | Path,
         strategy = load_strategy(controller, spec.gr1)
     else:
         if controller is None:
-            controller = synthesize(spec, semantics, verify=False, prefer=prefer)
+            controller = synthesize(spec, semantics, verify=False, prefer=prefer,
+                                    progress=progress)
         automaton = controller.controller if isinstance(controller, Synthesis) else controller
         if automaton is None:
             return None
@@ -84,13 +88,14 @@ def session(spec: Spec | str | Path,
     return Session(spec, spec.model, strategy, domain, Monitor(spec.gr1))
 
 
-def counter_session(spec: Spec | str | Path, semantics: str = "default") -> Session | None:
+def counter_session(spec: Spec | str | Path, semantics: str = "default",
+                    progress: Progress | None = None) -> Session | None:
     """``spec`` bound to its counter-strategy (the environment's winning strategy), for the
     adversarial environment of an unrealizable spec; None when the spec is realizable."""
     from gaitc.solving import counterstrategy
 
     loaded = spec if isinstance(spec, Spec) else load(spec, "onehot")
-    found = counterstrategy(loaded, semantics, verify=False)
+    found = counterstrategy(loaded, semantics, verify=False, progress=progress)
     return None if found.controller is None else session(loaded, found, None, semantics)
 
 

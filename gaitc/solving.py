@@ -11,7 +11,7 @@ import time
 from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import TYPE_CHECKING, Final, Literal, get_args
+from typing import TYPE_CHECKING, Any, Final, Literal, get_args
 
 from diagnostics import SolverError, UsageError
 from diagnostics.files import write_atomically
@@ -26,7 +26,8 @@ from gr1.controller import (
 )
 from gr1.costs import Cost
 from gr1.spec import SEMANTICS, GR1Spec
-from solver.game import GameStats, Progress
+from solver.game import GameStats, out_of_memory
+from solver.progress import Progress, Stage
 from solver.symbolic import Options
 from solver.synthesis import FORMS
 from verifier.strategy import VerificationReport
@@ -58,6 +59,14 @@ class Verdict:
         word = "realizable" if self.realizable else "unrealizable"
         return (f"<gaitc.Verdict {self.file!r}: {word} in {self.seconds:.2f} s "
                 f"({self.solver} solver, {self.semantics} semantics)>")
+
+    def to_json(self) -> dict[str, Any]:
+        """The verdict for ``gaitc check --json`` (docs/json.md)."""
+        out: dict[str, Any] = {
+            "file": self.file, "verdict": "realizable" if self.realizable else "unrealizable",
+            "seconds": round(self.seconds, 3), "semantics": self.semantics,
+            "solver": self.solver, "engine": self.engine or None}
+        return out
 
     def _repr_html_(self) -> str:
         rows = [("verdict", "realizable" if self.realizable else "unrealizable"),
@@ -105,6 +114,17 @@ class Synthesis:
         if isinstance(self.controller, SymbolicController):
             return f"symbolic, {len(self.controller.nodes)} BDD nodes"
         return f"{len(self.controller.nodes)} nodes"
+
+    def to_json(self) -> dict[str, Any]:
+        """The outcome for ``gaitc synth --json`` and ``counter --json`` (docs/json.md)."""
+        symbolic = isinstance(self.controller, SymbolicController)
+        return {
+            "file": _name(self.spec), "kind": self.kind,
+            "verdict": "realizable" if self.realizable else "unrealizable",
+            "seconds": round(self.seconds, 3), "semantics": self.semantics,
+            "solver": self.solver, "symbolic": symbolic,
+            "nodes": None if self.controller is None else len(self.controller.nodes),
+            "verification": None if self.report is None else self.report.to_json()}
 
     def save(self, path: str | Path) -> None:
         """Write the controller as JSON (docs/controller-format.md), atomically."""
@@ -200,7 +220,7 @@ def check(spec: Spec | GR1Spec, semantics: str = "default", solver: str = "embed
     try:
         checked = synthesis.check(gr1, semantics, timeout, progress, options)
     except MemoryError:
-        raise _out_of_memory() from None
+        raise out_of_memory() from None
     return Verdict(_name(spec), checked.realizable, time.monotonic() - started, semantics,
                    solver, checked.stats, checked.engine)
 
@@ -217,7 +237,7 @@ def synthesize(spec: Spec | GR1Spec, semantics: str = "default", solver: str = "
     ``form`` (:data:`solver.synthesis.FORMS`): ``explicit`` an automaton, ``symbolic`` BDDs
     (:mod:`gr1.bddfile`), ``auto`` an automaton unless it would pass ``max_nodes`` nodes.
 
-    ``prefer`` orders the move preferences of an explicit controller among the winning
+    ``prefer`` orders the move preferences of the controller (either form) among the winning
     moves (``solver.preferences``: ``hazard``, ``health``, ``goal``, ``switches``; a list or
     comma-separated text): None is all four in that order, ``"none"`` the solver's first
     move (the behaviour before them).  They apply to the embedded solver; ``hazard``,
@@ -269,13 +289,15 @@ def _solve(spec: Spec | GR1Spec, kind: Kind, semantics: str, solver: str,
 
             automaton = synthesis.counterstrategy(gr1, semantics, timeout, progress, options)
     except MemoryError:
-        raise _out_of_memory() from None
+        raise out_of_memory() from None
     seconds = time.monotonic() - started
     report = None
     if automaton is not None:
         source = spec.source() if isinstance(spec, Spec) else None
         automaton = replace(automaton, source=source, solver=solver)
         if check_it:
+            if progress is not None:
+                progress(Stage("checking the controller with the independent verifier"))
             report = verify(spec, automaton, semantics)
     return Synthesis(spec, kind, automaton, report, seconds, semantics, solver)
 
@@ -304,11 +326,6 @@ def _slugs_automaton(gr1: GR1Spec, kind: Kind, semantics: str, timeout: float | 
     if wanted:
         return runner.controller_from_slugs_json(result.output, gr1, semantics)
     return runner.counterstrategy_from_slugs_text(result.output, gr1, semantics)
-
-
-def _out_of_memory() -> SolverError:
-    return SolverError("synthesis ran out of memory",
-                       hint="raise the memory limit, or shrink the specification")
 
 
 def verify(spec: Spec | GR1Spec,

@@ -40,6 +40,13 @@ def _r(x: float) -> float:
 
 def gaits_json(robot: Robot, result: SearchResult, direction: str, seed: int) -> str:
     """JSON document of a search: robot, method, and per gait its poses and motions."""
+    return json.dumps(gaits_document(robot, result, direction, seed), indent=2,
+                      sort_keys=True) + "\n"
+
+
+def gaits_document(robot: Robot, result: SearchResult, direction: str, seed: int
+                   ) -> dict[str, Any]:
+    """The search as a JSON object (the gaits file, and ``gaitc gaits --json``)."""
     gaits: list[dict[str, Any]] = []
     for rank, g in enumerate(result.gaits, 1):
         gaits.append(
@@ -74,4 +81,12 @@ def gaits_json(robot: Robot, result: SearchResult, direction: str, seed: int) ->
         "units": {"length": "mm", "angle": "deg"},
         "gaits": gaits,
     }
-    return json.dumps(doc, indent=2, sort_keys=True) + "\n"
+    return doc
+
+
+def search_document(robot: Robot, result: SearchResult, direction: str, seed: int
+                    ) -> dict[str, Any]:
+    """``gaitc gaits --json``: the gaits file's object plus the size of the search."""
+    return {**gaits_document(robot, result, direction, seed),
+            "chambers": robot.valve_count, "poses": len(result.graph),
+            "transitions": len(result.graph.edges), "limit_reached": result.limit_reached}

@@ -182,8 +182,8 @@ class _Reader:
 
 # ---------------------------------------------------------------- the file format
 
-_TOP = {"robot", "description", "chassis", "defaults", "legs", "gait_graph", "gaits",
-        "active_passive"}  # active_passive: read by softmodels.ap_description
+_TOP = {"robot", "description", "chassis", "defaults", "legs", "gait_graph", "gaits"}
+_TOP |= {"model"}  # chapter 4 model parameters, read by softmodels (docs/models.md)
 _CHASSIS = {"mass", "cg", "outline", "contacts"}
 _LEG = {
     "name",

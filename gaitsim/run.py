@@ -134,6 +134,13 @@ class Run:
             self.steps[-1] = replace(self.steps[-1], degraded=degraded, failed=failed)
         self.steps.append(step)
 
+    def to_json(self) -> dict[str, Any]:
+        """The whole run as one object (``simulate --json``, docs/json.md): the header's
+        legs, environment and spec, every step, the summary (null when not checked)."""
+        return {"legs": list(self.legs), "environment": self.environment,
+                "spec": self.spec_file, "steps": [step.to_json() for step in self.steps],
+                "summary": None if self.summary is None else self.summary.to_json()}
+
     def header(self) -> dict[str, Any]:
         return {"kind": "run", "format": 2, "legs": list(self.legs),
                 "environment": self.environment, "spec": self.spec_file}

@@ -1,6 +1,7 @@
 """YAML node access for the ``active_passive`` section: typed values with positioned errors.
 
-Every failure is a :class:`RobotFileError` at the line and column of the node at fault.
+Every failure is a :class:`ModelFileError` at the line and column of the node at fault
+(like :class:`softmodels.fields.Fields`, with the few readers this section needs besides).
 """
 
 from __future__ import annotations
@@ -11,16 +12,16 @@ import math
 import yaml
 
 from diagnostics import Span
-from gaitgraph.robot import RobotFileError
+from softmodels.fields import ModelFileError
 
 
 class Reader:
     def __init__(self, path: str) -> None:
         self.path = path
 
-    def fail(self, node: yaml.Node, message: str, hint: str | None = None) -> RobotFileError:
+    def fail(self, node: yaml.Node, message: str, hint: str | None = None) -> ModelFileError:
         m = node.start_mark
-        return RobotFileError(message, Span(self.path, m.line + 1, m.column + 1), hint)
+        return ModelFileError(message, Span(self.path, m.line + 1, m.column + 1), hint)
 
     def mapping(self, node: yaml.Node, what: str, allowed: set[str]) -> dict[str, yaml.Node]:
         if not isinstance(node, yaml.MappingNode):

@@ -1,11 +1,11 @@
-"""The robot file's ``active_passive`` section: the robot tuple (A, C, M) of thesis 4.1.2.
+"""The robot file's ``model: active_passive:`` section: the robot tuple (A, C, M) of 4.1.2.
 
 Components are actuators (constant curvature/torsion segments driven by one robot-file leg's
 valves, a cross-section swept along the backbone as wireframe) or rigid non-actuating parts
 (blocks, touch pads: a mass and a fixed wireframe).  Mounting connections carry the
 connection tuple (ID_f, ID_t, p_f, p_t, f_f, f_t, d, R) and optionally a passive hinge.
 File units: mm, g, degrees, seconds; stiffness N·mm/rad; viscous friction s/mm.
-Every error is a :class:`RobotFileError` at the YAML node at fault.
+Every error is a :class:`ModelFileError` (a ``RobotFileError``) at the YAML node at fault.
 """
 
 from __future__ import annotations
@@ -16,10 +16,8 @@ from pathlib import Path
 import numpy as np
 import yaml
 
-from diagnostics import Span
 from diagnostics.files import decode_text
-from diagnostics.yamltext import compose
-from gaitgraph.robot import Robot, RobotFileError, parse_robot
+from gaitgraph.robot import Robot, parse_robot
 from softmodels.active_passive_robot import (
     ActivePassiveRobot,
     ActiveShape,
@@ -28,6 +26,8 @@ from softmodels.active_passive_robot import (
     PassiveRange,
 )
 from softmodels.active_passive_yaml import Reader
+from softmodels.description import section_node
+from softmodels.fields import ModelFileError
 
 SECTION = "active_passive"
 NEWTON_MM = 1e6  # one N·mm in the model's energy unit g·mm²/s²
@@ -45,32 +45,28 @@ _RESPONSE = {"natural_frequency", "damping_ratio"}
 
 
 def load_active_passive(path: str | Path) -> ActivePassiveRobot:
-    """Read a robot file and its ``active_passive`` section (RobotFileError on any problem)."""
+    """Read a robot file and its ``model: active_passive:`` section."""
     name = str(path)
     try:
         data = Path(path).read_bytes()
     except OSError as err:
-        raise RobotFileError(f"cannot read robot file {name}: {err.strerror}") from None
-    return parse_active_passive(decode_text(data, name, RobotFileError), name)
+        raise ModelFileError(f"cannot read robot file {name}: {err.strerror}") from None
+    except ValueError:
+        raise ModelFileError(
+            f"cannot read robot file {name!r}: the name holds a NUL character"
+        ) from None
+    return parse_active_passive(decode_text(data, name, ModelFileError), name)
 
 
 def parse_active_passive(text: str, path: str = "<robot>") -> ActivePassiveRobot:
-    """Validate a robot file's text including its ``active_passive`` section."""
+    """Validate a robot file's text including its ``model: active_passive:`` section."""
     robot = parse_robot(text, path)
-    root = compose(text, path, RobotFileError, "robot file")
-    assert isinstance(root, yaml.MappingNode)  # parse_robot accepted it
-    node = next((v for k, v in root.value if k.value == SECTION), None)
-    if node is None:
-        raise RobotFileError(
-            f"robot file has no {SECTION!r} section (the active/passive "
-            "model of thesis 4.1.2 needs one)",
-            Span(path, 1, 1),
-        )
+    node = section_node(text, path, SECTION)
     r = Reader(path)
-    top = r.mapping(node, SECTION, _TOP)
+    top = r.mapping(node, f"model {SECTION}", _TOP)
     for key in ("components", "connections"):
         if key not in top:
-            raise r.fail(node, f"{SECTION} has no {key!r}")
+            raise r.fail(node, f"model {SECTION} has no {key!r}")
     comps = [_component(r, item, robot) for item in r.sequence(top["components"], "components")]
     if not comps:
         raise r.fail(top["components"], "components must list at least one component")

@@ -18,7 +18,7 @@ import dd.cudd as cudd
 from diagnostics import SolverError
 from gr1.controller import Controller, ControllerNode
 from solver.game import Limits, too_large
-from solver.strategy import assignments, fix, primed, smallest, spec_integers
+from solver.strategy import REPORT_EVERY, assignments, fix, primed, smallest, spec_integers
 from solver.symbolic import BDDNode, SymbolicSpec
 
 State = tuple[int, ...]
@@ -164,6 +164,9 @@ def extract_counterstrategy(
     while queue:
         n = queue.popleft()
         limits.check()
+        if n % REPORT_EVERY == 0:
+            limits.report("extracting the counter-strategy", f"{len(nodes)} nodes found, "
+                          f"{len(queue)} to expand", n / len(nodes))
         state, j, i = nodes[n]
         k = game.layer_of(state)
         layer = game.layers[k]

@@ -17,9 +17,11 @@ from dataclasses import dataclass, field
 import dd.cudd as cudd
 
 from diagnostics import SolverError
+from solver.progress import Progress, Stage, goal_titles
 from solver.symbolic import BDDNode, SymbolicSpec
 
-Progress = Callable[[str], None]
+__all__ = ["ControllerTooLarge", "Game", "GameResult", "GameStats", "Limits", "Progress",
+           "Stage", "out_of_memory", "too_large"]
 
 
 def time_limit_error(seconds: float) -> SolverError:
@@ -66,9 +68,10 @@ class Limits:
         if self.timeout is not None and time.monotonic() - self.started > self.timeout:
             raise time_limit_error(self.timeout)
 
-    def report(self, message: str) -> None:
+    def report(self, words: str, detail: str = "", fraction: float | None = None) -> None:
+        """Tell the progress callback, if any, a :class:`~solver.progress.Stage`."""
         if self.progress is not None:
-            self.progress(message)
+            self.progress(Stage(words, detail, fraction))
 
 
 @dataclass
@@ -100,9 +103,11 @@ class GameResult:
 class Game:
     """The GR(1) game of a :class:`SymbolicSpec`: controllable predecessors and fixpoints."""
 
-    def __init__(self, sym: SymbolicSpec, limits: Limits | None = None) -> None:
+    def __init__(self, sym: SymbolicSpec, limits: Limits | None = None,
+                 purpose: str = "solving the game") -> None:
         self.sym = sym
         self.limits = limits or Limits()
+        self.purpose = purpose  # the words its progress events start with
         self.stats = GameStats()
 
     def cpre(self, target: BDDNode) -> BDDNode:
@@ -136,6 +141,7 @@ class Game:
         z = sym.care
         layers: list[list[BDDNode]] = []
         first_round = True
+        titles = goal_titles(sym.spec) or ("true",)
         while True:
             st.z_iterations += 1
             layers = [[] for _ in range(n_goals)]
@@ -146,9 +152,14 @@ class Game:
                 live = sym.sys_live[j] & z_primed
                 y = bdd.false
                 first_middle = True
+                words = (f"{self.purpose}: round {st.z_iterations}, goal {j + 1} of "
+                         f"{n_goals} ({titles[j]})")
+                ring = 0
                 while True:
                     st.y_iterations += 1
+                    ring += 1
                     lim.check()
+                    lim.report(words, f"ring {ring}", j / n_goals)
                     live_or_lower = live | sym.prime(y)
                     good = y
                     for i in range(n_assm):
@@ -178,9 +189,8 @@ class Game:
                         break
                     y = good
                 next_z &= y
-                self._track(
-                    f"Z round {st.z_iterations}, goal {j + 1}/{n_goals}: |Y| = {y.dag_size}"
-                )
+                self._track(words, f"|Y| = {y.dag_size}, {ring} rings",
+                            (j + 1) / n_goals)
             first_round = False
             if next_z == z:
                 break
@@ -198,10 +208,10 @@ class Game:
         self.stats.peak_nodes = max(self.stats.peak_nodes, peak)
         return GameResult(z, layers, self.stats, self.sym.care, decided_early, rings or [])
 
-    def _track(self, message: str) -> None:
+    def _track(self, words: str, detail: str, fraction: float) -> None:
         nodes = self.sym.node_count()
         self.stats.peak_nodes = max(self.stats.peak_nodes, nodes)
-        self.limits.report(f"{message}, {nodes} live BDD nodes")
+        self.limits.report(words, f"{detail}, {nodes} live BDD nodes", fraction)
 
     def initially_winning(self, winning: BDDNode, semantics: str) -> bool:
         """The initial-state condition of SLUGS.

@@ -38,14 +38,13 @@ from dataclasses import replace
 from typing import Final, TypeVar
 
 from diagnostics import GaitcError, SolverError
-from diagnostics.processes import can_fork, first_success, to_parent
+from diagnostics.processes import GRACE, can_fork, first_success, to_parent
 from solver.game import Limits, out_of_memory, time_limit_error
 from solver.symbolic import Options
 
 T = TypeVar("T")
 
 HEAD_START: Final = 0.25  # seconds the static configuration runs alone
-GRACE: Final = 0.5  # seconds past the time limit before a racer is killed
 #: The second racer runs at a lower priority: on an idle two-core machine it still gets its
 #: own core, and on a busy one it does not slow the first down (thesis robot A on a loaded
 #: machine: 1.64 s raced at equal priority against 1.02 s for the static order alone).

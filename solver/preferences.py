@@ -18,6 +18,8 @@ import copy
 from collections.abc import Iterable, Mapping, Sequence
 from typing import Final
 
+import dd.cudd as cudd
+
 from diagnostics import UsageError
 from gr1.costs import Cost
 from solver.game import Game, GameResult, Limits
@@ -58,6 +60,8 @@ class MovePreferences:
                  order: Sequence[str], limits: Limits | None = None) -> None:
         self.sym = sym
         self.order = tuple(order)
+        self.winning = result.winning
+        self.care: BDDNode | None = None  # where runs can be: see _simplified
         by_name = {c.name: c for c in costs}
         self.terms: dict[str, list[tuple[int, BDDNode]]] = {}
         for name in self.order:
@@ -89,7 +93,8 @@ class MovePreferences:
         strict.sys_trans = sym.sys_trans & avoid
         strict.game_sys_trans = sym.game_sys_trans & avoid
         strict.sys_clusters = []
-        result = Game(strict, limits).solve(keep_layers=True)
+        purpose = "solving the game without entries into active hazards"
+        result = Game(strict, limits, purpose).solve(keep_layers=True)
         self.safe = result.winning
         self.safe_strategies = goal_strategies(strict, result)
 
@@ -111,6 +116,70 @@ class MovePreferences:
                 choices = self._cheapest(at, self.terms[name], choices)
         return choices
 
+    # ------------------------------------------------------------ whole relations
+    def relation(self, goal: int, strategy: BDDNode) -> BDDNode:
+        """The preferred part of goal ``goal``'s move relation ``strategy`` (over the state
+        and the primed inputs and outputs), for a symbolic controller: at every state and
+        input it holds exactly the moves :meth:`allowed` and :meth:`choose` leave an
+        explicit extraction.  So a runtime
+        that takes the smallest move of this relation makes the explicit controller's
+        moves (tests/test_symbolic_controller.py compares them step by step)."""
+        bdd = self.sym.bdd
+        strategy = self._simplified(strategy)
+        if self.safe != bdd.false:
+            safe = self._simplified(self.safe_strategies[goal])
+            strategy = self._simplified(self.safe & safe) | self._simplified(~self.safe & strategy)
+        # ρe never names a next output (solver.synthesis checks it), so every move of the
+        # strategy keeps it: the explicit extraction's preference for such moves is moot.
+        moves = strategy
+        for name in self.order:
+            if name == "goal":
+                moves = self._nearest_relation(goal, moves)
+            else:
+                moves = self._cheapest_relation(self.terms[name], moves)
+            moves = self._simplified(moves)
+        return moves
+
+    def _simplified(self, moves: BDDNode) -> BDDNode:
+        """``moves`` unchanged where a run can be (a winning state, an input ρe allows),
+        free elsewhere: CUDD's restrict often shrinks the BDD there, else it is kept."""
+        if self.care is None:
+            sym = self.sym
+            self.care = self.winning & sym.bdd.exist(sym.post_outputs, sym.env_trans)
+        smaller = cudd.restrict(moves, self.care)
+        return smaller if len(smaller) < len(moves) else moves
+
+    def _cheapest_relation(self, terms: Sequence[tuple[int, BDDNode]],
+                           moves: BDDNode) -> BDDNode:
+        """:meth:`_cheapest` at every state and input at once: each move in the bucket of
+        its cost, then per state and input the moves of the least non-empty bucket."""
+        bdd = self.sym.bdd
+        buckets: dict[int, BDDNode] = {0: moves}
+        for weight, term in terms:
+            moved: dict[int, BDDNode] = {}
+            for cost, part in buckets.items():
+                for key, piece in ((cost + weight, part & term), (cost, part & ~term)):
+                    if piece != bdd.false:
+                        moved[key] = self._simplified(moved.get(key, bdd.false) | piece)
+            buckets = moved
+        return self._first_met([buckets[c] for c in sorted(buckets)])
+
+    def _nearest_relation(self, goal: int, moves: BDDNode) -> BDDNode:
+        """:meth:`_nearest` at every state and input at once."""
+        reach = moves & self.goals[goal]
+        rings = self.rings[goal] if goal < len(self.rings) else []
+        return self._first_met([reach] + [moves & ring for ring in rings] + [moves])
+
+    def _first_met(self, tiers: Sequence[BDDNode]) -> BDDNode:
+        """Per state and input, the moves of the first tier that has any there."""
+        bdd = self.sym.bdd
+        chosen, met = bdd.false, bdd.false
+        for tier in tiers:
+            chosen |= tier & ~met
+            met |= bdd.exist(self.sym.post_outputs, tier)
+        return chosen
+
+    # ------------------------------------------------------------ one state and input
     def _cheapest(self, at: Mapping[str, bool], terms: Sequence[tuple[int, BDDNode]],
                   choices: BDDNode) -> BDDNode:
         """The candidates of least total weight (weights of the terms that hold)."""

@@ -12,13 +12,16 @@ from __future__ import annotations
 
 from collections import deque
 from collections.abc import Iterable, Sequence
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Final
 
 from diagnostics import SolverError
 from gr1.bddwalk import State, all_assignments, first_assignment, holds_at
 from gr1.controller import Controller, ControllerNode, IntegerVar, integers_of
 from solver.game import GameResult, Limits, too_large
 from solver.symbolic import BDDNode, SymbolicSpec
+
+#: An extraction tells its progress every this many nodes.
+REPORT_EVERY: Final = 1000
 
 if TYPE_CHECKING:  # solver.preferences builds on this module (goal_strategies)
     from solver.preferences import MovePreferences
@@ -132,6 +135,9 @@ def extract_strategy(
     while queue:
         k = queue.popleft()
         limits.check()
+        if k % REPORT_EVERY == 0:
+            limits.report("extracting the controller", f"{len(nodes)} nodes found, "
+                          f"{len(queue)} to expand", k / len(nodes))
         state, goal = nodes[k]
         at = dict(zip(pre, map(bool, state), strict=True))
         here = bdd.let(at, strategies[goal])

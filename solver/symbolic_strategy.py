@@ -6,20 +6,34 @@ state and input, the moves of the first layer of the last Z round that covers th
 run that keeps to them reaches goal j, whatever the environment does within ρe and its
 goals; a runtime picks one move per step (:mod:`gaitsim.symbolic_view`).  Nothing is
 enumerated here, so the controller's size is that of its BDDs, not of its state space.
+Move preferences (:mod:`solver.preferences`, issue 13) narrow the relations themselves, so
+the runtime needs nothing of them.
 """
 
 from __future__ import annotations
 
 from gr1.bddfile import SymbolicController, node_table
-from solver.game import GameResult
+from solver.game import GameResult, Limits
+from solver.preferences import MovePreferences
 from solver.strategy import goal_strategies, spec_integers
 from solver.symbolic import SymbolicSpec
 
 
-def symbolic_controller(sym: SymbolicSpec, result: GameResult,
-                        semantics: str) -> SymbolicController:
-    """The symbolic controller of a realizable game (``result`` needs its layers)."""
+def symbolic_controller(sym: SymbolicSpec, result: GameResult, semantics: str,
+                        prefer: MovePreferences | None = None,
+                        limits: Limits | None = None) -> SymbolicController:
+    """The symbolic controller of a realizable game (``result`` needs its layers); with
+    ``prefer`` each goal's relation keeps only the preferred moves
+    (:meth:`~solver.preferences.MovePreferences.relation`)."""
     strategies = goal_strategies(sym, result)
+    if prefer is not None:
+        narrowed = []
+        for j, strategy in enumerate(strategies):
+            if limits is not None:
+                limits.report(f"choosing the preferred moves: goal {j + 1} of "
+                              f"{len(strategies)}", fraction=j / len(strategies))
+            narrowed.append(prefer.relation(j, strategy))
+        strategies = narrowed
     roots = {
         "winning": result.winning,
         "env_init": sym.env_init,

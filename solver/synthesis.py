@@ -72,7 +72,11 @@ def _game(spec: GR1Spec, semantics: str, options: Options, limits: Limits
     """The symbolic game of ``spec``, after the checks the game relies on."""
     _check_semantics(semantics)
     _check_env_trans(spec)
+    limits.report("building the transition relation",
+                  f"{len(spec.inputs)} inputs, {len(spec.outputs)} outputs, "
+                  f"{len(spec.env_trans) + len(spec.sys_trans)} transition clauses")
     sym = _symbolic(spec, options, limits)
+    limits.report("building the transition relation", f"{sym.node_count()} live BDD nodes", 1.0)
     # A weak reference: sym already holds limits.check, and a cycle would leave the BDD
     # manager to the garbage collector, which may free it before its nodes.
     check_memory = weakref.WeakMethod(sym.check_memory)
@@ -161,7 +165,7 @@ def synthesize_controller(
     costs: Sequence[Cost] = (),
 ) -> Controller | SymbolicController | None:
     """A controller for ``spec`` in ``form`` (:data:`FORMS`), or None when unrealizable;
-    an explicit one chooses its moves by ``prefer`` and ``costs`` (see :func:`synthesize`)."""
+    either form chooses its moves by ``prefer`` and ``costs`` (see :func:`synthesize`)."""
     if form not in FORMS:
         raise ValueError(f"form must be one of {FORMS}, not {form!r}")
 
@@ -171,16 +175,17 @@ def synthesize_controller(
             result = game.solve(keep_layers=True)
             if not game.initially_winning(result.winning, semantics):
                 return None
+            moves = MovePreferences(sym, result, costs, prefer, lim) if prefer else None
             if form != "symbolic":
-                lim.report("extracting the explicit controller")
-                moves = MovePreferences(sym, result, costs, prefer, lim) if prefer else None
+                lim.report("extracting the controller")
                 try:
                     return extract_strategy(sym, result, semantics, lim, max_nodes, moves)
                 except ControllerTooLarge:
                     if form == "explicit":
                         raise
-                    lim.report(f"over {max_nodes} nodes: keeping the controller symbolic")
-            return symbolic_controller(sym, result, semantics)
+                    lim.report("keeping the controller symbolic", f"over {max_nodes} nodes")
+            lim.report("writing the strategy as BDDs")
+            return symbolic_controller(sym, result, semantics, moves, lim)
 
     _check_semantics(semantics)
     return solve_chosen(run, options or Options(), Limits(timeout, progress))[0]

@@ -1,8 +1,15 @@
-"""Shared pytest options: ``--update-golden`` rewrites tests/golden/ from the current output."""
+"""Shared pytest options (``--update-golden`` rewrites tests/golden/ from the current
+output) and the fixtures several test files use: the two-leg shuttle spec ``tiny_spec``
+(specs/shuttle_2leg.gait, copied to a temporary folder) and its session ``tiny``."""
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import pytest
+from fake_board import TINY
+
+from gaitc.simulation import Session, session
 
 
 def pytest_addoption(parser: pytest.Parser) -> None:
@@ -12,3 +19,17 @@ def pytest_addoption(parser: pytest.Parser) -> None:
         default=False,
         help="rewrite the golden files in tests/golden/ from the current output",
     )
+
+
+@pytest.fixture()
+def tiny_spec(tmp_path: Path) -> Path:
+    path = tmp_path / "tiny.gait"
+    path.write_text(TINY, encoding="utf-8")
+    return path
+
+
+@pytest.fixture()
+def tiny(tiny_spec: Path) -> Session:
+    loaded = session(str(tiny_spec), None)
+    assert loaded is not None
+    return loaded

@@ -38,18 +38,6 @@ def radial8() -> Session:
     return loaded
 
 
-@pytest.fixture()
-def tiny_spec(tmp_path: Path) -> Path:
-    path = tmp_path / "tiny.gait"
-    path.write_text(TINY, encoding="utf-8")
-    return path
-
-
-@pytest.fixture()
-def tiny(tiny_spec: Path) -> Session:
-    loaded = session(str(tiny_spec), None)
-    assert loaded is not None
-    return loaded
 
 
 # ---------------------------------------------------------------------------- simulated

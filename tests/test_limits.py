@@ -69,7 +69,7 @@ def test_timeout_stops_check_within_a_second(kind: str, grid_slugsin: Path,
     assert code == 4, err
     record = json.loads(out)
     assert record["verdict"] == "error"
-    assert record["error"] == "synthesis stopped after the time limit of 2 s"
+    assert record["error"]["message"] == "synthesis stopped after the time limit of 2 s"
     assert record["seconds"] <= 3.0
     assert wall <= 3.0 + STARTUP
     assert err.count("error:") == 1
@@ -93,7 +93,7 @@ def test_memory_limit_is_exit_4_below_the_bound(kind: str, grid_slugsin: Path) -
     peak_mb = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024
     assert code == 4, err
     record = json.loads(out)
-    assert record["error"] == "synthesis ran out of memory"
+    assert record["error"]["message"] == "synthesis ran out of memory"
     assert "hint: raise --memory-limit" in err
     if before / 1024 < 100:  # else an earlier child of this test process set the maximum
         assert peak_mb <= 100
@@ -103,8 +103,8 @@ def test_a_memory_limit_below_gaitc_itself_says_how_much_is_needed() -> None:
     code, out, err, _ = gaitc_run("check", str(ROBOT_A), "--memory-limit", "20", "--json")
     assert code == 4
     record = json.loads(out)
-    assert record["error"].startswith("a memory limit of 20 MB is too small: gaitc itself "
-                                      "takes ")
+    assert record["error"]["message"].startswith("a memory limit of 20 MB is too small: "
+                                                 "gaitc itself takes ")
     assert "hint: give --memory-limit at least" in err
 
 

@@ -10,10 +10,10 @@ from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
-from fake_board import TINY, FakeBoard, tracked_boards, wait_for
+from fake_board import FakeBoard, tracked_boards, wait_for
 
 from gaitc.cli import main
-from gaitc.simulation import Session, session
+from gaitc.simulation import Session
 from gaithw.backend import HardwareError, SensorReading, level_from_waveguide
 from gaithw.driver import Driver, bind_primitives
 from gaithw.sensing import HealthSensing
@@ -24,21 +24,6 @@ from gaithw.serial_board import (
     parse_pong,
     parse_sensors,
 )
-
-
-@pytest.fixture()
-def tiny_spec(tmp_path: Path) -> Path:
-    path = tmp_path / "tiny.gait"
-    path.write_text(TINY, encoding="utf-8")
-    return path
-
-
-@pytest.fixture()
-def tiny(tiny_spec: Path) -> Session:
-    loaded = session(str(tiny_spec), None)
-    assert loaded is not None
-    return loaded
-
 
 
 @pytest.fixture()

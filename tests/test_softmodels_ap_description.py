@@ -19,13 +19,14 @@ chassis:
   contacts: {a: [0, 0, 0], b: [1, 0, 0]}
 legs:
   - {name: L, mount: [0, 0, 0], length: 50, chambers: [{curvature: 0.01}]}
-active_passive:
-  components:
-    - {name: body, mass: 10, wireframe: [[-10, -10, 0], [10, -10, 0], [10, 10, 0]]}
-    - {name: leg, leg: L, length: 50, mass: 5, section: [[-5, -5], [5, -5], [5, 5]],
-       states: {"0": {curvature: 0}, "1": {curvature: 0.02, angle: -90}}}
-  connections:
-    - {from: body, to: leg, at: [10, 0, 5], joint: {lower: -10, upper: 10}}
+model:
+  active_passive:
+    components:
+      - {name: body, mass: 10, wireframe: [[-10, -10, 0], [10, -10, 0], [10, 10, 0]]}
+      - {name: leg, leg: L, length: 50, mass: 5, section: [[-5, -5], [5, -5], [5, 5]],
+         states: {"0": {curvature: 0}, "1": {curvature: 0.02, angle: -90}}}
+    connections:
+      - {from: body, to: leg, at: [10, 0, 5], joint: {lower: -10, upper: 10}}
 """
 
 
@@ -66,9 +67,12 @@ def test_a_file_without_the_section_is_refused_for_this_model() -> None:
     with pytest.raises(RobotFileError) as err:
         load_active_passive(ROBOTS / "radial8.yaml")
     assert str(err.value).endswith(
-        "radial8.yaml:1:1: robot file has no 'active_passive' section (the active/passive "
-        "model of thesis 4.1.2 needs one)"
+        "radial8.yaml:53:3: the model section has no 'active_passive' entry"
     )
+    with pytest.raises(RobotFileError) as err:
+        parse_active_passive(TINY.split("model:")[0])
+    assert str(err.value) == "<robot>:1:1: robot file has no 'model' section"
+    assert err.value.hint == "add 'model: {active_passive: ...}' (docs/models.md lists its fields)"
 
 
 @pytest.mark.parametrize(
@@ -77,50 +81,50 @@ def test_a_file_without_the_section_is_refused_for_this_model() -> None:
         (
             "mass: 10, wireframe",
             "mas: 10, wireframe",
-            "<robot>:9:20: unknown key 'mas' in a component",
+            "<robot>:10:22: unknown key 'mas' in a component",
         ),
         (
             '"1": {curvature: 0.02, angle: -90}',
             '"2": {curvature: 0.02}',
-            "<robot>:11:38: state '2' of leg must have 1 digits 0 or 1, one per chamber of leg L",
+            "<robot>:12:40: state '2' of leg must have 1 digits 0 or 1, one per chamber of leg L",
         ),
         (
             '"1": {curvature: 0.02, angle: -90}',
             '"0": {curvature: 0.02}',
-            "<robot>:11:38: key '0' appears twice in states of leg",
+            "<robot>:12:40: key '0' appears twice in states of leg",
         ),
         (
             "leg: L,",
             "leg: Q,",
-            "<robot>:10:24: actuator leg names leg 'Q', which the robot file does not declare",
+            "<robot>:11:26: actuator leg names leg 'Q', which the robot file does not declare",
         ),
-        ("to: leg", "to: foot", "<robot>:13:24: connection to unknown component 'foot'"),
+        ("to: leg", "to: foot", "<robot>:14:26: connection to unknown component 'foot'"),
         (
             "lower: -10, upper: 10",
             "lower: 10, upper: -10",
-            "<robot>:13:71: joint leg_hinge: upper bound -10 is below the lower bound 10",
+            "<robot>:14:73: joint leg_hinge: upper bound -10 is below the lower bound 10",
         ),
-        ("mass: 5,", "mass: -5,", "<robot>:10:45: mass of leg must be at least 0, not -5"),
+        ("mass: 5,", "mass: -5,", "<robot>:11:47: mass of leg must be at least 0, not -5"),
         (
             "at: [10, 0, 5]",
             "at: tip",
-            "<robot>:13:33: 'at: tip' needs an actuator, and body is rigid",
+            "<robot>:14:35: 'at: tip' needs an actuator, and body is rigid",
         ),
-        ("at: [10, 0, 5]", "at: [10, 0]", "<robot>:13:33: at must have 3 numbers, not 2"),
+        ("at: [10, 0, 5]", "at: [10, 0]", "<robot>:14:35: at must have 3 numbers, not 2"),
         (
-            "    - {from: body, to: leg, at: [10, 0, 5], joint: {lower: -10, upper: 10}}\n",
-            "    - {from: leg, to: body, at: tip}\n",
-            "<robot>:13:7: body is the root (the first component) and cannot be mounted on another",
+            "      - {from: body, to: leg, at: [10, 0, 5], joint: {lower: -10, upper: 10}}\n",
+            "      - {from: leg, to: body, at: tip}\n",
+            "<robot>:14:9: body is the root (the first component) and cannot be mounted on another",
         ),
         (
             "length: 50, mass: 5",
             "length: 50, stations: 2.5, mass: 5",
-            "<robot>:10:49: stations must be a whole number, not 2.5",
+            "<robot>:11:51: stations must be a whole number, not 2.5",
         ),
         (
             "length: 50, mass: 5",
             "length: 0, mass: 5",
-            "<robot>:10:35: length of leg must be at least 1e-06, not 0",
+            "<robot>:11:37: length of leg must be at least 1e-06, not 0",
         ),
     ],
 )
@@ -135,24 +139,24 @@ def test_missing_pattern_and_unconnected_component() -> None:
     text = TINY.replace(', "1": {curvature: 0.02, angle: -90}', "")
     with pytest.raises(RobotFileError) as err:
         parse_active_passive(text)
-    assert str(err.value) == "<robot>:11:16: states of leg miss the pattern '1'"
+    assert str(err.value) == "<robot>:12:18: states of leg miss the pattern '1'"
     text = TINY.replace(
-        "    - {from: body, to: leg, at: [10, 0, 5], joint: {lower: -10, upper: 10}}\n", "    []\n"
-    ).replace("  connections:\n    []", "  connections: []")
+        "      - {from: body, to: leg, at: [10, 0, 5], joint: {lower: -10, upper: 10}}\n", ""
+    ).replace("    connections:\n", "    connections: []\n")
     with pytest.raises(RobotFileError) as err:
         parse_active_passive(text)
-    assert str(err.value) == "<robot>:12:16: component leg is not connected to the root body"
+    assert str(err.value) == "<robot>:13:18: component leg is not connected to the root body"
 
 
 def test_every_valved_leg_needs_a_component() -> None:
     text = TINY.replace("leg: L, ", "")
     text = text.replace(
         "length: 50, mass: 5, section: [[-5, -5], [5, -5], [5, 5]],\n"
-        '       states: {"0": {curvature: 0}, "1": {curvature: 0.02, '
+        '         states: {"0": {curvature: 0}, "1": {curvature: 0.02, '
         "angle: -90}}}",
         "mass: 5, wireframe: [[0, 0, 0]]}",
     )
     with pytest.raises(RobotFileError) as err:
         parse_active_passive(text)
-    assert str(err.value) == "<robot>:9:5: no component is driven by leg 'L'"
+    assert str(err.value) == "<robot>:10:7: no component is driven by leg 'L'"
     assert err.value.hint == "give one actuator component 'leg: L'"

@@ -30,6 +30,7 @@ from gr1.spec import SEMANTICS, GR1Spec, Variable
 from solver import synthesis
 from solver.game import Game
 from solver.ordering import group_members, invariant_clauses, variable_order
+from solver.progress import Stage
 from solver.symbolic import Options, SymbolicSpec
 
 # ---------------------------------------------------------------- semantics and basics
@@ -133,10 +134,13 @@ def test_timeout_stops_with_a_solver_error() -> None:
         synthesis.check(SEMANTICS_DIFFERENCE, timeout=-1.0)
 
 
-def test_progress_reports_iterations() -> None:
-    seen: list[str] = []
+def test_progress_reports_the_stages_in_words() -> None:
+    seen: list[Stage] = []
     synthesis.check(SEMANTICS_DIFFERENCE, progress=seen.append)
-    assert seen and all("Z round" in line for line in seen)
+    assert seen[0].words == "building the transition relation"
+    rounds = [s for s in seen if s.words.startswith("solving the game: round ")]
+    assert rounds and all("BDD" not in s.words for s in seen)
+    assert any("live BDD nodes" in s.detail for s in rounds)
 
 
 def test_check_stops_once_the_initial_states_are_lost() -> None:

@@ -45,6 +45,13 @@ class VerificationReport:
         return f"<p><b>{head}</b>: {html.escape(self.summary())}</p>" + (
             f"<ul>{items}</ul>" if items else "")
 
+    def to_json(self) -> dict[str, Any]:
+        """The report for ``gaitc verify --json`` (docs/json.md)."""
+        return {"ok": self.ok, "problems": list(self.problems), "notes": list(self.notes),
+                "nodes": self.nodes, "edges": self.edges, "sccs": self.sccs,
+                "kind": self.kind, "semantics": self.semantics, "symbolic": self.symbolic,
+                "summary": self.summary()}
+
     def summary(self) -> str:
         verdict = "ok" if self.ok else f"{len(self.problems)} problem(s)"
         if self.symbolic:

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 from gaitc.commands import (
     calibrating,
+    characterizing,
     compiling,
     driving,
     explaining,
@@ -21,4 +22,4 @@ from gaitc.commands import (
 )
 
 COMMAND_MODULES = (compiling, solving, explaining, resilient, simulating, rendering, gaits,
-                   learning, driving, firmware, calibrating)
+                   learning, driving, firmware, calibrating, characterizing)

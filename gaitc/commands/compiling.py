@@ -8,15 +8,19 @@ from __future__ import annotations
 
 import argparse
 import sys
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import gaitc
 from diagnostics import Diagnostic, UsageError, render_diagnostic
 from diagnostics.files import write_atomically
 from gaitc.emission import FORMATS, emit, output_format
 from gaitc.exitcodes import ExitCode
-from gaitc.loading import load
+from gaitc.loading import Spec, load
+from gaitc.reporting import compilation_json, document, lint_json, print_json
 from ltlcompiler.encoding import ENCODINGS
+
+if TYPE_CHECKING:
+    from analysis.explanation import Explanation
 
 
 def register(subparsers: Any) -> None:
@@ -31,6 +35,8 @@ def register(subparsers: Any) -> None:
     lint.add_argument("--deep", action="store_true",
                       help="also solve the spec and run the sanity checks of 'gaitc explain' "
                       "(exit 3 if unrealizable, 5 on a sanity warning)")
+    lint.add_argument("--json", action="store_true",
+                      help="print one JSON object (docs/json.md); warnings stay on stderr too")
     lint.set_defaults(run=run_lint)
 
     comp = subparsers.add_parser(
@@ -46,6 +52,9 @@ def register(subparsers: Any) -> None:
     comp.add_argument("--encoding", choices=ENCODINGS, default="onehot",
                       help="onehot: a proposition per region/gait/health level (the thesis); "
                       "binary: integer variables (default onehot)")
+    comp.add_argument("--json", action="store_true",
+                      help="print one JSON object (docs/json.md) with the sizes of the "
+                      "output; with '-o -' it holds the text")
     comp.set_defaults(run=run_compile)
 
 
@@ -57,36 +66,52 @@ def _warn(diagnostics: list[Diagnostic]) -> None:
 def run_lint(args: argparse.Namespace) -> int:
     diagnostics = list(gaitc.lint(args.spec, args.primitives))
     _warn(diagnostics)
+    code, why = _lint_verdict(args, diagnostics)
+    if args.json:
+        print_json(document("lint", lint_json(args.spec, diagnostics, why)))
+    return code
+
+
+def _lint_verdict(args: argparse.Namespace, diagnostics: list[Diagnostic]
+                  ) -> tuple[ExitCode, Explanation | None]:
+    """The exit code of ``lint`` and, with ``--deep``, the explanation behind it."""
     if any(d.severity == "error" for d in diagnostics):
-        return ExitCode.USER
+        return ExitCode.USER, None
     if not args.deep:
-        return ExitCode.OK
+        return ExitCode.OK, None
     why = gaitc.explain(gaitc.load(args.spec, kind=".gait"), repairs=False)
     if not why.realizable:
         print(f"{args.spec}: unrealizable ({why.kind} failure); 'gaitc explain' says why",
               file=sys.stderr)
-        return ExitCode.UNREALIZABLE
+        return ExitCode.UNREALIZABLE, why
     for warning in why.warnings:
         print(f"{args.spec}: warning: {warning.message}", file=sys.stderr)
-    return ExitCode.WARNING if why.warnings else ExitCode.OK
+    return (ExitCode.WARNING if why.warnings else ExitCode.OK), why
 
 
 def compile_text(path: str, fmt: str = "structuredslugs", encoding: str = "onehot"
                  ) -> tuple[str, list[Diagnostic]]:
     """The text of the .gait file at ``path`` compiled to ``fmt``, plus the warnings."""
+    spec, text = _compiled(path, fmt, encoding)
+    return text, list(spec.diagnostics)
+
+
+def _compiled(path: str, fmt: str, encoding: str) -> tuple[Spec, str]:
     if fmt not in FORMATS:
         raise UsageError(f"unknown format '{fmt}': use one of {', '.join(FORMATS)}")
     spec = load(path, encoding, kind=".gait")
-    return emit(spec, fmt), list(spec.diagnostics)
+    return spec, emit(spec, fmt)
 
 
 def run_compile(args: argparse.Namespace) -> int:
     fmt = output_format(args.output, args.format)
-    text, diagnostics = compile_text(args.spec, fmt, args.encoding)
-    _warn(diagnostics)
-    if args.output == "-":
+    spec, text = _compiled(args.spec, fmt, args.encoding)
+    _warn(list(spec.diagnostics))
+    if args.output != "-":
+        write_atomically(args.output, text)
+    if args.json:
+        print_json(document("compile", compilation_json(spec, fmt, text, args.output)))
+    elif args.output == "-":
         sys.stdout.write(text)
         sys.stdout.flush()
-    else:
-        write_atomically(args.output, text)
     return 0

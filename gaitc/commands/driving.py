@@ -14,10 +14,12 @@ from typing import Any
 import gaitc
 from diagnostics import UsageError
 from gaitc.commands.arguments import add_prefer, positive_seconds
-from gaitc.commands.simulating import environment_of, report_run
+from gaitc.commands.simulating import add_json, environment_of, report_run
 from gaitc.exitcodes import ExitCode, exit_code_help
+from gaitc.reporting import document, print_json, run_json
 from gaitc.simulation import Session
 from gaitc.solving import recorded_encoding
+from gaitc.status import progress_display
 from gaithw.backend import Backend, interrupt_on_signals
 from gaithw.driver import VIOLATION_POLICIES
 from gaitsim.environments import Environment
@@ -28,6 +30,11 @@ EPILOG = """backends:
   --backend sim      a simulated robot (default): valves apply instantly, sensor readings come
                      from --env (random, adversarial or a scripted scenario), within the
                      spec's assumptions
+  --backend physics  the simulated robot's sensor readings, but the chassis moves as the
+                     robot file's spring-damper model predicts (docs/models.md): each valve
+                     state is held for the model's control period, the region is the one
+                     under the chassis (--cell-size mm squares, default 100, or --map), so
+                     a gait that does not get far enough breaks the spec
   --backend serial   a valve board on --port (a device such as /dev/ttyUSB0, or
                      socket://HOST:PORT) speaking the gaitc line protocol v2
                      (docs/hardware.md); every valve is vented on exit, on any error, on
@@ -55,8 +62,11 @@ def register(sub: Any) -> None:
     )
     p.add_argument("spec", metavar="SPEC")
     p.add_argument("controller", metavar="CONTROLLER", nargs="?")
-    p.add_argument("--backend", choices=("sim", "serial"), default="sim",
-                   help="sim (default) or serial")
+    p.add_argument("--backend", choices=("sim", "physics", "serial"), default="sim",
+                   help="sim (default), physics or serial")
+    p.add_argument("--robot", metavar="ROBOT.yaml",
+                   help="physics backend: the robot file with the model (default: the one "
+                   "the gaits' primitives name)")
     p.add_argument("--port", metavar="URL", help="serial port or pyserial URL (serial backend)")
     p.add_argument("--baud", type=int, default=115200, metavar="N", help="baud rate (115200)")
     p.add_argument("--timeout", type=positive_seconds, default=1.0, metavar="S",
@@ -91,6 +101,7 @@ def register(sub: Any) -> None:
     p.add_argument("--robotics-semantics", action="store_true",
                    help="semantics when synthesizing on the fly")
     p.add_argument("--quiet", action="store_true", help="print only the summary")
+    add_json(p)
     add_prefer(p, "without CONTROLLER: ")
     p.set_defaults(run=run_drive)
 
@@ -109,8 +120,10 @@ def _check_options(args: argparse.Namespace) -> None:
         if args.env:
             raise UsageError("--env chooses the simulated robot's environment; the serial "
                              "backend reads real sensors")
-    if (args.map or args.cell_size is not None) and not args.pose:
-        raise UsageError("--map and --cell-size place the poses of --pose")
+    if (args.map or args.cell_size is not None) and not args.pose and args.backend != "physics":
+        raise UsageError("--map and --cell-size place the poses of --pose or --backend physics")
+    if args.robot and args.backend != "physics":
+        raise UsageError("--robot is for --backend physics")
     if args.map and args.cell_size is not None:
         raise UsageError("give --map or --cell-size, not both")
     if args.cell_size is not None and not args.cell_size > 0:
@@ -141,8 +154,35 @@ def _backend(args: argparse.Namespace, loaded: Session, valves: int) -> tuple[Ba
     environment, scripted = _environment(args, loaded)
     if scripted is not None and args.steps is None:
         steps = scripted
-    return SimulatedRobot(loaded.strategy, loaded.domain, loaded.monitor, environment,
-                          valves), steps
+    robot = SimulatedRobot(loaded.strategy, loaded.domain, loaded.monitor, environment, valves)
+    if args.backend == "physics":
+        return _physics(args, loaded, robot), steps
+    return robot, steps
+
+
+def _physics(args: argparse.Namespace, loaded: Session, robot: Any) -> Backend:
+    from gaithw.localisation import RegionMap
+    from gaithw.physics import PhysicsRobot, centre, region_map
+    from softmodels.description import load_spring_damper
+    from softmodels.spring_damper import SpringDamperModel
+
+    model = loaded.domain.model
+    path = args.robot or next((str(Path(args.spec).parent / g.primitive.robot)
+                               for g in model.gaits
+                               if g.primitive is not None and g.primitive.robot), None)
+    if path is None:
+        raise UsageError("--backend physics needs --robot ROBOT.yaml: no gait's primitive "
+                         "names a robot file")
+    described = load_spring_damper(path)
+    if described.valve_count != robot.valve_count:
+        raise UsageError(f"robot file {path} has {described.valve_count} valves but the gaits' "
+                         f"primitives drive {robot.valve_count}")
+    regions = (RegionMap.from_file(args.map, loaded.domain.regions) if args.map
+               else region_map(model, args.cell_size or 100.0))
+    if model.start not in regions.polygons:
+        raise UsageError(f"the map places no start region {model.start}")
+    return PhysicsRobot(robot, SpringDamperModel(described), regions,
+                        centre(regions, model.start), described.period)
 
 
 def _localised(args: argparse.Namespace, backend: Backend, loaded: Session) -> Backend:
@@ -166,26 +206,53 @@ def run_drive(args: argparse.Namespace) -> int:
                          "valve primitives")
     primitives = bind_primitives(checked.model, str(Path(args.spec).parent))
     semantics = "robotics" if args.robotics_semantics else "default"
-    loaded = gaitc.session(checked, args.controller, semantics=semantics, prefer=args.prefer)
+    with progress_display() as progress:
+        loaded = gaitc.session(checked, args.controller, semantics=semantics,
+                               prefer=args.prefer, progress=progress)
     if loaded is None:
         print(f"{args.spec}: unrealizable: no controller to drive", file=sys.stderr)
+        if args.json:
+            print_json(document("drive", {**run_json(args.spec, None, None, None, False),
+                                          "backend": args.backend, "violations": []}))
         return ExitCode.UNREALIZABLE
     backend, steps = _backend(args, loaded, valve_count(primitives, len(loaded.domain.legs)))
     if args.pose:
+        if args.backend == "physics":
+            raise UsageError("--pose reads a tracker; --backend physics computes the pose")
         backend = _localised(args, backend, loaded)
     delay = args.step_delay if args.step_delay is not None else (
         0.5 if args.backend == "serial" else 0.0)
-    live = None if args.quiet or args.backend == "sim" else _print_flush
+    live = (None if args.quiet or args.json or args.backend in ("sim", "physics")
+            else _print_flush)
     driver = Driver(loaded.strategy, loaded.domain, loaded.monitor, primitives, backend,
                     delay, args.cycles, live, args.on_violation)
     with interrupt_on_signals():  # SIGTERM and SIGHUP vent and keep the run, as Ctrl-C does
         run = driver.run(steps, args.spec)
+    if args.json:
+        extra = {"backend": args.backend, "violations": list(driver.violations)}
+        return report_run(run, dict(loaded.domain.full), backend.name, args.quiet, args.out,
+                          True, extra, command="drive")
     if driver.violations and live is None:
         print(f"readings that broke an assumption ({args.on_violation}): "
               f"{len(driver.violations)}")
         for note in driver.violations:
             print(f"  {note}")
-    return report_run(run, dict(loaded.domain.full), backend.name, args.quiet, args.out)
+    try:
+        return report_run(run, dict(loaded.domain.full), backend.name, args.quiet, args.out)
+    finally:
+        placed = getattr(backend, "placed", None)
+        if placed:  # the physics backend's poses, also for a run that broke the spec
+            _print_poses(placed, args.quiet)
+
+
+def _print_poses(placed: list[Any], quiet: bool) -> None:
+    """The chassis pose the physics model gave at each sensor reading."""
+    import math
+
+    print("chassis pose at each reading (mm, deg; region under the chassis):")
+    for p in placed if not quiet else placed[-1:]:
+        print(f"  {p.reading:>3}  x {p.pose.x:8.1f}  y {p.pose.y:8.1f}  "
+              f"heading {math.degrees(p.pose.theta):7.2f}  {p.region or 'outside the map'}")
 
 
 def _print_flush(line: str) -> None:

@@ -7,7 +7,6 @@ play and verified repairs; ``--json`` prints one object; ``--out`` saves the pla
 from __future__ import annotations
 
 import argparse
-import json
 import sys
 from typing import Any
 
@@ -15,6 +14,7 @@ import gaitc
 from diagnostics import UsageError
 from gaitc.commands.arguments import positive_seconds
 from gaitc.exitcodes import ExitCode, exit_code_help
+from gaitc.reporting import document, print_json
 from ltlcompiler.encoding import ENCODINGS
 
 EPILOG = exit_code_help({
@@ -34,7 +34,8 @@ def register(sub: Any) -> None:
         "well-separated assumptions, no vacuous goal, no unused part).",
         epilog=EPILOG, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("spec", metavar="SPEC")
-    p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.add_argument("--json", action="store_true",
+                   help="print one JSON object (docs/json.md)")
     p.add_argument("--no-repairs", action="store_true", help="skip the search for repairs")
     p.add_argument("--timeout", type=positive_seconds, metavar="SECONDS",
                    help="stop the whole analysis after this long (exit 4)")
@@ -65,7 +66,7 @@ def run_explain(args: argparse.Namespace) -> int:
 
         save_run(why.run, args.out)
     if args.json:
-        print(json.dumps(why.to_json(), sort_keys=True))
+        print_json(document("explain", why.to_json()))
     else:
         print("\n".join(why.lines()))
         if args.out:

@@ -8,10 +8,15 @@ with :mod:`gaitsearch` (:func:`run_global`, in :mod:`gaitc.commands.learning`).
 from __future__ import annotations
 
 import argparse
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from diagnostics import SpecSemanticError, UsageError
 from diagnostics.files import write_atomically
+from gaitc.reporting import document, print_json
+
+if TYPE_CHECKING:
+    from gaitgraph.robot import Robot
+    from gaitgraph.search import SearchResult
 
 
 def register(subparsers: Any) -> None:
@@ -24,6 +29,11 @@ def register(subparsers: Any) -> None:
     search_arguments(p)
     p.add_argument("-o", "--output", metavar="gaits.json", help="write the gaits as JSON")
     p.add_argument("--svg", metavar="DIR", help="write the gait graph and pose top views here")
+    p.add_argument("--json", action="store_true",
+                   help="print the search and its gaits as one JSON object (docs/json.md)")
+    from gaitc.commands.predicted import model_arguments
+
+    model_arguments(p)
     p.set_defaults(run=run)
 
 
@@ -47,11 +57,15 @@ def search_arguments(p: argparse.ArgumentParser) -> None:
 
 def run_render(args: argparse.Namespace) -> int:
     """``gaitc render gaits``: search, then draw the gait graph and each gait's poses."""
-    args.svg, args.output = args.output_dir, None
+    args.svg, args.output, args.json = args.output_dir, None, False
     return run(args)
 
 
 def run(args: argparse.Namespace) -> int:
+    if getattr(args, "model", None) is not None:
+        from gaitc.commands.predicted import run_model_gaits
+
+        return run_model_gaits(args)
     if args.method in ("astar", "lpa", "mcts"):
         from gaitc.commands.learning import run_global
 
@@ -78,6 +92,8 @@ def run(args: argparse.Namespace) -> int:
     method = args.method if args.method not in (None, "chapter2") else (
         "full" if full else "random")
     result = search(robot, direction, method, args.seed, args.max_states)
+    if args.json:
+        return _print_json(args, robot, result)
     print(
         f"robot {robot.name}: {robot.valve_count} chambers, method {method}, "
         f"{result.states_added} valve states, {len(result.graph)} poses, "
@@ -95,4 +111,21 @@ def run(args: argparse.Namespace) -> int:
     if args.svg:
         for path in write_drawings(robot, result.graph, result.gaits, args.svg):
             print(f"wrote {path}")
+    return 0 if result.gaits else 1
+
+
+def _print_json(args: argparse.Namespace, robot: Robot, result: SearchResult) -> int:
+    """``gaits --json``: the same files written, the search printed as one object."""
+    from gaitgraph.drawing import write_drawings
+    from gaitgraph.report import gaits_json, search_document
+
+    written = []
+    if args.output:
+        write_atomically(args.output, gaits_json(robot, result, args.direction, args.seed))
+        written.append(args.output)
+    if args.svg:
+        written.extend(str(p) for p in write_drawings(robot, result.graph, result.gaits,
+                                                      args.svg))
+    body = {**search_document(robot, result, args.direction, args.seed), "written": written}
+    print_json(document("gaits", body))
     return 0 if result.gaits else 1

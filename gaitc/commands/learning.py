@@ -5,11 +5,14 @@ from __future__ import annotations
 
 import argparse
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from diagnostics import UsageError
 from diagnostics.files import write_atomically
 from gaitc.exitcodes import ExitCode, exit_code_help
+
+if TYPE_CHECKING:
+    from gaitsearch.plans import GaitPlan
 
 BACKENDS = ("sim", "physics", "serial")
 
@@ -158,6 +161,8 @@ def run_global(args: argparse.Namespace) -> int:
     goal, settings = goal_of(args), settings_of(args)
     robot = load_robot(args.robot)
     plan = plan_gait(robot, goal, args.method, settings, args.max_states)
+    if getattr(args, "json", False):
+        return _plan_json(args, robot.name, plan)
     if plan is None:
         print(f"robot {robot.name}: no gait toward {goal} found")
         return 1
@@ -186,6 +191,28 @@ def run_global(args: argparse.Namespace) -> int:
         write_atomically(str(path), plan._repr_svg_())
         print(f"wrote {path}")
     return 0 if plan.reached else 1
+
+
+def _plan_json(args: argparse.Namespace, robot: str, plan: GaitPlan | None) -> int:
+    """``gaits --method astar|lpa|mcts --json``: the same files, the plan as one object."""
+    from gaitc.reporting import document, print_json
+
+    written = []
+    if plan is not None and args.output:
+        write_atomically(args.output, plan.to_json())
+        written.append(args.output)
+    if plan is not None and args.svg:
+        Path(args.svg).mkdir(parents=True, exist_ok=True)
+        path = Path(args.svg) / "gait-search.svg"
+        write_atomically(str(path), plan._repr_svg_())
+        written.append(str(path))
+    states, poses, edges = plan.graph if plan is not None else (None, None, None)
+    print_json(document("gaits", {
+        "robot": robot, "method": args.method, "found": plan is not None,
+        "reached": plan is not None and plan.reached, "valve_states": states, "poses": poses,
+        "transitions": edges, "plan": None if plan is None else plan.to_dict(),
+        "written": written}))
+    return 0 if plan is not None and plan.reached else 1
 
 
 def run_learn(args: argparse.Namespace) -> int:

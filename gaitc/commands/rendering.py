@@ -12,6 +12,7 @@ import gaitc
 from diagnostics import UsageError
 from gaitc.commands.arguments import add_prefer
 from gaitc.exitcodes import ExitCode
+from gaitc.status import progress_display
 from gaitsim.graphics import FORMATS, Picture, output_format
 
 FORMAT_HELP = (f"output format: {', '.join(FORMATS)} (default: from the -o extension); every "
@@ -99,7 +100,9 @@ def run_automaton(args: argparse.Namespace) -> int:
     output_format(args.output, args.format)  # fail on a bad format before synthesizing
     if args.max_nodes < 1:
         raise UsageError("--max-nodes must be at least 1")
-    loaded = gaitc.session(args.spec, args.controller, args.encoding, prefer=args.prefer)
+    with progress_display() as progress:
+        loaded = gaitc.session(args.spec, args.controller, args.encoding, prefer=args.prefer,
+                               progress=progress)
     if loaded is None:
         print(f"{args.spec}: unrealizable: no controller to draw", file=sys.stderr)
         return ExitCode.UNREALIZABLE

@@ -7,7 +7,6 @@ critical each is (svg, png, pdf or dot).
 from __future__ import annotations
 
 import argparse
-import json
 import sys
 from typing import Any
 
@@ -16,6 +15,7 @@ from analysis.pool import terminal_progress
 from analysis.resilience import METHODS
 from diagnostics import UsageError
 from gaitc.exitcodes import ExitCode, exit_code_help
+from gaitc.reporting import document, print_json
 from ltlcompiler.encoding import ENCODINGS
 
 EPILOG = exit_code_help({
@@ -35,7 +35,8 @@ def register(sub: Any) -> None:
         "and hazard sets survived alone.",
         epilog=EPILOG, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("spec", metavar="SPEC")
-    p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.add_argument("--json", action="store_true",
+                   help="print one JSON object (docs/json.md)")
     p.add_argument("--method", choices=METHODS, default="parametric",
                    help="parametric: one game with rigid per-leg parameters; lattice: one "
                    "solver call per variant (default parametric)")
@@ -69,7 +70,7 @@ def run_resilience(args: argparse.Namespace) -> int:
         fmt = report.picture().save(args.output)
         print(f"wrote {args.output} ({fmt})", file=sys.stderr)
     if args.json:
-        print(json.dumps(report.to_json(), sort_keys=True))
+        print_json(document("resilience", report.to_json()))
     else:
         print("\n".join(report.lines()))
     return ExitCode.OK if report.realizable else ExitCode.UNREALIZABLE

@@ -12,10 +12,12 @@ from collections.abc import Mapping
 from typing import Any
 
 import gaitc
-from diagnostics import UsageError
+from diagnostics import UsageError, render_error
 from gaitc.commands.arguments import add_prefer
 from gaitc.exitcodes import ExitCode, exit_code_help
+from gaitc.reporting import document, exit_code_of, print_json, run_json
 from gaitc.simulation import ENVIRONMENTS, Session, environment
+from gaitc.status import progress_display
 from gaitsim.environments import Environment
 from gaitsim.run import Run
 from ltlcompiler.encoding import ENCODINGS
@@ -61,8 +63,16 @@ def register(sub: Any) -> None:
     p.add_argument("--robotics-semantics", action="store_true",
                    help="semantics when synthesizing on the fly")
     p.add_argument("--quiet", action="store_true", help="print only the summary")
+    add_json(p)
     add_prefer(p, "without CONTROLLER: ")
     p.set_defaults(run=run_simulate)
+
+
+def add_json(p: argparse.ArgumentParser) -> None:
+    """``--json`` of ``simulate`` and ``drive``: the run as one object (docs/json.md)."""
+    p.add_argument("--json", action="store_true",
+                   help="print the run (steps, summary, error) as one JSON object instead "
+                   "of the table (docs/json.md)")
 
 
 def environment_of(args: argparse.Namespace, bound: Session) -> Environment:
@@ -83,37 +93,58 @@ def run_simulate(args: argparse.Namespace) -> int:
     semantics = "robotics" if args.robotics_semantics else "default"
     if args.steps is not None and args.steps < 0:
         raise UsageError("--steps must not be negative")
-    bound = gaitc.session(args.spec, args.controller, args.encoding, semantics, args.prefer)
+    with progress_display() as progress:
+        bound = gaitc.session(args.spec, args.controller, args.encoding, semantics,
+                              args.prefer, progress)
     if bound is None and (args.env or ["random"])[0] == "adversarial":
         from gaitc.simulation import counter_session
 
-        bound = counter_session(gaitc.load(args.spec, args.encoding or "onehot"), semantics)
+        with progress_display() as progress:
+            bound = counter_session(gaitc.load(args.spec, args.encoding or "onehot"),
+                                    semantics, progress)
         if bound is not None:  # the environment plays its winning strategy
             run = gaitc.simulate(bound, env="adversarial", steps=args.steps)
-            return report_run(run, bound.full_health, run.environment, args.quiet, args.out)
+            return report_run(run, bound.full_health, run.environment, args.quiet, args.out,
+                              args.json, realizable=False)
     if bound is None:
         print(f"{args.spec}: unrealizable: no controller to simulate", file=sys.stderr)
+        if args.json:
+            print_json(document("simulate", run_json(args.spec, None, None, None, False)))
         return ExitCode.UNREALIZABLE
     if bound.strategy.kind == "counterstrategy":
         kind = (args.env or ["random"])[0]
         run = gaitc.simulate(bound, env=kind, steps=args.steps, seed=args.seed)
-        return report_run(run, bound.full_health, run.environment, args.quiet, args.out)
+        return report_run(run, bound.full_health, run.environment, args.quiet, args.out,
+                          args.json, realizable=False)
     chosen = environment_of(args, bound)
     run = gaitc.simulate(bound, env=chosen, steps=args.steps)
-    return report_run(run, bound.full_health, chosen.name, args.quiet, args.out)
+    return report_run(run, bound.full_health, chosen.name, args.quiet, args.out, args.json)
 
 
 def report_run(
-    run: Run, full_health: Mapping[str, int], source: str, quiet: bool, out: str | None
+    run: Run, full_health: Mapping[str, int], source: str, quiet: bool, out: str | None,
+    as_json: bool = False, extra: Mapping[str, Any] | None = None, realizable: bool = True,
+    command: str = "simulate",
 ) -> int:
     """Print ``run``'s step table and summary, save it to ``out``, return the exit code.
 
     A run stopped by a broken assumption raises its error; a run along which the controller
-    broke a guarantee (with every assumption kept) is a user error (exit 1).
+    broke a guarantee (with every assumption kept) is a user error (exit 1).  With
+    ``as_json`` one object is printed instead (with ``extra``'s keys), holding the error
+    that stopped the run, and the exit code is returned rather than the error raised.
     """
     from gaitsim.run import save_run
     from gaitsim.terminal import step_table, summary_text, use_colour
 
+    if as_json:
+        if out:
+            save_run(run, out)
+        print_json(document(command, {**run_json(run.spec_file, run, source, out, realizable),
+                                      **(extra or {})}))
+        if run.error is not None:
+            print(render_error(run.error), file=sys.stderr)
+            return exit_code_of(run.error)
+        return ExitCode.USER if _broke_guarantee(run) else ExitCode.OK
     colour = use_colour(sys.stdout)
     if not quiet:
         print(step_table(run, dict(full_health), colour))
@@ -125,9 +156,14 @@ def report_run(
     if run.error is not None:
         sys.stdout.flush()
         raise run.error
+    return ExitCode.USER if _broke_guarantee(run) else ExitCode.OK
+
+
+def _broke_guarantee(run: Run) -> bool:
+    """Whether the controller broke a guarantee with every assumption kept (said on stderr)."""
     summary = run.summary
     if summary is not None and summary.assumptions_held and not summary.guarantees_held:
         print("gaitc: error: the controller broke a guarantee along this run (see above)",
               file=sys.stderr)
-        return ExitCode.USER
-    return ExitCode.OK
+        return True
+    return False

@@ -8,13 +8,12 @@ from __future__ import annotations
 
 import argparse
 import functools
-import json
 import sys
 import time
 from typing import Any
 
 import gaitc
-from diagnostics import GaitcError, SolverError, UsageError, render_error
+from diagnostics import GaitcError, UsageError, render_error
 from gaitc.commands.arguments import (
     add_prefer,
     positive_count,
@@ -23,9 +22,11 @@ from gaitc.commands.arguments import (
 )
 from gaitc.exitcodes import ExitCode, exit_code_help
 from gaitc.isolation import HardLimits, cudd_budget_mb, run_limited
+from gaitc.reporting import document, error_json, exit_code_of, print_json
 from gaitc.solving import MAX_NODES, SOLVERS, read_controller, recorded_encoding
+from gaitc.status import progress_display
 from ltlcompiler.encoding import ENCODINGS
-from solver.game import Progress
+from solver.progress import Progress
 from solver.symbolic import Options
 from verifier.strategy import VerificationReport
 
@@ -61,6 +62,10 @@ def _common(p: argparse.ArgumentParser, solver: bool = True) -> None:
     p.add_argument("--memory-limit", type=positive_megabytes, metavar="MB",
                    help="the most memory the solver process may take (exit 4 when it needs "
                    "more)")
+    p.add_argument("--verbose", action="store_true",
+                   help="print each stage of the solve on a line of its own, with the "
+                   "solver's figures (rounds, BDD sizes); on a terminal a status line "
+                   "shows the stage and the time elapsed")
 
 
 def register(sub: Any) -> None:
@@ -74,7 +79,8 @@ def register(sub: Any) -> None:
         formatter_class=fmt,
     )
     p.add_argument("specs", nargs="+", metavar="SPEC")
-    p.add_argument("--json", action="store_true", help="one JSON object per file")
+    p.add_argument("--json", action="store_true",
+                   help="one JSON object per file (docs/json.md)")
     _common(p)
     p.set_defaults(run=run_check)
 
@@ -89,6 +95,7 @@ def register(sub: Any) -> None:
     p.add_argument("spec", metavar="SPEC")
     p.add_argument("-o", "--output", required=True, metavar="FILE")
     p.add_argument("--no-verify", action="store_true", help="skip the verification step")
+    _json(p)
     p.add_argument("--symbolic", action="store_true",
                    help="write the strategy as BDDs (docs/controller-format.md, symbolic "
                    "controllers); simulate, drive, verify and render map read it")
@@ -108,6 +115,7 @@ def register(sub: Any) -> None:
     )
     p.add_argument("spec", metavar="SPEC")
     p.add_argument("-o", "--output", required=True, metavar="FILE")
+    _json(p)
     _common(p)
     p.set_defaults(run=run_counter)
 
@@ -121,23 +129,20 @@ def register(sub: Any) -> None:
     )
     p.add_argument("spec", metavar="SPEC")
     p.add_argument("controller", metavar="CONTROLLER")
+    _json(p)
     _common(p, solver=False)
     p.set_defaults(run=run_verify)
 
 
 # ---------------------------------------------------------------- helpers
+def _json(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--json", action="store_true",
+                   help="print one JSON object instead of the text (docs/json.md)")
+
+
 def _semantics(args: argparse.Namespace) -> str:
     return "robotics" if args.robotics_semantics else "default"
 
-
-def _progress() -> Progress | None:
-    if not sys.stderr.isatty():
-        return None
-
-    def show(message: str) -> None:
-        print(f"gaitc: {message}", file=sys.stderr, flush=True)
-
-    return show
 
 
 def _limits(args: argparse.Namespace) -> HardLimits:
@@ -149,9 +154,9 @@ def _options(args: argparse.Namespace) -> Options:
     return Options(memory_mb=None if mb is None else cudd_budget_mb(mb))
 
 
-def _solver_args(args: argparse.Namespace) -> dict[str, Any]:
+def _solver_args(args: argparse.Namespace, progress: Progress | None) -> dict[str, Any]:
     return {"semantics": _semantics(args), "solver": args.solver, "timeout": args.timeout,
-            "slugs": args.slugs, "options": _options(args), "progress": _progress()}
+            "slugs": args.slugs, "options": _options(args), "progress": progress}
 
 
 # ---------------------------------------------------------------- commands
@@ -159,27 +164,22 @@ def run_check(args: argparse.Namespace) -> int:
     worst = ExitCode.OK
     for path in args.specs:
         started = time.monotonic()
-        record: dict[str, Any] = {"file": path, "semantics": _semantics(args)}
+        record: dict[str, Any] = {"file": path, "semantics": _semantics(args),
+                                  "solver": args.solver, "engine": None, "error": None}
         try:
             _options(args)  # a memory limit too small fails here, before the fork
             verdict = run_limited(functools.partial(_check_one, path, args), _limits(args))
-            record.update(
-                verdict="realizable" if verdict.realizable else "unrealizable",
-                seconds=round(verdict.seconds, 3),
-                solver=args.solver,
-            )
-            if verdict.engine:
-                record["engine"] = verdict.engine
+            record.update(verdict.to_json(), file=path)
             code = ExitCode.OK if verdict.realizable else ExitCode.UNREALIZABLE
         except UsageError:
             raise
         except GaitcError as err:
-            record.update(verdict="error", error=str(err))
-            code = ExitCode.SOLVER if isinstance(err, SolverError) else ExitCode.USER
+            record.update(verdict="error", error=error_json(err))
+            code = exit_code_of(err)
             print(render_error(err), file=sys.stderr)
         record.setdefault("seconds", round(time.monotonic() - started, 3))
         if args.json:
-            print(json.dumps(record, sort_keys=True), flush=True)
+            print_json(document("check", record))
         elif record["verdict"] != "error":
             print(f"{path}: {record['verdict']} ({record['seconds']:.2f} s)", flush=True)
         worst = max(worst, code, key=_SEVERITY.index)
@@ -190,7 +190,8 @@ def _check_one(path: str, args: argparse.Namespace) -> gaitc.Verdict:
     """Load and decide one spec (in the limited child process when there are limits; CUDD's
     share of the memory limit is what is left once the spec is loaded)."""
     spec = gaitc.load(path, args.encoding)
-    return gaitc.check(spec, **_solver_args(args))
+    with progress_display(args.verbose) as progress:
+        return gaitc.check(spec, **_solver_args(args, progress))
 
 
 _SEVERITY = (ExitCode.OK, ExitCode.UNREALIZABLE, ExitCode.USER, ExitCode.SOLVER)
@@ -201,18 +202,21 @@ def _solve(args: argparse.Namespace, kind: str) -> tuple[gaitc.Spec, gaitc.Synth
 
     def work() -> tuple[gaitc.Spec, gaitc.Synthesis]:
         spec = gaitc.load(args.spec, args.encoding)
-        if kind == "counterstrategy":
-            return spec, gaitc.counterstrategy(spec, **_solver_args(args))
-        form = "symbolic" if args.symbolic else "auto"
-        return spec, gaitc.synthesize(spec, verify=not args.no_verify, form=form,
-                                      max_nodes=args.max_nodes, prefer=args.prefer,
-                                      **_solver_args(args))
+        with progress_display(args.verbose) as progress:
+            if kind == "counterstrategy":
+                return spec, gaitc.counterstrategy(spec, **_solver_args(args, progress))
+            form = "symbolic" if args.symbolic else "auto"
+            return spec, gaitc.synthesize(spec, verify=not args.no_verify, form=form,
+                                          max_nodes=args.max_nodes, prefer=args.prefer,
+                                          **_solver_args(args, progress))
 
     return run_limited(work, _limits(args))
 
 
 def run_synth(args: argparse.Namespace) -> int:
     _, found = _solve(args, "strategy")
+    if args.json:
+        return _synth_json(args, found)
     if found.controller is None:
         print(f"{args.spec}: unrealizable ({found.seconds:.2f} s); no controller written")
         print("  hint: 'gaitc counter' shows how the environment wins", file=sys.stderr)
@@ -231,6 +235,23 @@ def run_synth(args: argparse.Namespace) -> int:
     return _print_report(found.report)
 
 
+def _synth_json(args: argparse.Namespace, found: gaitc.Synthesis) -> int:
+    """``synth --json`` and ``counter --json``: the same files written, one object printed."""
+    strategy = found.kind == "strategy"
+    # as without --json: synth writes only a verified controller, counter whatever it found
+    verified = not strategy or found.report is None or found.report.ok
+    written = found.controller is not None and verified
+    if written:
+        found.save(args.output)
+    print_json(document("synth" if strategy else "counter",
+                        {**found.to_json(), "output": args.output if written else None}))
+    if found.controller is None:
+        if strategy:
+            print("  hint: 'gaitc counter' shows how the environment wins", file=sys.stderr)
+        return ExitCode.UNREALIZABLE
+    return ExitCode.OK if verified else ExitCode.USER
+
+
 def _print_report(report: VerificationReport) -> int:
     print(f"verified: {report.summary()}" if report.ok else f"NOT verified: {report.summary()}")
     for problem in report.problems:
@@ -240,6 +261,8 @@ def _print_report(report: VerificationReport) -> int:
 
 def run_counter(args: argparse.Namespace) -> int:
     _, found = _solve(args, "counterstrategy")
+    if args.json:
+        return _synth_json(args, found)
     if found.controller is None:
         print(f"{args.spec}: realizable ({found.seconds:.2f} s); there is no counter-strategy")
         return ExitCode.UNREALIZABLE
@@ -256,4 +279,9 @@ def run_verify(args: argparse.Namespace) -> int:
     spec = gaitc.load(args.spec, encoding)
     controller = read_controller(args.controller, spec.gr1)
     semantics = "robotics" if args.robotics_semantics else controller.semantics
-    return _print_report(gaitc.verify(spec, controller, semantics))
+    report = gaitc.verify(spec, controller, semantics)
+    if not args.json:
+        return _print_report(report)
+    print_json(document("verify", {"file": args.spec, "controller": args.controller,
+                                   **report.to_json()}))
+    return ExitCode.OK if report.ok else ExitCode.USER

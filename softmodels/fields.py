@@ -1,0 +1,90 @@
+"""Positioned access to the YAML nodes of a robot file's ``model:`` section.
+
+Every reader error names the file, line and column of the node, as the rest of the robot
+file's errors do (:mod:`gaitgraph.robot`); the class raised is :class:`ModelFileError`.
+"""
+
+from __future__ import annotations
+
+import math
+
+import yaml
+
+from diagnostics import Span
+from gaitgraph.robot import RobotFileError
+
+
+class ModelFileError(RobotFileError):
+    """The ``model:`` section of a robot file is malformed or describes an impossible model."""
+
+
+def span_of(path: str, node: yaml.Node) -> Span:
+    """The span of a node's first character."""
+    mark = node.start_mark
+    return Span(path, mark.line + 1, mark.column + 1)
+
+
+class Fields:
+    """Typed, positioned readers over the YAML nodes of one file."""
+
+    def __init__(self, path: str) -> None:
+        self.path = path
+
+    def fail(self, node: yaml.Node, message: str, hint: str | None = None) -> ModelFileError:
+        return ModelFileError(message, span_of(self.path, node), hint)
+
+    def mapping(self, node: yaml.Node, what: str, allowed: set[str]) -> dict[str, yaml.Node]:
+        if not isinstance(node, yaml.MappingNode):
+            raise self.fail(node, f"{what} must be a mapping of keys to values")
+        out: dict[str, yaml.Node] = {}
+        for key, value in node.value:
+            name = str(key.value)
+            if name not in allowed:
+                raise self.fail(
+                    key,
+                    f"unknown key {name!r} in {what}",
+                    "expected one of: " + ", ".join(sorted(allowed)),
+                )
+            if name in out:
+                raise self.fail(key, f"key {name!r} appears twice in {what}")
+            out[name] = value
+        return out
+
+    def sequence(self, node: yaml.Node, what: str) -> list[yaml.Node]:
+        if not isinstance(node, yaml.SequenceNode):
+            raise self.fail(node, f"{what} must be a list")
+        return list(node.value)
+
+    def text(self, node: yaml.Node, what: str) -> str:
+        if not isinstance(node, yaml.ScalarNode) or node.value == "":
+            raise self.fail(node, f"{what} must be a non-empty text value")
+        return str(node.value)
+
+    def number(
+        self, node: yaml.Node, what: str, low: float | None = None, positive: bool = False
+    ) -> float:
+        try:
+            if not isinstance(node, yaml.ScalarNode):
+                raise ValueError
+            value = float(node.value)
+        except ValueError:
+            raise self.fail(node, f"{what} must be a number") from None
+        if not math.isfinite(value):
+            raise self.fail(node, f"{what} must be a finite number, not {node.value}")
+        if positive and value <= 0:
+            raise self.fail(node, f"{what} must be positive, not {node.value}")
+        if low is not None and value < low:
+            raise self.fail(node, f"{what} must be at least {low:g}, not {node.value}")
+        return value
+
+    def vector(self, node: yaml.Node, what: str, size: int) -> tuple[float, ...]:
+        items = self.sequence(node, what)
+        if len(items) != size:
+            raise self.fail(node, f"{what} must have {size} numbers, not {len(items)}")
+        return tuple(self.number(item, what) for item in items)
+
+    def matrix3(self, node: yaml.Node, what: str) -> tuple[tuple[float, ...], ...]:
+        rows = self.sequence(node, what)
+        if len(rows) != 3:
+            raise self.fail(node, f"{what} must be a 3x3 matrix (three rows), not {len(rows)} rows")
+        return tuple(self.vector(row, f"a row of {what}", 3) for row in rows)
