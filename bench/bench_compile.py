@@ -20,10 +20,8 @@ from ltlcompiler.lowering import lower
 
 SIZES = ((4, 5), (8, 8), (10, 10), (16, 16), (20, 20), (30, 30), (40, 40))
 GAITS = {
-    "north": ((4, 6), (4, 7), (3, 6)),
-    "east": ((2, 4), (2, 5), (1, 4)),
-    "south": ((2, 8), (3, 8), (2, 7)),
-    "west": ((6, 8), (1, 6), (5, 8)),
+    "north": ((4, 6), (4, 7), (3, 6)), "east": ((2, 4), (2, 5), (1, 4)),
+    "south": ((2, 8), (3, 8), (2, 7)), "west": ((6, 8), (1, 6), (5, 8)),
 }
 T = TypeVar("T")
 
@@ -66,15 +64,10 @@ def main() -> None:
     parser.add_argument("--sizes", help="comma-separated RxC list (default 4x5 .. 40x40)")
     parser.add_argument("--repeat", type=int, default=1, help="best of N runs (default 1)")
     args = parser.parse_args()
-    sizes = (
-        SIZES
-        if not args.sizes
-        else tuple((int(r), int(c)) for r, c in (s.split("x") for s in args.sizes.split(",")))
-    )
-    header = (
-        f"{'grid':>7} {'regions':>7} {'encoding':>8} {'parse+check':>11} {'lower':>8} "
-        f"{'emit':>8} {'total s':>8} {'clauses':>7} {'slugsin KB':>10}"
-    )
+    sizes = SIZES if not args.sizes else tuple(
+        (int(r), int(c)) for r, c in (s.split("x") for s in args.sizes.split(",")))
+    header = (f"{'grid':>7} {'regions':>7} {'encoding':>8} {'parse+check':>11} {'lower':>8} "
+              f"{'emit':>8} {'total s':>8} {'clauses':>7} {'slugsin KB':>10}")
     print(header)
     print("-" * len(header))
     for rows, cols in sizes:
@@ -85,12 +78,9 @@ def main() -> None:
             out, t_emit = timed(partial(emit, spec, "slugsin"), args.repeat)
             clauses = sum(len(spec.section(s)) for s in SECTIONS)
             total = t_front + t_lower + t_emit
-            print(
-                f"{rows:>3}x{cols:<3} {rows * cols:>7} {encoding:>8} {t_front:>11.3f} "
-                f"{t_lower:>8.3f} {t_emit:>8.3f} {total:>8.3f} {clauses:>7} "
-                f"{len(out) / 1024:>10.1f}",
-                flush=True,
-            )
+            print(f"{rows:>3}x{cols:<3} {rows * cols:>7} {encoding:>8} {t_front:>11.3f} "
+                  f"{t_lower:>8.3f} {t_emit:>8.3f} {total:>8.3f} {clauses:>7} "
+                  f"{len(out) / 1024:>10.1f}", flush=True)
 
 
 if __name__ == "__main__":

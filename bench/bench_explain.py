@@ -54,20 +54,15 @@ def main() -> None:
         for part, run in parts:
             calls, t = oracle.calls, time.perf_counter()
             run()
-            print(
-                f"{name:<20}{part:<12}{oracle.calls - calls:>7}{time.perf_counter() - t:>9.2f}",
-                flush=True,
-            )
+            print(f"{name:<20}{part:<12}{oracle.calls - calls:>7}"
+                  f"{time.perf_counter() - t:>9.2f}", flush=True)
         t = time.perf_counter()
         why = gaitc.explain(spec)
         whole = time.perf_counter() - t
         verdict = "meets" if whole < TARGET_SECONDS else "MISSES"
-        print(
-            f"{name:<20}{'explain':<12}{why.solver_calls:>7}{whole:>9.2f}  {verdict} the "
-            f"{TARGET_SECONDS:.0f} s target (parts above: "
-            f"{time.perf_counter() - started - whole:.2f} s)",
-            flush=True,
-        )
+        print(f"{name:<20}{'explain':<12}{why.solver_calls:>7}{whole:>9.2f}  {verdict} the "
+              f"{TARGET_SECONDS:.0f} s target (parts above: "
+              f"{time.perf_counter() - started - whole:.2f} s)", flush=True)
 
 
 if __name__ == "__main__":

@@ -56,10 +56,8 @@ class Totals:
 
 
 def line(cells: tuple[str, ...], widths: tuple[int, ...] = WIDTHS) -> str:
-    return " ".join(
-        c.rjust(w) if k != 1 else c.ljust(w)
-        for k, (c, w) in enumerate(zip(cells, widths, strict=True))
-    ).rstrip()
+    return " ".join(c.rjust(w) if k != 1 else c.ljust(w)
+                    for k, (c, w) in enumerate(zip(cells, widths, strict=True))).rstrip()
 
 
 def seconds(outcome: Outcome | None, limit: float) -> str:
@@ -102,42 +100,17 @@ def table(rows: list[Instance], args: argparse.Namespace) -> None:
         if instance.family == "corpus":
             _add(totals, instance, ours, theirs)
             continue
-        print(
-            line(
-                (
-                    instance.family,
-                    instance.name,
-                    seconds(ours, args.timeout),
-                    verdict(instance, ours, theirs),
-                    seconds(theirs, args.slugs_timeout),
-                    ratio(ours, theirs),
-                    lag,
-                )
-            ),
-            flush=True,
-        )
+        print(line((instance.family, instance.name, seconds(ours, args.timeout),
+                    verdict(instance, ours, theirs), seconds(theirs, args.slugs_timeout),
+                    ratio(ours, theirs), lag)), flush=True)
     if totals.count:
-        summary = (
-            f"{totals.realizable}R {totals.unrealizable}U"
-            + (f" {totals.undecided}?" if totals.undecided else "")
-            + (f" {totals.disagree}!" if totals.disagree else "")
-        )
+        summary = (f"{totals.realizable}R {totals.unrealizable}U"
+                   + (f" {totals.undecided}?" if totals.undecided else "")
+                   + (f" {totals.disagree}!" if totals.disagree else ""))
         slugs_s = f"{totals.slugs:.2f}" if totals.slugs_runs == totals.count else "-"
         rat = f"{totals.gaitc / totals.slugs:.2f}" if slugs_s != "-" and totals.slugs else "-"
-        print(
-            line(
-                (
-                    "corpus",
-                    f"{totals.count} specs (totals)",
-                    f"{totals.gaitc:.2f}",
-                    summary,
-                    slugs_s,
-                    rat,
-                    "-",
-                )
-            ),
-            flush=True,
-        )
+        print(line(("corpus", f"{totals.count} specs (totals)", f"{totals.gaitc:.2f}", summary,
+                    slugs_s, rat, "-")), flush=True)
     if worst is not None:
         print(f"worst --timeout lag: {worst[0]:.2f} s past {args.lag_limit:g} s ({worst[1]})")
     else:
@@ -168,59 +141,27 @@ def ablation(rows: list[Instance], args: argparse.Namespace) -> None:
         outcomes = [timing.embedded(instance, args.timeout, o) for o in ABLATION.values()]
         decided = [o.seconds for o in outcomes if o.decided]
         best = min(decided) if decided else None
-        rat = (
-            f"{outcomes[0].seconds / best:.2f}"
-            if outcomes[0].decided and best
-            else ("> " + f"{args.timeout / best:.1f}" if best else "-")
-        )
-        print(
-            line(
-                (
-                    instance.family,
-                    instance.name,
-                    *(seconds(o, args.timeout) for o in outcomes),
-                    rat,
-                ),
-                widths,
-            ),
-            flush=True,
-        )
+        rat = (f"{outcomes[0].seconds / best:.2f}" if outcomes[0].decided and best
+               else ("> " + f"{args.timeout / best:.1f}" if best else "-"))
+        print(line((instance.family, instance.name, *(seconds(o, args.timeout) for o in outcomes),
+                    rat), widths), flush=True)
 
 
 def main(argv: list[str] | None = None) -> None:
-    parser = argparse.ArgumentParser(
-        description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
-    )
-    parser.add_argument(
-        "--quick",
-        action="store_true",
-        help="thesis grids up to 10x10 at health 2-3, AMBA N = 2..5, hazard grids up to 8x8",
-    )
+    parser = argparse.ArgumentParser(description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--quick", action="store_true",
+                        help="thesis grids up to 10x10 at health 2-3, AMBA N = 2..5, "
+                        "hazard grids up to 8x8")
     parser.add_argument("--ablation", action="store_true", help="compare solver options")
-    parser.add_argument(
-        "--timeout",
-        type=float,
-        default=300.0,
-        help="embedded solver limit per instance (default 300 s)",
-    )
-    parser.add_argument(
-        "--slugs-timeout",
-        type=float,
-        default=600.0,
-        help="SLUGS limit per instance (default 600 s)",
-    )
-    parser.add_argument(
-        "--lag-limit",
-        type=float,
-        default=10.0,
-        help="the --timeout given to 'gaitc check' on slower instances",
-    )
-    parser.add_argument(
-        "--family",
-        action="append",
-        choices=catalogue.FAMILIES,
-        help="only this family (repeatable)",
-    )
+    parser.add_argument("--timeout", type=float, default=300.0,
+                        help="embedded solver limit per instance (default 300 s)")
+    parser.add_argument("--slugs-timeout", type=float, default=600.0,
+                        help="SLUGS limit per instance (default 600 s)")
+    parser.add_argument("--lag-limit", type=float, default=10.0,
+                        help="the --timeout given to 'gaitc check' on slower instances")
+    parser.add_argument("--family", action="append", choices=catalogue.FAMILIES,
+                        help="only this family (repeatable)")
     parser.add_argument("--amba", type=int, action="append", help="only AMBA with N masters")
     args = parser.parse_args(argv)
     families = tuple(args.family or catalogue.FAMILIES)

@@ -27,45 +27,19 @@ from gaithw.firmware import Image, SimulatedBoard, build, missing_tools, vented_
 
 ROOT = Path(__file__).resolve().parent.parent
 SPEC = (Path(__file__).resolve().parent.parent / "specs" / "shuttle_2leg.gait").read_text(
-    encoding="utf-8"
-)  # two legs, two valves: short runs on the simulated board
+    encoding="utf-8")  # two legs, two valves: short runs on the simulated board
 LOOP_MS = 10.0  # one firmware loop with a reply in progress (about 90 bytes at 115200 baud)
 
 
-def trial(
-    image: Image,
-    spec: Path,
-    controller: Path,
-    folder: Path,
-    sig: int,
-    phase: float,
-    watchdog_ms: int | None,
-) -> float | None:
+def trial(image: Image, spec: Path, controller: Path, folder: Path, sig: int, phase: float,
+          watchdog_ms: int | None) -> float | None:
     """One kill; the ms from just before it to all valves vented (None: never vented)."""
     with SimulatedBoard(image, folder / "pins.jsonl", watchdog_ms) as board:
         host = subprocess.Popen(
-            [
-                sys.executable,
-                "-m",
-                "gaitc",
-                "drive",
-                str(spec),
-                str(controller),
-                "--backend",
-                "serial",
-                "--port",
-                board.port,
-                "--channels",
-                "0,1",
-                "--steps",
-                "50",
-                "--step-delay",
-                "2",
-            ],
-            stdout=subprocess.DEVNULL,
-            stderr=subprocess.DEVNULL,
-            cwd=ROOT,
-        )
+            [sys.executable, "-m", "gaitc", "drive", str(spec), str(controller), "--backend",
+             "serial", "--port", board.port, "--channels", "0,1", "--steps", "50",
+             "--step-delay", "2"], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+            cwd=ROOT)
         end = time.monotonic() + 60
         while not any("1" in v for _, v in board.record()) and time.monotonic() < end:
             time.sleep(0.01)
@@ -83,11 +57,8 @@ def main_bench() -> int:
     parser.add_argument("--watchdog-ms", type=int, help="board watchdog period (firmware: 500)")
     args = parser.parse_args()
     if missing_tools():
-        print(
-            f"needs {', '.join(missing_tools())} (apt-get install gcc-avr avr-libc simavr "
-            "libsimavr-dev libsimavrparts1)",
-            file=sys.stderr,
-        )
+        print(f"needs {', '.join(missing_tools())} (apt-get install gcc-avr avr-libc simavr "
+              "libsimavr-dev libsimavrparts1)", file=sys.stderr)
         return 1
     period = args.watchdog_ms or 500
     with tempfile.TemporaryDirectory() as name:
@@ -99,10 +70,8 @@ def main_bench() -> int:
             if main(["synth", str(spec), "-o", str(controller)]) != 0:
                 return 1
         print(f"\nwatchdog {period} ms; target: at most {period} + {LOOP_MS:g} ms\n")
-        print(
-            f"{'signal':<8} {'trials':>6} {'min ms':>8} {'median ms':>10} {'max ms':>8} "
-            f"{'never':>6}  target met"
-        )
+        print(f"{'signal':<8} {'trials':>6} {'min ms':>8} {'median ms':>10} {'max ms':>8} "
+              f"{'never':>6}  target met")
         worst = 0.0
         for sig in (signal.SIGKILL, signal.SIGTERM, signal.SIGHUP):
             delays: list[float] = []
@@ -116,11 +85,9 @@ def main_bench() -> int:
                     delays.append(delay)
             worst = max([worst, *delays])
             met = never == 0 and max(delays, default=0.0) <= period + LOOP_MS
-            print(
-                f"{signal.Signals(sig).name:<8} {args.trials:>6} {min(delays, default=0):>8.1f} "
-                f"{statistics.median(delays) if delays else 0:>10.1f} "
-                f"{max(delays, default=0):>8.1f} {never:>6}  {'yes' if met else 'NO'}"
-            )
+            print(f"{signal.Signals(sig).name:<8} {args.trials:>6} {min(delays, default=0):>8.1f} "
+                  f"{statistics.median(delays) if delays else 0:>10.1f} "
+                  f"{max(delays, default=0):>8.1f} {never:>6}  {'yes' if met else 'NO'}")
         print(f"\nworst case host death to all valves vented: {worst:.1f} ms")
     return 0
 

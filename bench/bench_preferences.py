@@ -22,22 +22,14 @@ from gaitsim.environments import AdversarialEnvironment, Environment, RandomEnvi
 from gaitsim.run import Run
 
 ROOT = Path(__file__).resolve().parent.parent
-SPECS = (
-    (ROOT / "specs" / "thesis_robot_a.gait", "binary"),
-    (ROOT / "tests" / "data" / "hazard_patrol.gait", "onehot"),
-)
+SPECS = ((ROOT / "specs" / "thesis_robot_a.gait", "binary"),
+         (ROOT / "tests" / "data" / "hazard_patrol.gait", "onehot"))
 
 
 def measures(run: Run, hazards: dict[str, set[str]], caches: set[str]) -> tuple[int, int, int]:
     """Active-hazard entries, health levels lost, and the longest wait for any goal."""
-    entries = sum(
-        1
-        for s in run.steps
-        if s.hazard is not None
-        and s.legs_used
-        and s.region in hazards.get(s.hazard, set())
-        and s.region not in caches
-    )
+    entries = sum(1 for s in run.steps if s.hazard is not None and s.legs_used
+                  and s.region in hazards.get(s.hazard, set()) and s.region not in caches)
     lost = 0
     for before, after in itertools.pairwise(run.steps):
         lost += sum(max(0, level - after.level(leg)) for leg, level in before.health)
@@ -59,10 +51,8 @@ def main() -> None:
     parser.add_argument("--encoding", default="onehot", choices=("onehot", "binary"))
     args = parser.parse_args()
     specs = [(Path(args.spec), args.encoding)] if args.spec else list(SPECS)
-    print(
-        f"{'spec':<18}{'prefer':<8}{'nodes':>7}{'synth s':>9}  {'environment':<14}"
-        f"{'entries/100':>12}{'lost/100':>10}{'longest wait':>13}"
-    )
+    print(f"{'spec':<18}{'prefer':<8}{'nodes':>7}{'synth s':>9}  {'environment':<14}"
+          f"{'entries/100':>12}{'lost/100':>10}{'longest wait':>13}")
     for path, encoding in specs:
         spec = gaitc.load(path, encoding)
         assert spec.model is not None
@@ -82,12 +72,9 @@ def main() -> None:
                 assert run.summary is not None and run.summary.guarantees_held
                 entries, lost, wait = measures(run, hazards, caches)
                 per = 100 / args.steps
-                print(
-                    f"{path.stem:<18}{prefer or 'default':<8}{len(found.controller.nodes):>7}"
-                    f"{seconds:>9.1f}  {env.name.split(' --')[0]:<14}{entries * per:>12.2f}"
-                    f"{lost * per:>10.2f}{wait:>13}",
-                    flush=True,
-                )
+                print(f"{path.stem:<18}{prefer or 'default':<8}{len(found.controller.nodes):>7}"
+                      f"{seconds:>9.1f}  {env.name.split(' --')[0]:<14}{entries * per:>12.2f}"
+                      f"{lost * per:>10.2f}{wait:>13}", flush=True)
 
 
 if __name__ == "__main__":

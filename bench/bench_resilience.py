@@ -27,10 +27,8 @@ from analysis.variants import with_failed
 from ltlcompiler.model import Model
 
 ROOT = Path(__file__).resolve().parent.parent
-DEFAULT = [
-    ROOT / "specs" / f"{name}.gait"
-    for name in ("thesis_robot_a", "thesis_robot_b", "radial12_patrol", "centipede24_patrol")
-]
+DEFAULT = [ROOT / "specs" / f"{name}.gait" for name in
+           ("thesis_robot_a", "thesis_robot_b", "radial12_patrol", "centipede24_patrol")]
 TARGET_SECONDS = 10.0  # robot A's failure sets, parametric
 REPORT_TARGET_SECONDS = 300.0  # the 24-leg robot's complete report
 BRUTE_LIMIT = 10  # legs up to which brute force runs
@@ -43,10 +41,8 @@ def _fatal(pool: Pool, model: Model, sets: list[frozenset[str]]) -> list[bool]:
 
 def main() -> None:
     paths = [Path(p) for p in sys.argv[1:]] or DEFAULT
-    print(
-        f"{'spec':<24}{'legs':>5}{'subsets':>9}  {'method':<11}{'calls':>7}{'seconds':>9}"
-        f"{'peak nodes':>12}  minimal fatal sets"
-    )
+    print(f"{'spec':<24}{'legs':>5}{'subsets':>9}  {'method':<11}{'calls':>7}{'seconds':>9}"
+          f"{'peak nodes':>12}  minimal fatal sets")
     for path in paths:
         spec = gaitc.load(path, "binary")
         model = spec.model
@@ -66,31 +62,23 @@ def main() -> None:
             if len(legs) <= BRUTE_LIMIT:
                 before = pool.calls
                 t = time.perf_counter()
-                variants = [
-                    with_failed(model, c)
-                    for n in range(len(legs) + 1)
-                    for c in itertools.combinations(legs, n)
-                ]
+                variants = [with_failed(model, c) for n in range(len(legs) + 1)
+                            for c in itertools.combinations(legs, n)]
                 pool.models(variants)
                 rows.append(("brute", str(pool.calls - before), time.perf_counter() - t, "-"))
         t = time.perf_counter()
         report = gaitc.resilience(spec)
         rows.append(("report", str(report.solver_calls), time.perf_counter() - t, "-"))
         for method, calls, seconds, peak in rows:
-            print(
-                f"{path.name:<24}{len(model.legs):>5}{subsets:>9}  {method:<11}{calls:>7}"
-                f"{seconds:>9.2f}{peak:>12}  {len(found.minimal_fatal)}",
-                flush=True,
-            )
+            print(f"{path.name:<24}{len(model.legs):>5}{subsets:>9}  {method:<11}{calls:>7}"
+                  f"{seconds:>9.2f}{peak:>12}  {len(found.minimal_fatal)}", flush=True)
         if path.stem == "thesis_robot_a":
             verdict = "meets" if rows[0][2] < TARGET_SECONDS else "MISSES"
             print(f"{'':<24}parametric {verdict} the {TARGET_SECONDS:.0f} s target", flush=True)
         if len(model.legs) >= 24:
             verdict = "meets" if rows[-1][2] < REPORT_TARGET_SECONDS else "MISSES"
-            print(
-                f"{'':<24}the report {verdict} the {REPORT_TARGET_SECONDS:.0f} s target", flush=True
-            )
-
+            print(f"{'':<24}the report {verdict} the {REPORT_TARGET_SECONDS:.0f} s target",
+                  flush=True)
 
 if __name__ == "__main__":
     main()

@@ -42,10 +42,8 @@ def main() -> int:
     calibration = calibrate(figure_3_5_cycles(LEGS, seed=1, noise=12.0))
     print("calibrated thresholds (healthy|degraded, degraded|inoperable) and hysteresis:")
     for leg, cal in calibration.items():
-        print(
-            f"  {leg}: {cal.thresholds[0]:.4f}, {cal.thresholds[1]:.4f}  "
-            f"hysteresis {cal.hysteresis:.4f}"
-        )
+        print(f"  {leg}: {cal.thresholds[0]:.4f}, {cal.thresholds[1]:.4f}  "
+              f"hysteresis {cal.hysteresis:.4f}")
     for noise in NOISE:
         matrix = confusion(calibration, figure_3_5_cycles(LEGS, seed=2, noise=noise))
         right = sum(matrix[i][i] for i in range(3))
@@ -54,10 +52,8 @@ def main() -> int:
         for name, row in zip(("3 healthy", "2 degraded", "1 inoperable"), matrix, strict=True):
             print(f"  {name:<14} {row[0]:>9} {row[1]:>11} {row[2]:>13}")
     cal = calibration["L1"]
-    print(
-        f"\nlevel flaps over 200 cycles on the threshold: {flaps(cal)} with hysteresis "
-        f"{cal.hysteresis:.4f}, {flaps(LegCalibration(cal.thresholds, 0.0))} without"
-    )
+    print(f"\nlevel flaps over 200 cycles on the threshold: {flaps(cal)} with hysteresis "
+          f"{cal.hysteresis:.4f}, {flaps(LegCalibration(cal.thresholds, 0.0))} without")
     return 0
 
 

@@ -43,9 +43,8 @@ def main() -> None:
     started = time.perf_counter()
     loaded = gaitc.session(SPEC, controller, args.encoding)
     assert loaded is not None
-    print(
-        f"loaded {len(loaded.strategy)} controller nodes in {time.perf_counter() - started:.2f} s"
-    )
+    print(f"loaded {len(loaded.strategy)} controller nodes in "
+          f"{time.perf_counter() - started:.2f} s")
     environments: list[Environment] = [RandomEnvironment(1), AdversarialEnvironment()]
     print(f"{'environment':<18}{'steps':>8}{'seconds':>10}{'cpu s':>8}{'steps/s':>10}  spec held")
     worst = 0.0
@@ -54,21 +53,13 @@ def main() -> None:
         run = gaitc.simulate(loaded, env=env, steps=args.steps)
         wall, cpu = time.perf_counter() - wall, time.process_time() - cpu
         worst = max(worst, cpu)
-        held = (
-            run.summary is not None
-            and run.summary.assumptions_held
-            and run.summary.guarantees_held
-            and run.error is None
-        )
-        print(
-            f"{env.name:<18}{args.steps:>8}{wall:>10.2f}{cpu:>8.2f}"
-            f"{args.steps / wall:>10.0f}  {'yes' if held else 'NO'}"
-        )
+        held = run.summary is not None and run.summary.assumptions_held \
+            and run.summary.guarantees_held and run.error is None
+        print(f"{env.name:<18}{args.steps:>8}{wall:>10.2f}{cpu:>8.2f}"
+              f"{args.steps / wall:>10.0f}  {'yes' if held else 'NO'}")
     verdict = "meets" if worst < TARGET_SECONDS else "MISSES"
-    print(
-        f"slowest run {worst:.2f} cpu s: {verdict} the {TARGET_SECONDS:.0f} s target (judged "
-        "on cpu time, which a busy shared machine does not inflate; compare the seconds column)"
-    )
+    print(f"slowest run {worst:.2f} cpu s: {verdict} the {TARGET_SECONDS:.0f} s target (judged "
+          "on cpu time, which a busy shared machine does not inflate; compare the seconds column)")
 
 
 if __name__ == "__main__":

@@ -33,12 +33,10 @@ from verifier.symbolic import verify_symbolic
 ROOT = Path(__file__).resolve().parent.parent
 MEMORY_MB = 1024
 #: ``gaitc`` in a child that prints its peak memory (KB, with its solver child) last.
-_MEASURED = (
-    "import resource, sys\nfrom gaitc.cli import main\ncode = main(sys.argv[1:])\n"
-    "peak = max(resource.getrusage(w).ru_maxrss for w in "
-    "(resource.RUSAGE_SELF, resource.RUSAGE_CHILDREN))\n"
-    "print(peak, file=sys.stderr)\nsys.exit(code)"
-)
+_MEASURED = ("import resource, sys\nfrom gaitc.cli import main\ncode = main(sys.argv[1:])\n"
+             "peak = max(resource.getrusage(w).ru_maxrss for w in "
+             "(resource.RUSAGE_SELF, resource.RUSAGE_CHILDREN))\n"
+             "print(peak, file=sys.stderr)\nsys.exit(code)")
 
 
 @dataclass
@@ -63,46 +61,24 @@ def _symbolic(row: Row, steps: int) -> list[str]:
     run = gaitc.simulate(spec, ctrl, env=RandomEnvironment(1), steps=steps)
     sim = time.perf_counter() - started
     held = run.error is None and run.summary is not None and run.summary.guarantees_held
-    return [
-        f"{synth:.1f}",
-        f"{len(ctrl.nodes):,}",
-        f"{size:.1f}",
-        f"{verify:.1f}" + ("" if report.ok else " FAILED"),
-        f"{sim:.1f}" + ("" if held else " BROKEN"),
-    ]
+    return [f"{synth:.1f}", f"{len(ctrl.nodes):,}", f"{size:.1f}",
+            f"{verify:.1f}" + ("" if report.ok else " FAILED"),
+            f"{sim:.1f}" + ("" if held else " BROKEN")]
 
 
 def _explicit(row: Row, timeout: float) -> list[str]:
     out = Path(tempfile.mkdtemp()) / "explicit.json"
-    command = [
-        sys.executable,
-        "-c",
-        _MEASURED,
-        "synth",
-        str(row.path),
-        "--encoding",
-        row.encoding,
-        "--no-verify",
-        "--max-nodes",
-        "1000000000",
-        "--memory-limit",
-        str(MEMORY_MB),
-        "--timeout",
-        str(timeout),
-        "-o",
-        str(out),
-    ]
+    command = [sys.executable, "-c", _MEASURED, "synth", str(row.path), "--encoding",
+               row.encoding, "--no-verify", "--max-nodes", "1000000000", "--memory-limit",
+               str(MEMORY_MB), "--timeout", str(timeout), "-o", str(out)]
     started = time.perf_counter()
     done = subprocess.run(command, capture_output=True, text=True, check=False)
     seconds = time.perf_counter() - started
     lines = done.stderr.strip().splitlines()
     peak = int(lines[-1]) / 1024 if lines and lines[-1].isdigit() else float("nan")
     if done.returncode != 0:
-        reason = (
-            "out of memory"
-            if "memory" in done.stderr
-            else ("time limit" if "time limit" in done.stderr else f"exit {done.returncode}")
-        )
+        reason = "out of memory" if "memory" in done.stderr else (
+            "time limit" if "time limit" in done.stderr else f"exit {done.returncode}")
         return [f"> {seconds:.0f} ({reason})", "", "", f"{peak:.0f}"]
     nodes = len(json.loads(out.read_text(encoding="utf-8"))["nodes"])
     size = out.stat().st_size / 2**20
@@ -116,29 +92,16 @@ def main() -> None:
     parser.add_argument("--explicit-timeout", type=float, default=900.0)
     parser.add_argument("--no-explicit", action="store_true")
     args = parser.parse_args()
-    rows = [
-        Row("robot A", ROOT / "specs" / "thesis_robot_a.gait", "onehot"),
-        Row("robot A", ROOT / "specs" / "thesis_robot_a.gait", "binary"),
-        Row("radial8", ROOT / "specs" / "radial8_patrol.gait", "onehot"),
-    ]
+    rows = [Row("robot A", ROOT / "specs" / "thesis_robot_a.gait", "onehot"),
+            Row("robot A", ROOT / "specs" / "thesis_robot_a.gait", "binary"),
+            Row("radial8", ROOT / "specs" / "radial8_patrol.gait", "onehot")]
     folder = Path(tempfile.mkdtemp())
     for n in (int(x) for x in args.grids.split(",") if x):
         path = folder / f"hazard_grid_{n}.gait"
         path.write_text(hazard_grid_text(n, 2), encoding="utf-8")
         rows.append(Row(f"hazard grid {n}x{n}", path, "binary"))
-    head = [
-        "spec",
-        "enc",
-        "sym synth s",
-        "BDD nodes",
-        "sym MB",
-        "sym verify s",
-        f"{args.steps} steps s",
-        "expl synth s",
-        "expl nodes",
-        "expl MB",
-        "expl peak MB",
-    ]
+    head = ["spec", "enc", "sym synth s", "BDD nodes", "sym MB", "sym verify s",
+            f"{args.steps} steps s", "expl synth s", "expl nodes", "expl MB", "expl peak MB"]
     print("| " + " | ".join(head) + " |")
     print("|" + "---|" * len(head))
     for row in rows:

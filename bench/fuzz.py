@@ -31,23 +31,13 @@ from fuzz_mutate import mutate
 from fuzz_oracle import OUTCOMES, Verdict
 from fuzz_serial import EXCHANGES, exchange
 
-ALL_KINDS = (
-    "gait",
-    "slugsin",
-    "structuredslugs",
-    "ltl",
-    "robot",
-    "scenario",
-    "controller",
-    "run",
-    "serial",
-)
+ALL_KINDS = ("gait", "slugsin", "structuredslugs", "ltl", "robot", "scenario", "controller",
+             "run", "serial")
 SERIAL_COMMANDS = ("board",)
 
 
-def mutant_of(
-    seeds: tuple[tuple[str, bytes], ...], seed: int, kind: str, index: int
-) -> tuple[str, bytes]:
+def mutant_of(seeds: tuple[tuple[str, bytes], ...], seed: int, kind: str,
+              index: int) -> tuple[str, bytes]:
     """The ``index``-th mutant of ``kind``: (seed file name, bytes)."""
     rng = random.Random(f"{seed}:{kind}:{index}")
     name, data = seeds[rng.randint(0, len(seeds) - 1)]
@@ -71,15 +61,8 @@ def _worker(conn: multiprocessing.connection.Connection, folder: str, limit: flo
             name, data = mutant_of(table[kind].seeds, seed, kind, index)
             current.write_bytes(data)
             verdicts = run_case(table[kind], fx, name, data, limit)
-        conn.send(
-            (
-                kind,
-                index,
-                name,
-                data,
-                [(v.command, v.code, v.seconds, v.problems) for v in verdicts],
-            )
-        )
+        conn.send((kind, index, name, data, [(v.command, v.code, v.seconds, v.problems)
+                                             for v in verdicts]))
 
 
 @dataclass
@@ -96,20 +79,17 @@ class Pool:
 
     def __init__(self, jobs: int, root: Path, limit: float) -> None:
         self.root, self.limit = root, limit
-        self.workers: list[
-            tuple[multiprocessing.Process, multiprocessing.connection.Connection]
-        ] = []
+        self.workers: list[tuple[multiprocessing.Process,
+                                 multiprocessing.connection.Connection]] = []
         self.busy: dict[int, tuple[tuple[str, int, int], float]] = {}
         for slot in range(jobs):
             self.workers.append(self._start(slot))
 
-    def _start(
-        self, slot: int
-    ) -> tuple[multiprocessing.Process, multiprocessing.connection.Connection]:
+    def _start(self, slot: int) -> tuple[multiprocessing.Process,
+                                         multiprocessing.connection.Connection]:
         parent, child = multiprocessing.Pipe()
-        proc = multiprocessing.Process(
-            target=_worker, daemon=True, args=(child, str(self.root / f"w{slot}"), self.limit)
-        )
+        proc = multiprocessing.Process(target=_worker, daemon=True,
+                                       args=(child, str(self.root / f"w{slot}"), self.limit))
         proc.start()
         return proc, parent
 
@@ -161,26 +141,17 @@ def table(tallies: dict[str, Tally]) -> str:
     head = ["kind", "inputs", "runs", *OUTCOMES, "seconds"]
     rows = [head]
     for kind, t in tallies.items():
-        rows.append(
-            [
-                kind,
-                str(t.inputs),
-                str(sum(t.outcomes.values())),
-                *[str(t.outcomes[o]) for o in OUTCOMES],
-                f"{t.seconds:.0f}",
-            ]
-        )
+        rows.append([kind, str(t.inputs), str(sum(t.outcomes.values())),
+                     *[str(t.outcomes[o]) for o in OUTCOMES], f"{t.seconds:.0f}"])
     widths = [max(len(r[i]) for r in rows) for i in range(len(head))]
-    lines = [
-        "| " + " | ".join(c.ljust(w) for c, w in zip(r, widths, strict=True)) + " |" for r in rows
-    ]
+    lines = ["| " + " | ".join(c.ljust(w) for c, w in zip(r, widths, strict=True)) + " |"
+             for r in rows]
     lines.insert(1, "|" + "|".join("-" * (w + 2) for w in widths) + "|")
     return "\n".join(lines)
 
 
-def save_reproducer(
-    folder: Path, kind: str, index: int, seed_name: str, data: bytes, verdicts: list[Verdict]
-) -> None:
+def save_reproducer(folder: Path, kind: str, index: int, seed_name: str, data: bytes,
+                    verdicts: list[Verdict]) -> None:
     folder.mkdir(parents=True, exist_ok=True)
     stem = f"{kind}-{index:06d}"
     (folder / f"{stem}.bin").write_bytes(data)
@@ -224,11 +195,8 @@ def main(argv: list[str] | None = None) -> int:
                     done += 1
                     _record(tallies, args.reproducers, result)
             tallies[kind].seconds = time.monotonic() - start
-            print(
-                f"{kind}: {tallies[kind].inputs} inputs in {tallies[kind].seconds:.0f} s",
-                file=sys.stderr,
-                flush=True,
-            )
+            print(f"{kind}: {tallies[kind].inputs} inputs in {tallies[kind].seconds:.0f} s",
+                  file=sys.stderr, flush=True)
         pool.close()
     print(f"seed {args.seed}, per-run limit {args.limit:g} s, {args.jobs} job(s)")
     print(table(tallies))

@@ -38,13 +38,9 @@ class Sections:
         """The instance as structuredslugs text, a comment line ``title`` first."""
         out = [f"# {title}", ""]
         for header, lines in (
-            ("INPUT", self.inputs),
-            ("OUTPUT", self.outputs),
-            ("ENV_INIT", self.env_init),
-            ("ENV_TRANS", self.env_trans),
-            ("ENV_LIVENESS", self.env_liveness),
-            ("SYS_INIT", self.sys_init),
-            ("SYS_TRANS", self.sys_trans),
+            ("INPUT", self.inputs), ("OUTPUT", self.outputs), ("ENV_INIT", self.env_init),
+            ("ENV_TRANS", self.env_trans), ("ENV_LIVENESS", self.env_liveness),
+            ("SYS_INIT", self.sys_init), ("SYS_TRANS", self.sys_trans),
             ("SYS_LIVENESS", self.sys_liveness),
         ):
             out += [f"[{header}]", *lines, ""]
@@ -116,56 +112,23 @@ def amba_sections(n: int, half_g7: bool = False) -> Sections:
     if not 1 <= n <= 16:
         raise ValueError(f"the AMBA family has 1 to 16 masters, not {n}")
     masters = range(n)
-    inputs = [
-        "hready",
-        *(f"{name}{i}" for i in masters for name in ("hbusreq", "hlock")),
-        "hburst0",
-        "hburst1",
-    ]
-    outputs = [
-        f"hmaster:0...{n - 1}",
-        "hmastlock",
-        "start",
-        "decide",
-        "locked",
-        *(f"hgrant{i}" for i in masters),
-        "busreq",
-        "stateA1",
-        "stateG2",
-        "stateG3:0...4",
-        *(f"stateG10_{i}" for i in masters if i > 0),
-    ]
+    inputs = ["hready", *(f"{name}{i}" for i in masters for name in ("hbusreq", "hlock")),
+              "hburst0", "hburst1"]
+    outputs = [f"hmaster:0...{n - 1}", "hmastlock", "start", "decide", "locked",
+               *(f"hgrant{i}" for i in masters), "busreq", "stateA1", "stateG2",
+               "stateG3:0...4", *(f"stateG10_{i}" for i in masters if i > 0)]
     env_init = [f"!{name}" for name in inputs]
     # A3: a master asks for a lock only together with a request.
     env_trans = [f"hlock{i}' -> hbusreq{i}'" for i in masters]
     # A1 (through its monitor) and A2: the slave is ready infinitely often.
     env_liveness = ["!stateA1 | !busreq", "hready"]
-    sys_init = [
-        "hmaster = 0",
-        "!hmastlock",
-        "start",
-        "decide",
-        "!locked",
-        "hgrant0",
-        *(f"!hgrant{i}" for i in masters if i > 0),
-        "!busreq",
-        "!stateA1",
-        "!stateG2",
-        "stateG3 = 0",
-        *(f"!stateG10_{i}" for i in masters if i > 0),
-    ]
+    sys_init = ["hmaster = 0", "!hmastlock", "start", "decide", "!locked", "hgrant0",
+                *(f"!hgrant{i}" for i in masters if i > 0), "!busreq", "!stateA1",
+                "!stateG2", "stateG3 = 0", *(f"!stateG10_{i}" for i in masters if i > 0)]
     # G9: every master that keeps asking is served infinitely often.
     sys_liveness = [f"hmaster = {i} | !hbusreq{i}" for i in masters]
-    return Sections(
-        inputs,
-        outputs,
-        env_init,
-        env_trans,
-        env_liveness,
-        sys_init,
-        _guarantees(n, half_g7),
-        sys_liveness,
-    )
+    return Sections(inputs, outputs, env_init, env_trans, env_liveness, sys_init,
+                    _guarantees(n, half_g7), sys_liveness)
 
 
 def amba_text(n: int, half_g7: bool = False) -> str:

@@ -50,41 +50,23 @@ def _write(path: Path, text: str) -> Path:
 def thesis(workdir: Path, quick: bool) -> list[Instance]:
     """Thesis robots A and B, then thesis grids at every size and health level, both
     encodings (all realizable)."""
-    out = [
-        Instance(
-            "thesis",
-            f"robot {robot} {enc}",
-            ROOT / "specs" / f"thesis_robot_{robot}.gait",
-            enc,
-            True,
-        )
-        for robot in ("a", "b")
-        for enc in ENCODINGS
-    ]
+    out = [Instance("thesis", f"robot {robot} {enc}", ROOT / "specs" / f"thesis_robot_{robot}.gait",
+                    enc, True) for robot in ("a", "b") for enc in ENCODINGS]
     for rows, cols in QUICK_SIZES if quick else SIZES:
         for health in QUICK_HEALTH if quick else HEALTH:
-            path = _write(
-                workdir / f"thesis_{rows}x{cols}_h{health}.gait", gait_text(rows, cols, health)
-            )
-            out += [
-                Instance("thesis", f"{rows}x{cols} h{health} {enc}", path, enc, True)
-                for enc in ENCODINGS
-            ]
+            path = _write(workdir / f"thesis_{rows}x{cols}_h{health}.gait",
+                          gait_text(rows, cols, health))
+            out += [Instance("thesis", f"{rows}x{cols} h{health} {enc}", path, enc, True)
+                    for enc in ENCODINGS]
     return out
 
 
 def amba(workdir: Path, quick: bool, sizes: list[int] | None = None) -> list[Instance]:
     """AMBA AHB arbiters for N = 2..10 masters (all realizable)."""
     chosen = sizes or (QUICK_AMBA if quick else AMBA_SIZES)
-    return [
-        Instance(
-            "amba",
-            f"N={n}",
-            _write(workdir / f"amba_{n}.structuredslugs", amba_text(n)),
-            recorded=True,
-        )
-        for n in chosen
-    ]
+    return [Instance("amba", f"N={n}", _write(workdir / f"amba_{n}.structuredslugs",
+                                              amba_text(n)), recorded=True)
+            for n in chosen]
 
 
 def hazard_grids(workdir: Path, quick: bool) -> list[Instance]:
@@ -105,9 +87,8 @@ def slugs_examples() -> list[Instance]:
             name, default = line.split("\t")[:2]
             short = Path(name).stem.replace("specification_debugging_examples__", "debug/")
             short = short.replace("twoDimensionalCost__", "2dcost/").replace("__", "/")
-            out.append(
-                Instance("slugs-ex", short, EXAMPLES / name, recorded=default == "realizable")
-            )
+            out.append(Instance("slugs-ex", short, EXAMPLES / name,
+                                recorded=default == "realizable"))
     return sorted(out, key=lambda i: i.name)
 
 
@@ -115,15 +96,8 @@ def corpus() -> list[Instance]:
     """The random corpus (its .slugsin files) with the recorded verdicts."""
     records = json.loads((CORPUS / "verdicts.json").read_text(encoding="utf-8"))
     return sorted(
-        (
-            Instance(
-                "corpus",
-                r["name"],
-                CORPUS / f"{r['name']}.slugsin",
-                recorded=r["default"] == "realizable",
-            )
-            for r in records
-        ),
+        (Instance("corpus", r["name"], CORPUS / f"{r['name']}.slugsin",
+                  recorded=r["default"] == "realizable") for r in records),
         key=lambda i: i.name,
     )
 
@@ -131,12 +105,8 @@ def corpus() -> list[Instance]:
 FAMILIES = ("thesis", "amba", "slugs-ex", "hazard", "corpus")
 
 
-def instances(
-    workdir: Path,
-    quick: bool,
-    families: tuple[str, ...] = FAMILIES,
-    amba_sizes: list[int] | None = None,
-) -> list[Instance]:
+def instances(workdir: Path, quick: bool, families: tuple[str, ...] = FAMILIES,
+              amba_sizes: list[int] | None = None) -> list[Instance]:
     """Every instance of ``families`` in table order; generated files go to ``workdir``."""
     out: list[Instance] = []
     for family in FAMILIES:
