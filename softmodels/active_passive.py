@@ -16,6 +16,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import NDArray
@@ -26,6 +27,9 @@ from softmodels.active_passive_robot import ActivePassiveRobot, Component
 from softmodels.active_passive_statics import Rest, RestSolver, normal_loads
 from softmodels.ap_description import load_active_passive
 from softmodels.motion import Pose2D, ValveState
+
+if TYPE_CHECKING:
+    from softmodels.catalogue import LoadedModel
 
 Array = NDArray[np.float64]
 
@@ -274,6 +278,18 @@ class _Track:
         self.before, self.rest, self.loads, self.time = self.rest.x, new, loads, t
 
 
+def loaded_model(path: str | Path) -> LoadedModel:
+    """The active/passive model of a robot file as :mod:`softmodels.catalogue` lists models:
+    register it with ``MODELS["active-passive"] = loaded_model``."""
+    from softmodels.catalogue import LoadedModel
+
+    model = ActivePassiveModel.from_robot_file(path)
+    robot = model.robot.robot
+    flat = model.steady((False,) * robot.valve_count).posture.vertices[0, :, :2]
+    length = float(np.ptp(flat, axis=0).max())
+    return LoadedModel(model, robot.name, robot.leg_of_valve, model.robot.period, length)
+
+
 def _cross(a: Array, b: Array) -> Array:
     return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
 
@@ -317,4 +333,11 @@ def _implicit_step(
     return velocity, after, power
 
 
-__all__ = ["GRAVITY", "ActivePassiveModel", "Step", "settle_time", "step_response"]
+__all__ = [
+    "GRAVITY",
+    "ActivePassiveModel",
+    "Step",
+    "loaded_model",
+    "settle_time",
+    "step_response",
+]

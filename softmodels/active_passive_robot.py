@@ -80,6 +80,7 @@ class ActivePassiveRobot:
     components: tuple[Component, ...]  # root first, every parent before its children
     connections: tuple[Connection, ...]  # the connection into components[1:], in that order
     contact_tolerance: float  # ε of the static load problem, mm
+    period: float = 6.0  # s, the control period (thesis 4.3.1)
 
     def component(self, name: str) -> Component:
         return next(c for c in self.components if c.name == name)

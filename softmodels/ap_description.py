@@ -33,7 +33,7 @@ SECTION = "active_passive"
 NEWTON_MM = 1e6  # one N·mm in the model's energy unit g·mm²/s²
 
 
-_TOP = {"contact_tolerance", "components", "connections"}
+_TOP = {"contact_tolerance", "period", "components", "connections"}
 _COMMON = {"name", "mass", "friction"}
 _RIGID = _COMMON | {"cg", "wireframe"}
 _ACTUATOR = _COMMON | {"leg", "length", "section", "stations", "states", "torsion", "response"}
@@ -92,7 +92,8 @@ def parse_active_passive(text: str, path: str = "<robot>") -> ActivePassiveRobot
         if "contact_tolerance" in top
         else 0.5
     )
-    return ActivePassiveRobot(robot, tuple(ordered), tuple(order), tol)
+    period = r.number(top["period"], "period", 1e-3) if "period" in top else 6.0
+    return ActivePassiveRobot(robot, tuple(ordered), tuple(order), tol, period)
 
 
 def _component(r: Reader, node: yaml.Node, robot: Robot) -> Component:
