@@ -209,3 +209,17 @@ def test_normal_loads_balance_the_weight_as_evenly_as_possible() -> None:
     np.testing.assert_allclose(shifted, [37.5, 37.5, 12.5, 12.5, 0], atol=1e-3)
     moment = shifted @ (points[:, 0] - 25.0)
     assert abs(moment) < 1e-2 and shifted.sum() == pytest.approx(100.0)
+
+
+def test_the_catalogue_entry_finds_a_forward_gait() -> None:
+    from softmodels.active_passive import loaded_model
+    from softmodels.catalogue import search_gaits
+
+    loaded = loaded_model(ROBOT)
+    assert loaded.period == 6.0 and loaded.robot == "silicone6"
+    assert loaded.valve_legs == ("spine", "spine", "RL", "RR", "FL", "FR")
+    assert loaded.body_length == pytest.approx(200.0)  # the legs' span when flat
+    found = search_gaits(loaded, (1.0, 0.0), max_open=1)  # at most one valve open
+    best = found.gaits[0]
+    assert best.net.x > 5.0 and abs(best.net.y) < best.net.x / 4  # mm per cycle
+    assert abs(best.net.theta) < math.radians(3)
