@@ -162,7 +162,11 @@ class Driver:
             raise HardwareError(
                 f"localisation reports region {reading.region} but the controller expects "
                 f"{expected} {after}: the gait did not get there; stopped with all valves "
-                "vented", where(self.backend.name))
+                "vented", where(self.backend.name),
+                "on the physics backend a gait moves the robot only as far as the model "
+                "predicts per cycle: repeat each gait with --cycles N or shrink the regions "
+                "with --cell-size MM (docs/models.md)" if self.backend.name.startswith("physics")
+                else "check the gait's valve sequence and the localisation map")
         gait = self.no_gait if here is None else here.gait
         values = domain.encode(State(expected, gait, reading.health, reading.hazard))
         inputs: InputKey = tuple(int(values[name]) for name in self.simulator.strategy.inputs)

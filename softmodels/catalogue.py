@@ -41,7 +41,16 @@ def _spring_damper(path: str | Path) -> LoadedModel:
     return LoadedModel(model, robot.name, legs, robot.period, length)
 
 
-MODELS: dict[str, Callable[[str | Path], LoadedModel]] = {"spring-damper": _spring_damper}
+def _active_passive(path: str | Path) -> LoadedModel:
+    from softmodels.active_passive import loaded_model
+
+    return loaded_model(path)
+
+
+MODELS: dict[str, Callable[[str | Path], LoadedModel]] = {
+    "spring-damper": _spring_damper,  # thesis 4.1.1
+    "active-passive": _active_passive,  # thesis 4.1.2
+}
 
 
 def load_model(name: str, path: str | Path) -> LoadedModel:

@@ -96,3 +96,20 @@ def test_gaits_model_json_prints_the_documented_keys(
     assert set(doc) == documented | {"schema", "command"}
     assert doc["command"] == "gaits" and doc["valve_states"] == 9
     assert doc["gaits"][0]["valves"] == ["00000001", "00000100"]
+
+
+SILICONE6 = str(Path(__file__).parent.parent / "specs" / "robots" / "silicone6.yaml")
+
+
+def test_gaits_cli_finds_a_forward_gait_for_silicone6_with_the_active_passive_model(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    """The chapter 4 six-leg robot, through the catalogue's active/passive entry."""
+    code = main(["gaits", SILICONE6, "--model", "active-passive", "--direction", "+x"])
+    text = capsys.readouterr().out
+    assert code == 0, text
+    assert text.startswith("robot silicone6: model active-passive")
+    line = re.search(r"predicted displacement per cycle of gait 1: (\S+) mm, (\S+) mm", text)
+    assert line is not None
+    dx, dy = float(line.group(1)), float(line.group(2))
+    assert dx > 2.0 and abs(dy) < dx  # forward more than sideways

@@ -4,32 +4,6 @@ from __future__ import annotations
 
 import argparse
 import math
-from collections.abc import Sequence
-from typing import Final
-
-#: Options whose values may start with a minus sign (``--direction -y``, ``--goal -10,0``):
-#: argparse would take such a value for an option, so :func:`attach_signed_values` joins it.
-SIGNED_VALUES: Final = ("--direction", "--goal")
-
-
-def attach_signed_values(argv: Sequence[str]) -> list[str]:
-    """``argv`` with ``--direction -y`` written ``--direction=-y`` (and so for every option
-    of :data:`SIGNED_VALUES`), up to a ``--`` that ends the options."""
-    out: list[str] = []
-    k = 0
-    while k < len(argv):
-        word = argv[k]
-        if word == "--":
-            out += argv[k:]
-            break
-        if word in SIGNED_VALUES and k + 1 < len(argv) and argv[k + 1].startswith("-") \
-                and argv[k + 1] != "--":
-            out.append(f"{word}={argv[k + 1]}")
-            k += 2
-            continue
-        out.append(word)
-        k += 1
-    return out
 
 
 def positive_seconds(value: str) -> float:

@@ -8,6 +8,7 @@ with :mod:`gaitsearch` (:func:`run_global`, in :mod:`gaitc.commands.learning`).
 from __future__ import annotations
 
 import argparse
+import sys
 from typing import TYPE_CHECKING, Any
 
 from diagnostics import SpecSemanticError, UsageError
@@ -105,6 +106,11 @@ def run(args: argparse.Namespace) -> int:
         print(gait_table(robot, result.gaits))
     else:
         print(f"no gait towards {args.direction} found")
+        from softmodels.catalogue import MODELS
+
+        print(f"  hint: the chapter 2 graph is kinematic and frictionless; a robot that walks "
+              f"by friction needs a dynamic model: --model {' or '.join(sorted(MODELS))} "
+              "(docs/models.md)", file=sys.stderr)
     if result.limit_reached:
         print(f"the search stopped at --max-states {args.max_states} of the "
               f"{1 << robot.valve_count} valve states")
