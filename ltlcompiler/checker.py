@@ -311,6 +311,13 @@ class _Checker:
                 assumptions.append(checker.check(st.formula, st.span, assumption=True))
             elif isinstance(st, s.GuaranteeDecl):
                 guarantees.append(checker.check(st.formula, st.span, assumption=False))
+                if checker.robot_free(st.formula):
+                    self.diagnostics.append(Diagnostic(
+                        "this guarantee names only what the environment chooses (hazards, "
+                        "leg health), so the robot cannot make it hold: the spec is "
+                        "unrealizable unless the assumptions already force it",
+                        st.span, hint="write it as 'assume', or add a region or gait the "
+                        "robot controls"))
         return tuple(assumptions), tuple(guarantees)
 
 

@@ -93,6 +93,14 @@ class FormulaChecker:
 
         fold(root, lambda node, results: None, enter)
 
+    def robot_free(self, expr: f.Expr) -> bool:
+        """Whether ``expr`` names nothing the robot chooses (no region, gait or noGait):
+        only hazards, leg health and constants, all the environment's."""
+        if isinstance(expr, f.Var):
+            return self.ns.kinds.get(expr.name) not in ("region", "gait")
+        return all(self.robot_free(child) for child in expr.children()
+                   if isinstance(child, f.Expr))
+
     def _proposition(self, var: f.Var, assumption: bool, under_next: bool) -> None:
         kind = self.ns.kinds.get(var.name)
         if kind == "leg":
