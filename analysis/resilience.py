@@ -104,6 +104,12 @@ class Resilience:
         out.append("legs: " + ", ".join(f"{leg} ({h} level{'s' if h > 1 else ''})"
                                         for leg, h in self.legs))
         if not self.realizable:
+            if self.placed is not None:
+                out.append("the task is unrealizable even with no failure ('gaitc explain' "
+                           "says why)")
+                out.append(f"caches at {self.placed} region(s) that make it realizable (the "
+                           f"spec's own caches replaced): {_sets(self.cache_placements)}")
+                return out
             out.append("the task is unrealizable even with no failure ('gaitc explain' says "
                        "why); nothing else to report")
             return out
@@ -197,6 +203,9 @@ def resilience(model: Model, encoding: str, file: str = "", semantics: str = "de
         if not realizable:
             notes.append("the task is unrealizable even with no failure; "
                          "'gaitc explain' says why")
+            if place_caches is not None:  # caches elsewhere may still make it realizable
+                report = _with(report, placed=place_caches, cache_placements=_placements(
+                    model, place_caches, pool, notes))
             return _finish(report, pool, started, notes, param_seconds)
         if method == "parametric":
             found = failure_sets(model, encoding, semantics)
@@ -337,23 +346,34 @@ def _health(report: Resilience, model: Model, encoding: str, semantics: str, met
                  health_front=tuple(tuple(zip(names, v, strict=True)) for v in front))
 
 
+def cache_sites(model: Model) -> list[str]:
+    """The regions a cache may be placed in: those no hazard covers."""
+    hazardous = {r for h in model.hazards for r in h.regions}
+    return [r.name for r in model.regions if r.name not in hazardous]
+
+
+def _placements(model: Model, place: int | None, pool: Pool,
+                notes: list[str]) -> tuple[tuple[str, ...], ...]:
+    """The sets of ``place`` cache sites whose caches (instead of the spec's) make the task
+    realizable; none searched when ``place`` is None or there are too many sets."""
+    if place is None:
+        return ()
+    combos = list(itertools.combinations(cache_sites(model), place))
+    if len(combos) > MAX_PLACEMENTS:
+        notes.append(f"cache placement skipped: {len(combos)} sets of {place} regions "
+                     f"(more than {MAX_PLACEMENTS})")
+        return ()
+    answers = pool.models([with_caches(model, c) for c in combos])
+    return tuple(c for c, ok in zip(combos, answers, strict=True) if ok)
+
+
 def _caches_and_hazards(report: Resilience, model: Model, place: int | None, pool: Pool,
                         notes: list[str]) -> Resilience:
     caches = list(model.caches)
     without = pool.models([with_caches(model, [c for c in caches if c != cache])
                            for cache in caches])
     essential = tuple(c for c, ok in zip(caches, without, strict=True) if not ok)
-    placements: tuple[tuple[str, ...], ...] = ()
-    if place is not None:
-        hazardous = {r for h in model.hazards for r in h.regions}
-        regions = [r.name for r in model.regions if r.name not in hazardous]
-        combos = list(itertools.combinations(regions, place))
-        if len(combos) > MAX_PLACEMENTS:
-            notes.append(f"cache placement skipped: {len(combos)} sets of {place} regions "
-                         f"(more than {MAX_PLACEMENTS})")
-        else:
-            answers = pool.models([with_caches(model, c) for c in combos])
-            placements = tuple(c for c, ok in zip(combos, answers, strict=True) if ok)
+    placements = _placements(model, place, pool, notes)
     names = [h.name for h in model.hazards]
     alone = pool.models([with_hazards(model, [h]) for h in names])
     return _with(report, essential_caches=essential, cache_placements=placements,

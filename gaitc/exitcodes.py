@@ -44,10 +44,14 @@ _LISTED = (ExitCode.OK, ExitCode.USER, ExitCode.USAGE, ExitCode.UNREALIZABLE, Ex
 
 def exit_code_help(meanings: Mapping[ExitCode, str] | None = None,
                    codes: tuple[ExitCode, ...] = _LISTED) -> str:
-    """An ``exit codes:`` block for ``--help``: ``meanings`` override the general ones."""
+    """An ``exit codes:`` block for ``--help``: ``meanings`` override the general ones
+    (a command's own block says plain "success" for 0 unless it says more; the list of every
+    code, ``gaitc --help``, keeps what 0 means for check and synth)."""
     lines = ["exit codes:"]
+    own = codes != tuple(ExitCode)
     for code in codes:
-        text = (meanings or {}).get(code, MEANINGS[code])
+        general = "success" if own and code is ExitCode.OK else MEANINGS[code]
+        text = (meanings or {}).get(code, general)
         lines.extend(textwrap.wrap(text, 88, initial_indent=f"  {int(code):<2} ",
                                    subsequent_indent=" " * 5))
     return "\n".join(lines) + "\n"

@@ -6,7 +6,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from analysis.pool import Pool, Progress
-from analysis.resilience import Resilience
+from analysis.resilience import Resilience, cache_sites
 from analysis.resilience import resilience as analyse
 from diagnostics import UsageError
 from gaitc.loading import Spec, load
@@ -38,6 +38,10 @@ def resilience(spec: Spec | str | Path, method: str = "parametric",
         raise UsageError("the health bound must be at least 1")
     if place_caches is not None and place_caches < 1:
         raise UsageError("--place-caches needs a number of caches of at least 1")
+    sites = len(cache_sites(spec.model))
+    if place_caches is not None and place_caches > sites:
+        raise UsageError(f"--place-caches {place_caches}: the map has only {sites} regions "
+                         "no hazard covers")
     bound = health_bound or min(3, max(leg.health for leg in spec.model.legs))
     with Pool(spec.encoding, semantics, jobs, dask, progress) as pool:
         return analyse(spec.model, spec.encoding, spec.path, semantics, method, bound,

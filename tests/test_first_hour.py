@@ -118,3 +118,31 @@ def test_a_txt_file_compiled_reads_back(tmp_path: Path,
     assert main(["check", str(out)]) == 0
     assert "realizable" in capsys.readouterr().out
 
+
+
+def test_cache_placement_answers_an_unrealizable_task_and_each_answer_re_solves(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    import gaitc
+
+    report = gaitc.resilience(UNREALIZABLE, place_caches=1)
+    assert not report.realizable and report.cache_placements
+    text = Path(UNREALIZABLE).read_text(encoding="utf-8")
+    assert "cache ne\n" in text
+    for (site,) in [("nw",), ("ne",), ("sw",), ("se",)]:
+        moved = tmp_path / f"cache_{site}.gait"
+        moved.write_text(text.replace("cache ne\n", f"cache {site}\n"), encoding="utf-8")
+        realizable = gaitc.check(gaitc.load(moved)).realizable
+        assert realizable == ((site,) in report.cache_placements), site
+    assert main(["resilience", UNREALIZABLE, "--place-caches", "1"]) == ExitCode.UNREALIZABLE
+    out = capsys.readouterr().out
+    assert "caches at 1 region(s) that make it realizable" in out
+
+
+@pytest.mark.parametrize(("count", "message"), [
+    ("0", "argument --place-caches: must be a positive whole number, not 0"),
+    ("9", "--place-caches 9: the map has only 4 regions no hazard covers"),
+])
+def test_cache_counts_out_of_range_are_usage_errors(
+        capsys: pytest.CaptureFixture[str], count: str, message: str) -> None:
+    assert main(["resilience", UNREALIZABLE, "--place-caches", count]) == ExitCode.USAGE
+    assert _err(capsys) == f"gaitc: usage error: {message}"

@@ -14,7 +14,7 @@ import gaitc
 from analysis.pool import terminal_progress
 from analysis.resilience import METHODS
 from diagnostics import UsageError
-from gaitc.commands.arguments import output_file
+from gaitc.commands.arguments import output_file, positive_count
 from gaitc.exitcodes import ExitCode, exit_code_help
 from gaitc.reporting import document, print_json
 from ltlcompiler.encoding import ENCODINGS
@@ -44,7 +44,7 @@ def register(sub: Any) -> None:
     p.add_argument("--health-bound", type=int, metavar="B",
                    help="health levels 1..B for the front (default: the spec's largest, at "
                    "most 3)")
-    p.add_argument("--place-caches", type=int, metavar="K",
+    p.add_argument("--place-caches", type=positive_count, metavar="K",
                    help="search the sets of K regions where caches make the task realizable")
     p.add_argument("--jobs", type=int, default=1, metavar="N",
                    help="check variants in N local processes")
