@@ -110,8 +110,11 @@ class Explanation:
         elif self.kind == "liveness":
             out.append("  no goal is lost on its own: only the goals together")
         if self.core:
-            out.append(f"core: these {len(self.core)} guarantee(s), with all the assumptions, "
-                       "cannot be met; dropping any one of them makes the spec realizable")
+            these = ("this guarantee" if len(self.core) == 1
+                     else f"these {len(self.core)} guarantees")
+            out.append(f"core: {these}, with all the assumptions, cannot be met; dropping "
+                       f"{'it' if len(self.core) == 1 else 'any one of them'} makes the spec "
+                       "realizable")
             out.extend(render(u.rule, u.span, "note", None, sources) for u in self.core)
         else:
             out.append("core: the structural rules alone (one region and one gait at a time) "

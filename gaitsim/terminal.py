@@ -99,8 +99,9 @@ def summary_text(summary: Summary, environment: str = "", colour: bool = False) 
     for index, leg in summary.legs_failed:
         by_leg.setdefault(leg, []).append(index)
     failed = ", ".join(_when(leg, idx) for leg, idx in by_leg.items())
-    lines = [f"summary: {summary.steps} steps" + (f", environment {environment}"
-                                                  if environment else ""),
+    plural = "s" * (summary.steps != 1)
+    lines = [f"summary: {summary.steps} step{plural}" + (f", environment {environment}"
+                                                        if environment else ""),
              f"  goals visited:   {_counts(summary.goal_visits)}",
              f"  caches visited:  {_counts(summary.cache_visits)}",
              f"  legs failed:     {failed or '(none)'}",
