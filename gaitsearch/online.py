@@ -14,7 +14,7 @@ import math
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from diagnostics import GaitcError
 from gaitgraph.robot import Robot
@@ -22,7 +22,10 @@ from gaitsearch.goals import Goal
 from gaitsearch.planners import Planner, SearchLimitError, Settings
 from gaitsearch.plans import GaitPlan
 from gaitsearch.transitions import Step, TransitionModel, compose
-from gaitsearch.walker import Mismatch, SimulatedWalker
+from gaitsearch.walker import Mismatch
+
+if TYPE_CHECKING:
+    from gaitsearch.backends import Walker
 
 Point = tuple[float, float]
 
@@ -136,7 +139,7 @@ def _differs(a: Step, b: Step, threshold: float) -> bool:
 
 
 def run_cycle(
-    walker: SimulatedWalker, model: TransitionModel, edges: tuple[int, ...]
+    walker: Walker, model: TransitionModel, edges: tuple[int, ...]
 ) -> tuple[
     list[tuple[int, Step | None]],
     list[tuple[float, float, float]],
@@ -163,7 +166,7 @@ def run_cycle(
 
 def learn(
     planner: Planner,
-    walker: SimulatedWalker,
+    walker: Walker,
     plan: GaitPlan | None = None,
     max_iterations: int = 40,
     verify: int = 5,
@@ -256,7 +259,7 @@ def learn(
 
 
 def _verify(
-    walker: SimulatedWalker, model: TransitionModel, plan: GaitPlan, cycles: int
+    walker: Walker, model: TransitionModel, plan: GaitPlan, cycles: int
 ) -> tuple[float, float, float] | None:
     runs = []
     for _ in range(cycles):
@@ -307,18 +310,29 @@ def learn_gait(
     max_iterations: int = 40,
     verify: int = 5,
     progress: Callable[[str], None] | None = None,
+    backend: str = "sim",
+    predictions: str | None = None,
+    max_open: int = 1,
 ) -> Learned:
-    """Learn a gait on the simulated robot (``gaitc learn --backend sim``): the first plan
-    of :func:`~gaitsearch.api.plan_gait`'s graph, then the loop of :func:`learn`."""
-    from gaitsearch.api import first_planner
+    """Learn a gait (``gaitc learn``): the first plan over ``predictions`` (``model``: the
+    chapter 4 model's gait graph, the default where the robot file has one; ``kinematic``:
+    :func:`~gaitsearch.api.plan_gait`'s graph), then the loop of :func:`learn` on
+    ``backend`` (``sim``: the simulated robot with ``mismatch``; ``physics``: the
+    spring-damper model, with ``mismatch.noise`` on every measurement)."""
+    from gaitsearch.api import goal_for
+    from gaitsearch.backends import open_session
 
-    settings = settings or Settings()
-    planner, bot, plan = first_planner(robot, goal, method, settings, max_states)
-    walker = SimulatedWalker(
-        planner.model.copy(),
-        planner.start,
-        bot.valve_count,
-        tuple(leg.name for leg in bot.legs),
-        mismatch or Mismatch(seed=settings.seed),
+    session = open_session(
+        robot,
+        goal_for(goal),
+        method,
+        backend,
+        predictions,
+        mismatch,
+        settings,
+        max_states,
+        max_open,
     )
-    return learn(planner, walker, plan, max_iterations, verify, progress=progress)
+    return learn(
+        session.planner, session.walker, session.plan, max_iterations, verify, progress=progress
+    )

@@ -173,12 +173,15 @@ def test_cli_gaits_lpa_and_learn(tmp_path: Path, capsys: pytest.CaptureFixture[s
             "unknown search method 'dijkstra'; use one of astar, lpa, mcts",
         ),
         (
-            ["learn", ROBOT, "--goal", "40,0", "--backend", "physics"],
-            "--backend physics is not available for learning yet: it needs a pose estimate of "
-            "every transition (the chapter 4 EKF), which only the simulated robot provides; use "
-            "--backend sim",
+            ["learn", ROBOT, "--goal", "40,0", "--backend", "serial"],
+            "--backend serial is not available for learning: the valve board reports no "
+            "displacement of a transition (the chapter 4 EKF is not in gaitc); use --backend "
+            "sim or physics",
         ),
-        (["learn", ROBOT, "--goal", "40,0", "--backend", "usb"], "unknown backend 'usb'; use sim"),
+        (
+            ["learn", ROBOT, "--goal", "40,0", "--backend", "usb"],
+            "unknown backend 'usb'; use sim or physics",
+        ),
         (
             ["learn", ROBOT, "--goal", "40,0", "--infeasible", "1"],
             "--mismatch and --noise must not be negative, --infeasible must lie in [0, 1)",

@@ -77,7 +77,21 @@ def register(sub: Any) -> None:
         "--backend",
         default="sim",
         metavar="sim|physics|serial",
-        help="sim: the simulated robot with --mismatch and --noise (the only one so far)",
+        help="sim: the simulated robot with --mismatch and --noise; physics: the robot "
+        "file's spring-damper model (chapter 4), with --noise on each measurement",
+    )
+    p.add_argument(
+        "--predictions",
+        metavar="kinematic|model",
+        help="where the search's predicted motions come from: the chapter 4 model's gait "
+        "graph (the default when the robot file has a model) or the chapter 2 graph",
+    )
+    p.add_argument(
+        "--max-open",
+        type=int,
+        default=1,
+        metavar="N",
+        help="model predictions: valve states with at most N valves open (1)",
     )
     p.add_argument("--seed", type=int, default=0, help="seed of the graph, MCTS and the robot")
     p.add_argument("--max-states", type=int, default=10_000, help="valve states to try at most")
@@ -207,11 +221,22 @@ def _plan_json(args: argparse.Namespace, robot: str, plan: GaitPlan | None) -> i
         write_atomically(str(path), plan._repr_svg_())
         written.append(str(path))
     states, poses, edges = plan.graph if plan is not None else (None, None, None)
-    print_json(document("gaits", {
-        "robot": robot, "method": args.method, "found": plan is not None,
-        "reached": plan is not None and plan.reached, "valve_states": states, "poses": poses,
-        "transitions": edges, "plan": None if plan is None else plan.to_dict(),
-        "written": written}))
+    print_json(
+        document(
+            "gaits",
+            {
+                "robot": robot,
+                "method": args.method,
+                "found": plan is not None,
+                "reached": plan is not None and plan.reached,
+                "valve_states": states,
+                "poses": poses,
+                "transitions": edges,
+                "plan": None if plan is None else plan.to_dict(),
+                "written": written,
+            },
+        )
+    )
     return 0 if plan is not None and plan.reached else 1
 
 
@@ -222,12 +247,12 @@ def run_learn(args: argparse.Namespace) -> int:
 
     check_method(args.method)
     if args.backend not in BACKENDS:
-        raise UsageError(f"unknown backend {args.backend!r}; use sim")
-    if args.backend != "sim":
+        raise UsageError(f"unknown backend {args.backend!r}; use sim or physics")
+    if args.backend == "serial":
         raise UsageError(
-            f"--backend {args.backend} is not available for learning yet: it needs a pose "
-            "estimate of every transition (the chapter 4 EKF), which only the simulated "
-            "robot provides; use --backend sim"
+            "--backend serial is not available for learning: the valve board reports no "
+            "displacement of a transition (the chapter 4 EKF is not in gaitc); use --backend "
+            "sim or physics"
         )
     if args.mismatch < 0 or args.noise < 0 or not 0 <= args.infeasible < 1:
         raise UsageError(
@@ -248,6 +273,9 @@ def run_learn(args: argparse.Namespace) -> int:
         args.max_iterations,
         args.verify,
         progress,
+        args.backend,
+        args.predictions,
+        args.max_open,
     )
     print(result.summary())
     if args.log:
