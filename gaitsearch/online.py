@@ -164,6 +164,74 @@ def run_cycle(
     return seen, path, (x, y, h)
 
 
+@dataclass
+class Cycle:
+    """What one cycle on the robot did, as the loop records it."""
+
+    edges: tuple[int, ...]  # the transitions tried, in order
+    path: list[tuple[float, float, float]]  # measured chassis poses
+    executed: tuple[float, float, float] | None  # None: the cycle broke off
+    completed: int = 0
+    fresh: int = 0
+    moved: int = 0
+    failed: int | None = None
+    walking: float = 0.0  # seconds spent on the robot (not counted as update time)
+    tried: int = 0  # transitions the robot was asked to make
+
+
+def observe_step(
+    planner: Planner,
+    edge: int,
+    step: Step | None,
+    measured: dict[int, list[Step]],
+    threshold: float,
+    changed: list[tuple[Point, Point]],
+    at: tuple[float, float, float],
+    reached: tuple[float, float, float] | None,
+    cycle: Cycle,
+) -> None:
+    """Give the planner what the robot did on ``edge`` (from pose ``at`` to ``reached``):
+    the mean of its measurements so far, or its removal when the robot could not make it."""
+    if step is None or reached is None:
+        cycle.failed = edge
+        planner.observe(edge, None)
+        return
+    before = planner.model.step(edge)
+    cycle.completed += 1
+    cycle.fresh += edge not in measured
+    measured.setdefault(edge, []).append(step)
+    estimate = _mean(measured[edge])
+    differs = _differs(before, estimate, threshold)
+    if differs:
+        cycle.moved += 1
+        guess = compose(*at, before)
+        changed.append(((guess[0], guess[1]), (reached[0], reached[1])))
+    planner.observe(edge, estimate, differs)
+
+
+def _cycle(
+    planner: Planner,
+    walker: Walker,
+    edges: tuple[int, ...],
+    measured: dict[int, list[Step]],
+    threshold: float,
+    changed: list[tuple[Point, Point]],
+) -> Cycle:
+    """Algorithm 2 and 3's cycle: run the whole gait, then give every transition over."""
+    began = time.perf_counter()
+    seen, path, executed = run_cycle(walker, planner.model, edges)
+    cycle = Cycle(edges, path, executed, tried=len(seen))
+    cycle.walking = time.perf_counter() - began
+    for i, (e, step) in enumerate(seen):
+        reached = path[i + 1] if i + 1 < len(path) else None
+        observe_step(planner, e, step, measured, threshold, changed, path[i], reached, cycle)
+    return cycle
+
+
+def _valves(model: TransitionModel, start: int, edges: tuple[int, ...]) -> tuple[str, ...]:
+    return (model.labels[start], *(model.labels[int(model.dst[e])] for e in edges[:-1]))
+
+
 def learn(
     planner: Planner,
     walker: Walker,
@@ -190,44 +258,31 @@ def learn(
             if all(e in measured for e in plan.edges):
                 converged = True
                 break
-            seen, path, executed = run_cycle(walker, model, plan.edges)
             began = time.perf_counter()
-            fresh = moved = 0
-            failed = None
-            for i, (e, step) in enumerate(seen):
-                before = model.step(e)
-                if step is None:
-                    failed = e
-                    planner.observe(e, None)
-                    continue
-                fresh += e not in measured
-                measured.setdefault(e, []).append(step)
-                estimate = _mean(measured[e])
-                differs = _differs(before, estimate, threshold)
-                if differs:
-                    moved += 1
-                    guess = compose(*path[i], before)
-                    changed.append(((guess[0], guess[1]), (path[i + 1][0], path[i + 1][1])))
-                planner.observe(e, estimate, differs)
-            update_seconds = time.perf_counter() - began
+            if getattr(planner, "dstar", None) is not None:
+                from gaitsearch.stepwise import replanning_cycle
+
+                cycle = replanning_cycle(planner, walker, plan.edges, measured, threshold, changed)
+            else:
+                cycle = _cycle(planner, walker, plan.edges, measured, threshold, changed)
             iterations.append(
                 Iteration(
                     index,
-                    plan.edges,
-                    plan.valves,
+                    cycle.edges,
+                    _valves(model, plan.start, cycle.edges),
                     plan.displacement,
-                    executed,
-                    sum(s is not None for _, s in seen),
-                    fresh,
-                    moved,
-                    failed,
+                    cycle.executed,
+                    cycle.completed,
+                    cycle.fresh,
+                    cycle.moved,
+                    cycle.failed,
                     plan_seconds,
-                    update_seconds,
-                    tuple((p[0], p[1]) for p in path),
+                    time.perf_counter() - began - cycle.walking,
+                    tuple((p[0], p[1]) for p in cycle.path),
                 )
             )
             if progress is not None:
-                progress(_line(iterations[-1], len(seen)))
+                progress(_line(iterations[-1], cycle.tried))
             began = time.perf_counter()
             try:
                 nxt = planner.plan(explored=False)

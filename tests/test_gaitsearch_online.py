@@ -157,7 +157,7 @@ def test_cli_gaits_lpa_and_learn(tmp_path: Path, capsys: pytest.CaptureFixture[s
         ),
         (
             ["gaits", ROBOT, "--goal", "40,0"],
-            "--goal is for --method astar, lpa or mcts; the chapter 2 search (--method "
+            "--goal is for --method astar, lpa, dstar or mcts; the chapter 2 search (--method "
             "chapter2) takes --direction",
         ),
         (
@@ -170,7 +170,7 @@ def test_cli_gaits_lpa_and_learn(tmp_path: Path, capsys: pytest.CaptureFixture[s
         ),
         (
             ["learn", ROBOT, "--goal", "40,0", "--method", "dijkstra"],
-            "unknown search method 'dijkstra'; use one of astar, lpa, mcts",
+            "unknown search method 'dijkstra'; use one of astar, lpa, dstar, mcts",
         ),
         (
             ["learn", ROBOT, "--goal", "40,0", "--backend", "serial"],

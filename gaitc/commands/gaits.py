@@ -29,8 +29,11 @@ def register(subparsers: Any) -> None:
     search_arguments(p)
     p.add_argument("-o", "--output", metavar="gaits.json", help="write the gaits as JSON")
     p.add_argument("--svg", metavar="DIR", help="write the gait graph and pose top views here")
-    p.add_argument("--json", action="store_true",
-                   help="print the search and its gaits as one JSON object (docs/json.md)")
+    p.add_argument(
+        "--json",
+        action="store_true",
+        help="print the search and its gaits as one JSON object (docs/json.md)",
+    )
     from gaitc.commands.predicted import model_arguments
 
     model_arguments(p)
@@ -43,10 +46,10 @@ def search_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--direction", default="+x", help="+x, -x, +y, -y or an angle in degrees")
     p.add_argument(
         "--method",
-        choices=("chapter2", "full", "random", "reset", "astar", "lpa", "mcts"),
+        choices=("chapter2", "full", "random", "reset", "astar", "lpa", "dstar", "mcts"),
         default=None,
         help="chapter 2 (default): full for at most 12 chambers and --max-states valve "
-        "states, else random; astar, lpa, mcts: chapter 5 searches toward --goal",
+        "states, else random; astar, lpa, dstar, mcts: chapter 5 searches toward --goal",
     )
     p.add_argument("--seed", type=int, default=0)
     p.add_argument("--max-states", type=int, default=10_000, help="valve states to try at most")
@@ -66,13 +69,13 @@ def run(args: argparse.Namespace) -> int:
         from gaitc.commands.predicted import run_model_gaits
 
         return run_model_gaits(args)
-    if args.method in ("astar", "lpa", "mcts"):
+    if args.method in ("astar", "lpa", "dstar", "mcts"):
         from gaitc.commands.learning import run_global
 
         return run_global(args)
     if args.goal is not None:
         raise UsageError(
-            f"--goal is for --method astar, lpa or mcts; the chapter 2 search "
+            f"--goal is for --method astar, lpa, dstar or mcts; the chapter 2 search "
             f"(--method {args.method or 'chapter2'}) takes --direction"
         )
     from gaitgraph.cycles import parse_direction
@@ -89,8 +92,9 @@ def run(args: argparse.Namespace) -> int:
     except SpecSemanticError as err:  # no file to point at: a usage error
         raise UsageError(f"--direction: unknown direction {args.direction!r}") from err
     full = robot.valve_count <= 12 and 1 << robot.valve_count <= args.max_states
-    method = args.method if args.method not in (None, "chapter2") else (
-        "full" if full else "random")
+    method = (
+        args.method if args.method not in (None, "chapter2") else ("full" if full else "random")
+    )
     result = search(robot, direction, method, args.seed, args.max_states)
     if args.json:
         return _print_json(args, robot, result)
@@ -104,8 +108,10 @@ def run(args: argparse.Namespace) -> int:
     else:
         print(f"no gait towards {args.direction} found")
     if result.limit_reached:
-        print(f"the search stopped at --max-states {args.max_states} of the "
-              f"{1 << robot.valve_count} valve states")
+        print(
+            f"the search stopped at --max-states {args.max_states} of the "
+            f"{1 << robot.valve_count} valve states"
+        )
     if args.output:
         write_atomically(args.output, gaits_json(robot, result, args.direction, args.seed))
     if args.svg:
@@ -124,8 +130,7 @@ def _print_json(args: argparse.Namespace, robot: Robot, result: SearchResult) ->
         write_atomically(args.output, gaits_json(robot, result, args.direction, args.seed))
         written.append(args.output)
     if args.svg:
-        written.extend(str(p) for p in write_drawings(robot, result.graph, result.gaits,
-                                                      args.svg))
+        written.extend(str(p) for p in write_drawings(robot, result.graph, result.gaits, args.svg))
     body = {**search_document(robot, result, args.direction, args.seed), "written": written}
     print_json(document("gaits", body))
     return 0 if result.gaits else 1

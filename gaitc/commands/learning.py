@@ -1,4 +1,4 @@
-"""``gaitc gaits --method astar|lpa|mcts`` and ``gaitc learn``: gait synthesis in the global
+"""``gaitc gaits --method astar|lpa|dstar|mcts`` and ``gaitc learn``: gait synthesis in the global
 frame and its online refinement (thesis chapter 5), over :mod:`gaitsearch`."""
 
 from __future__ import annotations
@@ -22,7 +22,7 @@ def goal_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument(
         "--goal",
         metavar="DX,DY[,DTHETA]",
-        help="displacement per cycle in mm and degrees (astar, lpa, mcts)",
+        help="displacement per cycle in mm and degrees (astar, lpa, dstar, mcts)",
     )
     p.add_argument(
         "--tolerance",
@@ -71,7 +71,7 @@ def register(sub: Any) -> None:
     )
     p.add_argument("robot", metavar="ROBOT.yaml")
     p.add_argument(
-        "--method", default="lpa", metavar="astar|lpa|mcts", help="the search (default lpa)"
+        "--method", default="lpa", metavar="astar|lpa|dstar|mcts", help="the search (default lpa)"
     )
     p.add_argument(
         "--backend",
@@ -168,7 +168,7 @@ def goal_of(args: argparse.Namespace) -> Any:
 
 
 def run_global(args: argparse.Namespace) -> int:
-    """``gaitc gaits --method astar|lpa|mcts``: one gait toward ``--goal``."""
+    """``gaitc gaits --method astar|lpa|dstar|mcts``: one gait toward ``--goal``."""
     from gaitgraph.robot import load_robot
     from gaitsearch.api import plan_gait
 
@@ -208,7 +208,7 @@ def run_global(args: argparse.Namespace) -> int:
 
 
 def _plan_json(args: argparse.Namespace, robot: str, plan: GaitPlan | None) -> int:
-    """``gaits --method astar|lpa|mcts --json``: the same files, the plan as one object."""
+    """``gaits --method astar|lpa|dstar|mcts --json``: the same files, the plan as one object."""
     from gaitc.reporting import document, print_json
 
     written = []
