@@ -32,7 +32,8 @@ from gaitsearch.transitions import Step
 
 GOAL = -1  # the virtual goal node
 _INF = math.inf
-_AROUND = [(x, y) for x in (-1, 0, 1) for y in (-1, 0, 1) if (x, y) != (0, 0)]
+_AROUND = [(x, y) for x in (-1, 0, 1) for y in (-1, 0, 1)]
+_TIE = 1e-6  # cells: how near half a cell a shift counts as a rounding tie
 
 
 class DStarLite:
@@ -104,15 +105,18 @@ class DStarLite:
             if round((lat._heading[jt] + rot) / lat.angle) % lat.turns != it:
                 continue
             c, s = lat._cos[jt], lat._sin[jt]
-            gx = ix - round((c * dx - s * dy) / lat.size)
-            gy = iy - round((s * dx + c * dy) / lat.size)
+            fx, fy = (c * dx - s * dy) / lat.size, (s * dx + c * dy) / lat.size
+            gx, gy = ix - round(fx), iy - round(fy)
             src = int(m.src[edge])
-            if gx * gx + gy * gy <= lat._cells:
+            # a shift of exactly half a cell rounds to even: two source cells can then
+            # share one target, so every neighbour is checked
+            tie = abs(fx - math.floor(fx) - 0.5) < _TIE or abs(fy - math.floor(fy) - 0.5) < _TIE
+            if not tie and gx * gx + gy * gy <= lat._cells:
                 source = lat.pack(src, gx, gy, jt)
                 if lat.successor(source, edge) == node:
                     out.append(source)
                     continue
-            for jx, jy in _AROUND:  # rounding moved the source off the guess
+            for jx, jy in _AROUND:  # a tie, or rounding moved the source off the guess
                 jx, jy = gx + jx, gy + jy
                 if jx * jx + jy * jy <= lat._cells:
                     source = lat.pack(src, jx, jy, jt)
@@ -146,7 +150,7 @@ class DStarLite:
         lat = self.lattice
         _, ax, ay, ah = lat.centre(a)
         if b == GOAL:
-            return lat.heuristic(a)
+            return lat.bound(a)
         _, bx, by, bh = lat.centre(b)
         far = math.hypot(ax - bx, ay - by)
         turn = abs((ah - bh + 180.0) % 360.0 - 180.0)
