@@ -21,8 +21,8 @@ from gaitsearch.goals import Goal, angle_difference
 from gaitsearch.transitions import Floats, Ints, TransitionModel
 
 _OFF = 1 << 15
-WALK_STEPS = 32  # longest walk the walk table covers
-WALK_EDGES = 200_000  # larger graphs go without it (building it would take seconds)
+WALK_STEPS = 24  # longest walk the walk table covers
+WALK_EDGES = 20_000  # larger graphs go without it (rebuilding it would cost more than it saves)
 _MASK = (1 << 16) - 1
 
 
