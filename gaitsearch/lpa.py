@@ -255,12 +255,16 @@ class LifelongPlanner:
         """The heuristic shrank (the step bounds or the walk table grew): recompute h and
         the queued keys, of the poses whose heuristic changed when the lattice knows them."""
         poses = self.lattice.rekey_poses
-        if poses is None:
+        if poses is None:  # every key: the heap is rebuilt (its stale entries dropped)
             self._h.clear()
             queued = list(self._queued)
-        else:
-            self._h = {n: v for n, v in self._h.items() if n >> 48 not in poses}
-            queued = [n for n in self._queued if n != GOAL and n >> 48 in poses]
+            self._queued.clear()
+            self._heap.clear()
+            for node in queued:
+                self._push(node)
+            return
+        self._h = {n: v for n, v in self._h.items() if n >> 48 not in poses}
+        queued = [n for n in self._queued if n != GOAL and n >> 48 in poses]
         for node in queued:
             del self._queued[node]
             self._push(node)

@@ -150,3 +150,34 @@ def test_the_loop_with_per_transition_updates_converges() -> None:
     assert run.error[0] <= 8.0 and run.error[1] <= 8.0
     # each cycle is re-planned as it goes, so a cycle may take other transitions than planned
     assert all(it.completed == len(it.edges) for it in run.iterations if it.executed)
+
+
+@settings(max_examples=30, deadline=None)
+@given(skewed_graphs())
+def test_the_walk_table_keeps_astar_optimal(case) -> None:  # type: ignore[no-untyped-def]
+    """A* and LPA* share the walk-table heuristic; a search without any heuristic checks it."""
+    rows, changes = case
+    goal = Goal(15.0, 0.0, 0.0, 3.0, 10.0)
+    m = model(rows)
+    for row, motion in changes:  # the table is built from the changed motions
+        edge = int(np.nonzero(m.original == row)[0][0])
+        if motion is None:
+            m.remove(edge)
+        else:
+            m.set_motion(edge, Step(*motion))
+    lattice = Lattice(m, 0, goal, 3.0, 10.0, radius=25.0)
+    route = astar(lattice, 10**7)
+    expected = cheapest_from(lattice, lattice.root)
+    assert (route is None) == (expected is None)
+    if route is not None and expected is not None:
+        assert math.isclose(route.cost, expected, abs_tol=1e-9)
+
+
+def test_the_walk_table_sharpens_the_heuristic() -> None:
+    m = model()
+    lattice = Lattice(m, 0, GOAL, size=1.0, angle=1.0)
+    node = lattice.pack(0, 0, 0, 0)
+    # from the origin 30 mm away: the longest step is 30 mm, but no walk home covers it in
+    # one transition, so the walk table asks for two where the distance bound asks for one
+    assert lattice.bound(node) <= 1.0
+    assert lattice.heuristic(node) == 2.0
