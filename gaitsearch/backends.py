@@ -16,6 +16,7 @@ from pathlib import Path
 from diagnostics import UsageError
 from gaitgraph.robot import Robot, load_robot
 from gaitsearch.goals import Goal
+from gaitsearch.growth import Grower
 from gaitsearch.physics_walker import PhysicsWalker
 from gaitsearch.planners import Planner, Settings, make_planner
 from gaitsearch.plans import GaitPlan
@@ -34,6 +35,7 @@ class Session:
     plan: GaitPlan | None
     walker: Walker
     predictions: str
+    grower: Grower | None = None  # the kinematic graph's remaining batches, if any
 
 
 def default_predictions(robot: Robot | str | Path) -> str:
@@ -55,7 +57,7 @@ def open_session(
     max_open: int = 1,
 ) -> Session:
     """The first plan for ``goal`` over ``predictions`` and the walker of ``backend``."""
-    from gaitsearch.api import check_method, first_planner, goal_for
+    from gaitsearch.api import check_method, first_planner, goal_for, graph_batches
 
     check_method(method)
     settings = settings or Settings()
@@ -84,7 +86,11 @@ def open_session(
             tuple(leg.name for leg in bot.legs),
             mismatch,
         )
-        return Session(planner, plan, walker, source)
+        order = graph_batches(bot, settings.seed, max_states)
+        grower = None
+        if order is not None and plan is not None:
+            grower = Grower(bot, order, plan.graph[0], 100, method, goal, settings)
+        return Session(planner, plan, walker, source, grower)
     if max_open < 1:
         raise UsageError("--max-open must be at least 1")
     path = robot if not isinstance(robot, Robot) else ""

@@ -22,10 +22,11 @@ from gaitsearch.goals import Goal
 from gaitsearch.planners import Planner, SearchLimitError, Settings
 from gaitsearch.plans import GaitPlan
 from gaitsearch.transitions import Step, TransitionModel, compose
-from gaitsearch.walker import Mismatch
+from gaitsearch.walker import Mismatch, SimulatedWalker
 
 if TYPE_CHECKING:
     from gaitsearch.backends import Walker
+    from gaitsearch.growth import Grower
 
 Point = tuple[float, float]
 
@@ -240,9 +241,11 @@ def learn(
     verify: int = 5,
     threshold: float = 0.5,
     progress: Callable[[str], None] | None = None,
+    grower: Grower | None = None,
 ) -> Learned:
     """Algorithms 2 and 3 with ``planner`` on ``walker``; ``threshold`` (mm and deg) is the
-    change in a prediction that counts as "observed to differ"."""
+    change in a prediction that counts as "observed to differ".  With ``grower`` (the
+    simulated walker only), a graph left without a gait grows instead of stopping."""
     model = planner.model
     measured: dict[int, list[Step]] = {}
     iterations: list[Iteration] = []
@@ -288,6 +291,15 @@ def learn(
                 nxt = planner.plan(explored=False)
             except SearchLimitError:
                 nxt, stopped = None, "search budget"
+            grown = None
+            sim = isinstance(walker, SimulatedWalker)
+            if nxt is None and grower is not None and stopped != "search budget" and sim:
+                grown = grower.grow(planner, walker, measured)  # type: ignore[arg-type]
+            if grown is not None and grower is not None:
+                planner, nxt, measured = grown
+                model = planner.model
+                if progress is not None:
+                    progress(f"no gait left: the gait graph grew to {grower.added} states")
             plan_seconds = time.perf_counter() - began
             if nxt is None:
                 stopped = "no gait" if stopped != "search budget" else stopped
@@ -368,12 +380,15 @@ def learn_gait(
     backend: str = "sim",
     predictions: str | None = None,
     max_open: int = 1,
+    grow: bool = False,
 ) -> Learned:
     """Learn a gait (``gaitc learn``): the first plan over ``predictions`` (``model``: the
     chapter 4 model's gait graph, the default where the robot file has one; ``kinematic``:
     :func:`~gaitsearch.api.plan_gait`'s graph), then the loop of :func:`learn` on
     ``backend`` (``sim``: the simulated robot with ``mismatch``; ``physics``: the
-    spring-damper model, with ``mismatch.noise`` on every measurement)."""
+    spring-damper model, with ``mismatch.noise`` on every measurement).  ``grow``: when the
+    robot's removals leave no gait, add the kinematic graph's next batch of valve states
+    (:mod:`gaitsearch.growth`) instead of stopping."""
     from gaitsearch.api import goal_for
     from gaitsearch.backends import open_session
 
@@ -388,6 +403,13 @@ def learn_gait(
         max_states,
         max_open,
     )
+    grower = session.grower if grow else None
     return learn(
-        session.planner, session.walker, session.plan, max_iterations, verify, progress=progress
+        session.planner,
+        session.walker,
+        session.plan,
+        max_iterations,
+        verify,
+        progress=progress,
+        grower=grower,
     )

@@ -116,6 +116,12 @@ def register(sub: Any) -> None:
         metavar="P",
         help="sim: share of transitions the robot cannot make (0)",
     )
+    p.add_argument(
+        "--grow",
+        action="store_true",
+        help="sim, kinematic predictions: when removals leave no gait, add the next 100 "
+        "random valve states (up to --max-states) instead of stopping",
+    )
     p.add_argument("--max-iterations", type=int, default=40, metavar="N")
     p.add_argument(
         "--verify",
@@ -276,6 +282,7 @@ def run_learn(args: argparse.Namespace) -> int:
         args.backend,
         args.predictions,
         args.max_open,
+        args.grow,
     )
     print(result.summary())
     if args.log:
