@@ -7,8 +7,9 @@ Pipeline: :mod:`transitions` (the gait graph's predicted motions, mutable) →
 :mod:`predictions` (the chapter 2 kinematic graph or a chapter 4 model's gait graph);
 :mod:`walker` (the simulated robot with model mismatch), :mod:`physics_walker` (the
 spring-damper model) and :mod:`backends` (which of them) under :mod:`online` (Algorithms 2
-and 3), :mod:`stepwise` (per-transition re-planning) and :mod:`growth` (adding valve states
-online); :mod:`drawing` (pictures); :mod:`api` (what the CLI and notebooks call).
+and 3; one cycle in :mod:`cycles`), :mod:`stepwise` (per-transition re-planning) and
+:mod:`growth` (adding valve states online); :mod:`drawing` (pictures); :mod:`api` (what the
+CLI and notebooks call).
 """
 
 from __future__ import annotations

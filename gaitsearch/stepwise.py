@@ -13,7 +13,7 @@ from __future__ import annotations
 import time
 from typing import TYPE_CHECKING
 
-from gaitsearch.online import Cycle, Point, observe_step
+from gaitsearch.cycles import Cycle, Point, observe_step
 from gaitsearch.planners import HybridPlanner, Planner
 from gaitsearch.transitions import Step, compose
 
