@@ -118,3 +118,9 @@ def test_learn_physics_cli(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -
     out = capsys.readouterr().out
     assert out.startswith("lpa: converged after 1 iterations\n")
     assert '"valves": [\n        "00000000",\n        "00001000"\n      ]' in log.read_text()
+
+
+def test_unknown_predictions_are_a_usage_error(capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["learn", RADIAL, "--goal", "10,0", "--predictions", "dynamic"]) == 2
+    err = capsys.readouterr().err
+    assert err == "gaitc: usage error: unknown predictions 'dynamic'; use kinematic or model\n"
