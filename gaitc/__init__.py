@@ -45,23 +45,12 @@ if TYPE_CHECKING:
 #: Where each public name lives; modules load on first use, so ``gaitc --help`` and a
 #: Ctrl-C at start-up do not wait for the solver, the parser and the gait graph to import.
 _HOMES = {
-    "FORMATS": "gaitc.emission",
-    "emit": "gaitc.emission",
-    "explain": "gaitc.explaining",
-    "lint": "gaitc.linting",
-    "Spec": "gaitc.loading",
-    "load": "gaitc.loading",
-    "parse": "gaitc.loading",
-    "resilience": "gaitc.resilient",
-    "Session": "gaitc.simulation",
-    "session": "gaitc.simulation",
-    "simulate": "gaitc.simulation",
-    "SOLVERS": "gaitc.solving",
-    "Synthesis": "gaitc.solving",
-    "Verdict": "gaitc.solving",
-    "check": "gaitc.solving",
-    "counterstrategy": "gaitc.solving",
-    "synthesize": "gaitc.solving",
+    "FORMATS": "gaitc.emission", "emit": "gaitc.emission", "explain": "gaitc.explaining",
+    "lint": "gaitc.linting", "Spec": "gaitc.loading", "load": "gaitc.loading",
+    "parse": "gaitc.loading", "resilience": "gaitc.resilient", "Session": "gaitc.simulation",
+    "session": "gaitc.simulation", "simulate": "gaitc.simulation", "SOLVERS": "gaitc.solving",
+    "Synthesis": "gaitc.solving", "Verdict": "gaitc.solving", "check": "gaitc.solving",
+    "counterstrategy": "gaitc.solving", "synthesize": "gaitc.solving",
     "verify": "gaitc.solving",
 }
 

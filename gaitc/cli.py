@@ -106,9 +106,8 @@ def _run(argv: Sequence[str] | None) -> int:
             file=sys.stderr,
         )
         if as_json:
-            reporting.print_json(
-                reporting.document(command, {"error": reporting.internal_error_json(err)})
-            )
+            reporting.print_json(reporting.document(command, {
+                "error": reporting.internal_error_json(err)}))
         return ExitCode.INTERNAL
 
 

@@ -42,14 +42,12 @@ MEANINGS: Mapping[ExitCode, str] = {
 _LISTED = (ExitCode.OK, ExitCode.USER, ExitCode.USAGE, ExitCode.UNREALIZABLE, ExitCode.SOLVER)
 
 
-def exit_code_help(
-    meanings: Mapping[ExitCode, str] | None = None, codes: tuple[ExitCode, ...] = _LISTED
-) -> str:
+def exit_code_help(meanings: Mapping[ExitCode, str] | None = None,
+                   codes: tuple[ExitCode, ...] = _LISTED) -> str:
     """An ``exit codes:`` block for ``--help``: ``meanings`` override the general ones."""
     lines = ["exit codes:"]
     for code in codes:
         text = (meanings or {}).get(code, MEANINGS[code])
-        lines.extend(
-            textwrap.wrap(text, 88, initial_indent=f"  {int(code):<2} ", subsequent_indent=" " * 5)
-        )
+        lines.extend(textwrap.wrap(text, 88, initial_indent=f"  {int(code):<2} ",
+                                   subsequent_indent=" " * 5))
     return "\n".join(lines) + "\n"

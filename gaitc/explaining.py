@@ -11,12 +11,8 @@ from gaitc.loading import Spec, load
 from gr1.spec import GR1Spec
 
 
-def explain(
-    spec: Spec | GR1Spec | str | Path,
-    semantics: str = "default",
-    timeout: float | None = None,
-    repairs: bool = True,
-) -> Explanation:
+def explain(spec: Spec | GR1Spec | str | Path, semantics: str = "default",
+            timeout: float | None = None, repairs: bool = True) -> Explanation:
     """The :class:`~analysis.explanation.Explanation` of ``spec`` (a path is loaded).
 
     >>> import gaitc
@@ -29,9 +25,7 @@ def explain(
     if isinstance(spec, (str, Path)):
         spec = load(spec)
     if isinstance(spec, GR1Spec):
-        return explain_spec(
-            spec, spec.name or "<spec>", semantics=semantics, timeout=timeout, with_repairs=repairs
-        )
-    return explain_spec(
-        spec.gr1, spec.path, spec.text, spec.model, spec.encoding, semantics, timeout, repairs
-    )
+        return explain_spec(spec, spec.name or "<spec>", semantics=semantics, timeout=timeout,
+                            with_repairs=repairs)
+    return explain_spec(spec.gr1, spec.path, spec.text, spec.model, spec.encoding, semantics,
+                        timeout, repairs)

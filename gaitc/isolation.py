@@ -72,9 +72,9 @@ def cudd_budget_mb(memory_mb: int) -> int:
     room = memory_mb - own
     if room < MIN_ROOM_MB:
         raise SolverError(
-            f"a memory limit of {memory_mb} MB is too small: gaitc itself takes {own:.0f} MB",
-            hint=f"give --memory-limit at least {int(own) + MIN_ROOM_MB + 1} MB",
-        )
+            f"a memory limit of {memory_mb} MB is too small: gaitc itself takes "
+            f"{own:.0f} MB",
+            hint=f"give --memory-limit at least {int(own) + MIN_ROOM_MB + 1} MB")
     return max(1, int(room * CUDD_SHARE))
 
 

@@ -59,44 +59,28 @@ class Spec:
     def source_map_size(self) -> int:
         """How many clauses the source map ties to a line of the source file."""
         spec = self.gr1
-        return sum(
-            1
-            for name in SECTIONS
-            for clause in spec.section(name)
-            if clause.origin is not None and clause.origin.span is not None
-        )
+        return sum(1 for name in SECTIONS for clause in spec.section(name)
+                   if clause.origin is not None and clause.origin.span is not None)
 
     def to_json(self) -> dict[str, Any]:
         """The spec's size for ``--json`` (docs/json.md): variables, clauses per section."""
         spec = self.gr1
-        return {
-            "file": self.path,
-            "sha256": self.sha256,
-            "encoding": self.encoding,
-            "inputs": len(spec.inputs),
-            "outputs": len(spec.outputs),
-            "clauses": {name: len(spec.section(name)) for name in SECTIONS},
-            "source_map": self.source_map_size(),
-        }
+        return {"file": self.path, "sha256": self.sha256, "encoding": self.encoding,
+                "inputs": len(spec.inputs), "outputs": len(spec.outputs),
+                "clauses": {name: len(spec.section(name)) for name in SECTIONS},
+                "source_map": self.source_map_size()}
 
     def __repr__(self) -> str:
         kind = f".gait, {self.encoding} encoding" if self.model is not None else "SLUGS format"
-        return (
-            f"<gaitc.Spec {self.path!r} ({kind}): {len(self.gr1.inputs)} inputs, "
-            f"{len(self.gr1.outputs)} outputs, {self.clause_count()} clauses>"
-        )
+        return (f"<gaitc.Spec {self.path!r} ({kind}): {len(self.gr1.inputs)} inputs, "
+                f"{len(self.gr1.outputs)} outputs, {self.clause_count()} clauses>")
 
     def _repr_html_(self) -> str:
-        rows = [
-            ("file", self.path),
-            ("inputs", str(len(self.gr1.inputs))),
-            ("outputs", str(len(self.gr1.outputs))),
-            ("clauses", str(self.clause_count())),
-        ]
+        rows = [("file", self.path), ("inputs", str(len(self.gr1.inputs))),
+                ("outputs", str(len(self.gr1.outputs))), ("clauses", str(self.clause_count()))]
         if self.model is not None:
             rows[1:1] = [
-                ("robot", self.model.name or "(unnamed)"),
-                ("encoding", str(self.encoding)),
+                ("robot", self.model.name or "(unnamed)"), ("encoding", str(self.encoding)),
                 ("legs", ", ".join(f"{leg.name}:{leg.health}" for leg in self.model.legs)),
                 ("regions", str(len(self.model.regions))),
                 ("gaits", ", ".join(g.name for g in self.model.gaits)),
@@ -133,7 +117,8 @@ def _read(path: str) -> bytes:
 
 
 def _decode(data: bytes, path: str, suffix: str) -> str:
-    return decode_text(data, path, SpecSyntaxError if suffix in GAIT_SUFFIXES else SlugsFormatError)
+    return decode_text(data, path, SpecSyntaxError if suffix in GAIT_SUFFIXES
+                       else SlugsFormatError)
 
 
 def load(path: str | Path, encoding: str = "onehot", kind: str | None = None) -> Spec:
@@ -149,9 +134,8 @@ def load(path: str | Path, encoding: str = "onehot", kind: str | None = None) ->
     _check_encoding(encoding)
     suffix = _kind(name) if kind is None else _kind(f"spec{kind}")
     raw = _read(name)
-    return _build(
-        _decode(raw, name, suffix), name, suffix, encoding, hashlib.sha256(raw).hexdigest()
-    )
+    return _build(_decode(raw, name, suffix), name, suffix, encoding,
+                  hashlib.sha256(raw).hexdigest())
 
 
 def parse(text: str, name: str = "<string>.gait", encoding: str = "onehot") -> Spec:

@@ -35,32 +35,22 @@ def _where(span: Span | None) -> dict[str, Any]:
 
 def error_json(err: GaitcError) -> dict[str, Any]:
     """``err`` as ``{type, file, line, column, message, hint}``; null where unknown."""
-    return {
-        "type": type(err).__name__,
-        **_where(err.span),
-        "message": err.message,
-        "hint": err.hint,
-    }
+    return {"type": type(err).__name__, **_where(err.span), "message": err.message,
+            "hint": err.hint}
 
 
 def diagnostic_json(diag: Diagnostic) -> dict[str, Any]:
     """A warning (or primitive error) as ``{severity, file, line, column, message, hint}``."""
-    return {
-        "severity": diag.severity,
-        **_where(diag.span),
-        "message": diag.message,
-        "hint": diag.hint,
-    }
+    return {"severity": diag.severity, **_where(diag.span), "message": diag.message,
+            "hint": diag.hint}
 
 
 def internal_error_json(err: Exception) -> dict[str, Any]:
     """A bug in gaitc, in the error object's shape (no position: it is not in the input)."""
-    return {
-        "type": "InternalError",
-        **_where(None),
-        "message": f"internal error: {type(err).__name__}: {err}",
-        "hint": "this is a bug in gaitc, not in your input; GAITC_DEBUG=1 prints the traceback",
-    }
+    return {"type": "InternalError", **_where(None),
+            "message": f"internal error: {type(err).__name__}: {err}",
+            "hint": "this is a bug in gaitc, not in your input; GAITC_DEBUG=1 prints the "
+            "traceback"}
 
 
 def document(command: str | None, body: Mapping[str, Any]) -> dict[str, Any]:
@@ -104,45 +94,30 @@ def command_named(argv: Sequence[str], commands: Iterable[str]) -> str | None:
     return next((token for token in argv if token in known), None)
 
 
-def lint_json(
-    file: str, diagnostics: Sequence[Diagnostic], deep: Explanation | None = None
-) -> dict[str, Any]:
+def lint_json(file: str, diagnostics: Sequence[Diagnostic],
+              deep: Explanation | None = None) -> dict[str, Any]:
     """The result of ``gaitc lint``: every finding, counted by severity; with ``--deep``
     the verdict and the sanity warnings of :func:`gaitc.explain`."""
     errors = sum(1 for d in diagnostics if d.severity == "error")
     found: dict[str, Any] | None = None
     if deep is not None:
-        found = {
-            "verdict": deep.verdict(),
-            "kind": deep.kind if not deep.realizable else None,
-            "warnings": [w.to_json() for w in deep.warnings],
-        }
-    return {
-        "file": file,
-        "diagnostics": [diagnostic_json(d) for d in diagnostics],
-        "errors": errors,
-        "warnings": len(diagnostics) - errors,
-        "deep": found,
-    }
+        found = {"verdict": deep.verdict(), "kind": deep.kind if not deep.realizable else None,
+                 "warnings": [w.to_json() for w in deep.warnings]}
+    return {"file": file, "diagnostics": [diagnostic_json(d) for d in diagnostics],
+            "errors": errors, "warnings": len(diagnostics) - errors, "deep": found}
 
 
 def compilation_json(spec: Spec, fmt: str, text: str, output: str) -> dict[str, Any]:
     """The result of ``gaitc compile``: the spec's sizes (:meth:`Spec.to_json`), the
     format and where the text went; with ``-o -`` the text itself (else null)."""
-    return {
-        **spec.to_json(),
-        "format": fmt,
-        "output": output,
-        "bytes": len(text.encode("utf-8")),
-        "lines": text.count("\n"),
-        "text": text if output == "-" else None,
-        "warnings": [diagnostic_json(d) for d in spec.diagnostics],
-    }
+    return {**spec.to_json(), "format": fmt, "output": output,
+            "bytes": len(text.encode("utf-8")), "lines": text.count("\n"),
+            "text": text if output == "-" else None,
+            "warnings": [diagnostic_json(d) for d in spec.diagnostics]}
 
 
-def run_json(
-    file: str, run: Run | None, environment: str | None, output: str | None, realizable: bool = True
-) -> dict[str, Any]:
+def run_json(file: str, run: Run | None, environment: str | None, output: str | None,
+             realizable: bool = True) -> dict[str, Any]:
     """The result of ``gaitc simulate`` and ``drive``: the run (:meth:`Run.to_json`), the
     environment that played it, the file it was saved to, the error that stopped it.
     ``run`` is None when an unrealizable spec left nothing to run."""
@@ -151,11 +126,5 @@ def run_json(
         body.update(run.to_json())
         body.pop("spec")  # the same as "file"
     stopped = None if run is None or run.error is None else error_json(run.error)
-    return {
-        **body,
-        "file": file,
-        "environment": environment,
-        "realizable": realizable,
-        "output": output,
-        "error": stopped,
-    }
+    return {**body, "file": file, "environment": environment, "realizable": realizable,
+            "output": output, "error": stopped}

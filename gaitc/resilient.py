@@ -12,16 +12,10 @@ from diagnostics import UsageError
 from gaitc.loading import Spec, load
 
 
-def resilience(
-    spec: Spec | str | Path,
-    method: str = "parametric",
-    health_bound: int | None = None,
-    place_caches: int | None = None,
-    semantics: str = "default",
-    jobs: int = 1,
-    dask: str | None = None,
-    progress: Progress | None = None,
-) -> Resilience:
+def resilience(spec: Spec | str | Path, method: str = "parametric",
+               health_bound: int | None = None, place_caches: int | None = None,
+               semantics: str = "default", jobs: int = 1, dask: str | None = None,
+               progress: Progress | None = None) -> Resilience:
     """The :class:`~analysis.resilience.Resilience` report of a ``.gait`` spec.
 
     ``method``: ``parametric`` (one game with rigid per-leg caps answers every failure set
@@ -38,16 +32,13 @@ def resilience(
     if not isinstance(spec, Spec):
         spec = load(spec, "binary")
     if spec.model is None or spec.encoding is None:
-        raise UsageError(
-            f"'{spec.path}': resilience needs a .gait spec, which says what the "
-            "legs, caches and hazards are"
-        )
+        raise UsageError(f"'{spec.path}': resilience needs a .gait spec, which says what the "
+                         "legs, caches and hazards are")
     if health_bound is not None and health_bound < 1:
         raise UsageError("the health bound must be at least 1")
     if place_caches is not None and place_caches < 1:
         raise UsageError("--place-caches needs a number of caches of at least 1")
     bound = health_bound or min(3, max(leg.health for leg in spec.model.legs))
     with Pool(spec.encoding, semantics, jobs, dask, progress) as pool:
-        return analyse(
-            spec.model, spec.encoding, spec.path, semantics, method, bound, place_caches, pool
-        )
+        return analyse(spec.model, spec.encoding, spec.path, semantics, method, bound,
+                       place_caches, pool)

@@ -49,19 +49,14 @@ class Session:
         return {leg.name: leg.health for leg in self.model.legs}
 
     def __repr__(self) -> str:
-        return (
-            f"<gaitc.Session {self.spec.path!r}: controller of {len(self.strategy)} "
-            f"nodes, {len(self.model.legs)} legs>"
-        )
+        return (f"<gaitc.Session {self.spec.path!r}: controller of {len(self.strategy)} "
+                f"nodes, {len(self.model.legs)} legs>")
 
 
-def session(
-    spec: Spec | str | Path,
-    controller: Controller | SymbolicController | Synthesis | str | Path | None = None,
-    encoding: str | None = None,
-    semantics: str = "default",
-    prefer: str | Sequence[str] | None = None,
-) -> Session | None:
+def session(spec: Spec | str | Path,
+            controller: Controller | SymbolicController | Synthesis | str | Path | None = None,
+            encoding: str | None = None, semantics: str = "default",
+            prefer: str | Sequence[str] | None = None) -> Session | None:
     """Bind ``spec`` (a ``.gait`` :class:`Spec` or path) to ``controller`` (an automaton, a
     :class:`Synthesis` or a controller file); synthesize one when ``controller`` is None
     (with the move preferences ``prefer``, see :func:`gaitc.synthesize`).
@@ -74,10 +69,8 @@ def session(
             encoding = recorded_encoding(controller)
         spec = load(spec, encoding or "onehot")
     if spec.model is None:
-        raise UsageError(
-            f"'{spec.path}': simulation and maps need a .gait spec, which says "
-            "what the variables mean (regions, gaits, legs)"
-        )
+        raise UsageError(f"'{spec.path}': simulation and maps need a .gait spec, which says "
+                         "what the variables mean (regions, gaits, legs)")
     if isinstance(controller, (str, Path)):
         strategy = load_strategy(controller, spec.gr1)
     else:
@@ -101,7 +94,8 @@ def counter_session(spec: Spec | str | Path, semantics: str = "default") -> Sess
     return None if found.controller is None else session(loaded, found, None, semantics)
 
 
-def environment(kind: str | Scenario | Environment, bound: Session, seed: int = 0) -> Environment:
+def environment(kind: str | Scenario | Environment, bound: Session, seed: int = 0
+                ) -> Environment:
     """The environment named ``kind`` (:data:`ENVIRONMENTS`; ``scripted`` needs a scenario
     object or a path ``scripted:FILE.yaml``), or ``kind`` itself when it already is one."""
     from gaitsim.scenario import Scenario, ScriptedEnvironment, load_scenario
@@ -117,9 +111,8 @@ def environment(kind: str | Scenario | Environment, bound: Session, seed: int = 
     if kind.startswith("scripted:"):
         scenario = load_scenario(kind.removeprefix("scripted:"), bound.model)
         return ScriptedEnvironment(scenario, bound.strategy.inputs)
-    raise UsageError(
-        f"unknown environment '{kind}'; use random, adversarial, a scenario or 'scripted:FILE.yaml'"
-    )
+    raise UsageError(f"unknown environment '{kind}'; use random, adversarial, a scenario or "
+                     "'scripted:FILE.yaml'")
 
 
 def _counter_play(bound: Session, env: object, steps: int | None, seed: int) -> Run:
@@ -133,25 +126,19 @@ def _counter_play(bound: Session, env: object, steps: int | None, seed: int) -> 
     elif env == "adversarial":
         choose, name = careful_chooser(counter), "counter-strategy, robot careful"
     else:
-        raise UsageError(
-            "a counter-strategy is the environment: choose how the robot answers "
-            "with 'random' or 'adversarial' (it avoids forced deadlocks)"
-        )
+        raise UsageError("a counter-strategy is the environment: choose how the robot answers "
+                         "with 'random' or 'adversarial' (it avoids forced deadlocks)")
     count = DEFAULT_STEPS if steps is None else steps
     if count < 0:
         raise UsageError("the number of steps must not be negative")
     return play(counter, bound.domain, bound.monitor, count, choose, bound.spec.path, name)
 
 
-def simulate(
-    spec: Spec | Session | str | Path,
-    controller: Controller | SymbolicController | Synthesis | str | Path | None = None,
-    env: str | Scenario | Environment = "random",
-    steps: int | None = None,
-    seed: int = 0,
-    semantics: str = "default",
-    prefer: str | Sequence[str] | None = None,
-) -> Run:
+def simulate(spec: Spec | Session | str | Path,
+             controller: Controller | SymbolicController | Synthesis | str | Path | None = None,
+             env: str | Scenario | Environment = "random", steps: int | None = None,
+             seed: int = 0, semantics: str = "default",
+             prefer: str | Sequence[str] | None = None) -> Run:
     """Run ``controller`` (synthesized when None) for ``spec`` against ``env`` for ``steps``
     steps (default 50, or the scenario's length) and check every step against the spec.
 
@@ -167,9 +154,8 @@ def simulate(
     from gaitsim.scenario import ScriptedEnvironment
     from gaitsim.simulator import simulate as run_simulation
 
-    bound = (
-        spec if isinstance(spec, Session) else session(spec, controller, None, semantics, prefer)
-    )
+    bound = spec if isinstance(spec, Session) else session(spec, controller, None, semantics,
+                                                           prefer)
     if bound is None and env == "adversarial" and not isinstance(spec, Session):
         bound = counter_session(spec, semantics)
     if bound is None:
@@ -179,11 +165,9 @@ def simulate(
         return _counter_play(bound, env, steps, seed)
     chosen = environment(env, bound, seed)
     if steps is None:
-        steps = (
-            len(chosen.scenario.steps) if isinstance(chosen, ScriptedEnvironment) else DEFAULT_STEPS
-        )
+        steps = (len(chosen.scenario.steps) if isinstance(chosen, ScriptedEnvironment)
+                 else DEFAULT_STEPS)
     if steps < 0:
         raise UsageError("the number of steps must not be negative")
-    return run_simulation(
-        bound.strategy, bound.domain, bound.monitor, chosen, steps, bound.spec.path
-    )
+    return run_simulation(bound.strategy, bound.domain, bound.monitor, chosen, steps,
+                          bound.spec.path)

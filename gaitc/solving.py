@@ -56,30 +56,21 @@ class Verdict:
 
     def __repr__(self) -> str:
         word = "realizable" if self.realizable else "unrealizable"
-        return (
-            f"<gaitc.Verdict {self.file!r}: {word} in {self.seconds:.2f} s "
-            f"({self.solver} solver, {self.semantics} semantics)>"
-        )
+        return (f"<gaitc.Verdict {self.file!r}: {word} in {self.seconds:.2f} s "
+                f"({self.solver} solver, {self.semantics} semantics)>")
 
     def to_json(self) -> dict[str, Any]:
         """The verdict for ``gaitc check --json`` (docs/json.md)."""
         out: dict[str, Any] = {
-            "file": self.file,
-            "verdict": "realizable" if self.realizable else "unrealizable",
-            "seconds": round(self.seconds, 3),
-            "semantics": self.semantics,
-            "solver": self.solver,
-            "engine": self.engine or None,
-        }
+            "file": self.file, "verdict": "realizable" if self.realizable else "unrealizable",
+            "seconds": round(self.seconds, 3), "semantics": self.semantics,
+            "solver": self.solver, "engine": self.engine or None}
         return out
 
     def _repr_html_(self) -> str:
-        rows = [
-            ("verdict", "realizable" if self.realizable else "unrealizable"),
-            ("seconds", f"{self.seconds:.3f}"),
-            ("solver", self.solver),
-            ("semantics", self.semantics),
-        ]
+        rows = [("verdict", "realizable" if self.realizable else "unrealizable"),
+                ("seconds", f"{self.seconds:.3f}"), ("solver", self.solver),
+                ("semantics", self.semantics)]
         if self.engine:
             rows.append(("engine", self.engine))
         if self.stats is not None:
@@ -127,24 +118,18 @@ class Synthesis:
         """The outcome for ``gaitc synth --json`` and ``counter --json`` (docs/json.md)."""
         symbolic = isinstance(self.controller, SymbolicController)
         return {
-            "file": _name(self.spec),
-            "kind": self.kind,
+            "file": _name(self.spec), "kind": self.kind,
             "verdict": "realizable" if self.realizable else "unrealizable",
-            "seconds": round(self.seconds, 3),
-            "semantics": self.semantics,
-            "solver": self.solver,
-            "symbolic": symbolic,
+            "seconds": round(self.seconds, 3), "semantics": self.semantics,
+            "solver": self.solver, "symbolic": symbolic,
             "nodes": None if self.controller is None else len(self.controller.nodes),
-            "verification": None if self.report is None else self.report.to_json(),
-        }
+            "verification": None if self.report is None else self.report.to_json()}
 
     def save(self, path: str | Path) -> None:
         """Write the controller as JSON (docs/controller-format.md), atomically."""
         if self.controller is None:
-            raise UsageError(
-                f"there is no {self.kind} to save: the spec is "
-                f"{'realizable' if self.realizable else 'unrealizable'}"
-            )
+            raise UsageError(f"there is no {self.kind} to save: the spec is "
+                             f"{'realizable' if self.realizable else 'unrealizable'}")
         if isinstance(self.controller, SymbolicController):
             write_atomically(path, symbolic_to_json(self.controller))
         else:
@@ -159,14 +144,11 @@ class Synthesis:
         if self.controller is None:
             raise UsageError(f"there is no {self.kind} to draw")
         if isinstance(self.controller, SymbolicController):
-            raise UsageError(
-                "a symbolic controller has no automaton to draw; draw a run of "
-                "it (gaitc.simulate(...).picture())"
-            )
+            raise UsageError("a symbolic controller has no automaton to draw; draw a run of "
+                             "it (gaitc.simulate(...).picture())")
         if not isinstance(self.spec, Spec) or self.spec.model is None:
-            raise UsageError(
-                "drawing an automaton needs a .gait spec, which says what its variables mean"
-            )
+            raise UsageError("drawing an automaton needs a .gait spec, which says what its "
+                             "variables mean")
         strategy = strategy_from_controller(self.controller, self.spec.gr1, self.spec.path)
         domain = Domain(self.spec.model, self.spec.encoding or "onehot")
         return automaton_view(strategy, domain)
@@ -176,24 +158,15 @@ class Synthesis:
         if self.controller is None:
             word = "realizable" if self.realizable else "unrealizable"
             return f"<gaitc.Synthesis {file!r}: {word}, no {self.kind} ({self.seconds:.2f} s)>"
-        proof = (
-            "not verified"
-            if self.report is None
-            else ("verified" if self.report.ok else "FAILED verification")
-        )
-        return (
-            f"<gaitc.Synthesis {file!r}: {self.kind} ({self.size}), {proof} "
-            f"({self.seconds:.2f} s, {self.solver} solver)>"
-        )
+        proof = "not verified" if self.report is None else (
+            "verified" if self.report.ok else "FAILED verification")
+        return (f"<gaitc.Synthesis {file!r}: {self.kind} ({self.size}), {proof} "
+                f"({self.seconds:.2f} s, {self.solver} solver)>")
 
     def _repr_html_(self) -> str:
-        rows = [
-            ("kind", self.kind),
-            ("realizable", str(self.realizable)),
-            ("seconds", f"{self.seconds:.3f}"),
-            ("solver", self.solver),
-            ("semantics", self.semantics),
-        ]
+        rows = [("kind", self.kind), ("realizable", str(self.realizable)),
+                ("seconds", f"{self.seconds:.3f}"), ("solver", self.solver),
+                ("semantics", self.semantics)]
         if self.controller is not None:
             rows.append(("size", self.size))
         if self.report is not None:
@@ -224,15 +197,9 @@ def _slugsin(spec: GR1Spec) -> str:
     return emit_slugsin(bitblast(spec))
 
 
-def check(
-    spec: Spec | GR1Spec,
-    semantics: str = "default",
-    solver: str = "embedded",
-    timeout: float | None = None,
-    slugs: str | None = None,
-    options: Options | None = None,
-    progress: Progress | None = None,
-) -> Verdict:
+def check(spec: Spec | GR1Spec, semantics: str = "default", solver: str = "embedded",
+          timeout: float | None = None, slugs: str | None = None,
+          options: Options | None = None, progress: Progress | None = None) -> Verdict:
     """Decide whether a controller exists for ``spec``.
 
     ``semantics`` is ``default`` or ``robotics`` (:data:`gr1.spec.SEMANTICS`), ``solver``
@@ -244,7 +211,8 @@ def check(
     if _solver(solver) == "slugs":
         from slugs_bridge.runner import run_slugs_check
 
-        result = run_slugs_check(_slugsin(gr1), semantics=semantics, timeout=timeout, slugs=slugs)
+        result = run_slugs_check(_slugsin(gr1), semantics=semantics, timeout=timeout,
+                                 slugs=slugs)
         return Verdict(_name(spec), result.realizable, result.seconds, semantics, solver)
     from solver import synthesis
 
@@ -252,30 +220,16 @@ def check(
         checked = synthesis.check(gr1, semantics, timeout, progress, options)
     except MemoryError:
         raise _out_of_memory() from None
-    return Verdict(
-        _name(spec),
-        checked.realizable,
-        time.monotonic() - started,
-        semantics,
-        solver,
-        checked.stats,
-        checked.engine,
-    )
+    return Verdict(_name(spec), checked.realizable, time.monotonic() - started, semantics,
+                   solver, checked.stats, checked.engine)
 
 
-def synthesize(
-    spec: Spec | GR1Spec,
-    semantics: str = "default",
-    solver: str = "embedded",
-    timeout: float | None = None,
-    slugs: str | None = None,
-    options: Options | None = None,
-    progress: Progress | None = None,
-    verify: bool = True,
-    form: str = "auto",
-    max_nodes: int | None = MAX_NODES,
-    prefer: str | Sequence[str] | None = None,
-) -> Synthesis:
+def synthesize(spec: Spec | GR1Spec, semantics: str = "default", solver: str = "embedded",
+               timeout: float | None = None, slugs: str | None = None,
+               options: Options | None = None, progress: Progress | None = None,
+               verify: bool = True, form: str = "auto",
+               max_nodes: int | None = MAX_NODES,
+               prefer: str | Sequence[str] | None = None) -> Synthesis:
     """A controller for ``spec``, proved by the independent verifier unless ``verify`` is
     False; ``.controller`` is None when the spec is unrealizable.
 
@@ -291,66 +245,26 @@ def synthesize(
     if form not in FORMS:
         raise UsageError(f"unknown controller form '{form}'; use one of {', '.join(FORMS)}")
     if form == "symbolic" and solver != "embedded":
-        raise UsageError(
-            "symbolic controllers come from the embedded solver; drop --solver slugs or --symbolic"
-        )
-    return _solve(
-        spec,
-        "strategy",
-        semantics,
-        solver,
-        timeout,
-        slugs,
-        options,
-        progress,
-        verify,
-        form,
-        max_nodes,
-        prefer,
-    )
+        raise UsageError("symbolic controllers come from the embedded solver; drop --solver "
+                         "slugs or --symbolic")
+    return _solve(spec, "strategy", semantics, solver, timeout, slugs, options, progress, verify,
+                  form, max_nodes, prefer)
 
 
-def counterstrategy(
-    spec: Spec | GR1Spec,
-    semantics: str = "default",
-    solver: str = "embedded",
-    timeout: float | None = None,
-    slugs: str | None = None,
-    options: Options | None = None,
-    progress: Progress | None = None,
-    verify: bool = True,
-) -> Synthesis:
+def counterstrategy(spec: Spec | GR1Spec, semantics: str = "default",
+                    solver: str = "embedded", timeout: float | None = None,
+                    slugs: str | None = None, options: Options | None = None,
+                    progress: Progress | None = None, verify: bool = True) -> Synthesis:
     """The environment's winning strategy for an unrealizable ``spec``, verified;
     ``.controller`` is None when the spec is realizable."""
-    return _solve(
-        spec,
-        "counterstrategy",
-        semantics,
-        solver,
-        timeout,
-        slugs,
-        options,
-        progress,
-        verify,
-        "explicit",
-        None,
-    )
+    return _solve(spec, "counterstrategy", semantics, solver, timeout, slugs, options,
+                  progress, verify, "explicit", None)
 
 
-def _solve(
-    spec: Spec | GR1Spec,
-    kind: Kind,
-    semantics: str,
-    solver: str,
-    timeout: float | None,
-    slugs: str | None,
-    options: Options | None,
-    progress: Progress | None,
-    check_it: bool,
-    form: str,
-    max_nodes: int | None,
-    prefer: str | Sequence[str] | None = None,
-) -> Synthesis:
+def _solve(spec: Spec | GR1Spec, kind: Kind, semantics: str, solver: str,
+           timeout: float | None, slugs: str | None, options: Options | None,
+           progress: Progress | None, check_it: bool, form: str,
+           max_nodes: int | None, prefer: str | Sequence[str] | None = None) -> Synthesis:
     from solver.preferences import preference_order
 
     gr1, started = as_gr1(spec), time.monotonic()
@@ -360,25 +274,15 @@ def _solve(
     try:
         if _solver(solver) == "slugs":
             if prefer is not None and order:
-                raise UsageError(
-                    "move preferences need the embedded solver; use --prefer "
-                    "none with --solver slugs"
-                )
+                raise UsageError("move preferences need the embedded solver; use --prefer "
+                                 "none with --solver slugs")
             automaton = _slugs_automaton(gr1, kind, semantics, timeout, slugs)
         elif kind == "strategy":
             from solver import synthesis
 
-            automaton = synthesis.synthesize_controller(
-                gr1,
-                semantics,
-                timeout,
-                progress,
-                options,
-                max_nodes,
-                form,
-                order,
-                _costs(spec, order),
-            )
+            automaton = synthesis.synthesize_controller(gr1, semantics, timeout, progress,
+                                                        options, max_nodes, form, order,
+                                                        _costs(spec, order))
         else:
             from solver import synthesis
 
@@ -404,9 +308,8 @@ def _costs(spec: Spec | GR1Spec, order: Sequence[str]) -> tuple[Cost, ...]:
     return model_costs(spec.model, spec.encoding or "onehot")
 
 
-def _slugs_automaton(
-    gr1: GR1Spec, kind: Kind, semantics: str, timeout: float | None, slugs: str | None
-) -> Controller | None:
+def _slugs_automaton(gr1: GR1Spec, kind: Kind, semantics: str, timeout: float | None,
+                     slugs: str | None) -> Controller | None:
     from slugs_bridge import runner
 
     wanted = kind == "strategy"
@@ -423,16 +326,13 @@ def _slugs_automaton(
 
 
 def _out_of_memory() -> SolverError:
-    return SolverError(
-        "synthesis ran out of memory", hint="raise the memory limit, or shrink the specification"
-    )
+    return SolverError("synthesis ran out of memory",
+                       hint="raise the memory limit, or shrink the specification")
 
 
-def verify(
-    spec: Spec | GR1Spec,
-    controller: Controller | SymbolicController | Synthesis | str | Path,
-    semantics: str | None = None,
-) -> VerificationReport:
+def verify(spec: Spec | GR1Spec,
+           controller: Controller | SymbolicController | Synthesis | str | Path,
+           semantics: str | None = None) -> VerificationReport:
     """Prove independently that ``controller`` (a strategy, explicit or symbolic) realizes
     ``spec``, or that a counter-strategy defeats it; a path is read as a controller file.
     ``semantics`` defaults to the one recorded in the controller."""
@@ -460,9 +360,8 @@ def verify(
     return verify_strategy(gr1, automaton, chosen)
 
 
-def read_controller(
-    path: str | Path, spec: GR1Spec | None = None
-) -> Controller | SymbolicController:
+def read_controller(path: str | Path, spec: GR1Spec | None = None
+                    ) -> Controller | SymbolicController:
     """A controller file of either form: an explicit automaton or a symbolic controller."""
     data = read_controller_json(str(path))
     if is_symbolic(data):

@@ -21,17 +21,5 @@ from gaitc.commands import (
     solving,
 )
 
-COMMAND_MODULES = (
-    compiling,
-    solving,
-    explaining,
-    resilient,
-    simulating,
-    rendering,
-    gaits,
-    learning,
-    driving,
-    firmware,
-    calibrating,
-    characterizing,
-)
+COMMAND_MODULES = (compiling, solving, explaining, resilient, simulating, rendering, gaits,
+                   learning, driving, firmware, calibrating, characterizing)

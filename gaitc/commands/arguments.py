@@ -15,8 +15,7 @@ def positive_seconds(value: str) -> float:
         raise argparse.ArgumentTypeError(f"'{value}' is not a number of seconds") from None
     if not math.isfinite(seconds) or seconds <= 0:
         raise argparse.ArgumentTypeError(
-            f"must be a positive, finite number of seconds, not {value}"
-        )
+            f"must be a positive, finite number of seconds, not {value}")
     return seconds
 
 
@@ -25,7 +24,8 @@ def positive_megabytes(value: str) -> int:
     try:
         mb = int(value)
     except ValueError:
-        raise argparse.ArgumentTypeError(f"'{value}' is not a whole number of megabytes") from None
+        raise argparse.ArgumentTypeError(f"'{value}' is not a whole number of megabytes"
+                                         ) from None
     if mb <= 0:
         raise argparse.ArgumentTypeError(f"must be a positive number of megabytes, not {value}")
     return mb
@@ -58,10 +58,7 @@ def add_prefer(parser: argparse.ArgumentParser, when: str = "") -> None:
     from solver.preferences import PREFERENCES
 
     parser.add_argument(
-        "--prefer",
-        type=preference_list,
-        metavar="LIST",
+        "--prefer", type=preference_list, metavar="LIST",
         help=f"{when}the order of the move preferences among winning moves, comma-separated "
         f"(default {','.join(PREFERENCES)}; 'none': the solver's first move; "
-        "docs/simulation.md)",
-    )
+        "docs/simulation.md)")

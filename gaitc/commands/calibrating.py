@@ -18,26 +18,20 @@ the actuator is known to have in it (1 = inoperable) and the waveguide intensity
 board's ADC value).  The first samples of each cycle must be at rest.
 
 """
-EPILOG += exit_code_help(
-    {ExitCode.USER: "the CSV is malformed, a level is missing or two levels of a leg overlap"},
-    codes=(ExitCode.OK, ExitCode.USER, ExitCode.USAGE),
-)
+EPILOG += exit_code_help({ExitCode.USER: "the CSV is malformed, a level is missing or two "
+                          "levels of a leg overlap"},
+                         codes=(ExitCode.OK, ExitCode.USER, ExitCode.USAGE))
 
 
 def register(sub: Any) -> None:
-    p = sub.add_parser(
-        "calibrate",
-        help="waveguide health thresholds from recorded cycles",
-        description="Calibrate each leg's curvature thresholds from recorded "
-        "actuation cycles of known health level, with hysteresis, and write "
-        "them for 'gaitc drive --backend serial --sensing FILE'.",
-        epilog=EPILOG,
-        formatter_class=argparse.RawDescriptionHelpFormatter,
-    )
+    p = sub.add_parser("calibrate", help="waveguide health thresholds from recorded cycles",
+                       description="Calibrate each leg's curvature thresholds from recorded "
+                       "actuation cycles of known health level, with hysteresis, and write "
+                       "them for 'gaitc drive --backend serial --sensing FILE'.",
+                       epilog=EPILOG, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("cycles", metavar="LEGS.csv")
-    p.add_argument(
-        "-o", "--out", metavar="FILE", help="sensing file to write (default: LEGS.sensing.yaml)"
-    )
+    p.add_argument("-o", "--out", metavar="FILE",
+                   help="sensing file to write (default: LEGS.sensing.yaml)")
     p.set_defaults(run=run_calibrate)
 
 

@@ -25,65 +25,36 @@ if TYPE_CHECKING:
 
 def register(subparsers: Any) -> None:
     lint = subparsers.add_parser(
-        "lint",
-        help="check a .gait file and print its warnings",
+        "lint", help="check a .gait file and print its warnings",
         description="Parse and check SPEC, lower it in both encodings, print warnings. "
-        "Exit 0 when there is no error (warnings allowed), 1 on an error.",
-    )
+        "Exit 0 when there is no error (warnings allowed), 1 on an error.")
     lint.add_argument("spec", metavar="SPEC", help="a .gait file")
-    lint.add_argument(
-        "--primitives",
-        action="store_true",
-        help="report gaits without a valve primitive even when no gait binds one "
-        "(by default they are reported once any gait of the spec binds one)",
-    )
-    lint.add_argument(
-        "--deep",
-        action="store_true",
-        help="also solve the spec and run the sanity checks of 'gaitc explain' "
-        "(exit 3 if unrealizable, 5 on a sanity warning)",
-    )
-    lint.add_argument(
-        "--json",
-        action="store_true",
-        help="print one JSON object (docs/json.md); warnings stay on stderr too",
-    )
+    lint.add_argument("--primitives", action="store_true",
+                      help="report gaits without a valve primitive even when no gait binds one "
+                      "(by default they are reported once any gait of the spec binds one)")
+    lint.add_argument("--deep", action="store_true",
+                      help="also solve the spec and run the sanity checks of 'gaitc explain' "
+                      "(exit 3 if unrealizable, 5 on a sanity warning)")
+    lint.add_argument("--json", action="store_true",
+                      help="print one JSON object (docs/json.md); warnings stay on stderr too")
     lint.set_defaults(run=run_lint)
 
     comp = subparsers.add_parser(
-        "compile",
-        help="compile a .gait file to structuredslugs, slugsin or LTL text",
+        "compile", help="compile a .gait file to structuredslugs, slugsin or LTL text",
         description="Compile SPEC to a GR(1) specification (thesis eqs. 3.3-3.9). "
-        "Exit 0 on success, 1 on an error in SPEC, 2 on a bad command line.",
-    )
+        "Exit 0 on success, 1 on an error in SPEC, 2 on a bad command line.")
     comp.add_argument("spec", metavar="SPEC", help="a .gait file")
-    comp.add_argument(
-        "-o",
-        "--output",
-        default="-",
-        metavar="OUT",
-        help="output file, '-' for stdout (default); replaced atomically",
-    )
-    comp.add_argument(
-        "--format",
-        choices=FORMATS,
-        default=None,
-        help="output format (default: from the suffix of OUT, .slugsin or .ltl, "
-        "else structuredslugs)",
-    )
-    comp.add_argument(
-        "--encoding",
-        choices=ENCODINGS,
-        default="onehot",
-        help="onehot: a proposition per region/gait/health level (the thesis); "
-        "binary: integer variables (default onehot)",
-    )
-    comp.add_argument(
-        "--json",
-        action="store_true",
-        help="print one JSON object (docs/json.md) with the sizes of the "
-        "output; with '-o -' it holds the text",
-    )
+    comp.add_argument("-o", "--output", default="-", metavar="OUT",
+                      help="output file, '-' for stdout (default); replaced atomically")
+    comp.add_argument("--format", choices=FORMATS, default=None,
+                      help="output format (default: from the suffix of OUT, .slugsin or .ltl, "
+                      "else structuredslugs)")
+    comp.add_argument("--encoding", choices=ENCODINGS, default="onehot",
+                      help="onehot: a proposition per region/gait/health level (the thesis); "
+                      "binary: integer variables (default onehot)")
+    comp.add_argument("--json", action="store_true",
+                      help="print one JSON object (docs/json.md) with the sizes of the "
+                      "output; with '-o -' it holds the text")
     comp.set_defaults(run=run_compile)
 
 
@@ -101,9 +72,8 @@ def run_lint(args: argparse.Namespace) -> int:
     return code
 
 
-def _lint_verdict(
-    args: argparse.Namespace, diagnostics: list[Diagnostic]
-) -> tuple[ExitCode, Explanation | None]:
+def _lint_verdict(args: argparse.Namespace, diagnostics: list[Diagnostic]
+                  ) -> tuple[ExitCode, Explanation | None]:
     """The exit code of ``lint`` and, with ``--deep``, the explanation behind it."""
     if any(d.severity == "error" for d in diagnostics):
         return ExitCode.USER, None
@@ -111,19 +81,16 @@ def _lint_verdict(
         return ExitCode.OK, None
     why = gaitc.explain(gaitc.load(args.spec, kind=".gait"), repairs=False)
     if not why.realizable:
-        print(
-            f"{args.spec}: unrealizable ({why.kind} failure); 'gaitc explain' says why",
-            file=sys.stderr,
-        )
+        print(f"{args.spec}: unrealizable ({why.kind} failure); 'gaitc explain' says why",
+              file=sys.stderr)
         return ExitCode.UNREALIZABLE, why
     for warning in why.warnings:
         print(f"{args.spec}: warning: {warning.message}", file=sys.stderr)
     return (ExitCode.WARNING if why.warnings else ExitCode.OK), why
 
 
-def compile_text(
-    path: str, fmt: str = "structuredslugs", encoding: str = "onehot"
-) -> tuple[str, list[Diagnostic]]:
+def compile_text(path: str, fmt: str = "structuredslugs", encoding: str = "onehot"
+                 ) -> tuple[str, list[Diagnostic]]:
     """The text of the .gait file at ``path`` compiled to ``fmt``, plus the warnings."""
     spec, text = _compiled(path, fmt, encoding)
     return text, list(spec.diagnostics)

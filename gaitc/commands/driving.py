@@ -41,15 +41,12 @@ EPILOG = """backends:
                      while valves are open (try it with 'gaitc firmware simulate')
 
 """
-EPILOG += exit_code_help(
-    {
-        ExitCode.OK: "the run finished (or was interrupted with Ctrl-C) and the spec held along it",
-        ExitCode.USER: "an input file is wrong, a gait has no valve primitive, the board failed, "
-        "the sensors broke an assumption, or the controller broke a guarantee",
-        ExitCode.UNREALIZABLE: "the spec is unrealizable (when no CONTROLLER is given)",
-    },
-    codes=(ExitCode.OK, ExitCode.USER, ExitCode.USAGE, ExitCode.UNREALIZABLE),
-)
+EPILOG += exit_code_help({
+    ExitCode.OK: "the run finished (or was interrupted with Ctrl-C) and the spec held along it",
+    ExitCode.USER: "an input file is wrong, a gait has no valve primitive, the board failed, "
+    "the sensors broke an assumption, or the controller broke a guarantee",
+    ExitCode.UNREALIZABLE: "the spec is unrealizable (when no CONTROLLER is given)",
+}, codes=(ExitCode.OK, ExitCode.USER, ExitCode.USAGE, ExitCode.UNREALIZABLE))
 
 
 def register(sub: Any) -> None:
@@ -64,94 +61,44 @@ def register(sub: Any) -> None:
     )
     p.add_argument("spec", metavar="SPEC")
     p.add_argument("controller", metavar="CONTROLLER", nargs="?")
-    p.add_argument(
-        "--backend",
-        choices=("sim", "physics", "serial"),
-        default="sim",
-        help="sim (default), physics or serial",
-    )
-    p.add_argument(
-        "--robot",
-        metavar="ROBOT.yaml",
-        help="physics backend: the robot file with the model (default: the one "
-        "the gaits' primitives name)",
-    )
+    p.add_argument("--backend", choices=("sim", "physics", "serial"), default="sim",
+                   help="sim (default), physics or serial")
+    p.add_argument("--robot", metavar="ROBOT.yaml",
+                   help="physics backend: the robot file with the model (default: the one "
+                   "the gaits' primitives name)")
     p.add_argument("--port", metavar="URL", help="serial port or pyserial URL (serial backend)")
     p.add_argument("--baud", type=int, default=115200, metavar="N", help="baud rate (115200)")
-    p.add_argument(
-        "--timeout",
-        type=positive_seconds,
-        default=1.0,
-        metavar="S",
-        help="seconds to wait for each board answer (1)",
-    )
-    p.add_argument(
-        "--channels",
-        metavar="LIST",
-        help="board channel of each robot valve, e.g. 7,6,5,4,3,2,1,0 "
-        "(default: valve i on channel i)",
-    )
-    p.add_argument(
-        "--steps",
-        type=int,
-        metavar="N",
-        help="steps to run (20; a scenario's length when scripted)",
-    )
-    p.add_argument(
-        "--step-delay",
-        type=float,
-        metavar="S",
-        help="seconds between valve states (0 for sim, 0.5 for serial)",
-    )
-    p.add_argument(
-        "--cycles",
-        type=int,
-        default=1,
-        metavar="N",
-        help="times each gait's valve sequence is repeated per step (1)",
-    )
-    p.add_argument(
-        "--env",
-        nargs="+",
-        metavar="KIND",
-        help="sim backend: random (default) | adversarial | scripted FILE.yaml",
-    )
+    p.add_argument("--timeout", type=positive_seconds, default=1.0, metavar="S",
+                   help="seconds to wait for each board answer (1)")
+    p.add_argument("--channels", metavar="LIST",
+                   help="board channel of each robot valve, e.g. 7,6,5,4,3,2,1,0 "
+                   "(default: valve i on channel i)")
+    p.add_argument("--steps", type=int, metavar="N",
+                   help="steps to run (20; a scenario's length when scripted)")
+    p.add_argument("--step-delay", type=float, metavar="S",
+                   help="seconds between valve states (0 for sim, 0.5 for serial)")
+    p.add_argument("--cycles", type=int, default=1, metavar="N",
+                   help="times each gait's valve sequence is repeated per step (1)")
+    p.add_argument("--env", nargs="+", metavar="KIND",
+                   help="sim backend: random (default) | adversarial | scripted FILE.yaml")
     p.add_argument("--seed", type=int, default=0, help="seed of the random environment")
     p.add_argument("--out", metavar="FILE", help="save the run as .jsonl or .csv")
-    p.add_argument(
-        "--on-violation",
-        choices=VIOLATION_POLICIES,
-        default="stop",
-        help="a reading that breaks the spec's assumptions: stop the run (default), "
-        "hold the levels the controller had, or take the worst levels the "
-        "assumptions allow",
-    )
-    p.add_argument(
-        "--pose",
-        metavar="URL",
-        help="take the region from a tracker's pose stream: udp://HOST:PORT "
-        '(listen) or tcp://HOST:PORT (connect), JSON {"x": .., "y": ..}',
-    )
+    p.add_argument("--on-violation", choices=VIOLATION_POLICIES, default="stop",
+                   help="a reading that breaks the spec's assumptions: stop the run (default), "
+                   "hold the levels the controller had, or take the worst levels the "
+                   "assumptions allow")
+    p.add_argument("--pose", metavar="URL",
+                   help="take the region from a tracker's pose stream: udp://HOST:PORT "
+                   "(listen) or tcp://HOST:PORT (connect), JSON {\"x\": .., \"y\": ..}")
     p.add_argument("--map", metavar="FILE", help="--pose: region polygons (YAML)")
-    p.add_argument(
-        "--cell-size",
-        type=float,
-        metavar="S",
-        help="--pose without --map: the side of a grid cell (1)",
-    )
-    p.add_argument(
-        "--sensing",
-        metavar="FILE",
-        help="serial backend: waveguide thresholds per leg (from 'gaitc calibrate')",
-    )
-    p.add_argument(
-        "--encoding",
-        choices=ENCODINGS,
-        help="encoding of the spec (default: the one recorded in the controller)",
-    )
-    p.add_argument(
-        "--robotics-semantics", action="store_true", help="semantics when synthesizing on the fly"
-    )
+    p.add_argument("--cell-size", type=float, metavar="S",
+                   help="--pose without --map: the side of a grid cell (1)")
+    p.add_argument("--sensing", metavar="FILE",
+                   help="serial backend: waveguide thresholds per leg (from 'gaitc calibrate')")
+    p.add_argument("--encoding", choices=ENCODINGS,
+                   help="encoding of the spec (default: the one recorded in the controller)")
+    p.add_argument("--robotics-semantics", action="store_true",
+                   help="semantics when synthesizing on the fly")
     p.add_argument("--quiet", action="store_true", help="print only the summary")
     add_json(p)
     add_prefer(p, "without CONTROLLER: ")
@@ -167,14 +114,11 @@ def _check_options(args: argparse.Namespace) -> None:
         raise UsageError("--step-delay must not be negative")
     if args.backend == "serial":
         if not args.port:
-            raise UsageError(
-                "--backend serial needs --port URL (e.g. /dev/ttyUSB0 or socket://localhost:7000)"
-            )
+            raise UsageError("--backend serial needs --port URL (e.g. /dev/ttyUSB0 or "
+                             "socket://localhost:7000)")
         if args.env:
-            raise UsageError(
-                "--env chooses the simulated robot's environment; the serial "
-                "backend reads real sensors"
-            )
+            raise UsageError("--env chooses the simulated robot's environment; the serial "
+                             "backend reads real sensors")
     if (args.map or args.cell_size is not None) and not args.pose and args.backend != "physics":
         raise UsageError("--map and --cell-size place the poses of --pose or --backend physics")
     if args.robot and args.backend != "physics":
@@ -201,16 +145,9 @@ def _backend(args: argparse.Namespace, loaded: Session, valves: int) -> tuple[Ba
 
         channels = parse_channels(args.channels) if args.channels else None
         calibration = read_sensing(args.sensing) if args.sensing else None
-        return SerialValveBoard(
-            args.port,
-            valves,
-            loaded.domain.legs,
-            args.baud,
-            args.timeout,
-            channels=channels,
-            levels=loaded.domain.full,
-            calibration=calibration,
-        ), steps
+        return SerialValveBoard(args.port, valves, loaded.domain.legs, args.baud, args.timeout,
+                                channels=channels, levels=loaded.domain.full,
+                                calibration=calibration), steps
     from gaithw.simulated import SimulatedRobot
 
     environment, scripted = _environment(args, loaded)
@@ -229,45 +166,30 @@ def _physics(args: argparse.Namespace, loaded: Session, robot: Any) -> Backend:
     from softmodels.spring_damper import SpringDamperModel
 
     model = loaded.domain.model
-    path = args.robot or next(
-        (
-            str(Path(args.spec).parent / g.primitive.robot)
-            for g in model.gaits
-            if g.primitive is not None and g.primitive.robot
-        ),
-        None,
-    )
+    path = args.robot or next((str(Path(args.spec).parent / g.primitive.robot)
+                               for g in model.gaits
+                               if g.primitive is not None and g.primitive.robot), None)
     if path is None:
-        raise UsageError(
-            "--backend physics needs --robot ROBOT.yaml: no gait's primitive names a robot file"
-        )
+        raise UsageError("--backend physics needs --robot ROBOT.yaml: no gait's primitive "
+                         "names a robot file")
     described = load_spring_damper(path)
     if described.valve_count != robot.valve_count:
-        raise UsageError(
-            f"robot file {path} has {described.valve_count} valves but the gaits' "
-            f"primitives drive {robot.valve_count}"
-        )
-    regions = (
-        RegionMap.from_file(args.map, loaded.domain.regions)
-        if args.map
-        else region_map(model, args.cell_size or 100.0)
-    )
+        raise UsageError(f"robot file {path} has {described.valve_count} valves but the gaits' "
+                         f"primitives drive {robot.valve_count}")
+    regions = (RegionMap.from_file(args.map, loaded.domain.regions) if args.map
+               else region_map(model, args.cell_size or 100.0))
     if model.start not in regions.polygons:
         raise UsageError(f"the map places no start region {model.start}")
-    return PhysicsRobot(
-        robot, SpringDamperModel(described), regions, centre(regions, model.start), described.period
-    )
+    return PhysicsRobot(robot, SpringDamperModel(described), regions,
+                        centre(regions, model.start), described.period)
 
 
 def _localised(args: argparse.Namespace, backend: Backend, loaded: Session) -> Backend:
     from gaithw.localisation import Localised, PoseStream, RegionMap
 
     model = loaded.domain.model
-    regions = (
-        RegionMap.from_file(args.map, loaded.domain.regions)
-        if args.map
-        else RegionMap.from_grid(model, args.cell_size or 1.0)
-    )
+    regions = (RegionMap.from_file(args.map, loaded.domain.regions) if args.map
+               else RegionMap.from_grid(model, args.cell_size or 1.0))
     return Localised(backend, PoseStream(args.pose, args.timeout), regions)
 
 
@@ -275,71 +197,41 @@ def run_drive(args: argparse.Namespace) -> int:
     from gaithw.driver import Driver, bind_primitives, valve_count
 
     _check_options(args)
-    encoding = (
-        args.encoding
-        or (recorded_encoding(args.controller) if args.controller else None)
-        or "onehot"
-    )
+    encoding = args.encoding or (recorded_encoding(args.controller) if args.controller
+                                 else None) or "onehot"
     checked = gaitc.load(args.spec, encoding)
     if checked.model is None:
-        raise UsageError(
-            f"'{args.spec}': driving needs a .gait spec, which binds gaits to valve primitives"
-        )
+        raise UsageError(f"'{args.spec}': driving needs a .gait spec, which binds gaits to "
+                         "valve primitives")
     primitives = bind_primitives(checked.model, str(Path(args.spec).parent))
     semantics = "robotics" if args.robotics_semantics else "default"
     loaded = gaitc.session(checked, args.controller, semantics=semantics, prefer=args.prefer)
     if loaded is None:
         print(f"{args.spec}: unrealizable: no controller to drive", file=sys.stderr)
         if args.json:
-            print_json(
-                document(
-                    "drive",
-                    {
-                        **run_json(args.spec, None, None, None, False),
-                        "backend": args.backend,
-                        "violations": [],
-                    },
-                )
-            )
+            print_json(document("drive", {**run_json(args.spec, None, None, None, False),
+                                          "backend": args.backend, "violations": []}))
         return ExitCode.UNREALIZABLE
     backend, steps = _backend(args, loaded, valve_count(primitives, len(loaded.domain.legs)))
     if args.pose:
         if args.backend == "physics":
             raise UsageError("--pose reads a tracker; --backend physics computes the pose")
         backend = _localised(args, backend, loaded)
-    delay = (
-        args.step_delay
-        if args.step_delay is not None
-        else (0.5 if args.backend == "serial" else 0.0)
-    )
-    live = None if args.quiet or args.json or args.backend in ("sim", "physics") else _print_flush
-    driver = Driver(
-        loaded.strategy,
-        loaded.domain,
-        loaded.monitor,
-        primitives,
-        backend,
-        delay,
-        args.cycles,
-        live,
-        args.on_violation,
-    )
+    delay = args.step_delay if args.step_delay is not None else (
+        0.5 if args.backend == "serial" else 0.0)
+    live = (None if args.quiet or args.json or args.backend in ("sim", "physics")
+            else _print_flush)
+    driver = Driver(loaded.strategy, loaded.domain, loaded.monitor, primitives, backend,
+                    delay, args.cycles, live, args.on_violation)
     with interrupt_on_signals():  # SIGTERM and SIGHUP vent and keep the run, as Ctrl-C does
         run = driver.run(steps, args.spec)
     if args.json:
         extra = {"backend": args.backend, "violations": list(driver.violations)}
-        return report_run(
-            run,
-            dict(loaded.domain.full),
-            backend.name,
-            args.quiet,
-            args.out,
-            True,
-            extra,
-            command="drive",
-        )
+        return report_run(run, dict(loaded.domain.full), backend.name, args.quiet, args.out,
+                          True, extra, command="drive")
     if driver.violations and live is None:
-        print(f"readings that broke an assumption ({args.on_violation}): {len(driver.violations)}")
+        print(f"readings that broke an assumption ({args.on_violation}): "
+              f"{len(driver.violations)}")
         for note in driver.violations:
             print(f"  {note}")
     try:
@@ -356,10 +248,8 @@ def _print_poses(placed: list[Any], quiet: bool) -> None:
 
     print("chassis pose at each reading (mm, deg; region under the chassis):")
     for p in placed if not quiet else placed[-1:]:
-        print(
-            f"  {p.reading:>3}  x {p.pose.x:8.1f}  y {p.pose.y:8.1f}  "
-            f"heading {math.degrees(p.pose.theta):7.2f}  {p.region or 'outside the map'}"
-        )
+        print(f"  {p.reading:>3}  x {p.pose.x:8.1f}  y {p.pose.y:8.1f}  "
+              f"heading {math.degrees(p.pose.theta):7.2f}  {p.region or 'outside the map'}")
 
 
 def _print_flush(line: str) -> None:

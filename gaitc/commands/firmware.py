@@ -25,58 +25,34 @@ EPILOG = """examples:
 
 
 def register(sub: Any) -> None:
-    p = sub.add_parser(
-        "firmware",
-        help="build the valve-board firmware or simulate it",
-        description="Build the gaitboard firmware (ATmega328P, protocol v2) "
-        "or run it in the simavr harness as a board for 'gaitc drive'.",
-        epilog=EPILOG,
-        formatter_class=argparse.RawDescriptionHelpFormatter,
-    )
+    p = sub.add_parser("firmware", help="build the valve-board firmware or simulate it",
+                       description="Build the gaitboard firmware (ATmega328P, protocol v2) "
+                       "or run it in the simavr harness as a board for 'gaitc drive'.",
+                       epilog=EPILOG, formatter_class=argparse.RawDescriptionHelpFormatter)
     actions = p.add_subparsers(dest="action", metavar="ACTION", parser_class=type(p))
-    b = actions.add_parser(
-        "build",
-        help="build the firmware image and the simulator",
-        epilog=exit_code_help(
-            {ExitCode.USER: "the toolchain is missing or a compiler failed"},
-            codes=(ExitCode.OK, ExitCode.USER, ExitCode.USAGE),
-        ),
-        formatter_class=argparse.RawDescriptionHelpFormatter,
-    )
-    b.add_argument(
-        "-o",
-        "--out",
-        metavar="DIR",
-        default="firmware-build",
-        help="output folder (firmware-build)",
-    )
-    b.add_argument(
-        "--no-simulator", action="store_true", help="build only the image (no libsimavr needed)"
-    )
+    b = actions.add_parser("build", help="build the firmware image and the simulator",
+                           epilog=exit_code_help({ExitCode.USER: "the toolchain is missing "
+                                                  "or a compiler failed"},
+                                                 codes=(ExitCode.OK, ExitCode.USER,
+                                                        ExitCode.USAGE)),
+                           formatter_class=argparse.RawDescriptionHelpFormatter)
+    b.add_argument("-o", "--out", metavar="DIR", default="firmware-build",
+                   help="output folder (firmware-build)")
+    b.add_argument("--no-simulator", action="store_true",
+                   help="build only the image (no libsimavr needed)")
     b.set_defaults(run=run_build)
-    s = actions.add_parser(
-        "simulate",
-        help="run the firmware in simavr; prints the pty path",
-        description="Run the real firmware image in the simavr harness, in "
-        "real time. The first line printed is the board's serial port (a "
-        "pty); standard input takes 'adc CH MV', 'contact I 0|1' and "
-        "'time'. Runs until killed.",
-        formatter_class=argparse.RawDescriptionHelpFormatter,
-    )
-    s.add_argument(
-        "--record",
-        metavar="FILE",
-        help="write every valve pin change as a JSON line {t_ms, valves}",
-    )
-    s.add_argument(
-        "--watchdog-ms",
-        type=int,
-        metavar="N",
-        help="the board's watchdog period (50..10000; firmware default 500)",
-    )
-    s.add_argument(
-        "--adc", type=int, metavar="MV", help="initial millivolts on every waveguide input (4000)"
-    )
+    s = actions.add_parser("simulate", help="run the firmware in simavr; prints the pty path",
+                           description="Run the real firmware image in the simavr harness, in "
+                           "real time. The first line printed is the board's serial port (a "
+                           "pty); standard input takes 'adc CH MV', 'contact I 0|1' and "
+                           "'time'. Runs until killed.",
+                           formatter_class=argparse.RawDescriptionHelpFormatter)
+    s.add_argument("--record", metavar="FILE",
+                   help="write every valve pin change as a JSON line {t_ms, valves}")
+    s.add_argument("--watchdog-ms", type=int, metavar="N",
+                   help="the board's watchdog period (50..10000; firmware default 500)")
+    s.add_argument("--adc", type=int, metavar="MV",
+                   help="initial millivolts on every waveguide input (4000)")
     s.set_defaults(run=run_simulate)
     p.set_defaults(run=lambda args: _no_action(p))
 

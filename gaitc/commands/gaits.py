@@ -29,11 +29,8 @@ def register(subparsers: Any) -> None:
     search_arguments(p)
     p.add_argument("-o", "--output", metavar="gaits.json", help="write the gaits as JSON")
     p.add_argument("--svg", metavar="DIR", help="write the gait graph and pose top views here")
-    p.add_argument(
-        "--json",
-        action="store_true",
-        help="print the search and its gaits as one JSON object (docs/json.md)",
-    )
+    p.add_argument("--json", action="store_true",
+                   help="print the search and its gaits as one JSON object (docs/json.md)")
     from gaitc.commands.predicted import model_arguments
 
     model_arguments(p)
@@ -92,9 +89,8 @@ def run(args: argparse.Namespace) -> int:
     except SpecSemanticError as err:  # no file to point at: a usage error
         raise UsageError(f"--direction: unknown direction {args.direction!r}") from err
     full = robot.valve_count <= 12 and 1 << robot.valve_count <= args.max_states
-    method = (
-        args.method if args.method not in (None, "chapter2") else ("full" if full else "random")
-    )
+    method = args.method if args.method not in (None, "chapter2") else (
+        "full" if full else "random")
     result = search(robot, direction, method, args.seed, args.max_states)
     if args.json:
         return _print_json(args, robot, result)
@@ -108,10 +104,8 @@ def run(args: argparse.Namespace) -> int:
     else:
         print(f"no gait towards {args.direction} found")
     if result.limit_reached:
-        print(
-            f"the search stopped at --max-states {args.max_states} of the "
-            f"{1 << robot.valve_count} valve states"
-        )
+        print(f"the search stopped at --max-states {args.max_states} of the "
+              f"{1 << robot.valve_count} valve states")
     if args.output:
         write_atomically(args.output, gaits_json(robot, result, args.direction, args.seed))
     if args.svg:
@@ -130,7 +124,8 @@ def _print_json(args: argparse.Namespace, robot: Robot, result: SearchResult) ->
         write_atomically(args.output, gaits_json(robot, result, args.direction, args.seed))
         written.append(args.output)
     if args.svg:
-        written.extend(str(p) for p in write_drawings(robot, result.graph, result.gaits, args.svg))
+        written.extend(str(p) for p in write_drawings(robot, result.graph, result.gaits,
+                                                      args.svg))
     body = {**search_document(robot, result, args.direction, args.seed), "written": written}
     print_json(document("gaits", body))
     return 0 if result.gaits else 1

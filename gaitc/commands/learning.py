@@ -227,22 +227,11 @@ def _plan_json(args: argparse.Namespace, robot: str, plan: GaitPlan | None) -> i
         write_atomically(str(path), plan._repr_svg_())
         written.append(str(path))
     states, poses, edges = plan.graph if plan is not None else (None, None, None)
-    print_json(
-        document(
-            "gaits",
-            {
-                "robot": robot,
-                "method": args.method,
-                "found": plan is not None,
-                "reached": plan is not None and plan.reached,
-                "valve_states": states,
-                "poses": poses,
-                "transitions": edges,
-                "plan": None if plan is None else plan.to_dict(),
-                "written": written,
-            },
-        )
-    )
+    print_json(document("gaits", {
+        "robot": robot, "method": args.method, "found": plan is not None,
+        "reached": plan is not None and plan.reached, "valve_states": states, "poses": poses,
+        "transitions": edges, "plan": None if plan is None else plan.to_dict(),
+        "written": written}))
     return 0 if plan is not None and plan.reached else 1
 
 

@@ -31,15 +31,12 @@ A counter-strategy (from 'gaitc counter') is the environment itself; --env rando
 adversarial then says how the robot answers (adversarial: it avoids forced deadlocks).
 
 """
-EPILOG += exit_code_help(
-    {
-        ExitCode.OK: "the run finished and the spec held along it",
-        ExitCode.USER: "an input file is wrong, a scenario step breaks an assumption, or the "
-        "controller broke a guarantee along the run",
-        ExitCode.UNREALIZABLE: "the spec is unrealizable (when no CONTROLLER is given)",
-    },
-    codes=(ExitCode.OK, ExitCode.USER, ExitCode.USAGE, ExitCode.UNREALIZABLE),
-)
+EPILOG += exit_code_help({
+    ExitCode.OK: "the run finished and the spec held along it",
+    ExitCode.USER: "an input file is wrong, a scenario step breaks an assumption, or the "
+    "controller broke a guarantee along the run",
+    ExitCode.UNREALIZABLE: "the spec is unrealizable (when no CONTROLLER is given)",
+}, codes=(ExitCode.OK, ExitCode.USER, ExitCode.USAGE, ExitCode.UNREALIZABLE))
 
 
 def register(sub: Any) -> None:
@@ -54,29 +51,16 @@ def register(sub: Any) -> None:
     )
     p.add_argument("spec", metavar="SPEC")
     p.add_argument("controller", metavar="CONTROLLER", nargs="?")
-    p.add_argument(
-        "--env",
-        nargs="+",
-        metavar="KIND",
-        default=["random"],
-        help="scripted FILE.yaml | random | adversarial (default random)",
-    )
+    p.add_argument("--env", nargs="+", metavar="KIND", default=["random"],
+                   help="scripted FILE.yaml | random | adversarial (default random)")
     p.add_argument("--seed", type=int, default=0, help="seed of the random environment")
-    p.add_argument(
-        "--steps",
-        type=int,
-        metavar="N",
-        help="number of steps (default 50; a scenario's length when scripted)",
-    )
+    p.add_argument("--steps", type=int, metavar="N",
+                   help="number of steps (default 50; a scenario's length when scripted)")
     p.add_argument("--out", metavar="FILE", help="save the run as .jsonl or .csv")
-    p.add_argument(
-        "--encoding",
-        choices=ENCODINGS,
-        help="encoding of the spec (default: the one recorded in the controller)",
-    )
-    p.add_argument(
-        "--robotics-semantics", action="store_true", help="semantics when synthesizing on the fly"
-    )
+    p.add_argument("--encoding", choices=ENCODINGS,
+                   help="encoding of the spec (default: the one recorded in the controller)")
+    p.add_argument("--robotics-semantics", action="store_true",
+                   help="semantics when synthesizing on the fly")
     p.add_argument("--quiet", action="store_true", help="print only the summary")
     add_json(p)
     add_prefer(p, "without CONTROLLER: ")
@@ -85,12 +69,9 @@ def register(sub: Any) -> None:
 
 def add_json(p: argparse.ArgumentParser) -> None:
     """``--json`` of ``simulate`` and ``drive``: the run as one object (docs/json.md)."""
-    p.add_argument(
-        "--json",
-        action="store_true",
-        help="print the run (steps, summary, error) as one JSON object instead "
-        "of the table (docs/json.md)",
-    )
+    p.add_argument("--json", action="store_true",
+                   help="print the run (steps, summary, error) as one JSON object instead "
+                   "of the table (docs/json.md)")
 
 
 def environment_of(args: argparse.Namespace, bound: Session) -> Environment:
@@ -118,15 +99,8 @@ def run_simulate(args: argparse.Namespace) -> int:
         bound = counter_session(gaitc.load(args.spec, args.encoding or "onehot"), semantics)
         if bound is not None:  # the environment plays its winning strategy
             run = gaitc.simulate(bound, env="adversarial", steps=args.steps)
-            return report_run(
-                run,
-                bound.full_health,
-                run.environment,
-                args.quiet,
-                args.out,
-                args.json,
-                realizable=False,
-            )
+            return report_run(run, bound.full_health, run.environment, args.quiet, args.out,
+                              args.json, realizable=False)
     if bound is None:
         print(f"{args.spec}: unrealizable: no controller to simulate", file=sys.stderr)
         if args.json:
@@ -135,29 +109,16 @@ def run_simulate(args: argparse.Namespace) -> int:
     if bound.strategy.kind == "counterstrategy":
         kind = (args.env or ["random"])[0]
         run = gaitc.simulate(bound, env=kind, steps=args.steps, seed=args.seed)
-        return report_run(
-            run,
-            bound.full_health,
-            run.environment,
-            args.quiet,
-            args.out,
-            args.json,
-            realizable=False,
-        )
+        return report_run(run, bound.full_health, run.environment, args.quiet, args.out,
+                          args.json, realizable=False)
     chosen = environment_of(args, bound)
     run = gaitc.simulate(bound, env=chosen, steps=args.steps)
     return report_run(run, bound.full_health, chosen.name, args.quiet, args.out, args.json)
 
 
 def report_run(
-    run: Run,
-    full_health: Mapping[str, int],
-    source: str,
-    quiet: bool,
-    out: str | None,
-    as_json: bool = False,
-    extra: Mapping[str, Any] | None = None,
-    realizable: bool = True,
+    run: Run, full_health: Mapping[str, int], source: str, quiet: bool, out: str | None,
+    as_json: bool = False, extra: Mapping[str, Any] | None = None, realizable: bool = True,
     command: str = "simulate",
 ) -> int:
     """Print ``run``'s step table and summary, save it to ``out``, return the exit code.
@@ -173,11 +134,8 @@ def report_run(
     if as_json:
         if out:
             save_run(run, out)
-        print_json(
-            document(
-                command, {**run_json(run.spec_file, run, source, out, realizable), **(extra or {})}
-            )
-        )
+        print_json(document(command, {**run_json(run.spec_file, run, source, out, realizable),
+                                      **(extra or {})}))
         if run.error is not None:
             print(render_error(run.error), file=sys.stderr)
             return exit_code_of(run.error)
@@ -200,9 +158,7 @@ def _broke_guarantee(run: Run) -> bool:
     """Whether the controller broke a guarantee with every assumption kept (said on stderr)."""
     summary = run.summary
     if summary is not None and summary.assumptions_held and not summary.guarantees_held:
-        print(
-            "gaitc: error: the controller broke a guarantee along this run (see above)",
-            file=sys.stderr,
-        )
+        print("gaitc: error: the controller broke a guarantee along this run (see above)",
+              file=sys.stderr)
         return True
     return False

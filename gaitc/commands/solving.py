@@ -29,14 +29,12 @@ from solver.game import Progress
 from solver.symbolic import Options
 from verifier.strategy import VerificationReport
 
-EXIT_CODES = exit_code_help(
-    {
-        ExitCode.OK: "every spec is realizable (check), the controller was written / verified",
-        ExitCode.USER: "an input file is wrong (syntax, names, malformed controller) or "
-        "verification failed",
-        ExitCode.UNREALIZABLE: "a spec is unrealizable (check, synth) or realizable (counter)",
-    }
-)
+EXIT_CODES = exit_code_help({
+    ExitCode.OK: "every spec is realizable (check), the controller was written / verified",
+    ExitCode.USER: "an input file is wrong (syntax, names, malformed controller) or "
+    "verification failed",
+    ExitCode.UNREALIZABLE: "a spec is unrealizable (check, synth) or realizable (counter)",
+})
 
 
 def _common(p: argparse.ArgumentParser, solver: bool = True) -> None:
@@ -51,25 +49,18 @@ def _common(p: argparse.ArgumentParser, solver: bool = True) -> None:
         choices=ENCODINGS,
         default="onehot" if solver else None,
         help="encoding of .gait specs (default onehot"
-        + ("" if solver else "; verify: the one recorded in the controller file")
-        + ")",
+        + ("" if solver else "; verify: the one recorded in the controller file") + ")",
     )
     if not solver:
         return
     p.add_argument("--solver", choices=SOLVERS, default="embedded")
     p.add_argument("--slugs", metavar="PATH", help="the SLUGS binary (else $SLUGS or PATH)")
-    p.add_argument(
-        "--timeout",
-        type=positive_seconds,
-        metavar="SECONDS",
-        help="stop after this long (exit 4; the solver is killed at most half a second later)",
-    )
-    p.add_argument(
-        "--memory-limit",
-        type=positive_megabytes,
-        metavar="MB",
-        help="the most memory the solver process may take (exit 4 when it needs more)",
-    )
+    p.add_argument("--timeout", type=positive_seconds, metavar="SECONDS",
+                   help="stop after this long (exit 4; the solver is killed at most "
+                   "half a second later)")
+    p.add_argument("--memory-limit", type=positive_megabytes, metavar="MB",
+                   help="the most memory the solver process may take (exit 4 when it needs "
+                   "more)")
 
 
 def register(sub: Any) -> None:
@@ -83,7 +74,8 @@ def register(sub: Any) -> None:
         formatter_class=fmt,
     )
     p.add_argument("specs", nargs="+", metavar="SPEC")
-    p.add_argument("--json", action="store_true", help="one JSON object per file (docs/json.md)")
+    p.add_argument("--json", action="store_true",
+                   help="one JSON object per file (docs/json.md)")
     _common(p)
     p.set_defaults(run=run_check)
 
@@ -99,20 +91,12 @@ def register(sub: Any) -> None:
     p.add_argument("-o", "--output", required=True, metavar="FILE")
     p.add_argument("--no-verify", action="store_true", help="skip the verification step")
     _json(p)
-    p.add_argument(
-        "--symbolic",
-        action="store_true",
-        help="write the strategy as BDDs (docs/controller-format.md, symbolic "
-        "controllers); simulate, drive, verify and render map read it",
-    )
-    p.add_argument(
-        "--max-nodes",
-        type=positive_count,
-        default=MAX_NODES,
-        metavar="N",
-        help=f"keep the controller symbolic when the explicit automaton would pass "
-        f"N nodes (default {MAX_NODES:,})",
-    )
+    p.add_argument("--symbolic", action="store_true",
+                   help="write the strategy as BDDs (docs/controller-format.md, symbolic "
+                   "controllers); simulate, drive, verify and render map read it")
+    p.add_argument("--max-nodes", type=positive_count, default=MAX_NODES, metavar="N",
+                   help=f"keep the controller symbolic when the explicit automaton would pass "
+                   f"N nodes (default {MAX_NODES:,})")
     add_prefer(p)
     _common(p)
     p.set_defaults(run=run_synth)
@@ -147,11 +131,8 @@ def register(sub: Any) -> None:
 
 # ---------------------------------------------------------------- helpers
 def _json(p: argparse.ArgumentParser) -> None:
-    p.add_argument(
-        "--json",
-        action="store_true",
-        help="print one JSON object instead of the text (docs/json.md)",
-    )
+    p.add_argument("--json", action="store_true",
+                   help="print one JSON object instead of the text (docs/json.md)")
 
 
 def _semantics(args: argparse.Namespace) -> str:
@@ -178,14 +159,8 @@ def _options(args: argparse.Namespace) -> Options:
 
 
 def _solver_args(args: argparse.Namespace) -> dict[str, Any]:
-    return {
-        "semantics": _semantics(args),
-        "solver": args.solver,
-        "timeout": args.timeout,
-        "slugs": args.slugs,
-        "options": _options(args),
-        "progress": _progress(),
-    }
+    return {"semantics": _semantics(args), "solver": args.solver, "timeout": args.timeout,
+            "slugs": args.slugs, "options": _options(args), "progress": _progress()}
 
 
 # ---------------------------------------------------------------- commands
@@ -193,13 +168,8 @@ def run_check(args: argparse.Namespace) -> int:
     worst = ExitCode.OK
     for path in args.specs:
         started = time.monotonic()
-        record: dict[str, Any] = {
-            "file": path,
-            "semantics": _semantics(args),
-            "solver": args.solver,
-            "engine": None,
-            "error": None,
-        }
+        record: dict[str, Any] = {"file": path, "semantics": _semantics(args),
+                                  "solver": args.solver, "engine": None, "error": None}
         try:
             _options(args)  # a memory limit too small fails here, before the fork
             verdict = run_limited(functools.partial(_check_one, path, args), _limits(args))
@@ -238,14 +208,9 @@ def _solve(args: argparse.Namespace, kind: str) -> tuple[gaitc.Spec, gaitc.Synth
         if kind == "counterstrategy":
             return spec, gaitc.counterstrategy(spec, **_solver_args(args))
         form = "symbolic" if args.symbolic else "auto"
-        return spec, gaitc.synthesize(
-            spec,
-            verify=not args.no_verify,
-            form=form,
-            max_nodes=args.max_nodes,
-            prefer=args.prefer,
-            **_solver_args(args),
-        )
+        return spec, gaitc.synthesize(spec, verify=not args.no_verify, form=form,
+                                      max_nodes=args.max_nodes, prefer=args.prefer,
+                                      **_solver_args(args))
 
     return run_limited(work, _limits(args))
 
@@ -259,13 +224,14 @@ def run_synth(args: argparse.Namespace) -> int:
         print("  hint: 'gaitc counter' shows how the environment wins", file=sys.stderr)
         return ExitCode.UNREALIZABLE
     if found.report is not None and not found.report.ok:
-        print(
-            f"{args.spec}: realizable ({found.seconds:.2f} s), but the controller failed "
-            f"verification; {args.output} was not written"
-        )
+        print(f"{args.spec}: realizable ({found.seconds:.2f} s), but the controller failed "
+              f"verification; {args.output} was not written")
         return _print_report(found.report)
     found.save(args.output)  # only a verified controller (or one --no-verify asked for)
-    print(f"{args.spec}: realizable ({found.seconds:.2f} s); wrote {args.output} ({found.size})")
+    print(
+        f"{args.spec}: realizable ({found.seconds:.2f} s); wrote {args.output} "
+        f"({found.size})"
+    )
     if found.report is None:
         return ExitCode.OK
     return _print_report(found.report)
@@ -279,12 +245,8 @@ def _synth_json(args: argparse.Namespace, found: gaitc.Synthesis) -> int:
     written = found.controller is not None and verified
     if written:
         found.save(args.output)
-    print_json(
-        document(
-            "synth" if strategy else "counter",
-            {**found.to_json(), "output": args.output if written else None},
-        )
-    )
+    print_json(document("synth" if strategy else "counter",
+                        {**found.to_json(), "output": args.output if written else None}))
     if found.controller is None:
         if strategy:
             print("  hint: 'gaitc counter' shows how the environment wins", file=sys.stderr)
@@ -322,7 +284,6 @@ def run_verify(args: argparse.Namespace) -> int:
     report = gaitc.verify(spec, controller, semantics)
     if not args.json:
         return _print_report(report)
-    print_json(
-        document("verify", {"file": args.spec, "controller": args.controller, **report.to_json()})
-    )
+    print_json(document("verify", {"file": args.spec, "controller": args.controller,
+                                   **report.to_json()}))
     return ExitCode.OK if report.ok else ExitCode.USER
