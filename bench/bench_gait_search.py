@@ -2,14 +2,16 @@
 
 For the symmetric and asymmetric six-leg robots (24 chambers; 100 and 1,000 random valve
 states plus the vented one) and the symmetric robot with 10,000 valve states: the chapter 2
-search (Algorithm 1 toward the goal's direction) and A*, LPA*, MCTS toward the goal.  An
+search (Algorithm 1 toward the goal's direction) and A*, LPA*, D* Lite, MCTS toward the goal.  An
 edge update is what the online loop does, one transition at a time: a transition of the
 current gait not updated before gets its true motion on the simulated robot (20 % model
-mismatch, seeded; no noise), then the gait is re-planned: A* from scratch, LPA* by repair,
+mismatch, seeded; no noise), then the gait is re-planned: A* from scratch, LPA* and D* Lite
+by repair (D* Lite from the cycle's start, as the loop's plan at the start of a cycle),
 MCTS by pruning and one rollout per pruned branch's parent.  The updates stop early when
 every transition of the gait has been updated (the loop has converged).  Target: an LPA*
 update under 10 ms (the thesis, 5.2.3: about 15 minutes).
-Run: ``.venv/bin/python bench/bench_gait_search.py [--quick] [--updates N]``.
+Run: ``.venv/bin/python bench/bench_gait_search.py [--quick] [--updates N] [--methods
+lpa,dstar] [--cases asymmetric6:100]``.
 """
 
 from __future__ import annotations
@@ -27,7 +29,7 @@ from gaitgraph.graph import GaitGraph, random_states
 from gaitgraph.robot import load_robot
 from gaitsearch.api import start_pose
 from gaitsearch.goals import Goal
-from gaitsearch.planners import Settings, make_planner
+from gaitsearch.planners import SearchLimitError, Settings, make_planner
 from gaitsearch.plans import GaitPlan
 from gaitsearch.transitions import TransitionModel
 from gaitsearch.walker import Mismatch, SimulatedWalker
@@ -87,7 +89,10 @@ def chapter5(graph: GaitGraph, method: str, updates: int) -> str:
     settings = Settings(budget=400_000)
     planner = make_planner(method, model, graph.robot.name, start_pose(graph), GOAL, settings)
     began = time.perf_counter()
-    plan = planner.plan(explored=False)
+    try:
+        plan = planner.plan(explored=False)
+    except SearchLimitError:
+        return f"{graph.robot.name:<12} {method:<8} spent {settings.budget} expansions"
     first = time.perf_counter() - began
     if plan is None:
         return row(graph, method, first, planner.expanded, None, [])
@@ -106,7 +111,11 @@ def chapter5(graph: GaitGraph, method: str, updates: int) -> str:
         done.add(edge)
         began = time.perf_counter()
         planner.observe(edge, truth.true_step(edge), True)
-        current = planner.plan(explored=False)
+        try:
+            current = planner.plan(explored=False)
+        except SearchLimitError:
+            tail = f" {len(times):>4} (update {len(times) + 1} spent {settings.budget} expansions)"
+            return row(graph, method, first, work, summary, times) + tail
         times.append(time.perf_counter() - began)
     return row(graph, method, first, work, summary, times) + f" {len(times):>4}"
 
@@ -115,22 +124,33 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="skip the 10,000-state graph")
     parser.add_argument("--updates", type=int, default=20, help="edge updates per method at most")
+    parser.add_argument(
+        "--methods",
+        default="chapter2,astar,lpa,mcts",
+        help="comma-separated methods (dstar too; slow beyond the 100-state graphs)",
+    )
+    parser.add_argument("--cases", help="comma-separated ROBOT:STATES, e.g. asymmetric6:100")
     args = parser.parse_args()
     cases = [("symmetric6", 100), ("asymmetric6", 100), ("symmetric6", 1000), ("asymmetric6", 1000)]
     if not args.quick:
         cases.append(("symmetric6", 10_000))
+    if args.cases:
+        cases = [(c.split(":")[0], int(c.split(":")[1])) for c in args.cases.split(",")]
+    methods = args.methods.split(",")
     print(
         f"goal {GOAL} within {GOAL.tolerance:g} mm, {GOAL.angle_tolerance:g} deg; cells 2 mm, "
         f"2 deg; at most {args.updates} edge updates per method (upds: how many)"
     )
-    print("work: lattice expansions (A*, LPA*), MCTS iterations, chapter 2: gaits ranked")
+    print("work: lattice expansions (A*, LPA*, D* Lite), MCTS iterations, chapter 2: gaits ranked")
     print(HEAD)
     for name, states in cases:
         graph, seconds = build(name, states)
         print(f"# {name}, {states} valve states: gait graph built in {seconds:.1f} s", flush=True)
-        print(chapter2(graph), flush=True)
-        for method in ("astar", "lpa", "mcts"):
-            print(chapter5(graph, method, args.updates), flush=True)
+        if "chapter2" in methods:
+            print(chapter2(graph), flush=True)
+        for method in ("astar", "lpa", "dstar", "mcts"):
+            if method in methods:
+                print(chapter5(graph, method, args.updates), flush=True)
     print("target: LPA* edge update < 10 ms (thesis 5.2.3: about 15 minutes)")
 
 

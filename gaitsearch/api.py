@@ -52,7 +52,7 @@ def _robot(robot: Robot | str | Path) -> Robot:
     return robot if isinstance(robot, Robot) else load_robot(robot)
 
 
-def _goal(goal: Goal | str) -> Goal:
+def goal_for(goal: Goal | str) -> Goal:
     value = parse_goal(goal) if isinstance(goal, str) else goal
     if value.reached(0.0, 0.0, 0.0):
         raise UsageError(
@@ -79,7 +79,7 @@ def first_planner(
     check_method(method)
     if max_states < 1:
         raise UsageError("--max-states must be at least 1")
-    bot, target = _robot(robot), _goal(goal)
+    bot, target = _robot(robot), goal_for(goal)
     settings = settings or Settings()
     order = graph_batches(bot, settings.seed, max_states)
     graph = GaitGraph(bot)

@@ -11,6 +11,7 @@ distance to the goal over the longest step (both consistent).
 
 from __future__ import annotations
 
+import bisect
 import math
 
 import numpy as np
@@ -20,6 +21,8 @@ from gaitsearch.goals import Goal, angle_difference
 from gaitsearch.transitions import Floats, Ints, TransitionModel
 
 _OFF = 1 << 15
+WALK_STEPS = 24  # longest walk the walk table covers
+WALK_EDGES = 20_000  # larger graphs go without it (rebuilding it would cost more than it saves)
 _MASK = (1 << 16) - 1
 
 
@@ -57,7 +60,15 @@ class Lattice:
         self.hops[self.hops < 0] = math.inf
         self.reach = 0.0
         self.turn = 0.0
+        self._slack = size * math.sqrt(2) / 2
+        # step lengths (plus the snapping slack) the walk table was built with, per edge
+        self._walk_len: Floats = np.hypot(model.dx, model.dy) + self._slack
+        self._walks: Floats | None = None
+        self._walk_cols: list[list[float]] = []
+        # the poses whose heuristic the last growth changed (None: every pose)
+        self.rekey_poses: frozenset[int] | None = None
         self.refresh_bounds()
+        self._build_walks()
         span = math.hypot(goal.dx, goal.dy)
         if radius is None:  # room for a cycle to swing out and come back
             radius = max(3.0 * span, span + 2.0 * self.reach)
@@ -70,21 +81,71 @@ class Lattice:
             )
         self._cells = (radius / size) ** 2  # squared radius in cells
 
+    def _build_walks(self) -> None:
+        """The walk table: ``W[k, p]``, the longest translation (summed step lengths plus
+        slack) of any walk of at most k transitions from pose p to the start pose.  The
+        fewest transitions left from a node is at least the smallest k whose W reaches
+        the node's distance to the goal disc (which also bounds the hops home).  Skipped
+        for graphs of more than WALK_EDGES transitions (the distance bound is used)."""
+        m = self.model
+        if len(m) > WALK_EDGES:
+            self._walks, self._walk_cols = None, []
+            return
+        live = m.alive
+        src, dst, length = m.src[live], m.dst[live], self._walk_len[live]
+        table = np.full((WALK_STEPS + 1, m.poses), -np.inf)
+        table[0, self.start] = 0.0
+        exact = table[0].copy()
+        # rows are sorted by source pose: one maximum per pose with a live edge
+        starts = np.searchsorted(src, np.arange(m.poses))
+        has = starts < np.searchsorted(src, np.arange(m.poses), side="right")
+        first = starts[has]
+        for k in range(1, WALK_STEPS + 1):
+            longer = np.full(m.poses, -np.inf)
+            if len(src):
+                longer[has] = np.maximum.reduceat(length + exact[dst], first)
+            exact = longer
+            table[k] = np.maximum(table[k - 1], exact)
+        if self._walks is not None:
+            moved = (self._walks != table).any(axis=0)
+            self.rekey_poses = frozenset(np.nonzero(moved)[0].tolist())
+        self._walks = table
+        self._walk_cols = table.T.tolist()
+
+    def _walk_steps(self, pose: int, distance: float) -> int:
+        column = self._walk_cols[pose]
+        return bisect.bisect_left(column, distance)  # WALK_STEPS + 1 when none reaches
+
     def cover(self, edge: int) -> bool:
         """Make the step bounds cover one (changed) edge; True when they had to grow (by a
         quarter more than needed, so that a run of growing edges re-keys seldom)."""
         m = self.model
-        reach = math.hypot(m.dx_list[edge], m.dy_list[edge]) + self.size * math.sqrt(2) / 2
+        length = math.hypot(m.dx_list[edge], m.dy_list[edge])
+        reach = length + self._slack
         turn = abs(m.rot_list[edge]) + self.angle / 2
         grew = False
+        self.rekey_poses = frozenset()
+        if reach > self._walk_len[edge]:
+            self._walk_len[edge] = 1.25 * length + self._slack
+            if self._walks is not None:
+                self._build_walks()
+                grew = bool(self.rekey_poses)
         if reach > self.reach:
             self.reach, grew = 1.25 * reach, True
+            self.rekey_poses = None
         if turn > self.turn:
             self.turn, grew = 1.25 * turn, True
+            self.rekey_poses = None
         return grew
 
     def refresh_bounds(self) -> bool:
         """Recompute the step bounds of the heuristic; True when they grew."""
+        m = self.model
+        if hasattr(self, "_walks"):
+            now = np.hypot(m.dx, m.dy) + self._slack
+            if (now > self._walk_len).any():
+                self._walk_len = np.maximum(now, self._walk_len)
+                self._build_walks()
         longest, turn = self.model.largest_step()
         reach = longest + self.size * math.sqrt(2) / 2 + 1e-9
         turn = turn + self.angle / 2 + 1e-9
@@ -128,9 +189,22 @@ class Lattice:
         if hi - lo <= 48:
             edges: list[int] = []
             targets: list[int] = []
+            size, cells, turns, angle = self.size, self._cells, self.turns, self.angle
+            x, y = ix * size, iy * size
+            c, s, heading = self._cos[it], self._sin[it], self._heading[it]
+            alive, dxs, dys, rots = m.alive_list, m.dx_list, m.dy_list, m.rot_list
+            dsts = m.dst_list
             for e in range(lo, hi):
-                key = self._target(ix, iy, it, e)
-                if key is not None and key != node:
+                if not alive[e]:
+                    continue
+                dx, dy = dxs[e], dys[e]
+                tx = round((x + c * dx - s * dy) / size)
+                ty = round((y + s * dx + c * dy) / size)
+                if tx * tx + ty * ty > cells:
+                    continue
+                tt = round((heading + rots[e]) / angle) % turns
+                key = (dsts[e] << 48) | ((tx + _OFF) << 32) | ((ty + _OFF) << 16) | tt
+                if key != node:
                     edges.append(e)
                     targets.append(key)
             return edges, targets
@@ -184,12 +258,34 @@ class Lattice:
         by_distance = np.maximum(0.0, far - self.goal.tolerance - slack) / self.reach
         by_turn = np.maximum(0.0, turn - self.goal.angle_tolerance - self.angle / 2) / self.turn
         out: Floats = np.maximum(self.hops[pose], np.maximum(by_distance, by_turn))
+        if self._walks is not None:
+            left = np.maximum(0.0, far - self.goal.tolerance - slack)
+            steps = (self._walks[:, pose] < left).sum(axis=0)
+            out = np.maximum(out, steps.astype(np.float64))
         return out
 
     def heuristic(self, node: int) -> float:
-        pose, x, y, heading = self.centre(node)
-        far, turn = self.goal.error(x, y, heading)
+        """:meth:`heuristics` of one node (the same bits, in plain Python)."""
+        goal = self.goal
+        x = (((node >> 32) & _MASK) - _OFF) * self.size - goal.dx
+        y = (((node >> 16) & _MASK) - _OFF) * self.size - goal.dy
+        heading = angle_difference((node & _MASK) * self.angle, 0.0)
+        turn = abs(angle_difference(heading, goal.dtheta))
         slack = self.size * math.sqrt(2) / 2
-        by_distance = max(0.0, far - self.goal.tolerance - slack) / self.reach
-        by_turn = max(0.0, turn - self.goal.angle_tolerance - self.angle / 2) / self.turn
-        return max(float(self.hops[pose]), by_distance, by_turn)
+        by_distance = max(0.0, math.hypot(x, y) - goal.tolerance - slack) / self.reach
+        by_turn = max(0.0, turn - goal.angle_tolerance - self.angle / 2) / self.turn
+        hops = float(self.hops[node >> 48])
+        if self._walks is None:
+            return max(hops, by_distance, by_turn)
+        left = max(0.0, math.hypot(x, y) - goal.tolerance - slack)
+        return max(hops, by_distance, by_turn, float(self._walk_steps(node >> 48, left)))
+
+    def bound(self, node: int) -> float:
+        """The heuristic without the walk table: hops home and the distance and turn over
+        the largest step (what D* Lite combines with its node-to-node bound)."""
+        goal = self.goal
+        _, x, y, heading = self.centre(node)
+        far, turn = goal.error(x, y, heading)
+        by_distance = max(0.0, far - goal.tolerance - self._slack) / self.reach
+        by_turn = max(0.0, turn - goal.angle_tolerance - self.angle / 2) / self.turn
+        return max(float(self.hops[node >> 48]), by_distance, by_turn)

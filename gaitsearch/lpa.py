@@ -38,8 +38,10 @@ class LifelongPlanner:
         self.parent: dict[int, tuple[int, int]] = {}  # the predecessor rhs came from
         self.by_pose: dict[int, list[int]] = defaultdict(list)  # nodes whose edges are known
         self._h: dict[int, float] = {}
-        self._heap: list[tuple[float, float, int]] = []
-        self._queued: dict[int, tuple[float, float]] = {}
+        self._heap: list[tuple[float, float, int, int]] = []
+        self._queued: dict[int, tuple[float, float, int]] = {}
+        # (edge, target, cost) of nodes with a small fan-out, kept across expansions
+        self._succ: dict[int, list[tuple[int, int, float]]] = {}
         self.expanded = 0  # expansions of the last compute()
         self.total_expanded = 0
         self._known: set[int] = set()
@@ -59,20 +61,28 @@ class LifelongPlanner:
         return best + self.h(node), best
 
     def _push(self, node: int) -> None:
-        if self.g.get(node, _INF) != self.rhs.get(node, _INF):
-            k = self.key(node)
-            if math.isfinite(k[0]):
-                self._queued[node] = k
-                heapq.heappush(self._heap, (k[0], k[1], node))
+        g, rhs = self.g.get(node, _INF), self.rhs.get(node, _INF)
+        if g != rhs:
+            h = self._h.get(node)
+            if h is None:
+                h = self.h(node)
+            best = g if g < rhs else rhs
+            k1 = best + h
+            if k1 < _INF:
+                # among equal keys the underconsistent (g < rhs) come first (flag 0)
+                flag = 0 if g < rhs else 1
+                self._queued[node] = (k1, best, flag)
+                heapq.heappush(self._heap, (k1, best, flag, node))
                 return
         self._queued.pop(node, None)
 
-    def _top(self) -> tuple[float, float, int] | None:
-        while self._heap:
-            k1, k2, node = self._heap[0]
-            if self._queued.get(node) == (k1, k2):
-                return k1, k2, node
-            heapq.heappop(self._heap)
+    def _top(self) -> tuple[float, float, int, int] | None:
+        heap, queued = self._heap, self._queued
+        while heap:
+            k1, k2, flag, node = top = heap[0]
+            if queued.get(node) == (k1, k2, flag):
+                return top
+            heapq.heappop(heap)
         return None
 
     def _cost(self, edge: int) -> float:
@@ -104,24 +114,31 @@ class LifelongPlanner:
         came = self.parent.get(node)
         return came is not None and came[0] == u
 
-    def _successors(self, node: int) -> list[tuple[int, int]]:
-        """(edge, target) of ``node``; generating them the first time records the preds."""
+    def _successors(self, node: int) -> list[tuple[int, int, float]]:
+        """(edge, target, cost) of ``node``; generating them the first time records the
+        predecessors (and, for a small fan-out, keeps the list for later expansions)."""
+        cached = self._succ.get(node)
+        if cached is not None:
+            return cached
         lattice = self.lattice
         edges, keys = lattice.successors(node)
-        out = list(zip(edges, keys, strict=True))
+        costs = lattice.cost_list
+        out = [(e, k, costs[e]) for e, k in zip(edges, keys, strict=True)]
         if len(keys) > 48:  # heuristics of a large fan-out at once
             fresh = [k for k in keys if k not in self._h]
             if fresh:
                 values = lattice.heuristics(np.array(fresh, dtype=np.int64)).tolist()
                 self._h.update(zip(fresh, values, strict=True))
         if node != self.root and lattice.is_goal(node):
-            out.append((-1, GOAL))
-        pose = node >> 48
+            out.append((-1, GOAL, 0.0))
         if node not in self._known:
             self._known.add(node)
-            self.by_pose[pose].append(node)
-            for e, v in out:
-                self.pred[v].append((node, e, self._cost(e)))
+            self.by_pose[node >> 48].append(node)
+            pred = self.pred
+            for e, v, c in out:
+                pred[v].append((node, e, c))
+        if len(out) <= 48:
+            self._succ[node] = out
         return out
 
     def compute(self) -> Route | None:
@@ -131,18 +148,22 @@ class LifelongPlanner:
         """
         self.expanded = 0
         g, rhs = self.g, self.rhs
+        heap, queued = self._heap, self._queued
         while True:
             top = self._top()
             goal_key = self.key(GOAL)
-            # ties with the goal's key are expanded too: the zero-cost goal edges would
-            # otherwise let an underconsistent goal cell hide behind an equal key
+            goal_done = rhs.get(GOAL, _INF) == g.get(GOAL, _INF)
+            # with the zero-cost goal edges an underconsistent goal cell can sit at exactly
+            # the goal's key, so ties are expanded while they are underconsistent (they
+            # come first among equal keys); an overconsistent tie cannot lower the goal
             if top is None or (
-                (top[0], top[1]) > goal_key and rhs.get(GOAL, _INF) == g.get(GOAL, _INF)
+                goal_done
+                and ((top[0], top[1]) > goal_key or ((top[0], top[1]) == goal_key and top[2]))
             ):
                 break
-            heapq.heappop(self._heap)
-            u = top[2]
-            del self._queued[u]
+            heapq.heappop(heap)
+            u = top[3]
+            del queued[u]
             self.expanded += 1
             if self.expanded > self.budget:
                 self.total_expanded += self.expanded
@@ -156,11 +177,12 @@ class LifelongPlanner:
                 continue
             if g.get(u, _INF) > rhs.get(u, _INF):
                 g[u] = base = rhs[u]
-                for e, v in self._successors(u):
-                    self._relax(v, base + self._cost(e), u, e)
+                relax = self._relax
+                for e, v, c in self._successors(u):
+                    relax(v, base + c, u, e)
             else:
                 g[u] = _INF
-                for _e, v in self._successors(u):
+                for _e, v, _c in self._successors(u):
                     if self._through(v, u):
                         self._recompute(v)
                 self._recompute(u)
@@ -215,6 +237,12 @@ class LifelongPlanner:
             new = lattice.successor(u, edge)
             if new == old:
                 continue
+            cached = self._succ.get(u)
+            if cached is not None:
+                kept = [t for t in cached if t[0] != edge]
+                if new is not None:
+                    kept.append((edge, new, cost))
+                self._succ[u] = kept
             if old is not None:
                 self.pred[old].remove((u, edge, cost))
                 if self.parent.get(old) == (u, edge):
@@ -224,10 +252,19 @@ class LifelongPlanner:
                 self._relax(new, self.g.get(u, _INF) + cost, u, edge)
 
     def _rekey(self) -> None:
-        """The heuristic's step bounds grew: recompute h and every queued key."""
-        self._h.clear()
-        queued = list(self._queued)
-        self._queued.clear()
-        self._heap.clear()
+        """The heuristic shrank (the step bounds or the walk table grew): recompute h and
+        the queued keys, of the poses whose heuristic changed when the lattice knows them."""
+        poses = self.lattice.rekey_poses
+        if poses is None:  # every key: the heap is rebuilt (its stale entries dropped)
+            self._h.clear()
+            queued = list(self._queued)
+            self._queued.clear()
+            self._heap.clear()
+            for node in queued:
+                self._push(node)
+            return
+        self._h = {n: v for n, v in self._h.items() if n >> 48 not in poses}
+        queued = [n for n in self._queued if n != GOAL and n >> 48 in poses]
         for node in queued:
+            del self._queued[node]
             self._push(node)

@@ -10,21 +10,23 @@ displacement per cycle compared with the goal.
 from __future__ import annotations
 
 import json
-import math
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from diagnostics import GaitcError
 from gaitgraph.robot import Robot
+from gaitsearch.cycles import Point, run_cycle, whole_cycle
 from gaitsearch.goals import Goal
 from gaitsearch.planners import Planner, SearchLimitError, Settings
 from gaitsearch.plans import GaitPlan
-from gaitsearch.transitions import Step, TransitionModel, compose
+from gaitsearch.transitions import Step, TransitionModel
 from gaitsearch.walker import Mismatch, SimulatedWalker
 
-Point = tuple[float, float]
+if TYPE_CHECKING:
+    from gaitsearch.backends import Walker
+    from gaitsearch.growth import Grower
 
 
 @dataclass(frozen=True)
@@ -120,58 +122,23 @@ def _r(x: float) -> float:
     return 0.0 if value == 0 else value
 
 
-def _mean(steps: list[Step]) -> Step:
-    n = len(steps)
-    return Step(
-        sum(s.dx for s in steps) / n,
-        sum(s.dy for s in steps) / n,
-        sum(s.rotation for s in steps) / n,
-    )
-
-
-def _differs(a: Step, b: Step, threshold: float) -> bool:
-    return math.hypot(a.dx - b.dx, a.dy - b.dy) > threshold or abs(a.rotation - b.rotation) > (
-        threshold
-    )
-
-
-def run_cycle(
-    walker: SimulatedWalker, model: TransitionModel, edges: tuple[int, ...]
-) -> tuple[
-    list[tuple[int, Step | None]],
-    list[tuple[float, float, float]],
-    tuple[float, float, float] | None,
-]:
-    """Run one cycle from the rest pose; per planned edge what was measured (None: the robot
-    did not make it, and the cycle stops there), the measured chassis poses, the net
-    displacement."""
-    walker.reset()
-    x = y = h = 0.0
-    path = [(0.0, 0.0, 0.0)]
-    seen: list[tuple[int, Step | None]] = []
-    for e in edges:
-        walker.apply(model.labels[int(model.dst[e])])
-        out = walker.last
-        if out is None or out.edge != e or out.measured is None:
-            seen.append((e, None))
-            return seen, path, None
-        seen.append((e, out.measured))
-        x, y, h = compose(x, y, h, out.measured)
-        path.append((x, y, h))
-    return seen, path, (x, y, h)
+def _valves(model: TransitionModel, start: int, edges: tuple[int, ...]) -> tuple[str, ...]:
+    return (model.labels[start], *(model.labels[int(model.dst[e])] for e in edges[:-1]))
 
 
 def learn(
     planner: Planner,
-    walker: SimulatedWalker,
+    walker: Walker,
     plan: GaitPlan | None = None,
     max_iterations: int = 40,
     verify: int = 5,
     threshold: float = 0.5,
     progress: Callable[[str], None] | None = None,
+    grower: Grower | None = None,
 ) -> Learned:
     """Algorithms 2 and 3 with ``planner`` on ``walker``; ``threshold`` (mm and deg) is the
-    change in a prediction that counts as "observed to differ"."""
+    change in a prediction that counts as "observed to differ".  With ``grower`` (the
+    simulated walker only), a graph left without a gait grows instead of stopping."""
     model = planner.model
     measured: dict[int, list[Step]] = {}
     iterations: list[Iteration] = []
@@ -187,49 +154,45 @@ def learn(
             if all(e in measured for e in plan.edges):
                 converged = True
                 break
-            seen, path, executed = run_cycle(walker, model, plan.edges)
             began = time.perf_counter()
-            fresh = moved = 0
-            failed = None
-            for i, (e, step) in enumerate(seen):
-                before = model.step(e)
-                if step is None:
-                    failed = e
-                    planner.observe(e, None)
-                    continue
-                fresh += e not in measured
-                measured.setdefault(e, []).append(step)
-                estimate = _mean(measured[e])
-                differs = _differs(before, estimate, threshold)
-                if differs:
-                    moved += 1
-                    guess = compose(*path[i], before)
-                    changed.append(((guess[0], guess[1]), (path[i + 1][0], path[i + 1][1])))
-                planner.observe(e, estimate, differs)
-            update_seconds = time.perf_counter() - began
+            if getattr(planner, "dstar", None) is not None:
+                from gaitsearch.stepwise import replanning_cycle
+
+                cycle = replanning_cycle(planner, walker, plan.edges, measured, threshold, changed)
+            else:
+                cycle = whole_cycle(planner, walker, plan.edges, measured, threshold, changed)
             iterations.append(
                 Iteration(
                     index,
-                    plan.edges,
-                    plan.valves,
+                    cycle.edges,
+                    _valves(model, plan.start, cycle.edges),
                     plan.displacement,
-                    executed,
-                    sum(s is not None for _, s in seen),
-                    fresh,
-                    moved,
-                    failed,
+                    cycle.executed,
+                    cycle.completed,
+                    cycle.fresh,
+                    cycle.moved,
+                    cycle.failed,
                     plan_seconds,
-                    update_seconds,
-                    tuple((p[0], p[1]) for p in path),
+                    time.perf_counter() - began - cycle.walking,
+                    tuple((p[0], p[1]) for p in cycle.path),
                 )
             )
             if progress is not None:
-                progress(_line(iterations[-1], len(seen)))
+                progress(_line(iterations[-1], cycle.tried))
             began = time.perf_counter()
             try:
                 nxt = planner.plan(explored=False)
             except SearchLimitError:
                 nxt, stopped = None, "search budget"
+            grown = None
+            sim = isinstance(walker, SimulatedWalker)
+            if nxt is None and grower is not None and stopped != "search budget" and sim:
+                grown = grower.grow(planner, walker, measured)  # type: ignore[arg-type]
+            if grown is not None and grower is not None:
+                planner, nxt, measured = grown
+                model = planner.model
+                if progress is not None:
+                    progress(f"no gait left: the gait graph grew to {grower.added} states")
             plan_seconds = time.perf_counter() - began
             if nxt is None:
                 stopped = "no gait" if stopped != "search budget" else stopped
@@ -256,7 +219,7 @@ def learn(
 
 
 def _verify(
-    walker: SimulatedWalker, model: TransitionModel, plan: GaitPlan, cycles: int
+    walker: Walker, model: TransitionModel, plan: GaitPlan, cycles: int
 ) -> tuple[float, float, float] | None:
     runs = []
     for _ in range(cycles):
@@ -307,18 +270,39 @@ def learn_gait(
     max_iterations: int = 40,
     verify: int = 5,
     progress: Callable[[str], None] | None = None,
+    backend: str = "sim",
+    predictions: str | None = None,
+    max_open: int = 1,
+    grow: bool = False,
 ) -> Learned:
-    """Learn a gait on the simulated robot (``gaitc learn --backend sim``): the first plan
-    of :func:`~gaitsearch.api.plan_gait`'s graph, then the loop of :func:`learn`."""
-    from gaitsearch.api import first_planner
+    """Learn a gait (``gaitc learn``): the first plan over ``predictions`` (``model``: the
+    chapter 4 model's gait graph, the default where the robot file has one; ``kinematic``:
+    :func:`~gaitsearch.api.plan_gait`'s graph), then the loop of :func:`learn` on
+    ``backend`` (``sim``: the simulated robot with ``mismatch``; ``physics``: the
+    spring-damper model, with ``mismatch.noise`` on every measurement).  ``grow``: when the
+    robot's removals leave no gait, add the kinematic graph's next batch of valve states
+    (:mod:`gaitsearch.growth`) instead of stopping."""
+    from gaitsearch.api import goal_for
+    from gaitsearch.backends import open_session
 
-    settings = settings or Settings()
-    planner, bot, plan = first_planner(robot, goal, method, settings, max_states)
-    walker = SimulatedWalker(
-        planner.model.copy(),
-        planner.start,
-        bot.valve_count,
-        tuple(leg.name for leg in bot.legs),
-        mismatch or Mismatch(seed=settings.seed),
+    session = open_session(
+        robot,
+        goal_for(goal),
+        method,
+        backend,
+        predictions,
+        mismatch,
+        settings,
+        max_states,
+        max_open,
     )
-    return learn(planner, walker, plan, max_iterations, verify, progress=progress)
+    grower = session.grower if grow else None
+    return learn(
+        session.planner,
+        session.walker,
+        session.plan,
+        max_iterations,
+        verify,
+        progress=progress,
+        grower=grower,
+    )

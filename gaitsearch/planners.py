@@ -13,13 +13,14 @@ from dataclasses import dataclass, replace
 from diagnostics import SolverError
 from gaitsearch.astar import Route, SearchBudgetExceeded, astar
 from gaitsearch.cells import Lattice
+from gaitsearch.dstar import DStarLite
 from gaitsearch.goals import Goal
 from gaitsearch.lpa import LifelongPlanner
 from gaitsearch.mcts import MonteCarloPlanner, TreeNode
 from gaitsearch.plans import GaitPlan, make_plan
 from gaitsearch.transitions import Step, TransitionModel
 
-METHODS = ("astar", "lpa", "mcts")
+METHODS = ("astar", "lpa", "dstar", "mcts")
 
 
 class SearchLimitError(SolverError):
@@ -41,7 +42,8 @@ class Settings:
 
 
 class HybridPlanner:
-    """Hybrid graph search on the lattice: A* each time, or LPA* repairs (``lpa``)."""
+    """Hybrid graph search on the lattice: A* each time, LPA* repairs (``lpa``), or D* Lite
+    (``dstar``), which also re-plans from wherever the robot got after each transition."""
 
     def __init__(
         self,
@@ -58,6 +60,7 @@ class HybridPlanner:
             model, start, goal, settings.cell, settings.cell_angle, settings.slip_cost
         )
         self.lpa = LifelongPlanner(self.lattice, settings.budget) if method == "lpa" else None
+        self.dstar = DStarLite(self.lattice, settings.budget) if method == "dstar" else None
         self.expanded = 0
 
     def plan(self, explored: bool = True) -> GaitPlan | None:
@@ -66,6 +69,9 @@ class HybridPlanner:
         try:
             if self.lpa is not None:
                 route = self.lpa.compute()
+            elif self.dstar is not None:
+                self.dstar.move_start(self.lattice.root)
+                route = self.dstar.compute()
             else:
                 self.lattice.refresh_bounds()
                 route = astar(self.lattice, self.settings.budget)
@@ -86,7 +92,8 @@ class HybridPlanner:
         lattice = self.lattice
         explored = []
         if with_cells:
-            nodes = route.explored if self.lpa is None else self.lpa.explored()
+            search = self.lpa or self.dstar
+            nodes = route.explored if search is None else search.explored()
             explored = sorted({lattice.centre(n)[1:3] for n in nodes})
         return make_plan(
             self.model,
@@ -106,10 +113,36 @@ class HybridPlanner:
         ``differs`` only matters to MCTS, which prunes on a real difference."""
         if self.lpa is not None:
             self.lpa.update_transition(edge, step)
+        elif self.dstar is not None:
+            self.dstar.update_transition(edge, step)
         elif step is None:
             self.model.remove(edge)
         else:
             self.model.set_motion(edge, step)
+
+    def replan_from(
+        self, pose: int, x: float, y: float, heading: float, budget: int
+    ) -> tuple[int, ...] | None:
+        """D* Lite: the rest of the cycle from pose ``pose`` at the measured displacement
+        (x, y mm, heading deg) since the cycle began; () when that is a goal cell, None when
+        no route is left, the robot is off the lattice or ``budget`` expansions did not
+        settle the new start (the search resumes from there at the next call)."""
+        if self.dstar is None:
+            raise ValueError("replan_from is D* Lite's (method dstar)")
+        lattice = self.lattice
+        ix, iy = round(x / lattice.size), round(y / lattice.size)
+        if ix * ix + iy * iy > lattice.radius**2 / lattice.size**2:
+            return None
+        node = lattice.pack(pose, ix, iy, round(heading / lattice.angle))
+        self.dstar.move_start(node)
+        self.dstar.budget = budget
+        try:
+            route = self.dstar.compute()
+        except SearchBudgetExceeded:
+            return None
+        finally:
+            self.dstar.budget = self.settings.budget
+        return None if route is None else route.edges
 
 
 class TreePlanner:

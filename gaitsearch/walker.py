@@ -14,9 +14,10 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import NDArray
 
 from gaithw.backend import Backend, HardwareError, SensorReading, where
-from gaitsearch.transitions import Step, TransitionModel
+from gaitsearch.transitions import Floats, Step, TransitionModel
 
 
 @dataclass(frozen=True)
@@ -54,18 +55,35 @@ class SimulatedWalker(Backend):
         super().__init__(valve_count)
         self.legs = legs
         self.model, self.start, self.mismatch = model, start, mismatch
-        rng = np.random.default_rng(mismatch.seed)
-        n, f = len(model), mismatch.scale
-        a = rng.uniform(-1, 1, size=(4, n))
-        self.true_dx = model.dx * (1 + f * a[0]) + 5.0 * f * a[1]
-        self.true_dy = model.dy * (1 + f * a[0]) + 5.0 * f * a[2]
-        self.true_rot = model.rot * (1 + f * a[0]) + 5.0 * f * a[3]
-        self.feasible = rng.uniform(0, 1, size=n) >= mismatch.infeasible
+        self.true_dx, self.true_dy, self.true_rot, self.feasible = self._truth(model, mismatch.seed)
         self.noise = np.random.default_rng(mismatch.seed + 1)
         self.pose = start
         self.last: Outcome | None = None
         self.applied: list[str] = []
         self.is_open = False
+
+    def _truth(
+        self, model: TransitionModel, seed: int
+    ) -> tuple[Floats, Floats, Floats, NDArray[np.bool_]]:
+        rng = np.random.default_rng(seed)
+        n, f = len(model), self.mismatch.scale
+        a = rng.uniform(-1, 1, size=(4, n))
+        true_dx = model.dx * (1 + f * a[0]) + 5.0 * f * a[1]
+        true_dy = model.dy * (1 + f * a[0]) + 5.0 * f * a[2]
+        true_rot = model.rot * (1 + f * a[0]) + 5.0 * f * a[3]
+        feasible = rng.uniform(0, 1, size=n) >= self.mismatch.infeasible
+        return true_dx, true_dy, true_rot, feasible
+
+    def grow(self, model: TransitionModel, rows: dict[int, int], batch: int) -> None:
+        """The gait graph grew to ``model`` (its predictions); ``rows`` maps the old edges
+        to their new rows.  Old transitions keep their true motion, new ones get theirs
+        from a generator seeded by the seed and the batch number."""
+        dx, dy, rot, feasible = self._truth(model, self.mismatch.seed + 1000 * batch)
+        for old, new in rows.items():
+            dx[new], dy[new], rot[new] = self.true_dx[old], self.true_dy[old], self.true_rot[old]
+            feasible[new] = self.feasible[old]
+        self.model = model
+        self.true_dx, self.true_dy, self.true_rot, self.feasible = dx, dy, rot, feasible
 
     def true_step(self, edge: int) -> Step:
         return Step(

@@ -157,7 +157,7 @@ def test_cli_gaits_lpa_and_learn(tmp_path: Path, capsys: pytest.CaptureFixture[s
         ),
         (
             ["gaits", ROBOT, "--goal", "40,0"],
-            "--goal is for --method astar, lpa or mcts; the chapter 2 search (--method "
+            "--goal is for --method astar, lpa, dstar or mcts; the chapter 2 search (--method "
             "chapter2) takes --direction",
         ),
         (
@@ -170,15 +170,18 @@ def test_cli_gaits_lpa_and_learn(tmp_path: Path, capsys: pytest.CaptureFixture[s
         ),
         (
             ["learn", ROBOT, "--goal", "40,0", "--method", "dijkstra"],
-            "unknown search method 'dijkstra'; use one of astar, lpa, mcts",
+            "unknown search method 'dijkstra'; use one of astar, lpa, dstar, mcts",
         ),
         (
-            ["learn", ROBOT, "--goal", "40,0", "--backend", "physics"],
-            "--backend physics is not available for learning yet: it needs a pose estimate of "
-            "every transition (the chapter 4 EKF), which only the simulated robot provides; use "
-            "--backend sim",
+            ["learn", ROBOT, "--goal", "40,0", "--backend", "serial"],
+            "--backend serial is not available for learning: the valve board reports no "
+            "displacement of a transition (the chapter 4 EKF is not in gaitc); use --backend "
+            "sim or physics",
         ),
-        (["learn", ROBOT, "--goal", "40,0", "--backend", "usb"], "unknown backend 'usb'; use sim"),
+        (
+            ["learn", ROBOT, "--goal", "40,0", "--backend", "usb"],
+            "unknown backend 'usb'; use sim or physics",
+        ),
         (
             ["learn", ROBOT, "--goal", "40,0", "--infeasible", "1"],
             "--mismatch and --noise must not be negative, --infeasible must lie in [0, 1)",

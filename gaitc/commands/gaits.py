@@ -46,10 +46,10 @@ def search_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--direction", default="+x", help="+x, -x, +y, -y or an angle in degrees")
     p.add_argument(
         "--method",
-        choices=("chapter2", "full", "random", "reset", "astar", "lpa", "mcts"),
+        choices=("chapter2", "full", "random", "reset", "astar", "lpa", "dstar", "mcts"),
         default=None,
         help="chapter 2 (default): full for at most 12 chambers and --max-states valve "
-        "states, else random; astar, lpa, mcts: chapter 5 searches toward --goal",
+        "states, else random; astar, lpa, dstar, mcts: chapter 5 searches toward --goal",
     )
     p.add_argument("--seed", type=int, default=0)
     p.add_argument("--max-states", type=int, default=10_000, help="valve states to try at most")
@@ -69,13 +69,13 @@ def run(args: argparse.Namespace) -> int:
         from gaitc.commands.predicted import run_model_gaits
 
         return run_model_gaits(args)
-    if args.method in ("astar", "lpa", "mcts"):
+    if args.method in ("astar", "lpa", "dstar", "mcts"):
         from gaitc.commands.learning import run_global
 
         return run_global(args)
     if args.goal is not None:
         raise UsageError(
-            f"--goal is for --method astar, lpa or mcts; the chapter 2 search "
+            f"--goal is for --method astar, lpa, dstar or mcts; the chapter 2 search "
             f"(--method {args.method or 'chapter2'}) takes --direction"
         )
     from gaitgraph.cycles import parse_direction

@@ -1,4 +1,4 @@
-"""``gaitc gaits --method astar|lpa|mcts`` and ``gaitc learn``: gait synthesis in the global
+"""``gaitc gaits --method astar|lpa|dstar|mcts`` and ``gaitc learn``: gait synthesis in the global
 frame and its online refinement (thesis chapter 5), over :mod:`gaitsearch`."""
 
 from __future__ import annotations
@@ -23,7 +23,7 @@ def goal_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument(
         "--goal",
         metavar="DX,DY[,DTHETA]",
-        help="displacement per cycle in mm and degrees (astar, lpa, mcts)",
+        help="displacement per cycle in mm and degrees (astar, lpa, dstar, mcts)",
     )
     p.add_argument(
         "--tolerance",
@@ -72,13 +72,27 @@ def register(sub: Any) -> None:
     )
     p.add_argument("robot", metavar="ROBOT.yaml")
     p.add_argument(
-        "--method", default="lpa", metavar="astar|lpa|mcts", help="the search (default lpa)"
+        "--method", default="lpa", metavar="astar|lpa|dstar|mcts", help="the search (default lpa)"
     )
     p.add_argument(
         "--backend",
         default="sim",
         metavar="sim|physics|serial",
-        help="sim: the simulated robot with --mismatch and --noise (the only one so far)",
+        help="sim: the simulated robot with --mismatch and --noise; physics: the robot "
+        "file's spring-damper model (chapter 4), with --noise on each measurement",
+    )
+    p.add_argument(
+        "--predictions",
+        metavar="kinematic|model",
+        help="where the search's predicted motions come from: the chapter 4 model's gait "
+        "graph (the default when the robot file has a model) or the chapter 2 graph",
+    )
+    p.add_argument(
+        "--max-open",
+        type=int,
+        default=1,
+        metavar="N",
+        help="model predictions: valve states with at most N valves open (1)",
     )
     p.add_argument("--seed", type=int, default=0, help="seed of the graph, MCTS and the robot")
     p.add_argument("--max-states", type=int, default=10_000, help="valve states to try at most")
@@ -102,6 +116,12 @@ def register(sub: Any) -> None:
         default=0.0,
         metavar="P",
         help="sim: share of transitions the robot cannot make (0)",
+    )
+    p.add_argument(
+        "--grow",
+        action="store_true",
+        help="sim, kinematic predictions: when removals leave no gait, add the next 100 "
+        "random valve states (up to --max-states) instead of stopping",
     )
     p.add_argument("--max-iterations", type=int, default=40, metavar="N")
     p.add_argument(
@@ -156,7 +176,7 @@ def goal_of(args: argparse.Namespace) -> Any:
 
 
 def run_global(args: argparse.Namespace) -> int:
-    """``gaitc gaits --method astar|lpa|mcts``: one gait toward ``--goal``."""
+    """``gaitc gaits --method astar|lpa|dstar|mcts``: one gait toward ``--goal``."""
     from gaitgraph.robot import load_robot
     from gaitsearch.api import plan_gait
 
@@ -196,7 +216,7 @@ def run_global(args: argparse.Namespace) -> int:
 
 
 def _plan_json(args: argparse.Namespace, robot: str, plan: GaitPlan | None) -> int:
-    """``gaits --method astar|lpa|mcts --json``: the same files, the plan as one object."""
+    """``gaits --method astar|lpa|dstar|mcts --json``: the same files, the plan as one object."""
     from gaitc.reporting import document, print_json
 
     written = []
@@ -224,12 +244,12 @@ def run_learn(args: argparse.Namespace) -> int:
 
     check_method(args.method)
     if args.backend not in BACKENDS:
-        raise UsageError(f"unknown backend {args.backend!r}; use sim")
-    if args.backend != "sim":
+        raise UsageError(f"unknown backend {args.backend!r}; use sim or physics")
+    if args.backend == "serial":
         raise UsageError(
-            f"--backend {args.backend} is not available for learning yet: it needs a pose "
-            "estimate of every transition (the chapter 4 EKF), which only the simulated "
-            "robot provides; use --backend sim"
+            "--backend serial is not available for learning: the valve board reports no "
+            "displacement of a transition (the chapter 4 EKF is not in gaitc); use --backend "
+            "sim or physics"
         )
     if args.mismatch < 0 or args.noise < 0 or not 0 <= args.infeasible < 1:
         raise UsageError(
@@ -250,6 +270,10 @@ def run_learn(args: argparse.Namespace) -> int:
         args.max_iterations,
         args.verify,
         progress,
+        args.backend,
+        args.predictions,
+        args.max_open,
+        args.grow,
     )
     print(result.summary())
     if args.log:
