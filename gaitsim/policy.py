@@ -20,7 +20,7 @@ from dataclasses import dataclass
 
 from gaitsim.condensation import Condition, Decision, Move, condense
 from gaitsim.domain import Domain, State
-from gaitsim.view import StrategyView
+from gaitsim.view import StrategyView, reachable
 
 HAZARD, GOAL = "hazard", "goal"
 BANDS = ("healthy", "degraded", "failed")
@@ -237,7 +237,6 @@ def controller_policy(
     nodes within ``steps`` moves of the start (at most ``cap``; a symbolic controller is
     always bounded, by default to :data:`SYMBOLIC_STEPS` moves); ``max_rules`` as for
     :func:`project`."""
-    from gaitsim.steps_view import reachable  # the views share the breadth-first search
     from gaitsim.strategy import Strategy
 
     if steps is None and isinstance(strategy, Strategy):

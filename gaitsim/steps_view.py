@@ -11,8 +11,6 @@ expanding them (:mod:`gaitsim.symbolic_view`), so only the part drawn is ever co
 
 from __future__ import annotations
 
-from collections import deque
-
 import pydot
 
 from gaitsim.automaton_view import input_change
@@ -20,37 +18,10 @@ from gaitsim.domain import Domain, State
 from gaitsim.graphics import Picture
 from gaitsim.policy import band, goal_label
 from gaitsim.strategy import Strategy
-from gaitsim.view import StrategyView
+from gaitsim.view import StrategyView, reachable
 
 DEFAULT_STEPS = 3
 DEFAULT_CAP = 40
-
-
-def reachable(
-    strategy: StrategyView, steps: int, cap: int | None = None
-) -> tuple[dict[int, int], bool]:
-    """Node → fewest moves from an initial node, for the nodes within ``steps`` moves
-    (breadth first, in node order); stops after ``cap`` nodes.  Returns the depths and
-    whether the cap cut the search short."""
-    depth: dict[int, int] = {}
-    queue: deque[int] = deque()
-    for node in sorted(set(strategy.initial)):
-        if cap is not None and len(depth) >= cap:
-            return depth, True
-        depth[node] = 0
-        queue.append(node)
-    while queue:
-        node = queue.popleft()
-        if depth[node] >= steps:
-            continue
-        for succ in strategy.successors[node]:
-            if succ in depth:
-                continue
-            if cap is not None and len(depth) >= cap:
-                return depth, True
-            depth[succ] = depth[node] + 1
-            queue.append(succ)
-    return depth, False
 
 
 def health_words(domain: Domain, state: State) -> str:

@@ -3,11 +3,14 @@
 :class:`StrategyView` is the interface the simulator, the driver and the environments use;
 :class:`gaitsim.strategy.Strategy` (an explicit automaton) and
 :class:`gaitsim.symbolic_view.SymbolicStrategy` (BDDs, nodes found as a run goes) both
-provide it, sharing the look-ups of :class:`NodeReading`.
+provide it, sharing the look-ups of :class:`NodeReading`; :func:`reachable` is the
+breadth-first search from the initial nodes that the readable views (policy, first steps)
+share.
 """
 
 from __future__ import annotations
 
+from collections import deque
 from typing import Protocol, TypeVar
 
 InputKey = tuple[int, ...]
@@ -73,3 +76,30 @@ class NodeReading:
         for node in self.initial:
             found.setdefault(self.input_key(node), node)
         return dict(sorted(found.items()))
+
+
+def reachable(
+    strategy: StrategyView, steps: int, cap: int | None = None
+) -> tuple[dict[int, int], bool]:
+    """Node → fewest moves from an initial node, for the nodes within ``steps`` moves
+    (breadth first, in node order); stops after ``cap`` nodes.  Returns the depths and
+    whether the cap cut the search short."""
+    depth: dict[int, int] = {}
+    queue: deque[int] = deque()
+    for node in sorted(set(strategy.initial)):
+        if cap is not None and len(depth) >= cap:
+            return depth, True
+        depth[node] = 0
+        queue.append(node)
+    while queue:
+        node = queue.popleft()
+        if depth[node] >= steps:
+            continue
+        for succ in strategy.successors[node]:
+            if succ in depth:
+                continue
+            if cap is not None and len(depth) >= cap:
+                return depth, True
+            depth[succ] = depth[node] + 1
+            queue.append(succ)
+    return depth, False
