@@ -41,10 +41,17 @@ class Verdict:
         return "user error" if self.code == 1 else "other exit"
 
 
+def _as_shown(line: str) -> str:
+    """A source line as a message quotes it: a tab as a space, any other C0 or C1 control
+    character (and DEL) as '?', so that no file sends escape sequences to the terminal."""
+    return "".join(" " if c == "\t" else "?" if ord(c) < 0x20 or 0x7F <= ord(c) <= 0x9F
+                   else c for c in line)
+
+
 def location_problems(stderr: str, files: dict[str, bytes]) -> list[str]:
     """Property (b) for every message in ``stderr`` that names one of ``files``."""
     problems: list[str] = []
-    out = stderr.split("\n")  # only \n: the echoed line may hold \x0c, \x85 or U+2028
+    out = stderr.split("\n")  # only \n: the echoed line may hold U+2028 (\x0c, \x85 show as ?)
     for number, message in enumerate(out):
         for name, data in files.items():
             if not message.startswith(f"{name}:"):
@@ -60,7 +67,7 @@ def location_problems(stderr: str, files: dict[str, bytes]) -> list[str]:
                 continue
             if not lines:
                 continue
-            expected = "    " + lines[line - 1].replace("\t", " ")
+            expected = "    " + _as_shown(lines[line - 1])
             shown = out[number + 1] if number + 1 < len(out) else ""
             if shown != expected:
                 problems.append(f"wrong line: {message[:120]!r} shows {shown[:80]!r}, "

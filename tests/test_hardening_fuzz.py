@@ -41,7 +41,7 @@ def test_decode_error_column_counts_characters() -> None:
 
 @pytest.mark.parametrize(("raw", "where", "shown"), [
     (b'{"gaitc": 1,\n', ":1:13:", '{"gaitc": 1,'),  # truncated: not line 2 of 1
-    (b'{"a": 1,\r"b": \n', ":1:15:", '{"a": 1,\r"b": '),  # a lone \r ends no line
+    (b'{"a": 1,\r"b": \n', ":1:15:", '{"a": 1,?"b": '),  # a lone \r ends no line; shown as ?
 ])
 def test_controller_json_errors_point_at_existing_lines(
         tmp_path: Path, capsys: pytest.CaptureFixture[str], raw: bytes, where: str,
