@@ -122,12 +122,17 @@ def _span(path: str, node: yaml.Node) -> Span:
     return Span(path, m.line + 1, m.column + 1)
 
 
-class _Reader:
+class FieldReader:
+    """Typed readers over the YAML nodes of one robot file, each failure a positioned
+    :attr:`error` (the model sections of :mod:`softmodels` read with subclasses)."""
+
+    error: type[RobotFileError] = RobotFileError
+
     def __init__(self, path: str) -> None:
         self.path = path
 
     def fail(self, node: yaml.Node, message: str, hint: str | None = None) -> RobotFileError:
-        return RobotFileError(message, _span(self.path, node), hint)
+        return self.error(message, _span(self.path, node), hint)
 
     def mapping(self, node: yaml.Node, what: str, allowed: set[str]) -> dict[str, yaml.Node]:
         if not isinstance(node, yaml.MappingNode):
@@ -217,7 +222,7 @@ def load_robot(path: str | Path) -> Robot:
 def parse_robot(text: str, path: str = "<robot>") -> Robot:
     """Validate the YAML text of a robot description."""
     root = compose(text, path, RobotFileError, "robot file")
-    r = _Reader(path)
+    r = FieldReader(path)
     if root is None:
         raise RobotFileError("robot file is empty", Span(path, 1, 1))
     top = r.mapping(root, "the robot file", _TOP)
@@ -282,14 +287,14 @@ def _any(node: yaml.Node) -> set[str]:
     return {str(k.value) for k, _ in node.value} if isinstance(node, yaml.MappingNode) else set()
 
 
-def _shape(r: _Reader, node: yaml.Node, what: str) -> tuple[float, float]:
+def _shape(r: FieldReader, node: yaml.Node, what: str) -> tuple[float, float]:
     m = r.mapping(node, what, _SHAPE)
     kappa = r.number(m["curvature"], f"{what} curvature", 0.0) if "curvature" in m else 0.0
     angle = r.number(m["angle"], f"{what} angle") if "angle" in m else 0.0
     return kappa, math.radians(angle)
 
 
-def _legs(r: _Reader, node: yaml.Node, defaults: dict[str, yaml.Node]) -> tuple[Leg, ...]:
+def _legs(r: FieldReader, node: yaml.Node, defaults: dict[str, yaml.Node]) -> tuple[Leg, ...]:
     legs: list[Leg] = []
     first = 0
     for item in r.sequence(node, "legs"):
@@ -366,7 +371,7 @@ def _legs(r: _Reader, node: yaml.Node, defaults: dict[str, yaml.Node]) -> tuple[
     return tuple(legs)
 
 
-def _gait(r: _Reader, node: yaml.Node, robot: Robot) -> StoredGait:
+def _gait(r: FieldReader, node: yaml.Node, robot: Robot) -> StoredGait:
     m = r.mapping(node, "a gait", _GAIT)
     for key in _GAIT:
         if key not in m:

@@ -12,43 +12,16 @@ import math
 import yaml
 
 from diagnostics import Span
+from gaitgraph.robot import FieldReader
 from softmodels.fields import ModelFileError
 
 
-class Reader:
-    def __init__(self, path: str) -> None:
-        self.path = path
+class Reader(FieldReader):
+    """The robot file's :class:`~gaitgraph.robot.FieldReader`, failing with
+    :class:`~softmodels.fields.ModelFileError`, with this section's number rules, counts
+    and spans."""
 
-    def fail(self, node: yaml.Node, message: str, hint: str | None = None) -> ModelFileError:
-        m = node.start_mark
-        return ModelFileError(message, Span(self.path, m.line + 1, m.column + 1), hint)
-
-    def mapping(self, node: yaml.Node, what: str, allowed: set[str]) -> dict[str, yaml.Node]:
-        if not isinstance(node, yaml.MappingNode):
-            raise self.fail(node, f"{what} must be a mapping of keys to values")
-        out: dict[str, yaml.Node] = {}
-        for key, value in node.value:
-            name = str(key.value)
-            if name not in allowed:
-                raise self.fail(
-                    key,
-                    f"unknown key {name!r} in {what}",
-                    "expected one of: " + ", ".join(sorted(allowed)),
-                )
-            if name in out:
-                raise self.fail(key, f"key {name!r} appears twice in {what}")
-            out[name] = value
-        return out
-
-    def sequence(self, node: yaml.Node, what: str) -> list[yaml.Node]:
-        if not isinstance(node, yaml.SequenceNode):
-            raise self.fail(node, f"{what} must be a list")
-        return list(node.value)
-
-    def text(self, node: yaml.Node, what: str) -> str:
-        if not isinstance(node, yaml.ScalarNode) or node.value == "":
-            raise self.fail(node, f"{what} must be a non-empty text value")
-        return str(node.value)
+    error = ModelFileError
 
     def number(self, node: yaml.Node, what: str, low: float | None = None) -> float:
         value = math.nan
@@ -60,12 +33,6 @@ class Reader:
         if low is not None and value < low:
             raise self.fail(node, f"{what} must be at least {low:g}, not {node.value}")
         return value
-
-    def vector(self, node: yaml.Node, what: str, size: int) -> tuple[float, ...]:
-        items = self.sequence(node, what)
-        if len(items) != size:
-            raise self.fail(node, f"{what} must have {size} numbers, not {len(items)}")
-        return tuple(self.number(item, what) for item in items)
 
     def count(self, node: yaml.Node, what: str, low: int) -> int:
         value = self.number(node, what, float(low))

@@ -11,7 +11,7 @@ import math
 import yaml
 
 from diagnostics import Span
-from gaitgraph.robot import RobotFileError
+from gaitgraph.robot import FieldReader, RobotFileError
 
 
 class ModelFileError(RobotFileError):
@@ -24,41 +24,11 @@ def span_of(path: str, node: yaml.Node) -> Span:
     return Span(path, mark.line + 1, mark.column + 1)
 
 
-class Fields:
-    """Typed, positioned readers over the YAML nodes of one file."""
+class Fields(FieldReader):
+    """Typed, positioned readers over the YAML nodes of one file, failing with
+    :class:`ModelFileError`; numbers may be asked to be positive."""
 
-    def __init__(self, path: str) -> None:
-        self.path = path
-
-    def fail(self, node: yaml.Node, message: str, hint: str | None = None) -> ModelFileError:
-        return ModelFileError(message, span_of(self.path, node), hint)
-
-    def mapping(self, node: yaml.Node, what: str, allowed: set[str]) -> dict[str, yaml.Node]:
-        if not isinstance(node, yaml.MappingNode):
-            raise self.fail(node, f"{what} must be a mapping of keys to values")
-        out: dict[str, yaml.Node] = {}
-        for key, value in node.value:
-            name = str(key.value)
-            if name not in allowed:
-                raise self.fail(
-                    key,
-                    f"unknown key {name!r} in {what}",
-                    "expected one of: " + ", ".join(sorted(allowed)),
-                )
-            if name in out:
-                raise self.fail(key, f"key {name!r} appears twice in {what}")
-            out[name] = value
-        return out
-
-    def sequence(self, node: yaml.Node, what: str) -> list[yaml.Node]:
-        if not isinstance(node, yaml.SequenceNode):
-            raise self.fail(node, f"{what} must be a list")
-        return list(node.value)
-
-    def text(self, node: yaml.Node, what: str) -> str:
-        if not isinstance(node, yaml.ScalarNode) or node.value == "":
-            raise self.fail(node, f"{what} must be a non-empty text value")
-        return str(node.value)
+    error = ModelFileError
 
     def number(
         self, node: yaml.Node, what: str, low: float | None = None, positive: bool = False
@@ -76,12 +46,6 @@ class Fields:
         if low is not None and value < low:
             raise self.fail(node, f"{what} must be at least {low:g}, not {node.value}")
         return value
-
-    def vector(self, node: yaml.Node, what: str, size: int) -> tuple[float, ...]:
-        items = self.sequence(node, what)
-        if len(items) != size:
-            raise self.fail(node, f"{what} must have {size} numbers, not {len(items)}")
-        return tuple(self.number(item, what) for item in items)
 
     def matrix3(self, node: yaml.Node, what: str) -> tuple[tuple[float, ...], ...]:
         rows = self.sequence(node, what)
