@@ -95,11 +95,15 @@ class FormulaChecker:
 
     def robot_free(self, expr: f.Expr) -> bool:
         """Whether ``expr`` names nothing the robot chooses (no region, gait or noGait):
-        only hazards, leg health and constants, all the environment's."""
-        if isinstance(expr, f.Var):
-            return self.ns.kinds.get(expr.name) not in ("region", "gait")
-        return all(self.robot_free(child) for child in expr.children()
-                   if isinstance(child, f.Expr))
+        only hazards, leg health and constants, all the environment's.  Iterative: a
+        formula may nest thousands deep (tests/test_deep_nesting.py)."""
+        stack = [expr]
+        while stack:
+            node = stack.pop()
+            if isinstance(node, f.Var) and self.ns.kinds.get(node.name) in ("region", "gait"):
+                return False
+            stack.extend(c for c in node.children() if isinstance(c, f.Expr))
+        return True
 
     def _proposition(self, var: f.Var, assumption: bool, under_next: bool) -> None:
         kind = self.ns.kinds.get(var.name)
