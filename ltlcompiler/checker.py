@@ -51,6 +51,8 @@ class _Checker:
         self.rmap = RegionMap()
         self.diagnostics: list[Diagnostic] = []
         self.health: dict[str, int] = {}
+        self.start_span: Span | None = None  # the start statement
+        self.cache_spans: list[Span | None] = []  # each cache's name in its statement
         self.leg_spans: dict[str, Span | None] = {}
         self.gait_decls: list[s.GaitDecl] = []
 
@@ -116,6 +118,7 @@ class _Checker:
     def legs(self) -> tuple[Leg, ...]:
         starts = [st for st in self.spec.statements if isinstance(st, s.StartDecl)]
         initial = dict(self.health)
+        initial_span: dict[str, Span | None] = {}
         for st in starts[:1]:
             for init in st.health:
                 for name in expand(init.legs):
@@ -127,8 +130,10 @@ class _Checker:
                             init.value_span,
                         )
                     initial[leg] = init.value
+                    initial_span[leg] = init.span
         return tuple(
-            Leg(name, h, initial[name], span=self.leg_spans[name])
+            Leg(name, h, initial[name], span=self.leg_spans[name],
+                initial_span=initial_span.get(name))
             for name, h in self.health.items()
         )
 
@@ -227,6 +232,7 @@ class _Checker:
 
     def caches(self) -> tuple[str, ...]:
         out: list[str] = []
+        self.cache_spans = []
         for st in self.spec.statements:
             if isinstance(st, s.CacheDecl):
                 for ref in st.regions:
@@ -234,6 +240,7 @@ class _Checker:
                     if name in out:
                         raise SpecSemanticError(f"region '{name}' is a cache twice", ref.span)
                     out.append(name)
+                    self.cache_spans.append(ref.span)
         return tuple(out)
 
     def hazards(self, caches: tuple[str, ...]) -> tuple[Hazard, ...]:
@@ -279,6 +286,7 @@ class _Checker:
                 "keep one",
                 starts[1].span,
             )
+        self.start_span = starts[0].span
         return self.rmap.resolve(starts[0].region, self.ns, "as the start")
 
     def goals(self, start: str, trans: tuple[Transition, ...]) -> tuple[UserFormula, ...]:
@@ -348,6 +356,8 @@ def check(spec: s.SpecFile) -> tuple[Model, list[Diagnostic]]:
         guarantees=guarantees,
         grid=c.rmap.grid,
         file=spec.file,
+        start_span=c.start_span,
+        cache_spans=tuple(c.cache_spans),
     )
     order = sorted(
         c.diagnostics,

@@ -104,9 +104,9 @@ class _Lowering:
         for leg in m.legs:
             self.add("env_init", enc.health(leg.name, leg.initial),
                      f"init: leg {leg.name} starts at health {leg.initial} of {leg.health}",
-                     leg.span)
+                     leg.initial_span or leg.span)
         self.add("sys_init", enc.region(m.start), f"init: start in {m.start}",
-                 self.region_span.get(m.start))
+                 m.start_span or self.region_span.get(m.start))
         self.add("sys_init", enc.gait(NO_GAIT), f"init: start with {NO_GAIT}", None)
         for side, rule, formula in enc.mutex(primed=True):
             self.add(f"{side}_trans", formula, rule, None)
@@ -197,11 +197,13 @@ class _Lowering:
 
     # ------------------------------------------------------------ eq. 3.6
     def caches(self) -> None:
+        stated = dict(zip(self.model.caches, self.model.cache_spans, strict=False))
         for cache in self.model.caches:
             full = conj(self.enc.health(leg.name, leg.health, True)
                         for leg in self.model.legs if leg.health > 1)
             self.add("env_trans", Implies(self.enc.region(cache), full),
-                     f"eq. 3.6: cache {cache} resets every leg", self.region_span.get(cache))
+                     f"eq. 3.6: cache {cache} resets every leg",
+                     stated.get(cache) or self.region_span.get(cache))
 
     # ------------------------------------------------------------ eq. 3.7 and user formulas
     def goals(self) -> None:

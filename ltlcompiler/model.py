@@ -41,6 +41,7 @@ class Leg:
     health: int  # number of health levels h_i; 1 = permanently failed
     initial: int  # initial health level (default: health, i.e. full)
     span: Span | None = field(default=None, compare=False, repr=False)
+    initial_span: Span | None = field(default=None, compare=False, repr=False)  # L1 = 2
 
 
 @dataclass(frozen=True)
@@ -114,6 +115,8 @@ class Model:
     guarantees: tuple[UserFormula, ...]
     grid: tuple[int, int] | None = None  # (rows, columns) when declared with a grid
     file: str = field(default="", compare=False)
+    start_span: Span | None = field(default=None, compare=False, repr=False)
+    cache_spans: tuple[Span | None, ...] = field(default=(), compare=False, repr=False)
 
     def leg(self, name: str) -> Leg:
         return next(leg for leg in self.legs if leg.name == name)

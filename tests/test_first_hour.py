@@ -146,3 +146,14 @@ def test_cache_counts_out_of_range_are_usage_errors(
         capsys: pytest.CaptureFixture[str], count: str, message: str) -> None:
     assert main(["resilience", UNREALIZABLE, "--place-caches", count]) == ExitCode.USAGE
     assert _err(capsys) == f"gaitc: usage error: {message}"
+
+
+def test_init_and_cache_clauses_point_at_their_own_statements(
+        capsys: pytest.CaptureFixture[str]) -> None:
+    lines = Path(PATROL).read_text(encoding="utf-8").splitlines()
+    start = next(n for n, text in enumerate(lines, 1) if text.startswith("start "))
+    cache = next(n for n, text in enumerate(lines, 1) if text.startswith("cache "))
+    assert main(["compile", PATROL]) == 0
+    out = capsys.readouterr().out
+    assert f"# line {start}: init: start in nw" in out
+    assert f"# line {cache}: eq. 3.6: cache ne resets every leg" in out
