@@ -51,6 +51,18 @@ def assumptions_unsatisfiable(spec: GR1Spec, oracle: Oracle) -> bool:
     return oracle.realizable(_never_wins(solo))
 
 
+def unsatisfiable_core(spec: GR1Spec, oracle: Oracle) -> tuple[Unit, ...]:
+    """A minimal set of assumption units the environment cannot satisfy together (for a
+    spec whose assumptions are unsatisfiable): each unit is dropped in turn when the rest
+    stay unsatisfiable (deletion-based, as for cores in :mod:`analysis.core`)."""
+    core = list(units(spec, ASSUMPTION_SECTIONS))
+    for unit in list(core):
+        rest = tuple(u for u in core if u != unit)
+        if assumptions_unsatisfiable(keep_only(spec, rest, ASSUMPTION_SECTIONS), oracle):
+            core.remove(unit)
+    return tuple(core)
+
+
 def breakable_assumptions(spec: GR1Spec, oracle: Oracle) -> tuple[Unit, ...] | None:
     """None when the robot cannot force a violation of the assumptions; else the assumption
     units it can break alone (possibly none: only their combination)."""
@@ -113,9 +125,13 @@ def sanity(spec: GR1Spec, model: Model | None, encoding: str | None, oracle: Ora
     """Every sanity warning of a realizable ``spec``."""
     found: list[Warning_] = []
     if assumptions_unsatisfiable(spec, oracle):
+        core = unsatisfiable_core(spec, oracle)
+        which = "; ".join(f"'{u.rule}' ({u.where()})" for u in core)
         found.append(Warning_("assumptions-unsatisfiable",
                               "the environment cannot satisfy its own assumptions, so every "
-                              "guarantee is realizable: the spec says nothing"))
+                              "guarantee is realizable: the spec says nothing"
+                              + (f"; these cannot hold together: {which}" if which else ""),
+                              core))
     else:
         broken = breakable_assumptions(spec, oracle)
         if broken is not None:

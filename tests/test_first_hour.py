@@ -157,3 +157,24 @@ def test_init_and_cache_clauses_point_at_their_own_statements(
     out = capsys.readouterr().out
     assert f"# line {start}: init: start in nw" in out
     assert f"# line {cache}: eq. 3.6: cache ne resets every leg" in out
+
+
+def test_unsatisfiable_assumptions_are_named_and_each_is_needed(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    base = (ROOT / "specs" / "corridor_hazard.gait").read_text(encoding="utf-8")
+    clash = ["assume always eventually spill", "assume always !spill"]
+    spec = tmp_path / "vacuous.gait"
+    spec.write_text(base + "\n".join(clash) + "\n", encoding="utf-8")
+    lines = spec.read_text(encoding="utf-8").splitlines()
+    numbers = [lines.index(text) + 1 for text in clash]
+    assert main(["lint", "--deep", str(spec)]) == ExitCode.WARNING
+    err = capsys.readouterr().err
+    assert "cannot satisfy its own assumptions" in err
+    for number in numbers:
+        assert f"({spec}:{number}:1)" in err
+    for dropped in clash:  # each named assumption is needed: without it, no such warning
+        alone = tmp_path / "alone.gait"
+        alone.write_text(base + "\n".join(t for t in clash if t != dropped) + "\n",
+                         encoding="utf-8")
+        main(["lint", "--deep", str(alone)])
+        assert "cannot satisfy its own assumptions" not in capsys.readouterr().err
