@@ -14,6 +14,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from analysis.ddmin import ddmin
 from analysis.oracle import Oracle
 from analysis.units import ASSUMPTION_SECTIONS, Unit, keep_only, units
 from gr1.formula import FALSE
@@ -52,15 +53,13 @@ def assumptions_unsatisfiable(spec: GR1Spec, oracle: Oracle) -> bool:
 
 
 def unsatisfiable_core(spec: GR1Spec, oracle: Oracle) -> tuple[Unit, ...]:
-    """A minimal set of assumption units the environment cannot satisfy together (for a
-    spec whose assumptions are unsatisfiable): each unit is dropped in turn when the rest
-    stay unsatisfiable (deletion-based, as for cores in :mod:`analysis.core`)."""
-    core = list(units(spec, ASSUMPTION_SECTIONS))
-    for unit in list(core):
-        rest = tuple(u for u in core if u != unit)
-        if assumptions_unsatisfiable(keep_only(spec, rest, ASSUMPTION_SECTIONS), oracle):
-            core.remove(unit)
-    return tuple(core)
+    """A 1-minimal set of assumption units the environment cannot satisfy together (for a
+    spec whose assumptions are unsatisfiable), by :func:`analysis.ddmin.ddmin`."""
+
+    def unsatisfiable(kept: tuple[Unit, ...]) -> bool:
+        return assumptions_unsatisfiable(keep_only(spec, kept, ASSUMPTION_SECTIONS), oracle)
+
+    return ddmin(units(spec, ASSUMPTION_SECTIONS), unsatisfiable)
 
 
 def breakable_assumptions(spec: GR1Spec, oracle: Oracle) -> tuple[Unit, ...] | None:

@@ -69,16 +69,23 @@ def read_input(path: str | Path, what: str = "") -> bytes:
         raise UsageError(f"cannot read {name}: {err.strerror or err}") from None
 
 
-def check_writable(path: str | Path) -> None:
-    """Refuse, before any work, an output ``path`` that :func:`write_atomically` could not
-    write: its folder is missing or not writable, or it is a folder or other non-file."""
+def _output_target(path: str | Path) -> Path:
+    """The file an output ``path`` names (a symbolic link followed); a folder, socket or
+    other kind that is neither a regular file nor a stream is refused."""
     target = Path(path)
     if target.is_symlink():
         target = target.resolve()
+    if target.exists() and not target.is_file() and not _stream_in_place(target):
+        raise UsageError(f"cannot write '{path}': it is not a regular file")
+    return target
+
+
+def check_writable(path: str | Path) -> None:
+    """Refuse, before any work, an output ``path`` that :func:`write_atomically` could not
+    write: its folder is missing or not writable, or it is a folder or other non-file."""
+    target = _output_target(path)
     if _stream_in_place(target):
         return
-    if target.exists() and not target.is_file():
-        raise UsageError(f"cannot write '{path}': it is not a regular file")
     folder = target.parent if str(target.parent) else Path(".")
     if not folder.is_dir():
         raise UsageError(f"cannot write '{path}': there is no folder '{folder}'")
@@ -95,10 +102,8 @@ def write_atomically(path: str | Path, data: str | bytes) -> None:
     device is written to in place, as a user who names ``/dev/stdout`` expects; any other
     kind of file that is not a regular one (a directory, a socket) is refused.
     """
-    target = Path(path)
+    target = _output_target(path)
     payload = data.encode("utf-8") if isinstance(data, str) else data
-    if target.is_symlink():
-        target = target.resolve()
     if _stream_in_place(target):
         try:
             with open(target, "wb") as out:
@@ -106,8 +111,6 @@ def write_atomically(path: str | Path, data: str | bytes) -> None:
         except OSError as err:
             raise UsageError(f"cannot write '{path}': {err.strerror or err}") from None
         return
-    if target.exists() and not target.is_file():
-        raise UsageError(f"cannot write '{path}': it is not a regular file")
     tmp: str | None = None
     try:
         folder = target.parent if str(target.parent) else Path(".")

@@ -105,10 +105,6 @@ def _kind(name: str) -> str:
     )
 
 
-def _read(path: str) -> bytes:
-    return read_input(path)
-
-
 def _decode(data: bytes, path: str, suffix: str) -> str:
     return decode_text(data, path, SpecSyntaxError if suffix in GAIT_SUFFIXES
                        else SlugsFormatError)
@@ -126,7 +122,7 @@ def load(path: str | Path, encoding: str = "onehot", kind: str | None = None) ->
     name = str(path)
     _check_encoding(encoding)
     suffix = _kind(name) if kind is None else _kind(f"spec{kind}")
-    raw = _read(name)
+    raw = read_input(name)
     return _build(_decode(raw, name, suffix), name, suffix, encoding,
                   hashlib.sha256(raw).hexdigest())
 
