@@ -122,7 +122,7 @@ def _source_line(span: Span, sources: dict[str, str] | None) -> str | None:
             text = Path(span.file).read_bytes().decode("utf-8", errors="replace")
         except OSError:
             return None
-    lines = source_lines(text)
+    lines = source_lines(text.removeprefix("\ufeff"))  # the .gait parser skips a BOM too
     if 1 <= span.line <= len(lines):
         return lines[span.line - 1]
     return None

@@ -10,6 +10,8 @@ deeper than :data:`~ltlcompiler.parse_tree.MAX_NESTING`.
 
 from __future__ import annotations
 
+import difflib
+import re
 from dataclasses import replace
 from functools import cache
 from importlib import resources
@@ -35,10 +37,28 @@ _OPERATORS = ("&", "|", "^", "->", "<->", "and", "or", "xor", "until")
 _TERMINAL_WORDS = {
     "NAME": "a name",
     "INT": "a number",
-    "STRING": 'a string in double quotes',
+    "STRING": "a string in double quotes",
     "AXIS": "an axis such as +x or -y",
     "$END": "end of file",
 }
+_DIRECTIONS = ("north", "south", "east", "west")
+#: Operators of other languages, written doubled, and the .gait operator to use instead.
+_DOUBLED = {
+    "&": "'&' (or 'and') for conjunction",
+    "|": "'|' (or 'or') for disjunction",
+    "=": "'=' to compare, as in health(L1) = 2",
+}
+#: Characters pasted from typeset formulas, and the .gait spelling of each.
+_LOOKALIKES = {
+    "\u2192": "->",
+    "\u2194": "<->",
+    "\u2227": "&",
+    "\u2228": "|",
+    "\u00ac": "!",
+    "\u201c": '"',
+    "\u201d": '"',
+}
+_BOM = "\ufeff"
 
 
 @cache
@@ -140,6 +160,102 @@ def _end_span(text: str, file: str) -> Span:
     return Span(file, len(lines), len(lines[-1]) + 1)
 
 
+def _suggestion(word: str, candidates: list[str]) -> str | None:
+    close = difflib.get_close_matches(word, candidates, n=1)
+    return f"did you mean '{close[0]}'?" if close else None
+
+
+def _keywords(expected: set[str]) -> list[str]:
+    """The keywords among the terminals lark expected (what a mistyped word may have been)."""
+    words = []
+    for name in expected:
+        try:
+            pattern = _lark().get_terminal(name).pattern
+        except KeyError:
+            continue
+        if isinstance(pattern, PatternStr) and pattern.value.isalpha():
+            words.append(pattern.value)
+    return sorted(words)
+
+
+def _bad_character(char: str, pos: int, text: str, here: Span) -> GaitcError:
+    """A character no token starts with: a fraction, a non-ASCII letter or a lookalike."""
+    digits = "0123456789"
+    if char == "." and 0 < pos < len(text) - 1 and {text[pos - 1], text[pos + 1]} <= set(digits):
+        start, end = pos - 1, pos + 2
+        while start > 0 and text[start - 1] in digits:
+            start -= 1
+        while end < len(text) and text[end] in digits:
+            end += 1
+        number = text[start:end]
+        span = Span(
+            here.file,
+            here.line,
+            here.column - (pos - start),
+            here.line,
+            here.column + (end - pos - 1),
+        )
+        if re.search(r"\bhealth\s+[0-9]+$", text[max(0, start - 40) : pos]):
+            return SpecSyntaxError(
+                f"health must be a whole number of levels (1 to 100), not {number}", span
+            )
+        return SpecSyntaxError(
+            f"'{number}' is not a whole number: numbers in a .gait file are whole numbers "
+            "such as 2 or 10",
+            span,
+        )
+    code = f"U+{ord(char):04X}"
+    if char in _LOOKALIKES:
+        return SpecSyntaxError(
+            f"unexpected character '{char}' ({code}); write '{_LOOKALIKES[char]}'", here
+        )
+    if not char.isascii() and char.isalnum():
+        return SpecSyntaxError(
+            f"'{char}' ({code}) cannot be part of a name: names use only the ASCII letters "
+            "A-Z and a-z, the digits 0-9 and '_', and do not start with a digit",
+            here,
+        )
+    shown = repr(char)[1:-1] if not char.isprintable() else char
+    return SpecSyntaxError(
+        f"unexpected character '{shown}': names use letters, digits and '_', "
+        "comments start with '#'",
+        here,
+    )
+
+
+def _doubled_operator(tok: Token, text: str, file: str) -> GaitcError | None:
+    """``&&``, ``||`` or ``==`` from another language: lark stops at the second character."""
+    start = tok.start_pos
+    if str(tok) not in _DOUBLED or start is None or start < 1 or text[start - 1] != str(tok):
+        return None
+    line, column = tok.line or 1, (tok.column or 2) - 1
+    return SpecSyntaxError(
+        f"'{tok}{tok}' is not a .gait operator; write {_DOUBLED[str(tok)]}",
+        Span(file, line, column, line, column + 1),
+    )
+
+
+def _dangling_name(err: UnexpectedToken, expected: set[str], file: str) -> GaitcError | None:
+    """A name that lark read as the start of a transition ``a -> b`` (``moves wset``): it
+    fails only at the next token, usually the next statement, so point at the name."""
+    if {_describe_terminal(name) for name in expected} != {"'->'"}:
+        return None
+    parser = getattr(err, "interactive_parser", None)
+    stack = list(parser.parser_state.value_stack) if parser is not None else []
+    if len(stack) < 2 or not isinstance(stack[-1], Token) or stack[-1].type != "NAME":
+        return None
+    name, before = stack[-1], stack[-2]
+    span = token_span(file, name)
+    if isinstance(before, Token) and before.type == "MOVES":
+        return SpecSyntaxError(
+            f"'{name}' after 'moves' is not a direction; expected north, south, east or west, "
+            "or region transitions such as 'a -> b'",
+            span,
+            _suggestion(str(name), list(_DIRECTIONS)),
+        )
+    return SpecSyntaxError(f"transition from '{name}' has no '->'; write '{name} -> REGION'", span)
+
+
 def _syntax_error(err: UnexpectedInput, text: str, file: str) -> GaitcError:
     if isinstance(err, UnexpectedCharacters):
         here = Span(file, err.line, err.column, err.line, err.column)
@@ -147,12 +263,7 @@ def _syntax_error(err: UnexpectedInput, text: str, file: str) -> GaitcError:
         char = text[pos] if 0 <= pos < len(text) else "?"
         if char == '"':
             return SpecSyntaxError("unterminated string: add the closing '\"' on this line", here)
-        shown = repr(char)[1:-1] if not char.isprintable() else char
-        return SpecSyntaxError(
-            f"unexpected character '{shown}': names use letters, digits and '_', "
-            "comments start with '#'",
-            here,
-        )
+        return _bad_character(char, pos, text, here)
     if isinstance(err, UnexpectedToken):
         tok = err.token
         expected = set(err.accepts or err.expected or ())
@@ -161,9 +272,14 @@ def _syntax_error(err: UnexpectedInput, text: str, file: str) -> GaitcError:
                 f"unexpected end of file; expected {_describe_expected(expected)}",
                 _end_span(text, file),
             )
+        found = _doubled_operator(tok, text, file) or _dangling_name(err, expected, file)
+        if found is not None:
+            return found
+        hint = _suggestion(str(tok), _keywords(expected)) if tok.type == "NAME" else None
         return SpecSyntaxError(
             f"unexpected {_describe_token(tok)}; expected {_describe_expected(expected)}",
             token_span(file, tok),
+            hint,
         )
     if isinstance(err, UnexpectedEOF):
         expected = set(err.expected or ())
@@ -178,8 +294,11 @@ def _syntax_error(err: UnexpectedInput, text: str, file: str) -> GaitcError:
 def parse(text: str, file: str = "<string>") -> s.SpecFile:
     """Parse .gait source ``text`` (reported as ``file``) into a :class:`~syntax.SpecFile`.
 
+    A byte-order mark at the start is skipped (columns count from the character after it).
     Raises :class:`SpecSyntaxError` or :class:`FormulaError` with a span on bad input.
     """
+    if text.startswith(_BOM):  # editors on Windows start UTF-8 files with one
+        text = text[1:]
     _check_brackets(text, file)
     try:
         tree = _lark().parse(text)

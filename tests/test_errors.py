@@ -1,6 +1,7 @@
 """The error catalogue: each tests/errors/*.gait fails (or warns) with exactly its message.
 
-A file's ``# expect: LINE:COL: MESSAGE`` line names the error; files that only warn list
+A file's ``# expect: LINE:COL: MESSAGE`` line names the error (and an ``# expect hint: HINT``
+line the hint under it, such as the keyword a typo was meant to be); files that only warn list
 ``# expect warning: LINE:COL: MESSAGE`` lines, in the order the checker reports them.
 """
 
@@ -43,6 +44,7 @@ def test_catalogue_entry(path: Path) -> None:
         err = info.value
         assert err.span is not None
         assert f"{err.span.line}:{err.span.column}: {err.message}" == expected_error[0]
+        assert [err.hint] == (_expectations(path, "expect hint") or [err.hint])
         rendered = render_error(err).splitlines()
         assert rendered[0] == f"{path}:{expected_error[0].replace(': ', ': error: ', 1)}"
         source = path.read_text(encoding="utf-8").splitlines()

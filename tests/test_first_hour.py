@@ -178,3 +178,35 @@ def test_unsatisfiable_assumptions_are_named_and_each_is_needed(
                          encoding="utf-8")
         main(["lint", "--deep", str(alone)])
         assert "cannot satisfy its own assumptions" not in capsys.readouterr().err
+
+
+def test_a_typo_is_shown_under_the_word_with_the_keyword_it_may_be(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    text = Path(PATROL).read_text(encoding="utf-8")
+    spec = tmp_path / "typo.gait"
+    spec.write_text(text.replace("moves west", "moves wset"), encoding="utf-8")
+    line = next(n for n, t in enumerate(text.splitlines(), 1) if t.endswith("moves west"))
+    assert main(["lint", str(spec)]) == ExitCode.USER
+    lines = _err(capsys).splitlines()
+    assert lines[0].startswith(f"{spec}:{line}:26: error: 'wset' after 'moves' is not a "
+                               "direction")
+    assert lines[1:] == ["    gait west  uses L4 moves wset",
+                         "                             ^^^^",
+                         "  hint: did you mean 'west'?"]
+
+
+def test_a_byte_order_mark_is_accepted_and_columns_skip_it(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    text = Path(PATROL).read_text(encoding="utf-8")
+    spec = tmp_path / "bom.gait"
+    spec.write_bytes(b"\xef\xbb\xbf" + text.encode("utf-8"))
+    assert main(["lint", str(spec)]) == 0
+    assert _err(capsys) == ""
+    spec.write_bytes(b"\xef\xbb\xbflegs L1 helth 2\n")
+    assert main(["lint", str(spec)]) == ExitCode.USER
+    assert _err(capsys).splitlines() == [
+        f"{spec}:1:9: error: unexpected name 'helth'; expected ',', '..' or 'health'",
+        "    legs L1 helth 2",
+        "            ^^^^^",
+        "  hint: did you mean 'health'?",
+    ]
