@@ -124,6 +124,22 @@ def resolve_primitive(
 PAIRING_STATES = 500
 
 
+def _primitive_hint(gait: Gait, order: Sequence[str]) -> str:
+    """A primitive that would pass :func:`check_gaits` for ``gait``: inline valves that
+    pressurise its legs one after the other (thesis 3.4.1: the two actuators of a gait are
+    pressurised in succession; one leg is pressurised, then vented), or a robot file."""
+    robot_file = 'primitive "ROBOT.yaml" direction D (D one of +x, -x, +y, -y; north is +y)'
+    if not gait.legs:
+        return f"add {robot_file}"
+    states = ["".join("1" if leg == used else "0" for leg in order) for used in gait.legs]
+    if len(states) == 1:
+        states.append("0" * len(order))
+    steps = ", then ".join(gait.legs) + (" pressurised" if len(gait.legs) > 1 else
+                                         " pressurised, then vented")
+    return (f"add valves {', '.join(states)} ({steps}; one digit per leg, in the order "
+            f"{', '.join(order)}) or {robot_file}")
+
+
 def check_gaits(
     gaits: Sequence[Gait], spec_dir: str, legs: Sequence[str] | None = None
 ) -> list[Diagnostic]:
@@ -144,7 +160,7 @@ def check_gaits(
                     "how to run it",
                     gait.span,
                     "warning",
-                    'add "valves 1000, 0100" or "primitive \\"robot.yaml\\" direction +x"',
+                    _primitive_hint(gait, order),
                 )
             )
             continue

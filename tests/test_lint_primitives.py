@@ -67,3 +67,26 @@ def test_specs_without_primitives_stay_quiet_unless_asked(
     assert "primitive" not in capsys.readouterr().err
     assert main(["lint", "--primitives", spec]) == 0
     assert capsys.readouterr().err.count("has no primitive") == 4
+
+
+@pytest.mark.parametrize("name", ["patrol_2x2.gait", "thesis_robot_a.gait"])
+def test_the_suggested_valves_are_readable_and_pass_lint(
+    name: str, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    import re
+
+    spec = tmp_path / name
+    shutil.copy(SPECS / name, spec)
+    assert main(["lint", "--primitives", str(spec)]) == 0
+    err = capsys.readouterr().err
+    hints = re.findall(r"^  hint: add valves ([01, ]+) \(", err, re.MULTILINE)
+    gaits = re.findall(r"warning: gait (\w+) has no primitive", err)
+    assert len(hints) == len(gaits) > 0
+    assert "\\" not in err
+    lines = spec.read_text(encoding="utf-8").splitlines()
+    for gait, valves in zip(gaits, hints, strict=True):
+        at = next(i for i, t in enumerate(lines) if t.startswith(f"gait {gait} "))
+        lines[at] += f" valves {valves}"
+    spec.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    assert main(["lint", "--primitives", str(spec)]) == 0
+    assert capsys.readouterr().err == ""
