@@ -48,8 +48,8 @@ def bind_primitives(model: Model, spec_dir: str) -> dict[str, ValveSequence]:
         raise SpecSemanticError(
             f"cannot drive the robot: {len(missing)} gait(s) have no valve primitive: {names}",
             missing[0].span,
-            'bind one to each gait, e.g. "valves 1000, 0100" or "primitive \\"robot.yaml\\" '
-            'direction +x" (gaitc lint lists them too)')
+            "bind one to each gait: 'gaitc lint --primitives' suggests the valves of each, "
+            'or name a robot file with primitive "ROBOT.yaml" direction +x')
     bound = {g.name: resolve_primitive(g, spec_dir, legs) for g in gaits}
     counts = {len(seq.states[0]) for seq in bound.values() if seq.states}
     if len(counts) > 1:
