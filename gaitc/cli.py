@@ -91,6 +91,18 @@ def main(argv: Sequence[str] | None = None) -> int:
             signal.signal(signal.SIGTERM, previous)
 
 
+def _parse(parser: _Parser, words: list[str]) -> argparse.Namespace:
+    """``parser.parse_args(words)``, except that CONTROLLER after an option (``simulate SPEC
+    --steps 9 CONTROLLER``) is taken: argparse fills an optional positional together with
+    the one before it, so it would refuse the word as unrecognized."""
+    args, extra = parser.parse_known_args(words)
+    if len(extra) == 1 and not extra[0].startswith("-") and getattr(args, "controller", 0) is None:
+        args.controller = extra[0]
+    elif extra:
+        parser.error(f"unrecognized arguments: {' '.join(extra)}")
+    return args
+
+
 def _run(argv: Sequence[str] | None) -> int:
     words = attach_signed_values(list(sys.argv[1:] if argv is None else argv))
     # --json before parsing, for usage errors; after parsing, the command's own option
@@ -98,7 +110,7 @@ def _run(argv: Sequence[str] | None) -> int:
     try:
         parser = build_parser()
         command = reporting.command_named(words, parser.commands)
-        args = parser.parse_args(words)
+        args = _parse(parser, words)
         as_json = bool(getattr(args, "json", False))
         if getattr(args, "run", None) is None:
             parser.print_help(sys.stderr)

@@ -210,3 +210,37 @@ def test_a_byte_order_mark_is_accepted_and_columns_skip_it(
         "            ^^^^^",
         "  hint: did you mean 'health'?",
     ]
+
+
+@pytest.fixture(scope="module")
+def patrol_controller(tmp_path_factory: pytest.TempPathFactory) -> str:
+    path = tmp_path_factory.mktemp("ctrl") / "patrol.json"
+    assert main(["synth", PATROL, "-o", str(path)]) == 0
+    return str(path)
+
+
+@pytest.mark.parametrize("order", [
+    ["{c}", "--env", "random"],
+    ["--env", "random", "{c}"],
+    ["--env", "scripted", "{s}", "{c}"],
+    ["--steps", "3", "{c}"],
+])
+def test_controller_may_follow_env_and_other_options(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str], patrol_controller: str,
+        order: list[str]) -> None:
+    scenario = tmp_path / "s.yaml"
+    scenario.write_text("steps:\n  - {}\n  - {}\n  - {}\n", encoding="utf-8")
+    words = [w.format(c=patrol_controller, s=scenario) for w in order]
+    capsys.readouterr()
+    assert main(["simulate", PATROL, *words, "--steps", "3", "--quiet"]) == 0, _err(capsys)
+    assert "summary: 3 steps" in capsys.readouterr().out
+
+
+def test_drive_takes_its_controller_after_env(capsys: pytest.CaptureFixture[str],
+                                              tmp_path: Path) -> None:
+    shuttle, ctrl = str(ROOT / "specs" / "shuttle_2leg.gait"), str(tmp_path / "s.json")
+    assert main(["synth", shuttle, "-o", ctrl]) == 0
+    capsys.readouterr()
+    assert main(["drive", shuttle, "--env", "random", ctrl, "--steps", "2", "--quiet"]) == 0
+    assert "summary: 2 steps" in capsys.readouterr().out
+

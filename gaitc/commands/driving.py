@@ -14,7 +14,7 @@ from typing import Any
 import gaitc
 from diagnostics import UsageError
 from gaitc.commands.arguments import add_prefer, positive_seconds, run_file
-from gaitc.commands.simulating import add_json, environment_of, report_run
+from gaitc.commands.simulating import add_json, environment_of, report_run, settle_environment
 from gaitc.exitcodes import ExitCode, exit_code_help
 from gaitc.reporting import document, print_json, run_json
 from gaitc.simulation import Session
@@ -108,6 +108,7 @@ def register(sub: Any) -> None:
 
 
 def _check_options(args: argparse.Namespace) -> None:
+    settle_environment(args)
     if args.steps is not None and args.steps < 0:
         raise UsageError("--steps must not be negative")
     if args.cycles < 1:

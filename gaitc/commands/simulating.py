@@ -76,6 +76,17 @@ def add_json(p: argparse.ArgumentParser) -> None:
                    "of the table (docs/json.md)")
 
 
+def settle_environment(args: argparse.Namespace) -> None:
+    """Give CONTROLLER back from ``--env`` (whose ``nargs='+'`` also takes the positional
+    after it: ``SPEC --env random CONTROLLER``; a .yaml word stays a misplaced scenario)."""
+    kind, *rest = args.env or ["random"]
+    wanted = 1 if kind == "scripted" else 0
+    taken = rest[-1] if len(rest) == wanted + 1 else ""
+    if args.controller is None and taken and not taken.endswith((".yaml", ".yml")):
+        args.controller = rest[-1]
+        args.env = args.env[:-1]
+
+
 def environment_of(args: argparse.Namespace, bound: Session) -> Environment:
     """The environment ``--env`` names (with its scenario file for ``scripted``)."""
     kind, *rest = args.env or ["random"]
@@ -94,6 +105,7 @@ def run_simulate(args: argparse.Namespace) -> int:
     semantics = "robotics" if args.robotics_semantics else "default"
     if args.steps is not None and args.steps < 0:
         raise UsageError("--steps must not be negative")
+    settle_environment(args)
     with progress_display() as progress:
         bound = gaitc.session(args.spec, args.controller, args.encoding, semantics,
                               args.prefer, progress)
