@@ -66,7 +66,12 @@ def session(spec: Spec | str | Path,
 
     A path is loaded with ``encoding``, else the encoding the controller file records, else
     onehot. Returns None when no controller was given and the spec is unrealizable.
+    ``prefer`` with a given controller is a :class:`UsageError`: its moves are chosen already.
     """
+    if prefer is not None and controller is not None:
+        raise UsageError("--prefer orders the moves of a controller synthesized here, but "
+                         "CONTROLLER was synthesized already; give --prefer to the 'gaitc "
+                         "synth' that writes it, or leave out CONTROLLER")
     if not isinstance(spec, Spec):
         if encoding is None and isinstance(controller, (str, Path)):
             encoding = recorded_encoding(controller)

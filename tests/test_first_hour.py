@@ -244,3 +244,58 @@ def test_drive_takes_its_controller_after_env(capsys: pytest.CaptureFixture[str]
     assert main(["drive", shuttle, "--env", "random", ctrl, "--steps", "2", "--quiet"]) == 0
     assert "summary: 2 steps" in capsys.readouterr().out
 
+
+@pytest.mark.parametrize(("words", "message"), [
+    (["--env", "adversarial", "--seed", "3"],
+     "--seed seeds the random environment; --env adversarial uses no random numbers (drop "
+     "--seed, or use --env random)"),
+    (["--env", "scripted", "{s}", "--seed", "3"],
+     "--seed seeds the random environment; --env scripted uses no random numbers (drop "
+     "--seed, or use --env random)"),
+    (["--prefer", "goal"],
+     "--prefer orders the moves of a controller synthesized here, but CONTROLLER was "
+     "synthesized already; give --prefer to the 'gaitc synth' that writes it, or leave out "
+     "CONTROLLER"),
+])
+def test_options_that_would_be_ignored_are_usage_errors(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str], patrol_controller: str,
+        words: list[str], message: str) -> None:
+    scenario = tmp_path / "s.yaml"
+    scenario.write_text("steps:\n  - {}\n", encoding="utf-8")
+    filled = [w.format(s=scenario) for w in words]
+    capsys.readouterr()
+    assert main(["simulate", PATROL, patrol_controller, *filled]) == ExitCode.USAGE
+    assert _err(capsys) == f"gaitc: usage error: {message}"
+
+
+def test_prefer_with_a_controller_is_refused_by_render_and_drive_too(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str], patrol_controller: str) -> None:
+    shuttle, ctrl = str(ROOT / "specs" / "shuttle_2leg.gait"), str(tmp_path / "s.json")
+    assert main(["synth", shuttle, "-o", ctrl]) == 0
+    capsys.readouterr()
+    for words in (["render", "automaton", PATROL, patrol_controller, "-o",
+                   str(tmp_path / "a.dot")],
+                  ["drive", shuttle, ctrl, "--steps", "1"]):
+        assert main([*words, "--prefer", "none"]) == ExitCode.USAGE
+        assert _err(capsys).startswith("gaitc: usage error: --prefer orders the moves")
+    assert main(["drive", shuttle, ctrl, "--backend", "serial", "--port",
+                 "loop://", "--seed", "1"]) == ExitCode.USAGE
+    assert _err(capsys) == ("gaitc: usage error: --seed seeds the simulated random "
+                            "environment; the serial backend reads real sensors")
+
+
+@pytest.mark.parametrize(("words", "message"), [
+    (["--method", "full", "--seed", "3"],
+     "--seed seeds the random and reset searches; the full search of robot radial8 tries "
+     "every valve state, without random numbers"),
+    (["--seed", "3"],  # chapter 2's default for 8 chambers is the full search
+     "--seed seeds the random and reset searches; the full search of robot radial8 tries "
+     "every valve state, without random numbers"),
+    (["--model", "spring-damper", "--seed", "3"],
+     "--seed seeds the random and reset searches; --model searches the model's whole gait "
+     "graph, without random numbers"),
+])
+def test_a_seed_the_gait_search_would_not_use_is_refused(
+        capsys: pytest.CaptureFixture[str], words: list[str], message: str) -> None:
+    assert main(["gaits", RADIAL8, *words]) == ExitCode.USAGE
+    assert _err(capsys) == f"gaitc: usage error: {message}"

@@ -82,7 +82,7 @@ def register(sub: Any) -> None:
                    help="times each gait's valve sequence is repeated per step (1)")
     p.add_argument("--env", nargs="+", metavar="KIND",
                    help="sim backend: random (default) | adversarial | scripted FILE.yaml")
-    p.add_argument("--seed", type=int, default=0, help="seed of the random environment")
+    p.add_argument("--seed", type=int, help="seed of the random environment (default 0)")
     p.add_argument("--out", metavar="FILE", type=run_file,
                    help="save the run as .jsonl or .csv")
     p.add_argument("--on-violation", choices=VIOLATION_POLICIES, default="stop",
@@ -108,7 +108,7 @@ def register(sub: Any) -> None:
 
 
 def _check_options(args: argparse.Namespace) -> None:
-    settle_environment(args)
+    settle_environment(args, real_sensors=args.backend == "serial")
     if args.steps is not None and args.steps < 0:
         raise UsageError("--steps must not be negative")
     if args.cycles < 1:

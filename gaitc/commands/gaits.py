@@ -51,7 +51,8 @@ def search_arguments(p: argparse.ArgumentParser) -> None:
         help="chapter 2 (default): full for at most 12 chambers and --max-states valve "
         "states, else random; astar, lpa, dstar, mcts: chapter 5 searches toward --goal",
     )
-    p.add_argument("--seed", type=int, default=0)
+    p.add_argument("--seed", type=int, default=0,
+                   help="seed of the random and reset searches and of chapter 5's (default 0)")
     p.add_argument("--max-states", type=int, default=10_000, help="valve states to try at most")
     from gaitc.commands.learning import goal_arguments
 
@@ -67,6 +68,10 @@ def run_render(args: argparse.Namespace) -> int:
 def run(args: argparse.Namespace) -> int:
     if getattr(args, "model", None) is not None:
         from gaitc.commands.predicted import run_model_gaits
+
+        if args.seed != 0:
+            raise UsageError("--seed seeds the random and reset searches; --model searches "
+                             "the model's whole gait graph, without random numbers")
 
         return run_model_gaits(args)
     if args.method in ("astar", "lpa", "dstar", "mcts"):
@@ -94,6 +99,9 @@ def run(args: argparse.Namespace) -> int:
     full = robot.valve_count <= 12 and 1 << robot.valve_count <= args.max_states
     method = args.method if args.method not in (None, "chapter2") else (
         "full" if full else "random")
+    if method == "full" and args.seed != 0:
+        raise UsageError(f"--seed seeds the random and reset searches; the full search of "
+                         f"robot {robot.name} tries every valve state, without random numbers")
     result = search(robot, direction, method, args.seed, args.max_states)
     if args.json:
         return _print_json(args, robot, result)

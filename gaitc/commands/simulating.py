@@ -54,7 +54,7 @@ def register(sub: Any) -> None:
     p.add_argument("controller", metavar="CONTROLLER", nargs="?")
     p.add_argument("--env", nargs="+", metavar="KIND", default=["random"],
                    help="scripted FILE.yaml | random | adversarial (default random)")
-    p.add_argument("--seed", type=int, default=0, help="seed of the random environment")
+    p.add_argument("--seed", type=int, help="seed of the random environment (default 0)")
     p.add_argument("--steps", type=int, metavar="N",
                    help="number of steps (default 50; a scenario's length when scripted)")
     p.add_argument("--out", metavar="FILE", type=run_file,
@@ -76,15 +76,22 @@ def add_json(p: argparse.ArgumentParser) -> None:
                    "of the table (docs/json.md)")
 
 
-def settle_environment(args: argparse.Namespace) -> None:
+def settle_environment(args: argparse.Namespace, real_sensors: bool = False) -> None:
     """Give CONTROLLER back from ``--env`` (whose ``nargs='+'`` also takes the positional
-    after it: ``SPEC --env random CONTROLLER``; a .yaml word stays a misplaced scenario)."""
+    after it: ``SPEC --env random CONTROLLER``; a .yaml word stays a misplaced scenario), and
+    refuse a ``--seed`` nothing uses."""
     kind, *rest = args.env or ["random"]
     wanted = 1 if kind == "scripted" else 0
     taken = rest[-1] if len(rest) == wanted + 1 else ""
     if args.controller is None and taken and not taken.endswith((".yaml", ".yml")):
         args.controller = rest[-1]
         args.env = args.env[:-1]
+    if args.seed is not None and real_sensors:
+        raise UsageError("--seed seeds the simulated random environment; the serial backend "
+                         "reads real sensors")
+    if args.seed is not None and kind != "random":
+        raise UsageError(f"--seed seeds the random environment; --env {kind} uses no random "
+                         "numbers (drop --seed, or use --env random)")
 
 
 def environment_of(args: argparse.Namespace, bound: Session) -> Environment:
@@ -98,7 +105,7 @@ def environment_of(args: argparse.Namespace, bound: Session) -> Environment:
         return environment(f"scripted:{rest[0]}", bound)
     if rest:
         raise UsageError(f"--env {kind} takes no file (got '{rest[0]}')")
-    return environment(kind, bound, args.seed)
+    return environment(kind, bound, args.seed or 0)
 
 
 def run_simulate(args: argparse.Namespace) -> int:
@@ -126,7 +133,7 @@ def run_simulate(args: argparse.Namespace) -> int:
         return ExitCode.UNREALIZABLE
     if bound.strategy.kind == "counterstrategy":
         kind = (args.env or ["random"])[0]
-        run = gaitc.simulate(bound, env=kind, steps=args.steps, seed=args.seed)
+        run = gaitc.simulate(bound, env=kind, steps=args.steps, seed=args.seed or 0)
         return report_run(run, bound.full_health, run.environment, args.quiet, args.out,
                           args.json, realizable=False)
     chosen = environment_of(args, bound)
