@@ -299,3 +299,20 @@ def test_a_seed_the_gait_search_would_not_use_is_refused(
         capsys: pytest.CaptureFixture[str], words: list[str], message: str) -> None:
     assert main(["gaits", RADIAL8, *words]) == ExitCode.USAGE
     assert _err(capsys) == f"gaitc: usage error: {message}"
+
+
+def test_the_preference_bench_table_names_robot_a_binary_controller() -> None:
+    """docs/simulation.md's bench rows for robot A are its binary controller (231 nodes);
+    the text says plain 'synth' (one-hot) writes 267: both counts as synthesized now."""
+    import gaitc
+
+    doc = (ROOT / "docs" / "simulation.md").read_text(encoding="utf-8")
+    robot_a = str(ROOT / "specs" / "thesis_robot_a.gait")
+    counts = {}
+    for encoding in ("binary", "onehot"):
+        found = gaitc.synthesize(gaitc.load(robot_a, encoding), verify=False)
+        assert found.controller is not None
+        counts[encoding] = len(found.controller.nodes)
+    assert f"| thesis_robot_a | default | {counts['binary']} |" in doc
+    assert f"writes {counts['onehot']} nodes" in doc
+    assert "**binary** encoding" in doc
