@@ -13,6 +13,7 @@ from pathlib import Path
 from diagnostics import ControllerError, Span
 from gaitsim.view import Indexed, InputKey, NodeReading, StrategyView
 from gr1.bddfile import SymbolicController, is_symbolic, symbolic_from_dict
+from gr1.bits import bits_mismatch, spec_bits
 from gr1.controller import Controller, controller_from_dict, read_controller_json
 from gr1.spec import GR1Spec
 
@@ -63,6 +64,11 @@ def strategy_from_controller(controller: Controller, spec: GR1Spec, file: str = 
     """
     inputs = tuple(v.name for v in spec.inputs)
     variables = inputs + tuple(v.name for v in spec.outputs)
+    ins, outs = spec_bits(spec)
+    mismatch = bits_mismatch(controller.variables, ins + outs, order_matters=False)
+    if mismatch is not None:  # the words of 'gaitc verify'; bits are read by name here
+        raise ControllerError(mismatch, _where(file),
+                              hint="synthesize it again from this spec with 'gaitc synth'")
     values: list[tuple[int, ...]] = []
     for node in range(len(controller.nodes)):
         decoded = controller.values(node)

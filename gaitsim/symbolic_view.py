@@ -20,7 +20,7 @@ from diagnostics import ControllerError, Span
 from gaitsim.view import InputKey, NodeReading
 from gr1.bddfile import SymbolicController, materialize
 from gr1.bddwalk import State, all_assignments, first_assignment, holds_at
-from gr1.bits import spec_bits
+from gr1.bits import bits_mismatch, spec_bits
 from gr1.spec import GR1Spec
 
 T = TypeVar("T")
@@ -36,10 +36,13 @@ class SymbolicStrategy(NodeReading):
         names = tuple(v.name for v in spec.inputs), tuple(v.name for v in spec.outputs)
         self.variables: tuple[str, ...] = names[0] + names[1]
         self.n_inputs = len(names[0])
-        if spec_bits(spec) != (ctrl.inputs, ctrl.outputs):
+        ins, outs = spec_bits(spec)
+        if (ins, outs) != (ctrl.inputs, ctrl.outputs):  # in the words of 'gaitc verify'
+            mismatch = bits_mismatch(ctrl.inputs + ctrl.outputs, ins + outs) or (
+                "controller does not belong to this spec: its inputs and outputs are split "
+                "differently from the spec's")
             raise ControllerError(
-                "controller does not belong to this spec: its input and output bits differ "
-                "from the spec's", Span(file or "<controller>", 1, 1),
+                mismatch, Span(file or "<controller>", 1, 1),
                 hint="synthesize it again from this spec with 'gaitc synth --symbolic'")
         self._decoders = _decoders(ctrl, self.variables, file)
         self.bdd = cudd.BDD()

@@ -3,13 +3,14 @@
 SLUGS's converter (tools/StructuredSlugsParser/compiler.py) encodes an integer ``x`` in
 ``MIN...MAX`` little-endian as bits ``x@0.MIN.MAX``, ``x@1``, ``x@2``, ... with value
 ``MIN`` + the unsigned bits; the first bit's name carries the range, so controllers and
-counter-strategies written by SLUGS can be decoded without the spec.
+counter-strategies written by SLUGS can be decoded without the spec.  :func:`bits_mismatch`
+says how a controller's bits differ from a spec's, in the words verify and simulate share.
 """
 
 from __future__ import annotations
 
 import re
-from collections.abc import Iterable, Mapping
+from collections.abc import Iterable, Mapping, Sequence
 
 from gr1.spec import GR1Spec, Variable
 
@@ -103,3 +104,31 @@ def spec_bits(spec: GR1Spec) -> tuple[tuple[str, ...], tuple[str, ...]]:
     ins = tuple(b for v in spec.inputs for b in integer_bits(v))
     outs = tuple(b for v in spec.outputs for b in integer_bits(v))
     return ins, outs
+
+
+def _listed(names: Sequence[str], shown: int = 6) -> str:
+    quoted = ", ".join(repr(n) for n in names[:shown])
+    more = f" and {len(names) - shown} more ({len(names)} in all)" if len(names) > shown else ""
+    return f"variable{'s' if len(names) > 1 else ''} {quoted}{more}"
+
+
+def bits_mismatch(
+    controller: Sequence[str], spec: Sequence[str], order_matters: bool = True
+) -> str | None:
+    """Why a controller whose bits are ``controller`` does not belong to a spec whose bits
+    are ``spec`` (both inputs first, then outputs): the spec's variables it lacks and those it
+    has that the spec does not; None when they agree (in order, if ``order_matters``)."""
+    have, want = set(controller), set(spec)
+    missing = [b for b in spec if b not in have]
+    extra = [b for b in controller if b not in want]
+    parts = []
+    if missing:
+        parts.append(f"it lacks the spec's {_listed(missing)}")
+    if extra:
+        parts.append(f"it has {_listed(extra)}, which the spec does not have")
+    if not parts:
+        if not order_matters or tuple(controller) == tuple(spec):
+            return None
+        parts.append(f"it lists the spec's variables in another order: {list(controller)} "
+                     f"instead of {list(spec)} (inputs first, then outputs)")
+    return "controller does not belong to this spec: " + "; ".join(parts)

@@ -316,3 +316,18 @@ def test_the_preference_bench_table_names_robot_a_binary_controller() -> None:
     assert f"| thesis_robot_a | default | {counts['binary']} |" in doc
     assert f"writes {counts['onehot']} nodes" in doc
     assert "**binary** encoding" in doc
+
+
+@pytest.mark.parametrize("symbolic", [False, True])
+def test_verify_and_simulate_describe_a_foreign_controller_alike(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str], symbolic: bool) -> None:
+    shuttle, ctrl = str(ROOT / "specs" / "shuttle_2leg.gait"), str(tmp_path / "s.json")
+    assert main(["synth", shuttle, "-o", ctrl, *(["--symbolic"] if symbolic else [])]) == 0
+    capsys.readouterr()
+    said = ("controller does not belong to this spec: it lacks the spec's variables 'L3_h2', "
+            "'L3_h1', 'L4_h2', 'L4_h1', 'nw', 'ne' and 4 more (10 in all); it has variables "
+            "'a', 'b', which the spec does not have")
+    assert main(["verify", PATROL, ctrl]) == ExitCode.USER
+    assert f"  - {said}" in capsys.readouterr().out.splitlines()
+    assert main(["simulate", PATROL, ctrl, "--steps", "2"]) == ExitCode.USER
+    assert _err(capsys).splitlines()[0] == f"{ctrl}:1:1: error: {said}"

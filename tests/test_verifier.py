@@ -135,8 +135,8 @@ def test_initial_node_violating_sys_init() -> None:
 def test_wrong_variable_list() -> None:
     report = verify(grant_spec(), automaton(GOOD, (0, 1), variables=("g", "r")))
     assert report.problems == (
-        "the controller's variable list ['g', 'r'] does not match the specification's bits "
-        "['r', 'g'] (inputs first, then outputs)",
+        "controller does not belong to this spec: it lists the spec's variables in another "
+        "order: ['g', 'r'] instead of ['r', 'g'] (inputs first, then outputs)",
     )
 
 

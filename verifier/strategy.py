@@ -15,6 +15,7 @@ from typing import Any
 import networkx as nx
 
 from gr1.bitblast import bitblast
+from gr1.bits import bits_mismatch
 from gr1.controller import Controller
 from gr1.spec import SEMANTICS, GR1Spec
 from verifier.logic import Bits, Logic
@@ -90,10 +91,9 @@ class Check:
     def well_formed(self) -> bool:
         """Variable list, state vectors and node references; the other checks need them."""
         expected, c = self.logic.inputs + self.logic.outputs, self.ctrl
-        if tuple(c.variables) != expected:
-            self.problems.append(
-                f"the controller's variable list {list(c.variables)} does not match the "
-                f"specification's bits {list(expected)} (inputs first, then outputs)")
+        mismatch = bits_mismatch(c.variables, expected)
+        if mismatch is not None:
+            self.problems.append(mismatch)
             return False
         count = len(c.nodes)
         for k, node in enumerate(c.nodes):

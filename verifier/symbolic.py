@@ -25,6 +25,7 @@ from typing import Any
 
 from gr1.bddfile import SymbolicController, materialize
 from gr1.bitblast import bitblast
+from gr1.bits import bits_mismatch
 from gr1.spec import GR1Spec
 from verifier.logic import Logic
 from verifier.strategy import MAX_PROBLEMS, VerificationReport
@@ -84,9 +85,9 @@ def verify_symbolic(spec: GR1Spec, ctrl: SymbolicController,
     chosen = semantics or ctrl.semantics
     loop = _Loop(spec, ctrl)
     expected = loop.logic.inputs + loop.logic.outputs
-    if ctrl.variables != expected:
-        return _report([f"the controller's bits {list(ctrl.variables)} do not match the "
-                        f"specification's bits {list(expected)}"], 0, chosen)
+    mismatch = bits_mismatch(ctrl.variables, expected)
+    if mismatch is not None:
+        return _report([mismatch], 0, chosen)
     spec_goals = loop.goals("sys_liveness")
     if ctrl.goal_count != len(spec_goals):
         return _report([f"the controller pursues {ctrl.goal_count} goal(s), the "
