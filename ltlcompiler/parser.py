@@ -42,6 +42,10 @@ _TERMINAL_WORDS = {
     "$END": "end of file",
 }
 _DIRECTIONS = ("north", "south", "east", "west")
+_FORMULA_WORDS = (
+    "always", "eventually", "next", "not", "health", "failed", "true", "false", "and", "or",
+    "xor", "until",
+)  # fmt: skip
 #: Operators of other languages, written doubled, and the .gait operator to use instead.
 _DOUBLED = {
     "&": "'&' (or 'and') for conjunction",
@@ -161,8 +165,46 @@ def _end_span(text: str, file: str) -> Span:
 
 
 def _suggestion(word: str, candidates: list[str]) -> str | None:
-    close = difflib.get_close_matches(word, candidates, n=1)
+    close = [c for c in candidates if _swapped(word, c)]
+    close = close or difflib.get_close_matches(word, candidates, n=1)
     return f"did you mean '{close[0]}'?" if close else None
+
+
+def _swapped(word: str, keyword: str) -> bool:
+    """Whether ``word`` is ``keyword`` with two neighbouring letters swapped (nxet, wset)."""
+    diff = [k for k in range(len(word)) if len(word) == len(keyword) and word[k] != keyword[k]]
+    if len(diff) != 2 or diff[1] != diff[0] + 1:
+        return False
+    return (word[diff[0]], word[diff[1]]) == (keyword[diff[1]], keyword[diff[0]])
+
+
+def _mistyped_formula_word(
+    err: UnexpectedToken, expected: set[str], file: str
+) -> GaitcError | None:
+    """A mistyped ``next``, ``always``, ``health`` ... in a formula is read as a name, and
+    lark fails only at the word after it (``nxet r2``, ``helth(L1)``): point at the name."""
+    if "'&'" not in {_describe_terminal(name) for name in expected}:
+        return None  # not after an atom of a formula
+    stack = _value_stack(err)
+    if not stack or not isinstance(stack[-1], Token) or stack[-1].type != "NAME":
+        return None
+    name = str(stack[-1])
+    close = [w for w in _FORMULA_WORDS if _swapped(name, w)]
+    close = close or difflib.get_close_matches(name, _FORMULA_WORDS, n=1, cutoff=0.8)
+    if not close:
+        return None
+    return SpecSyntaxError(
+        f"name '{name}' cannot be followed by {_describe_token(err.token)}; expected "
+        f"{_describe_expected(expected)} after it",
+        token_span(file, stack[-1]),
+        f"did you mean '{close[0]}'?",
+    )
+
+
+def _value_stack(err: UnexpectedToken) -> list[object]:
+    """What the LALR parser had shifted when it failed (tokens and finished subtrees)."""
+    parser = getattr(err, "interactive_parser", None)
+    return list(parser.parser_state.value_stack) if parser is not None else []
 
 
 def _keywords(expected: set[str]) -> list[str]:
@@ -240,8 +282,7 @@ def _dangling_name(err: UnexpectedToken, expected: set[str], file: str) -> Gaitc
     fails only at the next token, usually the next statement, so point at the name."""
     if {_describe_terminal(name) for name in expected} != {"'->'"}:
         return None
-    parser = getattr(err, "interactive_parser", None)
-    stack = list(parser.parser_state.value_stack) if parser is not None else []
+    stack = _value_stack(err)
     if len(stack) < 2 or not isinstance(stack[-1], Token) or stack[-1].type != "NAME":
         return None
     name, before = stack[-1], stack[-2]
@@ -272,7 +313,11 @@ def _syntax_error(err: UnexpectedInput, text: str, file: str) -> GaitcError:
                 f"unexpected end of file; expected {_describe_expected(expected)}",
                 _end_span(text, file),
             )
-        found = _doubled_operator(tok, text, file) or _dangling_name(err, expected, file)
+        found = (
+            _doubled_operator(tok, text, file)
+            or _dangling_name(err, expected, file)
+            or _mistyped_formula_word(err, expected, file)
+        )
         if found is not None:
             return found
         hint = _suggestion(str(tok), _keywords(expected)) if tok.type == "NAME" else None
