@@ -271,6 +271,11 @@ def _solve(spec: Spec | GR1Spec, kind: Kind, semantics: str, solver: str,
     gr1, started = as_gr1(spec), time.monotonic()
     _semantics(semantics)
     order = preference_order(prefer)
+    weighed = [name for name in order if name != "goal"]
+    if prefer is not None and weighed and not (isinstance(spec, Spec) and spec.model):
+        raise UsageError(f"--prefer {','.join(weighed)} weighs moves by the robot model of a "
+                         ".gait spec, and this spec has none (SLUGS input); use --prefer goal "
+                         "or none")
     automaton: Controller | SymbolicController | None
     try:
         if _solver(solver) == "slugs":

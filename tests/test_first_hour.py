@@ -331,3 +331,16 @@ def test_verify_and_simulate_describe_a_foreign_controller_alike(
     assert f"  - {said}" in capsys.readouterr().out.splitlines()
     assert main(["simulate", PATROL, ctrl, "--steps", "2"]) == ExitCode.USER
     assert _err(capsys).splitlines()[0] == f"{ctrl}:1:1: error: {said}"
+
+
+def test_model_preferences_on_a_slugs_spec_are_refused(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    slugsin = str(tmp_path / "p.slugsin")
+    assert main(["compile", PATROL, "-o", slugsin]) == 0
+    capsys.readouterr()
+    out = str(tmp_path / "c.json")
+    assert main(["synth", slugsin, "--prefer", "health,goal", "-o", out]) == ExitCode.USAGE
+    assert _err(capsys) == ("gaitc: usage error: --prefer health weighs moves by the robot "
+                            "model of a .gait spec, and this spec has none (SLUGS input); use "
+                            "--prefer goal or none")
+    assert main(["synth", slugsin, "--prefer", "goal", "-o", out]) == 0
