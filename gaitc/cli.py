@@ -95,7 +95,13 @@ def _parse(parser: _Parser, words: list[str]) -> argparse.Namespace:
     """``parser.parse_args(words)``, except that CONTROLLER after an option (``simulate SPEC
     --steps 9 CONTROLLER``) is taken: argparse fills an optional positional together with
     the one before it, so it would refuse the word as unrecognized."""
-    args, extra = parser.parse_known_args(words)
+    try:
+        args, extra = parser.parse_known_args(words)
+    except UsageError as err:  # '--env random SPEC': nargs='+' took SPEC as well
+        if "--env" in words and err.message.endswith("required: SPEC"):
+            raise UsageError(f"{err.message} (--env took the words after it as its own; "
+                             "write SPEC [CONTROLLER] before --env)") from None
+        raise
     if len(extra) == 1 and not extra[0].startswith("-") and getattr(args, "controller", 0) is None:
         args.controller = extra[0]
     elif extra:

@@ -236,6 +236,14 @@ def test_controller_may_follow_env_and_other_options(
     assert "summary: 3 steps" in capsys.readouterr().out
 
 
+def test_env_before_the_spec_says_where_the_spec_goes(
+        capsys: pytest.CaptureFixture[str], patrol_controller: str) -> None:
+    assert main(["simulate", "--env", "random", PATROL, patrol_controller]) == ExitCode.USAGE
+    assert _err(capsys) == ("gaitc: usage error: the following arguments are required: SPEC "
+                            "(--env took the words after it as its own; write SPEC "
+                            "[CONTROLLER] before --env)")
+
+
 def test_drive_takes_its_controller_after_env(capsys: pytest.CaptureFixture[str],
                                               tmp_path: Path) -> None:
     shuttle, ctrl = str(ROOT / "specs" / "shuttle_2leg.gait"), str(tmp_path / "s.json")
