@@ -178,19 +178,24 @@ def _swapped(word: str, keyword: str) -> bool:
     return (word[diff[0]], word[diff[1]]) == (keyword[diff[1]], keyword[diff[0]])
 
 
-def _mistyped_formula_word(
-    err: UnexpectedToken, expected: set[str], file: str
-) -> GaitcError | None:
+def _mistyped_word(err: UnexpectedToken, expected: set[str], file: str) -> GaitcError | None:
     """A mistyped ``next``, ``always``, ``health`` ... in a formula is read as a name, and
-    lark fails only at the word after it (``nxet r2``, ``helth(L1)``): point at the name."""
-    if "'&'" not in {_describe_terminal(name) for name in expected}:
-        return None  # not after an atom of a formula
+    lark fails only at the word after it (``nxet r2``, ``helth(L1)``): point at the name.
+    So too for a statement keyword read as a region of a list that may end there
+    (``hazard fire:`` then ``cahce r3``)."""
+    described = {_describe_terminal(name) for name in expected}
+    if "'&'" in described:  # after an atom of a formula
+        words: tuple[str, ...] = _FORMULA_WORDS
+    elif "'cache'" in described and err.token.type == "NAME":  # where a statement may start
+        words = STATEMENT_KEYWORDS
+    else:
+        return None
     stack = _value_stack(err)
     if not stack or not isinstance(stack[-1], Token) or stack[-1].type != "NAME":
         return None
     name = str(stack[-1])
-    close = [w for w in _FORMULA_WORDS if _swapped(name, w)]
-    close = close or difflib.get_close_matches(name, _FORMULA_WORDS, n=1, cutoff=0.8)
+    close = [w for w in words if _swapped(name, w)]
+    close = close or difflib.get_close_matches(name, words, n=1, cutoff=0.8)
     if not close:
         return None
     return SpecSyntaxError(
@@ -316,7 +321,7 @@ def _syntax_error(err: UnexpectedInput, text: str, file: str) -> GaitcError:
         found = (
             _doubled_operator(tok, text, file)
             or _dangling_name(err, expected, file)
-            or _mistyped_formula_word(err, expected, file)
+            or _mistyped_word(err, expected, file)
         )
         if found is not None:
             return found
