@@ -7,8 +7,8 @@ corpus as one row of totals.  Columns: gaitc wall seconds (embedded solver, defa
 recorded or live one), SLUGS's seconds when $SLUGS is set (``> T`` past its own limit), the
 gaitc/SLUGS ratio, and how long past ``--lag-limit`` ``gaitc check --timeout`` returned on
 instances slower than that limit.  ``--ablation`` times solver options per row instead:
-the default (the race), each of its two racers alone, sifting from the guards order, and
-the static occurrence and declaration orders.
+the default (the race), each of its two racers alone, one sifting run after the static
+build, dynamic sifting throughout, and the static occurrence order.
 Run: .venv/bin/python bench/bench_families.py [--quick] [--ablation] [--family F] [--amba N]
 """
 
@@ -26,16 +26,16 @@ import gaitc
 from bench.families import catalogue, timing
 from bench.families.catalogue import Instance
 from bench.families.timing import Outcome
-from solver.portfolio import DYNAMIC, STATIC, engine_options
+from solver.portfolio import SIFTED, STATIC, engine_options
 from solver.symbolic import Options
 
 ABLATION = {
     "default": Options(),  # the race of solver/portfolio.py
     "static": engine_options(STATIC),
-    "race-2nd": engine_options(DYNAMIC),
+    "sifted": engine_options(SIFTED),  # the race's second racer
+    "sift-once": Options(reorder_once=True, reordering=False),
     "reorder": Options(reordering=True),
     "occurrence": Options(order="occurrence", reordering=False),
-    "declaration": Options(order="declaration", reordering=False),
 }
 WIDTHS = (9, 34, 9, 14, 9, 7, 7)
 HEADER = ("family", "instance", "gaitc s", "verdict", "slugs s", "ratio", "lag s")

@@ -9,8 +9,7 @@ from __future__ import annotations
 
 import warnings
 from collections.abc import Callable, Iterable, Sequence
-from dataclasses import dataclass
-from typing import Any, Final
+from typing import Any
 
 import dd.cudd as cudd
 
@@ -35,30 +34,19 @@ from gr1.formula import (
 )
 from gr1.spec import GR1Spec, Variable
 from gr1.traversal import Memo, fold
+from solver.bitvectors import add, less, xor
+from solver.options import MEMORY_STOP, SIFT_TRIGGER, Options
+
+__all__ = ["MEMORY_STOP", "SIFT_TRIGGER", "BDDNode", "Options", "SymbolicSpec"]
 from solver.ordering import invariant_clauses, variable_order
 
 BDDNode = Any  # a dd.cudd.Function; dd ships no type stubs
 
 
-@dataclass
-class Options:
-    """Tuning switches of the symbolic solver (each measured in docs/performance.md)."""
-
-    order: str = "guards"  # see solver.ordering.ORDERS
-    care: bool = True  # solve modulo the invariants of ρe/ρs (see SymbolicSpec.care)
-    reordering: bool | None = None  # CUDD's dynamic group sifting; None: solver.portfolio
-    reorder_once: bool = False  # one sifting run after building ρ, then the order is fixed
-    partitioned: bool = False  # ρs as clusters with early quantification (slow: see bench)
-    recycle: bool = False  # start inner X fixpoints from the previous round's values (slower here)
-    cluster_limit: int = 2500  # node limit when merging ρs parts into clusters
-    memory_mb: int | None = None  # CUDD's hard memory limit (its own tables and caches)
-    first: tuple[str, ...] = ()  # variables pinned to the top of the order (rigid parameters)
 
 
-#: Of CUDD's memory budget (``Options.memory_mb``), the share at which the solver gives up:
-#: near its limit CUDD stops growing its tables and collects garbage at every step, so the
-#: operation that finally fails can come minutes later (a 30 x 30 grid at 100 MB: over 60 s).
-MEMORY_STOP: Final = 0.9
+class _OrderTooLarge(Exception):
+    """Raised inside the build when the static order does not fit (``Options.sift_large``)."""
 
 
 class SymbolicSpec:
@@ -76,13 +64,6 @@ class SymbolicSpec:
         self._given_deadline = deadline or (lambda: None)
         self._budget = None if self.options.memory_mb is None else (
             self.options.memory_mb * 1024 * 1024)
-        if self.options.memory_mb is None:
-            self.bdd = cudd.BDD()
-        else:  # CUDD sizes its caches from the estimate and fails cleanly at the maximum
-            budget = self.options.memory_mb * 1024 * 1024
-            self.bdd = cudd.BDD(memory_estimate=budget)
-            self.bdd.configure(max_memory=budget)
-        self.bdd.configure(reordering=False)
         self.input_bits, self.output_bits = spec_bits(spec)
         self.var_bits: dict[str, list[str]] = {}
         ins, outs = iter(self.input_bits), iter(self.output_bits)
@@ -91,11 +72,10 @@ class SymbolicSpec:
         for v in spec.outputs:
             self.var_bits[v.name] = [next(outs) for _ in range(v.bits if v.is_integer else 1)]
         self.variables = {v.name: v for v in spec.variables()}
-        order = self._bit_order(self.options.order)
-        self.bdd.declare(*order)
+        self.order = self._bit_order(self.options.order)
         # Choices (the smallest move, the first initial state) are made in the static order
         # whatever the engine, so that a controller does not depend on which racer won.
-        static = order if self.options.order == "guards" else self._bit_order("guards")
+        static = self.order if self.options.order == "guards" else self._bit_order("guards")
         self.choice_rank = {bit: k for k, bit in enumerate(static)}
         self.prime_map = {b: b + "'" for b in self.input_bits + self.output_bits}
         self.unprime_map = {p: b for b, p in self.prime_map.items()}
@@ -103,15 +83,45 @@ class SymbolicSpec:
         self.pre_outputs = set(self.output_bits)
         self.post_inputs = {b + "'" for b in self.input_bits}
         self.post_outputs = {b + "'" for b in self.output_bits}
-        self._memo: Memo[BDDNode] = {}
-        self._build()
-        if self.options.reorder_once or self.options.reordering:
+        opts = self.options
+        try:
+            self._start(sift=opts.sift_build and not opts.reordering)
+        except _OrderTooLarge:  # start again, sifting from the first clause on
+            self._start(sift=True)
+
+    def _start(self, sift: bool) -> None:
+        """A fresh BDD manager in the static order, and the spec built in it; with ``sift``
+        CUDD sifts while building, to convergence at the end, and then keeps the order."""
+        opts = self.options
+        if self._budget is None:
+            self.bdd = cudd.BDD()
+        else:  # CUDD sizes its caches from the estimate and fails cleanly at the maximum
+            self.bdd = cudd.BDD(memory_estimate=self._budget)
+            self.bdd.configure(max_memory=self._budget)
+        self.bdd.configure(reordering=False)
+        self.bdd.declare(*self.order)
+        if opts.reorder_once or opts.reordering or opts.sift_build or opts.sift_large:
             for bit in self.input_bits + self.output_bits:
                 self.bdd.group({bit: 2})  # sifting moves a bit and its primed copy together
-        if self.options.reorder_once:
-            self.bdd.reorder()
-        if self.options.reordering:
+        self.sifted_build = sift  # whether CUDD sifted while ρ was built
+        self._memo: Memo[BDDNode] = {}
+        self.bdd.configure(reordering=sift)
+        self._build()
+        self.bdd.configure(reordering=False)
+        if opts.reorder_once or sift:
+            self._sift_to_convergence()
+        if opts.reordering:
             self.bdd.configure(reordering=True)
+
+    def _sift_to_convergence(self) -> None:
+        """Group sifting until a run gains less than 2 % (CUDD's converging sifting)."""
+        before = len(self.bdd)
+        for _ in range(10):
+            self.bdd.reorder()
+            after = len(self.bdd)
+            if after > 0.98 * before:
+                return
+            before = after
 
     def _bit_order(self, how: str) -> list[str]:
         """Every bit and its primed copy, top to bottom, for variable order ``how``."""
@@ -216,13 +226,22 @@ class SymbolicSpec:
         level = []
         for item in items:
             self._checkpoint()
-            level.append(base & item)
+            level.append(self._watch(base & item))
         level = level or [base]
         while len(level) > 1:
             self._checkpoint()
-            paired = [a & b for a, b in zip(level[::2], level[1::2], strict=False)]
+            paired = [self._watch(a & b) for a, b in zip(level[::2], level[1::2], strict=False)]
             level = paired + ([level[-1]] if len(level) % 2 else [])
         return level[0]
+
+    def _watch(self, product: BDDNode) -> BDDNode:
+        """``product``, unless it is too large for the static order (``Options.sift_large``,
+        :data:`SIFT_TRIGGER`): then the build starts again, sifting (:meth:`_start`)."""
+        opts = self.options
+        if (opts.sift_large and not self.sifted_build and not opts.reordering
+                and product.dag_size > SIFT_TRIGGER * len(self.prime_map)):
+            raise _OrderTooLarge
+        return product
 
     def _cluster(self, parts: Sequence[BDDNode]) -> list[tuple[BDDNode, set[str]]]:
         """Merge ρs parts into clusters; pair each with the primed outputs it may quantify.
@@ -249,7 +268,7 @@ class SymbolicSpec:
 
     def _range(self, v: Variable, width: int, primed: bool) -> BDDNode:
         bits = [self.bit(b, primed) for b in self.var_bits[v.name]]
-        return _less(bits, self._const_bits(width, len(bits)), self.bdd)
+        return less(bits, self._const_bits(width, len(bits)), self.bdd)
 
     # ------------------------------------------------------------ formulas
     def bit(self, name: str, primed: bool) -> BDDNode:
@@ -290,9 +309,9 @@ class SymbolicSpec:
                 out |= a
             return out
         if isinstance(e, Xor):
-            return _xor(args[0], args[1], b)
+            return xor(args[0], args[1], b)
         if isinstance(e, Iff):
-            return ~_xor(args[0], args[1], b)
+            return ~xor(args[0], args[1], b)
         if isinstance(e, Implies):
             return ~args[0] | args[1]
         if isinstance(e, Compare):
@@ -327,7 +346,7 @@ class SymbolicSpec:
                 return bits, v.low if v.low is not None else 0
             if isinstance(node, Add):
                 (lb, lo), (rb, ro) = kids
-                return _add(lb, rb, self.bdd), lo + ro
+                return add(lb, rb, self.bdd), lo + ro
             raise FormulaError(f"unsupported integer term {type(node).__name__}", node.span)
 
         return fold(t, combine, lambda n: n.children() if isinstance(n, Add) else ())
@@ -337,20 +356,20 @@ class SymbolicSpec:
         c, oc = self._term(e.right)
         d = oa - oc
         if d > 0:
-            a = _add(a, self._const_bits(d), self.bdd)
+            a = add(a, self._const_bits(d), self.bdd)
         elif d < 0:
-            c = _add(c, self._const_bits(-d), self.bdd)
+            c = add(c, self._const_bits(-d), self.bdd)
         n = max(len(a), len(c))
         a = a + [self.bdd.false] * (n - len(a))
         c = c + [self.bdd.false] * (n - len(c))
-        eq = self._conj(~_xor(x, y, self.bdd) for x, y in zip(a, c, strict=True))
+        eq = self._conj(~xor(x, y, self.bdd) for x, y in zip(a, c, strict=True))
         ops: dict[str, Callable[[], BDDNode]] = {
             "=": lambda: eq,
             "!=": lambda: ~eq,
-            "<": lambda: _less(a, c, self.bdd),
-            "<=": lambda: _less(a, c, self.bdd) | eq,
-            ">": lambda: _less(c, a, self.bdd),
-            ">=": lambda: _less(c, a, self.bdd) | eq,
+            "<": lambda: less(a, c, self.bdd),
+            "<=": lambda: less(a, c, self.bdd) | eq,
+            ">": lambda: less(c, a, self.bdd),
+            ">=": lambda: less(c, a, self.bdd) | eq,
         }
         if e.op not in ops:
             raise FormulaError(f"unknown comparison '{e.op}'", e.span)
@@ -368,33 +387,3 @@ def _operands(node: Node) -> Sequence[Node]:
     """The subformulas :meth:`SymbolicSpec.translate` needs first: those of the Boolean
     operators (a comparison is translated whole, any other node is rejected)."""
     return node.children() if isinstance(node, (Not, And, Or, Xor, Iff, Implies)) else ()
-
-
-def _xor(u: BDDNode, v: BDDNode, bdd: Any) -> BDDNode:
-    return bdd.ite(u, ~v, v)
-
-
-def _add(a: list[BDDNode], b: list[BDDNode], bdd: Any) -> list[BDDNode]:
-    """Ripple-carry sum of two unsigned bit vectors; one bit wider than the longer one."""
-    n = max(len(a), len(b))
-    a = a + [bdd.false] * (n - len(a))
-    b = b + [bdd.false] * (n - len(b))
-    carry = bdd.false
-    out: list[BDDNode] = []
-    for x, y in zip(a, b, strict=True):
-        half = _xor(x, y, bdd)
-        out.append(_xor(half, carry, bdd))
-        carry = (x & y) | (carry & half)
-    out.append(carry)
-    return out
-
-
-def _less(a: list[BDDNode], b: list[BDDNode], bdd: Any) -> BDDNode:
-    """Unsigned ``a < b`` for bit vectors of equal length (little-endian)."""
-    n = max(len(a), len(b))
-    a = a + [bdd.false] * (n - len(a))
-    b = b + [bdd.false] * (n - len(b))
-    lt = bdd.false
-    for x, y in zip(a, b, strict=True):
-        lt = (~x & y) | (~_xor(x, y, bdd) & lt)
-    return lt

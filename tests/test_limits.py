@@ -63,7 +63,7 @@ def _inputs(grid_slugsin: Path) -> dict[str, list[str]]:
 def test_timeout_stops_check_within_a_second(kind: str, grid_slugsin: Path,
                                              amba8: Path) -> None:
     """The thesis grid and AMBA: the static order and (after its head start) the racing
-    dynamic reordering are both cut off (solver.portfolio)."""
+    sifted order are both cut off (solver.portfolio)."""
     argv = [str(amba8)] if kind == "amba" else _inputs(grid_slugsin)[kind]
     code, out, err, wall = gaitc_run("check", *argv, "--timeout", "2", "--json")
     assert code == 4, err

@@ -17,7 +17,7 @@ import gaitc
 from diagnostics import SolverError
 from solver import portfolio, synthesis
 from solver.game import Limits
-from solver.portfolio import DYNAMIC, STATIC, solve_chosen
+from solver.portfolio import DYNAMIC, SIFTED, STATIC, solve_chosen
 from solver.symbolic import Options
 from verifier.strategy import verify
 
@@ -25,8 +25,8 @@ ROOT = Path(__file__).resolve().parent.parent
 SPECS = ["patrol_2x2", "unrealizable_2x2", "thesis_robot_b", "corridor_hazard"]
 
 
-def _slow_unless_reordering(options: Options, limits: Limits) -> str:
-    if not options.reordering:
+def _slow_unless_sifted(options: Options, limits: Limits) -> str:
+    if not options.sift_build:
         time.sleep(60)  # the static configuration never finishes (one long CUDD call)
     return "answer"
 
@@ -35,14 +35,14 @@ def test_a_spec_the_static_order_cannot_decide_is_won_by_the_other_racer(
         monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.setattr(portfolio, "HEAD_START", 0.1)
     started = time.monotonic()
-    answer, engine = solve_chosen(_slow_unless_reordering, Options(), Limits(timeout=30))
-    assert (answer, engine) == ("answer", DYNAMIC)
+    answer, engine = solve_chosen(_slow_unless_sifted, Options(), Limits(timeout=30))
+    assert (answer, engine) == ("answer", SIFTED)
     assert time.monotonic() - started < 10
 
 
 def test_a_quick_spec_is_answered_by_the_static_order_alone() -> None:
     def run(options: Options, limits: Limits) -> tuple[bool | None, str]:
-        return options.reordering, options.order
+        return options.sift_build, options.order
 
     assert solve_chosen(run, Options(), Limits()) == ((False, "guards"), STATIC)
 
@@ -52,12 +52,12 @@ def test_the_other_racer_starts_at_once_when_the_first_fails(
     monkeypatch.setattr(portfolio, "HEAD_START", 30.0)
 
     def static_fails(options: Options, limits: Limits) -> str:
-        if not options.reordering:
+        if not options.sift_build:
             raise MemoryError
         return "answer"
 
     started = time.monotonic()
-    assert solve_chosen(static_fails, Options(), Limits()) == ("answer", DYNAMIC)
+    assert solve_chosen(static_fails, Options(), Limits()) == ("answer", SIFTED)
     assert time.monotonic() - started < 10
 
 
@@ -88,9 +88,9 @@ def test_the_race_keeps_the_time_limit(monkeypatch: pytest.MonkeyPatch) -> None:
 def test_when_both_racers_fail_the_first_error_is_raised(
         monkeypatch: pytest.MonkeyPatch) -> None:
     def broken(options: Options, limits: Limits) -> None:
-        raise SolverError(f"failed with reordering={options.reordering}")
+        raise SolverError(f"failed with sift_build={options.sift_build}")
 
-    with pytest.raises(SolverError, match="failed with reordering=False"):
+    with pytest.raises(SolverError, match="failed with sift_build=False"):
         solve_chosen(broken, Options(), Limits())
 
 
@@ -102,7 +102,7 @@ def test_verdicts_and_controllers_do_not_depend_on_the_winner(
     monkeypatch.setattr(portfolio, "HEAD_START", 0.0)  # both racers from the start
     raced = synthesis.check(gr1)
     assert raced.realizable == alone
-    assert raced.engine in (STATIC, DYNAMIC)
+    assert raced.engine in (STATIC, SIFTED)
     controller = synthesis.synthesize(gr1)
     assert (controller is not None) == alone
     if controller is not None:
@@ -142,7 +142,7 @@ def test_both_racers_write_the_same_controller_byte_for_byte(name: str, semantic
 
     spec = gaitc.load(ROOT / "specs" / f"{name}.gait", "binary")
     texts, runs = [], []
-    for engine in (STATIC, DYNAMIC):
+    for engine in (STATIC, SIFTED, DYNAMIC):
         found = synthesis.synthesize(spec.gr1, semantics, options=engine_options(engine))
         assert found is not None
         texts.append(controller_to_json(found))
@@ -151,5 +151,5 @@ def test_both_racers_write_the_same_controller_byte_for_byte(name: str, semantic
         assert isinstance(sym, SymbolicController)
         run = gaitc.simulate(spec, sym, env=RandomEnvironment(3), steps=200)
         runs.append([step.values for step in run.steps])
-    assert texts[0] == texts[1]
-    assert runs[0] == runs[1]  # the symbolic runtime chooses in the same order too
+    assert texts[0] == texts[1] == texts[2]
+    assert runs[0] == runs[1] == runs[2]  # the symbolic runtime chooses in the same order too

@@ -23,7 +23,7 @@ from gr1.formula import (
 from gr1.spec import SEMANTICS, Clause, GR1Spec, Variable
 from solver import synthesis
 from solver.game import Game
-from solver.portfolio import DYNAMIC, engine_options
+from solver.portfolio import SIFTED, engine_options
 from solver.strategy import smallest
 from solver.symbolic import Options, SymbolicSpec
 from verifier.counterstrategy import verify_counterstrategy
@@ -62,9 +62,11 @@ def _holds(sym: SymbolicSpec, u: object, point: dict[str, bool]) -> bool:
         Options(reordering=True),
         Options(reorder_once=True, order="declaration"),
         Options(care=False, recycle=False),
-        engine_options(DYNAMIC),
+        engine_options(SIFTED),
+        Options(sift_build=True, care=False, order="occurrence"),
     ],
-    ids=["plain", "clustered", "reordering", "reorder-once", "no-care", "race-second"],
+    ids=["plain", "clustered", "reordering", "reorder-once", "no-care", "race-second",
+         "sift-build"],
 )
 @settings(max_examples=25, deadline=None)
 @given(spec=st.one_of(tiny_specs(), one_hot_specs()))
