@@ -46,7 +46,7 @@ BDDNode = Any  # a dd.cudd.Function; dd ships no type stubs
 
 
 class _OrderTooLarge(Exception):
-    """Raised inside the build when the static order does not fit (``Options.sift_large``)."""
+    """Raised inside the build when the static order does not fit (``Options.sift_above``)."""
 
 
 class SymbolicSpec:
@@ -100,7 +100,7 @@ class SymbolicSpec:
             self.bdd.configure(max_memory=self._budget)
         self.bdd.configure(reordering=False)
         self.bdd.declare(*self.order)
-        if opts.reorder_once or opts.reordering or opts.sift_build or opts.sift_large:
+        if opts.reorder_once or opts.reordering or opts.sift_build or opts.sift_above is not None:
             for bit in self.input_bits + self.output_bits:
                 self.bdd.group({bit: 2})  # sifting moves a bit and its primed copy together
         self.sifted_build = sift  # whether CUDD sifted while ρ was built
@@ -235,11 +235,11 @@ class SymbolicSpec:
         return level[0]
 
     def _watch(self, product: BDDNode) -> BDDNode:
-        """``product``, unless it is too large for the static order (``Options.sift_large``,
-        :data:`SIFT_TRIGGER`): then the build starts again, sifting (:meth:`_start`)."""
+        """``product``, unless it is too large for the static order (``Options.sift_above``,
+        :data:`~solver.options.SIFT_TRIGGER`): then the build starts again, sifting."""
         opts = self.options
-        if (opts.sift_large and not self.sifted_build and not opts.reordering
-                and product.dag_size > SIFT_TRIGGER * len(self.prime_map)):
+        if (opts.sift_above is not None and not self.sifted_build and not opts.reordering
+                and product.dag_size > opts.sift_above * len(self.prime_map)):
             raise _OrderTooLarge
         return product
 

@@ -37,7 +37,7 @@ def gaitc_run(*argv: str, cwd: Path | None = None) -> tuple[int, str, str, float
 
 @pytest.fixture(scope="module")
 def amba8(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    """The AMBA AHB arbiter with 8 masters (bench/families/amba.py): minutes for both racers."""
+    """The AMBA AHB arbiter with 8 masters (bench/families/amba.py): several seconds."""
     sys.path.insert(0, str(ROOT))
     from bench.families.amba import amba_text
 

@@ -153,3 +153,31 @@ def test_both_racers_write_the_same_controller_byte_for_byte(name: str, semantic
         runs.append([step.values for step in run.steps])
     assert texts[0] == texts[1] == texts[2]
     assert runs[0] == runs[1] == runs[2]  # the symbolic runtime chooses in the same order too
+
+
+def test_a_static_build_too_large_for_its_order_starts_again_sifting(tmp_path: Path) -> None:
+    """The AMBA arbiter's relation passes SIFT_TRIGGER nodes a bit in the guards order, so
+    the build starts again with CUDD sifting; robot A's stays far below and keeps the static
+    order. Both answer as the other configurations do."""
+    from bench.families.amba import amba_text
+    from slugs_bridge.formats import load_spec_file
+    from solver.game import Game
+    from solver.options import SIFT_TRIGGER
+    from solver.symbolic import SymbolicSpec
+
+    path = tmp_path / "amba2.structuredslugs"
+    path.write_text(amba_text(2), encoding="utf-8")
+    amba = load_spec_file(str(path))
+    robot_a = gaitc.load(ROOT / "specs" / "thesis_robot_a.gait").gr1
+    for gr1, sifts in ((amba, True), (robot_a, False)):
+        sym = SymbolicSpec(gr1, Options(reordering=False))
+        assert sym.sifted_build is sifts
+        bits = len(sym.input_bits) + len(sym.output_bits)
+        assert sym.sys_trans.dag_size <= SIFT_TRIGGER * bits  # after sifting too
+        never = SymbolicSpec(gr1, Options(reordering=False, sift_above=None))
+        assert never.sifted_build is False
+        game, plain = Game(sym), Game(never)
+        won, plain_won = game.solve().winning, plain.solve().winning
+        for semantics in ("default", "robotics"):
+            assert (game.initially_winning(won, semantics)
+                    == plain.initially_winning(plain_won, semantics))

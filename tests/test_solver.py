@@ -64,9 +64,10 @@ def _holds(sym: SymbolicSpec, u: object, point: dict[str, bool]) -> bool:
         Options(care=False, recycle=False),
         engine_options(SIFTED),
         Options(sift_build=True, care=False, order="occurrence"),
+        Options(sift_above=0),  # every build starts again, sifting
     ],
     ids=["plain", "clustered", "reordering", "reorder-once", "no-care", "race-second",
-         "sift-build"],
+         "sift-build", "sift-restart"],
 )
 @settings(max_examples=25, deadline=None)
 @given(spec=st.one_of(tiny_specs(), one_hot_specs()))
