@@ -4,7 +4,8 @@ Implements the three-nested fixpoint of Bloem, Jobstmann, Piterman, Pnueli, Sa'a
 "Synthesis of Reactive(1) designs" (JCSS 78(3), 2012) in SLUGS's transition-based form
 (Ehlers & Raman, CAV 2016): νZ. ∧_j μY. ∨_i νX. CPre((J^s_j ∧ Z') ∨ Y' ∨ (¬J^e_i ∧ X')) with
 CPre(T) = ∀x'. ρe → ∃y'. ρs ∧ T, liveness goals evaluated on the transition, inner X
-fixpoints recycled across Z rounds (Browne, Clarke, Jha, Long, Marrero 1997).
+fixpoints recycled across Z rounds (Browne, Clarke, Jha, Long, Marrero 1997) when asked for;
+Z narrowed goal by goal, each goal solved again only while Z shrinks (see Game.solve).
 """
 
 from __future__ import annotations
@@ -131,73 +132,93 @@ class Game:
         """Compute the winning region; with ``keep_layers``, also the strategy layers.
 
         Every set is kept inside ``sym.care`` (exact there, see SymbolicSpec._care_set).  With
-        ``stop_if_lost`` (a semantics), stop after the first Z round whose Z already fails the
-        initial condition: the winning region lies inside every Z, so it fails too.
+        ``stop_if_lost`` (a semantics), stop as soon as Z fails the initial condition: the
+        winning region lies inside every Z, so it fails too.
+
+        νZ is iterated goal by goal, Z ← Z ∧ Y_j(Z) (a chaotic iteration), and a goal is
+        solved again only while Z has shrunk since its last solution: once every goal's Y
+        was computed at the current Z and contains it, Z ⊆ ∧_j Y_j(Z) is a post-fixpoint,
+        so Z lies in the greatest fixpoint (Knaster-Tarski), and every Z stays above the
+        greatest fixpoint because each Y_j is monotone.  On the thesis grids, where the
+        first goal decides Z, two goals cost three solutions instead of four.
         """
-        sym, lim, st = self.sym, self.limits, self.stats
-        bdd = sym.bdd
-        n_goals, n_assm = len(sym.sys_live), len(sym.env_live)
-        recycled: dict[tuple[int, int], BDDNode] = {}
-        z = sym.care
-        layers: list[list[BDDNode]] = []
-        first_round = True
+        sym, st = self.sym, self.stats
+        n_goals = len(sym.sys_live)
         titles = goal_titles(sym.spec) or ("true",)
-        while True:
-            st.z_iterations += 1
-            layers = [[] for _ in range(n_goals)]
-            rings: list[list[BDDNode]] = [[] for _ in range(n_goals)]
-            z_primed = sym.prime(z)
-            next_z = bdd.true
-            for j in range(n_goals):
-                live = sym.sys_live[j] & z_primed
-                y = bdd.false
-                first_middle = True
-                words = (f"{self.purpose}: round {st.z_iterations}, goal {j + 1} of "
-                         f"{n_goals} ({titles[j]})")
-                ring = 0
-                while True:
-                    st.y_iterations += 1
-                    ring += 1
-                    lim.check()
-                    lim.report(words, f"ring {ring}", j / n_goals)
-                    live_or_lower = live | sym.prime(y)
-                    good = y
-                    for i in range(n_assm):
-                        x = z if sym.options.recycle else sym.care
-                        if sym.options.recycle and first_middle and not first_round:
-                            x = recycled[(j, i)] & z
-                        not_assm = ~sym.env_live[i]
-                        while True:
-                            st.x_iterations += 1
-                            lim.check()
-                            paths = live_or_lower | (sym.prime(x) & not_assm)
-                            step = time.monotonic()
-                            new_x = self.cpre(paths) & (z if sym.options.recycle else sym.care)
-                            step = time.monotonic() - step
-                            st.longest_step = max(st.longest_step, step)
-                            if new_x == x:
-                                break
-                            x = new_x
-                        good |= x
-                        recycled[(j, i)] = x
-                        if keep_layers:
-                            layers[j].append(paths)
-                    first_middle = False
-                    if keep_layers:
-                        rings[j].append(good)
-                    if good == y:
-                        break
-                    y = good
-                next_z &= y
-                self._track(words, f"|Y| = {y.dag_size}, {ring} rings",
-                            (j + 1) / n_goals)
-            first_round = False
-            if next_z == z:
-                break
-            z = next_z
-            if stop_if_lost is not None and not self.initially_winning(z, stop_if_lost):
-                return self._result(z, layers, decided_early=True)
+        z = sym.care
+        layers: list[list[BDDNode]] = [[] for _ in range(n_goals)]
+        rings: list[list[BDDNode]] = [[] for _ in range(n_goals)]
+        recycled: dict[tuple[int, int], BDDNode] = {}
+        stable: set[int] = set()  # goals whose Y was computed at the current Z and holds it
+        solved: set[int] = set()
+        j = 0
+        while len(stable) < n_goals:
+            if j == 0:
+                st.z_iterations += 1
+            words = (f"{self.purpose}: round {st.z_iterations}, goal {j + 1} of "
+                     f"{n_goals} ({titles[j]})")
+            y, layers[j], rings[j] = self._goal(j, z, words, keep_layers, recycled,
+                                                 j in solved)
+            solved.add(j)
+            shrunk = z & y
+            if shrunk == z:
+                stable.add(j)
+            else:
+                z = shrunk
+                stable = set()
+                if stop_if_lost is not None and not self.initially_winning(z, stop_if_lost):
+                    return self._result(z, layers, decided_early=True)
+            j = (j + 1) % n_goals
         return self._result(z, layers, decided_early=False, rings=rings)
+
+    def _goal(self, j: int, z: BDDNode, words: str, keep_layers: bool,
+              recycled: dict[tuple[int, int], BDDNode], again: bool
+              ) -> tuple[BDDNode, list[BDDNode], list[BDDNode]]:
+        """μY. ∨_i νX. CPre((J^s_j ∧ Z') ∨ Y' ∨ (¬J^e_i ∧ X')) for goal ``j`` at ``z``, with
+        the transitions of each ring and assumption (``keep_layers``) and the rings."""
+        sym, lim, st = self.sym, self.limits, self.stats
+        n_goals, n_assm = len(sym.sys_live), len(sym.env_live)
+        live = sym.sys_live[j] & sym.prime(z)
+        y = sym.bdd.false
+        layers: list[BDDNode] = []
+        rings: list[BDDNode] = []
+        first_middle = True
+        ring = 0
+        while True:
+            st.y_iterations += 1
+            ring += 1
+            lim.check()
+            lim.report(words, f"ring {ring}", j / n_goals)
+            live_or_lower = live | sym.prime(y)
+            good = y
+            for i in range(n_assm):
+                x = z if sym.options.recycle else sym.care
+                if sym.options.recycle and first_middle and again:
+                    x = recycled[(j, i)] & z
+                not_assm = ~sym.env_live[i]
+                while True:
+                    st.x_iterations += 1
+                    lim.check()
+                    paths = live_or_lower | (sym.prime(x) & not_assm)
+                    step = time.monotonic()
+                    new_x = self.cpre(paths) & (z if sym.options.recycle else sym.care)
+                    step = time.monotonic() - step
+                    st.longest_step = max(st.longest_step, step)
+                    if new_x == x:
+                        break
+                    x = new_x
+                good |= x
+                recycled[(j, i)] = x
+                if keep_layers:
+                    layers.append(paths)
+            first_middle = False
+            if keep_layers:
+                rings.append(good)
+            if good == y:
+                break
+            y = good
+        self._track(words, f"|Y| = {y.dag_size}, {ring} rings", (j + 1) / n_goals)
+        return y, layers, rings
 
     def _result(self, z: BDDNode, layers: list[list[BDDNode]], decided_early: bool,
                 rings: list[list[BDDNode]] | None = None) -> GameResult:
