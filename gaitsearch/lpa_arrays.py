@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import heapq
 import math
+import struct
 from collections import defaultdict
 
 import numpy as np
@@ -30,6 +31,11 @@ from gaitsearch.transitions import Ints, Step
 _GOAL, _ROOT = 0, 1  # dense numbers
 _INF = math.inf
 _NONE = np.zeros(0, np.int64)
+# a queue entry (k1, k2, flag, node) as bytes that sort like the tuple (big-endian; k1, k2
+# are never negative, so their IEEE bits sort like the numbers); bytes are not tracked by
+# Python's cycle collector, which otherwise walks millions of queued tuples when it runs
+_ENTRY = struct.Struct(">ddBQ")
+_RECORD = np.dtype([("k1", ">f8"), ("k2", ">f8"), ("flag", "u1"), ("node", ">u8")])
 
 
 DENSE = 100  # edges per pose from which :func:`lifelong` takes the array planner
@@ -43,8 +49,10 @@ class ArrayLifelongPlanner:
         self.budget = budget
         self.root = lattice.root
         self._index: dict[int, int] = {GOAL: _GOAL, self.root: _ROOT}
-        self._keys: list[int] = [GOAL, self.root]
         size = 1024
+        self._key = np.zeros(size, np.int64)  # packed lattice node per dense number
+        self._key[_GOAL], self._key[_ROOT] = GOAL, self.root
+        self._count = 2
         self._g = np.full(size, _INF)
         self._rhs = np.full(size, _INF)
         self._h = np.zeros(size)
@@ -53,14 +61,14 @@ class ArrayLifelongPlanner:
         self._rhs[_ROOT] = 0.0
         self._h[_ROOT] = float(lattice.heuristics(np.array([self.root], np.int64))[0])
         # (targets, edges) per node once generated; the goal edges are -1
-        self._succ: list[tuple[Ints, Ints] | None] = [(_NONE, _NONE), None]
+        self._succ: dict[int, tuple[Ints, Ints]] = {_GOAL: (_NONE, _NONE)}
         self._incoming = IncomingEdges()
         self.by_pose: dict[int, list[int]] = defaultdict(list)  # generated nodes per pose
         # cost per edge; the negative edge numbers read the two extra slots: -2 (a dead
         # incoming row) costs infinity, -1 (a goal edge) nothing
         self._cost = np.concatenate((lattice.costs, [_INF, 0.0]))
-        self._heap: list[tuple[float, float, int, int]] = []
-        self._queued: dict[int, tuple[float, float, int]] = {}
+        self._heap: list[bytes] = []
+        self._queued: dict[int, bytes] = {}  # the live entry of every queued node
         self.expanded = 0  # expansions of the last compute()
         self.total_expanded = 0
         self._push(_ROOT)
@@ -80,17 +88,17 @@ class ArrayLifelongPlanner:
         self._g, self._rhs = widen(self._g, _INF), widen(self._rhs, _INF)
         self._h = widen(self._h, 0.0)
         self._parent, self._via = widen(self._parent, -1), widen(self._via, -1)
+        self._key = widen(self._key, 0)
 
     def _add(self, keys: Ints) -> Ints:
         """Number the new nodes ``keys`` (distinct, unknown)."""
-        first = len(self._keys)
+        first = self._count
         ids = np.arange(first, first + len(keys), dtype=np.int64)
-        listed = keys.tolist()
-        self._keys.extend(listed)
-        self._index.update(zip(listed, ids.tolist(), strict=True))
-        self._grow(first + len(keys))
+        self._index.update(zip(keys.tolist(), ids.tolist(), strict=True))
+        self._count += len(keys)
+        self._grow(self._count)
+        self._key[ids] = keys
         self._h[ids] = self.lattice.heuristics(keys)
-        self._succ.extend([None] * len(keys))
         return ids
 
     def _ids(self, keys: Ints) -> Ints:
@@ -118,8 +126,8 @@ class ArrayLifelongPlanner:
             if k1 < _INF:
                 # among equal keys the underconsistent (g < rhs) come first (flag 0)
                 flag = 0 if g < rhs else 1
-                self._queued[node] = (k1, best, flag)
-                heapq.heappush(self._heap, (k1, best, flag, node))
+                entry = self._queued[node] = _ENTRY.pack(k1, best, flag, node)
+                heapq.heappush(self._heap, entry)
                 return
         self._queued.pop(node, None)
 
@@ -129,26 +137,23 @@ class ArrayLifelongPlanner:
         best = np.minimum(g, rhs)
         k1 = best + self._h[nodes]
         queue = (g != rhs) & (k1 < _INF)
-        flags = (g >= rhs).astype(np.int64)
+        records = np.empty(int(queue.sum()), _RECORD)
+        records["k1"], records["k2"] = k1[queue], best[queue]
+        records["flag"], records["node"] = g[queue] >= rhs[queue], nodes[queue]
+        packed, width = records.tobytes(), _RECORD.itemsize
         queued, heap, push = self._queued, self._heap, heapq.heappush
-        for node, a, b, f in zip(
-            nodes[queue].tolist(),
-            k1[queue].tolist(),
-            best[queue].tolist(),
-            flags[queue].tolist(),
-            strict=True,
-        ):
-            queued[node] = (a, b, f)
-            push(heap, (a, b, f, node))
+        for at, node in enumerate(nodes[queue].tolist()):
+            entry = queued[node] = packed[at * width : (at + 1) * width]
+            push(heap, entry)
         if not queue.all():
             for node in nodes[~queue].tolist():
                 queued.pop(node, None)
 
     def _top(self) -> tuple[float, float, int, int] | None:
-        heap, queued = self._heap, self._queued
+        heap, queued, unpack = self._heap, self._queued, _ENTRY.unpack
         while heap:
-            k1, k2, flag, node = top = heap[0]
-            if queued.get(node) == (k1, k2, flag):
+            top = unpack(heap[0])
+            if queued.get(top[3]) == heap[0]:
                 return top
             heapq.heappop(heap)
         return None
@@ -156,10 +161,10 @@ class ArrayLifelongPlanner:
     def _successors(self, node: int) -> tuple[Ints, Ints]:
         """(targets, edges) of ``node``; generating them the first time records them as
         the targets' incoming edges."""
-        cached = self._succ[node]
+        cached = self._succ.get(node)
         if cached is not None:
             return cached
-        lattice, key = self.lattice, self._keys[node]
+        lattice, key = self.lattice, self._key.item(node)
         edges, keys = lattice.successor_arrays(key)
         targets = self._ids(keys)
         if node != _ROOT and lattice.is_goal(key):
@@ -257,10 +262,10 @@ class ArrayLifelongPlanner:
         v = _GOAL
         while v != _ROOT:
             u = self._parent.item(v)
-            if u < 0 or len(nodes) > len(self._keys):  # cannot happen on consistent values
+            if u < 0 or len(nodes) > self._count:  # cannot happen on consistent values
                 return None
             if v != _GOAL:
-                nodes.append(self._keys[v])
+                nodes.append(self._key.item(v))
                 edges.append(self._via.item(v))
             v = u
         nodes.append(self.root)
@@ -273,8 +278,8 @@ class ArrayLifelongPlanner:
 
     def explored(self) -> frozenset[int]:
         """Every node with a finite g (the cells the search has settled)."""
-        settled = np.nonzero(self._g[: len(self._keys)] < _INF)[0].tolist()
-        return frozenset(self._keys[n] for n in settled if n != _GOAL)
+        settled = np.nonzero(self._g[_ROOT : self._count] < _INF)[0] + _ROOT
+        return frozenset(self._key[settled].tolist())
 
     # -- changes of the gait graph -----------------------------------------------------
     def update_transition(self, edge: int, step: Step | None) -> None:
@@ -294,7 +299,7 @@ class ArrayLifelongPlanner:
             targets, edges = self._successors(u)
             at = np.nonzero(edges == edge)[0]
             old = targets.item(at[0]) if len(at) else None
-            key = lattice.successor(self._keys[u], edge)
+            key = lattice.successor(self._key.item(u), edge)
             new = None if key is None else self._ids(np.array([key], np.int64)).item(0)
             if new == old:
                 continue
@@ -322,8 +327,8 @@ class ArrayLifelongPlanner:
         """The heuristic shrank (the step bounds or the walk table grew): recompute h and
         the queued keys, of the poses whose heuristic changed when the lattice knows them."""
         poses = self.lattice.rekey_poses
-        keys = np.array(self._keys[_ROOT:], np.int64)
-        ids = np.arange(_ROOT, len(self._keys), dtype=np.int64)
+        ids = np.arange(_ROOT, self._count, dtype=np.int64)
+        keys = self._key[ids]
         if poses is None:  # every key: the heap is rebuilt (its stale entries dropped)
             self._h[ids] = self.lattice.heuristics(keys)
             queued = list(self._queued)
