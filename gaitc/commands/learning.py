@@ -111,6 +111,14 @@ def register(sub: Any) -> None:
         help="sim: per-execution noise, mm and deg (0.2)",
     )
     p.add_argument(
+        "--model-mismatch",
+        type=float,
+        default=0.0,
+        metavar="F",
+        help="physics: execute with each limb's stiffness and friction scaled by seeded "
+        "factors in [1-F, 1+F] (0)",
+    )
+    p.add_argument(
         "--infeasible",
         type=float,
         default=0.0,
@@ -131,8 +139,9 @@ def register(sub: Any) -> None:
         metavar="N",
         help="cycles the learned gait is run at the end (5)",
     )
-    p.add_argument("--log", metavar="FILE.json", type=output_file,
-                   help="write every iteration as JSON")
+    p.add_argument(
+        "--log", metavar="FILE.json", type=output_file, help="write every iteration as JSON"
+    )
     p.add_argument("--svg", metavar="FILE.svg", help="draw the search and the runs")
     p.add_argument("--quiet", action="store_true", help="print only the summary")
     goal_arguments(p)
@@ -229,11 +238,22 @@ def _plan_json(args: argparse.Namespace, robot: str, plan: GaitPlan | None) -> i
         write_atomically(str(path), plan._repr_svg_())
         written.append(str(path))
     states, poses, edges = plan.graph if plan is not None else (None, None, None)
-    print_json(document("gaits", {
-        "robot": robot, "method": args.method, "found": plan is not None,
-        "reached": plan is not None and plan.reached, "valve_states": states, "poses": poses,
-        "transitions": edges, "plan": None if plan is None else plan.to_dict(),
-        "written": written}))
+    print_json(
+        document(
+            "gaits",
+            {
+                "robot": robot,
+                "method": args.method,
+                "found": plan is not None,
+                "reached": plan is not None and plan.reached,
+                "valve_states": states,
+                "poses": poses,
+                "transitions": edges,
+                "plan": None if plan is None else plan.to_dict(),
+                "written": written,
+            },
+        )
+    )
     return 0 if plan is not None and plan.reached else 1
 
 
@@ -258,7 +278,7 @@ def run_learn(args: argparse.Namespace) -> int:
     if args.max_iterations < 1 or args.verify < 1:
         raise UsageError("--max-iterations and --verify must be at least 1")
     goal, settings = goal_of(args), settings_of(args)
-    mismatch = Mismatch(args.mismatch, args.noise, args.infeasible, args.seed)
+    mismatch = Mismatch(args.mismatch, args.noise, args.infeasible, args.seed, args.model_mismatch)
     progress = None if args.quiet else _print_flush
     result = learn_gait(
         args.robot,
