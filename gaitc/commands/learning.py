@@ -139,9 +139,8 @@ def register(sub: Any) -> None:
         metavar="N",
         help="cycles the learned gait is run at the end (5)",
     )
-    p.add_argument(
-        "--log", metavar="FILE.json", type=output_file, help="write every iteration as JSON"
-    )
+    p.add_argument("--log", metavar="FILE.json", type=output_file,
+                   help="write every iteration as JSON")
     p.add_argument("--svg", metavar="FILE.svg", help="draw the search and the runs")
     p.add_argument("--quiet", action="store_true", help="print only the summary")
     goal_arguments(p)
@@ -238,22 +237,11 @@ def _plan_json(args: argparse.Namespace, robot: str, plan: GaitPlan | None) -> i
         write_atomically(str(path), plan._repr_svg_())
         written.append(str(path))
     states, poses, edges = plan.graph if plan is not None else (None, None, None)
-    print_json(
-        document(
-            "gaits",
-            {
-                "robot": robot,
-                "method": args.method,
-                "found": plan is not None,
-                "reached": plan is not None and plan.reached,
-                "valve_states": states,
-                "poses": poses,
-                "transitions": edges,
-                "plan": None if plan is None else plan.to_dict(),
-                "written": written,
-            },
-        )
-    )
+    print_json(document("gaits", {
+        "robot": robot, "method": args.method, "found": plan is not None,
+        "reached": plan is not None and plan.reached, "valve_states": states, "poses": poses,
+        "transitions": edges, "plan": None if plan is None else plan.to_dict(),
+        "written": written}))
     return 0 if plan is not None and plan.reached else 1
 
 
