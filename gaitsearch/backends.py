@@ -64,6 +64,8 @@ def open_session(
     mismatch = mismatch or Mismatch(seed=settings.seed)
     if backend not in BACKENDS:
         raise UsageError(f"unknown backend {backend!r}; use one of {', '.join(BACKENDS)}")
+    if mismatch.model and backend != "physics":
+        raise UsageError("a model mismatch (--model-mismatch) is the physics backend's")
     # the physics backend runs the model, so a robot file without one is reported by the
     # model's reader (with the file position)
     source = predictions or ("model" if backend == "physics" else default_predictions(robot))
@@ -103,7 +105,7 @@ def open_session(
         plan = dataclasses.replace(plan, graph=(model.poses, model.poses, len(model)))
     if backend == "physics":
         walker = PhysicsWalker(
-            model.copy(), found.start, found.loaded, mismatch.noise, mismatch.seed
+            model.copy(), found.start, found.loaded, mismatch.noise, mismatch.seed, mismatch.model
         )
     else:
         walker = SimulatedWalker(

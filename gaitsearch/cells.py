@@ -208,6 +208,22 @@ class Lattice:
                     edges.append(e)
                     targets.append(key)
             return edges, targets
+        edge_array, target_array = self._successor_arrays(node)
+        return edge_array.tolist(), target_array.tolist()
+
+    def successor_arrays(self, node: int) -> tuple[Ints, Ints]:
+        """:meth:`successors` as numpy arrays (the same edges and targets)."""
+        pose = node >> 48
+        m = self.model
+        if int(m.offsets[pose + 1]) - int(m.offsets[pose]) <= 48:
+            edges, targets = self.successors(node)
+            return np.array(edges, dtype=np.int64), np.array(targets, dtype=np.int64)
+        return self._successor_arrays(node)
+
+    def _successor_arrays(self, node: int) -> tuple[Ints, Ints]:
+        pose, ix, iy, it = self.unpack(node)
+        m = self.model
+        lo, hi = int(m.offsets[pose]), int(m.offsets[pose + 1])
         x, y = ix * self.size, iy * self.size
         c, s, heading = self._cos[it], self._sin[it], self._heading[it]
         sel = np.arange(lo, hi)
@@ -219,7 +235,7 @@ class Lattice:
         sel, nx, ny, nt = sel[ok], nx[ok], ny[ok], nt[ok]
         packed: Ints = (m.dst[sel] << 48) | ((nx + _OFF) << 32) | ((ny + _OFF) << 16) | nt
         keep = packed != node
-        return sel[keep].tolist(), packed[keep].tolist()
+        return sel[keep], packed[keep]
 
     def _target(self, ix: int, iy: int, it: int, e: int) -> int | None:
         m = self.model

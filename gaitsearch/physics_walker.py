@@ -5,7 +5,9 @@ Each valve state the loop applies is held for one control period in the spring-d
 measured motion of a transition is the model's chassis motion in the body frame of the pose
 before it, plus Gaussian noise standing for the pose estimate (the EKF of chapter 4).  The
 predictions of the model gait graph start every transition from a steady state (4.2.2), so
-what the walker measures differs from them as a real gait's transitions would.
+what the walker measures differs from them as a real gait's transitions would.  With a model
+mismatch the walker executes a robot whose stiffness and friction differ from the file's
+(:func:`~gaitsearch.perturbation.perturbed`), so that the loop has something to learn.
 """
 
 from __future__ import annotations
@@ -15,6 +17,7 @@ import math
 import numpy as np
 
 from gaithw.backend import Backend, HardwareError, SensorReading, where
+from gaitsearch.perturbation import perturbed
 from gaitsearch.transitions import Step, TransitionModel
 from gaitsearch.walker import Outcome
 from softmodels.catalogue import LoadedModel
@@ -31,6 +34,7 @@ class PhysicsWalker(Backend):
         loaded: LoadedModel,
         noise: float = 0.0,
         seed: int = 0,
+        mismatch: float = 0.0,
     ) -> None:
         super().__init__(len(loaded.valve_legs))
         if not isinstance(loaded.model, SpringDamperModel):
@@ -39,6 +43,9 @@ class PhysicsWalker(Backend):
                 where("physics walker"),
             )
         self.physics: SpringDamperModel = loaded.model
+        if mismatch:
+            robot = perturbed(loaded.model.robot, mismatch, seed)
+            self.physics = SpringDamperModel(robot, loaded.model.dt)
         self.model, self.start, self.period = model, start, loaded.period
         self.name = f"physics model ({self.physics.name}) of {loaded.robot}"
         self.legs = tuple(dict.fromkeys(loaded.valve_legs))

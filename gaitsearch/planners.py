@@ -15,7 +15,7 @@ from gaitsearch.astar import Route, SearchBudgetExceeded, astar
 from gaitsearch.cells import Lattice
 from gaitsearch.dstar import DStarLite
 from gaitsearch.goals import Goal
-from gaitsearch.lpa import LifelongPlanner
+from gaitsearch.lpa_arrays import lifelong
 from gaitsearch.mcts import MonteCarloPlanner, TreeNode
 from gaitsearch.plans import GaitPlan, make_plan
 from gaitsearch.transitions import Step, TransitionModel
@@ -59,7 +59,7 @@ class HybridPlanner:
         self.lattice = Lattice(
             model, start, goal, settings.cell, settings.cell_angle, settings.slip_cost
         )
-        self.lpa = LifelongPlanner(self.lattice, settings.budget) if method == "lpa" else None
+        self.lpa = lifelong(self.lattice, settings.budget) if method == "lpa" else None
         self.dstar = DStarLite(self.lattice, settings.budget) if method == "dstar" else None
         self.expanded = 0
 

@@ -28,6 +28,9 @@ class Mismatch:
     noise: float = 0.2  # standard deviation of each execution: mm and degrees
     infeasible: float = 0.0  # share of transitions the robot cannot make
     seed: int = 0
+    # the physics backend: each limb's stiffness and friction scaled by seeded factors in
+    # [1 - model, 1 + model] (:mod:`gaitsearch.perturbation`); the simulated robot uses scale
+    model: float = 0.0
 
 
 @dataclass(frozen=True)

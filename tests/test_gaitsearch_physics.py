@@ -8,12 +8,16 @@ from pathlib import Path
 
 import pytest
 
+from diagnostics import UsageError
 from gaitc.cli import main
 from gaitsearch import Mismatch, Settings, learn_gait
 from gaitsearch.backends import default_predictions
 from gaitsearch.goals import Goal
+from gaitsearch.perturbation import perturbed
 from gaitsearch.physics_walker import PhysicsWalker
 from gaitsearch.predictions import has_model, model_transitions
+from gaitsearch.transitions import compose
+from softmodels.description import load_spring_damper
 
 ROBOTS = Path(__file__).resolve().parent.parent / "specs" / "robots"
 RADIAL = str(ROBOTS / "radial8.yaml")
@@ -124,3 +128,65 @@ def test_unknown_predictions_are_a_usage_error(capsys: pytest.CaptureFixture[str
     assert main(["learn", RADIAL, "--goal", "10,0", "--predictions", "dynamic"]) == 2
     err = capsys.readouterr().err
     assert err == "gaitc: usage error: unknown predictions 'dynamic'; use kinematic or model\n"
+
+
+# the model mismatch: the walker's robot has its stiffness and friction scaled (seeded)
+SLACK = 3.0  # executed against the goal: its 5 mm / 5 deg plus snapping and noise
+
+
+def test_perturbed_scales_stiffness_and_friction_within_the_bound() -> None:
+    robot = load_spring_damper(RADIAL)
+    assert perturbed(robot, 0.0, 1) is robot
+    changed = perturbed(robot, 0.3, 1)
+    assert changed == perturbed(robot, 0.3, 1) and changed != perturbed(robot, 0.3, 2)
+    for old, new in zip(robot.limbs, changed.limbs, strict=True):
+        (_, k_old), (_, k_new) = old.stiffness[0], new.stiffness[0]
+        ratio = k_new[0][0] / k_old[0][0]
+        assert 0.7 <= ratio <= 1.3 and ratio != 1.0
+        f_old, f_new = old.friction.outward, new.friction.outward
+        assert 0.7 <= f_new.static / f_old.static <= 1.3
+        assert f_new.static / f_old.static == pytest.approx(f_new.kinetic / f_old.kinetic)
+    with pytest.raises(UsageError, match="must lie in"):
+        perturbed(robot, 1.0, 1)
+
+
+def test_a_mismatched_walker_moves_otherwise_than_predicted_from_rest() -> None:
+    found = model_transitions(RADIAL)
+    walker = PhysicsWalker(found.model, found.start, found.loaded, seed=2, mismatch=0.3)
+    with walker:
+        walker.apply("00001000")
+        first = walker.last
+    assert first is not None and first.measured is not None and first.edge is not None
+    predicted = found.model.step(first.edge)
+    assert abs(first.measured.dx - predicted.dx) > 1.0  # from rest, unlike without mismatch
+
+
+@pytest.mark.parametrize(
+    ("goal", "seed", "method"),
+    [((20.0, 0.0), 2, "lpa"), ((40.0, 0.0), 2, "lpa"), ((0.0, 20.0), 1, "mcts")],
+)
+def test_the_loop_learns_a_model_mismatch(
+    goal: tuple[float, float], seed: int, method: str
+) -> None:
+    found = model_transitions(RADIAL)
+    mismatch = Mismatch(seed=seed, model=0.3)
+    run = learn_gait(RADIAL, Goal(*goal), method, mismatch, FINE, backend="physics")
+    assert run.converged and sum(it.changed for it in run.iterations) > 0
+    assert run.final is not None and run.executed is not None and run.error is not None
+    distance, angle = run.error
+    assert distance <= 5.0 + SLACK and angle <= 5.0 + SLACK
+    # the learned prediction is what the robot does, the model graph's was not
+    x, y, th = run.executed
+    px, py, pth = run.final.displacement
+    assert math.hypot(x - px, y - py) <= AGREE and abs(th - pth) <= AGREE
+    ox = oy = oth = 0.0
+    for e in run.final.edges:
+        ox, oy, oth = compose(ox, oy, oth, found.model.step(e))
+    assert math.hypot(x - ox, y - oy) > AGREE or abs(th - oth) > AGREE
+
+
+def test_model_mismatch_is_the_physics_backends(capsys: pytest.CaptureFixture[str]) -> None:
+    argv = ["learn", RADIAL, "--goal", "20,0", "--model-mismatch", "0.3"]
+    assert main(argv) == 2
+    assert "is the physics backend's" in capsys.readouterr().err
+    assert main([*argv, "--backend", "physics", "--cell", "1,1", "--quiet"]) == 0

@@ -6,6 +6,7 @@ import math
 from pathlib import Path
 
 import numpy as np
+import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -13,6 +14,7 @@ from gaitsearch.astar import astar, astar_counted
 from gaitsearch.cells import Lattice
 from gaitsearch.goals import Goal
 from gaitsearch.lpa import LifelongPlanner
+from gaitsearch.lpa_arrays import ArrayLifelongPlanner, lifelong
 from gaitsearch.mcts import MonteCarloPlanner
 from gaitsearch.transitions import Step, TransitionModel, compose
 
@@ -31,6 +33,9 @@ EDGES = [
     (8, 0, 0.0, -20.0, -90.0, 0.0),
 ]
 GOAL = Goal(30.0, 0.0, 0.0, tolerance=2.0, angle_tolerance=2.0)
+# the dict planner and the array planner are the same LPA*: every LPA* test runs both
+PLANNERS = pytest.mark.parametrize("planner_class", [LifelongPlanner, ArrayLifelongPlanner])
+Planner = type[LifelongPlanner] | type[ArrayLifelongPlanner]
 
 
 def model(edges: list[tuple[int, int, float, float, float, float]] = EDGES) -> TransitionModel:
@@ -62,9 +67,10 @@ def test_astar_composes_motions_in_the_turned_frame() -> None:
     assert math.isclose(route.cost, 2.0)
 
 
-def test_lpa_finds_the_same_and_repairs_after_changes() -> None:
+@PLANNERS
+def test_lpa_finds_the_same_and_repairs_after_changes(planner_class: Planner) -> None:
     m = model()
-    planner = LifelongPlanner(lattice(m))
+    planner = planner_class(lattice(m))
     first = planner.compute()
     assert first is not None and pairs(m, first.edges) == [(0, 8), (8, 0)]
     # the robot turns but steps only 10 mm: the turning cycle now misses the goal
@@ -81,10 +87,11 @@ def test_lpa_finds_the_same_and_repairs_after_changes() -> None:
     assert fresh is not None and math.isclose(fresh.cost, third.cost)
 
 
-def test_no_route_when_no_cycle_reaches_the_goal() -> None:
+@PLANNERS
+def test_no_route_when_no_cycle_reaches_the_goal(planner_class: Planner) -> None:
     m = model([(0, 1, 5.0, 5.0, 0.0, 0.0), (1, 0, 5.0, 5.0, 0.0, 0.0)])  # drifts to +y
     assert astar(Lattice(m, 0, GOAL, 1.0, 1.0, radius=40.0)) is None
-    assert LifelongPlanner(Lattice(m, 0, GOAL, 1.0, 1.0, radius=40.0)).compute() is None
+    assert planner_class(Lattice(m, 0, GOAL, 1.0, 1.0, radius=40.0)).compute() is None
 
 
 def test_mcts_finds_the_exact_two_step_cycle_and_is_deterministic() -> None:
@@ -144,13 +151,14 @@ def graphs(draw: st.DrawFn) -> tuple[list[tuple[int, int, float, float, float, f
     return rows, changes
 
 
+@PLANNERS
 @settings(max_examples=50, deadline=None)
 @given(graphs())
-def test_lpa_after_changes_costs_what_astar_from_scratch_costs(case) -> None:  # type: ignore[no-untyped-def]
+def test_lpa_after_changes_costs_what_astar_from_scratch_costs(planner_class, case) -> None:  # type: ignore[no-untyped-def]
     rows, changes = case
     goal = Goal(20.0, 0.0, 0.0, 2.0, 2.0)
     m = model(rows)
-    planner = LifelongPlanner(Lattice(m, 0, goal, 5.0, 90.0, radius=40.0), budget=50_000)
+    planner = planner_class(Lattice(m, 0, goal, 5.0, 90.0, radius=40.0), budget=50_000)
     planner.compute()
     for row, motion in changes:
         edge = int(np.nonzero(m.original == row)[0][0])
@@ -171,7 +179,10 @@ def test_lpa_after_changes_costs_what_astar_from_scratch_costs(case) -> None:  #
     # node it had settled while A* from scratch stops at once (found by this test)
 
 
-def test_lpa_repairs_expand_fewer_nodes_than_astar_on_the_symmetric_robot() -> None:
+@PLANNERS
+def test_lpa_repairs_expand_fewer_nodes_than_astar_on_the_symmetric_robot(
+    planner_class: Planner,
+) -> None:
     from gaitgraph.graph import GaitGraph, random_states
     from gaitgraph.robot import load_robot
 
@@ -180,7 +191,7 @@ def test_lpa_repairs_expand_fewer_nodes_than_astar_on_the_symmetric_robot() -> N
     graph.add_states([0, *random_states(robot, np.random.default_rng(0), 299, {0})])
     m = TransitionModel.from_graph(graph)
     goal = Goal(40.0, 0.0)
-    planner = LifelongPlanner(Lattice(m, 0, goal))
+    planner = planner_class(Lattice(m, 0, goal))
     route = planner.compute()
     rng = np.random.default_rng(5)
     repairs = scratch = 0
@@ -219,13 +230,14 @@ def skewed_graphs(
     return rows, changes
 
 
+@PLANNERS
 @settings(max_examples=30, deadline=None)
 @given(skewed_graphs())
-def test_lpa_matches_astar_when_every_step_snaps(case) -> None:  # type: ignore[no-untyped-def]
+def test_lpa_matches_astar_when_every_step_snaps(planner_class, case) -> None:  # type: ignore[no-untyped-def]
     rows, changes = case
     goal = Goal(15.0, 0.0, 0.0, 3.0, 10.0)
     m = model(rows)
-    planner = LifelongPlanner(Lattice(m, 0, goal, 3.0, 10.0, radius=25.0), budget=10**7)
+    planner = planner_class(Lattice(m, 0, goal, 3.0, 10.0, radius=25.0), budget=10**7)
     planner.compute()
     for row, motion in changes:
         edge = int(np.nonzero(m.original == row)[0][0])
@@ -235,3 +247,33 @@ def test_lpa_matches_astar_when_every_step_snaps(case) -> None:  # type: ignore[
         assert (got is None) == (fresh is None)
         if got is not None and fresh is not None:
             assert math.isclose(got.cost, fresh.cost, abs_tol=1e-9)
+
+
+@PLANNERS
+def test_lpa_takes_the_cheaper_of_parallel_transitions(planner_class: Planner) -> None:
+    # two transitions 0 -> 1 with the same motion (one lattice target) but different slip
+    rows = [
+        (0, 1, 10.0, 0.0, 0.0, 2.0),
+        (0, 1, 10.0, 0.0, 0.0, 0.0),
+        (1, 0, 10.0, 0.0, 0.0, 0.0),
+    ]
+    m = model(rows)
+    goal = Goal(20.0, 0.0, 0.0, 2.0, 2.0)
+    planner = planner_class(Lattice(m, 0, goal, 5.0, 90.0, radius=40.0))
+    route = planner.compute()
+    assert route is not None and math.isclose(route.cost, 2.0)
+    cheap = route.edges[0]
+    assert m.slip[cheap] == 0.0
+    planner.update_transition(cheap, None)  # the cheap one is gone: the slipping one is left
+    route = planner.compute()
+    assert route is not None and math.isclose(route.cost, 2.1)
+    fresh = astar(Lattice(m.copy(), 0, goal, 5.0, 90.0, radius=40.0))
+    assert fresh is not None and math.isclose(fresh.cost, route.cost)
+
+
+def test_lifelong_takes_the_array_planner_for_dense_graphs_only() -> None:
+    assert isinstance(lifelong(lattice(model()), 100), LifelongPlanner)
+    n = 12  # every pose to every other: 11 transitions per pose
+    rows = [(a, b, 5.0, 0.0, 0.0, 0.0) for a in range(n) for b in range(n) if a != b]
+    assert isinstance(lifelong(lattice(model(rows)), 100, dense=11), ArrayLifelongPlanner)
+    assert isinstance(lifelong(lattice(model(rows)), 100, dense=12), LifelongPlanner)

@@ -111,6 +111,14 @@ def register(sub: Any) -> None:
         help="sim: per-execution noise, mm and deg (0.2)",
     )
     p.add_argument(
+        "--model-mismatch",
+        type=float,
+        default=0.0,
+        metavar="F",
+        help="physics: execute with each limb's stiffness and friction scaled by seeded "
+        "factors in [1-F, 1+F] (0)",
+    )
+    p.add_argument(
         "--infeasible",
         type=float,
         default=0.0,
@@ -258,7 +266,7 @@ def run_learn(args: argparse.Namespace) -> int:
     if args.max_iterations < 1 or args.verify < 1:
         raise UsageError("--max-iterations and --verify must be at least 1")
     goal, settings = goal_of(args), settings_of(args)
-    mismatch = Mismatch(args.mismatch, args.noise, args.infeasible, args.seed)
+    mismatch = Mismatch(args.mismatch, args.noise, args.infeasible, args.seed, args.model_mismatch)
     progress = None if args.quiet else _print_flush
     result = learn_gait(
         args.robot,
