@@ -117,6 +117,7 @@ class SymbolicSpec:
         """Group sifting until a run gains less than 2 % (CUDD's converging sifting)."""
         before = len(self.bdd)
         for _ in range(10):
+            self._checkpoint()  # a sifting run is one CUDD call: check the deadline between
             self.bdd.reorder()
             after = len(self.bdd)
             if after > 0.98 * before:
