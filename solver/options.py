@@ -23,7 +23,7 @@ class Options:
 
     order: str = "guards"  # see solver.ordering.ORDERS
     care: bool = True  # solve modulo the invariants of ρe/ρs (see SymbolicSpec.care)
-    reordering: bool | None = None  # CUDD's dynamic group sifting; None: solver.portfolio
+    reordering: bool | None = None  # CUDD's group sifting throughout; None: solver.portfolio
     reorder_once: bool = False  # one sifting run after building ρ, then the order is fixed
     sift_build: bool = False  # dynamic sifting while ρ is built, one run after, then fixed
     sift_above: int | None = SIFT_TRIGGER  # nodes a bit past which the build sifts anew

@@ -45,7 +45,7 @@ from solver.symbolic import Options
 
 T = TypeVar("T")
 
-HEAD_START: Final = 0.05  # seconds the static configuration runs alone
+HEAD_START: Final = 0.25  # seconds the static configuration runs alone
 #: The second racer runs at a lower priority: on an idle two-core machine it still gets its
 #: own core, and on a busy one it does not slow the first down (thesis robot A on a loaded
 #: machine: 1.64 s raced at equal priority against 1.02 s for the static order alone).

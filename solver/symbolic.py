@@ -105,7 +105,7 @@ class SymbolicSpec:
                 self.bdd.group({bit: 2})  # sifting moves a bit and its primed copy together
         self.sifted_build = sift  # whether CUDD sifted while ρ was built
         self._memo: Memo[BDDNode] = {}
-        self.bdd.configure(reordering=sift)
+        self.bdd.configure(reordering=sift or bool(opts.reordering))
         self._build()
         self.bdd.configure(reordering=False)
         if opts.reorder_once or sift:
