@@ -24,6 +24,17 @@ GOAL = -1  # the virtual goal node
 _INF = math.inf
 
 
+def route_settled(top: tuple[float, float, int, int], goal_key: tuple[float, float],
+                  goal_done: bool) -> bool:
+    """LPA*'s stopping test for a non-empty queue whose first entry is ``top``: the goal
+    is consistent and no queued key is below its key.  With the zero-cost goal edges an
+    underconsistent goal cell can sit at exactly the goal's key, so ties are expanded
+    while they are underconsistent (``top[2]``: they come first among equal keys); an
+    overconsistent tie cannot lower the goal."""
+    key = (top[0], top[1])
+    return goal_done and (key > goal_key or (key == goal_key and bool(top[2])))
+
+
 class LifelongPlanner:
     """LPA* from the lattice's root to its goal cells; call :meth:`compute` for a route."""
 
@@ -151,15 +162,8 @@ class LifelongPlanner:
         heap, queued = self._heap, self._queued
         while True:
             top = self._top()
-            goal_key = self.key(GOAL)
-            goal_done = rhs.get(GOAL, _INF) == g.get(GOAL, _INF)
-            # with the zero-cost goal edges an underconsistent goal cell can sit at exactly
-            # the goal's key, so ties are expanded while they are underconsistent (they
-            # come first among equal keys); an overconsistent tie cannot lower the goal
-            if top is None or (
-                goal_done
-                and ((top[0], top[1]) > goal_key or ((top[0], top[1]) == goal_key and top[2]))
-            ):
+            if top is None or route_settled(top, self.key(GOAL),
+                                            rhs.get(GOAL, _INF) == g.get(GOAL, _INF)):
                 break
             heapq.heappop(heap)
             u = top[3]

@@ -25,7 +25,7 @@ import numpy as np
 from gaitsearch.astar import Route, SearchBudgetExceeded
 from gaitsearch.cells import Lattice
 from gaitsearch.incoming import IncomingEdges
-from gaitsearch.lpa import GOAL, LifelongPlanner
+from gaitsearch.lpa import GOAL, LifelongPlanner, route_settled
 from gaitsearch.transitions import Ints, Step
 
 _GOAL, _ROOT = 0, 1  # dense numbers
@@ -220,15 +220,8 @@ class ArrayLifelongPlanner:
         heap, queued = self._heap, self._queued
         while True:
             top = self._top()
-            goal_key = self.key(_GOAL)
-            goal_done = self._rhs.item(_GOAL) == self._g.item(_GOAL)
-            # with the zero-cost goal edges an underconsistent goal cell can sit at exactly
-            # the goal's key, so ties are expanded while they are underconsistent (they
-            # come first among equal keys); an overconsistent tie cannot lower the goal
-            if top is None or (
-                goal_done
-                and ((top[0], top[1]) > goal_key or ((top[0], top[1]) == goal_key and top[2]))
-            ):
+            if top is None or route_settled(top, self.key(_GOAL),
+                                            self._rhs.item(_GOAL) == self._g.item(_GOAL)):
                 break
             heapq.heappop(heap)
             u = top[3]
