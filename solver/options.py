@@ -26,7 +26,8 @@ class Options:
     reordering: bool | None = None  # CUDD's group sifting throughout; None: solver.portfolio
     reorder_once: bool = False  # one sifting run after building ρ, then the order is fixed
     sift_build: bool = False  # dynamic sifting while ρ is built, one run after, then fixed
-    sift_above: int | None = SIFT_TRIGGER  # nodes a bit past which the build sifts anew
+    sift_above: int | None = SIFT_TRIGGER  # nodes a bit past which the build sifts anew;
+    # never with pinned variables (``first``), whose order was chosen on purpose
     partitioned: bool = False  # ρs as clusters with early quantification (slow: see bench)
     recycle: bool = False  # start inner X fixpoints from the previous round's values (slower here)
     cluster_limit: int = 2500  # node limit when merging ρs parts into clusters

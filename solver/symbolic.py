@@ -240,6 +240,7 @@ class SymbolicSpec:
         :data:`~solver.options.SIFT_TRIGGER`): then the build starts again, sifting."""
         opts = self.options
         if (opts.sift_above is not None and not self.sifted_build and not opts.reordering
+                and not opts.first  # an order pinned on purpose is kept (analysis.parametric)
                 and product.dag_size > opts.sift_above * len(self.prime_map)):
             raise _OrderTooLarge
         return product

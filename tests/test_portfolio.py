@@ -176,6 +176,8 @@ def test_a_static_build_too_large_for_its_order_starts_again_sifting(tmp_path: P
         assert sym.sys_trans.dag_size <= SIFT_TRIGGER * bits  # after sifting too
         never = SymbolicSpec(gr1, Options(reordering=False, sift_above=None))
         assert never.sifted_build is False
+        pinned = SymbolicSpec(gr1, Options(reordering=False, first=(gr1.inputs[0].name,)))
+        assert pinned.sifted_build is False  # an order pinned on purpose (analysis) is kept
         game, plain = Game(sym), Game(never)
         won, plain_won = game.solve().winning, plain.solve().winning
         for semantics in ("default", "robotics"):
