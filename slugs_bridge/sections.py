@@ -51,6 +51,7 @@ def read_sections(text: str, filename: str) -> Iterator[SourceLine]:
     with ``[`` must be a known section header.  Sections may repeat and come in any order.
     """
     header: str | None = None
+    text = text.removeprefix("\ufeff")  # a byte order mark is no part of the first line
     for number, raw in enumerate(source_lines(text), start=1):
         stripped = raw.strip()
         if not stripped or stripped.startswith("#"):

@@ -212,6 +212,23 @@ def test_a_byte_order_mark_is_accepted_and_columns_skip_it(
     ]
 
 
+def test_a_byte_order_mark_is_accepted_in_slugs_formats_too(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    from slugs_bridge.formats import load_spec_file
+
+    for name, text in (("bom.slugsin", "[INPUT]\nx\n\n[OUTPUT]\ny\n\n[SYS_TRANS]\n"
+                        "| ! x' y'\n"),
+                       ("bom.structuredslugs", "[INPUT]\nx\n\n[OUTPUT]\ny\n\n"
+                        "[SYS_TRANS]\nx' -> y'\n")):
+        spec = tmp_path / name
+        spec.write_bytes(b"\xef\xbb\xbf" + text.encode("utf-8"))
+        gr1 = load_spec_file(str(spec))
+        assert [v.name for v in gr1.inputs] == ["x"]
+        assert len(gr1.sys_trans) == 1
+        assert main(["check", str(spec)]) == 0
+        assert "realizable" in capsys.readouterr().out
+
+
 @pytest.fixture(scope="module")
 def patrol_controller(tmp_path_factory: pytest.TempPathFactory) -> str:
     path = tmp_path_factory.mktemp("ctrl") / "patrol.json"
