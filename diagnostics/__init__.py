@@ -11,6 +11,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Final
 
 
 @dataclass(frozen=True)
@@ -75,6 +76,16 @@ class UsageError(GaitcError):
     """The command line asks for something that cannot be done (exit code 2)."""
 
 
+#: The byte order mark some editors (on Windows) put before UTF-8 text.
+BOM: Final = "\ufeff"
+
+
+def without_bom(text: str) -> str:
+    """``text`` without a leading byte order mark: every reader and the error printer skip
+    it, so line 1 and its columns start after it."""
+    return text.removeprefix(BOM)
+
+
 def source_lines(text: str) -> list[str]:
     """The lines of a source text as every reader and the error printer count them: only
     ``\\n`` ends a line (a ``\\r`` before it is dropped), so a form feed, ``\\x1c``, ``\\x85``
@@ -122,7 +133,7 @@ def _source_line(span: Span, sources: dict[str, str] | None) -> str | None:
             text = Path(span.file).read_bytes().decode("utf-8", errors="replace")
         except OSError:
             return None
-    lines = source_lines(text.removeprefix("\ufeff"))  # the .gait parser skips a BOM too
+    lines = source_lines(without_bom(text))
     if 1 <= span.line <= len(lines):
         return lines[span.line - 1]
     return None

@@ -25,7 +25,14 @@ from lark.exceptions import (
 )
 from lark.lexer import PatternStr
 
-from diagnostics import FormulaError, GaitcError, Span, SpecSyntaxError, source_lines
+from diagnostics import (
+    FormulaError,
+    GaitcError,
+    Span,
+    SpecSyntaxError,
+    source_lines,
+    without_bom,
+)
 from ltlcompiler import syntax as s
 from ltlcompiler.parse_tree import build, token_span
 
@@ -62,7 +69,6 @@ _LOOKALIKES = {
     "\u201c": '"',
     "\u201d": '"',
 }
-_BOM = "\ufeff"
 
 
 @cache
@@ -347,8 +353,7 @@ def parse(text: str, file: str = "<string>") -> s.SpecFile:
     A byte-order mark at the start is skipped (columns count from the character after it).
     Raises :class:`SpecSyntaxError` or :class:`FormulaError` with a span on bad input.
     """
-    if text.startswith(_BOM):  # editors on Windows start UTF-8 files with one
-        text = text[1:]
+    text = without_bom(text)
     _check_brackets(text, file)
     try:
         tree = _lark().parse(text)

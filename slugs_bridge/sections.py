@@ -12,7 +12,7 @@ import re
 from collections.abc import Callable, Iterator, Mapping
 from dataclasses import dataclass
 
-from diagnostics import SlugsFormatError, Span, source_lines
+from diagnostics import SlugsFormatError, Span, source_lines, without_bom
 from gr1.formula import Expr, IntVar, Var, walk
 from gr1.spec import SECTIONS, Clause, GR1Spec, Origin, Variable
 from slugs_bridge.names import RENAMED, one_line, renaming_comment
@@ -51,7 +51,7 @@ def read_sections(text: str, filename: str) -> Iterator[SourceLine]:
     with ``[`` must be a known section header.  Sections may repeat and come in any order.
     """
     header: str | None = None
-    text = text.removeprefix("\ufeff")  # a byte order mark is no part of the first line
+    text = without_bom(text)
     for number, raw in enumerate(source_lines(text), start=1):
         stripped = raw.strip()
         if not stripped or stripped.startswith("#"):
