@@ -184,11 +184,21 @@ def walk(node: Node) -> Iterator[Node]:
 
 
 def atoms(node: Node) -> set[tuple[str, bool]]:
-    """The ``(name, primed)`` pairs of every Boolean or integer variable in ``node``."""
+    """The ``(name, primed)`` pairs of every Boolean or integer variable in ``node``
+    (:func:`walk` written out: specs with large formulas ask for it per clause)."""
     out: set[tuple[str, bool]] = set()
-    for n in walk(node):
-        if isinstance(n, (Var, IntVar)):
-            out.add((n.name, n.primed))
+    seen: set[int] = set()
+    stack: list[Node] = [node]
+    while stack:
+        current = stack.pop()
+        key = id(current)
+        if key in seen:
+            continue
+        seen.add(key)
+        if isinstance(current, (Var, IntVar)):
+            out.add((current.name, current.primed))
+        else:
+            stack.extend(current.children())
     return out
 
 

@@ -60,7 +60,12 @@ class Node:
         return int(cached)
 
     def children(self) -> tuple[Node, ...]:
-        """The subformulas and terms of this node, in field order."""
+        """The subformulas and terms of this node, in field order (found once, then kept:
+        a spec's formulas are walked several times, and a hazard grid's have 1.8 million
+        nodes)."""
+        cached: tuple[Node, ...] | None = self.__dict__.get("_children")
+        if cached is not None:
+            return cached
         out: list[Node] = []
         for name in self._names():
             value = getattr(self, name)
@@ -68,7 +73,8 @@ class Node:
                 out.append(value)
             elif isinstance(value, tuple):
                 out.extend(v for v in value if isinstance(v, Node))
-        return tuple(out)
+        kids = self.__dict__["_children"] = tuple(out)
+        return kids
 
     def with_children(self, kids: Sequence[Node]) -> Node:
         """A node like this one (span included) with ``kids`` for its :meth:`children`.

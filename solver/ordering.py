@@ -16,8 +16,10 @@ from gr1.spec import Clause, GR1Spec, Variable
 Atoms = set[tuple[str, bool]]
 
 
-class _AtomCache:
-    """``atoms`` of formulas, computed once per node object (big mutexes are walked once)."""
+class AtomCache:
+    """``atoms`` of formulas, computed once per node object (big mutexes are walked once);
+    an implication's from its two sides, which the guard scores ask for too.  One cache
+    serves every pass of a :class:`~solver.symbolic.SymbolicSpec` over its spec."""
 
     def __init__(self) -> None:
         self._seen: dict[int, tuple[Node, Atoms]] = {}
@@ -25,8 +27,17 @@ class _AtomCache:
     def __call__(self, node: Node) -> Atoms:
         hit = self._seen.get(id(node))
         if hit is None:
-            hit = (node, atoms(node))
+            if isinstance(node, Implies):  # one level only: a chain of them stays iterative
+                hit = (node, self._walked(node.left) | self._walked(node.right))
+            else:
+                hit = (node, atoms(node))
             self._seen[id(node)] = hit
+        return hit[1]
+
+    def _walked(self, node: Node) -> Atoms:
+        hit = self._seen.get(id(node))
+        if hit is None:
+            hit = self._seen[id(node)] = (node, atoms(node))
         return hit[1]
 
 
@@ -35,11 +46,11 @@ _SECTIONS = ("sys_trans", "env_trans", "env_init", "sys_init", "sys_liveness", "
 
 
 def invariant_clauses(
-    spec: GR1Spec, cache: _AtomCache | None = None
+    spec: GR1Spec, cache: AtomCache | None = None
 ) -> tuple[list[Clause], list[Clause]]:
     """The invariants of ρe (over primed inputs only) and of ρs (over primed variables only):
     transition clauses over next-state variables, which hold in every state after the first."""
-    found = cache or _AtomCache()
+    found = cache or AtomCache()
     inputs = {v.name for v in spec.inputs}
 
     def only_next(clause: Clause, names: set[str] | None) -> bool:
@@ -50,14 +61,14 @@ def invariant_clauses(
     return env, [c for c in spec.sys_trans if only_next(c, None)]
 
 
-def variable_order(spec: GR1Spec, how: str) -> list[Variable]:
+def variable_order(spec: GR1Spec, how: str, cache: AtomCache | None = None) -> list[Variable]:
     """The variables of ``spec`` top to bottom for ordering ``how`` (one of :data:`ORDERS`)."""
     declared = list(spec.inputs) + list(spec.outputs)
     if how == "declaration":
         return declared
     if how not in ORDERS:
         raise ValueError(f"unknown variable order {how!r}; use one of {ORDERS}")
-    found = _AtomCache()
+    found = cache or AtomCache()
     occurrence = _occurrence(spec, declared, found)
     if how == "occurrence":
         return occurrence
@@ -74,7 +85,7 @@ def variable_order(spec: GR1Spec, how: str) -> list[Variable]:
     return [v for g in ordered for v in sorted(members[g], key=lambda v: rank[v.name])]
 
 
-def _occurrence(spec: GR1Spec, declared: list[Variable], found: _AtomCache) -> list[Variable]:
+def _occurrence(spec: GR1Spec, declared: list[Variable], found: AtomCache) -> list[Variable]:
     """Variables in the order the transition clauses first mention them."""
     by_name = {v.name: v for v in declared}
     seen: dict[str, None] = {}
@@ -88,7 +99,7 @@ def _occurrence(spec: GR1Spec, declared: list[Variable], found: _AtomCache) -> l
     return [by_name[n] for n in seen]
 
 
-def _groups(spec: GR1Spec, declared: list[Variable], found: _AtomCache) -> dict[str, str]:
+def _groups(spec: GR1Spec, declared: list[Variable], found: AtomCache) -> dict[str, str]:
     """Each variable's group representative (union-find over one-player Boolean invariants)."""
     parent = {v.name: v.name for v in declared}
 
@@ -113,7 +124,7 @@ def _groups(spec: GR1Spec, declared: list[Variable], found: _AtomCache) -> dict[
     return {name: find(name) for name in parent}
 
 
-def _guard_scores(spec: GR1Spec, groups: dict[str, str], found: _AtomCache) -> dict[str, int]:
+def _guard_scores(spec: GR1Spec, groups: dict[str, str], found: AtomCache) -> dict[str, int]:
     """Per group: transition clauses it guards minus clauses whose effect it is."""
     score: dict[str, int] = {}
     for clause in list(spec.env_trans) + list(spec.sys_trans):
@@ -132,7 +143,7 @@ def _guard_scores(spec: GR1Spec, groups: dict[str, str], found: _AtomCache) -> d
 def group_members(spec: GR1Spec) -> list[list[str]]:
     """The mutex groups with two or more variables, each in declaration order (for reporting)."""
     declared = list(spec.inputs) + list(spec.outputs)
-    groups = _groups(spec, declared, _AtomCache())
+    groups = _groups(spec, declared, AtomCache())
     out: dict[str, list[str]] = {}
     for v in declared:
         out.setdefault(groups[v.name], []).append(v.name)

@@ -32,17 +32,15 @@ from gr1.formula import (
     Var,
     Xor,
 )
-from gr1.spec import GR1Spec, Variable
+from gr1.spec import Clause, GR1Spec, Variable
 from gr1.traversal import Memo, fold
 from solver.bitvectors import add, less, xor
 from solver.options import MEMORY_STOP, SIFT_TRIGGER, Options
 
 __all__ = ["MEMORY_STOP", "SIFT_TRIGGER", "BDDNode", "Options", "SymbolicSpec"]
-from solver.ordering import invariant_clauses, variable_order
+from solver.ordering import AtomCache, invariant_clauses, variable_order
 
 BDDNode = Any  # a dd.cudd.Function; dd ships no type stubs
-
-
 
 
 class _OrderTooLarge(Exception):
@@ -72,6 +70,7 @@ class SymbolicSpec:
         for v in spec.outputs:
             self.var_bits[v.name] = [next(outs) for _ in range(v.bits if v.is_integer else 1)]
         self.variables = {v.name: v for v in spec.variables()}
+        self._atoms = AtomCache()  # the variables of each clause, for every pass below
         self.order = self._bit_order(self.options.order)
         # Choices (the smallest move, the first initial state) are made in the static order
         # whatever the engine, so that a controller does not depend on which racer won.
@@ -127,7 +126,7 @@ class SymbolicSpec:
     def _bit_order(self, how: str) -> list[str]:
         """Every bit and its primed copy, top to bottom, for variable order ``how``."""
         order: list[str] = []
-        ordered = variable_order(self.spec, how)
+        ordered = variable_order(self.spec, how, self._atoms)
         pinned = [v for name in self.options.first for v in ordered if v.name == name]
         for v in pinned + [v for v in ordered if v not in pinned]:
             for bit in self.var_bits[v.name]:
@@ -151,14 +150,14 @@ class SymbolicSpec:
                     else:
                         sys_range_init.append(now)
                         sys_range_trans.append(nxt)
-        self.env_init = self._conj([self.translate(c.formula) for c in s.env_init] + env_range_init)
-        self.sys_init = self._conj([self.translate(c.formula) for c in s.sys_init] + sys_range_init)
-        env_inv, sys_inv = invariant_clauses(s)
-        env_next = self._conj([self.translate(c.formula) for c in env_inv] + env_range_trans)
-        sys_next = self._conj([self.translate(c.formula) for c in sys_inv] + sys_range_trans)
+        self.env_init = self._conj(self._translated(s.env_init) + env_range_init)
+        self.sys_init = self._conj(self._translated(s.sys_init) + sys_range_init)
+        env_inv, sys_inv = invariant_clauses(s, self._atoms)
+        env_next = self._conj(self._translated(env_inv) + env_range_trans)
+        sys_next = self._conj(self._translated(sys_inv) + sys_range_trans)
         known = {id(c) for c in env_inv + sys_inv}
-        env_rest = [self.translate(c.formula) for c in s.env_trans if id(c) not in known]
-        sys_rest = [self.translate(c.formula) for c in s.sys_trans if id(c) not in known]
+        env_rest = self._translated([c for c in s.env_trans if id(c) not in known])
+        sys_rest = self._translated([c for c in s.sys_trans if id(c) not in known])
         self.env_trans = self._conj_under(env_next, env_rest)
         self.sys_trans = self._conj_under(sys_next, sys_rest)
         self.sys_clusters: list[tuple[BDDNode, set[str]]] = []
@@ -171,6 +170,14 @@ class SymbolicSpec:
         self.env_blocks = self.bdd.exist(self.post_outputs, ~self.env_trans)
         self._memo.clear()
         self._care_set(env_next, sys_next)
+
+    def _translated(self, clauses: Sequence[Clause]) -> list[BDDNode]:
+        """The BDDs of ``clauses``, checking the deadline between them."""
+        out = []
+        for clause in clauses:
+            self._checkpoint()
+            out.append(self.translate(clause.formula))
+        return out
 
     def _care_set(self, env_next: BDDNode, sys_next: BDDNode) -> None:
         """The states the fixpoint must get right, and ρ simplified outside them.
