@@ -148,7 +148,7 @@ class Game:
         z = sym.care
         layers: list[list[BDDNode]] = [[] for _ in range(n_goals)]
         rings: list[list[BDDNode]] = [[] for _ in range(n_goals)]
-        recycled: dict[tuple[int, int], tuple[BDDNode, BDDNode]] = {}
+        recycled: dict[tuple[int, int], BDDNode] = {}
         stable: set[int] = set()  # goals whose Y was computed at the current Z and holds it
         solved: set[int] = set()
         j = 0
@@ -180,7 +180,7 @@ class Game:
         Y is kept over pre and over post variables, each ring's Y' the union of the
         X' that its X fixpoints renamed anyway: renaming Y anew each ring cost as much as
         all the X steps (thesis grid 30 x 30 at health 5, binary: the solve went from
-        130 s to 65 s without it)."""
+        129 s to 81 s CPU without it; docs/performance.md, section 6)."""
         sym, lim, st = self.sym, self.limits, self.stats
         n_goals, n_assm = len(sym.sys_live), len(sym.env_live)
         live = sym.sys_live[j] & sym.prime(z)
