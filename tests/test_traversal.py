@@ -34,11 +34,13 @@ from gr1.formula import (
     Or,
     Var,
     Xor,
+    atoms,
     prime,
     simplify,
 )
 from gr1.spec import Clause, GR1Spec, Origin, Variable
 from gr1.traversal import Node, Text, fold, height, join_text, rebuild, separated
+from solver.ordering import AtomCache
 from solver.symbolic import SymbolicSpec
 from verifier.logic import Logic
 
@@ -223,3 +225,23 @@ def test_text_ropes_join_in_order() -> None:
     for _ in range(WRAP):
         deep = ("!", deep)
     assert join_text(deep) == "!" * WRAP + "x"
+
+
+def _reference_atoms(expr: Node) -> set[tuple[str, bool]]:
+    """The variables of a shallow formula, by plain recursion."""
+    if isinstance(expr, (Var, IntVar)):
+        return {(expr.name, expr.primed)}
+    return set().union(*(_reference_atoms(c) for c in expr.children()))
+
+
+@settings(max_examples=60, deadline=None)
+@given(formulas())
+def test_atoms_and_the_shared_atom_cache_agree_with_recursion_on_deep_formulas(f: Expr) -> None:
+    expected = _reference_atoms(f)
+    assert atoms(f) == expected
+    deep = deepened(f)  # implications from true, thousands deep: the cache must not recurse
+    cache = AtomCache()
+    assert cache(deep) == atoms(deep) == expected
+    assert cache(deep) is cache(deep)  # asked again: the same set, not walked anew
+    if isinstance(f, Implies):
+        assert cache(f) == atoms(f.left) | atoms(f.right)
