@@ -18,6 +18,7 @@ from dataclasses import dataclass, field
 import dd.cudd as cudd
 
 from diagnostics import SolverError
+from solver.options import RESIFT_STEP
 from solver.progress import Progress, Stage, goal_titles
 from solver.symbolic import BDDNode, SymbolicSpec
 
@@ -110,6 +111,8 @@ class Game:
         self.limits = limits or Limits()
         self.purpose = purpose  # the words its progress events start with
         self.stats = GameStats()
+        # a restarted build (SymbolicSpec.restarted) sifts again once a step is slow
+        self._resift = sym.restarted and not sym.options.reordering
 
     def cpre(self, target: BDDNode) -> BDDNode:
         """States from which the system can force the next transition into ``target``.
@@ -227,10 +230,20 @@ class Game:
             self.limits.check()
             step = time.monotonic()
             new_x = self.cpre(lower | (x_post & not_assm)) & bound
-            st.longest_step = max(st.longest_step, time.monotonic() - step)
+            step = time.monotonic() - step
+            st.longest_step = max(st.longest_step, step)
+            if self._resift and step > RESIFT_STEP:
+                self.watch_growth()
             if new_x == x:
                 return x, x_post
             x, x_post = new_x, self.sym.prime(new_x)
+
+    def watch_growth(self) -> None:
+        """Turn CUDD's sifting on for the rest of the game (a restarted build's, after a
+        step slower than :data:`RESIFT_STEP`): its fixed order was sifted for ρ, and the
+        fixpoint's sets outgrow it."""
+        self._resift = False
+        self.sym.bdd.configure(reordering=True)
 
     def _result(self, z: BDDNode, layers: list[list[BDDNode]], decided_early: bool,
                 rings: list[list[BDDNode]] | None = None) -> GameResult:

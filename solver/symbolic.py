@@ -36,10 +36,9 @@ from gr1.spec import Clause, GR1Spec, Variable
 from gr1.traversal import Memo, fold
 from solver.bitvectors import add, less, xor
 from solver.options import MEMORY_STOP, SIFT_TRIGGER, Options
-
-__all__ = ["MEMORY_STOP", "SIFT_TRIGGER", "BDDNode", "Options", "SymbolicSpec"]
 from solver.ordering import AtomCache, invariant_clauses, variable_order
 
+__all__ = ["MEMORY_STOP", "SIFT_TRIGGER", "BDDNode", "Options", "SymbolicSpec"]
 BDDNode = Any  # a dd.cudd.Function; dd ships no type stubs
 
 
@@ -83,10 +82,12 @@ class SymbolicSpec:
         self.post_inputs = {b + "'" for b in self.input_bits}
         self.post_outputs = {b + "'" for b in self.output_bits}
         opts = self.options
+        self.restarted = False
         try:
             self._start(sift=opts.sift_build and not opts.reordering)
         except _OrderTooLarge:  # start again, sifting from the first clause on
             self._start(sift=True)
+            self.restarted = True  # the game may sift again as it grows (Game.watch_growth)
 
     def _start(self, sift: bool) -> None:
         """A fresh BDD manager in the static order, and the spec built in it; with ``sift``

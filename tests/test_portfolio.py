@@ -10,11 +10,13 @@ from __future__ import annotations
 import time
 from pathlib import Path
 from typing import Any
+from unittest import mock
 
 import pytest
 
 import gaitc
 from diagnostics import SolverError
+from solver import game as game_module
 from solver import portfolio, synthesis
 from solver.game import Limits
 from solver.portfolio import DYNAMIC, SIFTED, STATIC, solve_chosen
@@ -180,6 +182,13 @@ def test_a_static_build_too_large_for_its_order_starts_again_sifting(tmp_path: P
         assert pinned.sifted_build is False  # an order pinned on purpose (analysis) is kept
         game, plain = Game(sym), Game(never)
         won, plain_won = game.solve().winning, plain.solve().winning
+        assert sym.restarted is sifts
+        with mock.patch.object(game_module, "RESIFT_STEP", -1.0):  # sift again at once
+            again = SymbolicSpec(gr1, Options(reordering=False))
+            resifted = Game(again)
+            again_won = resifted.solve().winning
+        assert again.bdd.configure()["reordering"] is sifts
         for semantics in ("default", "robotics"):
             assert (game.initially_winning(won, semantics)
-                    == plain.initially_winning(plain_won, semantics))
+                    == plain.initially_winning(plain_won, semantics)
+                    == resifted.initially_winning(again_won, semantics))

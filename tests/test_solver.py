@@ -6,6 +6,7 @@ strategy-extraction helpers. Semantics, basics and the variable order: test_solv
 from __future__ import annotations
 
 import itertools
+from unittest import mock
 
 import pytest
 from games import explicit_realizable, formulas, one_hot_specs, tiny_specs
@@ -21,6 +22,7 @@ from gr1.formula import (
     Var,
 )
 from gr1.spec import SEMANTICS, Clause, GR1Spec, Variable
+from solver import game as game_module
 from solver import synthesis
 from solver.game import Game
 from solver.portfolio import SIFTED, engine_options
@@ -77,6 +79,26 @@ def test_every_tuning_option_gives_the_same_winning_region(spec: GR1Spec, option
     other = SymbolicSpec(spec, options)
     w1 = Game(base).solve().winning
     w2 = Game(other).solve().winning
+    names = list(base.input_bits + base.output_bits)
+    for bits in itertools.product((False, True), repeat=len(names)):
+        point = dict(zip(names, bits, strict=True))
+        if _holds(base, base.care, point) and _holds(other, other.care, point):
+            assert _holds(base, w1, point) == _holds(other, w2, point), point
+
+
+@settings(max_examples=25, deadline=None)
+@given(spec=st.one_of(tiny_specs(), one_hot_specs()))
+def test_a_restarted_build_that_sifts_again_in_the_game_gives_the_same_winning_region(
+        spec: GR1Spec) -> None:
+    """The restart's second sifting (Game.watch_growth), forced at the first step."""
+    base = SymbolicSpec(spec)
+    other = SymbolicSpec(spec, Options(sift_above=0))  # restarts if it has ρ clauses
+    with mock.patch.object(game_module, "RESIFT_STEP", -1.0):
+        game = Game(other)
+        w2 = game.solve().winning
+    if other.restarted and game.stats.x_iterations:
+        assert other.bdd.configure()["reordering"]
+    w1 = Game(base).solve().winning
     names = list(base.input_bits + base.output_bits)
     for bits in itertools.product((False, True), repeat=len(names)):
         point = dict(zip(names, bits, strict=True))
