@@ -16,6 +16,7 @@ from typing import Final
 
 from diagnostics import FormulaError
 from gr1.bddfile import SymbolicController
+from gr1.bits import spec_bits
 from gr1.controller import Controller
 from gr1.costs import Cost
 from gr1.formula import atoms
@@ -37,6 +38,12 @@ class CheckResult:
     seconds: float
     stats: GameStats = field(default_factory=GameStats)
     engine: str = STATIC  # the configuration that answered (solver.portfolio)
+
+
+def state_bits(spec: GR1Spec) -> int:
+    """The number of state bits of ``spec`` (inputs and outputs, integers bit-blasted)."""
+    inputs, outputs = spec_bits(spec)
+    return len(inputs) + len(outputs)
 
 
 def _check_semantics(semantics: str) -> None:
@@ -122,7 +129,7 @@ def check(
         return CheckResult(ok, time.monotonic() - limits.started, result.stats)
 
     _check_semantics(semantics)
-    result, engine = solve_chosen(run, options or Options(), limits)
+    result, engine = solve_chosen(run, options or Options(), limits, state_bits(spec))
     return replace(result, seconds=time.monotonic() - limits.started, engine=engine)
 
 
@@ -188,7 +195,8 @@ def synthesize_controller(
             return symbolic_controller(sym, result, semantics, moves, lim)
 
     _check_semantics(semantics)
-    return solve_chosen(run, options or Options(), Limits(timeout, progress))[0]
+    return solve_chosen(run, options or Options(), Limits(timeout, progress),
+                        state_bits(spec))[0]
 
 
 def counterstrategy(
@@ -211,4 +219,5 @@ def counterstrategy(
             return extract_counterstrategy(sym, result.winning, semantics, lim, max_nodes)
 
     _check_semantics(semantics)
-    return solve_chosen(run, options or Options(), Limits(timeout, progress))[0]
+    return solve_chosen(run, options or Options(), Limits(timeout, progress),
+                        state_bits(spec))[0]

@@ -63,6 +63,26 @@ def test_the_other_racer_starts_at_once_when_the_first_fails(
     assert time.monotonic() - started < 10
 
 
+def test_a_small_spec_is_solved_here_without_a_race(monkeypatch: pytest.MonkeyPatch) -> None:
+    def no_fork(*args: Any, **kwargs: Any) -> Any:
+        raise AssertionError("a spec of at most SMALL_BITS state bits was raced")
+
+    seen: list[Options] = []
+
+    def run(options: Options, limits: Limits) -> str:
+        seen.append(options)  # in this process: a racer's list would not come back
+        return "answer"
+
+    monkeypatch.setattr(portfolio, "first_success", no_fork)
+    assert solve_chosen(run, Options(), Limits(), bits=portfolio.SMALL_BITS) == ("answer", STATIC)
+    assert [o.reordering for o in seen] == [False]
+    corpus_spec = gaitc.load(ROOT / "specs" / "patrol_2x2.gait", "binary").gr1
+    assert synthesis.state_bits(corpus_spec) <= portfolio.SMALL_BITS
+    assert synthesis.check(corpus_spec).engine == STATIC
+    with pytest.raises(AssertionError, match="was raced"):
+        solve_chosen(run, Options(), Limits(), bits=portfolio.SMALL_BITS + 1)
+
+
 def test_an_explicit_choice_or_a_memory_budget_is_never_raced() -> None:
     seen: list[Options] = []
 
