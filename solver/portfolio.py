@@ -54,11 +54,11 @@ HEAD_START: Final = 0.1
 #: machine: 1.64 s raced at equal priority against 1.02 s for the static order alone).
 SECOND_NICENESS: Final = 10
 #: Specs of at most this many state bits are solved in this process in the static order,
-#: without a race: no set of states over 16 bits has more than 2^16 BDD nodes and the build
-#: restarts before a partial relation passes 6,400 (SIFT_TRIGGER a bit), so no step runs
+#: without a race: no set of states over 20 bits has more than 2^20 BDD nodes and the build
+#: restarts before a partial relation passes 8,000 (SIFT_TRIGGER a bit), so no step runs
 #: long enough to need a second racer or a kill, while a fork costs about 0.01 s against
 #: solves of 0.01-0.03 s (the SLUGS examples, the random corpus: twice their time raced).
-SMALL_BITS: Final = 16
+SMALL_BITS: Final = 20
 STATIC: Final = "static order"
 SIFTED: Final = "sifted order"
 DYNAMIC: Final = "dynamic reordering"  # only when asked for: Options(reordering=True)
