@@ -27,7 +27,8 @@ process could not be cut off.
 This is the portfolio idea of Firman, Maoz and Ringert, "Performance heuristics for GR(1)
 synthesis and related algorithms" (Acta Informatica 57, 2020), reduced to the switch
 that paid here. An explicit ``Options(reordering=True/False)``, a memory budget (two
-racers would need twice the memory), or a platform without ``fork`` skips the race.
+racers would need twice the memory), a platform without ``fork``, or a spec of at most
+:data:`SMALL_BITS` state bits skips the race.
 """
 
 from __future__ import annotations
