@@ -6,6 +6,7 @@ strategy-extraction helpers. Semantics, basics and the variable order: test_solv
 from __future__ import annotations
 
 import itertools
+from typing import Any
 from unittest import mock
 
 import pytest
@@ -74,16 +75,10 @@ def _holds(sym: SymbolicSpec, u: object, point: dict[str, bool]) -> bool:
 @settings(max_examples=25, deadline=None)
 @given(spec=st.one_of(tiny_specs(), one_hot_specs()))
 def test_every_tuning_option_gives_the_same_winning_region(spec: GR1Spec, options: Options) -> None:
-    # Each solver is exact on its care set: compare wherever both claim exactness.
-    base = SymbolicSpec(spec)
+    base = SymbolicSpec(spec)  # each solver is exact on its care set
     other = SymbolicSpec(spec, options)
-    w1 = Game(base).solve().winning
-    w2 = Game(other).solve().winning
-    names = list(base.input_bits + base.output_bits)
-    for bits in itertools.product((False, True), repeat=len(names)):
-        point = dict(zip(names, bits, strict=True))
-        if _holds(base, base.care, point) and _holds(other, other.care, point):
-            assert _holds(base, w1, point) == _holds(other, w2, point), point
+    _same_where_both_exact(base, Game(base).solve().winning,
+                           other, Game(other).solve().winning)
 
 
 @settings(max_examples=25, deadline=None)
@@ -98,7 +93,11 @@ def test_a_restarted_build_that_sifts_again_in_the_game_gives_the_same_winning_r
         w2 = game.solve().winning
     if other.restarted and game.stats.x_iterations:
         assert other.bdd.configure()["reordering"]
-    w1 = Game(base).solve().winning
+    _same_where_both_exact(base, Game(base).solve().winning, other, w2)
+
+
+def _same_where_both_exact(base: SymbolicSpec, w1: Any, other: SymbolicSpec, w2: Any) -> None:
+    """Two winning regions of one spec agree on every state both solvers are exact on."""
     names = list(base.input_bits + base.output_bits)
     for bits in itertools.product((False, True), repeat=len(names)):
         point = dict(zip(names, bits, strict=True))
