@@ -233,12 +233,12 @@ class Game:
             step = time.monotonic() - step
             st.longest_step = max(st.longest_step, step)
             if self._resift and step > RESIFT_STEP:
-                self.watch_growth()
+                self.resume_sifting()
             if new_x == x:
                 return x, x_post
             x, x_post = new_x, self.sym.prime(new_x)
 
-    def watch_growth(self) -> None:
+    def resume_sifting(self) -> None:
         """Turn CUDD's sifting on for the rest of the game (a restarted build's, after a
         step slower than :data:`RESIFT_STEP`): its fixed order was sifted for ρ, and the
         fixpoint's sets outgrow it."""

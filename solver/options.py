@@ -18,7 +18,7 @@ SIFT_TRIGGER: Final = 400
 
 #: After such a restart the fixpoint runs in the sifted order, fixed, until one of its CPre
 #: steps takes this many seconds; then CUDD's sifting is turned on for the rest of the game
-#: (``Game.watch_growth``; the step time is measured anyway, while counting live nodes
+#: (``Game.resume_sifting``; the step time is measured anyway, while counting live nodes
 #: scans CUDD's unique table).  Measured on the AMBA arbiters, solve only: a fixed order
 #: wins up to 6 masters (slowest step 0.035 s; 0.7 s against 1.8 s sifting throughout),
 #: sifting from 8 masters on (slowest steps 0.1-1.3 s; 9 masters: 92 s fixed, 20-30 s).

@@ -87,7 +87,7 @@ class SymbolicSpec:
             self._start(sift=opts.sift_build and not opts.reordering)
         except _OrderTooLarge:  # start again, sifting from the first clause on
             self._start(sift=True)
-            self.restarted = True  # the game may sift again as it grows (Game.watch_growth)
+            self.restarted = True  # the game sifts again once a step is slow (Game.resume_sifting)
 
     def _start(self, sift: bool) -> None:
         """A fresh BDD manager in the static order, and the spec built in it; with ``sift``

@@ -85,7 +85,7 @@ def test_every_tuning_option_gives_the_same_winning_region(spec: GR1Spec, option
 @given(spec=st.one_of(tiny_specs(), one_hot_specs()))
 def test_a_restarted_build_that_sifts_again_in_the_game_gives_the_same_winning_region(
         spec: GR1Spec) -> None:
-    """The restart's second sifting (Game.watch_growth), forced at the first step."""
+    """The restart's second sifting (Game.resume_sifting), forced at the first step."""
     base = SymbolicSpec(spec)
     other = SymbolicSpec(spec, Options(sift_above=0))  # restarts if it has ρ clauses
     with mock.patch.object(game_module, "RESIFT_STEP", -1.0):
