@@ -188,6 +188,7 @@ class Game:
         n_goals, n_assm = len(sym.sys_live), len(sym.env_live)
         live = sym.sys_live[j] & sym.prime(z)
         bound = z if sym.options.recycle else sym.care
+        bound_post = sym.prime(bound)  # where every X iteration of this goal starts
         y, y_post = sym.bdd.false, sym.bdd.false
         layers: list[BDDNode] = []
         rings: list[BDDNode] = []
@@ -201,11 +202,12 @@ class Game:
             live_or_lower = live | y_post
             good, good_post = y, y_post
             for i in range(n_assm):
-                x = bound
+                x, x_post = bound, bound_post
                 if sym.options.recycle and first_middle and again:
                     x = recycled[(j, i)] & z
+                    x_post = sym.prime(x)
                 not_assm = ~sym.env_live[i]
-                x, x_post = self._nu_x(live_or_lower, not_assm, x, bound)
+                x, x_post = self._nu_x(live_or_lower, not_assm, x, x_post, bound)
                 good, good_post = good | x, good_post | x_post
                 recycled[(j, i)] = x
                 if keep_layers:  # the transitions of the fixpoint's last step
@@ -219,12 +221,11 @@ class Game:
         self._track(words, f"|Y| = {y.dag_size}, {ring} rings", (j + 1) / n_goals)
         return y, layers, rings
 
-    def _nu_x(self, lower: BDDNode, not_assm: BDDNode, x: BDDNode, bound: BDDNode
-              ) -> tuple[BDDNode, BDDNode]:
-        """νX. CPre(lower ∨ (¬J^e_i ∧ X')) ∧ bound from ``x`` down: the fixpoint over pre
-        and over post variables."""
+    def _nu_x(self, lower: BDDNode, not_assm: BDDNode, x: BDDNode, x_post: BDDNode,
+              bound: BDDNode) -> tuple[BDDNode, BDDNode]:
+        """νX. CPre(lower ∨ (¬J^e_i ∧ X')) ∧ bound from ``x`` (``x_post`` its primed copy)
+        down: the fixpoint over pre and over post variables."""
         st = self.stats
-        x_post = self.sym.prime(x)
         while True:
             st.x_iterations += 1
             self.limits.check()
