@@ -113,6 +113,7 @@ class Game:
         self.stats = GameStats()
         # a restarted build (SymbolicSpec.restarted) sifts again once a step is slow
         self._resift = sym.restarted and not sym.options.reordering
+        self._care_post = sym.bdd.false  # the care set's primed copy, set by solve
 
     def cpre(self, target: BDDNode) -> BDDNode:
         """States from which the system can force the next transition into ``target``.
@@ -148,7 +149,8 @@ class Game:
         sym, st = self.sym, self.stats
         n_goals = len(sym.sys_live)
         titles = goal_titles(sym.spec) or ("true",)
-        z = sym.care
+        z, z_post = sym.care, sym.prime(sym.care)
+        self._care_post = z_post
         layers: list[list[BDDNode]] = [[] for _ in range(n_goals)]
         rings: list[list[BDDNode]] = [[] for _ in range(n_goals)]
         recycled: dict[tuple[int, int], BDDNode] = {}
@@ -160,46 +162,59 @@ class Game:
                 st.z_iterations += 1
             words = (f"{self.purpose}: round {st.z_iterations}, goal {j + 1} of "
                      f"{n_goals} ({titles[j]})")
-            y, layers[j], rings[j] = self._goal(j, z, words, keep_layers, recycled,
-                                                 j in solved)
+            y, y_post, layers[j], rings[j] = self._goal(j, (z, z_post), words, keep_layers,
+                                                         recycled, j in solved)
             solved.add(j)
             shrunk = z & y
             if shrunk == z:
                 stable.add(j)
             else:
-                z = shrunk
+                z, z_post = shrunk, z_post & y_post
                 stable = set()
                 if stop_if_lost is not None and not self.initially_winning(z, stop_if_lost):
                     return self._result(z, layers, decided_early=True)
             j = (j + 1) % n_goals
         return self._result(z, layers, decided_early=False, rings=rings)
 
-    def _goal(self, j: int, z: BDDNode, words: str, keep_layers: bool,
+    def _goal(self, j: int, zs: tuple[BDDNode, BDDNode], words: str, keep_layers: bool,
               recycled: dict[tuple[int, int], BDDNode], again: bool
-              ) -> tuple[BDDNode, list[BDDNode], list[BDDNode]]:
-        """μY. ∨_i νX. CPre((J^s_j ∧ Z') ∨ Y' ∨ (¬J^e_i ∧ X')) for goal ``j`` at ``z``, with
-        the transitions of each ring and assumption (``keep_layers``) and the rings.
+              ) -> tuple[BDDNode, BDDNode, list[BDDNode], list[BDDNode]]:
+        """μY. ∨_i νX. CPre((J^s_j ∧ Z') ∨ Y' ∨ (¬J^e_i ∧ X')) for goal ``j`` at Z (``zs``:
+        Z and Z'), as Y and Y', with the transitions of each ring and assumption
+        (``keep_layers``) and the rings.
 
         Y is kept over pre and over post variables, each ring's Y' the union of the
         X' that its X fixpoints renamed anyway: renaming Y anew each ring cost as much as
         all the X steps (thesis grid 30 x 30 at health 5, binary: the solve went from
-        129 s to 81 s CPU without it; docs/performance.md, section 6)."""
+        129 s to 81 s CPU without it; docs/performance.md, section 6).  Z' comes the same
+        way, from the Y' that narrowed it.
+
+        A ring whose target (J^s_j ∧ Z') ∨ Y' is the last ring's has the last ring's X
+        fixpoints, so Y is complete without computing them again: in a safety game (no
+        liveness on either side) every round then costs one CPre step instead of four."""
         sym, lim, st = self.sym, self.limits, self.stats
         n_goals, n_assm = len(sym.sys_live), len(sym.env_live)
-        live = sym.sys_live[j] & sym.prime(z)
-        bound = z if sym.options.recycle else sym.care
-        bound_post = sym.prime(bound)  # where every X iteration of this goal starts
+        z, z_post = zs
+        live = sym.sys_live[j] & z_post
+        bound, bound_post = (z, z_post) if sym.options.recycle else (sym.care, self._care_post)
         y, y_post = sym.bdd.false, sym.bdd.false
         layers: list[BDDNode] = []
         rings: list[BDDNode] = []
         first_middle = True
         ring = 0
+        last_target = None
         while True:
             st.y_iterations += 1
             ring += 1
             lim.check()
             lim.report(words, f"ring {ring}", j / n_goals)
             live_or_lower = live | y_post
+            if live_or_lower == last_target:  # Y' added nothing to the target
+                if keep_layers:
+                    layers.extend(layers[-n_assm:])
+                    rings.append(y)
+                break
+            last_target = live_or_lower
             good, good_post = y, y_post
             for i in range(n_assm):
                 x, x_post = bound, bound_post
@@ -219,13 +234,14 @@ class Game:
                 break
             y, y_post = good, good_post
         self._track(words, f"|Y| = {y.dag_size}, {ring} rings", (j + 1) / n_goals)
-        return y, layers, rings
+        return y, y_post, layers, rings
 
     def _nu_x(self, lower: BDDNode, not_assm: BDDNode, x: BDDNode, x_post: BDDNode,
               bound: BDDNode) -> tuple[BDDNode, BDDNode]:
         """νX. CPre(lower ∨ (¬J^e_i ∧ X')) ∧ bound from ``x`` (``x_post`` its primed copy)
         down: the fixpoint over pre and over post variables."""
         st = self.stats
+        stuck = not_assm == self.sym.bdd.false  # the step ignores X: one step is the fixpoint
         while True:
             st.x_iterations += 1
             self.limits.check()
@@ -238,6 +254,8 @@ class Game:
             if new_x == x:
                 return x, x_post
             x, x_post = new_x, self.sym.prime(new_x)
+            if stuck:
+                return x, x_post
 
     def resume_sifting(self) -> None:
         """Turn CUDD's sifting on for the rest of the game (a restarted build's, after a
