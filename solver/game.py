@@ -18,7 +18,7 @@ from dataclasses import dataclass, field
 import dd.cudd as cudd
 
 from diagnostics import SolverError
-from solver.options import RESIFT_STEP
+from solver.options import RESIFT_BLOWUP, RESIFT_NODES, RESIFT_STEP, SMALL_BITS
 from solver.progress import Progress, Stage, goal_titles
 from solver.symbolic import BDDNode, SymbolicSpec
 
@@ -111,8 +111,10 @@ class Game:
         self.limits = limits or Limits()
         self.purpose = purpose  # the words its progress events start with
         self.stats = GameStats()
-        # a restarted build (SymbolicSpec.restarted) sifts again once a step is slow
-        self._resift = sym.restarted and not sym.options.reordering
+        # A fixed order sifts again once a step shows it misfits (_order_misfits): a
+        # restarted build's (sifted for ρ, SymbolicSpec.restarted) once a step is slow.
+        self._resift = not sym.options.reordering
+        self._image: BDDNode | None = None  # the last CPre's ∃y' image, while _resift
         self._care_post = sym.bdd.false  # the care set's primed copy, set by solve
 
     def cpre(self, target: BDDNode) -> BDDNode:
@@ -129,6 +131,8 @@ class Game:
             sys_can = sym.bdd.exist(rest, acc) if rest else acc
         else:
             sys_can = cudd.and_exists(sym.game_sys_trans, target, sym.post_outputs)
+        if self._resift:
+            self._image = sys_can
         # ∀x'. (∃y'.¬ρe) ∨ sys_can  ==  ¬∃x'. ¬(∃y'.¬ρe) ∧ ¬sys_can
         return ~cudd.and_exists(~sym.game_env_blocks, ~sys_can, sym.post_inputs)
 
@@ -245,11 +249,16 @@ class Game:
         while True:
             st.x_iterations += 1
             self.limits.check()
+            target = lower | (x_post & not_assm)
             step = time.monotonic()
-            new_x = self.cpre(lower | (x_post & not_assm)) & bound
+            image = self.cpre(target)
             step = time.monotonic() - step
             st.longest_step = max(st.longest_step, step)
-            if self._resift and step > RESIFT_STEP:
+            misfit = self._resift and self._order_misfits(target, image, step)
+            self._image = None
+            new_x = image & bound
+            del target, image  # live nodes steer sifting: hold only the sets the loop needs
+            if misfit:
                 self.resume_sifting()
             if new_x == x:
                 return x, x_post
@@ -257,11 +266,29 @@ class Game:
             if stuck:
                 return x, x_post
 
+    def _order_misfits(self, target: BDDNode, result: BDDNode, seconds: float) -> bool:
+        """Whether a CPre step from ``target`` to ``result`` that took ``seconds`` shows
+        that the fixed order does not fit the fixpoint's sets: after a restarted build or
+        in a game of at most :data:`SMALL_BITS` state bits, a step slower than
+        :data:`RESIFT_STEP`; else (and too) a step whose ∃y' image has over
+        :data:`RESIFT_NODES` nodes and over :data:`RESIFT_BLOWUP` times the nodes of its
+        target and result together (counted only then: counting is linear in the sets)."""
+        sym = self.sym
+        small = len(sym.input_bits) + len(sym.output_bits) <= SMALL_BITS
+        if (sym.restarted or small) and seconds > RESIFT_STEP:
+            return True
+        if sym.restarted:
+            return False
+        image = 0 if self._image is None else self._image.dag_size
+        return image > RESIFT_NODES and image > RESIFT_BLOWUP * (target.dag_size
+                                                                 + result.dag_size)
+
     def resume_sifting(self) -> None:
-        """Turn CUDD's sifting on for the rest of the game (a restarted build's, after a
-        step slower than :data:`RESIFT_STEP`): its fixed order was sifted for ρ, and the
-        fixpoint's sets outgrow it."""
+        """Turn CUDD's sifting on for the rest of the game, once a step showed that the
+        fixed order misfits (:meth:`_order_misfits`): the order was chosen, or sifted,
+        for ρ, and the fixpoint's sets outgrow it."""
         self._resift = False
+        self._image = None
         self.sym.bdd.configure(reordering=True)
 
     def _result(self, z: BDDNode, layers: list[list[BDDNode]], decided_early: bool,

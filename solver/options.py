@@ -24,6 +24,24 @@ SIFT_TRIGGER: Final = 400
 #: sifting from 8 masters on (slowest steps 0.1-1.3 s; 9 masters: 92 s fixed, 20-30 s).
 RESIFT_STEP: Final = 0.05
 
+#: Specs of at most this many state bits are solved in this process in the static order,
+#: without a race (solver.portfolio): no set of states over 20 bits has more than 2^20 BDD
+#: nodes and the build restarts before a partial relation passes 8,000 (SIFT_TRIGGER a
+#: bit), while a fork costs about 0.01 s against solves of 0.01-0.03 s (the SLUGS examples,
+#: the random corpus: twice their time raced).  A step of such a game slower than
+#: RESIFT_STEP shows that its order misfits (moving obstacle 8 x 8 with a glitch, 18 bits:
+#: 0.07 s steps, 1.0 s fixed, 0.15 s sifting), and sifting 40 variables is cheap.
+SMALL_BITS: Final = 20
+
+#: Any other fixed order sifts again after a step whose ∃y' image (the system's half of
+#: CPre) has more than RESIFT_NODES nodes and RESIFT_BLOWUP times the nodes of the step's
+#: target and result together.  Measured, static order, the largest ratio of a run: the
+#: thesis grids 0.1, hazard grids 0.6, AMBA 3.1 (restarted anyway), the moving-obstacle
+#: games 4.2 at their second step and 13 later (16 x 16 with 4 glitches: over 200 s in the
+#: fixed order, 0.7 s sifting throughout).  Below the node floor a step takes milliseconds.
+RESIFT_BLOWUP: Final = 4
+RESIFT_NODES: Final = 10_000
+
 
 @dataclass
 class Options:

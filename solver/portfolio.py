@@ -42,9 +42,12 @@ from typing import Final, TypeVar
 from diagnostics import GaitcError, SolverError
 from diagnostics.processes import GRACE, can_fork, first_success, to_parent
 from solver.game import Limits, out_of_memory, time_limit_error
+from solver.options import SMALL_BITS
 from solver.symbolic import Options
 
 T = TypeVar("T")
+__all__ = ["DYNAMIC", "HEAD_START", "SIFTED", "SMALL_BITS", "STATIC", "engine_options",
+           "solve_chosen"]
 
 #: Seconds the static configuration runs alone.  Rows that the sifted order solves in half
 #: a second pay the head start in full (thesis 10 x 10 health 3 binary: 0.77 s raced after
@@ -54,12 +57,6 @@ HEAD_START: Final = 0.1
 #: own core, and on a busy one it does not slow the first down (thesis robot A on a loaded
 #: machine: 1.64 s raced at equal priority against 1.02 s for the static order alone).
 SECOND_NICENESS: Final = 10
-#: Specs of at most this many state bits are solved in this process in the static order,
-#: without a race: no set of states over 20 bits has more than 2^20 BDD nodes and the build
-#: restarts before a partial relation passes 8,000 (SIFT_TRIGGER a bit), so no step runs
-#: long enough to need a second racer or a kill, while a fork costs about 0.01 s against
-#: solves of 0.01-0.03 s (the SLUGS examples, the random corpus: twice their time raced).
-SMALL_BITS: Final = 20
 STATIC: Final = "static order"
 SIFTED: Final = "sifted order"
 DYNAMIC: Final = "dynamic reordering"  # only when asked for: Options(reordering=True)

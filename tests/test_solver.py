@@ -96,6 +96,23 @@ def test_a_restarted_build_that_sifts_again_in_the_game_gives_the_same_winning_r
     _same_where_both_exact(base, Game(base).solve().winning, other, w2)
 
 
+@settings(max_examples=25, deadline=None)
+@given(spec=st.one_of(tiny_specs(), one_hot_specs()))
+def test_a_static_order_that_sifts_once_its_images_blow_up_gives_the_same_winning_region(
+        spec: GR1Spec) -> None:
+    """The blow-up rule of Game._order_misfits (not restarted), forced at the first step."""
+    base = SymbolicSpec(spec)
+    other = SymbolicSpec(spec, Options(sift_above=None))  # never restarts
+    with mock.patch.object(game_module, "RESIFT_NODES", -1), \
+            mock.patch.object(game_module, "RESIFT_BLOWUP", -1):
+        game = Game(other)
+        w2 = game.solve().winning
+    assert not other.restarted
+    if game.stats.x_iterations:
+        assert other.bdd.configure()["reordering"]
+    _same_where_both_exact(base, Game(base).solve().winning, other, w2)
+
+
 def _same_where_both_exact(base: SymbolicSpec, w1: Any, other: SymbolicSpec, w2: Any) -> None:
     """Two winning regions of one spec agree on every state both solvers are exact on."""
     names = list(base.input_bits + base.output_bits)

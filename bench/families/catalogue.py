@@ -1,8 +1,9 @@
 """The instances of the benchmark table: every family as a list of spec files to solve.
 
-Generated families (thesis grids, AMBA, hazard grids) are written into a directory chosen
-by the caller; the SLUGS examples and the random corpus are read where the repository keeps
-them (tests/data), with the verdicts SLUGS recorded for them.  Lists are in a fixed order.
+Generated families (thesis grids, AMBA, SYNTCOMP safety games, hazard grids) are written
+into a directory chosen by the caller; the SLUGS examples and the random corpus are read
+where the repository keeps them (tests/data), with the verdicts SLUGS recorded for them.
+Lists are in a fixed order.
 """
 
 from __future__ import annotations
@@ -13,6 +14,7 @@ from pathlib import Path
 
 from bench.families.amba import amba_text
 from bench.families.hazard_grid import SIDES, hazard_grid_text
+from bench.families.safety_games import CINDERELLA, OBSTACLES, cinderella_text, obstacle_text
 from bench.families.thesis import HEALTH, SIZES, gait_text
 
 ROOT = Path(__file__).resolve().parent.parent.parent
@@ -79,6 +81,25 @@ def hazard_grids(workdir: Path, quick: bool) -> list[Instance]:
     return out
 
 
+def safety_games(workdir: Path, quick: bool) -> list[Instance]:
+    """The SYNTCOMP safety games (Cinderella-Stepmother, moving obstacle) with their
+    published verdicts; ``quick`` keeps the configurations decided in about a second."""
+    out = []
+    for game, realizable in CINDERELLA:
+        if not quick or game.buckets == 5:
+            stem = f"cinderella_n{game.buckets}c{game.adjacent}_{game.capacity}by{game.units}"
+            out.append(Instance("safety", f"cinderella {game.name}",
+                                _write(workdir / f"{stem}.structuredslugs",
+                                       cinderella_text(game)), recorded=realizable))
+    for obstacle, realizable in OBSTACLES:
+        if not quick or obstacle.side <= 8:
+            stem = f"obstacle_{obstacle.side}_{obstacle.glitches}"
+            out.append(Instance("safety", f"obstacle {obstacle.name}",
+                                _write(workdir / f"{stem}.structuredslugs",
+                                       obstacle_text(obstacle)), recorded=realizable))
+    return out
+
+
 def slugs_examples() -> list[Instance]:
     """The SLUGS distribution's examples with their recorded verdicts."""
     out = []
@@ -102,7 +123,7 @@ def corpus() -> list[Instance]:
     )
 
 
-FAMILIES = ("thesis", "amba", "slugs-ex", "hazard", "corpus")
+FAMILIES = ("thesis", "amba", "safety", "slugs-ex", "hazard", "corpus")
 
 
 def instances(workdir: Path, quick: bool, families: tuple[str, ...] = FAMILIES,
@@ -116,6 +137,8 @@ def instances(workdir: Path, quick: bool, families: tuple[str, ...] = FAMILIES,
             out += thesis(workdir, quick)
         elif family == "amba":
             out += amba(workdir, quick, amba_sizes)
+        elif family == "safety":
+            out += safety_games(workdir, quick)
         elif family == "slugs-ex":
             out += slugs_examples()
         elif family == "hazard":
