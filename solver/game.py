@@ -18,7 +18,7 @@ from dataclasses import dataclass, field
 import dd.cudd as cudd
 
 from diagnostics import SolverError
-from solver.options import RESIFT_BLOWUP, RESIFT_NODES, RESIFT_STEP, SMALL_BITS
+from solver.options import RESIFT_BLOWUP, RESIFT_NODES, RESIFT_STEP, SMALL_BITS, SMALL_STEP
 from solver.progress import Progress, Stage, goal_titles
 from solver.symbolic import BDDNode, SymbolicSpec
 
@@ -268,14 +268,16 @@ class Game:
 
     def _order_misfits(self, target: BDDNode, result: BDDNode, seconds: float) -> bool:
         """Whether a CPre step from ``target`` to ``result`` that took ``seconds`` shows
-        that the fixed order does not fit the fixpoint's sets: after a restarted build or
-        in a game of at most :data:`SMALL_BITS` state bits, a step slower than
-        :data:`RESIFT_STEP`; else (and too) a step whose ∃y' image has over
-        :data:`RESIFT_NODES` nodes and over :data:`RESIFT_BLOWUP` times the nodes of its
-        target and result together (counted only then: counting is linear in the sets)."""
+        that the fixed order does not fit the fixpoint's sets: after a restarted build, a
+        step slower than :data:`RESIFT_STEP`; in a game of at most :data:`SMALL_BITS`
+        state bits, one slower than :data:`SMALL_STEP`; in any that was not restarted, a
+        step whose ∃y' image has over :data:`RESIFT_NODES` nodes and over
+        :data:`RESIFT_BLOWUP` times the nodes of its target and result together (counted
+        only then: counting is linear in the sets)."""
         sym = self.sym
-        small = len(sym.input_bits) + len(sym.output_bits) <= SMALL_BITS
-        if (sym.restarted or small) and seconds > RESIFT_STEP:
+        if sym.restarted and seconds > RESIFT_STEP:
+            return True
+        if len(sym.input_bits) + len(sym.output_bits) <= SMALL_BITS and seconds > SMALL_STEP:
             return True
         if sym.restarted:
             return False

@@ -29,9 +29,12 @@ RESIFT_STEP: Final = 0.05
 #: nodes and the build restarts before a partial relation passes 8,000 (SIFT_TRIGGER a
 #: bit), while a fork costs about 0.01 s against solves of 0.01-0.03 s (the SLUGS examples,
 #: the random corpus: twice their time raced).  A step of such a game slower than
-#: RESIFT_STEP shows that its order misfits (moving obstacle 8 x 8 with a glitch, 18 bits:
-#: 0.07 s steps, 1.0 s fixed, 0.15 s sifting), and sifting 40 variables is cheap.
+#: SMALL_STEP seconds shows that its order misfits, and sifting 40 variables is cheap: the
+#: moving obstacle 8 x 8 (18 bits) has steps of 0.02-0.07 s in the guards order, 1.0 s to
+#: solve fixed and 0.2 s sifting; the SLUGS examples, the random corpus and thesis robot A
+#: (binary) take at most 0.006 s a step.
 SMALL_BITS: Final = 20
+SMALL_STEP: Final = 0.01
 
 #: Any other fixed order sifts again after a step whose ∃y' image (the system's half of
 #: CPre) has more than RESIFT_NODES nodes and RESIFT_BLOWUP times the nodes of the step's
