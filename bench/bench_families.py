@@ -89,7 +89,9 @@ def run_row(instance: Instance, args: argparse.Namespace) -> tuple[Outcome, Outc
     theirs = timing.slugs(instance, args.slugs_timeout)
     lag = "-"
     if not ours.decided or ours.seconds > args.lag_limit:
-        lag = f"{timing.timeout_lag(instance, args.lag_limit):.2f}"
+        past = timing.timeout_lag(instance, args.lag_limit)
+        # a CLI run that decided within the limit (the row was close to it) has no lag
+        lag = f"{past:.2f}" if past >= 0 else "-"
     return ours, theirs, lag
 
 
