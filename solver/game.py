@@ -111,9 +111,10 @@ class Game:
         self.limits = limits or Limits()
         self.purpose = purpose  # the words its progress events start with
         self.stats = GameStats()
-        # A fixed order sifts again once a step shows it misfits (_order_misfits): a
-        # restarted build's (sifted for ρ, SymbolicSpec.restarted) once a step is slow.
-        self._resift = not sym.options.reordering
+        # A fixed order sifts again once a step shows it misfits (_order_misfits), unless
+        # variables are pinned (Options.first: an order chosen on purpose, which sifting
+        # would undo; the resilience games split each sub-game at the top).
+        self._resift = not sym.options.reordering and not sym.options.first
         self._image: BDDNode | None = None  # the last CPre's ∃y' image, while _resift
         self._care_post = sym.bdd.false  # the care set's primed copy, set by solve
 

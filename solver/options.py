@@ -31,8 +31,8 @@ RESIFT_STEP: Final = 0.05
 #: the random corpus: twice their time raced).  A step of such a game slower than
 #: SMALL_STEP seconds shows that its order misfits, and sifting 40 variables is cheap: the
 #: moving obstacle 8 x 8 (18 bits) has steps of 0.02-0.07 s in the guards order, 1.0 s to
-#: solve fixed and 0.2 s sifting; the SLUGS examples, the random corpus and thesis robot A
-#: (binary) take at most 0.006 s a step.
+#: solve fixed and 0.2 s sifting; the SLUGS examples and random-corpus specs this small
+#: take at most 0.004 s a step (thesis robots A and B have 27 bits and more).
 SMALL_BITS: Final = 20
 SMALL_STEP: Final = 0.01
 

@@ -208,6 +208,16 @@ def test_a_static_build_too_large_for_its_order_starts_again_sifting(tmp_path: P
             resifted = Game(again)
             again_won = resifted.solve().winning
         assert again.bdd.configure()["reordering"] is sifts
+        forced = [mock.patch.object(game_module, name, -1.0)
+                  for name in ("RESIFT_STEP", "SMALL_STEP", "RESIFT_NODES", "RESIFT_BLOWUP")]
+        for patch in forced:
+            patch.start()
+        try:
+            Game(pinned).solve()  # every misfit rule forced: a pinned order still stays
+        finally:
+            for patch in forced:
+                patch.stop()
+        assert not pinned.bdd.configure()["reordering"]
         for semantics in ("default", "robotics"):
             assert (game.initially_winning(won, semantics)
                     == plain.initially_winning(plain_won, semantics)
