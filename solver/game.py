@@ -115,7 +115,12 @@ class Game:
         # variables are pinned (Options.first: an order chosen on purpose, which sifting
         # would undo; the resilience games split each sub-game at the top).
         self._resift = not sym.options.reordering and not sym.options.first
-        self._image: BDDNode | None = None  # the last CPre's ∃y' image, while _resift
+        # the step time that shows a misfit, the smaller of a small game's (solved without
+        # a race) and a restarted build's; None: only the image's growth does
+        slow: list[float] = [limit for limit, applies in (
+            (SMALL_STEP, len(sym.input_bits) + len(sym.output_bits) <= SMALL_BITS),
+            (RESIFT_STEP, sym.restarted)) if applies]
+        self._slow_step = min(slow) if slow else None
         self._care_post = sym.bdd.false  # the care set's primed copy, set by solve
 
     def cpre(self, target: BDDNode) -> BDDNode:
@@ -123,6 +128,10 @@ class Game:
 
         ``target`` ranges over pre and post variables; the result over pre variables.
         """
+        return self._cpre_parts(target)[1]
+
+    def _cpre_parts(self, target: BDDNode) -> tuple[BDDNode, BDDNode]:
+        """The system's half of CPre(``target``), its ∃y' image, and CPre itself."""
         sym = self.sym
         if sym.options.partitioned and len(sym.sys_clusters) > 1:
             acc = target
@@ -132,10 +141,8 @@ class Game:
             sys_can = sym.bdd.exist(rest, acc) if rest else acc
         else:
             sys_can = cudd.and_exists(sym.game_sys_trans, target, sym.post_outputs)
-        if self._resift:
-            self._image = sys_can
         # ∀x'. (∃y'.¬ρe) ∨ sys_can  ==  ¬∃x'. ¬(∃y'.¬ρe) ∧ ¬sys_can
-        return ~cudd.and_exists(~sym.game_env_blocks, ~sys_can, sym.post_inputs)
+        return sys_can, ~cudd.and_exists(~sym.game_env_blocks, ~sys_can, sym.post_inputs)
 
     def solve(self, keep_layers: bool = False, stop_if_lost: str | None = None) -> GameResult:
         """Compute the winning region; with ``keep_layers``, also the strategy layers.
@@ -252,13 +259,13 @@ class Game:
             self.limits.check()
             target = lower | (x_post & not_assm)
             step = time.monotonic()
-            image = self.cpre(target)
+            image, result = self._cpre_parts(target)
             step = time.monotonic() - step
             st.longest_step = max(st.longest_step, step)
-            misfit = self._resift and self._order_misfits(target, image, step)
-            self._image = None
-            new_x = image & bound
-            del target, image  # live nodes steer sifting: hold only the sets the loop needs
+            misfit = self._resift and self._order_misfits(image, target, result, step)
+            del image, target  # live nodes steer sifting: hold only the sets the loop needs
+            new_x = result & bound
+            del result
             if misfit:
                 self.resume_sifting()
             if new_x == x:
@@ -267,31 +274,28 @@ class Game:
             if stuck:
                 return x, x_post
 
-    def _order_misfits(self, target: BDDNode, result: BDDNode, seconds: float) -> bool:
-        """Whether a CPre step from ``target`` to ``result`` that took ``seconds`` shows
-        that the fixed order does not fit the fixpoint's sets: after a restarted build, a
-        step slower than :data:`RESIFT_STEP`; in a game of at most :data:`SMALL_BITS`
-        state bits, one slower than :data:`SMALL_STEP`; in any that was not restarted, a
-        step whose ∃y' image has over :data:`RESIFT_NODES` nodes and over
-        :data:`RESIFT_BLOWUP` times the nodes of its target and result together (counted
-        only then: counting is linear in the sets)."""
-        sym = self.sym
-        if sym.restarted and seconds > RESIFT_STEP:
+    def _order_misfits(self, image: BDDNode, target: BDDNode, result: BDDNode,
+                       seconds: float) -> bool:
+        """Whether a CPre step from ``target`` to ``result`` through the ∃y' ``image``,
+        which took ``seconds``, shows that the fixed order does not fit the fixpoint's
+        sets: in a game of at most :data:`SMALL_BITS` state bits, a step slower than
+        :data:`SMALL_STEP`; after a restarted build, one slower than :data:`RESIFT_STEP`;
+        in any that was not restarted, an image of over :data:`RESIFT_NODES` nodes and over
+        :data:`RESIFT_BLOWUP` times the nodes of the target and the result together
+        (counted only then: counting is linear in the sets)."""
+        if self._slow_step is not None and seconds > self._slow_step:
             return True
-        if len(sym.input_bits) + len(sym.output_bits) <= SMALL_BITS and seconds > SMALL_STEP:
-            return True
-        if sym.restarted:
+        if self.sym.restarted:
             return False
-        image = 0 if self._image is None else self._image.dag_size
-        return image > RESIFT_NODES and image > RESIFT_BLOWUP * (target.dag_size
-                                                                 + result.dag_size)
+        size: int = image.dag_size
+        return size > RESIFT_NODES and size > RESIFT_BLOWUP * (target.dag_size
+                                                               + result.dag_size)
 
     def resume_sifting(self) -> None:
         """Turn CUDD's sifting on for the rest of the game, once a step showed that the
         fixed order misfits (:meth:`_order_misfits`): the order was chosen, or sifted,
         for ρ, and the fixpoint's sets outgrow it."""
         self._resift = False
-        self._image = None
         self.sym.bdd.configure(reordering=True)
 
     def _result(self, z: BDDNode, layers: list[list[BDDNode]], decided_early: bool,
