@@ -116,10 +116,11 @@ class Game:
         # would undo; the resilience games split each sub-game at the top).
         self._resift = not sym.options.reordering and not sym.options.first
         # the step time that shows a misfit, the smaller of a small game's (solved without
-        # a race) and a restarted build's; None: only the image's growth does
+        # a race) and a refitted build's (restarted, or sifted once built); None: only the
+        # image's growth does
         slow: list[float] = [limit for limit, applies in (
             (SMALL_STEP, len(sym.input_bits) + len(sym.output_bits) <= SMALL_BITS),
-            (RESIFT_STEP, sym.restarted)) if applies]
+            (RESIFT_STEP, sym.refitted)) if applies]
         self._slow_step = min(slow) if slow else None
         self._care_post = sym.bdd.false  # the care set's primed copy, set by solve
 
@@ -279,13 +280,13 @@ class Game:
         """Whether a CPre step from ``target`` to ``result`` through the ∃y' ``image``,
         which took ``seconds``, shows that the fixed order does not fit the fixpoint's
         sets: in a game of at most :data:`SMALL_BITS` state bits, a step slower than
-        :data:`SMALL_STEP`; after a restarted build, one slower than :data:`RESIFT_STEP`;
-        in any that was not restarted, an image of over :data:`RESIFT_NODES` nodes and over
+        :data:`SMALL_STEP`; after a refitted build (``SymbolicSpec.refitted``), one slower
+        than :data:`RESIFT_STEP`; in any other, an image of over :data:`RESIFT_NODES` nodes and over
         :data:`RESIFT_BLOWUP` times the nodes of the target and the result together
         (counted only then: counting is linear in the sets)."""
         if self._slow_step is not None and seconds > self._slow_step:
             return True
-        if self.sym.restarted:
+        if self.sym.refitted:
             return False
         size: int = image.dag_size
         return size > RESIFT_NODES and size > RESIFT_BLOWUP * (target.dag_size

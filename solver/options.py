@@ -16,6 +16,15 @@ from typing import Final
 #: order then takes minutes (4 masters: 160 s, against 0.1 s once CUDD sifts).
 SIFT_TRIGGER: Final = 400
 
+#: ``Options.sift_blowup``: a static build that did not restart, but whose finished ρs has
+#: more than this many times the nodes of its clauses' BDDs together, is sifted once, to
+#: convergence, before the fixpoint (``SymbolicSpec.settled``): an order that fits ρs
+#: builds it in about the nodes of its parts or fewer.  Measured in the static order: the
+#: thesis grids 0.05-0.6, hazard grids 0.15-0.8, the SYNTCOMP safety games 2-2.8, the SLUGS
+#: examples at most 5.1 (fastslow_ICRA), and the SYNTCOMP bit encoding of AMBA with two
+#: masters 20 (6,819 nodes from clauses of 335; 2.5 s to solve fixed, 0.25 s sifted once).
+SIFT_BLOWUP: Final = 10
+
 #: After such a restart the fixpoint runs in the sifted order, fixed, until one of its CPre
 #: steps takes this many seconds; then CUDD's sifting is turned on for the rest of the game
 #: (``Game.resume_sifting``; the step time is measured anyway, while counting live nodes
@@ -57,6 +66,7 @@ class Options:
     sift_build: bool = False  # dynamic sifting while ρ is built, one run after, then fixed
     sift_above: int | None = SIFT_TRIGGER  # nodes a bit past which the build sifts anew;
     # never with pinned variables (``first``), whose order was chosen on purpose
+    sift_blowup: float | None = SIFT_BLOWUP  # ρs / its clauses past which it is sifted once
     partitioned: bool = False  # ρs as clusters with early quantification (slow: see bench)
     recycle: bool = False  # start inner X fixpoints from the previous round's values (slower here)
     cluster_limit: int = 2500  # node limit when merging ρs parts into clusters

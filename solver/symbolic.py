@@ -35,6 +35,7 @@ from gr1.formula import (
 from gr1.spec import Clause, GR1Spec, Variable
 from gr1.traversal import Memo, fold
 from solver.bitvectors import add, less, xor
+from solver.clusters import clusters
 from solver.options import MEMORY_STOP, SIFT_TRIGGER, Options
 from solver.ordering import AtomCache, invariant_clauses, variable_order
 
@@ -88,6 +89,8 @@ class SymbolicSpec:
         except _OrderTooLarge:  # start again, sifting from the first clause on
             self._start(sift=True)
             self.restarted = True  # the game sifts again once a step is slow (Game.resume_sifting)
+        # the order was sifted for ρ because the static one misfit it
+        self.refitted = self.restarted or self.settled
 
     def _start(self, sift: bool) -> None:
         """A fresh BDD manager in the static order, and the spec built in it; with ``sift``
@@ -100,7 +103,8 @@ class SymbolicSpec:
             self.bdd.configure(max_memory=self._budget)
         self.bdd.configure(reordering=False)
         self.bdd.declare(*self.order)
-        if opts.reorder_once or opts.reordering or opts.sift_build or opts.sift_above is not None:
+        if (opts.reorder_once or opts.reordering or opts.sift_build
+                or opts.sift_above is not None or opts.sift_blowup is not None):
             for bit in self.input_bits + self.output_bits:
                 self.bdd.group({bit: 2})  # sifting moves a bit and its primed copy together
         self.sifted_build = sift  # whether CUDD sifted while ρ was built
@@ -108,7 +112,11 @@ class SymbolicSpec:
         self.bdd.configure(reordering=sift or bool(opts.reordering))
         self._build()
         self.bdd.configure(reordering=False)
-        if opts.reorder_once or sift:
+        # the static order misfits ρs when it comes out far larger than its clauses
+        self.settled = (not sift and not opts.reorder_once and not opts.reordering
+                        and not opts.first and opts.sift_blowup is not None
+                        and self.sys_trans.dag_size > opts.sift_blowup * self._sys_parts)
+        if opts.reorder_once or sift or self.settled:
             self._sift_to_convergence()
         if opts.reordering:
             self.bdd.configure(reordering=True)
@@ -155,16 +163,19 @@ class SymbolicSpec:
         self.sys_init = self._conj(self._translated(s.sys_init) + sys_range_init)
         env_inv, sys_inv = invariant_clauses(s, self._atoms)
         env_next = self._conj(self._translated(env_inv) + env_range_trans)
-        sys_next = self._conj(self._translated(sys_inv) + sys_range_trans)
+        sys_inv_parts = self._translated(sys_inv) + sys_range_trans
+        sys_next = self._conj(sys_inv_parts)
         known = {id(c) for c in env_inv + sys_inv}
         env_rest = self._translated([c for c in s.env_trans if id(c) not in known])
         sys_rest = self._translated([c for c in s.sys_trans if id(c) not in known])
+        self._sys_parts = sum(p.dag_size for p in sys_inv_parts + sys_rest)  # nodes apart
         self.env_trans = self._conj_under(env_next, env_rest)
         self.sys_trans = self._conj_under(sys_next, sys_rest)
         self.sys_clusters: list[tuple[BDDNode, set[str]]] = []
         if self.options.partitioned:
             parts = [self.translate(c.formula) for c in s.sys_trans] + sys_range_trans
-            self.sys_clusters = self._cluster(parts)
+            self.sys_clusters = clusters(self.bdd, parts, self.post_outputs,
+                                         self.options.cluster_limit)
         self.env_live = [self.translate(c.formula) for c in s.env_liveness] or [true]
         self.sys_live = [self.translate(c.formula) for c in s.sys_liveness] or [true]
         # ∃y'.¬ρe: when ρe does not mention primed outputs this is just ¬ρe.
@@ -252,29 +263,6 @@ class SymbolicSpec:
                 and product.dag_size > opts.sift_above * len(self.prime_map)):
             raise _OrderTooLarge
         return product
-
-    def _cluster(self, parts: Sequence[BDDNode]) -> list[tuple[BDDNode, set[str]]]:
-        """Merge ρs parts into clusters; pair each with the primed outputs it may quantify.
-
-        A primed output is quantified after the last cluster that mentions it (early
-        quantification in the style of Burch, Clarke and Long, 1991).
-        """
-        clusters: list[BDDNode] = []
-        current = self.bdd.true
-        for part in sorted(parts, key=lambda p: sorted(self.bdd.support(p))):
-            merged = current & part
-            if current != self.bdd.true and merged.dag_size > self.options.cluster_limit:
-                clusters.append(current)
-                current = part
-            else:
-                current = merged
-        clusters.append(current)
-        supports = [self.bdd.support(c) & self.post_outputs for c in clusters]
-        out: list[tuple[BDDNode, set[str]]] = []
-        for k, cluster in enumerate(clusters):
-            later: set[str] = set().union(*supports[k + 1 :]) if k + 1 < len(supports) else set()
-            out.append((cluster, supports[k] - later))
-        return out
 
     def _range(self, v: Variable, width: int, primed: bool) -> BDDNode:
         bits = [self.bit(b, primed) for b in self.var_bits[v.name]]

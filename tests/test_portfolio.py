@@ -19,7 +19,7 @@ from diagnostics import SolverError
 from solver import game as game_module
 from solver import portfolio, synthesis
 from solver.game import Limits
-from solver.portfolio import DYNAMIC, SIFTED, STATIC, solve_chosen
+from solver.portfolio import DYNAMIC, SIFTED, STATIC, engine_options, solve_chosen
 from solver.symbolic import Options
 from verifier.strategy import verify
 
@@ -160,7 +160,6 @@ def test_both_racers_write_the_same_controller_byte_for_byte(name: str, semantic
     from gaitsim.environments import RandomEnvironment
     from gr1.bddfile import SymbolicController
     from gr1.controller import controller_to_json
-    from solver.portfolio import engine_options
 
     spec = gaitc.load(ROOT / "specs" / f"{name}.gait", "binary")
     texts, runs = [], []
@@ -222,3 +221,34 @@ def test_a_static_build_too_large_for_its_order_starts_again_sifting(tmp_path: P
             assert (game.initially_winning(won, semantics)
                     == plain.initially_winning(plain_won, semantics)
                     == resifted.initially_winning(again_won, semantics))
+
+
+def test_a_static_build_far_larger_than_its_clauses_is_sifted_once_built(tmp_path: Path) -> None:
+    """AMBA with two masters in the SYNTCOMP bit encoding stays under SIFT_TRIGGER, but its
+    ρs comes out 20 times the nodes of its clauses in the guards order: it is sifted once
+    (``settled``), to a smaller ρs and the same winning region; robot A is left alone."""
+    from bench.families.amba_bits import amba_bits_text
+    from slugs_bridge.formats import load_spec_file
+    from solver.game import Game
+    from solver.options import SIFT_BLOWUP
+    from solver.symbolic import SymbolicSpec
+
+    path = tmp_path / "amba_bits2.structuredslugs"
+    path.write_text(amba_bits_text(2), encoding="utf-8")
+    amba = load_spec_file(str(path))
+    robot_a = gaitc.load(ROOT / "specs" / "thesis_robot_a.gait").gr1
+    for gr1, sifts in ((amba, True), (robot_a, False)):
+        sym = SymbolicSpec(gr1, engine_options(STATIC))
+        fixed = SymbolicSpec(gr1, Options(reordering=False, sift_blowup=None))
+        assert (sym.settled, sym.refitted, sym.restarted) == (sifts, sifts, False)
+        assert not fixed.settled and not fixed.refitted
+        if sifts:
+            assert fixed.sys_trans.dag_size > SIFT_BLOWUP * fixed._sys_parts
+            assert sym.sys_trans.dag_size < fixed.sys_trans.dag_size / 4
+        pinned = SymbolicSpec(gr1, Options(reordering=False, first=(gr1.inputs[0].name,)))
+        assert not pinned.settled  # an order pinned on purpose is kept
+        game, plain = Game(sym), Game(fixed)
+        won, plain_won = game.solve().winning, plain.solve().winning
+        for semantics in ("default", "robotics"):
+            assert game.initially_winning(won, semantics) == plain.initially_winning(
+                plain_won, semantics)

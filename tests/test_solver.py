@@ -68,9 +68,10 @@ def _holds(sym: SymbolicSpec, u: object, point: dict[str, bool]) -> bool:
         engine_options(SIFTED),
         Options(sift_build=True, care=False, order="occurrence"),
         Options(sift_above=0),  # every build starts again, sifting
+        Options(sift_above=None, sift_blowup=0),  # every static build is sifted once built
     ],
     ids=["plain", "clustered", "reordering", "reorder-once", "no-care", "race-second",
-         "sift-build", "sift-restart"],
+         "sift-build", "sift-restart", "sift-settle"],
 )
 @settings(max_examples=25, deadline=None)
 @given(spec=st.one_of(tiny_specs(), one_hot_specs()))
@@ -102,12 +103,12 @@ def test_a_static_order_that_sifts_once_its_images_blow_up_gives_the_same_winnin
         spec: GR1Spec) -> None:
     """The blow-up rule of Game._order_misfits (not restarted), forced at the first step."""
     base = SymbolicSpec(spec)
-    other = SymbolicSpec(spec, Options(sift_above=None))  # never restarts
+    other = SymbolicSpec(spec, Options(sift_above=None, sift_blowup=None))  # never refits
     with mock.patch.object(game_module, "RESIFT_NODES", -1), \
             mock.patch.object(game_module, "RESIFT_BLOWUP", -1):
         game = Game(other)
         w2 = game.solve().winning
-    assert not other.restarted
+    assert not other.refitted
     if game.stats.x_iterations:
         assert other.bdd.configure()["reordering"]
     _same_where_both_exact(base, Game(base).solve().winning, other, w2)

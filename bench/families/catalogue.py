@@ -13,6 +13,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from bench.families.amba import amba_text
+from bench.families.amba_bits import amba_bits_text
 from bench.families.hazard_grid import SIDES, hazard_grid_text
 from bench.families.safety_games import CINDERELLA, OBSTACLES, cinderella_text, obstacle_text
 from bench.families.thesis import HEALTH, SIZES, gait_text
@@ -71,6 +72,15 @@ def amba(workdir: Path, quick: bool, sizes: list[int] | None = None) -> list[Ins
             for n in chosen]
 
 
+def amba_bits(workdir: Path, quick: bool, sizes: list[int] | None = None) -> list[Instance]:
+    """The same arbiters in the SYNTCOMP generator's bit encoding (all realizable)."""
+    chosen = sizes or (QUICK_AMBA if quick else AMBA_SIZES)
+    return [Instance("amba-bits", f"N={n}",
+                     _write(workdir / f"amba_bits_{n}.structuredslugs", amba_bits_text(n)),
+                     recorded=True)
+            for n in chosen]
+
+
 def hazard_grids(workdir: Path, quick: bool) -> list[Instance]:
     """Hazard grids, binary encoding at every side and one-hot at the small ones."""
     out = []
@@ -123,7 +133,7 @@ def corpus() -> list[Instance]:
     )
 
 
-FAMILIES = ("thesis", "amba", "safety", "slugs-ex", "hazard", "corpus")
+FAMILIES = ("thesis", "amba", "amba-bits", "safety", "slugs-ex", "hazard", "corpus")
 
 
 def instances(workdir: Path, quick: bool, families: tuple[str, ...] = FAMILIES,
@@ -137,6 +147,8 @@ def instances(workdir: Path, quick: bool, families: tuple[str, ...] = FAMILIES,
             out += thesis(workdir, quick)
         elif family == "amba":
             out += amba(workdir, quick, amba_sizes)
+        elif family == "amba-bits":
+            out += amba_bits(workdir, quick, amba_sizes)
         elif family == "safety":
             out += safety_games(workdir, quick)
         elif family == "slugs-ex":
