@@ -1,8 +1,9 @@
 """The instances of the benchmark table: every family as a list of spec files to solve.
 
-Generated families (thesis grids, AMBA, SYNTCOMP safety games, hazard grids) are written
-into a directory chosen by the caller; the SLUGS examples and the random corpus are read
-where the repository keeps them (tests/data), with the verdicts SLUGS recorded for them.
+Generated families (thesis grids, AMBA in two encodings, SYNTCOMP safety games, hazard
+grids) are written into a directory chosen by the caller; the SLUGS examples and the random
+corpus are read where the repository keeps them (tests/data), with the verdicts SLUGS
+recorded for them.
 Lists are in a fixed order.
 """
 
