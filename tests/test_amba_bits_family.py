@@ -7,7 +7,6 @@ both liveness assumptions, and (live, with $SLUGS) that SLUGS agrees.
 
 from __future__ import annotations
 
-import os
 import sys
 from dataclasses import replace
 from pathlib import Path
@@ -22,8 +21,6 @@ from gaitc.emission import emit  # noqa: E402
 from gaitc.loading import parse  # noqa: E402
 from gr1.spec import GR1Spec  # noqa: E402
 from solver.synthesis import check  # noqa: E402
-
-LIVE_SLUGS = os.environ.get("SLUGS")
 
 #: The signals of the published three-master instance, in its declaration order.
 THREE_MASTERS_IN = ["hready", "hbusreq0", "hlock0", "hbusreq1", "hlock1", "hbusreq2",
@@ -74,12 +71,9 @@ def test_the_text_is_deterministic_and_sizes_are_checked() -> None:
 
 
 @pytest.mark.slugs
-def test_slugs_agrees_on_two_and_three_masters() -> None:
-    from slugs_bridge.runner import find_slugs, run_slugs_check
+def test_slugs_agrees_on_two_and_three_masters(live_slugs: str) -> None:
+    from slugs_bridge.runner import run_slugs_check
 
-    binary = find_slugs(LIVE_SLUGS)
-    if binary is None or Path(binary).name != "slugs":
-        pytest.skip("no slugs binary on PATH or in $SLUGS")
     for n in (2, 3):
         slugsin = emit(parse(amba_bits_text(n), "amba_bits.structuredslugs"), "slugsin")
-        assert run_slugs_check(slugsin, slugs=binary, timeout=600).realizable
+        assert run_slugs_check(slugsin, slugs=live_slugs, timeout=600).realizable

@@ -7,7 +7,6 @@ the benchmark's job, not a unit test's.
 
 from __future__ import annotations
 
-import os
 import sys
 from dataclasses import replace
 from pathlib import Path
@@ -25,7 +24,6 @@ from solver.symbolic import Options  # noqa: E402
 from solver.synthesis import check  # noqa: E402
 
 REORDER = Options(reordering=True)
-LIVE_SLUGS = os.environ.get("SLUGS")
 
 
 def _gr1(text: str) -> GR1Spec:
@@ -78,16 +76,13 @@ def test_out_of_range_sizes_are_refused() -> None:
 
 
 @pytest.mark.slugs
-def test_slugs_agrees_on_small_arbiters_and_on_the_weakened_ones() -> None:
-    from slugs_bridge.runner import find_slugs, run_slugs_check
+def test_slugs_agrees_on_small_arbiters_and_on_the_weakened_ones(live_slugs: str) -> None:
+    from slugs_bridge.runner import run_slugs_check
 
-    binary = find_slugs(LIVE_SLUGS)
-    if binary is None or Path(binary).name != "slugs":
-        pytest.skip("no slugs binary on PATH or in $SLUGS")
     full = amba_sections(2)
     cases = [(amba_text(n), True) for n in (1, 2, 3)] + [
         (replace(full, env_liveness=[line]).text("one assumption"), False)
         for line in full.env_liveness]
     for text, expected in cases:
         slugsin = emit(parse(text, "amba.structuredslugs"), "slugsin")
-        assert run_slugs_check(slugsin, slugs=binary, timeout=600).realizable == expected
+        assert run_slugs_check(slugsin, slugs=live_slugs, timeout=600).realizable == expected

@@ -8,7 +8,6 @@ benchmark's job.  With $SLUGS set, SLUGS decides the same files.
 
 from __future__ import annotations
 
-import os
 import sys
 from pathlib import Path
 
@@ -33,7 +32,6 @@ from solver.portfolio import STATIC, engine_options  # noqa: E402
 from solver.symbolic import SymbolicSpec  # noqa: E402
 from solver.synthesis import check  # noqa: E402
 
-LIVE_SLUGS = os.environ.get("SLUGS")
 #: The configurations decided here in about a second or less each.
 SMALL_CINDERELLA = [case for case in CINDERELLA if case[0].buckets == 5
                     or case[0].adjacent >= 2]
@@ -87,14 +85,11 @@ def test_a_static_order_that_misfits_the_obstacle_game_turns_sifting_on() -> Non
 
 
 @pytest.mark.slugs
-def test_slugs_agrees_on_the_small_games() -> None:
-    from slugs_bridge.runner import find_slugs, run_slugs_check
+def test_slugs_agrees_on_the_small_games(live_slugs: str) -> None:
+    from slugs_bridge.runner import run_slugs_check
 
-    binary = find_slugs(LIVE_SLUGS)
-    if binary is None or Path(binary).name != "slugs":
-        pytest.skip("no slugs binary on PATH or in $SLUGS")
     texts = [(cinderella_text(g), v) for g, v in SMALL_CINDERELLA]
     texts += [(obstacle_text(g), v) for g, v in SMALL_OBSTACLES]
     for text, expected in texts:
         slugsin = emit(parse(text, "game.structuredslugs"), "slugsin")
-        assert run_slugs_check(slugsin, slugs=binary, timeout=600).realizable == expected
+        assert run_slugs_check(slugsin, slugs=live_slugs, timeout=600).realizable == expected
