@@ -20,9 +20,10 @@ SIFT_TRIGGER: Final = 400
 #: more than this many times the nodes of its clauses' BDDs together, is sifted once, to
 #: convergence, before the fixpoint (``SymbolicSpec.settled``): an order that fits ρs
 #: builds it in about the nodes of its parts or fewer.  Measured in the static order: the
-#: thesis grids 0.05-0.6, hazard grids 0.15-0.8, the SYNTCOMP safety games 2-2.8, the SLUGS
-#: examples at most 5.1 (fastslow_ICRA), and the SYNTCOMP bit encoding of AMBA with two
-#: masters 20 (6,819 nodes from clauses of 335; 2.5 s to solve fixed, 0.25 s sifted once).
+#: thesis grids 0.05-0.6, hazard grids 0.15-0.8, the SYNTCOMP safety games 2-3.1, the SLUGS
+#: examples at most 5.1 (fastslow_ICRA), the random corpus 2.3, and the bit encoding of
+#: AMBA with two masters 20 (6,819 nodes from clauses of 335; 2.5 s to solve fixed, 0.25 s
+#: sifted once).
 SIFT_BLOWUP: Final = 10
 
 #: After such a restart the fixpoint runs in the sifted order, fixed, until one of its CPre
