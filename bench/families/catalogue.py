@@ -10,6 +10,7 @@ Lists are in a fixed order.
 from __future__ import annotations
 
 import json
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -65,20 +66,21 @@ def thesis(workdir: Path, quick: bool) -> list[Instance]:
     return out
 
 
-def amba(workdir: Path, quick: bool, sizes: list[int] | None = None) -> list[Instance]:
-    """AMBA AHB arbiters for N = 2..10 masters (all realizable)."""
-    chosen = sizes or (QUICK_AMBA if quick else AMBA_SIZES)
-    return [Instance("amba", f"N={n}", _write(workdir / f"amba_{n}.structuredslugs",
-                                              amba_text(n)), recorded=True)
-            for n in chosen]
+#: The AMBA families: each one's text for N masters and the stem of its files.
+ARBITERS: dict[str, tuple[Callable[[int], str], str]] = {
+    "amba": (amba_text, "amba"),  # an integer hmaster (bench/families/amba.py)
+    "amba-bits": (amba_bits_text, "amba_bits"),  # the SYNTCOMP generator's bit encoding
+}
 
 
-def amba_bits(workdir: Path, quick: bool, sizes: list[int] | None = None) -> list[Instance]:
-    """The same arbiters in the SYNTCOMP generator's bit encoding (all realizable)."""
+def amba(workdir: Path, quick: bool, sizes: list[int] | None = None,
+         family: str = "amba") -> list[Instance]:
+    """AMBA AHB arbiters of ``family`` (see :data:`ARBITERS`) for N = 2..10 masters (all
+    realizable)."""
+    text, stem = ARBITERS[family]
     chosen = sizes or (QUICK_AMBA if quick else AMBA_SIZES)
-    return [Instance("amba-bits", f"N={n}",
-                     _write(workdir / f"amba_bits_{n}.structuredslugs", amba_bits_text(n)),
-                     recorded=True)
+    return [Instance(family, f"N={n}", _write(workdir / f"{stem}_{n}.structuredslugs",
+                                              text(n)), recorded=True)
             for n in chosen]
 
 
@@ -146,10 +148,8 @@ def instances(workdir: Path, quick: bool, families: tuple[str, ...] = FAMILIES,
             continue
         if family == "thesis":
             out += thesis(workdir, quick)
-        elif family == "amba":
-            out += amba(workdir, quick, amba_sizes)
-        elif family == "amba-bits":
-            out += amba_bits(workdir, quick, amba_sizes)
+        elif family in ARBITERS:
+            out += amba(workdir, quick, amba_sizes, family)
         elif family == "safety":
             out += safety_games(workdir, quick)
         elif family == "slugs-ex":
