@@ -89,8 +89,18 @@ class SymbolicSpec:
         except _OrderTooLarge:  # start again, sifting from the first clause on
             self._start(sift=True)
             self.restarted = True  # the game sifts again once a step is slow (Game.resume_sifting)
-        # the order was sifted for ρ because the static one misfit it
-        self.refitted = self.restarted or self.settled
+
+    @property
+    def refitted(self) -> bool:
+        """Whether the order was sifted for ρ because the static one misfit it (a restarted
+        build, or one sifted once built); its game sifts again once a step is slow."""
+        return self.restarted or self.settled
+
+    def _static_order_may_go(self) -> bool:
+        """Whether the build's order is the static one and nothing keeps it: not sifted
+        already, no dynamic reordering, no variables pinned on purpose (``first``)."""
+        opts = self.options
+        return not self.sifted_build and not opts.reordering and not opts.first
 
     def _start(self, sift: bool) -> None:
         """A fresh BDD manager in the static order, and the spec built in it; with ``sift``
@@ -113,8 +123,8 @@ class SymbolicSpec:
         self._build()
         self.bdd.configure(reordering=False)
         # the static order misfits ρs when it comes out far larger than its clauses
-        self.settled = (not sift and not opts.reorder_once and not opts.reordering
-                        and not opts.first and opts.sift_blowup is not None
+        self.settled = (opts.sift_blowup is not None and not opts.reorder_once
+                        and self._static_order_may_go()
                         and self.sys_trans.dag_size > opts.sift_blowup * self._sys_parts)
         if opts.reorder_once or sift or self.settled:
             self._sift_to_convergence()
@@ -258,8 +268,7 @@ class SymbolicSpec:
         """``product``, unless it is too large for the static order (``Options.sift_above``,
         :data:`~solver.options.SIFT_TRIGGER`): then the build starts again, sifting."""
         opts = self.options
-        if (opts.sift_above is not None and not self.sifted_build and not opts.reordering
-                and not opts.first  # an order pinned on purpose is kept (analysis.parametric)
+        if (opts.sift_above is not None and self._static_order_may_go()
                 and product.dag_size > opts.sift_above * len(self.prime_map)):
             raise _OrderTooLarge
         return product
