@@ -2,7 +2,8 @@
 
 Families (bench/families/): the thesis robots and grids (4x5 to 30x30, health 2-5, both
 encodings), AMBA AHB arbiters (N = 2..10, in an integer encoding and in the SYNTCOMP
-generator's bit encoding), the SYNTCOMP safety games (Cinderella-Stepmother,
+generator's bit encoding), generalized buffers (GenBuf, 2 to 64 senders), the SYNTCOMP
+safety games (Cinderella-Stepmother,
 moving obstacle), the SLUGS examples, hazard grids, and the random
 corpus as one row of totals.  Columns: gaitc wall seconds (embedded solver, default options,
 ``--timeout`` per instance), the verdict (``!`` marks a verdict that differs from SLUGS's

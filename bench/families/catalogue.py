@@ -1,7 +1,7 @@
 """The instances of the benchmark table: every family as a list of spec files to solve.
 
-Generated families (thesis grids, AMBA in two encodings, SYNTCOMP safety games, hazard
-grids) are written into a directory chosen by the caller; the SLUGS examples and the random
+Generated families (thesis grids, AMBA in two encodings, GenBuf, SYNTCOMP safety games,
+hazard grids) are written into a directory chosen by the caller; the SLUGS examples and the random
 corpus are read where the repository keeps them (tests/data), with the verdicts SLUGS
 recorded for them.
 Lists are in a fixed order.
@@ -16,6 +16,7 @@ from pathlib import Path
 
 from bench.families.amba import amba_text
 from bench.families.amba_bits import amba_bits_text
+from bench.families.genbuf import genbuf_text
 from bench.families.hazard_grid import SIDES, hazard_grid_text
 from bench.families.safety_games import CINDERELLA, OBSTACLES, cinderella_text, obstacle_text
 from bench.families.thesis import HEALTH, SIZES, gait_text
@@ -30,6 +31,9 @@ AMBA_SIZES = list(range(2, 11))
 QUICK_SIZES = SIZES[:3]
 QUICK_HEALTH = HEALTH[:2]
 QUICK_AMBA = list(range(2, 6))
+#: GenBuf's senders: powers of two, where every SLC value names a sender, and sizes between.
+GENBUF_SIZES = [2, 3, 4, 6, 8, 12, 16, 24, 32, 48, 64]
+QUICK_GENBUF = [2, 4, 8, 16]
 QUICK_SIDES = SIDES[:4]
 #: One-hot hazard grids beyond this side are left out (the one-hot hazard group makes the
 #: embedded solver time out from 6 x 6 on; the binary encoding is the family's row).
@@ -84,6 +88,13 @@ def amba(workdir: Path, quick: bool, sizes: list[int] | None = None,
             for n in chosen]
 
 
+def genbufs(workdir: Path, quick: bool) -> list[Instance]:
+    """Generalized buffers for N senders and two receivers (all realizable)."""
+    return [Instance("genbuf", f"N={n}", _write(workdir / f"genbuf_{n}.structuredslugs",
+                                                genbuf_text(n)), recorded=True)
+            for n in (QUICK_GENBUF if quick else GENBUF_SIZES)]
+
+
 def hazard_grids(workdir: Path, quick: bool) -> list[Instance]:
     """Hazard grids, binary encoding at every side and one-hot at the small ones."""
     out = []
@@ -136,7 +147,7 @@ def corpus() -> list[Instance]:
     )
 
 
-FAMILIES = ("thesis", "amba", "amba-bits", "safety", "slugs-ex", "hazard", "corpus")
+FAMILIES = ("thesis", "amba", "amba-bits", "genbuf", "safety", "slugs-ex", "hazard", "corpus")
 
 
 def instances(workdir: Path, quick: bool, families: tuple[str, ...] = FAMILIES,
@@ -150,6 +161,8 @@ def instances(workdir: Path, quick: bool, families: tuple[str, ...] = FAMILIES,
             out += thesis(workdir, quick)
         elif family in ARBITERS:
             out += amba(workdir, quick, amba_sizes, family)
+        elif family == "genbuf":
+            out += genbufs(workdir, quick)
         elif family == "safety":
             out += safety_games(workdir, quick)
         elif family == "slugs-ex":
