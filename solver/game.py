@@ -122,6 +122,7 @@ class Game:
             (SMALL_STEP, len(sym.input_bits) + len(sym.output_bits) <= SMALL_BITS),
             (RESIFT_STEP, sym.refitted)) if applies]
         self._slow_step = min(slow) if slow else None
+        self._sift_at: float | None = None  # when a refitted build's game sifts (sift_after)
         self._care_post = sym.bdd.false  # the care set's primed copy, set by solve
 
     def cpre(self, target: BDDNode) -> BDDNode:
@@ -164,6 +165,8 @@ class Game:
         titles = goal_titles(sym.spec) or ("true",)
         z, z_post = sym.care, sym.prime(sym.care)
         self._care_post = z_post
+        if sym.refitted and sym.options.sift_after is not None:
+            self._sift_at = time.monotonic() + sym.options.sift_after
         layers: list[list[BDDNode]] = [[] for _ in range(n_goals)]
         rings: list[list[BDDNode]] = [[] for _ in range(n_goals)]
         recycled: dict[tuple[int, int], BDDNode] = {}
@@ -288,10 +291,14 @@ class Game:
         which took ``seconds``, shows that the fixed order does not fit the fixpoint's
         sets: in a game of at most :data:`SMALL_BITS` state bits, a step slower than
         :data:`SMALL_STEP`; after a refitted build (``SymbolicSpec.refitted``), one slower
-        than :data:`RESIFT_STEP`; in any other, an image of over :data:`RESIFT_NODES` nodes and over
-        :data:`RESIFT_BLOWUP` times the nodes of the target and the result together
-        (counted only then: counting is linear in the sets)."""
+        than :data:`RESIFT_STEP`, or any step once the fixpoint has run
+        ``Options.sift_after`` seconds; in any other, an image of over
+        :data:`RESIFT_NODES` nodes and over :data:`RESIFT_BLOWUP` times the nodes of the
+        target and the result together (counted only then: counting is linear in the
+        sets)."""
         if self._slow_step is not None and seconds > self._slow_step:
+            return True
+        if self._sift_at is not None and time.monotonic() > self._sift_at:
             return True
         if self.sym.refitted:
             return False

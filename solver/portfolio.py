@@ -10,7 +10,9 @@ No cheap test tells the two apart before solving, so two forked processes race:
    :data:`HEAD_START` seconds, at the cost of one fork (a few milliseconds);
 2. then a second process joins, niced: the same guards order, but CUDD sifts variable
    groups (each bit with its primed copy) whenever the relation grows while it is built,
-   once more when it is built, and then keeps that order fixed for the fixpoint. The
+   once more when it is built, and then keeps that order fixed for the fixpoint (the
+   first racer, whose build may have started again sifting too, sifts throughout its
+   fixpoint after :data:`~solver.options.RACE_SIFT_AFTER` seconds, so the two differ). The
    first answer wins and the other process is killed. The machines gaitc targets have two
    cores, so each racer runs at full speed.
 
@@ -42,7 +44,7 @@ from typing import Final, TypeVar
 from diagnostics import GaitcError, SolverError
 from diagnostics.processes import GRACE, can_fork, first_success, to_parent
 from solver.game import Limits, out_of_memory, time_limit_error
-from solver.options import SMALL_BITS
+from solver.options import RACE_SIFT_AFTER, SMALL_BITS
 from solver.symbolic import Options
 
 T = TypeVar("T")
@@ -84,7 +86,10 @@ def solve_chosen(run: Callable[[Options, Limits], T], options: Options, limits: 
     # The static racer's progress comes back through the pipe; the other racer is quiet.
     reporting = replace(limits, progress=None if limits.progress is None else to_parent)
     quiet = replace(limits, progress=None)
-    static, sifted = engine_options(STATIC, options), engine_options(SIFTED, options)
+    # The racers differ in the game too: a restarted static build is sifted like the
+    # second racer's, so its game sifts throughout after a while and the other stays fixed.
+    static = replace(engine_options(STATIC, options), sift_after=RACE_SIFT_AFTER)
+    sifted = engine_options(SIFTED, options)
 
     def second() -> T:
         os.nice(SECOND_NICENESS)  # in its own process: yields the CPU it would steal

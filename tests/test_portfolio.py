@@ -8,6 +8,7 @@ verdicts and controllers must not depend on which configuration answered.
 from __future__ import annotations
 
 import time
+from dataclasses import replace
 from pathlib import Path
 from typing import Any
 from unittest import mock
@@ -252,3 +253,36 @@ def test_a_static_build_far_larger_than_its_clauses_is_sifted_once_built(tmp_pat
         for semantics in ("default", "robotics"):
             assert game.initially_winning(won, semantics) == plain.initially_winning(
                 plain_won, semantics)
+
+
+def test_the_racers_differ_in_the_game_as_well(tmp_path: Path) -> None:
+    """The static racer's game sifts throughout after RACE_SIFT_AFTER seconds, but only after
+    a refitted build (which the second racer's resembles); the second racer stays fixed."""
+    from bench.families.genbuf import genbuf_text
+    from slugs_bridge.formats import load_spec_file
+    from solver.game import Game
+    from solver.options import RACE_SIFT_AFTER
+    from solver.symbolic import SymbolicSpec
+
+    def run(options: Options, limits: Limits) -> float | None:
+        return options.sift_after  # the racer runs in a child: its answer tells its options
+
+    assert solve_chosen(run, Options(), Limits()) == (RACE_SIFT_AFTER, STATIC)
+    assert engine_options(SIFTED).sift_after is None and engine_options(STATIC).sift_after is None
+
+    path = tmp_path / "genbuf8.structuredslugs"
+    path.write_text(genbuf_text(8), encoding="utf-8")
+    genbuf = load_spec_file(str(path))
+    robot_a = gaitc.load(ROOT / "specs" / "thesis_robot_a.gait").gr1
+    regions = []
+    for gr1, refits in ((genbuf, True), (robot_a, False)):
+        sym = SymbolicSpec(gr1, replace(engine_options(STATIC), sift_after=0.0))
+        assert sym.refitted is refits
+        game = Game(sym)
+        won = game.solve().winning
+        assert sym.bdd.configure()["reordering"] is refits
+        plain = Game(SymbolicSpec(gr1, engine_options(STATIC)))
+        plain_won = plain.solve().winning
+        regions.append(all(game.initially_winning(won, s) == plain.initially_winning(plain_won, s)
+                           for s in ("default", "robotics")))
+    assert regions == [True, True]

@@ -69,9 +69,10 @@ def _holds(sym: SymbolicSpec, u: object, point: dict[str, bool]) -> bool:
         Options(sift_build=True, care=False, order="occurrence"),
         Options(sift_above=0),  # every build starts again, sifting
         Options(sift_above=None, sift_blowup=0),  # every static build is sifted once built
+        Options(sift_above=0, sift_after=0.0),  # restarted, and sifting from the first step
     ],
     ids=["plain", "clustered", "reordering", "reorder-once", "no-care", "race-second",
-         "sift-build", "sift-restart", "sift-settle"],
+         "sift-build", "sift-restart", "sift-settle", "sift-after"],
 )
 @settings(max_examples=25, deadline=None)
 @given(spec=st.one_of(tiny_specs(), one_hot_specs()))
