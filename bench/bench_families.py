@@ -3,16 +3,15 @@
 Families (bench/families/): the thesis robots and grids (4x5 to 30x30, health 2-5, both
 encodings), AMBA AHB arbiters (N = 2..10, in an integer encoding and in the SYNTCOMP
 generator's bit encoding), generalized buffers (GenBuf, 2 to 64 senders), the SYNTCOMP
-safety games (Cinderella-Stepmother,
-moving obstacle), the SLUGS examples, hazard grids, and the random
-corpus as one row of totals.  Columns: gaitc wall seconds (embedded solver, default options,
-``--timeout`` per instance), the verdict (``!`` marks a verdict that differs from SLUGS's
-recorded or live one), SLUGS's seconds when $SLUGS is set (``> T`` past its own limit), the
-gaitc/SLUGS ratio, and how long past ``--lag-limit`` ``gaitc check --timeout`` returned on
-instances slower than that limit.  ``--ablation`` times solver options per row instead:
-the default (the race), each of its two racers alone, one sifting run after the static
-build, dynamic sifting throughout, and the static occurrence order; each configuration's
-fastest of three runs on rows under five seconds.
+safety games (Cinderella-Stepmother, moving obstacle), the SLUGS examples, hazard grids, and
+the random corpus as one row of totals. Columns: gaitc wall seconds (embedded solver,
+default options, ``--timeout`` per instance), the verdict (``!`` marks a verdict that
+differs from SLUGS's recorded or live one), SLUGS's seconds when $SLUGS is set (``> T`` past
+its own limit), the gaitc/SLUGS ratio, and how long past ``--lag-limit`` ``gaitc check
+--timeout`` returned on instances slower than that limit. ``--ablation`` times solver
+options per row instead: the default (the race), each of its two racers alone, one sifting
+run after the static build, dynamic sifting throughout, and the static occurrence order;
+each configuration's fastest of three runs on rows under five seconds.
 Run: .venv/bin/python bench/bench_families.py [--quick] [--ablation] [--family F] [--amba N]
 """
 

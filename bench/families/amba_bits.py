@@ -24,11 +24,12 @@ BURST4 = "!hburst0 & hburst1"
 
 
 def master_bits(n: int) -> int:
-    """Bits of ``hmaster`` for ``n`` masters: ceil(log2 n), at least one."""
+    """Bits of ``hmaster`` for ``n`` masters (of any plain bit vector for ``n`` values):
+    ceil(log2 n), at least one."""
     return max(1, (n - 1).bit_length())
 
 
-def _bits(name: str, width: int, value: int, primed: bool = False) -> str:
+def value_bits(name: str, width: int, value: int, primed: bool = False) -> str:
     """``name0 .. name{width-1}`` equal to ``value``, bit 0 least significant."""
     tick = "'" if primed else ""
     return " & ".join(("" if value >> j & 1 else "!") + f"{name}{j}{tick}"
@@ -85,17 +86,17 @@ def _guarantees(n: int) -> list[str]:
     """SYS_TRANS in the generator's clause order."""
     width = master_bits(n)
     masters = range(n)
-    out = [f"({_bits('hmaster', width, i)}) -> (hbusreq{i} <-> busreq)" for i in masters]
+    out = [f"({value_bits('hmaster', width, i)}) -> (hbusreq{i} <-> busreq)" for i in masters]
     _a1(out)
     out.append("!hready -> !start'")  # G1
     _g2(out)
     _g3(out)
     # G4, G5: on hready the grant names the next master, and locked the next hmastlock.
-    out += [f"hready -> (hgrant{i} <-> ({_bits('hmaster', width, i, True)}))" for i in masters]
+    out += [f"hready -> (hgrant{i} <-> ({value_bits('hmaster', width, i, True)}))" for i in masters]
     out.append("hready -> (!locked <-> !hmastlock')")
     # G6: without a new start the master and its lock stay.
-    out += [f"!start' -> (({_bits('hmaster', width, i)}) <-> ({_bits('hmaster', width, i, True)}))"
-            for i in masters]
+    out += [f"!start' -> (({value_bits('hmaster', width, i)}) <-> "
+            f"({value_bits('hmaster', width, i, True)}))" for i in masters]
     out.append("!start' -> (hmastlock <-> hmastlock')")
     # G7: a decision for master i sets locked exactly when i asks for a lock.
     out += [f"(decide & hgrant{i}') -> (hlock{i} <-> locked')" for i in masters]
@@ -133,7 +134,7 @@ def amba_bits_sections(n: int) -> Sections:
     env_liveness = ["!stateA1_1", "hready"]  # A1 through its monitor, A2
     initial_true = {"start", "decide", "hgrant0"}
     sys_init = [name if name in initial_true else f"!{name}" for name in outputs]
-    sys_liveness = [f"({_bits('hmaster', width, i)}) | !hbusreq{i}" for i in masters]  # G9
+    sys_liveness = [f"({value_bits('hmaster', width, i)}) | !hbusreq{i}" for i in masters]  # G9
     return Sections(inputs, outputs, env_init, env_trans, env_liveness, sys_init,
                     _guarantees(n), sys_liveness)
 

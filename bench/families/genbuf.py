@@ -23,6 +23,7 @@ from the formulas; it shares none with the generator.
 from __future__ import annotations
 
 from bench.families.amba import Sections
+from bench.families.amba_bits import master_bits, value_bits
 
 #: The receivers: the published G7 monitor is built for exactly two.
 RECEIVERS = 2
@@ -30,14 +31,8 @@ RECEIVERS = 2
 SENDERS = range(2, 65)
 
 
-def select_bits(n: int) -> int:
-    """Bits of the multiplexer select ``SLC`` for ``n`` senders: ceil(log2 n), at least one."""
-    return max(1, (n - 1).bit_length())
-
-
-def _select(n: int, value: int) -> str:
-    """``SLC' = value`` as a conjunction of the next select bits, bit 0 least significant."""
-    return " & ".join(("" if value >> b & 1 else "!") + f"SLC{b}'" for b in range(select_bits(n)))
+#: Bits of the multiplexer select ``SLC`` for ``n`` senders: ceil(log2 n), at least one.
+select_bits = master_bits
 
 
 def _senders(n: int) -> tuple[list[str], list[str]]:
@@ -93,7 +88,8 @@ def _fifo(n: int) -> tuple[list[str], list[str]]:
         rose = f"(!BtoS_ACK{i} & BtoS_ACK{i}')"
         sys.append(f"{rose} -> ENQ'")  # G9: data is stored on each new ack
         link = "->" if i == 0 else "<->"  # sender 0 is SLC = 0 also when nobody sends
-        sys.append(f"{rose} {link} ({_select(n, i)})")  # G9: from the sender acked
+        slc = value_bits("SLC", select_bits(n), i, primed=True)
+        sys.append(f"{rose} {link} ({slc})")  # G9: from the sender acked
     no_rise = " & ".join(f"(BtoS_ACK{i} | !BtoS_ACK{i}')" for i in range(n))
     sys.append(f"({no_rise}) -> !ENQ'")
     for j in range(RECEIVERS):
