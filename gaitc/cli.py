@@ -76,19 +76,58 @@ class Terminated(BaseException):
     code (networkx's generators, for one) swallows it halfway through."""
 
 
-def _terminate(signum: int, frame: object) -> None:
-    raise Terminated
+class _Signals:
+    """The SIGTERM and SIGINT of one run: each raises Terminated or KeyboardInterrupt where
+    the run is, and the first is recorded.
+
+    The record lets :func:`_run` report the signal even when a library's cleanup, hit
+    halfway, raised some other exception in its place; once the run has returned (disarmed)
+    a signal is only recorded, so that putting the handlers back cannot fail."""
+
+    RAISES: Final = {signal.SIGTERM: Terminated, signal.SIGINT: KeyboardInterrupt}
+
+    def __init__(self) -> None:
+        self.received: int | None = None
+        self.armed = True
+
+    def __call__(self, signum: int, frame: object) -> None:
+        if self.received is None:
+            self.received = signum
+        if self.armed:
+            raise self.RAISES[signal.Signals(signum)]
+
+    def ending(self) -> int | None:
+        """The exit code of the signal received (its line printed), or None if none came."""
+        return None if self.received is None else _ended_by(self.received)
+
+
+def _ended_by(signum: int) -> int:
+    """Print the line of a run that ``signum`` ended and return its exit code."""
+    if signum == signal.SIGINT:
+        print("gaitc: interrupted", file=sys.stderr)
+        return ExitCode.INTERRUPTED
+    print("gaitc: terminated", file=sys.stderr)
+    return ExitCode.TERMINATED
 
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Run gaitc with ``argv`` (default: ``sys.argv[1:]``) and return the exit code."""
-    in_main_thread = threading.current_thread() is threading.main_thread()
-    previous = signal.signal(signal.SIGTERM, _terminate) if in_main_thread else None
+    if threading.current_thread() is not threading.main_thread():
+        return _run(argv, None)
+    signals = _Signals()
+    previous = {signal.SIGTERM: signal.signal(signal.SIGTERM, signals)}
+    # Ctrl-C only where Python's own handler has it (a background job may ignore SIGINT)
+    if signal.getsignal(signal.SIGINT) is signal.default_int_handler:
+        previous[signal.SIGINT] = signal.signal(signal.SIGINT, signals)
     try:
-        return _run(argv)
-    finally:
-        if in_main_thread:
-            signal.signal(signal.SIGTERM, previous)
+        try:
+            return _run(argv, signals)
+        finally:
+            signals.armed = False  # from here on a signal is only recorded
+            for signum, handler in previous.items():
+                signal.signal(signum, handler)
+    except (Terminated, KeyboardInterrupt):  # it came after _run had returned
+        return _ended_by(signals.received or signal.SIGINT)
 
 
 def _parse(parser: _Parser, words: list[str]) -> argparse.Namespace:
@@ -109,7 +148,7 @@ def _parse(parser: _Parser, words: list[str]) -> argparse.Namespace:
     return args
 
 
-def _run(argv: Sequence[str] | None) -> int:
+def _run(argv: Sequence[str] | None, signals: _Signals | None) -> int:
     words = attach_signed_values(list(sys.argv[1:] if argv is None else argv))
     # --json before parsing, for usage errors; after parsing, the command's own option
     as_json, command = reporting.json_requested(words), None
@@ -124,6 +163,9 @@ def _run(argv: Sequence[str] | None) -> int:
         code: int = args.run(args)
         return code
     except GaitcError as err:
+        ending = signals.ending() if signals is not None else None
+        if ending is not None:  # the error came of the signal's unwinding
+            return ending
         if isinstance(err, UsageError):
             print(f"gaitc: usage error: {err.message}", file=sys.stderr)
         else:
@@ -132,14 +174,17 @@ def _run(argv: Sequence[str] | None) -> int:
             reporting.print_json(reporting.error_document(command, err))
         return reporting.exit_code_of(err)
     except KeyboardInterrupt:
-        print("gaitc: interrupted", file=sys.stderr)
-        return ExitCode.INTERRUPTED
+        return _ended_by(signal.SIGINT)
     except Terminated:
-        print("gaitc: terminated", file=sys.stderr)
-        return ExitCode.TERMINATED
+        return _ended_by(signal.SIGTERM)
     except BrokenPipeError:
         return ExitCode.OK
-    except Exception as err:  # a bug in gaitc, not in the user's input
+    except Exception as err:
+        # a signal's exception may land in a library's cleanup, which then fails otherwise
+        ending = signals.ending() if signals is not None else None
+        if ending is not None:
+            return ending
+        # else a bug in gaitc, not in the user's input
         if os.environ.get("GAITC_DEBUG"):
             traceback.print_exc()
         print(

@@ -91,3 +91,30 @@ def test_a_signal_at_any_moment_leaves_no_bad_file(tmp_path: Path, signum: signa
     while _survivors(str(out)) and time.monotonic() < deadline:
         time.sleep(0.05)
     assert _survivors(str(out)) == []
+
+
+@pytest.mark.parametrize("signum", [signal.SIGTERM, signal.SIGINT], ids=["SIGTERM", "SIGINT"])
+def test_a_cleanup_that_fails_under_a_signal_still_ends_as_the_signal(
+        monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str],
+        signum: signal.Signals) -> None:
+    """The signal's exception may land in a library's ``finally``, which then raises an
+    error of its own (a KeyError, seen once under load): gaitc still reports the signal,
+    not an internal error."""
+    import argparse
+
+    from gaitc import cli
+
+    def run(args: argparse.Namespace) -> int:
+        try:
+            os.kill(os.getpid(), signum)
+            time.sleep(5)  # the handler raises here
+        finally:
+            _ = {}[3]  # type: ignore[index]  # the cleanup fails halfway
+        return 0
+
+    monkeypatch.setattr(cli, "_parse", lambda parser, words: argparse.Namespace(run=run))
+    before = signal.getsignal(signal.SIGTERM), signal.getsignal(signal.SIGINT)
+    code, line = ENDINGS[signum]
+    assert cli.main(["check", "x.gait"]) == code
+    assert capsys.readouterr().err.strip() == line
+    assert (signal.getsignal(signal.SIGTERM), signal.getsignal(signal.SIGINT)) == before
