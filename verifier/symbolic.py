@@ -23,6 +23,8 @@ from __future__ import annotations
 
 from typing import Any
 
+import dd.cudd as cudd
+
 from gr1.bddfile import SymbolicController, materialize
 from gr1.bitblast import bitblast
 from gr1.bits import bits_mismatch
@@ -43,6 +45,11 @@ class _Loop:
         self.g = [f"{GOAL_BIT}{k}" for k in range(self.width)]
         for bit in self.g:
             self.bdd.declare(bit, bit + "'")
+        # the counter on top: the loop's relation is then a choice of the goal pair first,
+        # each pair's moves below it, not every goal's moves interleaved with the counter
+        counter = [n for bit in self.g for n in (bit, bit + "'")]
+        rest = sorted(set(self.bdd.vars) - set(counter), key=self.bdd.level_of_var)
+        cudd.reorder(self.bdd, {n: k for k, n in enumerate(counter + rest)})
         self.pre = list(self.logic.inputs + self.logic.outputs) + self.g
         self.post = [n + "'" for n in self.pre]
         self.rename = dict(zip(self.post, self.pre, strict=True))
@@ -75,8 +82,8 @@ class _Loop:
         return self.bdd.let(self.rename, self.bdd.exist(set(self.pre), states & trans))
 
     def pre_image(self, trans: Any, target: Any) -> Any:
-        return self.bdd.exist(set(self.post), trans & self.bdd.let(
-            dict(zip(self.pre, self.post, strict=True)), target))
+        primed = self.bdd.let(dict(zip(self.pre, self.post, strict=True)), target)
+        return cudd.and_exists(trans, primed, set(self.post))
 
 
 def verify_symbolic(spec: GR1Spec, ctrl: SymbolicController,
@@ -130,8 +137,9 @@ def _check(loop: _Loop, roots: dict[str, Any], semantics: str) -> VerificationRe
         if here & b.exist(loop.post_in | loop.post_out, relation & rho_e & ~rho_s) != b.false:
             problems.append(f"goal {g + 1}: a move from a reachable state violates sys_trans")
     env_goals = loop.goals("env_liveness")
+    edges = reach & trans
     for rule, goal in _goal_rules(loop):
-        if reach & _fair_avoiding(loop, reach & trans & ~goal, env_goals) != b.false:
+        if _fair_avoiding(loop, edges & ~goal, env_goals, reach) != b.false:
             problems.append(f"a reachable state starts a run that satisfies every environment "
                             f"liveness assumption infinitely often but never {rule}")
     count = int(b.count(reach, nvars=len(loop.pre)))
@@ -151,20 +159,22 @@ def _reachable(loop: _Loop, init: Any, trans: Any) -> Any:
     return reach
 
 
-def _fair_avoiding(loop: _Loop, avoiding: Any, env_goals: list[Any]) -> Any:
-    """States with a path of ``avoiding`` edges crossing every environment goal infinitely
-    often (νZ. ∧_i μY. EX over avoiding edges of (J^e_i ∧ Z) ∨ Y)."""
+def _fair_avoiding(loop: _Loop, avoiding: Any, env_goals: list[Any], within: Any) -> Any:
+    """The states of ``within`` (closed under ``avoiding``) with a path of ``avoiding``
+    edges crossing every environment goal infinitely often: νZ. ∧_i μY. Z ∧ EX over
+    avoiding edges of (J^e_i ∧ Z) ∨ Y.  Each μY grows from the goal's image of Z by the images of
+    its newest states only (EX distributes over union)."""
     b = loop.bdd
-    z = b.true
+    z = within
+    crossing = [avoiding & goal for goal in env_goals]
     while True:
-        new_z = b.true
-        for goal in env_goals:
-            y = b.false
-            while True:
-                step = loop.pre_image(avoiding & goal, z) | loop.pre_image(avoiding, y)
-                if step == y:
-                    break
-                y = step
+        new_z = z
+        for edges in crossing:
+            y = loop.pre_image(edges, z) & z
+            frontier = y
+            while frontier != b.false:
+                frontier = loop.pre_image(avoiding, frontier) & z & ~y
+                y |= frontier
             new_z &= y
         if new_z == z:
             return z
