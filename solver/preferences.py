@@ -15,8 +15,8 @@ Issue 13; SLUGS's cost-annotated specs are the neighbouring idea.
 from __future__ import annotations
 
 import copy
-from collections.abc import Iterable, Mapping, Sequence
-from typing import Final
+from collections.abc import Generator, Iterable, Mapping, Sequence
+from typing import Final, TypeVar
 
 import dd.cudd as cudd
 
@@ -34,6 +34,20 @@ MEANINGS: Final = {
     "switches": "switch gait as rarely as possible",
 }
 NONE: Final = "none"
+
+T = TypeVar("T")
+#: A computation in steps: each ``next`` runs a few BDD operations, the last returns.
+Steps = Generator[None, None, T]
+
+
+def run_through(steps: Steps[T]) -> T:
+    """The value of ``steps``, run to the end at once."""
+    while True:
+        try:
+            next(steps)
+        except StopIteration as done:
+            value: T = done.value
+            return value
 
 
 def preference_order(asked: str | Iterable[str] | None) -> tuple[str, ...]:
@@ -74,6 +88,7 @@ class MovePreferences:
         self.rings: list[list[BDDNode]] = []
         if "goal" in self.order:
             self.rings = [[sym.prime(y) for y in _distinct(rings)] for rings in result.rings]
+        self._relations: dict[int, tuple[BDDNode, BDDNode]] = {}  # goal: (strategy, moves)
         self.safe: BDDNode = sym.bdd.false  # where the robot can avoid hazards for ever
         self.safe_strategies: list[BDDNode] = []
         hazard = self.terms.get("hazard", [])
@@ -124,20 +139,30 @@ class MovePreferences:
         explicit extraction.  So a runtime
         that takes the smallest move of this relation makes the explicit controller's
         moves (tests/test_symbolic_controller.py compares them step by step)."""
+        return run_through(self.relation_steps(goal, strategy))
+
+    def relation_steps(self, goal: int, strategy: BDDNode) -> Steps[BDDNode]:
+        """:meth:`relation` in steps of a few BDD operations each (for a census running
+        alongside an extraction, :mod:`solver.census`); kept per goal, so that a census
+        and then a symbolic controller pay for it once."""
+        known = self._relations.get(goal)
+        if known is not None and known[0] == strategy:
+            return known[1]
         bdd = self.sym.bdd
-        strategy = self._simplified(strategy)
+        moves = self._simplified(strategy)
         if self.safe != bdd.false:
             safe = self._simplified(self.safe_strategies[goal])
-            strategy = self._simplified(self.safe & safe) | self._simplified(~self.safe & strategy)
+            moves = self._simplified(self.safe & safe) | self._simplified(~self.safe & moves)
+            yield
         # ρe never names a next output (solver.synthesis checks it), so every move of the
         # strategy keeps it: the explicit extraction's preference for such moves is moot.
-        moves = strategy
         for name in self.order:
             if name == "goal":
-                moves = self._nearest_relation(goal, moves)
+                moves = yield from self._nearest_relation(goal, moves)
             else:
-                moves = self._cheapest_relation(self.terms[name], moves)
+                moves = yield from self._cheapest_relation(self.terms[name], moves)
             moves = self._simplified(moves)
+        self._relations[goal] = (strategy, moves)
         return moves
 
     def _simplified(self, moves: BDDNode) -> BDDNode:
@@ -150,7 +175,7 @@ class MovePreferences:
         return smaller if len(smaller) < len(moves) else moves
 
     def _cheapest_relation(self, terms: Sequence[tuple[int, BDDNode]],
-                           moves: BDDNode) -> BDDNode:
+                           moves: BDDNode) -> Steps[BDDNode]:
         """:meth:`_cheapest` at every state and input at once: each move in the bucket of
         its cost, then per state and input the moves of the least non-empty bucket."""
         bdd = self.sym.bdd
@@ -161,22 +186,25 @@ class MovePreferences:
                 for key, piece in ((cost + weight, part & term), (cost, part & ~term)):
                     if piece != bdd.false:
                         moved[key] = self._simplified(moved.get(key, bdd.false) | piece)
+                yield
             buckets = moved
-        return self._first_met([buckets[c] for c in sorted(buckets)])
+        return (yield from self._first_met([buckets[c] for c in sorted(buckets)]))
 
-    def _nearest_relation(self, goal: int, moves: BDDNode) -> BDDNode:
+    def _nearest_relation(self, goal: int, moves: BDDNode) -> Steps[BDDNode]:
         """:meth:`_nearest` at every state and input at once."""
         reach = moves & self.goals[goal]
         rings = self.rings[goal] if goal < len(self.rings) else []
-        return self._first_met([reach] + [moves & ring for ring in rings] + [moves])
+        return (yield from self._first_met([reach] + [moves & ring for ring in rings]
+                                           + [moves]))
 
-    def _first_met(self, tiers: Sequence[BDDNode]) -> BDDNode:
+    def _first_met(self, tiers: Sequence[BDDNode]) -> Steps[BDDNode]:
         """Per state and input, the moves of the first tier that has any there."""
         bdd = self.sym.bdd
         chosen, met = bdd.false, bdd.false
         for tier in tiers:
             chosen |= tier & ~met
             met |= bdd.exist(self.sym.post_outputs, tier)
+            yield
         return chosen
 
     # ------------------------------------------------------------ one state and input

@@ -10,6 +10,7 @@ explored breadth-first from the initial states; among the allowed moves the pref
 
 from __future__ import annotations
 
+import time
 from collections import deque
 from collections.abc import Iterable, Sequence
 from typing import TYPE_CHECKING, Final
@@ -17,6 +18,7 @@ from typing import TYPE_CHECKING, Final
 from diagnostics import SolverError
 from gr1.bddwalk import State, all_assignments, first_assignment, holds_at
 from gr1.controller import Controller, ControllerNode, IntegerVar, integers_of
+from solver.census import CENSUS_AFTER, Census, given
 from solver.game import GameResult, Limits, too_large
 from solver.symbolic import BDDNode, SymbolicSpec
 
@@ -24,7 +26,7 @@ from solver.symbolic import BDDNode, SymbolicSpec
 REPORT_EVERY: Final = 1000
 
 if TYPE_CHECKING:  # solver.preferences builds on this module (goal_strategies)
-    from solver.preferences import MovePreferences
+    from solver.preferences import MovePreferences, Steps
 
 
 # ---------------------------------------------------------------- canonical choices
@@ -108,7 +110,12 @@ def extract_strategy(
     prefer: MovePreferences | None = None,
 ) -> Controller:
     """The explicit Mealy controller of a realizable game (``result`` needs its layers);
-    ``prefer`` picks among the moves each step allows (:mod:`solver.preferences`)."""
+    ``prefer`` picks among the moves each step allows (:mod:`solver.preferences`).
+
+    With ``max_nodes``, an extraction still running after :data:`~solver.census.
+    CENSUS_AFTER` seconds counts its nodes on BDDs alongside (:class:`~solver.census.
+    Census`, given a third of the time from then on), and stops as soon as the count passes
+    ``max_nodes``; until then it goes on as it would have."""
     limits = limits or Limits()
     ins, outs = list(sym.input_bits), list(sym.output_bits)
     pre = ins + outs
@@ -130,14 +137,30 @@ def extract_strategy(
             queue.append(index[key])
         return index[key]
 
+    def relation(goal: int) -> Steps[BDDNode]:
+        moves = strategies[goal]
+        return given(moves) if prefer is None else prefer.relation_steps(goal, moves)
+
+    census = None if max_nodes is None else Census(
+        sym, relation, len(strategies), result.winning, semantics, max_nodes)
+    expected: int | None = None  # the census's count, once it has one
+    started = time.monotonic()
     initial = [node_of(s, 0) for s in initial_states(sym, result.winning, semantics)]
     bdd = sym.bdd
     while queue:
         k = queue.popleft()
         limits.check()
+        if census is not None:
+            spent = time.monotonic() - started
+            if spent > CENSUS_AFTER and spent - CENSUS_AFTER > 3 * census.seconds:
+                expected = census.advance()
+                if expected is not None and max_nodes is not None and expected > max_nodes:
+                    raise too_large("controller", max_nodes)
+                census = None if expected is not None else census
         if k % REPORT_EVERY == 0:
-            limits.report("extracting the controller", f"{len(nodes)} nodes found, "
-                          f"{len(queue)} to expand", k / len(nodes))
+            found = f"{len(nodes)} of {expected}" if expected else f"{len(nodes)}"
+            limits.report("extracting the controller", f"{found} nodes found, "
+                          f"{len(queue)} to expand", k / (expected or len(nodes)))
         state, goal = nodes[k]
         at = dict(zip(pre, map(bool, state), strict=True))
         here = bdd.let(at, strategies[goal])
