@@ -82,12 +82,8 @@ def node_count(sym: SymbolicSpec, relations: Sequence[BDDNode], winning: BDDNode
     """The number of nodes :func:`solver.strategy.extract_strategy` makes when goal ``j``
     moves by ``relations[j]`` (after the preferences; over the state and the primed inputs
     and outputs); once the count passes ``cap`` the search stops and returns what it has."""
-    census = Census(sym, lambda j: given(relations[j]), len(relations), winning, semantics,
-                    cap)
-    while census.advance() is None:
-        pass
-    assert census.count is not None
-    return census.count
+    return run_through(Census.counting(sym, lambda j: given(relations[j]), len(relations),
+                                       winning, semantics, cap))
 
 
 def given(value: BDDNode) -> Steps[BDDNode]:
@@ -105,7 +101,7 @@ class Census:
                  winning: BDDNode, semantics: str, cap: int | None = None) -> None:
         self.count: int | None = None
         self.seconds = 0.0
-        self._slices = self._counting(sym, relation, goals, winning, semantics, cap)
+        self._slices = self.counting(sym, relation, goals, winning, semantics, cap)
 
     def advance(self) -> int | None:
         """Run one slice; the count once the census is done, else None."""
@@ -119,8 +115,9 @@ class Census:
         return self.count
 
     @staticmethod
-    def _counting(sym: SymbolicSpec, relation: Callable[[int], Steps[BDDNode]], n: int,
-                  winning: BDDNode, semantics: str, cap: int | None) -> Steps[int]:
+    def counting(sym: SymbolicSpec, relation: Callable[[int], Steps[BDDNode]], n: int,
+                 winning: BDDNode, semantics: str, cap: int | None) -> Steps[int]:
+        """The census itself, a slice per step."""
         bdd = sym.bdd
         pre = sym.pre_inputs | sym.pre_outputs
         width = len(pre)
@@ -138,7 +135,7 @@ class Census:
         while any(f != bdd.false for f in frontier):
             for g in range(n):
                 reached[g] |= frontier[g]
-            total = sum(int(bdd.count(r, nvars=width)) for r in reached)
+            total += sum(int(bdd.count(f, nvars=width)) for f in frontier)  # new nodes only
             if cap is not None and total > cap:
                 return total
             found = [bdd.false] * n

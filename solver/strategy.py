@@ -156,7 +156,8 @@ def extract_strategy(
                 expected = census.advance()
                 if expected is not None and max_nodes is not None and expected > max_nodes:
                     raise too_large("controller", max_nodes)
-                census = None if expected is not None else census
+                if expected is not None:
+                    census = None
         if k % REPORT_EVERY == 0:
             found = f"{len(nodes)} of {expected}" if expected else f"{len(nodes)}"
             limits.report("extracting the controller", f"{found} nodes found, "
