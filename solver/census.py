@@ -21,7 +21,7 @@ from typing import Final
 
 import dd.cudd as cudd
 
-from solver.preferences import Steps, run_through
+from solver.steps import Steps, given, run_through
 from solver.symbolic import BDDNode, SymbolicSpec
 
 #: An extraction with a node limit that has run this many seconds starts its census; a
@@ -84,12 +84,6 @@ def node_count(sym: SymbolicSpec, relations: Sequence[BDDNode], winning: BDDNode
     and outputs); once the count passes ``cap`` the search stops and returns what it has."""
     return run_through(Census.counting(sym, lambda j: given(relations[j]), len(relations),
                                        winning, semantics, cap))
-
-
-def given(value: BDDNode) -> Steps[BDDNode]:
-    """A computation of no steps that returns ``value``."""
-    return value
-    yield  # a generator
 
 
 class Census:

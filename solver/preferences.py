@@ -15,14 +15,15 @@ Issue 13; SLUGS's cost-annotated specs are the neighbouring idea.
 from __future__ import annotations
 
 import copy
-from collections.abc import Generator, Iterable, Mapping, Sequence
-from typing import Final, TypeVar
+from collections.abc import Iterable, Mapping, Sequence
+from typing import Final
 
 import dd.cudd as cudd
 
 from diagnostics import UsageError
 from gr1.costs import Cost
 from solver.game import Game, GameResult, Limits
+from solver.steps import Steps, run_through
 from solver.symbolic import BDDNode, SymbolicSpec
 
 #: Every preference, in the default order (``--prefer`` reorders or drops them).
@@ -34,20 +35,6 @@ MEANINGS: Final = {
     "switches": "switch gait as rarely as possible",
 }
 NONE: Final = "none"
-
-T = TypeVar("T")
-#: A computation in steps: each ``next`` runs a few BDD operations, the last returns.
-Steps = Generator[None, None, T]
-
-
-def run_through(steps: Steps[T]) -> T:
-    """The value of ``steps``, run to the end at once."""
-    while True:
-        try:
-            next(steps)
-        except StopIteration as done:
-            value: T = done.value
-            return value
 
 
 def preference_order(asked: str | Iterable[str] | None) -> tuple[str, ...]:

@@ -18,15 +18,16 @@ from typing import TYPE_CHECKING, Final
 from diagnostics import SolverError
 from gr1.bddwalk import State, all_assignments, first_assignment, holds_at
 from gr1.controller import Controller, ControllerNode, IntegerVar, integers_of
-from solver.census import CENSUS_AFTER, Census, given
+from solver.census import CENSUS_AFTER, Census
 from solver.game import GameResult, Limits, too_large
+from solver.steps import Steps, given
 from solver.symbolic import BDDNode, SymbolicSpec
 
 #: An extraction tells its progress every this many nodes.
 REPORT_EVERY: Final = 1000
 
 if TYPE_CHECKING:  # solver.preferences builds on this module (goal_strategies)
-    from solver.preferences import MovePreferences, Steps
+    from solver.preferences import MovePreferences
 
 
 # ---------------------------------------------------------------- canonical choices
