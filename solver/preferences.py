@@ -21,6 +21,7 @@ from typing import Final
 import dd.cudd as cudd
 
 from diagnostics import UsageError
+from gr1.bddwalk import Cofactors
 from gr1.costs import Cost
 from solver.game import Game, GameResult, Limits
 from solver.steps import Steps, run_through
@@ -75,6 +76,12 @@ class MovePreferences:
         self.rings: list[list[BDDNode]] = []
         if "goal" in self.order:
             self.rings = [[sym.prime(y) for y in _distinct(rings)] for rings in result.rings]
+        # The same cofactors, asked for at one state and input after another.
+        bdd, fixed = sym.bdd, {*sym.input_bits, *sym.output_bits, *sym.post_inputs}
+        self._terms_at = {name: [(w, Cofactors(bdd, t, fixed)) for w, t in terms]
+                          for name, terms in self.terms.items()}
+        self._goals_at = [Cofactors(bdd, g, fixed) for g in self.goals]
+        self._rings_at = [[Cofactors(bdd, r, fixed) for r in rings] for rings in self.rings]
         self._relations: dict[int, tuple[BDDNode, BDDNode]] = {}  # goal: (strategy, moves)
         self.safe: BDDNode = sym.bdd.false  # where the robot can avoid hazards for ever
         self.safe_strategies: list[BDDNode] = []
@@ -115,7 +122,7 @@ class MovePreferences:
             if name == "goal":
                 choices = self._nearest(at, goal, choices)
             else:
-                choices = self._cheapest(at, self.terms[name], choices)
+                choices = self._cheapest(at, self._terms_at[name], choices)
         return choices
 
     # ------------------------------------------------------------ whole relations
@@ -138,8 +145,10 @@ class MovePreferences:
         bdd = self.sym.bdd
         moves = self._simplified(strategy)
         if self.safe != bdd.false:
+            # One if-then-else: the two halves as conjunctions first can be a hundred
+            # times larger (thesis 10 x 10 health 3: 3 million nodes each, 10 s).
             safe = self._simplified(self.safe_strategies[goal])
-            moves = self._simplified(self.safe & safe) | self._simplified(~self.safe & moves)
+            moves = self._simplified(bdd.ite(self.safe, safe, moves))
             yield
         # ρe never names a next output (solver.synthesis checks it), so every move of the
         # strategy keeps it: the explicit extraction's preference for such moves is moot.
@@ -163,45 +172,57 @@ class MovePreferences:
 
     def _cheapest_relation(self, terms: Sequence[tuple[int, BDDNode]],
                            moves: BDDNode) -> Steps[BDDNode]:
-        """:meth:`_cheapest` at every state and input at once: each move in the bucket of
-        its cost, then per state and input the moves of the least non-empty bucket."""
+        """:meth:`_cheapest` at every state and input at once: the moves in buckets by
+        cost, then per state and input the moves of the least non-empty bucket.
+
+        The buckets are split on the projection of ``moves`` onto the variables the terms
+        read (a leg's health and the gait outputs, say), not on ``moves`` itself: the same
+        buckets, but each split is of a small BDD (thesis 10 x 10 health 3, 32 health
+        terms: 0.1 s instead of 12 s)."""
         bdd = self.sym.bdd
-        buckets: dict[int, BDDNode] = {0: moves}
+        read: set[str] = set()
+        for _, term in terms:
+            read |= bdd.support(term)
+        buckets: dict[int, BDDNode] = {0: bdd.exist(bdd.support(moves) - read, moves)}
+        yield
         for weight, term in terms:
             moved: dict[int, BDDNode] = {}
             for cost, part in buckets.items():
                 for key, piece in ((cost + weight, part & term), (cost, part & ~term)):
                     if piece != bdd.false:
-                        moved[key] = self._simplified(moved.get(key, bdd.false) | piece)
-                yield
+                        moved[key] = moved.get(key, bdd.false) | piece
             buckets = moved
-        return (yield from self._first_met([buckets[c] for c in sorted(buckets)]))
+            yield
+        return (yield from self._first_met(moves, [buckets[c] for c in sorted(buckets)]))
 
     def _nearest_relation(self, goal: int, moves: BDDNode) -> Steps[BDDNode]:
         """:meth:`_nearest` at every state and input at once."""
-        reach = moves & self.goals[goal]
         rings = self.rings[goal] if goal < len(self.rings) else []
-        return (yield from self._first_met([reach] + [moves & ring for ring in rings]
-                                           + [moves]))
+        return (yield from self._first_met(moves, [self.goals[goal], *rings, self.sym.bdd.true]))
 
-    def _first_met(self, tiers: Sequence[BDDNode]) -> Steps[BDDNode]:
-        """Per state and input, the moves of the first tier that has any there."""
+    def _first_met(self, moves: BDDNode, parts: Sequence[BDDNode]) -> Steps[BDDNode]:
+        """Per state and input, the moves of the first ``moves ∧ part`` that has any there.
+
+        Each tier and the moves chosen so far are kept simplified (thesis robot A, all
+        preferences of both goals: 5 s instead of 17 s; an and_exists for the states met,
+        or the choice as one if-then-else, was slower)."""
         bdd = self.sym.bdd
         chosen, met = bdd.false, bdd.false
-        for tier in tiers:
-            chosen |= tier & ~met
+        for part in parts:
+            tier = self._simplified(moves & part)
+            chosen = self._simplified(chosen | (tier & ~met))
             met |= bdd.exist(self.sym.post_outputs, tier)
             yield
         return chosen
 
     # ------------------------------------------------------------ one state and input
-    def _cheapest(self, at: Mapping[str, bool], terms: Sequence[tuple[int, BDDNode]],
+    def _cheapest(self, at: Mapping[str, bool], terms: Sequence[tuple[int, Cofactors]],
                   choices: BDDNode) -> BDDNode:
         """The candidates of least total weight (weights of the terms that hold)."""
         bdd = self.sym.bdd
         buckets: dict[int, BDDNode] = {0: choices}
         for weight, term in terms:
-            here = bdd.let(dict(at), term)
+            here = term.at(at)
             if here == bdd.false:
                 continue
             moved: dict[int, BDDNode] = {}
@@ -221,21 +242,20 @@ class MovePreferences:
         """The candidates that reach the goal on this move, else those whose next state
         lies in the lowest Y ring (rings grow, so a binary search finds it)."""
         bdd = self.sym.bdd
-        reach = choices & bdd.let(dict(at), self.goals[goal])
+        reach = choices & self._goals_at[goal].at(at)
         if reach != bdd.false:
             return reach
-        rings = self.rings[goal] if goal < len(self.rings) else []
-        inputs = {k: v for k, v in at.items() if k in self.sym.post_inputs}
+        rings = self._rings_at[goal] if goal < len(self._rings_at) else []
         low, high = 0, len(rings)  # the answer is the first ring meeting choices (or none)
         while low < high:
             mid = (low + high) // 2
-            if choices & bdd.let(inputs, rings[mid]) != bdd.false:
+            if choices & rings[mid].at(at) != bdd.false:
                 high = mid
             else:
                 low = mid + 1
         if low == len(rings):
             return choices
-        return choices & bdd.let(inputs, rings[low])
+        return choices & rings[low].at(at)
 
 
 def holds_at(u: BDDNode, values: Mapping[str, bool]) -> bool:

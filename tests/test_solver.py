@@ -15,6 +15,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from diagnostics import FormulaError
+from gr1.bddwalk import Cofactors
 from gr1.bddwalk import holds_at as holds
 from gr1.evaluation import evaluate
 from gr1.formula import (
@@ -140,6 +141,25 @@ def test_walking_helpers_agree_with_cofactors(formula: Expr) -> None:
             models.append(bits)
     # with the declaration order the BDD order is a, b, c, d: the smallest model
     assert smallest(sym, u, names) == (min(models) if models else None)
+
+
+@settings(max_examples=40, deadline=None)
+@given(formula=formulas(["a", "b", "c", "d"], 8), fixed=st.sets(st.sampled_from("abcd")),
+       limit=st.integers(1, 4))
+def test_remembered_cofactors_are_the_cofactors(formula: Expr, fixed: set[str],
+                                                limit: int) -> None:
+    """gr1.bddwalk.Cofactors against dd's own cofactor at every assignment to ``fixed``,
+    twice over (the second time from its memory, or after it forgot at ``limit``)."""
+    spec = GR1Spec(outputs=tuple(Variable(n) for n in "abcd"))
+    sym = SymbolicSpec(spec, Options(order="declaration"))
+    u = sym.translate(formula)
+    remembered = Cofactors(sym.bdd, u, fixed, limit=limit)
+    names = sorted(fixed)
+    for _ in range(2):
+        for bits in itertools.product((False, True), repeat=len(names)):
+            point = dict(zip(names, bits, strict=True))
+            assert remembered.at(point | {"other": True}) == sym.bdd.let(point, u)
+    assert len(remembered.known) <= limit
 
 
 @settings(max_examples=30, deadline=None, suppress_health_check=[HealthCheck.too_slow])
