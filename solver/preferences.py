@@ -77,11 +77,12 @@ class MovePreferences:
         if "goal" in self.order:
             self.rings = [[sym.prime(y) for y in _distinct(rings)] for rings in result.rings]
         # The same cofactors, asked for at one state and input after another.
-        bdd, fixed = sym.bdd, {*sym.input_bits, *sym.output_bits, *sym.post_inputs}
-        self._terms_at = {name: [(w, Cofactors(bdd, t, fixed)) for w, t in terms]
-                          for name, terms in self.terms.items()}
-        self._goals_at = [Cofactors(bdd, g, fixed) for g in self.goals]
-        self._rings_at = [[Cofactors(bdd, r, fixed) for r in rings] for rings in self.rings]
+        self._fixed = {*sym.input_bits, *sym.output_bits, *sym.post_inputs}
+        self._levels: dict[str, list[BDDNode]] = {}
+        self._levels_at: dict[str, list[Cofactors]] = {}
+        self._goals_at = [Cofactors(sym.bdd, g, self._fixed) for g in self.goals]
+        self._rings_at = [[Cofactors(sym.bdd, r, self._fixed) for r in rings]
+                          for rings in self.rings]
         self._relations: dict[int, tuple[BDDNode, BDDNode]] = {}  # goal: (strategy, moves)
         self.safe: BDDNode = sym.bdd.false  # where the robot can avoid hazards for ever
         self.safe_strategies: list[BDDNode] = []
@@ -122,7 +123,7 @@ class MovePreferences:
             if name == "goal":
                 choices = self._nearest(at, goal, choices)
             else:
-                choices = self._cheapest(at, self._terms_at[name], choices)
+                choices = self._cheapest(at, name, choices)
         return choices
 
     # ------------------------------------------------------------ whole relations
@@ -156,7 +157,7 @@ class MovePreferences:
             if name == "goal":
                 moves = yield from self._nearest_relation(goal, moves)
             else:
-                moves = yield from self._cheapest_relation(self.terms[name], moves)
+                moves = yield from self._first_met(moves, self.levels(name))
             moves = self._simplified(moves)
         self._relations[goal] = (strategy, moves)
         return moves
@@ -170,30 +171,32 @@ class MovePreferences:
         smaller = cudd.restrict(moves, self.care)
         return smaller if len(smaller) < len(moves) else moves
 
-    def _cheapest_relation(self, terms: Sequence[tuple[int, BDDNode]],
-                           moves: BDDNode) -> Steps[BDDNode]:
-        """:meth:`_cheapest` at every state and input at once: the moves in buckets by
-        cost, then per state and input the moves of the least non-empty bucket.
+    def levels(self, name: str) -> list[BDDNode]:
+        """The moves by the cost criterion ``name`` gives them, cheapest first: per cost, the
+        assignments to the variables its terms read (a leg's health, the gait outputs) on
+        which the weights of the terms that hold add up to it, among those some move of ρs
+        makes (every strategy's moves are moves of ρs).
 
-        The buckets are split on the projection of ``moves`` onto the variables the terms
-        read (a leg's health and the gait outputs, say), not on ``moves`` itself: the same
-        buckets, but each split is of a small BDD (thesis 10 x 10 health 3, 32 health
-        terms: 0.1 s instead of 12 s)."""
-        bdd = self.sym.bdd
-        read: set[str] = set()
-        for _, term in terms:
-            read |= bdd.support(term)
-        buckets: dict[int, BDDNode] = {0: bdd.exist(bdd.support(moves) - read, moves)}
-        yield
-        for weight, term in terms:
-            moved: dict[int, BDDNode] = {}
-            for cost, part in buckets.items():
-                for key, piece in ((cost + weight, part & term), (cost, part & ~term)):
-                    if piece != bdd.false:
-                        moved[key] = moved.get(key, bdd.false) | piece
-            buckets = moved
-            yield
-        return (yield from self._first_met(moves, [buckets[c] for c in sorted(buckets)]))
+        Built once, on that projection of ρs, where each split is of a small BDD: splitting
+        the strategy's move relation itself took 12 s for thesis 10 x 10 health 3's 32
+        health terms."""
+        known = self._levels.get(name)
+        if known is None:
+            bdd, trans = self.sym.bdd, self.sym.sys_trans
+            read: set[str] = set()
+            for _, term in self.terms[name]:
+                read |= bdd.support(term)
+            buckets: dict[int, BDDNode] = {0: bdd.exist(bdd.support(trans) - read, trans)}
+            for weight, term in self.terms[name]:
+                moved: dict[int, BDDNode] = {}
+                for cost, part in buckets.items():
+                    for key, piece in ((cost + weight, part & term), (cost, part & ~term)):
+                        if piece != bdd.false:
+                            moved[key] = moved.get(key, bdd.false) | piece
+                buckets = moved
+            known = self._levels[name] = [buckets[c] for c in sorted(buckets)]
+            self._levels_at[name] = [Cofactors(bdd, u, self._fixed) for u in known]
+        return known
 
     def _nearest_relation(self, goal: int, moves: BDDNode) -> Steps[BDDNode]:
         """:meth:`_nearest` at every state and input at once."""
@@ -216,27 +219,16 @@ class MovePreferences:
         return chosen
 
     # ------------------------------------------------------------ one state and input
-    def _cheapest(self, at: Mapping[str, bool], terms: Sequence[tuple[int, Cofactors]],
-                  choices: BDDNode) -> BDDNode:
-        """The candidates of least total weight (weights of the terms that hold)."""
-        bdd = self.sym.bdd
-        buckets: dict[int, BDDNode] = {0: choices}
-        for weight, term in terms:
-            here = term.at(at)
-            if here == bdd.false:
-                continue
-            moved: dict[int, BDDNode] = {}
-            for cost, part in buckets.items():
-                hit = part & here
-                if hit == bdd.false:
-                    moved[cost] = moved.get(cost, bdd.false) | part
-                    continue
-                moved[cost + weight] = moved.get(cost + weight, bdd.false) | hit
-                rest = part & ~here
-                if rest != bdd.false:
-                    moved[cost] = moved.get(cost, bdd.false) | rest
-            buckets = moved
-        return buckets[min(buckets)]
+    def _cheapest(self, at: Mapping[str, bool], name: str, choices: BDDNode) -> BDDNode:
+        """The candidates of least cost by criterion ``name`` (:meth:`levels`)."""
+        if name not in self._levels_at:
+            self.levels(name)
+        false = self.sym.bdd.false
+        for level in self._levels_at[name]:
+            cheapest = choices & level.at(at)
+            if cheapest != false:
+                return cheapest
+        return choices
 
     def _nearest(self, at: Mapping[str, bool], goal: int, choices: BDDNode) -> BDDNode:
         """The candidates that reach the goal on this move, else those whose next state
