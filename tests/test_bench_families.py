@@ -72,3 +72,16 @@ def test_the_catalogue_lists_every_family_in_a_fixed_order(tmp_path: Path) -> No
     full = catalogue.instances(tmp_path, quick=False, families=("thesis", "amba"))
     assert {i.name for i in full} >= {"30x30 h5 binary", "30x30 h5 onehot", "N=10"}
     assert all(i.recorded is not None for i in quick)
+
+
+def test_the_synth_bench_reads_what_gaitc_synth_reports(tmp_path: Path) -> None:
+    """bench/bench_synth.py: every row's spec exists, and a row runs as a user runs it."""
+    from bench.bench_synth import rows, synth
+
+    table = rows(tmp_path, quick=True)
+    assert all(row.spec.is_file() for row in table)
+    robot_b = next(row for row in table if row.name == "thesis_robot_b binary")
+    outcome = synth(ROOT, robot_b, tmp_path / "b.json", timeout=120)
+    assert outcome.wall is not None and outcome.seconds is not None
+    assert outcome.size == "195 nodes"
+    assert (tmp_path / "b.json").is_file()
