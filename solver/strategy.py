@@ -25,6 +25,8 @@ from solver.symbolic import BDDNode, SymbolicSpec
 
 #: An extraction tells its progress every this many nodes.
 REPORT_EVERY: Final = 1000
+#: The most choices whose smallest move an extraction remembers at once.
+REMEMBERED: Final = 100_000
 
 if TYPE_CHECKING:  # solver.preferences builds on this module (goal_strategies)
     from solver.preferences import MovePreferences
@@ -148,6 +150,9 @@ def extract_strategy(
     started = time.monotonic()
     initial = [node_of(s, 0) for s in initial_states(sym, result.winning, semantics)]
     bdd = sym.bdd
+    # The same few choices recur at state after state (one region and gait next, say):
+    # their smallest move is found once (thesis 10 x 10 health 3: 7,974 choices, 106 kinds).
+    smallest_of: dict[BDDNode, State | None] = {}
     while queue:
         k = queue.popleft()
         limits.check()
@@ -177,7 +182,11 @@ def extract_strategy(
             preferred = preferred if preferred != bdd.false else choices
             if prefer is not None and preferred != bdd.false:
                 preferred = prefer.choose(at | at_x, goal, preferred)
-            y = smallest(sym, preferred, post_out)
+            y = smallest_of.get(preferred)
+            if y is None:
+                if len(smallest_of) >= REMEMBERED:
+                    smallest_of.clear()
+                y = smallest_of[preferred] = smallest(sym, preferred, post_out)
             if y is None:
                 raise SolverError(
                     "internal error: the strategy has no move for an allowed input",
