@@ -25,6 +25,7 @@ from gr1.controller import (
     read_controller_json,
 )
 from gr1.costs import Cost
+from gr1.quotient import merge_equivalent
 from gr1.spec import SEMANTICS, GR1Spec
 from solver.game import GameStats, out_of_memory
 from solver.progress import Progress, Stage
@@ -94,6 +95,8 @@ class Synthesis:
     seconds: float
     semantics: str = "default"
     solver: str = "embedded"
+    #: The automaton's nodes before equivalent ones were merged (gr1.quotient), when any were.
+    merged_from: int | None = None
 
     @property
     def realizable(self) -> bool:
@@ -113,7 +116,8 @@ class Synthesis:
             return "none"
         if isinstance(self.controller, SymbolicController):
             return f"symbolic, {len(self.controller.nodes)} BDD nodes"
-        return f"{len(self.controller.nodes)} nodes"
+        merged = "" if self.merged_from is None else f", {self.merged_from} before merging"
+        return f"{len(self.controller.nodes)} nodes{merged}"
 
     def to_json(self) -> dict[str, Any]:
         """The outcome for ``gaitc synth --json`` and ``counter --json`` (docs/json.md)."""
@@ -124,6 +128,7 @@ class Synthesis:
             "seconds": round(self.seconds, 3), "semantics": self.semantics,
             "solver": self.solver, "symbolic": symbolic,
             "nodes": None if self.controller is None else len(self.controller.nodes),
+            "nodes_before_merging": self.merged_from,
             "verification": None if self.report is None else self.report.to_json()}
 
     def save(self, path: str | Path) -> None:
@@ -296,7 +301,11 @@ def _solve(spec: Spec | GR1Spec, kind: Kind, semantics: str, solver: str,
     except MemoryError:
         raise out_of_memory() from None
     seconds = time.monotonic() - started
-    report = None
+    report, merged_from = None, None
+    if isinstance(automaton, Controller) and kind == "strategy":
+        merged = merge_equivalent(automaton)
+        if merged is not automaton:
+            merged_from, automaton = len(automaton.nodes), merged
     if automaton is not None:
         source = spec.source() if isinstance(spec, Spec) else None
         automaton = replace(automaton, source=source, solver=solver)
@@ -304,7 +313,7 @@ def _solve(spec: Spec | GR1Spec, kind: Kind, semantics: str, solver: str,
             if progress is not None:
                 progress(Stage("checking the controller with the independent verifier"))
             report = verify(spec, automaton, semantics)
-    return Synthesis(spec, kind, automaton, report, seconds, semantics, solver)
+    return Synthesis(spec, kind, automaton, report, seconds, semantics, solver, merged_from)
 
 
 def _costs(spec: Spec | GR1Spec, order: Sequence[str]) -> tuple[Cost, ...]:

@@ -45,8 +45,10 @@ def smallest(sym: SymbolicSpec, u: BDDNode, bits: Sequence[str]) -> State | None
 
 
 def fix(sym: SymbolicSpec, u: BDDNode, bits: Sequence[str], values: Iterable[int]) -> BDDNode:
-    """``u`` with ``bits`` set to ``values`` (a cofactor)."""
-    return sym.bdd.let({b: bool(v) for b, v in zip(bits, values, strict=True)}, u)
+    """``u`` with ``bits`` set to ``values`` (a cofactor; ``u`` itself for no bits, which
+    dd would log as a call without effect)."""
+    values_of = {b: bool(v) for b, v in zip(bits, values, strict=True)}
+    return sym.bdd.let(values_of, u) if values_of else u
 
 
 def primed(bits: Sequence[str]) -> list[str]:
@@ -177,8 +179,9 @@ def extract_strategy(
         targets = set()
         for x in assignments(sym, bdd.exist(sym.post_outputs, env_here), post_in):
             at_x = dict(zip(post_in, map(bool, x), strict=True))
-            choices = bdd.let(at_x, here)
-            preferred = choices & bdd.let(at_x, env_here)
+            choices, env_next = (bdd.let(at_x, here), bdd.let(at_x, env_here)) if at_x else (
+                here, env_here)  # a spec without inputs has one empty input
+            preferred = choices & env_next
             preferred = preferred if preferred != bdd.false else choices
             if prefer is not None and preferred != bdd.false:
                 preferred = prefer.choose(at | at_x, goal, preferred)
