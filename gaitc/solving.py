@@ -302,7 +302,7 @@ def _solve(spec: Spec | GR1Spec, kind: Kind, semantics: str, solver: str,
         raise out_of_memory() from None
     seconds = time.monotonic() - started
     report, merged_from = None, None
-    if isinstance(automaton, Controller) and kind == "strategy":
+    if isinstance(automaton, Controller):  # counter-strategies come back unchanged
         merged = merge_equivalent(automaton)
         if merged is not automaton:
             merged_from, automaton = len(automaton.nodes), merged

@@ -61,6 +61,12 @@ def first_assignment(bdd: Any, u: Any, bits: Sequence[str],
     return tuple(found.get(b, 0) for b in bits)
 
 
+def cofactor(bdd: Any, values: dict[str, bool], u: Any) -> Any:
+    """``u`` with the variables ``values`` assigns set to their values; ``u`` itself when
+    it assigns none (dd would log that call as one without effect)."""
+    return bdd.let(values, u) if values else u
+
+
 class Cofactors:
     """The cofactors of one BDD ``u`` at assignments to the variables ``fixed``, remembered
     by the values of those of ``u``'s support: an extraction asks for the same few at
@@ -82,10 +88,8 @@ class Cofactors:
         if found is None:
             if len(self.known) >= self.limit:
                 self.known.clear()
-            found = self.u
-            if self.names:
-                found = self.bdd.let({n: values[n] for n in self.names}, self.u)
-            self.known[key] = found
+            found = self.known[key] = cofactor(self.bdd, {n: values[n] for n in self.names},
+                                               self.u)
         return found
 
 

@@ -21,7 +21,7 @@ from typing import Final
 import dd.cudd as cudd
 
 from diagnostics import UsageError
-from gr1.bddwalk import Cofactors, holds_at
+from gr1.bddwalk import Cofactors, cofactor, holds_at
 from gr1.costs import Cost
 from solver.game import Game, GameResult, Limits
 from solver.steps import Steps, run_through
@@ -78,8 +78,7 @@ class MovePreferences:
             self.rings = [[sym.prime(y) for y in _distinct(rings)] for rings in result.rings]
         # The same cofactors, asked for at one state and input after another.
         self._fixed = {*sym.input_bits, *sym.output_bits, *sym.post_inputs}
-        self._levels: dict[str, list[BDDNode]] = {}
-        self._levels_at: dict[str, list[Cofactors]] = {}
+        self._levels: dict[str, list[Cofactors]] = {}  # see levels
         self._goals_at = [Cofactors(sym.bdd, g, self._fixed) for g in self.goals]
         self._post_inputs = sorted(sym.post_inputs)
         self._relations: dict[int, tuple[BDDNode, BDDNode]] = {}  # goal: (strategy, moves)
@@ -179,6 +178,10 @@ class MovePreferences:
         Built once, on that projection of ρs, where each split is of a small BDD: splitting
         the strategy's move relation itself took 12 s for thesis 10 x 10 health 3's 32
         health terms."""
+        return [level.u for level in self._levels_at(name)]
+
+    def _levels_at(self, name: str) -> list[Cofactors]:
+        """:meth:`levels`, each with its remembered cofactors (built on the first call)."""
         known = self._levels.get(name)
         if known is None:
             bdd, trans = self.sym.bdd, self.sym.sys_trans
@@ -193,8 +196,8 @@ class MovePreferences:
                         if piece != bdd.false:
                             moved[key] = moved.get(key, bdd.false) | piece
                 buckets = moved
-            known = self._levels[name] = [buckets[c] for c in sorted(buckets)]
-            self._levels_at[name] = [Cofactors(bdd, u, self._fixed) for u in known]
+            known = self._levels[name] = [Cofactors(bdd, buckets[c], self._fixed)
+                                          for c in sorted(buckets)]
         return known
 
     def _nearest_relation(self, goal: int, moves: BDDNode) -> Steps[BDDNode]:
@@ -220,10 +223,8 @@ class MovePreferences:
     # ------------------------------------------------------------ one state and input
     def _cheapest(self, at: Mapping[str, bool], name: str, choices: BDDNode) -> BDDNode:
         """The candidates of least cost by criterion ``name`` (:meth:`levels`)."""
-        if name not in self._levels_at:
-            self.levels(name)
         false = self.sym.bdd.false
-        for level in self._levels_at[name]:
+        for level in self._levels_at(name):
             cheapest = choices & level.at(at)
             if cheapest != false:
                 return cheapest
@@ -244,7 +245,7 @@ class MovePreferences:
         # instead, and each test is a conjunction whose result stays small (thesis 10 x 10
         # health 4: 3.2 s of 10.6 s went to those cofactors).
         inputs = {k: at[k] for k in self._post_inputs}
-        here = choices & bdd.cube(inputs) if inputs else choices
+        here = choices & bdd.cube(inputs)
         low, high = 0, len(rings)  # the answer is the first ring meeting choices (or none)
         while low < high:
             mid = (low + high) // 2
@@ -255,7 +256,7 @@ class MovePreferences:
         if low == len(rings):
             return choices
         met = here & rings[low]
-        return bdd.let(inputs, met) if inputs else met
+        return cofactor(bdd, inputs, met)
 
 
 def _distinct(rings: Sequence[BDDNode]) -> list[BDDNode]:

@@ -16,7 +16,7 @@ from collections.abc import Iterable, Sequence
 from typing import TYPE_CHECKING, Final
 
 from diagnostics import SolverError
-from gr1.bddwalk import State, all_assignments, first_assignment, holds_at
+from gr1.bddwalk import State, all_assignments, cofactor, first_assignment, holds_at
 from gr1.controller import Controller, ControllerNode, IntegerVar, integers_of
 from solver.census import CENSUS_AFTER, Census
 from solver.game import GameResult, Limits, too_large
@@ -45,10 +45,8 @@ def smallest(sym: SymbolicSpec, u: BDDNode, bits: Sequence[str]) -> State | None
 
 
 def fix(sym: SymbolicSpec, u: BDDNode, bits: Sequence[str], values: Iterable[int]) -> BDDNode:
-    """``u`` with ``bits`` set to ``values`` (a cofactor; ``u`` itself for no bits, which
-    dd would log as a call without effect)."""
-    values_of = {b: bool(v) for b, v in zip(bits, values, strict=True)}
-    return sym.bdd.let(values_of, u) if values_of else u
+    """``u`` with ``bits`` set to ``values`` (a cofactor)."""
+    return cofactor(sym.bdd, {b: bool(v) for b, v in zip(bits, values, strict=True)}, u)
 
 
 def primed(bits: Sequence[str]) -> list[str]:
@@ -179,9 +177,8 @@ def extract_strategy(
         targets = set()
         for x in assignments(sym, bdd.exist(sym.post_outputs, env_here), post_in):
             at_x = dict(zip(post_in, map(bool, x), strict=True))
-            choices, env_next = (bdd.let(at_x, here), bdd.let(at_x, env_here)) if at_x else (
-                here, env_here)  # a spec without inputs has one empty input
-            preferred = choices & env_next
+            choices = cofactor(bdd, at_x, here)  # at_x is empty for a spec without inputs
+            preferred = choices & cofactor(bdd, at_x, env_here)
             preferred = preferred if preferred != bdd.false else choices
             if prefer is not None and preferred != bdd.false:
                 preferred = prefer.choose(at | at_x, goal, preferred)
