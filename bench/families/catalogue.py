@@ -1,9 +1,9 @@
 """The instances of the benchmark table: every family as a list of spec files to solve.
 
-Generated families (thesis grids, AMBA in two encodings, GenBuf, SYNTCOMP safety games,
-hazard grids) are written into a directory chosen by the caller; the SLUGS examples and the random
-corpus are read where the repository keeps them (tests/data), with the verdicts SLUGS
-recorded for them.
+Generated families (thesis grids, AMBA in two encodings, GenBuf, the VMCAI 2006 arbiter
+and lift, SYNTCOMP safety games, hazard grids) are written into a directory chosen by the
+caller; the SLUGS examples and the random corpus are read where the repository keeps them
+(tests/data), with the verdicts SLUGS recorded for them.
 Lists are in a fixed order.
 """
 
@@ -20,6 +20,7 @@ from bench.families.genbuf import genbuf_text
 from bench.families.hazard_grid import SIDES, hazard_grid_text
 from bench.families.safety_games import CINDERELLA, OBSTACLES, cinderella_text, obstacle_text
 from bench.families.thesis import HEALTH, SIZES, gait_text
+from bench.families.vmcai import ARBITER_SIZES, LIFT_SIZES, arbiter_text, lift_text
 
 ROOT = Path(__file__).resolve().parent.parent.parent
 EXAMPLES = ROOT / "tests" / "data" / "slugs_examples"
@@ -35,6 +36,10 @@ QUICK_AMBA = list(range(2, 6))
 GENBUF_SIZES = [2, 3, 4, 6, 8, 12, 16, 24, 32, 48, 64]
 QUICK_GENBUF = [2, 4, 8, 16]
 QUICK_SIDES = SIDES[:4]
+QUICK_ARBITER = ARBITER_SIZES[:8]
+QUICK_LIFT = LIFT_SIZES[:8]
+#: The arbiter without its clients' fairness (unrealizable) at these sizes.
+UNFAIR_ARBITER = [4, 64]
 #: One-hot hazard grids beyond this side are left out (the one-hot hazard group makes the
 #: embedded solver time out from 6 x 6 on; the binary encoding is the family's row).
 ONEHOT_SIDE_LIMIT = 4
@@ -105,6 +110,25 @@ def hazard_grids(workdir: Path, quick: bool) -> list[Instance]:
     return out
 
 
+def arbiters(workdir: Path, quick: bool) -> list[Instance]:
+    """The VMCAI 2006 arbiter for N clients (realizable), and without the clients' fairness
+    at the sizes of :data:`UNFAIR_ARBITER` (unrealizable)."""
+    out = [Instance("arbiter", f"N={n}", _write(workdir / f"arbiter_{n}.structuredslugs",
+                                                arbiter_text(n)), recorded=True)
+           for n in (QUICK_ARBITER if quick else ARBITER_SIZES)]
+    return out + [Instance("arbiter", f"N={n} unfair",
+                           _write(workdir / f"arbiter_unfair_{n}.structuredslugs",
+                                  arbiter_text(n, fair=False)), recorded=False)
+                  for n in UNFAIR_ARBITER[:1 if quick else None]]
+
+
+def lifts(workdir: Path, quick: bool) -> list[Instance]:
+    """The VMCAI 2006 lift for N floors (all realizable)."""
+    return [Instance("lift", f"N={n}", _write(workdir / f"lift_{n}.structuredslugs",
+                                              lift_text(n)), recorded=True)
+            for n in (QUICK_LIFT if quick else LIFT_SIZES)]
+
+
 def safety_games(workdir: Path, quick: bool) -> list[Instance]:
     """The SYNTCOMP safety games (Cinderella-Stepmother, moving obstacle) with their
     published verdicts; ``quick`` keeps the configurations decided in about a second."""
@@ -147,7 +171,8 @@ def corpus() -> list[Instance]:
     )
 
 
-FAMILIES = ("thesis", "amba", "amba-bits", "genbuf", "safety", "slugs-ex", "hazard", "corpus")
+FAMILIES = ("thesis", "amba", "amba-bits", "genbuf", "arbiter", "lift", "safety", "slugs-ex",
+            "hazard", "corpus")
 
 
 def instances(workdir: Path, quick: bool, families: tuple[str, ...] = FAMILIES,
@@ -163,6 +188,10 @@ def instances(workdir: Path, quick: bool, families: tuple[str, ...] = FAMILIES,
             out += amba(workdir, quick, amba_sizes, family)
         elif family == "genbuf":
             out += genbufs(workdir, quick)
+        elif family == "arbiter":
+            out += arbiters(workdir, quick)
+        elif family == "lift":
+            out += lifts(workdir, quick)
         elif family == "safety":
             out += safety_games(workdir, quick)
         elif family == "slugs-ex":
