@@ -14,13 +14,12 @@ from __future__ import annotations
 from collections.abc import Callable, Iterator, Mapping
 from typing import Any, Generic, TypeVar
 
-import dd.cudd as cudd
-
 from diagnostics import ControllerError, Span
 from gaitsim.view import InputKey, NodeReading
 from gr1.bddfile import SymbolicController, materialize
 from gr1.bddwalk import State, all_assignments, first_assignment, holds_at
 from gr1.bits import bits_mismatch, spec_bits
+from gr1.manager import manager
 from gr1.spec import GR1Spec
 
 T = TypeVar("T")
@@ -45,8 +44,7 @@ class SymbolicStrategy(NodeReading):
                 mismatch, Span(file or "<controller>", 1, 1),
                 hint="synthesize it again from this spec with 'gaitc synth --symbolic'")
         self._decoders = _decoders(ctrl, self.variables, file)
-        self.bdd = cudd.BDD()
-        self.bdd.configure(reordering=False)
+        self.bdd = manager()
         bits = ctrl.inputs + ctrl.outputs
         declared = list(ctrl.order) + [v for b in bits for v in (b, b + "'")
                                       if v not in set(ctrl.order)]

@@ -32,6 +32,7 @@ from gr1.formula import (
     Var,
     Xor,
 )
+from gr1.manager import manager
 from gr1.spec import Clause, GR1Spec, Variable
 from gr1.traversal import Memo, fold
 from solver.bitvectors import add, less, xor
@@ -106,12 +107,8 @@ class SymbolicSpec:
         """A fresh BDD manager in the static order, and the spec built in it; with ``sift``
         CUDD sifts while building, to convergence at the end, and then keeps the order."""
         opts = self.options
-        if self._budget is None:
-            self.bdd = cudd.BDD()
-        else:  # CUDD sizes its caches from the estimate and fails cleanly at the maximum
-            self.bdd = cudd.BDD(memory_estimate=self._budget)
-            self.bdd.configure(max_memory=self._budget)
-        self.bdd.configure(reordering=False)
+        # CUDD sizes its caches from a budget and fails cleanly at its maximum
+        self.bdd = manager(self._budget)
         self.bdd.declare(*self.order)
         if (opts.reorder_once or opts.reordering or opts.sift_build
                 or opts.sift_above is not None or opts.sift_blowup is not None):

@@ -11,10 +11,9 @@ import functools
 from collections.abc import Mapping, Sequence
 from typing import Any
 
-import dd.cudd as cudd
-
 from diagnostics import FormulaError
 from gr1.formula import And, Const, Expr, Iff, Implies, Not, Or, Var, Xor
+from gr1.manager import manager
 from gr1.spec import Clause, GR1Spec
 from gr1.traversal import Memo, Node, fold
 
@@ -39,8 +38,7 @@ class Logic:
         self.spec = spec
         self.inputs = tuple(v.name for v in spec.inputs)
         self.outputs = tuple(v.name for v in spec.outputs)
-        self.bdd = cudd.BDD()
-        self.bdd.configure(reordering=False)
+        self.bdd = manager()
         names = {n for b in self.inputs + self.outputs for n in (b, b + "'")}
         self.bdd.declare(*(n for n in order if n in names))
         for name in self.inputs + self.outputs:
