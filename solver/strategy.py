@@ -153,6 +153,8 @@ def extract_strategy(
     # The same few choices recur at state after state (one region and gait next, say):
     # their smallest move is found once (thesis 10 x 10 health 3: 7,974 choices, 106 kinds).
     smallest_of: dict[BDDNode, State | None] = {}
+    # So do the inputs ρe allows (a lift with 8 floors: 12,032 states, 256 input sets).
+    inputs_of: dict[BDDNode, list[State]] = {}
     while queue:
         k = queue.popleft()
         limits.check()
@@ -175,7 +177,13 @@ def extract_strategy(
             here = prefer.allowed(at, goal, here)
         env_here = bdd.let(at, sym.env_trans)
         targets = set()
-        for x in assignments(sym, bdd.exist(sym.post_outputs, env_here), post_in):
+        allowed = bdd.exist(sym.post_outputs, env_here)
+        xs = inputs_of.get(allowed)
+        if xs is None:
+            if len(inputs_of) >= REMEMBERED:
+                inputs_of.clear()
+            xs = inputs_of[allowed] = assignments(sym, allowed, post_in)
+        for x in xs:
             at_x = dict(zip(post_in, map(bool, x), strict=True))
             choices = cofactor(bdd, at_x, here)  # at_x is empty for a spec without inputs
             preferred = choices & cofactor(bdd, at_x, env_here)
