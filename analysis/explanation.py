@@ -59,6 +59,7 @@ class Explanation:
     solver_calls: int = 0
     seconds: float = 0.0
     source: str = field(default="", repr=False)
+    player: str = "robot"  # who the spec controls: "robot" for a .gait spec, else "system"
 
     @property
     def sane(self) -> bool:
@@ -100,13 +101,16 @@ class Explanation:
         if self.realizable:
             out = [f"{self.file}: realizable"]
             if not self.warnings:
-                out.append("  sanity checks passed: the assumptions can be met, the robot "
-                           "cannot block them, no goal is vacuous, every part is used")
+                out.append(f"  sanity checks passed: the assumptions can be met, the "
+                           f"{self.player} cannot block them, no goal is vacuous, every part "
+                           "is used")
             out.extend(f"  warning: {w.message}" for w in self.warnings)
             return out
-        out = [f"{self.file}: unrealizable ({self.kind} failure)", f"  {_KIND_TEXT[self.kind]}"]
+        out = [f"{self.file}: unrealizable ({self.kind} failure)",
+               f"  {kind_text(self.kind, self.player)}"]
         if self.goals:
-            out.append(f"  the environment can keep the robot from: {', '.join(self.goals)}")
+            out.append(f"  the environment can keep the {self.player} from: "
+                       f"{', '.join(self.goals)}")
         elif self.kind == "liveness":
             out.append("  no goal is lost on its own: only the goals together")
         if self.core:
@@ -116,9 +120,12 @@ class Explanation:
                        f"{'it' if len(self.core) == 1 else 'any one of them'} makes the spec "
                        "realizable")
             out.extend(render(u.rule, u.span, "note", None, sources) for u in self.core)
-        else:
+        elif self.player == "robot":
             out.append("core: the structural rules alone (one region and one gait at a time) "
                        "with the assumptions cannot be met")
+        else:
+            out.append("core: no guarantee is needed: with the assumptions alone the spec "
+                       "cannot be met")
         if self.freedoms:
             out.append("the environment needs only these freedoms to win:")
             out.extend(f"  - {f.describe()}" for f in self.freedoms)
@@ -155,13 +162,17 @@ class Explanation:
         return "".join(parts)
 
 
-_KIND_TEXT: dict[Kind | None, str] = {
-    "initial": "the robot cannot choose a legal initial state for some initial state of the "
-    "environment",
-    "safety": "the environment can force the robot into a state with no legal move",
-    "liveness": "the robot can always move, but the environment can keep it from a goal for ever",
-    None: "",
-}
+def kind_text(kind: Kind | None, player: str = "robot") -> str:
+    """What a failure of ``kind`` means, said of ``player`` ("robot" or "system")."""
+    if kind == "initial":
+        return (f"the {player} cannot choose a legal initial state for some initial state of "
+                "the environment")
+    if kind == "safety":
+        return f"the environment can force the {player} into a state with no legal move"
+    if kind == "liveness":
+        return (f"the {player} can always move, but the environment can keep it from a goal "
+                "for ever")
+    return ""
 
 
 def explain(spec: GR1Spec, file: str, source: str = "", model: Model | None = None,
@@ -169,11 +180,12 @@ def explain(spec: GR1Spec, file: str, source: str = "", model: Model | None = No
             timeout: float | None = None, with_repairs: bool = True) -> Explanation:
     """Explain ``spec``: for a ``.gait`` spec pass its ``model``, ``encoding`` and ``source``."""
     started = time.monotonic()
+    player = "robot" if model is not None else "system"
     oracle = Oracle.within(semantics, timeout)
     if oracle.realizable(spec):
         found = sanity(spec, model, encoding, oracle)
         return Explanation(file, True, warnings=found, solver_calls=oracle.calls,
-                           seconds=time.monotonic() - started, source=source)
+                           seconds=time.monotonic() - started, source=source, player=player)
     failure = classify(spec, oracle)
     goals = tuple(_goal_label(spec, j) for j in failure.blocked_goals)
     core = guarantee_core(spec, oracle)
@@ -191,8 +203,8 @@ def explain(spec: GR1Spec, file: str, source: str = "", model: Model | None = No
     play = run = None
     story: list[str] = []
     if counter is not None and not counter.initial:
-        story = ["the environment's first state leaves the robot no initial state that keeps "
-                 "its initial guarantees (see the core)"]
+        story = [f"the environment's first state leaves the {player} no initial state that "
+                 "keeps its initial guarantees (see the core)"]
     elif counter is not None:
         play = choose_play(counter, spec, failure.blocked_goals)
         if model is not None and encoding is not None:
@@ -208,7 +220,7 @@ def explain(spec: GR1Spec, file: str, source: str = "", model: Model | None = No
         fixes = repairs(model, source, file, encoding, oracle, visited)
     return Explanation(file, False, failure.kind, goals, core, freedoms, play, counter, run,
                        tuple(story), fixes, (), oracle.calls, time.monotonic() - started,
-                       source)
+                       source, player)
 
 
 def _final_move(spec: GR1Spec, counter: Controller, play: Play, model: Model,

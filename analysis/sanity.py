@@ -127,6 +127,7 @@ def sanity(spec: GR1Spec, model: Model | None, encoding: str | None, oracle: Ora
            ) -> tuple[Warning_, ...]:
     """Every sanity warning of a realizable ``spec``."""
     found: list[Warning_] = []
+    player = "robot" if model is not None else "system"  # who the spec controls
     if assumptions_unsatisfiable(spec, oracle):
         core = unsatisfiable_core(spec, oracle)
         which = "; ".join(f"'{u.rule}' ({u.where()})" for u in core)
@@ -141,7 +142,7 @@ def sanity(spec: GR1Spec, model: Model | None, encoding: str | None, oracle: Ora
             which = "; ".join(f"'{u.rule}' ({u.where()})" for u in broken) or \
                 "only the assumptions together"
             found.append(Warning_("not-well-separated",
-                                  "the robot can force the environment to break an "
+                                  f"the {player} can force the environment to break an "
                                   f"assumption, so a controller may win by blocking it: {which}",
                                   broken))
     sym = SymbolicSpec(spec)
@@ -149,7 +150,7 @@ def sanity(spec: GR1Spec, model: Model | None, encoding: str | None, oracle: Ora
         rule = spec.sys_liveness[j].origin
         label = rule.rule if rule is not None else f"goal {j + 1}"
         found.append(Warning_("vacuous-goal", f"'{label}' holds on every step of every play: "
-                              "it asks nothing of the robot"))
+                              f"it asks nothing of the {player}"))
     if model is not None and encoding is not None:
         for kind, names in unused_parts(sym, model, encoding).items():
             if names:

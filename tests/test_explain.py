@@ -238,3 +238,31 @@ def test_the_notebook_view_highlights_the_core_and_draws_the_play() -> None:
     if shutil.which("dot") is not None:
         assert "<svg" in page
     assert "Explanation" in repr(why) and "liveness failure" in repr(why)
+
+
+def test_a_spec_without_a_robot_is_explained_in_terms_of_the_system(tmp_path: Path) -> None:
+    """The first GR(1) paper's arbiter without its clients' fairness: one client keeps its
+    grant and starves another.  The words name the system, not a robot, and the core is
+    solved again here: with only its guarantees the arbiter is lost, without any one won."""
+    import sys
+
+    sys.path.insert(0, str(ROOT))
+    from bench.families.vmcai import arbiter_text
+
+    path = tmp_path / "arbiter.structuredslugs"
+    path.write_text(arbiter_text(4, fair=False), encoding="utf-8")
+    why = gaitc.explain(path)
+    text = "\n".join(why.lines()).replace(str(tmp_path), "")  # its name has "robot"
+    assert not why.realizable and why.kind == "liveness"
+    assert "the system can always move" in text and "robot" not in text
+    spec = gaitc.load(path).gr1
+    core = {(u.section, i) for u in why.core for i in u.indices}
+    assert len(why.core) >= 2
+    assert not _realizable(_core_variant(spec, core))
+    for unit in why.core:
+        assert _realizable(_core_variant(spec, core - {(unit.section, i) for i in unit.indices}))
+    fair = tmp_path / "fair.structuredslugs"
+    fair.write_text(arbiter_text(3), encoding="utf-8")
+    sane = gaitc.explain(fair)
+    assert sane.realizable
+    assert all("robot" not in line.replace(str(tmp_path), "") for line in sane.lines())
