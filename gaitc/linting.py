@@ -1,20 +1,23 @@
-"""Linting: every check gaitc makes of a ``.gait`` spec without solving it.
+"""Linting: every check gaitc makes of a spec without solving it.
 
-The checker's warnings, lowering in both encodings (which catches names that clash once
-encoded), and the pairing of gaits with their valve primitives (:mod:`gaitgraph.pairing`).
+For a ``.gait`` spec the checker's warnings, lowering in both encodings (which catches
+names that clash once encoded), and the pairing of gaits with their valve primitives
+(:mod:`gaitgraph.pairing`); a ``.slugsin``, ``.structuredslugs`` or ``.ltl`` spec is
+read (every syntax and type error with its span) and has no further checks.
 """
 
 from __future__ import annotations
 
 from pathlib import Path
 
-from diagnostics import Diagnostic, UsageError
-from gaitc.loading import Spec, load
+from diagnostics import Diagnostic
+from gaitc.loading import Spec, load, reader_of
 from ltlcompiler.encoding import ENCODINGS
 
 
 def lint(spec: Spec | str | Path, primitives: bool = False) -> tuple[Diagnostic, ...]:
-    """The warnings (and primitive errors) of a ``.gait`` spec; a path is read as ``.gait``.
+    """The warnings (and primitive errors) of a spec; a path is read as ``.gait`` unless its
+    suffix names another format (:func:`gaitc.loading.reader_of`).
 
     Gaits without a valve primitive are reported when ``primitives`` is set or once any
     gait of the spec binds one. Errors in the spec itself raise, as :func:`gaitc.load` does.
@@ -22,10 +25,10 @@ def lint(spec: Spec | str | Path, primitives: bool = False) -> tuple[Diagnostic,
     from ltlcompiler.lowering import lower
 
     if not isinstance(spec, Spec):
-        spec = load(spec, kind=".gait")
+        spec = load(spec, kind=reader_of(str(spec)))
     model = spec.model
     if model is None:
-        raise UsageError(f"'{spec.path}': lint checks .gait specs")
+        return tuple(spec.diagnostics)
     for encoding in ENCODINGS:
         if encoding != spec.encoding:
             lower(model, encoding)

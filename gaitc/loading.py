@@ -105,6 +105,15 @@ def _kind(name: str) -> str:
     )
 
 
+def reader_of(name: str) -> str | None:
+    """The ``kind`` for :func:`load` in a command whose input is a ``.gait`` file unless its
+    name says it is another spec format (``.slugsin`` or ``.txt``, ``.structuredslugs``,
+    ``.ltl``, as every command reads them): None there (the suffix decides), ``".gait"``
+    for every other name and standard input."""
+    suffix = Path(name).suffix.lower()
+    return None if suffix in SUFFIXES and suffix not in GAIT_SUFFIXES else ".gait"
+
+
 def _decode(data: bytes, path: str, suffix: str) -> str:
     return decode_text(data, path, SpecSyntaxError if suffix in GAIT_SUFFIXES
                        else SlugsFormatError)

@@ -1,4 +1,4 @@
-"""``gaitc lint`` and ``gaitc compile``: check a .gait file, or lower it to a SLUGS/LTL text.
+"""``gaitc lint`` and ``gaitc compile``: check a spec, or lower it to a SLUGS/LTL text.
 
 ``compile`` runs parse, check, lowering (thesis eqs. 3.3-3.9) and one emitter; warnings go
 to stderr in the standard layout, and the output file is replaced atomically.
@@ -16,7 +16,7 @@ from diagnostics.files import write_atomically
 from gaitc.commands.arguments import output_file
 from gaitc.emission import FORMATS, emit, output_format
 from gaitc.exitcodes import ExitCode
-from gaitc.loading import Spec, load
+from gaitc.loading import Spec, load, reader_of
 from gaitc.reporting import compilation_json, document, lint_json, print_json
 from ltlcompiler.encoding import ENCODINGS
 
@@ -29,7 +29,8 @@ def register(subparsers: Any) -> None:
         "lint", help="check a .gait file and print its warnings",
         description="Parse and check SPEC, lower it in both encodings, print warnings. "
         "Exit 0 when there is no error (warnings allowed), 1 on an error.")
-    lint.add_argument("spec", metavar="SPEC", help="a .gait file")
+    lint.add_argument("spec", metavar="SPEC", help="a .gait file (or .slugsin, "
+                      ".structuredslugs: read and, with --deep, checked)")
     lint.add_argument("--primitives", action="store_true",
                       help="report gaits without a valve primitive even when no gait binds one "
                       "(by default they are reported once any gait of the spec binds one)")
@@ -44,7 +45,8 @@ def register(subparsers: Any) -> None:
         "compile", help="compile a .gait file to structuredslugs, slugsin or LTL text",
         description="Compile SPEC to a GR(1) specification (thesis eqs. 3.3-3.9). "
         "Exit 0 on success, 1 on an error in SPEC, 2 on a bad command line.")
-    comp.add_argument("spec", metavar="SPEC", help="a .gait file")
+    comp.add_argument("spec", metavar="SPEC", help="a .gait file (or .slugsin, "
+                      ".structuredslugs, .ltl: translated to the output format)")
     comp.add_argument("-o", "--output", default="-", metavar="OUT", type=output_file,
                       help="output file, '-' for stdout (default); replaced atomically")
     comp.add_argument("--format", choices=FORMATS, default=None,
@@ -81,7 +83,7 @@ def _lint_verdict(args: argparse.Namespace, diagnostics: list[Diagnostic]
         return ExitCode.USER, None
     if not args.deep:
         return ExitCode.OK, None
-    why = gaitc.explain(gaitc.load(args.spec, kind=".gait"), repairs=False)
+    why = gaitc.explain(gaitc.load(args.spec, kind=reader_of(args.spec)), repairs=False)
     if not why.realizable:
         print(f"{args.spec}: unrealizable ({why.kind} failure); 'gaitc explain' says why",
               file=sys.stderr)
@@ -101,7 +103,7 @@ def compile_text(path: str, fmt: str = "structuredslugs", encoding: str = "oneho
 def _compiled(path: str, fmt: str, encoding: str) -> tuple[Spec, str]:
     if fmt not in FORMATS:
         raise UsageError(f"unknown format '{fmt}': use one of {', '.join(FORMATS)}")
-    spec = load(path, encoding, kind=".gait")
+    spec = load(path, encoding, kind=reader_of(path))
     return spec, emit(spec, fmt)
 
 
