@@ -77,8 +77,10 @@ def session(spec: Spec | str | Path,
             encoding = recorded_encoding(controller)
         spec = load(spec, encoding or "onehot")
     if spec.model is None:
-        raise UsageError(f"'{spec.path}': simulation and maps need a .gait spec, which says "
-                         "what the variables mean (regions, gaits, legs)")
+        raise UsageError(f"'{spec.path}': simulating, driving and drawing a controller need "
+                         "a .gait spec, which says what the variables mean (regions, gaits, "
+                         "legs); for this spec 'gaitc synth' writes a controller and 'gaitc "
+                         "verify' checks it")
     if isinstance(controller, (str, Path)):
         strategy = load_strategy(controller, spec.gr1)
     else:

@@ -202,6 +202,16 @@ def test_lint_and_compile_read_slugs_formats(tmp_path: Path,
                                        "unrealizable1.slugsin")]) == 3
 
 
+def test_simulating_a_spec_without_a_robot_says_what_works_instead(
+        capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["simulate", str(SLUGS_EXAMPLE)]) == 2
+    err = capsys.readouterr().err
+    assert err == (f"gaitc: usage error: '{SLUGS_EXAMPLE}': simulating, driving and drawing a "
+                   "controller need a .gait spec, which says what the variables mean (regions, "
+                   "gaits, legs); for this spec 'gaitc synth' writes a controller and 'gaitc "
+                   "verify' checks it\n")
+
+
 def test_a_spec_without_a_known_suffix_is_linted_as_gait(tmp_path: Path) -> None:
     plain = tmp_path / "patrol"
     plain.write_bytes((ROOT / "specs" / "patrol_2x2.gait").read_bytes())
