@@ -12,8 +12,8 @@ from __future__ import annotations
 
 import time
 from collections import deque
-from collections.abc import Iterable, Sequence
-from typing import TYPE_CHECKING, Final
+from collections.abc import Callable, Iterable, Sequence
+from typing import TYPE_CHECKING, Final, TypeVar
 
 from diagnostics import SolverError
 from gr1.bddwalk import State, all_assignments, cofactor, first_assignment, holds_at
@@ -25,8 +25,10 @@ from solver.symbolic import BDDNode, SymbolicSpec
 
 #: An extraction tells its progress every this many nodes.
 REPORT_EVERY: Final = 1000
-#: The most choices whose smallest move an extraction remembers at once.
+#: The most choices whose smallest move (or input sets whose assignments) an extraction
+#: remembers at once.
 REMEMBERED: Final = 100_000
+T = TypeVar("T")
 
 if TYPE_CHECKING:  # solver.preferences builds on this module (goal_strategies)
     from solver.preferences import MovePreferences
@@ -93,6 +95,22 @@ def goal_strategies(sym: SymbolicSpec, result: GameResult) -> list[BDDNode]:
     return out
 
 
+def remembered(compute: Callable[[BDDNode], T]) -> Callable[[BDDNode], T]:
+    """``compute`` with its answers kept by argument, at most :data:`REMEMBERED` at once
+    (then the memory starts again)."""
+    known: dict[BDDNode, T] = {}
+
+    def answer(u: BDDNode) -> T:
+        if u in known:
+            return known[u]
+        if len(known) >= REMEMBERED:
+            known.clear()
+        found = known[u] = compute(u)
+        return found
+
+    return answer
+
+
 def next_goal(sym: SymbolicSpec, goal: int, move: dict[str, bool]) -> int:
     """Advance past every goal that ``move`` (a full pre/post assignment) satisfies."""
     n = len(sym.sys_live)
@@ -152,9 +170,9 @@ def extract_strategy(
     bdd = sym.bdd
     # The same few choices recur at state after state (one region and gait next, say):
     # their smallest move is found once (thesis 10 x 10 health 3: 7,974 choices, 106 kinds).
-    smallest_of: dict[BDDNode, State | None] = {}
+    smallest_of = remembered(lambda u: smallest(sym, u, post_out))
     # So do the inputs ρe allows (a lift with 8 floors: 12,032 states, 256 input sets).
-    inputs_of: dict[BDDNode, list[State]] = {}
+    inputs_of = remembered(lambda u: assignments(sym, u, post_in))
     while queue:
         k = queue.popleft()
         limits.check()
@@ -177,24 +195,14 @@ def extract_strategy(
             here = prefer.allowed(at, goal, here)
         env_here = bdd.let(at, sym.env_trans)
         targets = set()
-        allowed = bdd.exist(sym.post_outputs, env_here)
-        xs = inputs_of.get(allowed)
-        if xs is None:
-            if len(inputs_of) >= REMEMBERED:
-                inputs_of.clear()
-            xs = inputs_of[allowed] = assignments(sym, allowed, post_in)
-        for x in xs:
+        for x in inputs_of(bdd.exist(sym.post_outputs, env_here)):
             at_x = dict(zip(post_in, map(bool, x), strict=True))
             choices = cofactor(bdd, at_x, here)  # at_x is empty for a spec without inputs
             preferred = choices & cofactor(bdd, at_x, env_here)
             preferred = preferred if preferred != bdd.false else choices
             if prefer is not None and preferred != bdd.false:
                 preferred = prefer.choose(at | at_x, goal, preferred)
-            y = smallest_of.get(preferred)
-            if y is None:
-                if len(smallest_of) >= REMEMBERED:
-                    smallest_of.clear()
-                y = smallest_of[preferred] = smallest(sym, preferred, post_out)
+            y = smallest_of(preferred)
             if y is None:
                 raise SolverError(
                     "internal error: the strategy has no move for an allowed input",
