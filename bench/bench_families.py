@@ -168,7 +168,7 @@ def main(argv: list[str] | None = None) -> None:
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--quick", action="store_true",
                         help="thesis grids up to 10x10 at health 2-3, AMBA N = 2..5, "
-                        "hazard grids up to 8x8")
+                        "arbiters and lifts up to 24, hazard grids up to 8x8")
     parser.add_argument("--ablation", action="store_true", help="compare solver options")
     parser.add_argument("--timeout", type=float, default=300.0,
                         help="embedded solver limit per instance (default 300 s)")
