@@ -18,7 +18,7 @@ import os
 import signal
 import time
 import traceback
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from multiprocessing import connection
 from multiprocessing.connection import Connection
 from typing import Any, Final
@@ -64,7 +64,8 @@ def first_success(works: Sequence[Callable[[], Any]], deadline: float | None = N
                 # the child of gaitc.isolation); every child is killed and joined below.
                 child = context.Process(target=_child, args=(work, setup, sender),
                                         daemon=False)
-                child.start()
+                with signals_held():
+                    child.start()
                 sender.close()
                 children[i] = (child, receiver)
 
@@ -142,6 +143,8 @@ def _child(work: Callable[[], Any], setup: Callable[[], None] | None,
     global _parent
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # the parent handles Ctrl-C and kills us
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    if hasattr(signal, "pthread_sigmask"):  # forked while the parent held them back
+        signal.pthread_sigmask(signal.SIG_UNBLOCK, HELD)
     die_with_parent()
     _parent = sender
     try:
@@ -158,6 +161,26 @@ def _child(work: Callable[[], Any], setup: Callable[[], None] | None,
                 f"the answer could not be passed back: {type(err).__name__}: {err}"), ""))
     finally:
         sender.close()
+
+
+#: The signals a run turns into exceptions (gaitc.cli), held back while a child is forked.
+HELD: Final = frozenset({signal.SIGINT, signal.SIGTERM})
+
+
+@contextlib.contextmanager
+def signals_held() -> Iterator[None]:
+    """SIGINT and SIGTERM held back (blocked, then delivered) for the duration: around a
+    fork, whose interpreter hooks (logging's lock release) print and drop an exception
+    that a signal handler raises inside them, so that a Ctrl-C pressed just then was lost
+    and the run went on to its end."""
+    if not hasattr(signal, "pthread_sigmask"):
+        yield
+        return
+    before = signal.pthread_sigmask(signal.SIG_BLOCK, HELD)
+    try:
+        yield
+    finally:
+        signal.pthread_sigmask(signal.SIG_SETMASK, before)
 
 
 def die_with_parent() -> None:

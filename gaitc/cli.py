@@ -101,6 +101,10 @@ class _Signals:
         return None if self.received is None else _ended_by(self.received)
 
 
+#: The exit codes of runs a signal ended (their line printed already).
+SIGNAL_CODES: Final = (ExitCode.INTERRUPTED, ExitCode.TERMINATED)
+
+
 def _ended_by(signum: int) -> int:
     """Print the line of a run that ``signum`` ended and return its exit code."""
     if signum == signal.SIGINT:
@@ -121,7 +125,12 @@ def main(argv: Sequence[str] | None = None) -> int:
         previous[signal.SIGINT] = signal.signal(signal.SIGINT, signals)
     try:
         try:
-            return _run(argv, signals)
+            code = _run(argv, signals)
+            # a signal whose exception some code dropped (Python prints it as "Exception
+            # ignored") still ends the run as that signal
+            if signals.received is None or code in SIGNAL_CODES:
+                return code
+            return _ended_by(signals.received)
         finally:
             signals.armed = False  # from here on a signal is only recorded
             for signum, handler in previous.items():

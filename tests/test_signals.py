@@ -124,3 +124,44 @@ def test_a_cleanup_that_fails_under_a_signal_still_ends_as_the_signal(
         assert (signal.getsignal(signal.SIGTERM), signal.getsignal(signal.SIGINT)) == before
     finally:
         signal.signal(signal.SIGINT, inherited)
+
+
+def test_a_signal_during_a_fork_is_held_until_the_fork_is_done() -> None:
+    """The interpreter's fork hooks print and drop an exception a handler raises in them;
+    held back, the Ctrl-C arrives just after the fork, and the child starts unblocked."""
+    from diagnostics.processes import HELD, first_success, signals_held
+
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            with signals_held():
+                os.kill(os.getpid(), signal.SIGINT)
+                time.sleep(0.05)  # nothing may arrive here
+                reached_the_end = True
+            time.sleep(0.05)  # delivered once the block is left
+        assert reached_the_end
+        index, outcome = first_success([lambda: signal.pthread_sigmask(signal.SIG_BLOCK, [])])
+        assert index == 0 and outcome[0] == "ok" and not HELD & set(outcome[1])
+    finally:
+        signal.signal(signal.SIGINT, previous)
+
+
+def test_a_ctrl_c_that_some_code_swallowed_still_ends_the_run_as_interrupted(
+        monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]) -> None:
+    from gaitc import cli
+
+    def run_that_swallows(argv: object, signals: object) -> int:
+        try:
+            os.kill(os.getpid(), signal.SIGINT)
+            time.sleep(0.05)
+        except KeyboardInterrupt:  # as an interpreter hook does ("Exception ignored in")
+            pass
+        return 0
+
+    monkeypatch.setattr(cli, "_run", run_that_swallows)
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
+    try:
+        assert cli.main(["check", str(ROBOT_B)]) == 130
+    finally:
+        signal.signal(signal.SIGINT, previous)
+    assert capsys.readouterr().err == "gaitc: interrupted\n"
