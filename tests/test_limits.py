@@ -78,9 +78,17 @@ def test_timeout_stops_check_within_a_second(kind: str, grid_slugsin: Path,
     assert err.count("error:") == 1
 
 
-def test_timeout_stops_synthesis_and_writes_nothing(tmp_path: Path) -> None:
+def test_timeout_stops_synthesis_and_writes_nothing(
+        tmp_path: Path, tmp_path_factory: pytest.TempPathFactory) -> None:
+    """A 10 x 10 grid at health 4 (several minutes to synthesize; thesis robot A, used here
+    before, now synthesizes within the limit on a fast machine)."""
+    sys.path.insert(0, str(ROOT))
+    from bench.families.thesis import gait_text
+
+    spec = tmp_path_factory.mktemp("limits") / "grid10_h4.gait"
+    spec.write_text(gait_text(10, 10, 4), encoding="utf-8")
     out_file = tmp_path / "a.json"
-    code, _, err, wall = gaitc_run("synth", str(ROBOT_A), "--timeout", "0.5", "-o",
+    code, _, err, wall = gaitc_run("synth", str(spec), "--timeout", "0.5", "-o",
                                    str(out_file))
     assert code == 4, err
     assert "time limit of 0.5 s" in err

@@ -15,6 +15,7 @@ import os
 import signal
 import subprocess
 import sys
+import threading
 import time
 from pathlib import Path
 
@@ -135,7 +136,9 @@ def test_a_signal_during_a_fork_is_held_until_the_fork_is_done() -> None:
     try:
         with pytest.raises(KeyboardInterrupt):
             with signals_held():
-                os.kill(os.getpid(), signal.SIGINT)
+                # to this thread: another thread of the test process could take a signal
+                # sent to the process (a CLI run's only other thread blocks them)
+                signal.pthread_kill(threading.get_ident(), signal.SIGINT)
                 time.sleep(0.05)  # nothing may arrive here
                 reached_the_end = True
             time.sleep(0.05)  # delivered once the block is left
