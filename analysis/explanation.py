@@ -29,7 +29,7 @@ from analysis.play import (
     narrate_values,
 )
 from analysis.repairs import Repair, repairs
-from analysis.sanity import Warning_, sanity
+from analysis.sanity import ROBOT, Warning_, player_of, sanity
 from analysis.units import Unit
 from diagnostics import render, source_lines
 from gr1.controller import Controller
@@ -59,7 +59,7 @@ class Explanation:
     solver_calls: int = 0
     seconds: float = 0.0
     source: str = field(default="", repr=False)
-    player: str = "robot"  # who the spec controls: "robot" for a .gait spec, else "system"
+    player: str = ROBOT  # who the spec controls (analysis.sanity.player_of)
 
     @property
     def sane(self) -> bool:
@@ -120,7 +120,7 @@ class Explanation:
                        f"{'it' if len(self.core) == 1 else 'any one of them'} makes the spec "
                        "realizable")
             out.extend(render(u.rule, u.span, "note", None, sources) for u in self.core)
-        elif self.player == "robot":
+        elif self.player == ROBOT:
             out.append("core: the structural rules alone (one region and one gait at a time) "
                        "with the assumptions cannot be met")
         else:
@@ -162,8 +162,9 @@ class Explanation:
         return "".join(parts)
 
 
-def kind_text(kind: Kind | None, player: str = "robot") -> str:
-    """What a failure of ``kind`` means, said of ``player`` ("robot" or "system")."""
+def kind_text(kind: Kind | None, player: str = ROBOT) -> str:
+    """What a failure of ``kind`` means, said of ``player`` (:func:`~analysis.sanity.
+    player_of`)."""
     if kind == "initial":
         return (f"the {player} cannot choose a legal initial state for some initial state of "
                 "the environment")
@@ -180,7 +181,7 @@ def explain(spec: GR1Spec, file: str, source: str = "", model: Model | None = No
             timeout: float | None = None, with_repairs: bool = True) -> Explanation:
     """Explain ``spec``: for a ``.gait`` spec pass its ``model``, ``encoding`` and ``source``."""
     started = time.monotonic()
-    player = "robot" if model is not None else "system"
+    player = player_of(model)
     oracle = Oracle.within(semantics, timeout)
     if oracle.realizable(spec):
         found = sanity(spec, model, encoding, oracle)

@@ -13,6 +13,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Final
 
 import dd.cudd as cudd
 
@@ -123,11 +124,22 @@ def unused_parts(sym: SymbolicSpec, model: Model, encoding: str) -> dict[str, tu
     return {"regions": regions, "gaits": gaits, "caches": caches}
 
 
+#: Who a spec controls, in the words of explanations and warnings: a ``.gait`` spec's robot,
+#: or the system of a spec without a robot model (``.slugsin``, ``.structuredslugs``).
+ROBOT: Final = "robot"
+SYSTEM: Final = "system"
+
+
+def player_of(model: Model | None) -> str:
+    """:data:`ROBOT` for a spec with a robot model, else :data:`SYSTEM`."""
+    return ROBOT if model is not None else SYSTEM
+
+
 def sanity(spec: GR1Spec, model: Model | None, encoding: str | None, oracle: Oracle
            ) -> tuple[Warning_, ...]:
     """Every sanity warning of a realizable ``spec``."""
     found: list[Warning_] = []
-    player = "robot" if model is not None else "system"  # who the spec controls
+    player = player_of(model)
     if assumptions_unsatisfiable(spec, oracle):
         core = unsatisfiable_core(spec, oracle)
         which = "; ".join(f"'{u.rule}' ({u.where()})" for u in core)

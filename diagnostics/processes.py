@@ -143,8 +143,7 @@ def _child(work: Callable[[], Any], setup: Callable[[], None] | None,
     global _parent
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # the parent handles Ctrl-C and kills us
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
-    if hasattr(signal, "pthread_sigmask"):  # forked while the parent held them back
-        signal.pthread_sigmask(signal.SIG_UNBLOCK, HELD)
+    mask_held(False)  # forked while the parent held them back
     die_with_parent()
     _parent = sender
     try:
@@ -165,6 +164,13 @@ def _child(work: Callable[[], Any], setup: Callable[[], None] | None,
 
 #: The signals a run turns into exceptions (gaitc.cli), held back while a child is forked.
 HELD: Final = frozenset({signal.SIGINT, signal.SIGTERM})
+
+
+def mask_held(blocked: bool) -> None:
+    """Block (or unblock) :data:`HELD` in the calling thread, where the platform has thread
+    signal masks."""
+    if hasattr(signal, "pthread_sigmask"):
+        signal.pthread_sigmask(signal.SIG_BLOCK if blocked else signal.SIG_UNBLOCK, HELD)
 
 
 @contextlib.contextmanager

@@ -128,9 +128,8 @@ def main(argv: Sequence[str] | None = None) -> int:
             code = _run(argv, signals)
             # a signal whose exception some code dropped (Python prints it as "Exception
             # ignored") still ends the run as that signal
-            if signals.received is None or code in SIGNAL_CODES:
-                return code
-            return _ended_by(signals.received)
+            ending = None if code in SIGNAL_CODES else signals.ending()
+            return code if ending is None else ending
         finally:
             signals.armed = False  # from here on a signal is only recorded
             for signum, handler in previous.items():

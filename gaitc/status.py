@@ -13,7 +13,6 @@ figures (rounds, BDD sizes); elsewhere (a pipe, a log file) nothing is shown.
 
 from __future__ import annotations
 
-import signal
 import sys
 import threading
 import time
@@ -21,7 +20,7 @@ from collections.abc import Iterator
 from contextlib import contextmanager
 from typing import Final, TextIO
 
-from diagnostics.processes import HELD
+from diagnostics.processes import mask_held
 from solver.progress import Progress, Stage
 
 #: Width of the bar in characters, and the redraw rates in seconds.
@@ -85,9 +84,7 @@ class StatusLine:
         self._drawn = time.monotonic()
 
     def _tick(self) -> None:
-        # signals go to the main thread only, which holds them back around forks
-        if hasattr(signal, "pthread_sigmask"):
-            signal.pthread_sigmask(signal.SIG_BLOCK, HELD)
+        mask_held(True)  # signals go to the main thread, which holds them back around forks
         while not self._stop.wait(TICK):
             with self._lock:
                 if self.stage is not None:
