@@ -82,20 +82,45 @@ def node_count(sym: SymbolicSpec, relations: Sequence[BDDNode], winning: BDDNode
     """The number of nodes :func:`solver.strategy.extract_strategy` makes when goal ``j``
     moves by ``relations[j]`` (after the preferences; over the state and the primed inputs
     and outputs); once the count passes ``cap`` the search stops and returns what it has."""
-    return run_through(Census.counting(sym, lambda j: given(relations[j]), len(relations),
-                                       winning, semantics, cap))
+    census = Census(sym, lambda j: given(relations[j]), len(relations), winning, semantics,
+                    cap)
+    while census.advance() is None:
+        pass
+    return census.count or 0
+
+
+def move_functions(sym: SymbolicSpec, relation: Callable[[int], Steps[BDDNode]],
+                   goals: int) -> Steps[list[BDDNode]]:
+    """Per goal ``j``, the move the extraction takes at every state and input ρe allows, as
+    one BDD over the state and the primed inputs and outputs: ``relation(j)`` (computed in
+    steps) within ρe, narrowed to its smallest move (:func:`smallest_moves`).  At a state,
+    its cofactor holds exactly one move per allowed input."""
+    out = []
+    for j in range(goals):
+        moves = (yield from relation(j)) & sym.env_trans
+        yield
+        out.append((yield from smallest_moves(sym, moves, sorted(sym.post_outputs),
+                                              sym.post_outputs)))
+    return out
 
 
 class Census:
     """:func:`node_count` in slices, each a few BDD operations, so that an extraction can
     run it alongside itself and give it a share of its own time; ``relation(j)`` computes
-    goal ``j``'s move relation, in steps too, when the census needs it."""
+    goal ``j``'s move relation, in steps too, when the census needs it.
+
+    Its first slices compute :func:`move_functions`, kept in :attr:`moves` once done: an
+    extraction can then read each node's moves off them (:func:`solver.strategy.
+    extract_strategy`).  With ``counting`` False the census ends there, with no count."""
 
     def __init__(self, sym: SymbolicSpec, relation: Callable[[int], Steps[BDDNode]], goals: int,
-                 winning: BDDNode, semantics: str, cap: int | None = None) -> None:
+                 winning: BDDNode, semantics: str, cap: int | None = None,
+                 counting: bool = True) -> None:
         self.count: int | None = None
+        self.moves: list[BDDNode] | None = None
+        self.done = False
         self.seconds = 0.0
-        self._slices = self.counting(sym, relation, goals, winning, semantics, cap)
+        self._slices = self._census(sym, relation, goals, winning, semantics, cap, counting)
 
     def advance(self) -> int | None:
         """Run one slice; the count once the census is done, else None."""
@@ -104,23 +129,21 @@ class Census:
             next(self._slices)
         except StopIteration as done:
             self.count = done.value
+            self.done = True
         finally:
             self.seconds += time.monotonic() - started
         return self.count
 
-    @staticmethod
-    def counting(sym: SymbolicSpec, relation: Callable[[int], Steps[BDDNode]], n: int,
-                 winning: BDDNode, semantics: str, cap: int | None) -> Steps[int]:
+    def _census(self, sym: SymbolicSpec, relation: Callable[[int], Steps[BDDNode]], n: int,
+                winning: BDDNode, semantics: str, cap: int | None,
+                counting: bool) -> Steps[int | None]:
         """The census itself, a slice per step."""
+        steps = self.moves = yield from move_functions(sym, relation, n)
+        if not counting:
+            return None
         bdd = sym.bdd
         pre = sym.pre_inputs | sym.pre_outputs
         width = len(pre)
-        post_out = sorted(sym.post_outputs)
-        steps = []
-        for j in range(n):
-            moves = (yield from relation(j)) & sym.env_trans
-            yield
-            steps.append((yield from smallest_moves(sym, moves, post_out, sym.post_outputs)))
         to = advances(sym)
         reached = [bdd.false] * n
         frontier = [bdd.false] * n

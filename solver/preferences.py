@@ -102,7 +102,8 @@ class MovePreferences:
         strict.game_sys_trans = sym.game_sys_trans & avoid
         strict.sys_clusters = []
         purpose = "solving the game without entries into active hazards"
-        result = Game(strict, limits, purpose).solve(keep_layers=True)
+        # Fewer moves win no more states: Z starts from the full game's winning region.
+        result = Game(strict, limits, purpose).solve(keep_layers=True, within=self.winning)
         self.safe = result.winning
         self.safe_strategies = goal_strategies(strict, result)
 

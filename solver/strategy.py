@@ -162,9 +162,12 @@ def extract_strategy(
         moves = strategies[goal]
         return given(moves) if prefer is None else prefer.relation_steps(goal, moves)
 
-    census = None if max_nodes is None else Census(
-        sym, relation, len(strategies), result.winning, semantics, max_nodes)
+    # Started after CENSUS_AFTER seconds: the move functions, then (with a node limit)
+    # the count; the functions, once there, replace the per-input steps below.
+    census: Census | None = Census(sym, relation, len(strategies), result.winning,
+                                   semantics, max_nodes, counting=max_nodes is not None)
     expected: int | None = None  # the census's count, once it has one
+    functions: list[BDDNode] | None = None  # the census's move functions, once it has them
     started = time.monotonic()
     initial = [node_of(s, 0) for s in initial_states(sym, result.winning, semantics)]
     bdd = sym.bdd
@@ -180,9 +183,10 @@ def extract_strategy(
             spent = time.monotonic() - started
             if spent > CENSUS_AFTER and spent - CENSUS_AFTER > 3 * census.seconds:
                 expected = census.advance()
+                functions = census.moves
                 if expected is not None and max_nodes is not None and expected > max_nodes:
                     raise too_large("controller", max_nodes)
-                if expected is not None:
+                if census.done:
                     census = None
         if k % REPORT_EVERY == 0:
             found = f"{len(nodes)} of {expected}" if expected else f"{len(nodes)}"
@@ -190,25 +194,14 @@ def extract_strategy(
                           f"{len(queue)} to expand", k / (expected or len(nodes)))
         state, goal = nodes[k]
         at = dict(zip(pre, map(bool, state), strict=True))
-        here = bdd.let(at, strategies[goal])
-        if prefer is not None:
-            here = prefer.allowed(at, goal, here)
-        env_here = bdd.let(at, sym.env_trans)
+        if functions is not None:
+            moves = _moves_at(sym, bdd.let(at, functions[goal]), post_in, post_out)
+        else:
+            moves = _chosen_moves(sym, at, goal, strategies[goal], prefer, smallest_of,
+                                  inputs_of)
         targets = set()
-        for x in inputs_of(bdd.exist(sym.post_outputs, env_here)):
-            at_x = dict(zip(post_in, map(bool, x), strict=True))
-            choices = cofactor(bdd, at_x, here)  # at_x is empty for a spec without inputs
-            preferred = choices & cofactor(bdd, at_x, env_here)
-            preferred = preferred if preferred != bdd.false else choices
-            if prefer is not None and preferred != bdd.false:
-                preferred = prefer.choose(at | at_x, goal, preferred)
-            y = smallest_of(preferred)
-            if y is None:
-                raise SolverError(
-                    "internal error: the strategy has no move for an allowed input",
-                    hint="please report this specification",
-                )
-            move = at | at_x | dict(zip(post_out, map(bool, y), strict=True))
+        for x, y in moves:
+            move = at | dict(zip(post_in + post_out, map(bool, x + y), strict=True))
             targets.add(node_of(x + y, next_goal(sym, goal, move)))
         trans[k] = sorted(targets)
     return Controller(
@@ -224,3 +217,47 @@ def extract_strategy(
         kind="strategy",
         semantics=semantics,
     )
+
+
+def _chosen_moves(sym: SymbolicSpec, at: dict[str, bool], goal: int, strategy: BDDNode,
+                  prefer: MovePreferences | None,
+                  smallest_of: Callable[[BDDNode], State | None],
+                  inputs_of: Callable[[BDDNode], list[State]]) -> list[tuple[State, State]]:
+    """The move (next input, next output) taken at the state ``at`` for goal ``goal``,
+    one per input ρe allows there, in input order: the smallest of the preferred moves."""
+    bdd = sym.bdd
+    post_in = primed(sym.input_bits)
+    here = bdd.let(at, strategy)
+    if prefer is not None:
+        here = prefer.allowed(at, goal, here)
+    env_here = bdd.let(at, sym.env_trans)
+    out = []
+    for x in inputs_of(bdd.exist(sym.post_outputs, env_here)):
+        at_x = dict(zip(post_in, map(bool, x), strict=True))
+        choices = cofactor(bdd, at_x, here)  # at_x is empty for a spec without inputs
+        preferred = choices & cofactor(bdd, at_x, env_here)
+        preferred = preferred if preferred != bdd.false else choices
+        if prefer is not None and preferred != bdd.false:
+            preferred = prefer.choose(at | at_x, goal, preferred)
+        y = smallest_of(preferred)
+        if y is None:
+            raise SolverError(
+                "internal error: the strategy has no move for an allowed input",
+                hint="please report this specification",
+            )
+        out.append((x, y))
+    return out
+
+
+def _moves_at(sym: SymbolicSpec, here: BDDNode, post_in: Sequence[str],
+              post_out: Sequence[str]) -> list[tuple[State, State]]:
+    """:func:`_chosen_moves` read off a census's move function at the state (``here``, its
+    cofactor there, over the primed inputs and outputs): the same moves, in the same order,
+    found by one enumeration instead of a few BDD operations per input."""
+    width = len(post_in)
+    found = all_assignments(sym.bdd, here, [*post_in, *post_out])
+    moves = [(a[:width], a[width:]) for a in found]
+    if len({x for x, _ in moves}) != len(moves):
+        raise SolverError("internal error: a move function offers two moves for one input",
+                          hint="please report this specification")
+    return moves

@@ -1,6 +1,8 @@
 """The census of an explicit extraction (solver/census.py) against the extraction itself.
 
-The count must be exact: every test extracts the controller node by node and compares.
+The count must be exact: every test extracts the controller node by node and compares,
+and extracts it again reading every node's moves off the census's move functions, which
+must give the same automaton.
 With a node limit, a long extraction gives up once the census passes it, after fewer
 expansions than the limit, and ``auto`` turns symbolic then.
 """
@@ -47,7 +49,28 @@ def _compare(spec: GR1Spec, semantics: str, prefer: MovePreferences | None,
     counted = node_count(sym, relations, result.winning, semantics)
     made = extract_strategy(sym, result, semantics, prefer=prefer)
     assert counted == len(made.nodes)
+    with pytest.MonkeyPatch.context() as patch:  # every node read off the move functions
+        patch.setattr(strategy, "CENSUS_AFTER", 0.0)
+        patch.setattr(strategy, "Census", _Eager)
+        _Eager.read_off = 0
+        fast = extract_strategy(sym, result, semantics, prefer=prefer)
+    assert _Eager.read_off == (1 if made.nodes else 0)  # no nodes: the loop never ran
+    assert (fast.nodes, fast.initial) == (made.nodes, made.initial)
     return counted
+
+
+class _Eager(Census):
+    """A census that computes its move functions in its first slice."""
+
+    read_off = 0  # how many censuses had their functions after their first slice
+
+    def advance(self) -> int | None:
+        if self.moves is not None:
+            return super().advance()
+        while self.moves is None and not self.done:
+            super().advance()
+        _Eager.read_off += self.moves is not None
+        return self.count
 
 
 @pytest.mark.parametrize("path", CORPUS, ids=lambda p: p.name)
