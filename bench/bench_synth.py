@@ -9,7 +9,8 @@ add /tmp/base <commit>``) the same command runs there too, with this checkout's 
 environment, and the table puts the two side by side with their ratio.
 
 The rows are the thesis robots in both encodings, thesis-style grids (bench/families/
-thesis.py) with health 3 and 4, the hazard patrol of tests/data, and GenBuf with 8 senders,
+thesis.py) with health 3 and 4, the hazard patrol of tests/data, hazard grids (bench/
+families/hazard_grid.py, binary, 8 x 8 and 10 x 10), and GenBuf with 8 senders,
 whose automaton passes ``--max-nodes`` and is kept symbolic.
 
 Usage: python bench/bench_synth.py [--quick] [--baseline DIR] [--timeout S]
@@ -30,6 +31,7 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
 from bench.families.genbuf import genbuf_text  # noqa: E402
+from bench.families.hazard_grid import hazard_grid_text  # noqa: E402
 from bench.families.thesis import gait_text  # noqa: E402
 
 
@@ -63,6 +65,12 @@ def rows(folder: Path, quick: bool) -> list[Row]:
         for encoding in ("onehot", "binary"):
             out.append(Row(f"thesis {rows_}x{cols} h{health} {encoding}", path,
                            ("--encoding", encoding)))
+    # Hazard grids: an input per open cell, so hundreds of inputs per node (binary: the
+    # family's encoding; the 10 x 10 automaton has 26,339 nodes, within --max-nodes).
+    for side in [8] if quick else [8, 10]:
+        path = folder / f"hazard_{side}x{side}.gait"
+        path.write_text(hazard_grid_text(side), encoding="utf-8")
+        out.append(Row(f"hazard grid {side}x{side} binary", path, ("--encoding", "binary")))
     genbuf = folder / "genbuf8.structuredslugs"
     genbuf.write_text(genbuf_text(8), encoding="utf-8")
     out.append(Row("genbuf 8 senders", genbuf))
