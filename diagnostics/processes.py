@@ -4,7 +4,9 @@ Used twice: :mod:`gaitc.isolation` runs one solver run in a child to make ``--ti
 ``--memory-limit`` hard limits, and :mod:`solver.portfolio` races two solver configurations
 and keeps the first answer. Each child sends back one outcome through a pipe:
 ``("ok", value)`` or ``("raise", exception, traceback text)``; a child that ends without
-one is ``("died", exit status)``, and a deadline passed is ``("timeout",)``. Children die
+one is ``("died", exit status)``, and a deadline passed is ``("timeout",)``. A child may
+claim the answer before it has it (:func:`claim`: a racer that has solved the game first),
+and the others are killed then. Children die
 with their parent (``PR_SET_PDEATHSIG`` on Linux), ignore Ctrl-C (the parent handles it and
 kills them), and are killed once an answer is chosen.
 """
@@ -49,15 +51,20 @@ def first_success(works: Sequence[Callable[[], Any]], deadline: float | None = N
     outcome. Work ``i`` starts ``delays[i]`` seconds after the first (default 0), or at once
     when an earlier work has failed, and only while no answer has come. ``deadline`` is a
     :func:`time.monotonic` time: past it, ``("timeout",)``. What a child passes to
-    :func:`to_parent` is handed to ``relay`` here (progress messages), as it arrives."""
+    :func:`to_parent` is handed to ``relay`` here (progress messages), as it arrives: the
+    first child's until a child calls :func:`claim`, then only the claimant's, whose outcome
+    (success or not) is then the answer, the others killed."""
     context = multiprocessing.get_context("fork")
     started_at = time.monotonic()
     starts = [started_at + (delays[i] if i < len(delays) else 0.0) for i in range(len(works))]
     children: dict[int, tuple[Any, Connection]] = {}
     failures: dict[int, Outcome] = {}
+    claimant: list[int] = []  # the child that called claim(), once one has
 
     def start_due() -> None:
         for i, work in enumerate(works):
+            if claimant:
+                return
             if i not in children and time.monotonic() >= starts[i]:
                 receiver, sender = context.Pipe(duplex=False)
                 # Not daemonic: a child may race children of its own (solver.portfolio in
@@ -72,26 +79,35 @@ def first_success(works: Sequence[Callable[[], Any]], deadline: float | None = N
     try:
         while True:
             start_due()
-            for i, (child, receiver) in children.items():
-                if i in failures:
+            for i, (child, receiver) in list(children.items()):
+                if i in failures or (claimant and i != claimant[0]):
                     continue
-                outcome = _outcome(child, receiver, relay)
+                speaker = claimant[0] if claimant else min(children)
+                outcome = _outcome(child, receiver, relay if i == speaker else None)
+                if outcome is not None and outcome[0] == "claim":
+                    claimant.append(i)
+                    _stop_others(children, i)
+                    outcome = _outcome(child, receiver, relay)
                 if outcome is not None and outcome[0] == "ok":
                     return i, outcome
                 if outcome is not None:
                     failures[i] = outcome
                     starts = [min(t, time.monotonic()) for t in starts]
+                    if claimant:  # the others are gone: the claimant's outcome is the answer
+                        return i, outcome
             if len(failures) == len(works):
                 first = min(failures)
                 return first, failures[first]
             now = time.monotonic()
             if deadline is not None and now >= deadline:
                 return 0, ("timeout",)
-            wake = [t for i, t in enumerate(starts) if i not in children]
+            # once claimed, no other child starts (or waits to): only the claimant's pipe
+            wake = [] if claimant else [t for i, t in enumerate(starts) if i not in children]
             if deadline is not None:
                 wake.append(deadline)
             timeout = max(0.0, min(wake) - now) if wake else None
-            connection.wait([r for i, (_, r) in children.items() if i not in failures],
+            connection.wait([r for i, (_, r) in children.items()
+                             if i not in failures and (not claimant or i == claimant[0])],
                             timeout if timeout is None else min(timeout, _POLL))
     finally:
         for child, receiver in children.values():
@@ -101,10 +117,21 @@ def first_success(works: Sequence[Callable[[], Any]], deadline: float | None = N
             receiver.close()
 
 
+def _stop_others(children: dict[int, tuple[Any, Connection]], keep: int) -> None:
+    """Kill and forget every child but ``keep`` (which has claimed the answer)."""
+    for i in [i for i in children if i != keep]:
+        child, receiver = children.pop(i)
+        if child.is_alive():
+            child.kill()
+        child.join()
+        receiver.close()
+
+
 def _outcome(child: Any, receiver: Connection, relay: Callable[[Any], None] | None
              ) -> Outcome | None:
-    """The child's answer, ``("died", status)`` when it ended without one, else None;
-    messages for :func:`to_parent` on the way are relayed."""
+    """The child's answer, ``("died", status)`` when it ended without one, ``("claim",)``
+    when it has called :func:`claim`, else None; messages for :func:`to_parent` on the way
+    are relayed."""
     while True:
         try:
             if not receiver.poll(0):
@@ -136,6 +163,15 @@ def to_parent(message: Any) -> None:
     if _parent is not None:
         with contextlib.suppress(OSError, ValueError):
             _parent.send(("message", message))
+
+
+def claim() -> None:
+    """In a child of :func:`first_success`: the answer will be this child's, so the parent
+    kills the others, starts no more, and relays this child's messages from now on (a racer
+    that has solved the game first extracts the controller alone).  Elsewhere a no-op."""
+    if _parent is not None:
+        with contextlib.suppress(OSError, ValueError):
+            _parent.send(("claim",))
 
 
 def _child(work: Callable[[], Any], setup: Callable[[], None] | None,

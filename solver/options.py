@@ -55,6 +55,10 @@ RACE_SIFT_AFTER: Final = 0.3
 #: take at most 0.004 s a step (thesis robots A and B have 27 bits and more).
 SMALL_BITS: Final = 20
 SMALL_STEP: Final = 0.01
+#: A small game whose misfit step finds more live nodes than this is built again in the
+#: sifted order rather than sifted in place (solver.game.OrderMisfit): a random 18-bit
+#: spec of two counters held a million nodes then, and its first sifting took 15 s.
+RESTART_NODES: Final = 250_000
 
 #: Any other fixed order sifts again after a step whose ∃y' image (the system's half of
 #: CPre) has more than RESIFT_NODES nodes and RESIFT_BLOWUP times the nodes of the step's
@@ -85,6 +89,8 @@ class Options:
     cluster_limit: int = 2500  # node limit when merging ρs parts into clusters
     memory_mb: int | None = None  # CUDD's hard memory limit (its own tables and caches)
     first: tuple[str, ...] = ()  # variables pinned to the top of the order (rigid parameters)
+    restart_misfit: bool = False  # a misfit order raises OrderMisfit instead of sifting in
+    # place (solver.portfolio's small games, which then build again in the sifted order)
 
 
 #: Of CUDD's memory budget (``Options.memory_mb``), the share at which the solver gives up:

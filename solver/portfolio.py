@@ -13,8 +13,11 @@ No cheap test tells the two apart before solving, so two forked processes race:
    once more when it is built, and then keeps that order fixed for the fixpoint (the
    first racer, whose build may have started again sifting too, sifts throughout its
    fixpoint after :data:`~solver.options.RACE_SIFT_AFTER` seconds, so the two differ). The
-   first answer wins and the other process is killed. The machines gaitc targets have two
-   cores, so each racer runs at full speed.
+   first answer wins and the other process is killed; a synthesis is won by the racer
+   that solves the game first (it claims the answer, :func:`diagnostics.processes.claim`),
+   which then extracts the controller alone, so a long extraction does not run twice,
+   in twice the memory. The machines gaitc targets have two cores, so each racer runs at
+   full speed.
 
 Sifting while building and then solving in a fixed order beat sifting throughout: on
 AMBA the fixpoint then takes 1.1 s at 5 masters and 11 s at 8 (dynamic sifting
@@ -30,7 +33,9 @@ This is the portfolio idea of Firman, Maoz and Ringert, "Performance heuristics 
 synthesis and related algorithms" (Acta Informatica 57, 2020), reduced to the switch
 that paid here. An explicit ``Options(reordering=True/False)``, a memory budget (two
 racers would need twice the memory), a platform without ``fork``, or a spec of at most
-:data:`SMALL_BITS` state bits skips the race.
+:data:`SMALL_BITS` state bits skips the race; such a small spec is solved in this process,
+in the static order until a step shows that order misfits, and then built again in the
+sifted order (:class:`~solver.game.OrderMisfit`).
 """
 
 from __future__ import annotations
@@ -43,7 +48,7 @@ from typing import Final, TypeVar
 
 from diagnostics import GaitcError, SolverError
 from diagnostics.processes import GRACE, can_fork, first_success, to_parent
-from solver.game import Limits, out_of_memory, time_limit_error
+from solver.game import Limits, OrderMisfit, out_of_memory, time_limit_error
 from solver.options import RACE_SIFT_AFTER, SMALL_BITS
 from solver.symbolic import Options
 
@@ -82,10 +87,14 @@ def solve_chosen(run: Callable[[Options, Limits], T], options: Options, limits: 
     if options.reordering is not None or options.memory_mb is not None or not can_fork():
         return run(options, limits), DYNAMIC if options.reordering else STATIC
     if bits is not None and bits <= SMALL_BITS:
-        return run(engine_options(STATIC, options), limits), STATIC
-    # The static racer's progress comes back through the pipe; the other racer is quiet.
+        try:
+            return run(replace(engine_options(STATIC, options), restart_misfit=True),
+                       limits), STATIC
+        except OrderMisfit:  # a step showed the guards order misfits: build it sifted
+            return run(engine_options(SIFTED, options), limits), SIFTED
+    # Progress comes back through the pipes: the static racer's, and once a racer has
+    # claimed the answer (solver.synthesis: it solved the game first), that racer's.
     reporting = replace(limits, progress=None if limits.progress is None else to_parent)
-    quiet = replace(limits, progress=None)
     # The racers differ in the game too: a restarted static build is sifted like the
     # second racer's, so its game sifts throughout after a while and the other stays fixed.
     static = replace(engine_options(STATIC, options), sift_after=RACE_SIFT_AFTER)
@@ -93,7 +102,7 @@ def solve_chosen(run: Callable[[Options, Limits], T], options: Options, limits: 
 
     def second() -> T:
         os.nice(SECOND_NICENESS)  # in its own process: yields the CPU it would steal
-        return run(sifted, quiet)
+        return run(sifted, reporting)
 
     works = [lambda: run(static, reporting), second]
     deadline = None if limits.timeout is None else limits.started + limits.timeout + GRACE

@@ -15,6 +15,7 @@ from dataclasses import dataclass, field, replace
 from typing import Final
 
 from diagnostics import FormulaError
+from diagnostics.processes import claim
 from gr1.bddfile import SymbolicController
 from gr1.bits import spec_bits
 from gr1.controller import Controller
@@ -180,6 +181,7 @@ def synthesize_controller(
         sym, game = _game(spec, semantics, chosen, lim)
         with memory_guard():
             result = game.solve(keep_layers=True)
+            claim()  # in a race, this racer extracts the controller alone
             if not game.initially_winning(result.winning, semantics):
                 return None
             moves = MovePreferences(sym, result, costs, prefer, lim) if prefer else None
@@ -213,6 +215,7 @@ def counterstrategy(
         sym, game = _game(spec, semantics, chosen, lim)
         with memory_guard():
             result = game.solve()
+            claim()  # in a race, this racer extracts the counter-strategy alone
             if game.initially_winning(result.winning, semantics):
                 return None
             lim.report("extracting the counter-strategy")

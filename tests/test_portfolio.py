@@ -17,11 +17,12 @@ import pytest
 
 import gaitc
 from diagnostics import SolverError
+from diagnostics.processes import claim, first_success, to_parent
 from solver import game as game_module
 from solver import portfolio, synthesis
-from solver.game import Limits
+from solver.game import Limits, OrderMisfit
 from solver.portfolio import DYNAMIC, SIFTED, STATIC, engine_options, solve_chosen
-from solver.symbolic import Options
+from solver.symbolic import Options, SymbolicSpec
 from verifier.strategy import verify
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -285,3 +286,86 @@ def test_the_racers_differ_in_the_game_as_well(tmp_path: Path) -> None:
         for semantics in ("default", "robotics"):
             assert game.initially_winning(won, semantics) == plain.initially_winning(
                 plain_won, semantics)
+
+
+def _claims_then(answer: str, seconds: float, fail: bool = False) -> Any:
+    def work() -> str:
+        to_parent("before the claim")
+        claim()
+        time.sleep(seconds)
+        to_parent(f"{answer} after the claim")
+        if fail:
+            raise SolverError("the claimant failed")
+        return answer
+
+    return work
+
+
+def _answers_after(seconds: float) -> Any:
+    def work() -> str:
+        time.sleep(seconds)
+        to_parent("the other")
+        return "other"
+
+    return work
+
+
+def test_a_claim_makes_the_claimants_answer_the_races() -> None:
+    """Without the claim the other child, done after 0.2 s, would win; its messages and
+    its answer are dropped, and the claimant's are kept."""
+    heard: list[str] = []
+    started, cpu = time.monotonic(), time.process_time()
+    index, outcome = first_success([_answers_after(0.2), _claims_then("mine", 1.0)],
+                                   relay=heard.append)
+    assert (index, outcome) == (1, ("ok", "mine"))
+    assert time.monotonic() - started >= 1.0
+    assert time.process_time() - cpu < 0.5  # the parent waits on the pipe, it does not spin
+    assert "mine after the claim" in heard and "the other" not in heard
+
+
+def test_a_claimant_that_fails_is_the_answer_even_if_the_other_would_have_won() -> None:
+    index, outcome = first_success([_claims_then("mine", 0.3, fail=True),
+                                    _answers_after(0.1)])
+    assert index == 0 and outcome[0] == "raise"
+    assert "the claimant failed" in str(outcome[1])
+
+
+def test_a_claim_before_the_head_start_ends_starts_no_second_child(tmp_path: Path) -> None:
+    marker = tmp_path / "started"
+
+    def second() -> str:
+        marker.write_text("yes", encoding="utf-8")
+        return "other"
+
+    index, outcome = first_success([_claims_then("mine", 0.5), second], delays=(0.0, 0.2))
+    assert (index, outcome) == (0, ("ok", "mine"))
+    assert not marker.exists()
+
+
+def test_claim_outside_a_child_does_nothing() -> None:
+    claim()  # no parent to tell
+
+
+MISFIT = ROOT / "tests" / "data" / "misfit"
+
+
+@pytest.mark.parametrize("name,semantics", [("compare_0076", "default"),
+                                            ("compare_0135", "robotics")])
+def test_a_small_spec_whose_guards_order_misfits_is_built_again_sifted(
+        name: str, semantics: str) -> None:
+    """18 state bits, so no race: in the guards order one goal's J ∧ Z' has a million
+    nodes, and sifting that manager in place took 15 s; built sifted, it solves at once.
+    SLUGS says both are realizable."""
+    spec = gaitc.load(MISFIT / f"{name}.structuredslugs").gr1
+    assert synthesis.state_bits(spec) <= portfolio.SMALL_BITS
+    verdict = synthesis.check(spec, semantics)
+    assert verdict.realizable and verdict.engine == SIFTED
+    controller = synthesis.synthesize(spec, semantics)
+    assert controller is not None and verify(spec, controller, semantics).ok
+
+
+def test_a_game_asked_to_restart_stops_at_a_misfit_step() -> None:
+    spec = gaitc.load(MISFIT / "compare_0076.structuredslugs").gr1
+    sym = SymbolicSpec(spec, Options(reordering=False, restart_misfit=True))
+    with pytest.raises(OrderMisfit):
+        game_module.Game(sym).solve()
