@@ -34,11 +34,7 @@ import argparse
 import json
 import multiprocessing
 import multiprocessing.connection
-import os
-import random
-import re
 import shutil
-import subprocess
 import sys
 import tempfile
 import time
@@ -48,15 +44,14 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
 import gaitc
-from bench.families.random_shapes import SHAPES, render
-from diagnostics import GaitcError
+from bench.families.random_shapes import SHAPES, shape_text
+from diagnostics import GaitcError, SolverError
+from slugs_bridge.runner import run_slugs_check
 from solver.options import RACE_SIFT_AFTER, SMALL_BITS
 from solver.portfolio import HEAD_START, SIFTED, STATIC, engine_options
 from solver.symbolic import Options
 from solver.synthesis import state_bits
 
-SLUGS = os.environ.get("SLUGS", "slugs")  # the SLUGS binary (tools/build-slugs.sh)
-RESULT = re.compile(r"^RESULT: Specification is (realizable|unrealizable)\.\s*$", re.M)
 MIN_BITS, MAX_BITS = 15, 45
 SLOW_RATIO, SLOW_SLUGS, PATHOLOGICAL = 1.5, 0.2, 20.0
 GRACE = 0.5  # seconds past its limit before a child is killed
@@ -95,19 +90,16 @@ class Row:
 
 
 def run_slugs(path: Path, semantics: str, timeout: float) -> tuple[str, float]:
-    command = [SLUGS, *(["--sysInitRoboticsSemantics"] if semantics == "robotics" else []),
-               str(path)]
+    """SLUGS's verdict on the slugsin file and its own seconds (slugs_bridge.runner, the
+    binary of ``$SLUGS`` or PATH); "timeout" or "error" when it gives none."""
     started = time.perf_counter()
     try:
-        proc = subprocess.run(command, capture_output=True, text=True, timeout=timeout,
-                              check=False, stdin=subprocess.DEVNULL)
-    except subprocess.TimeoutExpired:
-        return "timeout", time.perf_counter() - started
-    seconds = time.perf_counter() - started
-    found = RESULT.findall(proc.stderr)
-    if proc.returncode != 0 or len(found) != 1:
-        return "error", seconds
-    return found[0], seconds
+        result = run_slugs_check(path.read_text(encoding="utf-8"), semantics=semantics,
+                                 timeout=timeout)
+    except SolverError:
+        elapsed = time.perf_counter() - started
+        return ("timeout" if elapsed >= timeout else "error"), elapsed
+    return ("realizable" if result.realizable else "unrealizable"), result.seconds
 
 
 def _child(conn: multiprocessing.connection.Connection, path: str, semantics: str,
@@ -196,8 +188,7 @@ def count_bits(slugsin: str) -> int:
 
 def generate(shape: str, seed: int, workdir: Path) -> tuple[Path, Path, int] | str:
     """The spec's structuredslugs and slugsin files and its bits, or why it was skipped."""
-    rng = random.Random(f"{shape}:{seed}")
-    text = render(SHAPES[shape](rng), f"{shape} seed {seed} (bench/bench_random_families.py)")
+    text = shape_text(shape, seed)
     path = workdir / f"{shape}_{seed:04d}.structuredslugs"
     path.write_text(text, encoding="utf-8")
     try:

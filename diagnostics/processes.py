@@ -59,11 +59,11 @@ def first_success(works: Sequence[Callable[[], Any]], deadline: float | None = N
     starts = [started_at + (delays[i] if i < len(delays) else 0.0) for i in range(len(works))]
     children: dict[int, tuple[Any, Connection]] = {}
     failures: dict[int, Outcome] = {}
-    claimant: list[int] = []  # the child that called claim(), once one has
+    claimant: int | None = None  # the child that called claim(), once one has
 
     def start_due() -> None:
         for i, work in enumerate(works):
-            if claimant:
+            if claimant is not None:
                 return
             if i not in children and time.monotonic() >= starts[i]:
                 receiver, sender = context.Pipe(duplex=False)
@@ -80,12 +80,12 @@ def first_success(works: Sequence[Callable[[], Any]], deadline: float | None = N
         while True:
             start_due()
             for i, (child, receiver) in list(children.items()):
-                if i in failures or (claimant and i != claimant[0]):
+                if i in failures or claimant not in (None, i):
                     continue
-                speaker = claimant[0] if claimant else min(children)
+                speaker = min(children) if claimant is None else claimant
                 outcome = _outcome(child, receiver, relay if i == speaker else None)
                 if outcome is not None and outcome[0] == "claim":
-                    claimant.append(i)
+                    claimant = i
                     _stop_others(children, i)
                     outcome = _outcome(child, receiver, relay)
                 if outcome is not None and outcome[0] == "ok":
@@ -93,7 +93,7 @@ def first_success(works: Sequence[Callable[[], Any]], deadline: float | None = N
                 if outcome is not None:
                     failures[i] = outcome
                     starts = [min(t, time.monotonic()) for t in starts]
-                    if claimant:  # the others are gone: the claimant's outcome is the answer
+                    if claimant is not None:  # the others are gone: this is the answer
                         return i, outcome
             if len(failures) == len(works):
                 first = min(failures)
@@ -102,12 +102,13 @@ def first_success(works: Sequence[Callable[[], Any]], deadline: float | None = N
             if deadline is not None and now >= deadline:
                 return 0, ("timeout",)
             # once claimed, no other child starts (or waits to): only the claimant's pipe
-            wake = [] if claimant else [t for i, t in enumerate(starts) if i not in children]
+            wake = ([] if claimant is not None
+                    else [t for i, t in enumerate(starts) if i not in children])
             if deadline is not None:
                 wake.append(deadline)
             timeout = max(0.0, min(wake) - now) if wake else None
             connection.wait([r for i, (_, r) in children.items()
-                             if i not in failures and (not claimant or i == claimant[0])],
+                             if i not in failures and claimant in (None, i)],
                             timeout if timeout is None else min(timeout, _POLL))
     finally:
         for child, receiver in children.values():

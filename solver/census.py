@@ -84,8 +84,8 @@ def node_count(sym: SymbolicSpec, relations: Sequence[BDDNode], winning: BDDNode
     and outputs); once the count passes ``cap`` the search stops and returns what it has."""
     census = Census(sym, lambda j: given(relations[j]), len(relations), winning, semantics,
                     cap)
-    while census.advance() is None:
-        pass
+    while not census.done:
+        census.advance()
     return census.count or 0
 
 

@@ -55,6 +55,17 @@ def preference_order(asked: str | Iterable[str] | None) -> tuple[str, ...]:
     return tuple(names)
 
 
+def fewer_moves(sym: SymbolicSpec, allowed: BDDNode) -> SymbolicSpec:
+    """``sym`` with the system's moves cut to ``allowed`` (over the state and the next
+    state): the game of the hazard-avoiding strategy, whose winning region lies inside
+    ``sym``'s (:meth:`Game.solve`'s ``within``)."""
+    strict = copy.copy(sym)
+    strict.sys_trans = sym.sys_trans & allowed
+    strict.game_sys_trans = sym.game_sys_trans & allowed
+    strict.sys_clusters = []
+    return strict
+
+
 class MovePreferences:
     """The preferences of one extraction: term BDDs and the primed Y rings, built once."""
 
@@ -97,10 +108,7 @@ class MovePreferences:
         avoid = sym.bdd.true
         for term in hazards:
             avoid &= ~term
-        strict = copy.copy(sym)
-        strict.sys_trans = sym.sys_trans & avoid
-        strict.game_sys_trans = sym.game_sys_trans & avoid
-        strict.sys_clusters = []
+        strict = fewer_moves(sym, avoid)
         purpose = "solving the game without entries into active hazards"
         # Fewer moves win no more states: Z starts from the full game's winning region.
         result = Game(strict, limits, purpose).solve(keep_layers=True, within=self.winning)

@@ -141,6 +141,7 @@ def extract_strategy(
     ins, outs = list(sym.input_bits), list(sym.output_bits)
     pre = ins + outs
     post_in, post_out = primed(ins), primed(outs)
+    post = post_in + post_out
     strategies = goal_strategies(sym, result)
     index: dict[tuple[State, int], int] = {}
     nodes: list[tuple[State, int]] = []
@@ -195,13 +196,13 @@ def extract_strategy(
         state, goal = nodes[k]
         at = dict(zip(pre, map(bool, state), strict=True))
         if functions is not None:
-            moves = _moves_at(sym, bdd.let(at, functions[goal]), post_in, post_out)
+            moves = _moves_at(sym, bdd.let(at, functions[goal]), post, len(post_in))
         else:
-            moves = _chosen_moves(sym, at, goal, strategies[goal], prefer, smallest_of,
-                                  inputs_of)
+            moves = _chosen_moves(sym, at, goal, strategies[goal], prefer, post_in,
+                                  smallest_of, inputs_of)
         targets = set()
         for x, y in moves:
-            move = at | dict(zip(post_in + post_out, map(bool, x + y), strict=True))
+            move = at | dict(zip(post, map(bool, x + y), strict=True))
             targets.add(node_of(x + y, next_goal(sym, goal, move)))
         trans[k] = sorted(targets)
     return Controller(
@@ -220,13 +221,12 @@ def extract_strategy(
 
 
 def _chosen_moves(sym: SymbolicSpec, at: dict[str, bool], goal: int, strategy: BDDNode,
-                  prefer: MovePreferences | None,
+                  prefer: MovePreferences | None, post_in: Sequence[str],
                   smallest_of: Callable[[BDDNode], State | None],
                   inputs_of: Callable[[BDDNode], list[State]]) -> list[tuple[State, State]]:
     """The move (next input, next output) taken at the state ``at`` for goal ``goal``,
     one per input ρe allows there, in input order: the smallest of the preferred moves."""
     bdd = sym.bdd
-    post_in = primed(sym.input_bits)
     here = bdd.let(at, strategy)
     if prefer is not None:
         here = prefer.allowed(at, goal, here)
@@ -249,13 +249,13 @@ def _chosen_moves(sym: SymbolicSpec, at: dict[str, bool], goal: int, strategy: B
     return out
 
 
-def _moves_at(sym: SymbolicSpec, here: BDDNode, post_in: Sequence[str],
-              post_out: Sequence[str]) -> list[tuple[State, State]]:
+def _moves_at(sym: SymbolicSpec, here: BDDNode, post: Sequence[str],
+              width: int) -> list[tuple[State, State]]:
     """:func:`_chosen_moves` read off a census's move function at the state (``here``, its
-    cofactor there, over the primed inputs and outputs): the same moves, in the same order,
-    found by one enumeration instead of a few BDD operations per input."""
-    width = len(post_in)
-    found = all_assignments(sym.bdd, here, [*post_in, *post_out])
+    cofactor there, over ``post``: the ``width`` primed inputs, then the primed outputs):
+    the same moves, in the same order, found by one enumeration instead of a few BDD
+    operations per input."""
+    found = all_assignments(sym.bdd, here, post)
     moves = [(a[:width], a[width:]) for a in found]
     if len({x for x, _ in moves}) != len(moves):
         raise SolverError("internal error: a move function offers two moves for one input",

@@ -8,7 +8,6 @@ at the same Z, the same strategy layers and rings: every test solves both and co
 
 from __future__ import annotations
 
-import copy
 from pathlib import Path
 
 from games import tiny_specs
@@ -17,18 +16,10 @@ from hypothesis import HealthCheck, given, settings
 from gr1.spec import GR1Spec
 from slugs_bridge.formats import load_spec_file
 from solver.game import Game
-from solver.symbolic import BDDNode, Options, SymbolicSpec
+from solver.preferences import fewer_moves
+from solver.symbolic import Options, SymbolicSpec
 
 CORPUS = sorted((Path(__file__).parent / "data" / "gr1_corpus").glob("rand3_00[0-3]*.slugsin"))
-
-
-def _fewer_moves(sym: SymbolicSpec, avoid: BDDNode) -> SymbolicSpec:
-    """``sym`` with the system's moves cut to ``avoid``, as the hazard-avoiding game is."""
-    strict = copy.copy(sym)
-    strict.sys_trans = sym.sys_trans & avoid
-    strict.game_sys_trans = sym.game_sys_trans & avoid
-    strict.sys_clusters = []
-    return strict
 
 
 def _both_ways(spec: GR1Spec) -> int:
@@ -37,7 +28,7 @@ def _both_ways(spec: GR1Spec) -> int:
     sym = SymbolicSpec(spec, Options(reordering=False))
     winning = Game(sym).solve().winning
     out = sym.output_bits[0] + "'"
-    strict = _fewer_moves(sym, ~sym.bdd.var(out))  # the first output stays false
+    strict = fewer_moves(sym, ~sym.bdd.var(out))  # the first output stays false
     plain_game, started_game = Game(strict), Game(strict)
     plain = plain_game.solve(keep_layers=True)
     started = started_game.solve(keep_layers=True, within=winning)

@@ -13,7 +13,7 @@ assumptions and 1-4 liveness guarantees:
   forbidden joint states and accepting-state goals;
 * ``invariant`` random 3-4 literal clauses with next-state literals, random liveness.
 
-A spec is a function of its shape and seed alone (``random.Random(seed)``).  Used by
+A spec is a function of its shape and seed alone (:func:`shape_text`).  Used by
 bench/bench_random_families.py, the differential campaign against SLUGS.
 """
 
@@ -370,3 +370,9 @@ SHAPES: dict[str, Callable[[random.Random], Sections]] = {
     "counter": counter, "compare": compare, "mutex": mutex, "graph": graph,
     "automata": automata, "invariant": invariant,
 }
+
+
+def shape_text(shape: str, seed: int) -> str:
+    """The structuredslugs text of ``shape`` (a key of :data:`SHAPES`) drawn with ``seed``."""
+    rng = random.Random(f"{shape}:{seed}")
+    return render(SHAPES[shape](rng), f"{shape} seed {seed} (bench/bench_random_families.py)")
