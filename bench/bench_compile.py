@@ -13,8 +13,8 @@ from collections.abc import Callable
 from functools import partial
 from typing import TypeVar
 
-from gaitc.emission import emit
-from gr1.spec import SECTIONS
+from gaitc.api.emission import emit
+from gaitc.ir.spec import SECTIONS
 from ltlcompiler.frontend import model_from_text
 from ltlcompiler.lowering import lower
 

@@ -15,8 +15,8 @@ from collections.abc import Callable
 from pathlib import Path
 
 import gaitc
-from analysis import core, failure, freedoms, repairs
-from analysis.oracle import Oracle
+from gaitc.analysis import core, failure, freedoms, repairs
+from gaitc.analysis.oracle import Oracle
 
 ROOT = Path(__file__).resolve().parent.parent
 TARGET_SECONDS = 30.0

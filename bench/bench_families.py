@@ -30,11 +30,11 @@ import gaitc
 from bench.families import catalogue, timing
 from bench.families.catalogue import Instance
 from bench.families.timing import Outcome
-from solver.portfolio import SIFTED, STATIC, engine_options
-from solver.symbolic import Options
+from gaitc.solver.portfolio import SIFTED, STATIC, engine_options
+from gaitc.solver.symbolic import Options
 
 ABLATION = {
-    "default": Options(),  # the race of solver/portfolio.py
+    "default": Options(),  # the race of gaitc/solver/portfolio.py
     "static": engine_options(STATIC),
     "sifted": engine_options(SIFTED),  # the race's second racer
     "sift-once": Options(reorder_once=True, reordering=False),

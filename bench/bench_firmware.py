@@ -23,7 +23,7 @@ import time
 from pathlib import Path
 
 from gaitc.cli import main
-from gaithw.firmware import Image, SimulatedBoard, build, missing_tools, vented_after
+from gaitc.hw.firmware import Image, SimulatedBoard, build, missing_tools, vented_after
 
 ROOT = Path(__file__).resolve().parent.parent
 SPEC = (Path(__file__).resolve().parent.parent / "specs" / "shuttle_2leg.gait").read_text(

@@ -25,15 +25,15 @@ from pathlib import Path
 
 import numpy as np
 
-from gaitgraph.cycles import synthesize
-from gaitgraph.graph import GaitGraph, random_states
-from gaitgraph.robot import load_robot
-from gaitsearch.api import start_pose
-from gaitsearch.goals import Goal
-from gaitsearch.planners import SearchLimitError, Settings, make_planner
-from gaitsearch.plans import GaitPlan
-from gaitsearch.transitions import TransitionModel
-from gaitsearch.walker import Mismatch, SimulatedWalker
+from gaitc.gaitgraph.cycles import synthesize
+from gaitc.gaitgraph.graph import GaitGraph, random_states
+from gaitc.gaitgraph.robot import load_robot
+from gaitc.search.api import start_pose
+from gaitc.search.goals import Goal
+from gaitc.search.planners import SearchLimitError, Settings, make_planner
+from gaitc.search.plans import GaitPlan
+from gaitc.search.transitions import TransitionModel
+from gaitc.search.walker import Mismatch, SimulatedWalker
 
 ROBOTS = Path(__file__).resolve().parent.parent / "specs" / "robots"
 GOAL = Goal(40.0, 0.0)

@@ -13,10 +13,10 @@ from pathlib import Path
 
 import numpy as np
 
-from gaitgraph.graph import GaitGraph, full_graph, random_states
-from gaitgraph.kinematics import forward
-from gaitgraph.poses import stable_poses
-from gaitgraph.robot import load_robot
+from gaitc.gaitgraph.graph import GaitGraph, full_graph, random_states
+from gaitc.gaitgraph.kinematics import forward
+from gaitc.gaitgraph.poses import stable_poses
+from gaitc.gaitgraph.robot import load_robot
 
 ROBOTS = Path(__file__).resolve().parent.parent / "specs" / "robots"
 

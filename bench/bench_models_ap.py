@@ -19,8 +19,8 @@ from pathlib import Path
 
 import numpy as np
 
-from softmodels.active_passive import ActivePassiveModel
-from softmodels.motion import Pose2D, ValveState
+from gaitc.models.active_passive import ActivePassiveModel
+from gaitc.models.motion import Pose2D, ValveState
 
 ROBOT = Path(__file__).resolve().parent.parent / "specs" / "robots" / "silicone6.yaml"
 PERIOD = 6.0  # s, the controller period of thesis chapter 4

@@ -18,8 +18,8 @@ import time
 from pathlib import Path
 
 import gaitc
-from gaitsim.environments import AdversarialEnvironment, Environment, RandomEnvironment
-from gaitsim.run import Run
+from gaitc.sim.environments import AdversarialEnvironment, Environment, RandomEnvironment
+from gaitc.sim.run import Run
 
 ROOT = Path(__file__).resolve().parent.parent
 SPECS = ((ROOT / "specs" / "thesis_robot_a.gait", "binary"),

@@ -45,12 +45,12 @@ sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
 import gaitc
 from bench.families.random_shapes import SHAPES, shape_text
-from diagnostics import GaitcError, SolverError
+from gaitc.diagnostics import GaitcError, SolverError
+from gaitc.solver.options import RACE_SIFT_AFTER, SMALL_BITS
+from gaitc.solver.portfolio import HEAD_START, SIFTED, STATIC, engine_options
+from gaitc.solver.symbolic import Options
+from gaitc.solver.synthesis import state_bits
 from slugs_bridge.runner import run_slugs_check
-from solver.options import RACE_SIFT_AFTER, SMALL_BITS
-from solver.portfolio import HEAD_START, SIFTED, STATIC, engine_options
-from solver.symbolic import Options
-from solver.synthesis import state_bits
 
 MIN_BITS, MAX_BITS = 15, 45
 SLOW_RATIO, SLOW_SLUGS, PATHOLOGICAL = 1.5, 0.2, 20.0

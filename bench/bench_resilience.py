@@ -20,10 +20,10 @@ import time
 from pathlib import Path
 
 import gaitc
-from analysis.lattice import fatal_sets
-from analysis.parametric import failure_sets
-from analysis.pool import Pool
-from analysis.variants import with_failed
+from gaitc.analysis.lattice import fatal_sets
+from gaitc.analysis.parametric import failure_sets
+from gaitc.analysis.pool import Pool
+from gaitc.analysis.variants import with_failed
 from ltlcompiler.model import Model
 
 ROOT = Path(__file__).resolve().parent.parent

@@ -1,6 +1,6 @@
 """Health classification from waveguide curves: confusion matrices and level flaps (issue 14).
 
-Thresholds are calibrated (``gaithw.sensing.calibrate``) on synthetic curves shaped like
+Thresholds are calibrated (``gaitc.hw.sensing.calibrate``) on synthetic curves shaped like
 thesis Figure 3.5 (nine cycles of a progressively damaged actuator: 1-5 healthy, 6-8
 degraded, 9 inoperable; three legs, three repeats, sensor noise 12 counts on a rest value of
 700-800), then fresh curves of known level are classified at rising noise.  The flap count
@@ -14,7 +14,7 @@ from __future__ import annotations
 import itertools
 import sys
 
-from gaithw.sensing import (
+from gaitc.hw.sensing import (
     HealthSensing,
     LegCalibration,
     calibrate,

@@ -14,7 +14,7 @@ import time
 from pathlib import Path
 
 import gaitc
-from gaitsim.environments import AdversarialEnvironment, Environment, RandomEnvironment
+from gaitc.sim.environments import AdversarialEnvironment, Environment, RandomEnvironment
 
 ROOT = Path(__file__).resolve().parent.parent
 SPEC = ROOT / "specs" / "thesis_robot_a.gait"

@@ -23,8 +23,8 @@ sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
 import gaitc
 from bench.families.thesis import HEALTH, SIZES, gait_text
-from diagnostics import SolverError
-from solver.symbolic import Options
+from gaitc.diagnostics import SolverError
+from gaitc.solver.symbolic import Options
 
 ROOT = Path(__file__).resolve().parent.parent
 ABLATION = {

@@ -25,10 +25,10 @@ sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
 import gaitc
 from bench.families.hazard_grid import hazard_grid_text
-from gaitsim.environments import RandomEnvironment
-from gr1.bddfile import SymbolicController, symbolic_to_json
-from solver import synthesis
-from verifier.symbolic import verify_symbolic
+from gaitc.ir.bddfile import SymbolicController, symbolic_to_json
+from gaitc.sim.environments import RandomEnvironment
+from gaitc.solver import synthesis
+from gaitc.verifier.symbolic import verify_symbolic
 
 ROOT = Path(__file__).resolve().parent.parent
 MEMORY_MB = 1024

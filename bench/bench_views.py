@@ -18,12 +18,12 @@ import argparse
 import time
 from pathlib import Path
 
-from gaitc.simulation import session
-from gaitsim.automaton_view import automaton_view
-from gaitsim.policy import project
-from gaitsim.policy_view import policy_view
-from gaitsim.steps_view import steps_view
-from gaitsim.strategy import Strategy
+from gaitc.api.simulation import session
+from gaitc.sim.automaton_view import automaton_view
+from gaitc.sim.policy import project
+from gaitc.sim.policy_view import policy_view
+from gaitc.sim.steps_view import steps_view
+from gaitc.sim.strategy import Strategy
 
 ROOT = Path(__file__).resolve().parent.parent
 DEFAULT = [ROOT / "specs" / "thesis_robot_a.gait", ROOT / "tests" / "data" / "hazard_patrol.gait"]

@@ -15,7 +15,12 @@ notebook (see ``docs/api.md``):
   play, verified repairs), or the sanity checks of a realizable one;
 - :func:`resilience`: which leg failures, health levels, caches and hazards a task
   tolerates or needs;
-- :func:`simulate`: a run of a controller against an environment, checked against the spec.
+- :func:`simulate`: a run of a controller against an environment, checked against the spec;
+- :func:`copy_examples`: the example robots and specs shipped in the package, copied out.
+
+Every error a user can cause is a :class:`GaitcError` with a source span, and also the
+builtin exception it means: a missing file is a :class:`FileNotFoundError`, a bad value a
+:class:`ValueError`, a solver that cannot finish a :class:`RuntimeError`.
 
 The command line (:mod:`gaitc.cli`) is a thin layer over these functions.
 """
@@ -26,13 +31,14 @@ import importlib
 from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
-    from gaitc.emission import FORMATS, emit
-    from gaitc.explaining import explain
-    from gaitc.linting import lint
-    from gaitc.loading import Spec, load, parse
-    from gaitc.resilient import resilience
-    from gaitc.simulation import Session, session, simulate
-    from gaitc.solving import (
+    from gaitc.api.emission import FORMATS, emit
+    from gaitc.api.examples import copy_examples
+    from gaitc.api.explaining import explain
+    from gaitc.api.linting import lint
+    from gaitc.api.loading import Spec, load, parse
+    from gaitc.api.resilient import resilience
+    from gaitc.api.simulation import Session, session, simulate
+    from gaitc.api.solving import (
         SOLVERS,
         Synthesis,
         Verdict,
@@ -41,17 +47,40 @@ if TYPE_CHECKING:
         synthesize,
         verify,
     )
+    from gaitc.diagnostics import (
+        ControllerError,
+        FileAccessError,
+        FormulaError,
+        GaitcError,
+        MissingFileError,
+        ScenarioError,
+        SlugsFormatError,
+        SolverError,
+        Span,
+        SpecSemanticError,
+        SpecSyntaxError,
+        UsageError,
+    )
 
 #: Where each public name lives; modules load on first use, so ``gaitc --help`` and a
 #: Ctrl-C at start-up do not wait for the solver, the parser and the gait graph to import.
 _HOMES = {
-    "FORMATS": "gaitc.emission", "emit": "gaitc.emission", "explain": "gaitc.explaining",
-    "lint": "gaitc.linting", "Spec": "gaitc.loading", "load": "gaitc.loading",
-    "parse": "gaitc.loading", "resilience": "gaitc.resilient", "Session": "gaitc.simulation",
-    "session": "gaitc.simulation", "simulate": "gaitc.simulation", "SOLVERS": "gaitc.solving",
-    "Synthesis": "gaitc.solving", "Verdict": "gaitc.solving", "check": "gaitc.solving",
-    "counterstrategy": "gaitc.solving", "synthesize": "gaitc.solving",
-    "verify": "gaitc.solving",
+    "FORMATS": "gaitc.api.emission", "emit": "gaitc.api.emission",
+    "explain": "gaitc.api.explaining", "lint": "gaitc.api.linting",
+    "Spec": "gaitc.api.loading", "load": "gaitc.api.loading", "parse": "gaitc.api.loading",
+    "resilience": "gaitc.api.resilient", "Session": "gaitc.api.simulation",
+    "session": "gaitc.api.simulation", "simulate": "gaitc.api.simulation",
+    "SOLVERS": "gaitc.api.solving", "Synthesis": "gaitc.api.solving",
+    "Verdict": "gaitc.api.solving", "check": "gaitc.api.solving",
+    "counterstrategy": "gaitc.api.solving", "synthesize": "gaitc.api.solving",
+    "verify": "gaitc.api.solving",
+    "copy_examples": "gaitc.api.examples",
+    "GaitcError": "gaitc.diagnostics", "UsageError": "gaitc.diagnostics",
+    "FileAccessError": "gaitc.diagnostics", "MissingFileError": "gaitc.diagnostics",
+    "SpecSyntaxError": "gaitc.diagnostics", "SpecSemanticError": "gaitc.diagnostics",
+    "FormulaError": "gaitc.diagnostics", "SlugsFormatError": "gaitc.diagnostics",
+    "ControllerError": "gaitc.diagnostics", "SolverError": "gaitc.diagnostics",
+    "ScenarioError": "gaitc.diagnostics", "Span": "gaitc.diagnostics",
 }
 
 
@@ -73,11 +102,24 @@ __version__ = "0.1.0"
 __all__ = [
     "FORMATS",
     "SOLVERS",
+    "ControllerError",
+    "FileAccessError",
+    "FormulaError",
+    "GaitcError",
+    "MissingFileError",
+    "ScenarioError",
     "Session",
+    "SlugsFormatError",
+    "SolverError",
+    "Span",
     "Spec",
+    "SpecSemanticError",
+    "SpecSyntaxError",
     "Synthesis",
+    "UsageError",
     "Verdict",
     "check",
+    "copy_examples",
     "counterstrategy",
     "emit",
     "explain",

@@ -5,7 +5,7 @@ import os
 import sys
 
 from gaitc.cli import main
-from gaitc.exitcodes import ExitCode
+from gaitc.cli.exitcodes import ExitCode
 
 code = main()
 if code in (ExitCode.INTERRUPTED, ExitCode.TERMINATED):

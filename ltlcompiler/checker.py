@@ -7,8 +7,8 @@ Errors raise a :class:`GaitcError` with a span; warnings come back as diagnostic
 
 from __future__ import annotations
 
-from diagnostics import Diagnostic, Span, SpecSemanticError
-from gr1.formula import Var
+from gaitc.diagnostics import Diagnostic, Span, SpecSemanticError
+from gaitc.ir.formula import Var
 from ltlcompiler import syntax as s
 from ltlcompiler.fragment import FormulaChecker
 from ltlcompiler.model import (

@@ -4,14 +4,14 @@ Issue 13: among the moves a GR(1) controller may take, prefer those that do not 
 region of an active hazard set (eq. 3.9 would fail the gait's legs), that lose the fewest
 health levels and spare degraded legs (eqs. 3.5, 3.6), and that switch gait least.  The
 shortest way to the next goal needs no model: the solver reads it off the fixpoint's
-rings (:mod:`solver.preferences`).  The thesis has none of these; they only choose among
+rings (:mod:`gaitc.solver.preferences`).  The thesis has none of these; they only choose among
 winning moves, so they never change what the controller guarantees.
 """
 
 from __future__ import annotations
 
-from gr1.costs import Cost
-from gr1.formula import Expr, Not, conj, disj
+from gaitc.ir.costs import Cost
+from gaitc.ir.formula import Expr, Not, conj, disj
 from ltlcompiler.encoding import Encoding, make_encoding
 from ltlcompiler.model import GaitKind, Model
 

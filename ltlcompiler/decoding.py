@@ -9,7 +9,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 from dataclasses import dataclass
 
-from diagnostics import ControllerError
+from gaitc.diagnostics import ControllerError
 from ltlcompiler.encoding import GAIT_VAR, HAZARD_VAR, REGION_VAR, health_prop, make_encoding
 from ltlcompiler.model import Model
 

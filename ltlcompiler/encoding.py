@@ -8,9 +8,9 @@ import itertools
 from collections.abc import Iterator, Sequence
 from typing import Final, Literal, get_args
 
-from diagnostics import FormulaError, SpecSemanticError, UsageError
-from gr1.evaluation import evaluate
-from gr1.formula import (
+from gaitc.diagnostics import FormulaError, SpecSemanticError, UsageError
+from gaitc.ir.evaluation import evaluate
+from gaitc.ir.formula import (
     And,
     Compare,
     Const,
@@ -27,8 +27,8 @@ from gr1.formula import (
     disj,
     walk,
 )
-from gr1.spec import Variable
-from gr1.traversal import Node, rebuild
+from gaitc.ir.spec import Variable
+from gaitc.ir.traversal import Node, rebuild
 from ltlcompiler.model import Model
 
 EncodingName = Literal["onehot", "binary"]

@@ -8,9 +8,9 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 
-from diagnostics import FormulaError, Span, SpecSemanticError
-from gr1 import formula as f
-from gr1.traversal import Node, fold
+from gaitc.diagnostics import FormulaError, Span, SpecSemanticError
+from gaitc.ir import formula as f
+from gaitc.ir.traversal import Node, fold
 from ltlcompiler.model import Section, UserFormula
 from ltlcompiler.names import Namespace
 

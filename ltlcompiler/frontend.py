@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from diagnostics import Diagnostic, SpecSyntaxError
+from gaitc.diagnostics import Diagnostic, SpecSyntaxError
 from ltlcompiler.checker import check
 from ltlcompiler.model import Model
 from ltlcompiler.parser import parse

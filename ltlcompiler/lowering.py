@@ -6,8 +6,8 @@ from __future__ import annotations
 
 from collections.abc import Iterable
 
-from diagnostics import FormulaError, Span, SpecSemanticError
-from gr1.formula import (
+from gaitc.diagnostics import FormulaError, Span, SpecSemanticError
+from gaitc.ir.formula import (
     Add,
     Always,
     And,
@@ -31,8 +31,8 @@ from gr1.formula import (
     has_primes,
     push_next,
 )
-from gr1.spec import SECTIONS, Clause, GR1Spec, Origin, section_named
-from gr1.traversal import Node, Text, fold, join_text, separated
+from gaitc.ir.spec import SECTIONS, Clause, GR1Spec, Origin, section_named
+from gaitc.ir.traversal import Node, Text, fold, join_text, separated
 from ltlcompiler.encoding import Encoding, check_names, make_encoding
 from ltlcompiler.model import NO_GAIT, GaitKind, Model, Section, UserFormula
 

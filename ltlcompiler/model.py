@@ -1,7 +1,7 @@
 """The checked robot-and-task model: what a .gait file means once names are resolved.
 
 The semantic checker builds a :class:`Model` from the syntax tree; the lowering turns
-it into a :class:`~gr1.spec.GR1Spec` (thesis eqs. 3.3-3.9).  The simulator
+it into a :class:`~gaitc.ir.spec.GR1Spec` (thesis eqs. 3.3-3.9).  The simulator
 and renderer read it to decode controller states into regions, gaits and health.
 
 Atoms of user formulas (``Model.assumptions``/``guarantees``) use one namespace:
@@ -15,8 +15,8 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from enum import Enum
 
-from diagnostics import Span
-from gr1.formula import Expr
+from gaitc.diagnostics import Span
+from gaitc.ir.formula import Expr
 
 NO_GAIT = "noGait"
 

@@ -10,7 +10,7 @@ import difflib
 import re
 from collections.abc import Iterable
 
-from diagnostics import Span, SpecSemanticError
+from gaitc.diagnostics import Span, SpecSemanticError
 from ltlcompiler import syntax as s
 
 MAX_RANGE = 10_000

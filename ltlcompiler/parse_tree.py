@@ -14,9 +14,9 @@ from typing import Any
 from lark import Token, Tree
 from lark.tree import Meta
 
-from diagnostics import FormulaError, Span, SpecSyntaxError
-from gr1 import formula as f
-from gr1.traversal import Memo, fold
+from gaitc.diagnostics import FormulaError, Span, SpecSyntaxError
+from gaitc.ir import formula as f
+from gaitc.ir.traversal import Memo, fold
 from ltlcompiler import syntax as s
 
 #: The deepest formula a .gait file may hold, counted in operators from the top of an

@@ -25,7 +25,7 @@ from lark.exceptions import (
 )
 from lark.lexer import PatternStr
 
-from diagnostics import (
+from gaitc.diagnostics import (
     FormulaError,
     GaitcError,
     Span,

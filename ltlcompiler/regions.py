@@ -9,7 +9,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 
-from diagnostics import Diagnostic, Span, SpecSemanticError
+from gaitc.diagnostics import Diagnostic, Span, SpecSemanticError
 from ltlcompiler import syntax as s
 from ltlcompiler.model import NO_GAIT, Region, Transition
 from ltlcompiler.names import Namespace, describe, expand_all

@@ -2,7 +2,7 @@
 
 Names are not resolved yet (that is :mod:`ltlcompiler.checker`'s job).  Spans ride
 along but do not count in equality.  Formulas are already formula IR
-(:mod:`gr1.formula`) whose ``Var``/``IntVar`` names are still unchecked.
+(:mod:`gaitc.ir.formula`) whose ``Var``/``IntVar`` names are still unchecked.
 """
 
 from __future__ import annotations
@@ -10,8 +10,8 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any
 
-from diagnostics import Span
-from gr1.formula import Expr
+from gaitc.diagnostics import Span
+from gaitc.ir.formula import Expr
 
 _SPAN: Any = field(default=None, compare=False, repr=False, kw_only=True)
 

@@ -7,6 +7,6 @@ the reader chosen by suffix in :mod:`slugs_bridge.formats`), the readable LTL te
 in SLUGS's infix operators and read back (:mod:`slugs_bridge.ltltext`), the renaming of
 names a format cannot carry (:mod:`slugs_bridge.names`), what slugsin keeps of a formula
 (:mod:`slugs_bridge.prefixform`) and the runner for the ``slugs`` binary
-(:mod:`slugs_bridge.runner`). Imports only :mod:`gr1` and :mod:`diagnostics`: never the
+(:mod:`slugs_bridge.runner`). Imports only :mod:`gaitc.ir` and :mod:`gaitc.diagnostics`: never the
 embedded solver nor the .gait front end.
 """

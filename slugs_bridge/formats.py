@@ -4,9 +4,9 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from diagnostics import SlugsFormatError
-from diagnostics.files import decode_text
-from gr1.spec import GR1Spec
+from gaitc.diagnostics import SlugsFormatError
+from gaitc.diagnostics.files import decode_text
+from gaitc.ir.spec import GR1Spec
 from slugs_bridge.slugsin import parse_slugsin
 from slugs_bridge.structured import parse_structuredslugs
 

@@ -15,8 +15,8 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from typing import cast
 
-from diagnostics import SlugsFormatError, Span
-from gr1.formula import (
+from gaitc.diagnostics import SlugsFormatError, Span
+from gaitc.ir.formula import (
     Add,
     And,
     Compare,

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 
-from gr1.formula import (
+from gaitc.ir.formula import (
     Add,
     And,
     Compare,

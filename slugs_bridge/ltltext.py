@@ -12,9 +12,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 from pathlib import Path
 
-from diagnostics import SlugsFormatError, Span, source_lines
-from gr1.formula import Compare, Expr, IntVar, walk
-from gr1.spec import Clause, GR1Spec, Origin, Section, Variable, section_named
+from gaitc.diagnostics import SlugsFormatError, Span, source_lines
+from gaitc.ir.formula import Compare, Expr, IntVar, walk
+from gaitc.ir.spec import Clause, GR1Spec, Origin, Section, Variable, section_named
 from slugs_bridge.infix import parse_infix
 from slugs_bridge.infixtext import emit_infix
 from slugs_bridge.names import (

@@ -15,7 +15,7 @@ import re
 from collections.abc import Iterable, Mapping
 from typing import Final, Literal
 
-from diagnostics import SlugsFormatError, Span, source_lines
+from gaitc.diagnostics import SlugsFormatError, Span, source_lines
 
 NameFormat = Literal["structuredslugs", "slugsin", "ltl"]
 #: The words of the infix formats (SLUGS's structuredslugs lexer and the LTL text).

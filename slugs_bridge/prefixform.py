@@ -11,8 +11,8 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-from gr1.formula import And, Const, Expr, Iff, Implies, Node, Not, Or, Var, Xor
-from gr1.spec import SECTIONS, GR1Spec
+from gaitc.ir.formula import And, Const, Expr, Iff, Implies, Node, Not, Or, Var, Xor
+from gaitc.ir.spec import SECTIONS, GR1Spec
 from slugs_bridge.slugsin import _buffered_nodes
 
 _Plan = list[tuple[bool, Expr]]  # (negated, operand) pieces of a chain, or the children

@@ -20,18 +20,18 @@ import time
 from dataclasses import dataclass, replace
 from pathlib import Path
 
-from diagnostics import SolverError, Span, source_lines, span_at
-from gr1.bitblast import bitblast
-from gr1.bits import spec_bits
-from gr1.controller import (
+from gaitc.diagnostics import SolverError, Span, source_lines, span_at
+from gaitc.ir.bitblast import bitblast
+from gaitc.ir.bits import spec_bits
+from gaitc.ir.controller import (
     Controller,
     ControllerNode,
     controller_from_dict,
     integers_of,
 )
-from gr1.evaluation import evaluate
-from gr1.formula import conj
-from gr1.spec import GR1Spec
+from gaitc.ir.evaluation import evaluate
+from gaitc.ir.formula import conj
+from gaitc.ir.spec import GR1Spec
 from slugs_bridge.slugsin import slugsin_renaming
 
 #: Options per task and semantics; every combination appears in SLUGS's ``optionCombinations``.

@@ -12,9 +12,9 @@ import re
 from collections.abc import Callable, Iterator, Mapping
 from dataclasses import dataclass
 
-from diagnostics import SlugsFormatError, Span, source_lines, without_bom
-from gr1.formula import Expr, IntVar, Var, walk
-from gr1.spec import SECTIONS, Clause, GR1Spec, Origin, Variable
+from gaitc.diagnostics import SlugsFormatError, Span, source_lines, without_bom
+from gaitc.ir.formula import Expr, IntVar, Var, walk
+from gaitc.ir.spec import SECTIONS, Clause, GR1Spec, Origin, Variable
 from slugs_bridge.names import RENAMED, one_line, renaming_comment
 
 # Section headers in the order the writers use; values are GR1Spec field names.

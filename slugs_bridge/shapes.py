@@ -9,8 +9,8 @@ from __future__ import annotations
 
 from typing import cast
 
-from diagnostics import SlugsFormatError, Span
-from gr1.formula import (
+from gaitc.diagnostics import SlugsFormatError, Span
+from gaitc.ir.formula import (
     Add,
     And,
     Compare,

@@ -12,8 +12,8 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
 
-from diagnostics import SlugsFormatError, Span
-from gr1.formula import (
+from gaitc.diagnostics import SlugsFormatError, Span
+from gaitc.ir.formula import (
     And,
     Const,
     Expr,
@@ -25,7 +25,7 @@ from gr1.formula import (
     Var,
     Xor,
 )
-from gr1.spec import SECTIONS, Clause, GR1Spec, Origin, Variable
+from gaitc.ir.spec import SECTIONS, Clause, GR1Spec, Origin, Variable
 from slugs_bridge.names import check_renaming, read_renaming, renaming
 from slugs_bridge.sections import FIELD_HEADERS as FIELD_HEADERS
 from slugs_bridge.sections import HEADERS as HEADERS
@@ -322,7 +322,7 @@ def _prefix_tokens(
         else:
             raise ValueError(
                 f"cannot write {type(item).__name__} in slugsin: the format is Boolean and "
-                "next-free; bit-blast integers (gr1.bitblast) and push 'next' first"
+                "next-free; bit-blast integers (gaitc.ir.bitblast) and push 'next' first"
             )
 
 
@@ -358,7 +358,7 @@ def emit_slugsin(spec: GR1Spec, *, comments: bool = True) -> str:
         names = ", ".join(v.name for v in spec.variables() if v.is_integer)
         raise ValueError(
             f"spec has integer variables ({names}); bit-blast it first with "
-            "gr1.bitblast.bitblast"
+            "gaitc.ir.bitblast.bitblast"
         )
     renamed = slugsin_renaming(spec)
     return write_sections(

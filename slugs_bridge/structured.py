@@ -12,9 +12,9 @@ from __future__ import annotations
 from dataclasses import replace
 from pathlib import Path
 
-from diagnostics import SlugsFormatError, Span
-from gr1.formula import Compare, Expr, IntVar, walk
-from gr1.spec import SECTIONS, Clause, GR1Spec, Origin, Variable
+from gaitc.diagnostics import SlugsFormatError, Span
+from gaitc.ir.formula import Compare, Expr, IntVar, walk
+from gaitc.ir.spec import SECTIONS, Clause, GR1Spec, Origin, Variable
 from slugs_bridge.infix import IDENT, KEYWORDS, parse_infix
 from slugs_bridge.infixtext import emit_infix as emit_infix
 from slugs_bridge.names import check_renaming, read_renaming, renaming
@@ -111,7 +111,7 @@ def parse_structuredslugs(text: str, filename: str) -> GR1Spec:
     """Read a ``.structuredslugs`` specification; integer variables stay integers.
 
     Integer variables become ``Variable(name, low, high)`` and comparisons stay
-    :class:`~gr1.formula.Compare` nodes; :func:`gr1.bitblast.bitblast`
+    :class:`~gaitc.ir.formula.Compare` nodes; :func:`gaitc.ir.bitblast.bitblast`
     lowers them to bits the way SLUGS's converter does.  Names renamed by the writer (the
     renaming comment at the top) get their spec names back.
     """

@@ -1,6 +1,6 @@
 """Brute-force answers to the resilience questions, for tests and the benchmark.
 
-Nothing here uses :mod:`analysis`: every variant is a new ``.gait`` text (leg lines
+Nothing here uses :mod:`gaitc.analysis`: every variant is a new ``.gait`` text (leg lines
 rewritten, cache lines replaced, hazard lines dropped and the dropped hazards read as
 ``false`` in formulas), decided with :func:`gaitc.parse` and :func:`gaitc.check`, and the
 answers are read off the full table of verdicts with no monotonicity assumed. Legs breaking
@@ -18,8 +18,8 @@ from dataclasses import dataclass, replace
 from functools import reduce
 
 import gaitc
-from gr1.formula import Add, Compare, Expr, Implies, IntConst, IntVar, Not, Term
-from gr1.spec import Clause, GR1Spec, Variable
+from gaitc.ir.formula import Add, Compare, Expr, Implies, IntConst, IntVar, Not, Term
+from gaitc.ir.spec import Clause, GR1Spec, Variable
 from ltlcompiler.encoding import make_encoding
 from ltlcompiler.model import Model
 

@@ -11,7 +11,7 @@ from pathlib import Path
 import pytest
 from fake_board import TINY
 
-from gaitc.simulation import Session, session
+from gaitc.api.simulation import Session, session
 
 
 def pytest_addoption(parser: pytest.Parser) -> None:

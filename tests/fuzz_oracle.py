@@ -15,7 +15,7 @@ import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from diagnostics import GaitcError, source_lines
+from gaitc.diagnostics import GaitcError, source_lines
 
 LOCATION = re.compile(r"(\d+):(\d+): ")
 OUTCOMES = ("accepted", "user error", "other exit", "internal", "past limit", "wrong line")

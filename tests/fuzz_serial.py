@@ -12,8 +12,8 @@ import time
 
 from fuzz_oracle import Verdict
 
-from diagnostics import GaitcError
-from gaithw.serial_board import SerialValveBoard, parse_pong
+from gaitc.diagnostics import GaitcError
+from gaitc.hw.serial_board import SerialValveBoard, parse_pong
 
 LEGS = tuple(f"L{i}" for i in range(1, 9))
 EXCHANGES: tuple[tuple[str, bytes], ...] = (

@@ -2,7 +2,7 @@
 
 The reference solver is written here from the definitions of Bloem et al. (JCSS 2012):
 sets of states and the three nested fixpoints, no BDDs, so that it shares nothing with
-:mod:`solver`. Specs are tiny (a handful of Boolean variables) so it can enumerate states.
+:mod:`gaitc.solver`. Specs are tiny (a handful of Boolean variables) so it can enumerate states.
 """
 
 from __future__ import annotations
@@ -11,8 +11,8 @@ import itertools
 
 from hypothesis import strategies as st
 
-from gr1.evaluation import evaluate
-from gr1.formula import (
+from gaitc.ir.evaluation import evaluate
+from gaitc.ir.formula import (
     And,
     Const,
     Expr,
@@ -23,7 +23,7 @@ from gr1.formula import (
     Var,
     Xor,
 )
-from gr1.spec import Clause, GR1Spec, Variable
+from gaitc.ir.spec import Clause, GR1Spec, Variable
 
 
 def clauses(*formulas: Expr) -> tuple[Clause, ...]:

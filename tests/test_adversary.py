@@ -7,10 +7,10 @@ from __future__ import annotations
 from pathlib import Path
 
 import gaitc
-from gaitsim.adversary import harm_table
-from gaitsim.environments import AdversarialEnvironment
-from gaitsim.run import Run
-from gaitsim.strategy import Strategy
+from gaitc.sim.adversary import harm_table
+from gaitc.sim.environments import AdversarialEnvironment
+from gaitc.sim.run import Run
+from gaitc.sim.strategy import Strategy
 
 ROOT = Path(__file__).resolve().parent.parent
 HAZARD_PATROL = ROOT / "tests" / "data" / "hazard_patrol.gait"

@@ -17,10 +17,10 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
 from bench.families.amba_bits import amba_bits_sections, amba_bits_text, master_bits  # noqa: E402
-from gaitc.emission import emit  # noqa: E402
-from gaitc.loading import parse  # noqa: E402
-from gr1.spec import GR1Spec  # noqa: E402
-from solver.synthesis import check  # noqa: E402
+from gaitc.api.emission import emit  # noqa: E402
+from gaitc.api.loading import parse  # noqa: E402
+from gaitc.ir.spec import GR1Spec  # noqa: E402
+from gaitc.solver.synthesis import check  # noqa: E402
 
 #: The signals of the published three-master instance, in its declaration order.
 THREE_MASTERS_IN = ["hready", "hbusreq0", "hlock0", "hbusreq1", "hlock1", "hbusreq2",

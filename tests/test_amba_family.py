@@ -17,11 +17,11 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
 from bench.families.amba import amba_sections, amba_text  # noqa: E402
-from gaitc.emission import emit  # noqa: E402
-from gaitc.loading import parse  # noqa: E402
-from gr1.spec import GR1Spec  # noqa: E402
-from solver.symbolic import Options  # noqa: E402
-from solver.synthesis import check  # noqa: E402
+from gaitc.api.emission import emit  # noqa: E402
+from gaitc.api.loading import parse  # noqa: E402
+from gaitc.ir.spec import GR1Spec  # noqa: E402
+from gaitc.solver.symbolic import Options  # noqa: E402
+from gaitc.solver.synthesis import check  # noqa: E402
 
 REORDER = Options(reordering=True)
 

@@ -14,9 +14,9 @@ from pathlib import Path
 import pytest
 
 import gaitc
-from diagnostics import UsageError
-from gr1.controller import load_controller
-from verifier.strategy import verify as verify_strategy
+from gaitc.diagnostics import UsageError
+from gaitc.ir.controller import load_controller
+from gaitc.verifier.strategy import verify as verify_strategy
 
 ROOT = Path(__file__).resolve().parent.parent
 FLAGS = doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE
@@ -39,7 +39,7 @@ def test_docs_api_examples_run() -> None:
 
 
 @pytest.mark.usefixtures("at_root")
-@pytest.mark.parametrize("module", ["gaitc.emission", "gaitc.simulation"])
+@pytest.mark.parametrize("module", ["gaitc.api.emission", "gaitc.api.simulation"])
 def test_module_examples_run(module: str) -> None:
     import importlib
 

@@ -1,4 +1,4 @@
-"""Tests of bit-blasting integers the way SLUGS's converter does (gr1/bitblast.py)."""
+"""Tests of bit-blasting integers the way SLUGS's converter does (gaitc/ir/bitblast.py)."""
 
 from __future__ import annotations
 
@@ -11,8 +11,8 @@ from dd import cudd
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from gr1.bitblast import bitblast, range_constraint
-from gr1.bits import (
+from gaitc.ir.bitblast import bitblast, range_constraint
+from gaitc.ir.bits import (
     bit_count,
     decode_bits,
     decode_valuation,
@@ -20,8 +20,8 @@ from gr1.bits import (
     integer_bits,
     split_bit_name,
 )
-from gr1.evaluation import evaluate
-from gr1.formula import (
+from gaitc.ir.evaluation import evaluate
+from gaitc.ir.formula import (
     Add,
     And,
     Compare,
@@ -38,7 +38,7 @@ from gr1.formula import (
     Xor,
     walk,
 )
-from gr1.spec import Clause, GR1Spec, Variable
+from gaitc.ir.spec import Clause, GR1Spec, Variable
 from slugs_bridge.slugsin import emit_formula, emit_slugsin, parse_prefix, parse_slugsin
 from slugs_bridge.structured import parse_structuredslugs
 

@@ -1,4 +1,4 @@
-"""The census of an explicit extraction (solver/census.py) against the extraction itself.
+"""The census of an explicit extraction (gaitc/solver/census.py) against the extraction itself.
 
 The count must be exact: every test extracts the controller node by node and compares,
 and extracts it again reading every node's moves off the census's move functions, which
@@ -16,17 +16,17 @@ import pytest
 
 import gaitc
 from bench.families.genbuf import genbuf_text
-from gaitc.solving import _costs
-from gr1.bddfile import SymbolicController
-from gr1.spec import GR1Spec
+from gaitc.api.solving import _costs
+from gaitc.ir.bddfile import SymbolicController
+from gaitc.ir.spec import GR1Spec
+from gaitc.solver import strategy, synthesis
+from gaitc.solver.census import Census, node_count
+from gaitc.solver.game import ControllerTooLarge, GameResult, Limits
+from gaitc.solver.preferences import MovePreferences, preference_order
+from gaitc.solver.strategy import extract_strategy, goal_strategies
+from gaitc.solver.symbolic import Options, SymbolicSpec
+from gaitc.verifier.symbolic import verify_symbolic
 from slugs_bridge.formats import load_spec_file
-from solver import strategy, synthesis
-from solver.census import Census, node_count
-from solver.game import ControllerTooLarge, GameResult, Limits
-from solver.preferences import MovePreferences, preference_order
-from solver.strategy import extract_strategy, goal_strategies
-from solver.symbolic import Options, SymbolicSpec
-from verifier.symbolic import verify_symbolic
 
 ROOT = Path(__file__).resolve().parent.parent
 DATA = Path(__file__).parent / "data"

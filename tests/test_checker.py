@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import pytest
 
-from diagnostics import FormulaError, SpecSemanticError
-from gr1 import formula as f
+from gaitc.diagnostics import FormulaError, SpecSemanticError
+from gaitc.ir import formula as f
 from ltlcompiler.frontend import model_from_text
 from ltlcompiler.model import (
     Gait,

@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 
 from gaitc.cli import main
-from gaitc.exitcodes import ExitCode
+from gaitc.cli.exitcodes import ExitCode
 
 
 def test_no_command_prints_help_and_is_a_usage_error(capsys: pytest.CaptureFixture[str]) -> None:
@@ -38,7 +38,7 @@ def test_internal_error_is_reported_without_traceback(
     def broken(_args: object) -> int:
         raise RuntimeError("boom")
 
-    from gaitc.commands import compiling
+    from gaitc.cli.commands import compiling
 
     monkeypatch.setattr(compiling, "run_lint", broken)
     monkeypatch.delenv("GAITC_DEBUG", raising=False)

@@ -12,9 +12,9 @@ from pathlib import Path
 
 import pytest
 
-from gaitc.loading import load
-from solver.game import Game
-from solver.symbolic import SymbolicSpec
+from gaitc.api.loading import load
+from gaitc.solver.game import Game
+from gaitc.solver.symbolic import SymbolicSpec
 
 DATA = Path(__file__).parent / "data"
 CORPUS = DATA / "gr1_corpus"

@@ -8,7 +8,7 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from diagnostics import ControllerError, UsageError
+from gaitc.diagnostics import ControllerError, UsageError
 from ltlcompiler.decoding import RobotState, decode, encode
 from ltlcompiler.lowering import lower
 from ltlcompiler.model import NO_GAIT, Gait, GaitKind, Hazard, Leg, Model, Region, Transition

@@ -10,10 +10,23 @@ from collections.abc import Callable
 
 import pytest
 
-from gaitc.emission import emit
-from gr1.bitblast import bitblast
-from gr1.formula import Add, And, Compare, Expr, Iff, Implies, IntConst, IntVar, Not, Or, Var, Xor
-from gr1.spec import Clause, GR1Spec, Variable
+from gaitc.api.emission import emit
+from gaitc.ir.bitblast import bitblast
+from gaitc.ir.formula import (
+    Add,
+    And,
+    Compare,
+    Expr,
+    Iff,
+    Implies,
+    IntConst,
+    IntVar,
+    Not,
+    Or,
+    Var,
+    Xor,
+)
+from gaitc.ir.spec import Clause, GR1Spec, Variable
 from slugs_bridge.infix import parse_infix
 from slugs_bridge.infixtext import emit_infix
 from slugs_bridge.ltltext import parse_ltl

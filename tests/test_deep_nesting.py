@@ -1,7 +1,7 @@
 """Formulas nested far deeper than Python's recursion limit (issue 8).
 
 A guarantee 10,000 levels deep used to end in a RecursionError (exit 70, internal error);
-now every stage is a fold (:mod:`gr1.traversal`) and such specs parse, compile, solve,
+now every stage is a fold (:mod:`gaitc.ir.traversal`) and such specs parse, compile, solve,
 synthesize, verify and simulate.  Formulas deeper than the parser's documented limit are
 refused with a positioned error.  The tree-shaped writers of :mod:`slugs_bridge`
 (structuredslugs, and the LTL text of integer formulas) still recurse: those cases are
@@ -15,14 +15,13 @@ from pathlib import Path
 
 import pytest
 
-from diagnostics import FormulaError
+from gaitc.api.loading import load
 from gaitc.cli import main
-from gaitc.commands.compiling import compile_text
-from gaitc.loading import load
-from gaitsim.monitor import compile_formula
-from gr1.bitblast import bitblast
-from gr1.evaluation import evaluate
-from gr1.formula import (
+from gaitc.cli.commands.compiling import compile_text
+from gaitc.diagnostics import FormulaError
+from gaitc.ir.bitblast import bitblast
+from gaitc.ir.evaluation import evaluate
+from gaitc.ir.formula import (
     And,
     Compare,
     Expr,
@@ -38,12 +37,13 @@ from gr1.formula import (
     simplify,
     substitute,
 )
-from gr1.spec import Clause, GR1Spec, Origin, Variable
-from gr1.traversal import height
+from gaitc.ir.spec import Clause, GR1Spec, Origin, Variable
+from gaitc.ir.traversal import height
+from gaitc.sim.monitor import compile_formula
+from gaitc.solver.synthesis import check, synthesize
+from gaitc.verifier.strategy import verify
 from ltlcompiler import parse_tree
 from ltlcompiler.frontend import parse_text
-from solver.synthesis import check, synthesize
-from verifier.strategy import verify
 
 ROOT = Path(__file__).resolve().parent.parent
 PATROL = (ROOT / "specs" / "patrol_2x2.gait").read_text(encoding="utf-8")

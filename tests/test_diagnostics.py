@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from diagnostics import (
+from gaitc.diagnostics import (
     Diagnostic,
     GaitcError,
     Span,

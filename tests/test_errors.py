@@ -11,7 +11,7 @@ from pathlib import Path
 
 import pytest
 
-from diagnostics import (
+from gaitc.diagnostics import (
     GaitcError,
     SpecSemanticError,
     render_diagnostic,

@@ -17,15 +17,15 @@ from pathlib import Path
 import pytest
 
 import gaitc
-from analysis.explanation import Explanation
-from analysis.freedoms import Freedom, freedoms
+from gaitc.analysis.explanation import Explanation
+from gaitc.analysis.freedoms import Freedom, freedoms
 from gaitc.cli import main
-from gr1.evaluation import evaluate
-from gr1.formula import Implies, Not, conj, disj
-from gr1.spec import Clause, GR1Spec
+from gaitc.ir.evaluation import evaluate
+from gaitc.ir.formula import Implies, Not, conj, disj
+from gaitc.ir.spec import Clause, GR1Spec
+from gaitc.solver import synthesis
+from gaitc.verifier.counterstrategy import verify_counterstrategy
 from ltlcompiler.encoding import make_encoding
-from solver import synthesis
-from verifier.counterstrategy import verify_counterstrategy
 
 ROOT = Path(__file__).resolve().parent.parent
 DATA = ROOT / "tests" / "data" / "explain"
@@ -45,7 +45,7 @@ def _realizable(spec: GR1Spec) -> bool:
 
 def _core_variant(spec: GR1Spec, keep: set[tuple[str, int]]) -> GR1Spec:
     """Assumptions whole; of the guarantees, the structural ones (no source, or the map)
-    and the clauses in ``keep`` (built here, not with analysis.units)."""
+    and the clauses in ``keep`` (built here, not with gaitc.analysis.units)."""
     changes = {}
     for section in ("sys_init", "sys_trans", "sys_liveness"):
         kept = []
@@ -197,7 +197,7 @@ def test_cli_exit_codes_json_and_saved_play(tmp_path: Path,
             "warnings"} <= set(data)
     assert data["kind"] == "liveness" and data["core"][0]["line"] >= 1
     assert data["repairs"][0]["diff"].startswith("-hazard fire: b")
-    from gaitsim.run import read_jsonl
+    from gaitc.sim.run import read_jsonl
 
     replayed = read_jsonl(str(out))
     assert len(replayed.steps) == len(data["play"]["steps"])

@@ -1,4 +1,4 @@
-"""Result files get the mode an ordinary file gets (diagnostics/files.py)."""
+"""Result files get the mode an ordinary file gets (gaitc/diagnostics/files.py)."""
 
 from __future__ import annotations
 
@@ -9,8 +9,8 @@ from pathlib import Path
 
 import pytest
 
-from diagnostics.files import write_atomically
 from gaitc.cli import main
+from gaitc.diagnostics.files import write_atomically
 
 
 @pytest.fixture
@@ -76,7 +76,7 @@ def test_devices_and_fifos_are_written_in_place(tmp_path: Path) -> None:
 
 
 def test_a_directory_is_not_replaced(tmp_path: Path) -> None:
-    from diagnostics import UsageError
+    from gaitc.diagnostics import UsageError
 
     folder = tmp_path / "out"
     folder.mkdir()
@@ -87,13 +87,13 @@ def test_a_directory_is_not_replaced(tmp_path: Path) -> None:
 
 def test_synth_writes_only_a_verified_controller(tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
                                                  capsys: pytest.CaptureFixture[str]) -> None:
-    import gaitc.solving
-    from verifier.strategy import VerificationReport
+    import gaitc.api.solving
+    from gaitc.verifier.strategy import VerificationReport
 
     def failing(*_args: object, **_kwargs: object) -> VerificationReport:
         return VerificationReport(False, ("planted problem",))
 
-    monkeypatch.setattr(gaitc.solving, "verify", failing)
+    monkeypatch.setattr(gaitc.api.solving, "verify", failing)
     out = tmp_path / "c.json"
     assert main(["synth", "specs/patrol_2x2.gait", "-o", str(out)]) == 1
     assert not out.exists()

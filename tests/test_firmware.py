@@ -24,13 +24,13 @@ from pathlib import Path
 import pytest
 import serial
 
+from gaitc.api.simulation import session
 from gaitc.cli import main
-from gaitc.simulation import session
-from gaithw.driver import bind_primitives
-from gaithw.firmware import Image, SimulatedBoard, build, missing_tools, vented_after
-from gaithw.sensing import FIGURE_3_5_DEPTHS
-from gaithw.serial_board import SerialValveBoard
-from gaitsim.run import Step, read_jsonl
+from gaitc.hw.driver import bind_primitives
+from gaitc.hw.firmware import Image, SimulatedBoard, build, missing_tools, vented_after
+from gaitc.hw.sensing import FIGURE_3_5_DEPTHS
+from gaitc.hw.serial_board import SerialValveBoard
+from gaitc.sim.run import Step, read_jsonl
 
 pytestmark = [
     pytest.mark.firmware,

@@ -10,7 +10,7 @@ from pathlib import Path
 import pytest
 
 from gaitc.cli import main
-from gaitc.exitcodes import ExitCode
+from gaitc.cli.exitcodes import ExitCode
 
 ROOT = Path(__file__).resolve().parent.parent
 PATROL = str(ROOT / "specs" / "patrol_2x2.gait")

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import pytest
 
-from diagnostics import SlugsFormatError
+from gaitc.diagnostics import SlugsFormatError
 from slugs_bridge.formats import load_spec_file
 
 DATA = Path(__file__).parent / "data" / "slugs_examples"

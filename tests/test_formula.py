@@ -1,4 +1,4 @@
-"""Property tests of the formula IR (gr1/formula.py): simplify, next, evaluate."""
+"""Property tests of the formula IR (gaitc/ir/formula.py): simplify, next, evaluate."""
 
 from __future__ import annotations
 
@@ -8,9 +8,9 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from diagnostics import FormulaError, Span
-from gr1.evaluation import evaluate
-from gr1.formula import (
+from gaitc.diagnostics import FormulaError, Span
+from gaitc.ir.evaluation import evaluate
+from gaitc.ir.formula import (
     FALSE,
     TRUE,
     Add,

@@ -13,7 +13,7 @@ from pathlib import Path
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from diagnostics import GaitcError
+from gaitc.diagnostics import GaitcError
 from ltlcompiler.frontend import model_from_text
 
 SEEDS = [

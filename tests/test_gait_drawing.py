@@ -9,11 +9,11 @@ from pathlib import Path
 
 import pytest
 
-from diagnostics import GaitcError
-from gaitgraph import drawing
-from gaitgraph.cycles import parse_direction
-from gaitgraph.robot import load_robot
-from gaitgraph.search import SearchResult, search
+from gaitc.diagnostics import GaitcError
+from gaitc.gaitgraph import drawing
+from gaitc.gaitgraph.cycles import parse_direction
+from gaitc.gaitgraph.robot import load_robot
+from gaitc.gaitgraph.search import SearchResult, search
 
 ROOT = Path(__file__).resolve().parent.parent
 RADIAL8 = ROOT / "specs" / "robots" / "radial8.yaml"

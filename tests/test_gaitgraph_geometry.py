@@ -9,10 +9,10 @@ import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from gaitgraph.kinematics import arc_point, arc_rotation, forward, valve_int
-from gaitgraph.motion import kabsch_2d, rotate
-from gaitgraph.poses import inside_hull, stable_poses
-from gaitgraph.robot import load_robot
+from gaitc.gaitgraph.kinematics import arc_point, arc_rotation, forward, valve_int
+from gaitc.gaitgraph.motion import kabsch_2d, rotate
+from gaitc.gaitgraph.poses import inside_hull, stable_poses
+from gaitc.gaitgraph.robot import load_robot
 
 ROBOTS = Path(__file__).resolve().parent.parent / "specs" / "robots"
 
@@ -56,7 +56,7 @@ def test_symmetric_robot_legs() -> None:
 
 def test_table_overrides_vector_sum() -> None:
     robot = load_robot(ROBOTS / "asymmetric6.yaml")
-    from gaitgraph.kinematics import leg_shapes
+    from gaitc.gaitgraph.kinematics import leg_shapes
 
     kappa, _ = leg_shapes(robot, np.array([valve_int("1100"), valve_int("1010")]))
     assert math.isclose(kappa[0, 0], 0.013) and abs(kappa[1, 0]) < 1e-12

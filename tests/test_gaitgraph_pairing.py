@@ -6,9 +6,9 @@ from pathlib import Path
 
 import pytest
 
-from diagnostics import Span
-from gaitgraph.pairing import check_gaits, resolve_primitive
-from gaitgraph.robot import RobotFileError, load_robot, parse_robot
+from gaitc.diagnostics import Span
+from gaitc.gaitgraph.pairing import check_gaits, resolve_primitive
+from gaitc.gaitgraph.robot import RobotFileError, load_robot, parse_robot
 from ltlcompiler.model import Gait, GaitKind, Primitive
 
 ROBOTS = Path(__file__).resolve().parent.parent / "specs" / "robots"
@@ -97,10 +97,10 @@ def test_robot_file_primitives(tmp_path: Path) -> None:
 def test_the_gait_search_of_a_primitive_is_bounded(monkeypatch: pytest.MonkeyPatch) -> None:
     """Fuzzing found a robot without a gait on which lint's search ran for over 100 s: the
     search of a primitive adds at most PAIRING_STATES valve states, and says so."""
-    import gaitgraph.search as search_module
-    from diagnostics import SpecSemanticError
-    from gaitgraph import pairing
-    from gaitgraph.graph import GaitGraph
+    import gaitc.gaitgraph.search as search_module
+    from gaitc.diagnostics import SpecSemanticError
+    from gaitc.gaitgraph import pairing
+    from gaitc.gaitgraph.graph import GaitGraph
 
     asked: list[int] = []
 

@@ -10,13 +10,13 @@ import numpy as np
 import pytest
 
 from gaitc.cli import main
-from gaitgraph.cycles import edge_weights
-from gaitgraph.graph import GaitGraph, full_graph
-from gaitgraph.kinematics import body_length, valve_int
-from gaitgraph.report import gaits_json
-from gaitgraph.resets import search_around
-from gaitgraph.robot import load_robot
-from gaitgraph.search import search
+from gaitc.gaitgraph.cycles import edge_weights
+from gaitc.gaitgraph.graph import GaitGraph, full_graph
+from gaitc.gaitgraph.kinematics import body_length, valve_int
+from gaitc.gaitgraph.report import gaits_json
+from gaitc.gaitgraph.resets import search_around
+from gaitc.gaitgraph.robot import load_robot
+from gaitc.gaitgraph.search import search
 
 ROBOTS = Path(__file__).resolve().parent.parent / "specs" / "robots"
 

@@ -1,4 +1,4 @@
-"""D* Lite (gaitsearch.dstar): the same costs as A* from scratch after edge changes and after
+"""D* Lite (gaitc.search.dstar): the same costs as A* from scratch after edge changes and after
 the start moves, on hand-made and random gait graphs."""
 
 from __future__ import annotations
@@ -11,11 +11,11 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from test_gaitsearch_search import EDGES, GOAL, graphs, model, pairs, skewed_graphs
 
-from gaitsearch.astar import astar
-from gaitsearch.cells import Lattice
-from gaitsearch.dstar import DStarLite
-from gaitsearch.goals import Goal
-from gaitsearch.transitions import Step, compose
+from gaitc.search.astar import astar
+from gaitc.search.cells import Lattice
+from gaitc.search.dstar import DStarLite
+from gaitc.search.goals import Goal
+from gaitc.search.transitions import Step, compose
 
 
 def cheapest_from(lattice: Lattice, node: int) -> float | None:
@@ -141,7 +141,7 @@ def test_dstar_after_the_start_moves_costs_what_a_fresh_search_costs(case, picks
 def test_the_loop_with_per_transition_updates_converges() -> None:
     from pathlib import Path
 
-    from gaitsearch import Mismatch, Settings, learn_gait
+    from gaitc.search import Mismatch, Settings, learn_gait
 
     robot = Path(__file__).resolve().parent.parent / "specs" / "robots" / "symmetric6.yaml"
     run = learn_gait(str(robot), Goal(40, 0), "dstar", Mismatch(0.2, 0.2, seed=2), Settings(seed=2))

@@ -1,4 +1,4 @@
-"""Growing the gait graph online (gaitsearch.growth): removals that leave no gait add the
+"""Growing the gait graph online (gaitc.search.growth): removals that leave no gait add the
 next batch of valve states instead of stopping the loop."""
 
 from __future__ import annotations
@@ -7,12 +7,12 @@ from pathlib import Path
 
 import numpy as np
 
-from gaitgraph.graph import GaitGraph, random_states
-from gaitgraph.robot import load_robot
-from gaitsearch import Mismatch, Settings, learn_gait
-from gaitsearch.goals import Goal
-from gaitsearch.transitions import TransitionModel
-from gaitsearch.walker import SimulatedWalker
+from gaitc.gaitgraph.graph import GaitGraph, random_states
+from gaitc.gaitgraph.robot import load_robot
+from gaitc.search import Mismatch, Settings, learn_gait
+from gaitc.search.goals import Goal
+from gaitc.search.transitions import TransitionModel
+from gaitc.search.walker import SimulatedWalker
 
 ROBOT = str(Path(__file__).resolve().parent.parent / "specs" / "robots" / "symmetric6.yaml")
 # 30 % of the transitions cannot be made: the first gait's first transition is one of them

@@ -1,4 +1,4 @@
-"""The incoming-edge store of the array LPA* (gaitsearch.incoming) against a plain list."""
+"""The incoming-edge store of the array LPA* (gaitc.search.incoming) against a plain list."""
 
 from __future__ import annotations
 
@@ -6,7 +6,7 @@ import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from gaitsearch.incoming import DEAD, IncomingEdges
+from gaitc.search.incoming import DEAD, IncomingEdges
 
 # chunks (source, targets, edges) as an expansion adds them, then rows to kill, then queries
 chunks = st.lists(

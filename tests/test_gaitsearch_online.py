@@ -1,4 +1,4 @@
-"""The chapter 5 online loop (gaitsearch.online) on the simulated walker, and the CLI."""
+"""The chapter 5 online loop (gaitc.search.online) on the simulated walker, and the CLI."""
 
 from __future__ import annotations
 
@@ -11,12 +11,12 @@ import numpy as np
 import pytest
 
 from gaitc.cli import main
-from gaitsearch import Mismatch, Settings, learn_gait, plan_gait
-from gaitsearch.goals import Goal
-from gaitsearch.online import NoGaitError, learn
-from gaitsearch.planners import HybridPlanner, TreePlanner
-from gaitsearch.transitions import TransitionModel
-from gaitsearch.walker import SimulatedWalker
+from gaitc.search import Mismatch, Settings, learn_gait, plan_gait
+from gaitc.search.goals import Goal
+from gaitc.search.online import NoGaitError, learn
+from gaitc.search.planners import HybridPlanner, TreePlanner
+from gaitc.search.transitions import TransitionModel
+from gaitc.search.walker import SimulatedWalker
 
 ROBOT = str(Path(__file__).resolve().parent.parent / "specs" / "robots" / "symmetric6.yaml")
 FINE = Settings(cell=1.0, cell_angle=1.0)

@@ -1,5 +1,5 @@
-"""The chapter 5 online loop on the chapter 4 physics backend (gaitsearch.physics_walker),
-with predictions from the spring-damper model's gait graph (gaitsearch.predictions)."""
+"""The chapter 5 online loop on the chapter 4 physics backend (gaitc.search.physics_walker),
+with predictions from the spring-damper model's gait graph (gaitc.search.predictions)."""
 
 from __future__ import annotations
 
@@ -8,16 +8,16 @@ from pathlib import Path
 
 import pytest
 
-from diagnostics import UsageError
 from gaitc.cli import main
-from gaitsearch import Mismatch, Settings, learn_gait
-from gaitsearch.backends import default_predictions
-from gaitsearch.goals import Goal
-from gaitsearch.perturbation import perturbed
-from gaitsearch.physics_walker import PhysicsWalker
-from gaitsearch.predictions import has_model, model_transitions
-from gaitsearch.transitions import compose
-from softmodels.description import load_spring_damper
+from gaitc.diagnostics import UsageError
+from gaitc.models.description import load_spring_damper
+from gaitc.search import Mismatch, Settings, learn_gait
+from gaitc.search.backends import default_predictions
+from gaitc.search.goals import Goal
+from gaitc.search.perturbation import perturbed
+from gaitc.search.physics_walker import PhysicsWalker
+from gaitc.search.predictions import has_model, model_transitions
+from gaitc.search.transitions import compose
 
 ROBOTS = Path(__file__).resolve().parent.parent / "specs" / "robots"
 RADIAL = str(ROBOTS / "radial8.yaml")

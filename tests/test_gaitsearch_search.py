@@ -10,13 +10,13 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from gaitsearch.astar import astar, astar_counted
-from gaitsearch.cells import Lattice
-from gaitsearch.goals import Goal
-from gaitsearch.lpa import LifelongPlanner
-from gaitsearch.lpa_arrays import ArrayLifelongPlanner, lifelong
-from gaitsearch.mcts import MonteCarloPlanner
-from gaitsearch.transitions import Step, TransitionModel, compose
+from gaitc.search.astar import astar, astar_counted
+from gaitc.search.cells import Lattice
+from gaitc.search.goals import Goal
+from gaitc.search.lpa import LifelongPlanner
+from gaitc.search.lpa_arrays import ArrayLifelongPlanner, lifelong
+from gaitc.search.mcts import MonteCarloPlanner
+from gaitc.search.transitions import Step, TransitionModel, compose
 
 ROBOTS = Path(__file__).resolve().parent.parent / "specs" / "robots"
 
@@ -183,8 +183,8 @@ def test_lpa_after_changes_costs_what_astar_from_scratch_costs(planner_class, ca
 def test_lpa_repairs_expand_fewer_nodes_than_astar_on_the_symmetric_robot(
     planner_class: Planner,
 ) -> None:
-    from gaitgraph.graph import GaitGraph, random_states
-    from gaitgraph.robot import load_robot
+    from gaitc.gaitgraph.graph import GaitGraph, random_states
+    from gaitc.gaitgraph.robot import load_robot
 
     robot = load_robot(ROBOTS / "symmetric6.yaml")
     graph = GaitGraph(robot)

@@ -1,6 +1,6 @@
 """``Game.solve(within=...)``: νZ started from a set known to hold the winning region.
 
-The preferences' hazard-avoiding game (solver/preferences.py) has fewer system moves than
+The preferences' hazard-avoiding game (gaitc/solver/preferences.py) has fewer system moves than
 the full game, so it starts from the full game's winning region.  Started there or from
 the care set, the fixpoint must give the same winning region and, since its last round is
 at the same Z, the same strategy layers and rings: every test solves both and compares.
@@ -13,11 +13,11 @@ from pathlib import Path
 from games import tiny_specs
 from hypothesis import HealthCheck, given, settings
 
-from gr1.spec import GR1Spec
+from gaitc.ir.spec import GR1Spec
+from gaitc.solver.game import Game
+from gaitc.solver.preferences import fewer_moves
+from gaitc.solver.symbolic import Options, SymbolicSpec
 from slugs_bridge.formats import load_spec_file
-from solver.game import Game
-from solver.preferences import fewer_moves
-from solver.symbolic import Options, SymbolicSpec
 
 CORPUS = sorted((Path(__file__).parent / "data" / "gr1_corpus").glob("rand3_00[0-3]*.slugsin"))
 

@@ -19,10 +19,10 @@ sys.path.insert(0, str(ROOT))
 
 import gaitc  # noqa: E402
 from bench.families.genbuf import genbuf_sections, genbuf_text, select_bits  # noqa: E402
-from gaitc.emission import emit  # noqa: E402
-from gaitc.loading import parse  # noqa: E402
-from gr1.spec import GR1Spec  # noqa: E402
-from solver.synthesis import check  # noqa: E402
+from gaitc.api.emission import emit  # noqa: E402
+from gaitc.api.loading import parse  # noqa: E402
+from gaitc.ir.spec import GR1Spec  # noqa: E402
+from gaitc.solver.synthesis import check  # noqa: E402
 
 #: The signals of the published five-sender instance, in its declaration order.
 FIVE_SENDERS_IN = ["StoB_REQ0", "StoB_REQ1", "StoB_REQ2", "StoB_REQ3", "StoB_REQ4",

@@ -13,7 +13,7 @@ from pathlib import Path
 
 import pytest
 
-from gaitc.commands.compiling import compile_text
+from gaitc.cli.commands.compiling import compile_text
 
 GOLDEN = Path(__file__).resolve().parent / "golden"
 SPECS = sorted(GOLDEN.glob("*.gait"))

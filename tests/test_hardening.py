@@ -100,8 +100,8 @@ def test_scenario_files(tmp_path: Path, capsys: pytest.CaptureFixture[str], raw:
 
 
 def test_robot_files_use_the_safe_loader(tmp_path: Path) -> None:
-    from diagnostics import GaitcError
-    from gaitgraph.robot import load_robot
+    from gaitc.diagnostics import GaitcError
+    from gaitc.gaitgraph.robot import load_robot
 
     path = tmp_path / "evil.yaml"
     path.write_text("robot: !!python/object/apply:os.system ['true']\n", encoding="utf-8")

@@ -9,11 +9,11 @@ from pathlib import Path
 import pytest
 from fuzz_serial import ReplayPort, board_over
 
-from diagnostics import ScenarioError, span_at
-from diagnostics.files import decode_text
 from gaitc.cli import main
-from gaithw.backend import HardwareError
-from gaithw.serial_board import MAX_REPLY, parse_pong, parse_sensors
+from gaitc.diagnostics import ScenarioError, span_at
+from gaitc.diagnostics.files import decode_text
+from gaitc.hw.backend import HardwareError
+from gaitc.hw.serial_board import MAX_REPLY, parse_pong, parse_sensors
 
 ROOT = Path(__file__).resolve().parent.parent
 PATROL = str(ROOT / "specs" / "patrol_2x2.gait")
@@ -113,7 +113,7 @@ def test_yaml_aliases_are_bounded(tmp_path: Path, capsys: pytest.CaptureFixture[
 @pytest.mark.parametrize("line", ["PONG fw valves=²", "PONG fw valves=" + "9" * 5000,
                                   "PONG fw valves=٣"])
 def test_pong_needs_short_ascii_digits(line: str) -> None:
-    from gaithw.serial_board import Garbled
+    from gaitc.hw.serial_board import Garbled
 
     with pytest.raises(Garbled):
         parse_pong(line)
@@ -121,7 +121,7 @@ def test_pong_needs_short_ascii_digits(line: str) -> None:
 
 @pytest.mark.parametrize("levels", ["3,²", "3," + "1" * 5000, "3,-1"])
 def test_sensor_levels_need_short_ascii_digits(levels: str) -> None:
-    from gaithw.serial_board import Garbled
+    from gaitc.hw.serial_board import Garbled
 
     with pytest.raises(Garbled):
         parse_sensors(f"S h={levels}", ("L1", "L2"))

@@ -13,16 +13,16 @@ from pathlib import Path
 import pytest
 from fake_board import TINY
 
-from diagnostics import SpecSemanticError
+from gaitc.api.simulation import Session, session
 from gaitc.cli import main
-from gaitc.simulation import Session, session
-from gaitgraph.pairing import resolve_primitive
-from gaithw.backend import SensorReading
-from gaithw.driver import Driver, applied_states, bind_primitives, valve_count
-from gaithw.simulated import SimulatedRobot
-from gaitsim.environments import AdversarialEnvironment, RandomEnvironment
-from gaitsim.run import read_jsonl
-from gaitsim.scenario import ScriptedEnvironment, load_scenario
+from gaitc.diagnostics import SpecSemanticError
+from gaitc.gaitgraph.pairing import resolve_primitive
+from gaitc.hw.backend import SensorReading
+from gaitc.hw.driver import Driver, applied_states, bind_primitives, valve_count
+from gaitc.hw.simulated import SimulatedRobot
+from gaitc.sim.environments import AdversarialEnvironment, RandomEnvironment
+from gaitc.sim.run import read_jsonl
+from gaitc.sim.scenario import ScriptedEnvironment, load_scenario
 from ltlcompiler.model import GaitKind
 
 ROOT = Path(__file__).resolve().parent.parent

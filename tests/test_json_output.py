@@ -1,7 +1,7 @@
 """``--json`` on every reporting command: the keys docs/json.md lists, errors as objects.
 
 The documented keys are read from the tables of docs/json.md, so the page cannot drift
-from what the commands print (gaitc/reporting.py).
+from what the commands print (gaitc/cli/reporting.py).
 """
 
 from __future__ import annotations
@@ -15,9 +15,9 @@ from typing import Any
 import pytest
 
 import gaitc
-from diagnostics import GaitcError
 from gaitc.cli import main
-from gaitc.reporting import SCHEMA
+from gaitc.cli.reporting import SCHEMA
+from gaitc.diagnostics import GaitcError
 
 ROOT = Path(__file__).resolve().parent.parent
 DOC = ROOT / "docs" / "json.md"
@@ -298,19 +298,19 @@ def test_a_broken_robot_file_is_an_error_object(tmp_path: Path,
         "RobotFileError", str(robot), 2)
 
 
-@pytest.mark.parametrize(("argv", "command"), [
-    (["lint", "--json"], "lint"),  # SPEC missing
-    (["simulate", PATROL, "--json", "--steps", "many"], "simulate"),
-    (["render", "map", PATROL, "--json"], "render"),  # no --json of its own
-    (["--json"], None),
-    (["check", "--json", "missing.gait"], "check"),  # after parsing: a missing file
+@pytest.mark.parametrize(("argv", "command", "kind"), [
+    (["lint", "--json"], "lint", "UsageError"),  # SPEC missing
+    (["simulate", PATROL, "--json", "--steps", "many"], "simulate", "UsageError"),
+    (["render", "map", PATROL, "--json"], "render", "UsageError"),  # no --json of its own
+    (["--json"], None, "UsageError"),
+    (["check", "--json", "missing.gait"], "check", "MissingFileError"),  # after parsing
 ])
-def test_usage_errors_are_error_objects(argv: list[str], command: str | None,
+def test_usage_errors_are_error_objects(argv: list[str], command: str | None, kind: str,
                                         capsys: pytest.CaptureFixture[str]) -> None:
     code, obj = one(argv, capsys)
     assert code == 2 and obj["command"] == command
     error = obj["error"]
-    assert error["type"] == "UsageError" and error["message"]
+    assert error["type"] == kind and error["message"]
     assert (error["file"], error["line"], error["column"]) == (None, None, None)
 
 

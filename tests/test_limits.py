@@ -66,7 +66,7 @@ def _inputs(grid_slugsin: Path) -> dict[str, list[str]]:
 def test_timeout_stops_check_within_a_second(kind: str, grid_slugsin: Path,
                                              amba10: Path) -> None:
     """The thesis grid and AMBA: the static order and (after its head start) the racing
-    sifted order are both cut off (solver.portfolio)."""
+    sifted order are both cut off (gaitc.solver.portfolio)."""
     argv = [str(amba10)] if kind == "amba" else _inputs(grid_slugsin)[kind]
     code, out, err, wall = gaitc_run("check", *argv, "--timeout", "2", "--json")
     assert code == 4, err
@@ -141,7 +141,7 @@ def test_bad_memory_limits_are_usage_errors(value: str, message: str) -> None:
 
 def test_no_limit_runs_in_process() -> None:
     """Without limits nothing is forked (the library's answer is the command's)."""
-    from gaitc.isolation import HardLimits, run_limited
+    from gaitc.api.isolation import HardLimits, run_limited
 
     assert run_limited(os.getpid, HardLimits()) == os.getpid()
     assert run_limited(os.getpid, HardLimits(seconds=10)) != os.getpid()
@@ -171,9 +171,9 @@ def test_a_solved_game_is_freed_without_the_garbage_collector() -> None:
     import gc
     import weakref
 
-    from solver.game import Limits
-    from solver.symbolic import Options
-    from solver.synthesis import _game
+    from gaitc.solver.game import Limits
+    from gaitc.solver.symbolic import Options
+    from gaitc.solver.synthesis import _game
 
     spec = gaitc.load(ROOT / "specs" / "patrol_2x2.gait").gr1
     gc.disable()

@@ -12,13 +12,13 @@ from pathlib import Path
 
 import pytest
 
+from gaitc.api.simulation import Session, session
 from gaitc.cli import main
-from gaitc.simulation import Session, session
-from gaithw.backend import HardwareError
-from gaithw.driver import Driver, bind_primitives
-from gaithw.localisation import Localised, PoseStream, RegionMap, parse_pose
-from gaithw.simulated import SimulatedRobot
-from gaitsim.environments import RandomEnvironment
+from gaitc.hw.backend import HardwareError
+from gaitc.hw.driver import Driver, bind_primitives
+from gaitc.hw.localisation import Localised, PoseStream, RegionMap, parse_pose
+from gaitc.hw.simulated import SimulatedRobot
+from gaitc.sim.environments import RandomEnvironment
 
 ROOT = Path(__file__).resolve().parent.parent
 RADIAL8 = ROOT / "specs" / "radial8_patrol.gait"

@@ -8,9 +8,9 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from diagnostics import FormulaError, Span, SpecSemanticError
-from gr1.evaluation import evaluate
-from gr1.formula import (
+from gaitc.diagnostics import FormulaError, Span, SpecSemanticError
+from gaitc.ir.evaluation import evaluate
+from gaitc.ir.formula import (
     And,
     Compare,
     Expr,
@@ -23,7 +23,7 @@ from gr1.formula import (
     Or,
     Var,
 )
-from gr1.spec import SECTIONS, Clause, GR1Spec, Variable
+from gaitc.ir.spec import SECTIONS, Clause, GR1Spec, Variable
 from ltlcompiler.decoding import RobotState, encode
 from ltlcompiler.lowering import lower
 from ltlcompiler.model import (

@@ -8,9 +8,9 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from diagnostics import SlugsFormatError, Span
-from gr1.formula import Add, And, Compare, Const, IntConst, IntVar, Not, Or, Var
-from gr1.spec import Clause, GR1Spec, Origin, Variable
+from gaitc.diagnostics import SlugsFormatError, Span
+from gaitc.ir.formula import Add, And, Compare, Const, IntConst, IntVar, Not, Or, Var
+from gaitc.ir.spec import Clause, GR1Spec, Origin, Variable
 from slugs_bridge.formats import load_spec_file
 from slugs_bridge.ltltext import emit_ltl, parse_ltl
 from slugs_bridge.slugsin import parse_slugsin

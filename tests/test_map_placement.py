@@ -3,8 +3,8 @@
 from __future__ import annotations
 
 import gaitc
-from gaitsim.map_view import map_view
-from gaitsim.placement import directed_cells, positions
+from gaitc.sim.map_view import map_view
+from gaitc.sim.placement import directed_cells, positions
 from ltlcompiler.model import Model
 
 ROOMS = """robot "rooms"

@@ -7,11 +7,11 @@ import json
 
 import pytest
 
-from diagnostics import SlugsFormatError, Span
-from gaitc.emission import FORMATS, emit
-from gr1.bitblast import bitblast
-from gr1.formula import And, Compare, Iff, Implies, IntConst, IntVar, Not, Or, Var, Xor
-from gr1.spec import Clause, GR1Spec, Origin, Variable
+from gaitc.api.emission import FORMATS, emit
+from gaitc.diagnostics import SlugsFormatError, Span
+from gaitc.ir.bitblast import bitblast
+from gaitc.ir.formula import And, Compare, Iff, Implies, IntConst, IntVar, Not, Or, Var, Xor
+from gaitc.ir.spec import Clause, GR1Spec, Origin, Variable
 from slugs_bridge.ltltext import parse_ltl
 from slugs_bridge.names import RENAMED, is_valid_name, renaming
 from slugs_bridge.prefixform import prefix_spec

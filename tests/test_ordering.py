@@ -1,6 +1,6 @@
 """The static variable order's placement of per-member variables, and the BDD manager's start.
 
-solver/ordering.py puts a variable that belongs to one member of a mutex group (a lift's
+gaitc/solver/ordering.py puts a variable that belongs to one member of a mutex group (a lift's
 call button to its floor, an arbiter's request to its grant) right below that member; a
 member many variables lean on, or a group of two, moves nothing.  The verdicts under the
 new order are compared with the explicit-state solver in tests/test_vmcai_families.py.
@@ -18,10 +18,10 @@ sys.path.insert(0, str(ROOT))
 
 from bench.families.amba import amba_text  # noqa: E402
 from bench.families.vmcai import arbiter_text, lift_text  # noqa: E402
-from gaitc.loading import parse  # noqa: E402
-from gr1.manager import INITIAL_CACHE_SLOTS, manager  # noqa: E402
-from gr1.spec import GR1Spec  # noqa: E402
-from solver.ordering import group_members, variable_order  # noqa: E402
+from gaitc.api.loading import parse  # noqa: E402
+from gaitc.ir.manager import INITIAL_CACHE_SLOTS, manager  # noqa: E402
+from gaitc.ir.spec import GR1Spec  # noqa: E402
+from gaitc.solver.ordering import group_members, variable_order  # noqa: E402
 
 
 def _spec(text: str) -> GR1Spec:

@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import pytest
 
-from diagnostics import FormulaError, SpecSyntaxError
-from gr1 import formula as f
+from gaitc.diagnostics import FormulaError, SpecSyntaxError
+from gaitc.ir import formula as f
 from ltlcompiler import syntax as s
 from ltlcompiler.parser import parse
 

@@ -13,14 +13,14 @@ from pathlib import Path
 import pytest
 
 import gaitc
+from gaitc.api.simulation import Session, session
 from gaitc.cli import main
-from gaitc.simulation import Session, session
-from gaitsim.condensation import Move
-from gaitsim.domain import Domain
-from gaitsim.policy import Policy, controller_policy, project
-from gaitsim.policy_view import policy_view
-from gaitsim.steps_view import steps_view
-from gaitsim.strategy import Strategy
+from gaitc.sim.condensation import Move
+from gaitc.sim.domain import Domain
+from gaitc.sim.policy import Policy, controller_policy, project
+from gaitc.sim.policy_view import policy_view
+from gaitc.sim.steps_view import steps_view
+from gaitc.sim.strategy import Strategy
 
 ROOT = Path(__file__).resolve().parent.parent
 ROBOT_A = str(ROOT / "specs" / "thesis_robot_a.gait")

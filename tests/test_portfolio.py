@@ -1,4 +1,4 @@
-"""The engine's choice of configuration (solver.portfolio): a head start, then a race.
+"""The engine's choice of configuration (gaitc.solver.portfolio): a head start, then a race.
 
 The race itself is tested with stand-in solvers (one that never finishes, one that fails,
 one that answers), and for real by starting both racers at once on the shipped specs:
@@ -16,14 +16,14 @@ from unittest import mock
 import pytest
 
 import gaitc
-from diagnostics import SolverError
-from diagnostics.processes import claim, first_success, to_parent
-from solver import game as game_module
-from solver import portfolio, synthesis
-from solver.game import Limits, OrderMisfit
-from solver.portfolio import DYNAMIC, SIFTED, STATIC, engine_options, solve_chosen
-from solver.symbolic import Options, SymbolicSpec
-from verifier.strategy import verify
+from gaitc.diagnostics import SolverError
+from gaitc.diagnostics.processes import claim, first_success, to_parent
+from gaitc.solver import game as game_module
+from gaitc.solver import portfolio, synthesis
+from gaitc.solver.game import Limits, OrderMisfit
+from gaitc.solver.portfolio import DYNAMIC, SIFTED, STATIC, engine_options, solve_chosen
+from gaitc.solver.symbolic import Options, SymbolicSpec
+from gaitc.verifier.strategy import verify
 
 ROOT = Path(__file__).resolve().parent.parent
 SPECS = ["patrol_2x2", "unrealizable_2x2", "thesis_robot_b", "corridor_hazard"]
@@ -159,9 +159,9 @@ def test_a_daemonic_worker_solves_without_a_race() -> None:
 def test_both_racers_write_the_same_controller_byte_for_byte(name: str, semantics: str) -> None:
     """Moves are chosen in the static order whatever the BDD order, so the file a user gets
     does not depend on which configuration won the race (on a loaded machine, either)."""
-    from gaitsim.environments import RandomEnvironment
-    from gr1.bddfile import SymbolicController
-    from gr1.controller import controller_to_json
+    from gaitc.ir.bddfile import SymbolicController
+    from gaitc.ir.controller import controller_to_json
+    from gaitc.sim.environments import RandomEnvironment
 
     spec = gaitc.load(ROOT / "specs" / f"{name}.gait", "binary")
     texts, runs = [], []
@@ -183,10 +183,10 @@ def test_a_static_build_too_large_for_its_order_starts_again_sifting(tmp_path: P
     the build starts again with CUDD sifting; robot A's stays far below and keeps the static
     order. Both answer as the other configurations do."""
     from bench.families.amba import amba_text
+    from gaitc.solver.game import Game
+    from gaitc.solver.options import SIFT_TRIGGER
+    from gaitc.solver.symbolic import SymbolicSpec
     from slugs_bridge.formats import load_spec_file
-    from solver.game import Game
-    from solver.options import SIFT_TRIGGER
-    from solver.symbolic import SymbolicSpec
 
     path = tmp_path / "amba2.structuredslugs"
     path.write_text(amba_text(2), encoding="utf-8")
@@ -230,10 +230,10 @@ def test_a_static_build_far_larger_than_its_clauses_is_sifted_once_built(tmp_pat
     ρs comes out 20 times the nodes of its clauses in the guards order: it is sifted once
     (``settled``), to a smaller ρs and the same winning region; robot A is left alone."""
     from bench.families.amba_bits import amba_bits_text
+    from gaitc.solver.game import Game
+    from gaitc.solver.options import SIFT_BLOWUP
+    from gaitc.solver.symbolic import SymbolicSpec
     from slugs_bridge.formats import load_spec_file
-    from solver.game import Game
-    from solver.options import SIFT_BLOWUP
-    from solver.symbolic import SymbolicSpec
 
     path = tmp_path / "amba_bits2.structuredslugs"
     path.write_text(amba_bits_text(2), encoding="utf-8")
@@ -260,10 +260,10 @@ def test_the_racers_differ_in_the_game_as_well(tmp_path: Path) -> None:
     """The static racer's game sifts throughout after RACE_SIFT_AFTER seconds, but only after
     a refitted build (which the second racer's resembles); the second racer stays fixed."""
     from bench.families.genbuf import genbuf_text
+    from gaitc.solver.game import Game
+    from gaitc.solver.options import RACE_SIFT_AFTER
+    from gaitc.solver.symbolic import SymbolicSpec
     from slugs_bridge.formats import load_spec_file
-    from solver.game import Game
-    from solver.options import RACE_SIFT_AFTER
-    from solver.symbolic import SymbolicSpec
 
     def run(options: Options, limits: Limits) -> float | None:
         return options.sift_after  # the racer runs in a child: its answer tells its options

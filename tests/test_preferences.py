@@ -9,21 +9,21 @@ from pathlib import Path
 
 import pytest
 
-from diagnostics import UsageError
-from gaitc.loading import Spec, load
-from gaitsim.domain import Domain
-from gaitsim.environments import AdversarialEnvironment, RandomEnvironment
-from gaitsim.monitor import Monitor
-from gaitsim.simulator import simulate
-from gaitsim.strategy import strategy_from_controller
-from gr1.controller import Controller
+from gaitc.api.loading import Spec, load
+from gaitc.diagnostics import UsageError
+from gaitc.ir.controller import Controller
+from gaitc.sim.domain import Domain
+from gaitc.sim.environments import AdversarialEnvironment, RandomEnvironment
+from gaitc.sim.monitor import Monitor
+from gaitc.sim.simulator import simulate
+from gaitc.sim.strategy import strategy_from_controller
+from gaitc.solver.game import Game
+from gaitc.solver.preferences import PREFERENCES, MovePreferences, preference_order
+from gaitc.solver.strategy import extract_strategy
+from gaitc.solver.symbolic import SymbolicSpec
+from gaitc.solver.synthesis import synthesize
+from gaitc.verifier.strategy import verify
 from ltlcompiler.costs import model_costs
-from solver.game import Game
-from solver.preferences import PREFERENCES, MovePreferences, preference_order
-from solver.strategy import extract_strategy
-from solver.symbolic import SymbolicSpec
-from solver.synthesis import synthesize
-from verifier.strategy import verify
 
 ROOT = Path(__file__).resolve().parent.parent
 SPECS = [*sorted((ROOT / "specs").glob("*.gait")), ROOT / "tests" / "data" / "hazard_patrol.gait"]
@@ -140,9 +140,9 @@ def test_a_symbolic_controller_makes_the_preferred_explicit_moves(
     """The preferred relations of a symbolic controller give, step by step, the moves of
     the explicit controller extracted with the same preferences, and the symbolic
     verifier accepts them."""
-    from gaitsim.symbolic_view import SymbolicStrategy
-    from solver.symbolic_strategy import symbolic_controller
-    from verifier.symbolic import verify_symbolic
+    from gaitc.sim.symbolic_view import SymbolicStrategy
+    from gaitc.solver.symbolic_strategy import symbolic_controller
+    from gaitc.verifier.symbolic import verify_symbolic
 
     spec = load(str(_spec_path(name)))
     assert spec.model is not None
@@ -167,8 +167,8 @@ def test_a_symbolic_controller_makes_the_preferred_explicit_moves(
 def test_preferences_keep_a_symbolic_controller_out_of_active_hazards() -> None:
     """On the hazard patrol the plain symbolic controller walks into active hazards (one-step
     adversary and random runs) and the preferred one never does, and no goal starves."""
-    from gaitsim.symbolic_view import SymbolicStrategy
-    from solver.symbolic_strategy import symbolic_controller
+    from gaitc.sim.symbolic_view import SymbolicStrategy
+    from gaitc.solver.symbolic_strategy import symbolic_controller
 
     spec = load(str(ROOT / "tests" / "data" / "hazard_patrol.gait"))
     assert spec.model is not None

@@ -7,8 +7,8 @@ import itertools
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from gr1.evaluation import evaluate
-from gr1.formula import And, Const, Expr, Iff, Implies, Not, Or, Var, Xor
+from gaitc.ir.evaluation import evaluate
+from gaitc.ir.formula import And, Const, Expr, Iff, Implies, Not, Or, Var, Xor
 from slugs_bridge.prefixform import prefix_form
 from slugs_bridge.shapes import prefix_exact
 from slugs_bridge.slugsin import emit_formula, parse_prefix

@@ -14,8 +14,8 @@ import pytest
 
 import gaitc
 from gaitc.cli import main
-from gaitc.status import StageLog, StatusLine, progress_display
-from solver.progress import Stage, goal_titles
+from gaitc.cli.status import StageLog, StatusLine, progress_display
+from gaitc.solver.progress import Stage, goal_titles
 
 ROOT = Path(__file__).resolve().parent.parent
 PATROL = ROOT / "specs" / "patrol_2x2.gait"

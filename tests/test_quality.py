@@ -8,13 +8,7 @@ import sys
 from pathlib import Path
 
 import pytest
-
-ROOT = Path(__file__).resolve().parent.parent
-PACKAGES = [
-    "diagnostics", "gr1", "solver", "verifier", "slugs_bridge", "ltlcompiler",
-    "gaitgraph", "gaitsearch", "gaitsim", "analysis", "gaithw", "gaitc",
-]
-MAX_LINES = 400
+from packages import PACKAGES, ROOT
 
 
 def _tool(name: str) -> list[str]:
@@ -43,7 +37,8 @@ def test_mypy_clean() -> None:
     assert result.returncode == 0, result.stdout + result.stderr
 
 
-def test_every_module_has_a_docstring_and_stays_small() -> None:
+def test_every_module_has_a_docstring() -> None:
+    """Every module says its role (modules are sized by concept, so no line cap)."""
     problems = []
     for package in [*PACKAGES, "tests", "bench", "tools"]:
         for path in sorted((ROOT / package).rglob("*.py")):
@@ -51,12 +46,21 @@ def test_every_module_has_a_docstring_and_stays_small() -> None:
             body = text.split("\n", 1)[1] if text.startswith("#!") else text
             if not body.lstrip().startswith(('"""', "'''")):
                 problems.append(f"{path.relative_to(ROOT)}: no module docstring")
-            if text.count("\n") > MAX_LINES:
-                problems.append(f"{path.relative_to(ROOT)}: {text.count(chr(10))} lines")
     assert not problems, "\n".join(problems)
 
 
 LARK_MODULES = ("ltlcompiler/parser.py", "ltlcompiler/parse_tree.py")
+
+
+def test_the_package_list_is_complete() -> None:
+    """Every Python package folder of the repository is one of the listed packages or below
+    one (so none escapes these checks), and the list names exactly the three roots."""
+    assert PACKAGES == ["gaitc", "ltlcompiler", "slugs_bridge"]
+    outside = sorted(
+        init.parent.name for init in ROOT.glob("*/__init__.py")
+        if init.parent.name not in PACKAGES
+    )
+    assert outside == [], outside
 
 
 def test_lark_stays_in_the_parser() -> None:

@@ -1,4 +1,4 @@
-"""Merging equivalent controller nodes (gr1/quotient.py), checked against a naive
+"""Merging equivalent controller nodes (gaitc/ir/quotient.py), checked against a naive
 bisimulation and by the independent verifier, and as ``gaitc synth`` reports it."""
 
 from __future__ import annotations
@@ -12,8 +12,8 @@ from hypothesis import strategies as st
 
 import gaitc
 from gaitc import cli
-from gr1.controller import Controller, ControllerNode
-from gr1.quotient import equivalence_blocks, merge_equivalent
+from gaitc.ir.controller import Controller, ControllerNode
+from gaitc.ir.quotient import equivalence_blocks, merge_equivalent
 
 ROOT = Path(__file__).resolve().parent.parent
 MERGES = ROOT / "tests" / "data" / "gr1_corpus" / "rand3_0019.slugsin"  # 32 nodes, 16 merged

@@ -13,7 +13,7 @@ import pytest
 
 import gaitc
 from bench.families.random_shapes import SHAPES, shape_text
-from solver import synthesis
+from gaitc.solver import synthesis
 
 
 @pytest.mark.parametrize("shape", sorted(SHAPES))

@@ -7,18 +7,18 @@ from pathlib import Path
 
 import pytest
 
-from diagnostics import UsageError
+from gaitc.api.simulation import Session, session
 from gaitc.cli import main
-from gaitc.simulation import Session, session
-from gaitsim import graphics
-from gaitsim.automaton_view import automaton_view, input_change
-from gaitsim.domain import State
-from gaitsim.environments import AdversarialEnvironment
-from gaitsim.map_view import map_view, spec_view
-from gaitsim.run import Run, save_run
-from gaitsim.simulator import simulate
-from gr1.controller import controller_to_json
-from solver.synthesis import synthesize
+from gaitc.diagnostics import UsageError
+from gaitc.ir.controller import controller_to_json
+from gaitc.sim import graphics
+from gaitc.sim.automaton_view import automaton_view, input_change
+from gaitc.sim.domain import State
+from gaitc.sim.environments import AdversarialEnvironment
+from gaitc.sim.map_view import map_view, spec_view
+from gaitc.sim.run import Run, save_run
+from gaitc.sim.simulator import simulate
+from gaitc.solver.synthesis import synthesize
 
 ROOT = Path(__file__).resolve().parent.parent
 PATROL = str(ROOT / "specs" / "patrol_2x2.gait")

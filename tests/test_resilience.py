@@ -3,7 +3,7 @@
 Each spec in tests/data/resilience/ (3 to 5 legs) is analysed with both methods in both
 encodings, and every answer is compared with brute-force enumeration through
 ``gaitc check`` (:mod:`tests.brute_resilience`, which shares nothing with
-:mod:`analysis`): the failure sets over all subsets of legs, the health front over all
+:mod:`gaitc.analysis`): the failure sets over all subsets of legs, the health front over all
 vectors within the bound, every cache left out, every placement, every hazard set alone,
 and legs breaking during the run through the tests' own GR(1) construction. The answers
 the specs' headers promise by construction are checked against both.
@@ -20,7 +20,7 @@ import brute_resilience as brute
 import pytest
 
 import gaitc
-from analysis.resilience import Resilience
+from gaitc.analysis.resilience import Resilience
 from gaitc.cli import main
 
 DATA = Path(__file__).resolve().parent / "data" / "resilience"

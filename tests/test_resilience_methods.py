@@ -20,11 +20,11 @@ from pathlib import Path
 
 import pytest
 
-from analysis.lattice import fatal_sets
-from analysis.parametric import failure_sets
-from analysis.pool import Pool
-from analysis.resilience import defeat_candidates, resilience
-from analysis.variants import anytime_spec, with_failed
+from gaitc.analysis.lattice import fatal_sets
+from gaitc.analysis.parametric import failure_sets
+from gaitc.analysis.pool import Pool
+from gaitc.analysis.resilience import defeat_candidates, resilience
+from gaitc.analysis.variants import anytime_spec, with_failed
 from ltlcompiler.frontend import load_model
 from ltlcompiler.model import Model
 

@@ -44,7 +44,7 @@ def test_a_dask_cluster_gives_the_same_report(sequential: dict[str, Any], cluste
 
 def test_an_unreachable_scheduler_is_a_usage_error() -> None:
     pytest.importorskip("distributed")
-    from diagnostics import UsageError
+    from gaitc.diagnostics import UsageError
 
     with pytest.raises(UsageError, match="cannot reach the Dask scheduler"):
         gaitc.resilience(SPEC, dask="tcp://127.0.0.1:9")

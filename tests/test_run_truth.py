@@ -8,15 +8,15 @@ from pathlib import Path
 
 import pytest
 
-from gaitc.loading import load
-from gaitsim.domain import Domain
-from gaitsim.environments import AdversarialEnvironment, RandomEnvironment
-from gaitsim.map_view import map_view
-from gaitsim.monitor import Monitor
-from gaitsim.run import Run, read_jsonl, write_jsonl
-from gaitsim.simulator import simulate
-from gaitsim.strategy import strategy_from_controller
-from solver.synthesis import synthesize
+from gaitc.api.loading import load
+from gaitc.sim.domain import Domain
+from gaitc.sim.environments import AdversarialEnvironment, RandomEnvironment
+from gaitc.sim.map_view import map_view
+from gaitc.sim.monitor import Monitor
+from gaitc.sim.run import Run, read_jsonl, write_jsonl
+from gaitc.sim.simulator import simulate
+from gaitc.sim.strategy import strategy_from_controller
+from gaitc.solver.synthesis import synthesize
 
 ROOT = Path(__file__).resolve().parent.parent
 HAZARD_PATROL = ROOT / "tests" / "data" / "hazard_patrol.gait"

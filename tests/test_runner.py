@@ -11,7 +11,9 @@ from pathlib import Path
 
 import pytest
 
-from diagnostics import SolverError
+from gaitc.diagnostics import SolverError
+from gaitc.verifier.counterstrategy import verify_counterstrategy
+from gaitc.verifier.strategy import verify
 from slugs_bridge.runner import (
     OPTIONS,
     controller_from_slugs_json,
@@ -22,8 +24,6 @@ from slugs_bridge.runner import (
     run_slugs_synth,
 )
 from slugs_bridge.slugsin import parse_slugsin
-from verifier.counterstrategy import verify_counterstrategy
-from verifier.strategy import verify
 
 HERE = Path(__file__).resolve().parent
 FAKE = str(HERE / "fake_slugs.py")
@@ -219,8 +219,8 @@ def test_live_slugs_agrees_with_recorded_verdicts(semantics: str) -> None:
 @pytest.mark.parametrize("semantics", SEMANTICS)
 def test_live_slugs_agrees_on_gaitcs_translation_of_every_example(semantics: str) -> None:
     """Every example, in whichever format, read by gaitc and written back as slugsin."""
-    from gaitc.emission import emit
-    from gaitc.loading import load
+    from gaitc.api.emission import emit
+    from gaitc.api.loading import load
 
     binary = _live_binary()
     verdicts = recorded_verdicts()

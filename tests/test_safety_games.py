@@ -24,13 +24,13 @@ from bench.families.safety_games import (  # noqa: E402
     cinderella_text,
     obstacle_text,
 )
-from gaitc.emission import emit  # noqa: E402
-from gaitc.loading import load, parse  # noqa: E402
-from gr1.spec import GR1Spec  # noqa: E402
-from solver.game import Game  # noqa: E402
-from solver.portfolio import STATIC, engine_options  # noqa: E402
-from solver.symbolic import SymbolicSpec  # noqa: E402
-from solver.synthesis import check  # noqa: E402
+from gaitc.api.emission import emit  # noqa: E402
+from gaitc.api.loading import load, parse  # noqa: E402
+from gaitc.ir.spec import GR1Spec  # noqa: E402
+from gaitc.solver.game import Game  # noqa: E402
+from gaitc.solver.portfolio import STATIC, engine_options  # noqa: E402
+from gaitc.solver.symbolic import SymbolicSpec  # noqa: E402
+from gaitc.solver.synthesis import check  # noqa: E402
 
 #: The configurations decided here in about a second or less each.
 SMALL_CINDERELLA = [case for case in CINDERELLA if case[0].buckets == 5

@@ -6,18 +6,18 @@ from pathlib import Path
 
 import pytest
 
-from diagnostics import ScenarioError
+from gaitc.api.loading import load
 from gaitc.cli import main
-from gaitc.loading import load
-from gaitsim.domain import Domain
-from gaitsim.monitor import Monitor
-from gaitsim.run import Run
-from gaitsim.scenario import ScriptedEnvironment, load_scenario, parse_scenario
-from gaitsim.simulator import simulate
-from gaitsim.strategy import Strategy, strategy_from_controller
-from gr1.controller import controller_to_json
+from gaitc.diagnostics import ScenarioError
+from gaitc.ir.controller import controller_to_json
+from gaitc.sim.domain import Domain
+from gaitc.sim.monitor import Monitor
+from gaitc.sim.run import Run
+from gaitc.sim.scenario import ScriptedEnvironment, load_scenario, parse_scenario
+from gaitc.sim.simulator import simulate
+from gaitc.sim.strategy import Strategy, strategy_from_controller
+from gaitc.solver.synthesis import synthesize
 from ltlcompiler.model import Model
-from solver.synthesis import synthesize
 
 SPEC = (Path(__file__).resolve().parent / "data" / "hazard_patrol.gait").read_text(
     encoding="utf-8"

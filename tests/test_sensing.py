@@ -10,10 +10,10 @@ from pathlib import Path
 
 import pytest
 
+from gaitc.api.simulation import session
 from gaitc.cli import main
-from gaitc.simulation import session
-from gaithw.driver import Driver, bind_primitives
-from gaithw.sensing import (
+from gaitc.hw.driver import Driver, bind_primitives
+from gaitc.hw.sensing import (
     FIGURE_3_5_DEPTHS,
     CalibrationError,
     Cycle,
@@ -29,8 +29,8 @@ from gaithw.sensing import (
     synthetic_cycle,
     write_sensing,
 )
-from gaithw.simulated import SimulatedRobot
-from gaitsim.scenario import ScriptedEnvironment, load_scenario
+from gaitc.hw.simulated import SimulatedRobot
+from gaitc.sim.scenario import ScriptedEnvironment, load_scenario
 
 LEGS = ("L1", "L2", "L3")
 SPEC3 = """robot "three levels"

@@ -1,4 +1,4 @@
-"""Tests of the serial valve board's host side (protocol v2, ``gaithw.serial_board``) against
+"""Tests of the serial valve board's host side (protocol v2, ``gaitc.hw.serial_board``) against
 a fake board on a local socket: parsing, the handshake and channel checks, retries, bounded
 reads, truthful vent messages, heartbeats, and ``gaitc drive --backend serial``.
 """
@@ -12,12 +12,12 @@ from pathlib import Path
 import pytest
 from fake_board import FakeBoard, tracked_boards, wait_for
 
+from gaitc.api.simulation import Session
 from gaitc.cli import main
-from gaitc.simulation import Session
-from gaithw.backend import HardwareError, SensorReading, level_from_waveguide
-from gaithw.driver import Driver, bind_primitives
-from gaithw.sensing import HealthSensing
-from gaithw.serial_board import (
+from gaitc.hw.backend import HardwareError, SensorReading, level_from_waveguide
+from gaitc.hw.driver import Driver, bind_primitives
+from gaitc.hw.sensing import HealthSensing
+from gaitc.hw.serial_board import (
     BoardInfo,
     Garbled,
     SerialValveBoard,
@@ -240,10 +240,10 @@ def test_cli_drive_serial(tiny_spec: Path, board_factory: type[FakeBoard],
 def test_firmware_build_says_which_packages_are_missing(
         tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
         capsys: pytest.CaptureFixture[str]) -> None:
-    import gaithw.firmware
+    import gaitc.hw.firmware
 
-    monkeypatch.setattr(gaithw.firmware.shutil, "which", lambda name: None)
-    missing = gaithw.firmware.missing_tools()
+    monkeypatch.setattr(gaitc.hw.firmware.shutil, "which", lambda name: None)
+    missing = gaitc.hw.firmware.missing_tools()
     assert missing[0] == "gcc-avr" and "gcc" in missing
     assert main(["firmware", "build", "-o", str(tmp_path)]) == 1
     err = capsys.readouterr().err

@@ -22,7 +22,7 @@ from pathlib import Path
 import pytest
 
 import gaitc
-from gr1.controller import load_controller
+from gaitc.ir.controller import load_controller
 
 ROOT = Path(__file__).resolve().parent.parent
 ROBOT_B = ROOT / "specs" / "thesis_robot_b.gait"
@@ -130,7 +130,7 @@ def test_a_cleanup_that_fails_under_a_signal_still_ends_as_the_signal(
 def test_a_signal_during_a_fork_is_held_until_the_fork_is_done() -> None:
     """The interpreter's fork hooks print and drop an exception a handler raises in them;
     held back, the Ctrl-C arrives just after the fork, and the child starts unblocked."""
-    from diagnostics.processes import HELD, first_success, signals_held
+    from gaitc.diagnostics.processes import HELD, first_success, signals_held
 
     previous = signal.signal(signal.SIGINT, signal.default_int_handler)
     try:

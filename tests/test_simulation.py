@@ -11,18 +11,18 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from diagnostics import ControllerError
+from gaitc.api.loading import load
 from gaitc.cli import main
-from gaitc.loading import load
-from gaitsim.domain import Domain, State
-from gaitsim.environments import AdversarialEnvironment, RandomEnvironment, Request, Situation
-from gaitsim.monitor import Monitor, compile_formula
-from gaitsim.run import read_jsonl, write_csv, write_jsonl
-from gaitsim.simulator import simulate
-from gaitsim.strategy import Strategy, strategy_from_controller
-from gr1.controller import Controller, controller_to_json
-from gr1.evaluation import evaluate
-from solver.synthesis import synthesize
+from gaitc.diagnostics import ControllerError
+from gaitc.ir.controller import Controller, controller_to_json
+from gaitc.ir.evaluation import evaluate
+from gaitc.sim.domain import Domain, State
+from gaitc.sim.environments import AdversarialEnvironment, RandomEnvironment, Request, Situation
+from gaitc.sim.monitor import Monitor, compile_formula
+from gaitc.sim.run import read_jsonl, write_csv, write_jsonl
+from gaitc.sim.simulator import simulate
+from gaitc.sim.strategy import Strategy, strategy_from_controller
+from gaitc.solver.synthesis import synthesize
 
 ROOT = Path(__file__).resolve().parent.parent
 PATROL = ROOT / "specs" / "patrol_2x2.gait"
@@ -301,7 +301,7 @@ def test_cli_rejects_a_controller_of_another_spec(hazard: Setup, tmp_path: Path,
 
 
 def test_step_table_colours_health_only_when_asked(patrol: Setup) -> None:
-    from gaitsim.terminal import step_table, summary_text
+    from gaitc.sim.terminal import step_table, summary_text
 
     run = simulate(patrol.strategy, patrol.domain, patrol.monitor, AdversarialEnvironment(), 6)
     full = {leg: 2 for leg in patrol.domain.legs}

@@ -9,10 +9,10 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from diagnostics import SlugsFormatError
-from gr1.evaluation import evaluate
-from gr1.formula import And, Const, Expr, Not, Or, Var, Xor, walk
-from gr1.spec import Clause, GR1Spec, Variable
+from gaitc.diagnostics import SlugsFormatError
+from gaitc.ir.evaluation import evaluate
+from gaitc.ir.formula import And, Const, Expr, Not, Or, Var, Xor, walk
+from gaitc.ir.spec import Clause, GR1Spec, Variable
 from slugs_bridge.slugsin import emit_formula, emit_slugsin, parse_slugsin
 
 DATA = Path(__file__).parent / "data"

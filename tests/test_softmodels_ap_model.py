@@ -11,10 +11,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from softmodels.active_passive import ActivePassiveModel, Step, settle_time, step_response
-from softmodels.active_passive_statics import normal_loads
-from softmodels.ap_description import parse_active_passive
-from softmodels.motion import MotionModel, Pose2D, ValveState
+from gaitc.models.active_passive import ActivePassiveModel, Step, settle_time, step_response
+from gaitc.models.active_passive_statics import normal_loads
+from gaitc.models.ap_description import parse_active_passive
+from gaitc.models.motion import MotionModel, Pose2D, ValveState
 
 ROBOT = Path(__file__).resolve().parent.parent / "specs" / "robots" / "silicone6.yaml"
 TOL = 1e-9  # mm or rad
@@ -212,8 +212,8 @@ def test_normal_loads_balance_the_weight_as_evenly_as_possible() -> None:
 
 
 def test_the_catalogue_entry_finds_a_forward_gait() -> None:
-    from softmodels.active_passive import loaded_model
-    from softmodels.catalogue import search_gaits
+    from gaitc.models.active_passive import loaded_model
+    from gaitc.models.catalogue import search_gaits
 
     loaded = loaded_model(ROBOT)
     assert loaded.period == 6.0 and loaded.robot == "silicone6"

@@ -10,14 +10,14 @@ import numpy as np
 import pytest
 
 from gaitc.cli import main
-from softmodels.characterization import (
+from gaitc.models.characterization import (
     CharacterizationError,
     fit_curvature,
     fit_damping,
     fit_stiffness,
     step_response,
 )
-from softmodels.description import load_spring_damper
+from gaitc.models.description import load_spring_damper
 
 ONE_LEG = Path(__file__).parent / "data" / "softmodels" / "one_leg.yaml"
 

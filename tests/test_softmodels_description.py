@@ -6,10 +6,10 @@ from pathlib import Path
 
 import pytest
 
-from diagnostics import render_error
-from gaitgraph.robot import load_robot
-from softmodels.description import load_spring_damper, parse_spring_damper
-from softmodels.fields import ModelFileError
+from gaitc.diagnostics import render_error
+from gaitc.gaitgraph.robot import load_robot
+from gaitc.models.description import load_spring_damper, parse_spring_damper
+from gaitc.models.fields import ModelFileError
 
 ROBOTS = Path(__file__).parent.parent / "specs" / "robots"
 ONE_LEG = Path(__file__).parent / "data" / "softmodels" / "one_leg.yaml"

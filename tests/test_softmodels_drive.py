@@ -8,13 +8,13 @@ from pathlib import Path
 import pytest
 
 from gaitc.cli import main
-from gaithw.backend import SensorReading
-from gaithw.localisation import RegionMap
-from gaithw.physics import PhysicsRobot, centre, region_map
+from gaitc.hw.backend import SensorReading
+from gaitc.hw.localisation import RegionMap
+from gaitc.hw.physics import PhysicsRobot, centre, region_map
+from gaitc.models.description import load_spring_damper
+from gaitc.models.motion import Pose2D
+from gaitc.models.spring_damper import SpringDamperModel
 from ltlcompiler.frontend import load_model
-from softmodels.description import load_spring_damper
-from softmodels.motion import Pose2D
-from softmodels.spring_damper import SpringDamperModel
 
 DATA = Path(__file__).parent / "data" / "softmodels"
 SHUTTLE = str(DATA / "radial8_shuttle.gait")

@@ -10,9 +10,9 @@ from pathlib import Path
 import pytest
 
 from gaitc.cli import main
-from softmodels.catalogue import load_model, search_gaits
-from softmodels.gait_graph import ModelGraph, cycle_motion, find_gaits, valve_states
-from softmodels.motion import Pose2D
+from gaitc.models.catalogue import load_model, search_gaits
+from gaitc.models.gait_graph import ModelGraph, cycle_motion, find_gaits, valve_states
+from gaitc.models.motion import Pose2D
 
 RADIAL8 = str(Path(__file__).parent.parent / "specs" / "robots" / "radial8.yaml")
 UNIT = {"+x": (1.0, 0.0), "-x": (-1.0, 0.0), "+y": (0.0, 1.0), "-y": (0.0, -1.0)}

@@ -1,4 +1,4 @@
-"""Tests of the embedded BDD solver (solver/symbolic.py, game.py, synthesis.py) against an
+"""Tests of the embedded BDD solver (gaitc/solver/symbolic.py, game.py, synthesis.py) against an
 explicit-state reference solver (tests/games.py) on random tiny specs, and of its
 strategy-extraction helpers. Semantics, basics and the variable order: test_solver_basics.py.
 """
@@ -14,24 +14,24 @@ from games import explicit_realizable, formulas, one_hot_specs, tiny_specs
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from diagnostics import FormulaError
-from gr1.bddwalk import Cofactors
-from gr1.bddwalk import holds_at as holds
-from gr1.evaluation import evaluate
-from gr1.formula import (
+from gaitc.diagnostics import FormulaError
+from gaitc.ir.bddwalk import Cofactors
+from gaitc.ir.bddwalk import holds_at as holds
+from gaitc.ir.evaluation import evaluate
+from gaitc.ir.formula import (
     Expr,
     Or,
     Var,
 )
-from gr1.spec import SEMANTICS, Clause, GR1Spec, Variable
-from solver import game as game_module
-from solver import synthesis
-from solver.game import Game
-from solver.portfolio import SIFTED, engine_options
-from solver.strategy import smallest
-from solver.symbolic import Options, SymbolicSpec
-from verifier.counterstrategy import verify_counterstrategy
-from verifier.strategy import verify
+from gaitc.ir.spec import SEMANTICS, Clause, GR1Spec, Variable
+from gaitc.solver import game as game_module
+from gaitc.solver import synthesis
+from gaitc.solver.game import Game
+from gaitc.solver.portfolio import SIFTED, engine_options
+from gaitc.solver.strategy import smallest
+from gaitc.solver.symbolic import Options, SymbolicSpec
+from gaitc.verifier.counterstrategy import verify_counterstrategy
+from gaitc.verifier.strategy import verify
 
 
 @settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
@@ -148,7 +148,7 @@ def test_walking_helpers_agree_with_cofactors(formula: Expr) -> None:
        limit=st.integers(1, 4))
 def test_remembered_cofactors_are_the_cofactors(formula: Expr, fixed: set[str],
                                                 limit: int) -> None:
-    """gr1.bddwalk.Cofactors against dd's own cofactor at every assignment to ``fixed``,
+    """gaitc.ir.bddwalk.Cofactors against dd's own cofactor at every assignment to ``fixed``,
     twice over (the second time from its memory, or after it forgot at ``limit``)."""
     spec = GR1Spec(outputs=tuple(Variable(n) for n in "abcd"))
     sym = SymbolicSpec(spec, Options(order="declaration"))
@@ -179,7 +179,7 @@ def test_solver_rejects_next_state_outputs_in_env_trans() -> None:
 
     (Primed outputs in env_liveness are accepted, as SLUGS does: fastslow_ICRA uses them.)
     """
-    from gr1.spec import GR1Spec, Variable
+    from gaitc.ir.spec import GR1Spec, Variable
 
     base = GR1Spec(inputs=(Variable("a"),), outputs=(Variable("y"),))
     spec = base.with_sections(env_trans=(Clause(Or((Var("a"), Var("y", True)))),))

@@ -10,9 +10,9 @@ from games import clauses, one_hot_specs, tiny_specs, v
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from diagnostics import FormulaError, SolverError
-from gr1.evaluation import evaluate
-from gr1.formula import (
+from gaitc.diagnostics import FormulaError, SolverError
+from gaitc.ir.evaluation import evaluate
+from gaitc.ir.formula import (
     Add,
     And,
     Compare,
@@ -26,12 +26,12 @@ from gr1.formula import (
     Var,
     Xor,
 )
-from gr1.spec import SEMANTICS, GR1Spec, Variable
-from solver import synthesis
-from solver.game import Game
-from solver.ordering import group_members, invariant_clauses, variable_order
-from solver.progress import Stage
-from solver.symbolic import Options, SymbolicSpec
+from gaitc.ir.spec import SEMANTICS, GR1Spec, Variable
+from gaitc.solver import synthesis
+from gaitc.solver.game import Game
+from gaitc.solver.ordering import group_members, invariant_clauses, variable_order
+from gaitc.solver.progress import Stage
+from gaitc.solver.symbolic import Options, SymbolicSpec
 
 # ---------------------------------------------------------------- semantics and basics
 SEMANTICS_DIFFERENCE = GR1Spec(

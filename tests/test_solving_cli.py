@@ -1,4 +1,4 @@
-"""Tests of the check/synth/counter/verify commands (gaitc/commands/solving.py)."""
+"""Tests of the check/synth/counter/verify commands (gaitc/cli/commands/solving.py)."""
 
 from __future__ import annotations
 
@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 
 from gaitc.cli import main
-from gr1.controller import load_controller
+from gaitc.ir.controller import load_controller
 
 DATA = Path(__file__).parent / "data" / "slugs_examples"
 REALIZABLE = str(DATA / "firefighting.slugsin")

@@ -15,15 +15,15 @@ from pathlib import Path
 
 import pytest
 
-from diagnostics import UsageError
-from diagnostics.files import write_atomically
+from gaitc.api.emission import FORMATS
 from gaitc.cli import main
-from gaitc.commands.compiling import compile_text
-from gaitc.emission import FORMATS
+from gaitc.cli.commands.compiling import compile_text
+from gaitc.diagnostics import UsageError
+from gaitc.diagnostics.files import write_atomically
+from gaitc.solver.synthesis import check
 from ltlcompiler.frontend import load_model
 from ltlcompiler.lowering import lower
 from slugs_bridge.structured import parse_structuredslugs
-from solver.synthesis import check
 
 ROOT = Path(__file__).resolve().parent.parent
 SPECS = sorted((ROOT / "specs").glob("*.gait"))

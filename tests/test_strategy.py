@@ -10,20 +10,20 @@ from pathlib import Path
 
 import pytest
 
-from diagnostics import ControllerError
-from gr1.controller import (
+from gaitc.diagnostics import ControllerError
+from gaitc.ir.controller import (
     Controller,
     ControllerNode,
     controller_to_json,
     integers_of,
     load_controller,
 )
-from gr1.formula import Compare, Const, IntConst, IntVar, Not, Var, Xor
-from gr1.spec import Clause, GR1Spec, Variable
+from gaitc.ir.formula import Compare, Const, IntConst, IntVar, Not, Var, Xor
+from gaitc.ir.spec import Clause, GR1Spec, Variable
+from gaitc.solver import synthesis
+from gaitc.verifier.counterstrategy import verify_counterstrategy
+from gaitc.verifier.strategy import verify
 from slugs_bridge.slugsin import parse_slugsin
-from solver import synthesis
-from verifier.counterstrategy import verify_counterstrategy
-from verifier.strategy import verify
 
 DATA = Path(__file__).parent / "data"
 EXAMPLES = sorted(

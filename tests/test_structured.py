@@ -9,10 +9,10 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from diagnostics import SlugsFormatError
-from gr1.bitblast import bitblast
-from gr1.evaluation import evaluate
-from gr1.formula import (
+from gaitc.diagnostics import SlugsFormatError
+from gaitc.ir.bitblast import bitblast
+from gaitc.ir.evaluation import evaluate
+from gaitc.ir.formula import (
     Add,
     And,
     Compare,
@@ -28,7 +28,7 @@ from gr1.formula import (
     Xor,
     atoms,
 )
-from gr1.spec import GR1Spec, Variable
+from gaitc.ir.spec import GR1Spec, Variable
 from slugs_bridge.slugsin import emit_formula, parse_slugsin
 from slugs_bridge.structured import emit_structuredslugs, is_prefix_line, parse_structuredslugs
 

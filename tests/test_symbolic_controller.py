@@ -18,26 +18,26 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import gaitc
-from diagnostics import ControllerError, UsageError
 from gaitc.cli import main
-from gaitsim.domain import Domain
-from gaitsim.environments import AdversarialEnvironment, Environment, RandomEnvironment
-from gaitsim.monitor import Monitor
-from gaitsim.simulator import Simulator
-from gaitsim.strategy import strategy_from_controller
-from gaitsim.symbolic_view import SymbolicStrategy
-from gr1.bddfile import (
+from gaitc.diagnostics import ControllerError, UsageError
+from gaitc.ir.bddfile import (
     SymbolicController,
     materialize,
     node_table,
     symbolic_from_dict,
     symbolic_to_json,
 )
-from solver import synthesis
-from solver.game import Game
-from solver.strategy import goal_strategies
-from solver.symbolic import SymbolicSpec
-from verifier.symbolic import verify_symbolic
+from gaitc.sim.domain import Domain
+from gaitc.sim.environments import AdversarialEnvironment, Environment, RandomEnvironment
+from gaitc.sim.monitor import Monitor
+from gaitc.sim.simulator import Simulator
+from gaitc.sim.strategy import strategy_from_controller
+from gaitc.sim.symbolic_view import SymbolicStrategy
+from gaitc.solver import synthesis
+from gaitc.solver.game import Game
+from gaitc.solver.strategy import goal_strategies
+from gaitc.solver.symbolic import SymbolicSpec
+from gaitc.verifier.symbolic import verify_symbolic
 
 SPECS = Path(__file__).parent.parent / "specs"
 SMALL = ["patrol_2x2", "corridor_hazard", "correction_edges", "radial8_patrol",

@@ -1,4 +1,4 @@
-"""The iterative traversal (gr1/traversal.py) and the folds built on it agree with brute force.
+"""The iterative traversal (gaitc/ir/traversal.py) and the folds built on it agree with brute force.
 
 Each function that used to recurse over formulas (evaluation, simplification, priming,
 the solver's and the verifier's BDD translations, the run monitor, bit-blasting) is checked
@@ -15,11 +15,10 @@ from collections.abc import Callable
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from gaitsim.monitor import compile_formula
-from gr1.bitblast import bitblast
-from gr1.bits import encode_bits
-from gr1.evaluation import evaluate
-from gr1.formula import (
+from gaitc.ir.bitblast import bitblast
+from gaitc.ir.bits import encode_bits
+from gaitc.ir.evaluation import evaluate
+from gaitc.ir.formula import (
     COMPARE_OPS,
     Add,
     And,
@@ -38,11 +37,12 @@ from gr1.formula import (
     prime,
     simplify,
 )
-from gr1.spec import Clause, GR1Spec, Origin, Variable
-from gr1.traversal import Node, Text, fold, height, join_text, rebuild, separated
-from solver.ordering import AtomCache
-from solver.symbolic import SymbolicSpec
-from verifier.logic import Logic
+from gaitc.ir.spec import Clause, GR1Spec, Origin, Variable
+from gaitc.ir.traversal import Node, Text, fold, height, join_text, rebuild, separated
+from gaitc.sim.monitor import compile_formula
+from gaitc.solver.ordering import AtomCache
+from gaitc.solver.symbolic import SymbolicSpec
+from gaitc.verifier.logic import Logic
 
 NAMES = ("a", "b", "c")
 KEYS = [*NAMES, *(n + "'" for n in NAMES)]

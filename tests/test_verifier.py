@@ -8,13 +8,13 @@ from pathlib import Path
 
 import pytest
 
-from diagnostics import Span
-from gr1.controller import Controller, ControllerNode, integers_of
-from gr1.formula import FALSE, Compare, Iff, IntVar, Not, Or, Var
-from gr1.spec import Clause, GR1Spec, Origin, Variable
+from gaitc.diagnostics import Span
+from gaitc.ir.controller import Controller, ControllerNode, integers_of
+from gaitc.ir.formula import FALSE, Compare, Iff, IntVar, Not, Or, Var
+from gaitc.ir.spec import Clause, GR1Spec, Origin, Variable
+from gaitc.verifier.counterstrategy import verify_counterstrategy
+from gaitc.verifier.strategy import verify
 from slugs_bridge.slugsin import parse_slugsin
-from verifier.counterstrategy import verify_counterstrategy
-from verifier.strategy import verify
 
 DATA = Path(__file__).resolve().parent / "data"
 r, g = Var("r"), Var("g")
@@ -218,7 +218,7 @@ def corpus_specs(step: int) -> list[Path]:
 
 @pytest.mark.parametrize("path", corpus_specs(5), ids=lambda p: p.stem)
 def test_embedded_solver_controllers_pass(path: Path) -> None:
-    synthesis = pytest.importorskip("solver.synthesis")
+    synthesis = pytest.importorskip("gaitc.solver.synthesis")
     spec = parse_slugsin(path.read_text(encoding="utf-8"), str(path))
     for semantics in ("default", "robotics"):
         ctrl = synthesis.synthesize(spec, semantics)
@@ -274,7 +274,7 @@ def integer_controller(values: list[tuple[int, int]], trans: list[tuple[int, ...
 
 
 def test_integer_spec_is_bit_blasted_and_messages_decode_integers() -> None:
-    pytest.importorskip("gr1.bitblast")
+    pytest.importorskip("gaitc.ir.bitblast")
     spec, every = integer_spec(), (0, 1, 2)
     good = integer_controller([(0, 0), (1, 1), (2, 2)], [every] * 3)
     assert verify(spec, good).ok, verify(spec, good).problems

@@ -11,18 +11,18 @@ from dataclasses import replace
 
 import pytest
 
-from gr1.controller import Controller
-from gr1.formula import And, Expr, Iff, Not, Or, Var
-from gr1.spec import Clause, GR1Spec, Variable
-from verifier.strategy import verify
+from gaitc.ir.controller import Controller
+from gaitc.ir.formula import And, Expr, Iff, Not, Or, Var
+from gaitc.ir.spec import Clause, GR1Spec, Variable
+from gaitc.verifier.strategy import verify
 
 
 def _oracle(spec: GR1Spec, ctrl: Controller, semantics: str) -> bool:
     """The verifier's verdict recomputed by enumerating every valuation (tiny specs only)."""
     from itertools import product
 
-    from gr1.evaluation import evaluate
-    from gr1.formula import conj
+    from gaitc.ir.evaluation import evaluate
+    from gaitc.ir.formula import conj
 
     ins, outs = [v.name for v in spec.inputs], [v.name for v in spec.outputs]
     names = ins + outs
@@ -104,7 +104,7 @@ def _random_formula(rng: random.Random, names: list[str], primes: str, depth: in
 
 @pytest.mark.parametrize("seed", range(40))
 def test_verifier_agrees_with_brute_force_oracle(seed: int) -> None:
-    synthesis = pytest.importorskip("solver.synthesis")
+    synthesis = pytest.importorskip("gaitc.solver.synthesis")
     rng = random.Random(seed)
     names = ["a", "b", "x", "y"]
 

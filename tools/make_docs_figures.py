@@ -23,11 +23,11 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
 import gaitc  # noqa: E402
-from gaitsim.automaton_view import automaton_view  # noqa: E402
-from gaitsim.map_view import map_view, spec_view  # noqa: E402
-from gaitsim.policy import controller_policy  # noqa: E402
-from gaitsim.policy_view import policy_view  # noqa: E402
-from gaitsim.steps_view import steps_view  # noqa: E402
+from gaitc.sim.automaton_view import automaton_view  # noqa: E402
+from gaitc.sim.map_view import map_view, spec_view  # noqa: E402
+from gaitc.sim.policy import controller_policy  # noqa: E402
+from gaitc.sim.policy_view import policy_view  # noqa: E402
+from gaitc.sim.steps_view import steps_view  # noqa: E402
 
 FIGURES = ROOT / "docs" / "figures"
 ROBOT_A = ROOT / "specs" / "thesis_robot_a.gait"

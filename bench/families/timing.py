@@ -15,8 +15,8 @@ from pathlib import Path
 
 import gaitc
 from bench.families.catalogue import Instance
-from diagnostics import SolverError
-from solver.symbolic import Options
+from gaitc.diagnostics import SolverError
+from gaitc.solver.symbolic import Options
 
 CLI = [sys.executable, "-m", "gaitc.cli"]
 

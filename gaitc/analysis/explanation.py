@@ -1,0 +1,260 @@
+"""Explanations: everything :mod:`gaitc.analysis` can say about one spec, as one object.
+
+For an unrealizable spec: the kind of failure and the goals the environment can block
+(:mod:`gaitc.analysis.failure`), a minimal core (:mod:`gaitc.analysis.core`), the freedoms the
+environment needs (:mod:`gaitc.analysis.freedoms`), a play it wins (:mod:`gaitc.analysis.play`) and
+verified repairs (:mod:`gaitc.analysis.repairs`). For a realizable one: the sanity checks of
+:mod:`gaitc.analysis.sanity`. Rendered as text for the terminal, JSON, or HTML in a notebook.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import html
+import time
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
+
+from gaitc.analysis.core import guarantee_core
+from gaitc.analysis.failure import Kind, classify
+from gaitc.analysis.freedoms import Freedom, needed_freedoms, restricted
+from gaitc.analysis.freedoms import freedoms as all_freedoms
+from gaitc.analysis.oracle import Oracle
+from gaitc.analysis.play import (
+    Play,
+    choose_play,
+    deadlock_move,
+    last_move,
+    narrate,
+    narrate_values,
+)
+from gaitc.analysis.repairs import Repair, repairs
+from gaitc.analysis.sanity import ROBOT, Warning_, player_of, sanity
+from gaitc.analysis.units import Unit
+from gaitc.diagnostics import render, source_lines
+from gaitc.ir.controller import Controller
+from gaitc.ir.spec import GR1Spec
+
+if TYPE_CHECKING:
+    from gaitc.sim.run import Run
+    from ltlcompiler.model import Model
+
+
+@dataclass(frozen=True)
+class Explanation:
+    """Why ``file`` is (un)realizable; see the module docstring for each part."""
+
+    file: str
+    realizable: bool
+    kind: Kind | None = None
+    goals: tuple[str, ...] = ()
+    core: tuple[Unit, ...] = ()
+    freedoms: tuple[Freedom, ...] = ()
+    play: Play | None = None
+    counter: Controller | None = field(default=None, repr=False)
+    run: Run | None = field(default=None, repr=False)
+    story: tuple[str, ...] = ()
+    repairs: tuple[Repair, ...] = ()
+    warnings: tuple[Warning_, ...] = ()
+    solver_calls: int = 0
+    seconds: float = 0.0
+    source: str = field(default="", repr=False)
+    player: str = ROBOT  # who the spec controls (gaitc.analysis.sanity.player_of)
+
+    @property
+    def sane(self) -> bool:
+        return self.realizable and not self.warnings
+
+    def verdict(self) -> str:
+        return "realizable" if self.realizable else "unrealizable"
+
+    def core_json(self) -> list[dict[str, Any]]:
+        lines = source_lines(self.source)
+        out = []
+        for unit in self.core:
+            span = unit.span
+            text = lines[span.line - 1].strip() if span and 0 < span.line <= len(lines) else ""
+            out.append({"line": span.line if span else None,
+                        "column": span.column if span else None,
+                        "text": text, "rule": unit.rule, "section": unit.section})
+        return out
+
+    def to_json(self) -> dict[str, Any]:
+        play: dict[str, Any] | None = None
+        if self.play is not None:
+            play = {"nodes": list(self.play.path), "deadlock": self.play.deadlock,
+                    "loop_start": self.play.loop_start, "story": list(self.story)}
+            if self.run is not None:
+                play["steps"] = [s.to_json() for s in self.run.steps]
+        return {
+            "file": self.file, "verdict": self.verdict(), "kind": self.kind,
+            "goals": list(self.goals), "core": self.core_json(),
+            "environment": [f.to_json() for f in self.freedoms], "play": play,
+            "repairs": [r.to_json() for r in self.repairs],
+            "warnings": [w.to_json() for w in self.warnings],
+            "solver_calls": self.solver_calls, "seconds": round(self.seconds, 3),
+        }
+
+    def lines(self) -> list[str]:
+        """The explanation for the terminal."""
+        sources = {self.file: self.source} if self.source else None
+        if self.realizable:
+            out = [f"{self.file}: realizable"]
+            if not self.warnings:
+                out.append(f"  sanity checks passed: the assumptions can be met, the "
+                           f"{self.player} cannot block them, no goal is vacuous, every part "
+                           "is used")
+            out.extend(f"  warning: {w.message}" for w in self.warnings)
+            return out
+        out = [f"{self.file}: unrealizable ({self.kind} failure)",
+               f"  {kind_text(self.kind, self.player)}"]
+        if self.goals:
+            out.append(f"  the environment can keep the {self.player} from: "
+                       f"{', '.join(self.goals)}")
+        elif self.kind == "liveness":
+            out.append("  no goal is lost on its own: only the goals together")
+        if self.core:
+            these = ("this guarantee" if len(self.core) == 1
+                     else f"these {len(self.core)} guarantees")
+            out.append(f"core: {these}, with all the assumptions, cannot be met; dropping "
+                       f"{'it' if len(self.core) == 1 else 'any one of them'} makes the spec "
+                       "realizable")
+            out.extend(render(u.rule, u.span, "note", None, sources) for u in self.core)
+        elif self.player == ROBOT:
+            out.append("core: the structural rules alone (one region and one gait at a time) "
+                       "with the assumptions cannot be met")
+        else:
+            out.append("core: no guarantee is needed: with the assumptions alone the spec "
+                       "cannot be met")
+        if self.freedoms:
+            out.append("the environment needs only these freedoms to win:")
+            out.extend(f"  - {f.describe()}" for f in self.freedoms)
+        if self.story:
+            out.append("a play the environment wins:")
+            out.extend(f"  {line}" for line in self.story)
+        if self.repairs:
+            out.append("repairs (each verified by solving the edited spec):")
+            for number, repair in enumerate(self.repairs, 1):
+                out.append(f"  {number}. {repair.change}")
+                out.extend(f"       {d}" for d in repair.diff)
+        out.append(f"({self.solver_calls} solver calls, {self.seconds:.2f} s)")
+        return out
+
+    def __repr__(self) -> str:
+        what = f"{self.kind} failure, core of {len(self.core)}, {len(self.repairs)} repairs" \
+            if not self.realizable else f"{len(self.warnings)} sanity warning(s)"
+        return f"<Explanation {self.file!r}: {self.verdict()}, {what}>"
+
+    def _repr_html_(self) -> str:
+        parts = [f"<h4>{html.escape(self.file)}: {self.verdict()}"
+                 f"{f' ({self.kind} failure)' if self.kind else ''}</h4>"]
+        marked = {u.span.line for u in self.core if u.span is not None}
+        if self.source and marked:
+            rows = []
+            for number, line in enumerate(source_lines(self.source), 1):
+                style = " style='background:#fde0dd'" if number in marked else ""
+                rows.append(f"<span{style}>{number:4d}  {html.escape(line)}</span>")
+            parts.append("<pre>" + "\n".join(rows) + "</pre>")
+        parts.append("<pre>" + html.escape("\n".join(self.lines())) + "</pre>")
+        if self.run is not None and self.run.model is not None:
+            with contextlib.suppress(Exception):
+                parts.append(self.run._repr_svg_())
+        return "".join(parts)
+
+
+def kind_text(kind: Kind | None, player: str = ROBOT) -> str:
+    """What a failure of ``kind`` means, said of ``player`` (:func:`~gaitc.analysis.sanity.
+    player_of`)."""
+    if kind == "initial":
+        return (f"the {player} cannot choose a legal initial state for some initial state of "
+                "the environment")
+    if kind == "safety":
+        return f"the environment can force the {player} into a state with no legal move"
+    if kind == "liveness":
+        return (f"the {player} can always move, but the environment can keep it from a goal "
+                "for ever")
+    return ""
+
+
+def explain(spec: GR1Spec, file: str, source: str = "", model: Model | None = None,
+            encoding: str | None = None, semantics: str = "default",
+            timeout: float | None = None, with_repairs: bool = True) -> Explanation:
+    """Explain ``spec``: for a ``.gait`` spec pass its ``model``, ``encoding`` and ``source``."""
+    started = time.monotonic()
+    player = player_of(model)
+    oracle = Oracle.within(semantics, timeout)
+    if oracle.realizable(spec):
+        found = sanity(spec, model, encoding, oracle)
+        return Explanation(file, True, warnings=found, solver_calls=oracle.calls,
+                           seconds=time.monotonic() - started, source=source, player=player)
+    failure = classify(spec, oracle)
+    goals = tuple(_goal_label(spec, j) for j in failure.blocked_goals)
+    core = guarantee_core(spec, oracle)
+    freedoms: tuple[Freedom, ...] = ()
+    if model is not None and encoding is not None:
+        freedoms = needed_freedoms(spec, model, encoding, oracle)
+    # The play comes from the environment restricted to the freedoms it needs: a smaller
+    # automaton, a play that shows exactly those freedoms, and (the assumptions being only
+    # stronger) a play that keeps the spec's own assumptions.
+    focused = spec
+    if freedoms and model is not None and encoding is not None:
+        taken = tuple(f for f in all_freedoms(model) if f not in freedoms)
+        focused = restricted(spec, model, encoding, taken)
+    counter = oracle.counterstrategy(focused)
+    play = run = None
+    story: list[str] = []
+    if counter is not None and not counter.initial:
+        story = [f"the environment's first state leaves the {player} no initial state that "
+                 "keeps its initial guarantees (see the core)"]
+    elif counter is not None:
+        play = choose_play(counter, spec, failure.blocked_goals)
+        if model is not None and encoding is not None:
+            run = _run(counter, spec, model, encoding, play, file)
+            story = narrate(run, play, [_goal_label(spec, j) for j in range(
+                len(spec.sys_liveness))], _final_move(focused, counter, play, model, encoding,
+                                                     run))
+        else:
+            story = narrate_values(counter, play)
+    fixes: tuple[Repair, ...] = ()
+    if with_repairs and model is not None and encoding is not None and source:
+        visited = [s.region for s in run.steps] if run is not None else []
+        fixes = repairs(model, source, file, encoding, oracle, visited)
+    return Explanation(file, False, failure.kind, goals, core, freedoms, play, counter, run,
+                       tuple(story), fixes, (), oracle.calls, time.monotonic() - started,
+                       source, player)
+
+
+def _final_move(spec: GR1Spec, counter: Controller, play: Play, model: Model,
+                encoding: str, run: Run) -> str | None:
+    if not play.deadlock or not run.steps:
+        return None
+    from gaitc.sim.domain import Domain
+
+    values = deadlock_move(spec, counter, play.path[-1])
+    if values is None:
+        return None
+    state = Domain(model, encoding).decode(values)
+    return last_move(run.steps[-1], state.health, state.hazard)
+
+
+def _goal_label(spec: GR1Spec, j: int) -> str:
+    origin = spec.sys_liveness[j].origin
+    if origin is None:
+        return f"goal {j + 1}"
+    rule = origin.rule
+    return rule.split(": ", 1)[1] if rule.startswith("goal") and ": " in rule else rule
+
+
+def _run(counter: Any, spec: GR1Spec, model: Model, encoding: str, play: Play,
+         file: str) -> Run:
+    from gaitc.sim.counterplay import path_run
+    from gaitc.sim.domain import Domain
+    from gaitc.sim.monitor import Monitor
+    from gaitc.sim.strategy import strategy_from_controller
+
+    strategy = strategy_from_controller(counter, spec, file)
+    stopped = None
+    if play.deadlock:
+        stopped = f"step {len(play.path) - 1}: deadlock: the robot has no legal move"
+    return path_run(strategy, Domain(model, encoding), Monitor(spec), play.path, file,
+                    "counter-strategy", stopped)

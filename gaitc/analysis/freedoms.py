@@ -1,0 +1,89 @@
+"""What the environment needs to win: a minimal set of its freedoms, in robot terms.
+
+The environment of a ``.gait`` spec may degrade leg Li while gait g is in use (eq. 3.5)
+and switch hazard sets on (eqs. 3.8-3.9). Taking a freedom away adds an assumption: leg Li
+keeps its health under g outside caches and active hazards, or hazard set H stays off.
+Removing freedoms only weakens the environment, so ddmin finds a 1-minimal set with which it
+still wins when every other freedom is taken away.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from gaitc.analysis.ddmin import ddmin
+from gaitc.analysis.oracle import Oracle
+from gaitc.analysis.units import with_clauses
+from gaitc.ir.formula import Expr, Implies, Not, conj, disj
+from gaitc.ir.spec import Clause, GR1Spec, Origin
+from ltlcompiler.encoding import Encoding, make_encoding
+from ltlcompiler.model import GaitKind, Model
+
+
+@dataclass(frozen=True)
+class Freedom:
+    """One freedom of the environment: degrading ``leg`` under ``gait``, or ``hazard``."""
+
+    kind: str  # "degrade" or "hazard"
+    leg: str = ""
+    gait: str = ""
+    hazard: str = ""
+
+    def describe(self) -> str:
+        if self.kind == "degrade":
+            return f"degrade leg {self.leg} while gait {self.gait} is in use"
+        return f"switch hazard set {self.hazard} on"
+
+    def to_json(self) -> dict[str, str]:
+        out = {"kind": self.kind, "text": self.describe()}
+        out.update({k: v for k, v in (("leg", self.leg), ("gait", self.gait),
+                                      ("hazard", self.hazard)) if v})
+        return out
+
+
+def freedoms(model: Model) -> tuple[Freedom, ...]:
+    """Every freedom the spec gives its environment, in declaration order."""
+    health = {leg.name: leg.health for leg in model.legs}
+    out = [Freedom("degrade", leg, gait.name)
+           for gait in model.gaits if gait.kind is GaitKind.MOVE
+           for leg in gait.legs if health[leg] > 1]
+    out.extend(Freedom("hazard", hazard=h.name) for h in model.hazards)
+    return tuple(out)
+
+
+def _restrictions(model: Model, enc: Encoding, taken: tuple[Freedom, ...]
+                  ) -> dict[str, list[Clause]]:
+    extra: dict[str, list[Clause]] = {"env_init": [], "env_trans": []}
+    hot: Expr = disj(conj((enc.hazard(h.name), disj(enc.region(r) for r in h.regions)))
+                     for h in model.hazards)
+    away = [Not(enc.region(c)) for c in model.caches]
+    for f in taken:
+        origin = Origin(f"freedom taken away: {f.describe()}")
+        if f.kind == "degrade":
+            guard = conj([enc.gait(f.gait), *away, *([Not(hot)] if model.hazards else [])])
+            extra["env_trans"].append(Clause(Implies(guard, enc.keep_health(f.leg)), origin))
+        else:
+            extra["env_init"].append(Clause(Not(enc.hazard(f.hazard)), origin))
+            extra["env_trans"].append(Clause(Not(enc.hazard(f.hazard, True)), origin))
+    return extra
+
+
+def restricted(spec: GR1Spec, model: Model, encoding: str,
+               taken: tuple[Freedom, ...]) -> GR1Spec:
+    """``spec`` with the freedoms ``taken`` away from the environment."""
+    return with_clauses(spec, _restrictions(model, make_encoding(model, encoding), taken))
+
+
+def needed_freedoms(spec: GR1Spec, model: Model, encoding: str, oracle: Oracle
+                    ) -> tuple[Freedom, ...]:
+    """A 1-minimal set of freedoms with which the environment still wins (``spec`` must be
+    unrealizable); every freedom outside it is taken away in the test."""
+    every = freedoms(model)
+
+    def wins(kept: tuple[Freedom, ...]) -> bool:
+        taken = tuple(f for f in every if f not in kept)
+        return not oracle.realizable(restricted(spec, model, encoding, taken))
+
+    if wins(()):
+        return ()
+    return ddmin(every, wins)

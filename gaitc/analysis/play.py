@@ -1,0 +1,210 @@
+"""A play the environment wins, chosen from its counter-strategy and told step by step.
+
+The play is the shortest path of the counter-strategy from an initial node to a deadlock
+(a state where the robot has no legal move) or, when the environment wins by keeping a goal
+away for ever, a path into a loop on which some goal never holds. For a ``.gait`` spec it
+becomes a :class:`gaitc.sim.run.Run`, checked by the run monitor and saved in the format of
+``gaitc simulate --out``.
+"""
+
+from __future__ import annotations
+
+import itertools
+from collections import deque
+from dataclasses import dataclass
+
+from gaitc.ir.controller import Controller
+from gaitc.ir.evaluation import evaluate
+from gaitc.ir.spec import GR1Spec
+from gaitc.sim.counterplay import deadlock_levels
+from gaitc.sim.run import Run, Step
+
+
+@dataclass(frozen=True)
+class Play:
+    """Counter-strategy nodes ``path``; ``loop_start`` is where the repeated part begins
+    (None for a deadlock at the last node); ``missed`` lists goals never met on the loop."""
+
+    path: tuple[int, ...]
+    loop_start: int | None
+    missed: tuple[int, ...] = ()
+
+    @property
+    def deadlock(self) -> bool:
+        return self.loop_start is None
+
+
+def choose_play(counter: Controller, spec: GR1Spec, goals: tuple[int, ...] = ()) -> Play:
+    """The play in which the robot does its best against the counter-strategy.
+
+    Where it can, the robot avoids states from which the environment forces a deadlock and
+    heads for the nearest node where one of ``goals`` holds (new nodes first); where it
+    cannot, it delays the deadlock as long as possible. The play ends at a deadlock or when
+    it closes a loop.
+    """
+    level = deadlock_levels([node.trans for node in counter.nodes])
+    distance = _goal_distance(counter, spec, goals or tuple(range(len(spec.sys_liveness))))
+    far = len(counter.nodes) + 1
+    start = min(counter.initial, key=lambda n: (level[n] is not None, -(level[n] or 0), n))
+    path, seen = [start], {start: 0}
+    while True:
+        options = counter.nodes[path[-1]].trans
+        if not options:
+            return Play(tuple(path), None)
+        safe = [s for s in options if level[s] is None]
+        if safe:
+            nxt = min(safe, key=lambda s: (s in seen, distance.get(s, far), s))
+        else:
+            nxt = min(options, key=lambda s: (-(level[s] or 0), s in seen, s))
+        if nxt in seen:
+            loop = [*path[seen[nxt]:], nxt]
+            return Play((*path, nxt), seen[nxt], _missed(counter, spec, loop))
+        seen[nxt] = len(path)
+        path.append(nxt)
+
+
+def _goal_distance(counter: Controller, spec: GR1Spec, goals: tuple[int, ...]
+                   ) -> dict[int, int]:
+    """Steps from each node to the nearest node where one of ``goals`` holds."""
+    nodes = counter.nodes
+    preds: list[list[int]] = [[] for _ in nodes]
+    for n, node in enumerate(nodes):
+        for s in node.trans:
+            preds[s].append(n)
+    distance: dict[int, int] = {}
+    queue: deque[int] = deque()
+    for n in range(len(nodes)):
+        values = dict(counter.values(n))
+        valuation = {**values, **{f"{k}'": v for k, v in values.items()}}
+        if any(evaluate(spec.sys_liveness[j].formula, valuation) for j in goals):
+            distance[n] = 0
+            queue.append(n)
+    while queue:
+        s = queue.popleft()
+        for n in preds[s]:
+            if n not in distance:
+                distance[n] = distance[s] + 1
+                queue.append(n)
+    return distance
+
+
+def _missed(counter: Controller, spec: GR1Spec, loop: list[int]) -> tuple[int, ...]:
+    """Goals (sys_liveness indices) that hold on no transition of ``loop``."""
+    missed = []
+    for j, clause in enumerate(spec.sys_liveness):
+        met = False
+        for a, b in itertools.pairwise(loop):
+            valuation = dict(counter.values(a))
+            valuation.update({f"{k}'": v for k, v in counter.values(b).items()})
+            if evaluate(clause.formula, valuation):
+                met = True
+                break
+        if not met:
+            missed.append(j)
+    return tuple(missed)
+
+
+def narrate(run: Run, play: Play, goal_names: list[str], final: str | None = None
+            ) -> list[str]:
+    """The play in robot terms, a sentence a step, and how the environment wins
+    (``final``: its last move at a deadlock)."""
+    lines: list[str] = []
+    previous: Step | None = None
+    for step in run.steps:
+        lines.append(f"step {step.index}: {_sentence(step, previous)}")
+        previous = step
+    last = run.steps[-1] if run.steps else None
+    if play.deadlock and last is not None:
+        move = f"the environment answers: {final}; " if final else ""
+        lines.append(f"after step {last.index} {move}the robot has no legal move out of "
+                     f"{last.region}: every move breaks one of its guarantees (see the core)")
+    elif play.loop_start is not None:
+        goals = ", ".join(goal_names[j] for j in play.missed) or "a goal"
+        lines.append(f"from step {len(play.path) - 1} the play repeats steps "
+                     f"{play.loop_start}..{len(play.path) - 2} for ever: {goals} never "
+                     "holds again")
+    return lines
+
+
+def _sentence(step: Step, previous: Step | None) -> str:
+    parts = [f"in {step.region}"]
+    if step.gait and step.gait != "noGait":
+        used = f" (uses {', '.join(step.legs_used)})" if step.legs_used else ""
+        parts.append(f"gait {step.gait}{used}")
+    elif previous is not None:
+        parts.append("stays put")
+    if step.hazard is not None and (previous is None or previous.hazard != step.hazard):
+        parts.append(f"hazard {step.hazard} on")
+    elif step.hazard is None and previous is not None and previous.hazard is not None:
+        parts.append(f"hazard {previous.hazard} off")
+    if step.failed:
+        parts.append(f"{_legs(step.failed)} fail{'s' if len(step.failed) == 1 else ''}")
+    for leg in step.degraded:  # marked on the move that wears it; the drop shows next step
+        parts.append(f"{leg} drops to level {step.level(leg) - 1}")
+    if step.repaired:
+        parts.append(f"{_legs(step.repaired)} repaired")
+    if step.goals:
+        parts.append(f"goal {', '.join(step.goals)} reached")
+    return "; ".join(parts)
+
+
+def _legs(legs: tuple[str, ...]) -> str:
+    return legs[0] if len(legs) == 1 else ", ".join(legs[:-1]) + " and " + legs[-1]
+
+
+def narrate_values(counter: Controller, play: Play) -> list[str]:
+    """The play as variable values, for specs without a robot model."""
+    lines = []
+    previous: dict[str, int] | None = None
+    for index, node in enumerate(play.path):
+        values = counter.values(node)
+        shown = values if previous is None else {
+            k: v for k, v in values.items() if previous.get(k) != v}
+        text = ", ".join(f"{k}={v}" for k, v in sorted(shown.items())) or "no change"
+        lines.append(f"step {index}: {text}")
+        previous = values
+    if play.deadlock:
+        lines.append(f"from step {len(play.path) - 1} the system has no legal move")
+    elif play.loop_start is not None:
+        lines.append(f"the play repeats steps {play.loop_start}..{len(play.path) - 2} "
+                     "for ever")
+    return lines
+
+
+def deadlock_move(spec: GR1Spec, counter: Controller, node: int) -> dict[str, int] | None:
+    """The environment's winning last input at the deadlock ``node``: one its assumptions
+    allow and after which no robot answer keeps the guarantees (bits by name)."""
+    from gaitc.solver.strategy import fix, primed, smallest
+    from gaitc.solver.symbolic import SymbolicSpec
+
+    sym = SymbolicSpec(spec)
+    ins, outs = list(sym.input_bits), list(sym.output_bits)
+    here = fix(sym, sym.env_trans & sym.sys_trans, ins + outs, counter.nodes[node].state)
+    allowed = fix(sym, sym.env_trans, ins + outs, counter.nodes[node].state)
+    answered = sym.bdd.exist(sym.post_outputs, here)
+    stuck = sym.bdd.exist(sym.post_outputs, allowed) & ~answered
+    x = smallest(sym, sym.bdd.exist(sym.post_outputs, stuck), primed(ins))
+    if x is None:
+        return None
+    bits = dict(zip(ins, x, strict=True))
+    values = dict(counter.values(node))
+    plain = {b: v for b, v in bits.items() if not any(b in iv.bits for iv in
+                                                       counter.integers.values())}
+    values.update(plain)
+    for name, iv in counter.integers.items():
+        if iv.owner == "env":
+            values[name] = iv.low + sum(bits[b] << k for k, b in enumerate(iv.bits))
+    return values
+
+
+def last_move(before: Step, after_health: tuple[tuple[str, int], ...],
+              hazard: str | None) -> str:
+    """The environment's final move in robot terms (legs that degrade or fail, hazards)."""
+    old = dict(before.health)
+    parts = []
+    for leg, level in after_health:
+        if level < old[leg]:
+            parts.append(f"{leg} fails" if level == 1 else f"{leg} drops to level {level}")
+    if hazard != before.hazard:
+        parts.append(f"hazard {hazard} on" if hazard else f"hazard {before.hazard} off")
+    return "; ".join(parts) or "no change"

@@ -1,0 +1,87 @@
+"""The example robots and specs that ship inside the package, copied out for a new user.
+
+The examples are package data (``gaitc/examples``: the thesis robots A and B, the patrols,
+the hazard corridor and the robot files of ``gaitc gaits``), so a user who installed the
+wheel, with no checkout, can start from ``gaitc examples my-robots``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from importlib import resources
+from importlib.abc import Traversable
+from pathlib import Path
+
+from gaitc.diagnostics import FileAccessError
+from gaitc.diagnostics.files import check_writable, write_atomically
+
+#: Where the examples live inside the package.
+PACKAGE, FOLDER = "gaitc", "examples"
+#: The kinds of file an example is.
+SUFFIXES = (".gait", ".yaml")
+
+
+@dataclass(frozen=True)
+class Examples:
+    """The files :func:`copy_examples` wrote, relative to ``folder``."""
+
+    folder: Path
+    files: tuple[str, ...]
+
+    def __str__(self) -> str:
+        lines = [f"{len(self.files)} example files in {self.folder}:"]
+        lines += [f"  {name}" for name in self.files]
+        first = next((n for n in self.files if n.endswith("thesis_robot_a.gait")), None)
+        if first is not None:
+            lines.append(f"try: gaitc synth {self.folder / first} -o robot_a.controller.json")
+        return "\n".join(lines)
+
+    def _repr_html_(self) -> str:
+        items = "".join(f"<li><code>{name}</code></li>" for name in self.files)
+        head = f"<p>{len(self.files)} example files in <code>{self.folder}</code></p>"
+        return f"{head}<ul>{items}</ul>"
+
+    def to_json(self) -> dict[str, object]:
+        return {"folder": str(self.folder), "files": list(self.files)}
+
+
+def _walk(node: Traversable, prefix: str) -> list[tuple[str, Traversable]]:
+    found: list[tuple[str, Traversable]] = []
+    for child in sorted(node.iterdir(), key=lambda c: c.name):
+        name = f"{prefix}{child.name}"
+        if child.is_dir():
+            found += _walk(child, name + "/")
+        elif child.name.endswith(SUFFIXES):
+            found.append((name, child))
+    return found
+
+
+def example_files() -> list[tuple[str, Traversable]]:
+    """Every example shipped with this gaitc, by its path inside the examples folder."""
+    return _walk(resources.files(PACKAGE).joinpath(FOLDER), "")
+
+
+def copy_examples(folder: str | Path, overwrite: bool = False) -> Examples:
+    """Copy the shipped examples into ``folder`` (made if missing). An existing file is
+    never replaced unless ``overwrite``: the copy stops before writing anything and names it."""
+    target = Path(folder)
+    files = example_files()
+    if not overwrite:
+        clashes = [name for name, _ in files if (target / name).exists()]
+        if clashes:
+            raise FileAccessError(
+                f"'{target / clashes[0]}' exists; copy the examples into a new folder, or "
+                f"replace {len(clashes)} existing file(s) with --force", target / clashes[0])
+    if target.exists() and not target.is_dir():
+        raise FileAccessError(f"cannot copy the examples into '{target}': it is not a folder",
+                              target)
+    for name, _ in files:
+        try:
+            (target / name).parent.mkdir(parents=True, exist_ok=True)
+        except OSError as err:
+            raise FileAccessError(f"cannot make the folder '{(target / name).parent}': "
+                                  f"{err.strerror or err}", target) from None
+        check_writable(target / name)
+    for name, source in files:
+        write_atomically(target / name, source.read_bytes())
+    return Examples(target, tuple(name for name, _ in files))

@@ -1,0 +1,397 @@
+"""Solving: realizability, verified controllers and counter-strategies for a loaded spec.
+
+The embedded BDD solver (:mod:`gaitc.solver`) or the SLUGS binary (:mod:`slugs_bridge.runner`)
+decides and synthesizes; every automaton is then proved by the independent checker of
+:mod:`gaitc.verifier`, which shares no code with either solver.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Sequence
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+from typing import TYPE_CHECKING, Any, Final, Literal, get_args
+
+from gaitc.api.loading import Spec, SpecLike, as_gr1, resolve
+from gaitc.api.presentation import table
+from gaitc.diagnostics import SolverError, UsageError
+from gaitc.diagnostics.files import write_atomically
+from gaitc.ir.bddfile import SymbolicController, is_symbolic, symbolic_from_dict, symbolic_to_json
+from gaitc.ir.controller import (
+    Controller,
+    controller_from_dict,
+    controller_to_json,
+    read_controller_json,
+)
+from gaitc.ir.costs import Cost
+from gaitc.ir.quotient import merge_equivalent
+from gaitc.ir.spec import SEMANTICS, GR1Spec
+from gaitc.solver.game import GameStats, out_of_memory
+from gaitc.solver.progress import Progress, Stage
+from gaitc.solver.symbolic import Options
+from gaitc.solver.synthesis import FORMS
+from gaitc.verifier.strategy import VerificationReport
+
+if TYPE_CHECKING:
+    from gaitc.sim.graphics import Picture
+
+SolverName = Literal["embedded", "slugs"]
+#: ``embedded``: the BDD solver in :mod:`gaitc.solver`; ``slugs``: an installed SLUGS binary.
+SOLVERS: Final[tuple[SolverName, ...]] = get_args(SolverName)
+Kind = Literal["strategy", "counterstrategy"]
+#: Above this many nodes ``synthesize`` keeps the controller symbolic (form ``auto``).
+MAX_NODES: Final = 100_000
+
+
+@dataclass(frozen=True)
+class Verdict:
+    """Whether a spec is realizable, how long deciding took, and the fixpoint statistics."""
+
+    file: str
+    realizable: bool
+    seconds: float
+    semantics: str = "default"
+    solver: str = "embedded"
+    stats: GameStats | None = field(default=None, repr=False)
+    engine: str = ""  # embedded solver: the configuration that answered (gaitc.solver.portfolio)
+
+    def __repr__(self) -> str:
+        word = "realizable" if self.realizable else "unrealizable"
+        return (f"<gaitc.Verdict {self.file!r}: {word} in {self.seconds:.2f} s "
+                f"({self.solver} solver, {self.semantics} semantics)>")
+
+    def to_json(self) -> dict[str, Any]:
+        """The verdict for ``gaitc check --json`` (docs/json.md)."""
+        out: dict[str, Any] = {
+            "file": self.file, "verdict": "realizable" if self.realizable else "unrealizable",
+            "seconds": round(self.seconds, 3), "semantics": self.semantics,
+            "solver": self.solver, "engine": self.engine or None}
+        return out
+
+    def _repr_html_(self) -> str:
+        rows = [("verdict", "realizable" if self.realizable else "unrealizable"),
+                ("seconds", f"{self.seconds:.3f}"), ("solver", self.solver),
+                ("semantics", self.semantics)]
+        if self.engine:
+            rows.append(("engine", self.engine))
+        if self.stats is not None:
+            rows.append(("peak BDD nodes", str(self.stats.peak_nodes)))
+        return table(f"realizability of {self.file}", rows)
+
+
+@dataclass(frozen=True)
+class Synthesis:
+    """A solver's automaton for a spec, with the verifier's report on it.
+
+    ``controller`` is None when the spec has no winner of the kind asked for: no strategy
+    for an unrealizable spec, no counter-strategy for a realizable one.
+    """
+
+    spec: Spec | GR1Spec = field(repr=False)
+    kind: Kind
+    controller: Controller | SymbolicController | None
+    report: VerificationReport | None
+    seconds: float
+    semantics: str = "default"
+    solver: str = "embedded"
+    #: The automaton's nodes before equivalent ones were merged (gaitc.ir.quotient), when any were.
+    merged_from: int | None = None
+
+    @property
+    def realizable(self) -> bool:
+        """Whether the spec is realizable (the verdict behind this automaton)."""
+        found = self.controller is not None
+        return found if self.kind == "strategy" else not found
+
+    @property
+    def verified(self) -> bool:
+        """An automaton exists and the independent verifier accepted it."""
+        return self.report is not None and self.report.ok
+
+    @property
+    def size(self) -> str:
+        """The controller's size in words: explicit nodes, or a symbolic one's BDD nodes."""
+        if self.controller is None:
+            return "none"
+        if isinstance(self.controller, SymbolicController):
+            return f"symbolic, {len(self.controller.nodes)} BDD nodes"
+        merged = "" if self.merged_from is None else f", {self.merged_from} before merging"
+        return f"{len(self.controller.nodes)} nodes{merged}"
+
+    def to_json(self) -> dict[str, Any]:
+        """The outcome for ``gaitc synth --json`` and ``counter --json`` (docs/json.md)."""
+        symbolic = isinstance(self.controller, SymbolicController)
+        return {
+            "file": _name(self.spec), "kind": self.kind,
+            "verdict": "realizable" if self.realizable else "unrealizable",
+            "seconds": round(self.seconds, 3), "semantics": self.semantics,
+            "solver": self.solver, "symbolic": symbolic,
+            "nodes": None if self.controller is None else len(self.controller.nodes),
+            "nodes_before_merging": self.merged_from,
+            "verification": None if self.report is None else self.report.to_json()}
+
+    def save(self, path: str | Path) -> None:
+        """Write the controller as JSON (docs/controller-format.md), atomically."""
+        if self.controller is None:
+            raise UsageError(f"there is no {self.kind} to save: the spec is "
+                             f"{'realizable' if self.realizable else 'unrealizable'}")
+        if isinstance(self.controller, SymbolicController):
+            write_atomically(path, symbolic_to_json(self.controller))
+        else:
+            write_atomically(path, controller_to_json(self.controller))
+
+    def picture(self) -> Picture:
+        """The automaton drawn in domain terms (needs a ``.gait`` spec and Graphviz)."""
+        from gaitc.sim.automaton_view import automaton_view
+        from gaitc.sim.domain import Domain
+        from gaitc.sim.strategy import strategy_from_controller
+
+        if self.controller is None:
+            raise UsageError(f"there is no {self.kind} to draw")
+        if isinstance(self.controller, SymbolicController):
+            raise UsageError("a symbolic controller has no automaton to draw; draw a run of "
+                             "it (gaitc.simulate(...).picture())")
+        if not isinstance(self.spec, Spec) or self.spec.model is None:
+            raise UsageError("drawing an automaton needs a .gait spec, which says what its "
+                             "variables mean")
+        strategy = strategy_from_controller(self.controller, self.spec.gr1, self.spec.path)
+        domain = Domain(self.spec.model, self.spec.encoding or "onehot")
+        return automaton_view(strategy, domain)
+
+    def __repr__(self) -> str:
+        file = self.spec.path if isinstance(self.spec, Spec) else self.spec.name or "spec"
+        if self.controller is None:
+            word = "realizable" if self.realizable else "unrealizable"
+            return f"<gaitc.Synthesis {file!r}: {word}, no {self.kind} ({self.seconds:.2f} s)>"
+        proof = "not verified" if self.report is None else (
+            "verified" if self.report.ok else "FAILED verification")
+        return (f"<gaitc.Synthesis {file!r}: {self.kind} ({self.size}), {proof} "
+                f"({self.seconds:.2f} s, {self.solver} solver)>")
+
+    def _repr_html_(self) -> str:
+        rows = [("kind", self.kind), ("realizable", str(self.realizable)),
+                ("seconds", f"{self.seconds:.3f}"), ("solver", self.solver),
+                ("semantics", self.semantics)]
+        if self.controller is not None:
+            rows.append(("size", self.size))
+        if self.report is not None:
+            rows.append(("verification", self.report.summary()))
+        return table(repr(self)[1:-1], rows)
+
+
+def _semantics(semantics: str) -> str:
+    if semantics not in SEMANTICS:
+        raise UsageError(f"unknown semantics '{semantics}'; use one of {', '.join(SEMANTICS)}")
+    return semantics
+
+
+def _solver(solver: str) -> str:
+    if solver not in SOLVERS:
+        raise UsageError(f"unknown solver '{solver}'; use one of {', '.join(SOLVERS)}")
+    return solver
+
+
+def _name(spec: Spec | GR1Spec) -> str:
+    return spec.path if isinstance(spec, Spec) else spec.name or "<spec>"
+
+
+def _slugsin(spec: GR1Spec) -> str:
+    from gaitc.ir.bitblast import bitblast
+    from slugs_bridge.slugsin import emit_slugsin
+
+    return emit_slugsin(bitblast(spec))
+
+
+def check(spec: SpecLike, semantics: str = "default", solver: str = "embedded",
+          timeout: float | None = None, slugs: str | None = None,
+          options: Options | None = None, progress: Progress | None = None) -> Verdict:
+    """Decide whether a controller exists for ``spec``.
+
+    ``semantics`` is ``default`` or ``robotics`` (:data:`gaitc.ir.spec.SEMANTICS`), ``solver``
+    ``embedded`` or ``slugs`` (then ``slugs`` names the binary, else ``$SLUGS`` or PATH).
+    Raises :class:`~gaitc.diagnostics.SolverError` when the solver cannot finish.
+    """
+    spec = resolve(spec)
+    gr1, started = as_gr1(spec), time.monotonic()
+    _semantics(semantics)
+    if _solver(solver) == "slugs":
+        from slugs_bridge.runner import run_slugs_check
+
+        result = run_slugs_check(_slugsin(gr1), semantics=semantics, timeout=timeout,
+                                 slugs=slugs)
+        return Verdict(_name(spec), result.realizable, result.seconds, semantics, solver)
+    from gaitc.solver import synthesis
+
+    try:
+        checked = synthesis.check(gr1, semantics, timeout, progress, options)
+    except MemoryError:
+        raise out_of_memory() from None
+    return Verdict(_name(spec), checked.realizable, time.monotonic() - started, semantics,
+                   solver, checked.stats, checked.engine)
+
+
+def synthesize(spec: SpecLike, semantics: str = "default", solver: str = "embedded",
+               timeout: float | None = None, slugs: str | None = None,
+               options: Options | None = None, progress: Progress | None = None,
+               verify: bool = True, form: str = "auto",
+               max_nodes: int | None = MAX_NODES,
+               prefer: str | Sequence[str] | None = None) -> Synthesis:
+    """A controller for ``spec``, proved by the independent verifier unless ``verify`` is
+    False; ``.controller`` is None when the spec is unrealizable.
+
+    ``form`` (:data:`gaitc.solver.synthesis.FORMS`): ``explicit`` an automaton, ``symbolic`` BDDs
+    (:mod:`gaitc.ir.bddfile`), ``auto`` an automaton unless it would pass ``max_nodes`` nodes.
+
+    ``prefer`` orders the move preferences of the controller (either form) among the winning
+    moves (``gaitc.solver.preferences``: ``hazard``, ``health``, ``goal``, ``switches``; a list or
+    comma-separated text): None is all four in that order, ``"none"`` the solver's first
+    move (the behaviour before them).  They apply to the embedded solver; ``hazard``,
+    ``health`` and ``switches`` need a ``.gait`` spec.
+    """
+    if form not in FORMS:
+        raise UsageError(f"unknown controller form '{form}'; use one of {', '.join(FORMS)}")
+    if form == "symbolic" and solver != "embedded":
+        raise UsageError("symbolic controllers come from the embedded solver; drop --solver "
+                         "slugs or --symbolic")
+    return _solve(resolve(spec), "strategy", semantics, solver, timeout, slugs, options,
+                  progress, verify, form, max_nodes, prefer)
+
+
+def counterstrategy(spec: SpecLike, semantics: str = "default",
+                    solver: str = "embedded", timeout: float | None = None,
+                    slugs: str | None = None, options: Options | None = None,
+                    progress: Progress | None = None, verify: bool = True) -> Synthesis:
+    """The environment's winning strategy for an unrealizable ``spec``, verified;
+    ``.controller`` is None when the spec is realizable."""
+    return _solve(resolve(spec), "counterstrategy", semantics, solver, timeout, slugs, options,
+                  progress, verify, "explicit", None)
+
+
+def _solve(spec: Spec | GR1Spec, kind: Kind, semantics: str, solver: str,
+           timeout: float | None, slugs: str | None, options: Options | None,
+           progress: Progress | None, check_it: bool, form: str,
+           max_nodes: int | None, prefer: str | Sequence[str] | None = None) -> Synthesis:
+    from gaitc.solver.preferences import preference_order
+
+    gr1, started = as_gr1(spec), time.monotonic()
+    _semantics(semantics)
+    order = preference_order(prefer)
+    weighed = [name for name in order if name != "goal"]
+    if prefer is not None and weighed and not (isinstance(spec, Spec) and spec.model):
+        raise UsageError(f"--prefer {','.join(weighed)} weighs moves by the robot model of a "
+                         ".gait spec, and this spec has none (SLUGS input); use --prefer goal "
+                         "or none")
+    automaton: Controller | SymbolicController | None
+    try:
+        if _solver(solver) == "slugs":
+            if prefer is not None and order:
+                raise UsageError("move preferences need the embedded solver; use --prefer "
+                                 "none with --solver slugs")
+            automaton = _slugs_automaton(gr1, kind, semantics, timeout, slugs)
+        elif kind == "strategy":
+            from gaitc.solver import synthesis
+
+            automaton = synthesis.synthesize_controller(gr1, semantics, timeout, progress,
+                                                        options, max_nodes, form, order,
+                                                        _costs(spec, order))
+        else:
+            from gaitc.solver import synthesis
+
+            automaton = synthesis.counterstrategy(gr1, semantics, timeout, progress, options)
+    except MemoryError:
+        raise out_of_memory() from None
+    seconds = time.monotonic() - started
+    report, merged_from = None, None
+    if isinstance(automaton, Controller):  # counter-strategies come back unchanged
+        merged = merge_equivalent(automaton)
+        if merged is not automaton:
+            merged_from, automaton = len(automaton.nodes), merged
+    if automaton is not None:
+        source = spec.source() if isinstance(spec, Spec) else None
+        automaton = replace(automaton, source=source, solver=solver)
+        if check_it:
+            if progress is not None:
+                progress(Stage("checking the controller with the independent verifier"))
+            report = verify(spec, automaton, semantics)
+    return Synthesis(spec, kind, automaton, report, seconds, semantics, solver, merged_from)
+
+
+def _costs(spec: Spec | GR1Spec, order: Sequence[str]) -> tuple[Cost, ...]:
+    """The robot model's move costs (:mod:`ltlcompiler.costs`) when ``order`` needs them."""
+    if not isinstance(spec, Spec) or spec.model is None or set(order) <= {"goal"}:
+        return ()
+    from ltlcompiler.costs import model_costs
+
+    return model_costs(spec.model, spec.encoding or "onehot")
+
+
+def _slugs_automaton(gr1: GR1Spec, kind: Kind, semantics: str, timeout: float | None,
+                     slugs: str | None) -> Controller | None:
+    from slugs_bridge import runner
+
+    wanted = kind == "strategy"
+    run = runner.run_slugs_synth if wanted else runner.run_slugs_counter
+    result = run(_slugsin(gr1), semantics=semantics, timeout=timeout, slugs=slugs)
+    if result.realizable != wanted:
+        return None
+    if result.output is None:
+        verdict = "realizable" if result.realizable else "unrealizable"
+        raise SolverError(f"SLUGS reported {verdict} but wrote no {kind}")
+    if wanted:
+        return runner.controller_from_slugs_json(result.output, gr1, semantics)
+    return runner.counterstrategy_from_slugs_text(result.output, gr1, semantics)
+
+
+def verify(spec: SpecLike,
+           controller: Controller | SymbolicController | Synthesis | str | Path,
+           semantics: str | None = None) -> VerificationReport:
+    """Prove independently that ``controller`` (a strategy, explicit or symbolic) realizes
+    ``spec``, or that a counter-strategy defeats it; a path is read as a controller file.
+    ``semantics`` defaults to the one recorded in the controller."""
+    spec = resolve(spec)
+    gr1 = as_gr1(spec)
+    automaton: Controller | SymbolicController
+    if isinstance(controller, Synthesis):
+        if controller.controller is None:
+            raise UsageError(f"there is no {controller.kind} to verify")
+        automaton = controller.controller
+    elif isinstance(controller, (Controller, SymbolicController)):
+        automaton = controller
+    else:
+        automaton = read_controller(controller, gr1)
+    chosen = _semantics(semantics or automaton.semantics)
+    if isinstance(automaton, SymbolicController):
+        from gaitc.verifier.symbolic import verify_symbolic
+
+        return verify_symbolic(gr1, automaton, chosen)
+    if automaton.kind == "counterstrategy":
+        from gaitc.verifier.counterstrategy import verify_counterstrategy
+
+        return verify_counterstrategy(gr1, automaton, chosen)
+    from gaitc.verifier.strategy import verify as verify_strategy
+
+    return verify_strategy(gr1, automaton, chosen)
+
+
+def read_controller(path: str | Path, spec: GR1Spec | None = None
+                    ) -> Controller | SymbolicController:
+    """A controller file of either form: an explicit automaton or a symbolic controller."""
+    data = read_controller_json(str(path))
+    if is_symbolic(data):
+        return symbolic_from_dict(data, str(path))
+    return controller_from_dict(data, str(path), spec)
+
+
+def recorded_encoding(path: str | Path) -> str | None:
+    """The encoding a controller file says its spec was compiled with, if it says one."""
+    import json
+
+    from ltlcompiler.encoding import ENCODINGS
+
+    try:
+        data = json.loads(Path(path).read_text(encoding="utf-8"))
+        encoding = data["gaitc"]["source"]["encoding"]
+    except (OSError, ValueError, KeyError, TypeError, RecursionError):
+        return None
+    return str(encoding) if encoding in ENCODINGS else None

@@ -1,0 +1,246 @@
+"""The ``render`` commands: draw a controller automaton (whole, or its first steps), the
+controller projected on the map (``render policy``), the region map (with a run) or the
+spec's region graph and gait map, with pydot and Graphviz (see :mod:`gaitc.sim.graphics`).
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from typing import Any
+
+import gaitc
+from gaitc.cli.commands.arguments import add_prefer, output_file, positive_count
+from gaitc.cli.exitcodes import ExitCode
+from gaitc.cli.status import progress_display
+from gaitc.diagnostics import UsageError
+from gaitc.sim.graphics import FORMATS, Picture, output_format
+
+FORMAT_HELP = (f"output format: {', '.join(FORMATS)} (default: from the -o extension); every "
+               "format but dot needs Graphviz's 'dot' program")
+
+
+TABLE_FORMATS = ("text", "md", "html")
+_TABLE_SUFFIXES = {".txt": "text", ".text": "text", ".md": "md", ".html": "html",
+                   ".htm": "html"}
+
+
+def _output(p: argparse.ArgumentParser) -> None:
+    p.add_argument("-o", "--output", required=True, metavar="FILE", type=output_file)
+    p.add_argument("--format", choices=FORMATS, help=FORMAT_HELP)
+
+
+def register(sub: Any) -> None:
+    render = sub.add_parser("render", help="draw automata, maps and runs",
+                            description="Draw with Graphviz: a controller automaton (or its "
+                            "first steps), the controller projected on the map (policy), the "
+                            "map (optionally with a simulated run), or a spec's regions and "
+                            "gaits.")
+    what = render.add_subparsers(dest="what", metavar="WHAT", parser_class=type(render))
+
+    p = what.add_parser("automaton", help="a controller as a graph",
+                        description="Nodes show region, gait and the goal pursued; edges the "
+                        "environment's inputs (health changes, hazards); initial nodes have a "
+                        "double border. Above --max-nodes the quotient by region and gait (or "
+                        "by region) is drawn and the merges are listed. --steps K draws only "
+                        "the nodes within K moves of the initial nodes (at most --max-nodes "
+                        "of them), symbolic controllers too, and says what it cut.")
+    p.add_argument("spec", metavar="SPEC")
+    p.add_argument("controller", metavar="CONTROLLER", nargs="?",
+                   help="controller JSON (default: synthesize one)")
+    p.add_argument("--quotient", choices=("none", "region-gait", "region"),
+                   help="merge nodes with the same region and gait, or region (default: "
+                   "automatic above --max-nodes)")
+    p.add_argument("--max-nodes", type=int, default=40, metavar="N",
+                   help="size above which a quotient is drawn; with --steps, the most nodes "
+                   "drawn (default 40)")
+    p.add_argument("--steps", type=int, metavar="K",
+                   help="draw only the first K steps from the initial nodes (breadth first; "
+                   "K = 3 is a good start)")
+    p.add_argument("--encoding", choices=("onehot", "binary"))
+    add_prefer(p, "without CONTROLLER: ")
+    _output(p)
+    p.set_defaults(run=run_automaton)
+
+    p = what.add_parser("policy", help="the controller projected on the map: per region, "
+                        "which gait under which condition",
+                        description="For each region, the rules the controller follows: "
+                        "under which goal, active hazard and leg health (healthy, degraded, "
+                        "failed) it walks which gait into which region, with the number of "
+                        "controller moves each covers. Without -o a text table is printed; "
+                        "-o FILE.txt/.md/.html writes the table, .svg/.png/.pdf/.dot draws "
+                        "one table per region with arrows for its moves. A symbolic "
+                        "controller is projected from the nodes within --steps moves of the "
+                        "start (default 10), as is an explicit one when --steps is given.")
+    p.add_argument("spec", metavar="SPEC")
+    p.add_argument("controller", metavar="CONTROLLER", nargs="?",
+                   help="controller JSON (default: synthesize one)")
+    p.add_argument("--steps", type=int, metavar="K",
+                   help="project only the nodes within K moves of the start (default: every "
+                   "node; symbolic controllers: 10)")
+    p.add_argument("--max-nodes", type=int, default=2000, metavar="N",
+                   help="with a bounded search, stop after N nodes (default 2000)")
+    p.add_argument("--max-rules", type=int, metavar="N",
+                   help="at most N rules per region: the most mixed conditions stay joined, "
+                   "marked ~, listing every move they cover (default: exact rules)")
+    p.add_argument("--encoding", choices=("onehot", "binary"))
+    add_prefer(p, "without CONTROLLER: ")
+    p.add_argument("-o", "--output", metavar="FILE", type=output_file,
+                   help="write the table or picture here (default: print the table)")
+    p.add_argument("--format", choices=TABLE_FORMATS + FORMATS,
+                   help="text, md, html, or a picture format (default: from the -o "
+                   "extension; pictures other than dot need Graphviz)")
+    p.set_defaults(run=run_policy)
+
+    p = what.add_parser("map", help="the region map, optionally with a run",
+                        description="Regions with caches, hazard sets, goals and start; with "
+                        "--run the path with step numbers (✗ a leg fails, ↓ degrades) and the "
+                        "leg-health timeline.")
+    p.add_argument("spec", metavar="SPEC")
+    p.add_argument("--run", dest="run_file", metavar="RUN.jsonl",
+                   help="a run saved by 'gaitc simulate --out'")
+    p.add_argument("--max-steps", type=positive_count, default=30, metavar="N",
+                   help="draw the first N steps of the run (default 30)")
+    _output(p)
+    p.set_defaults(run=run_map)
+
+    p = what.add_parser("spec", help="a spec's region graph and gait map (no controller)")
+    p.add_argument("spec", metavar="SPEC")
+    _output(p)
+    p.set_defaults(run=run_spec)
+
+    from gaitc.cli.commands.gaits import run_render, search_arguments
+
+    p = what.add_parser("gaits", help="a robot's gait graph and the poses of its gaits (SVG)",
+                        description="Search gaits for ROBOT.yaml as 'gaitc gaits' does, then "
+                        "write the gait graph around each gait and a top view of every pose "
+                        "(legs, contacts, contact polygon, centre of gravity) into DIR.")
+    search_arguments(p)
+    p.add_argument("-o", "--output", dest="output_dir", required=True, metavar="DIR",
+                   help="folder for the SVG files")
+    p.set_defaults(run=run_render)
+
+
+def _save(picture: Picture, args: argparse.Namespace) -> int:
+    fmt = output_format(args.output, args.format)
+    picture.save(args.output, fmt)
+    for note in picture.notes:
+        print(f"gaitc: {note}", file=sys.stderr)
+    print(f"wrote {args.output} ({fmt})", file=sys.stderr)
+    return ExitCode.OK
+
+
+def _model(path: str) -> Any:
+    loaded = gaitc.load(path)
+    if loaded.model is None:
+        raise UsageError(f"'{path}': maps need a .gait spec")
+    return loaded.model
+
+
+def run_automaton(args: argparse.Namespace) -> int:
+    from gaitc.sim.automaton_view import automaton_view
+    from gaitc.sim.strategy import explicit
+
+    output_format(args.output, args.format)  # fail on a bad format before synthesizing
+    if args.max_nodes < 1:
+        raise UsageError("--max-nodes must be at least 1")
+    _check_steps(args.steps)
+    if args.steps is not None and args.quotient is not None:
+        raise UsageError("--steps draws single nodes; leave out --quotient")
+    with progress_display() as progress:
+        loaded = gaitc.session(args.spec, args.controller, args.encoding, prefer=args.prefer,
+                               progress=progress)
+    if loaded is None:
+        print(f"{args.spec}: unrealizable: no controller to draw", file=sys.stderr)
+        return ExitCode.UNREALIZABLE
+    if args.steps is not None:
+        from gaitc.sim.steps_view import steps_view
+
+        return _save(steps_view(loaded.strategy, loaded.domain, args.steps, args.max_nodes),
+                     args)
+    strategy = explicit(loaded.strategy, "drawing the automaton")
+    view = automaton_view(strategy, loaded.domain, args.quotient, args.max_nodes)
+    if args.quotient == "none" and len(loaded.strategy) > args.max_nodes:
+        print(f"gaitc: the automaton has {len(loaded.strategy)} nodes; --quotient region-gait "
+              "or --quotient region draws a smaller picture", file=sys.stderr)
+    return _save(view, args)
+
+
+def _check_steps(steps: int | None) -> None:
+    if steps is not None and steps < 0:
+        raise UsageError(f"--steps must be 0 or more (the moves from the start), not {steps}")
+
+
+def _policy_format(path: str | None, fmt: str | None) -> str:
+    if fmt is not None:
+        return fmt
+    if path is None:
+        return "text"
+    from pathlib import Path
+
+    found = _TABLE_SUFFIXES.get(Path(path).suffix.lower())
+    return found if found is not None else output_format(path)
+
+
+def run_policy(args: argparse.Namespace) -> int:
+    from gaitc.diagnostics.files import write_atomically
+    from gaitc.sim.policy import controller_policy
+    from gaitc.sim.policy_view import policy_view
+
+    fmt = _policy_format(args.output, args.format)  # fail on a bad format before synthesizing
+    if args.output is None and fmt not in TABLE_FORMATS:
+        raise UsageError(f"--format {fmt} draws a picture: give -o FILE")
+    if args.max_nodes < 1:
+        raise UsageError("--max-nodes must be at least 1")
+    _check_steps(args.steps)
+    if args.max_rules is not None and args.max_rules < 1:
+        raise UsageError("--max-rules must be at least 1")
+    with progress_display() as progress:
+        loaded = gaitc.session(args.spec, args.controller, args.encoding, prefer=args.prefer,
+                               progress=progress)
+    if loaded is None:
+        print(f"{args.spec}: unrealizable: no controller to project", file=sys.stderr)
+        return ExitCode.UNREALIZABLE
+    policy = controller_policy(loaded.strategy, loaded.domain, args.steps, args.max_nodes,
+                               args.max_rules)
+    if fmt not in TABLE_FORMATS:
+        return _save(policy_view(policy, loaded.domain), args)
+    text = {"text": policy.text, "md": policy.markdown, "html": policy.html}[fmt]()
+    if args.output is None:
+        sys.stdout.write(text)
+        return ExitCode.OK
+    write_atomically(args.output, text.encode("utf-8"))
+    print(f"wrote {args.output} ({fmt})", file=sys.stderr)
+    return ExitCode.OK
+
+
+def run_map(args: argparse.Namespace) -> int:
+    from gaitc.sim.map_view import map_view
+    from gaitc.sim.run import read_jsonl
+
+    output_format(args.output, args.format)
+    model = _model(args.spec)
+    run = None
+    if args.run_file is not None:
+        run = read_jsonl(args.run_file)
+        _check_run(run, model, args.run_file)
+    return _save(map_view(model, run, args.max_steps), args)
+
+
+def _check_run(run: Any, model: Any, path: str) -> None:
+    from gaitc.diagnostics import ScenarioError, Span
+
+    regions = {r.name for r in model.regions}
+    legs = {leg.name for leg in model.legs}
+    for step in run.steps:
+        if step.region not in regions or not {leg for leg, _ in step.health} <= legs:
+            raise ScenarioError(f"this run does not belong to '{model.file or 'the spec'}': "
+                                f"step {step.index} is in region '{step.region}'",
+                                Span(path, 1, 1))
+
+
+def run_spec(args: argparse.Namespace) -> int:
+    from gaitc.sim.map_view import spec_view
+
+    output_format(args.output, args.format)
+    return _save(spec_view(_model(args.spec)), args)

@@ -1,0 +1,189 @@
+"""The ``simulate`` command: run a controller against an environment, print and save the run.
+
+The work lives in :func:`gaitc.simulate` (:mod:`gaitc.api.simulation`, over :mod:`gaitc.sim`);
+this module parses options, calls it and prints the step table and summary.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from collections.abc import Mapping
+from typing import Any
+
+import gaitc
+from gaitc.api.simulation import ENVIRONMENTS, Session, environment
+from gaitc.cli.commands.arguments import add_prefer, run_file
+from gaitc.cli.exitcodes import ExitCode, exit_code_help
+from gaitc.cli.reporting import document, exit_code_of, print_json, run_json
+from gaitc.cli.status import progress_display
+from gaitc.diagnostics import UsageError, render_error
+from gaitc.sim.environments import Environment
+from gaitc.sim.run import Run
+from ltlcompiler.encoding import ENCODINGS
+
+EPILOG = """environments:
+  --env random [--seed N]   uniform among the inputs the controller accepts (default, seed 0)
+  --env adversarial         plans over the controller for the most health lost and the
+                            farthest from the next goal (docs/simulation.md); for an
+                            unrealizable spec without CONTROLLER, plays its counter-strategy
+  --env scripted FILE.yaml  a scenario: per step the hazard and the legs that degrade/fail
+A counter-strategy (from 'gaitc counter') is the environment itself; --env random or
+adversarial then says how the robot answers (adversarial: it avoids forced deadlocks).
+
+"""
+EPILOG += exit_code_help({
+    ExitCode.OK: "the run finished and the spec held along it",
+    ExitCode.USER: "an input file is wrong, a scenario step breaks an assumption, or the "
+    "controller broke a guarantee along the run",
+    ExitCode.UNREALIZABLE: "the spec is unrealizable (when no CONTROLLER is given)",
+}, codes=(ExitCode.OK, ExitCode.USER, ExitCode.USAGE, ExitCode.UNREALIZABLE))
+
+
+def register(sub: Any) -> None:
+    p = sub.add_parser(
+        "simulate",
+        help="run a controller against an environment",
+        description="Simulate CONTROLLER (JSON from 'gaitc synth' or SLUGS) for the .gait SPEC "
+        "and print each step in domain terms; without CONTROLLER, synthesize one first. Every "
+        "step is checked against the spec's assumptions and guarantees.",
+        epilog=EPILOG,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    p.add_argument("spec", metavar="SPEC")
+    p.add_argument("controller", metavar="CONTROLLER", nargs="?")
+    p.add_argument("--env", nargs="+", metavar="KIND", default=["random"],
+                   help="scripted FILE.yaml | random | adversarial (default random)")
+    p.add_argument("--seed", type=int, help="seed of the random environment (default 0)")
+    p.add_argument("--steps", type=int, metavar="N",
+                   help="number of steps (default 50; a scenario's length when scripted)")
+    p.add_argument("--out", metavar="FILE", type=run_file,
+                   help="save the run as .jsonl or .csv")
+    p.add_argument("--encoding", choices=ENCODINGS,
+                   help="encoding of the spec (default: the one recorded in the controller)")
+    p.add_argument("--robotics-semantics", action="store_true",
+                   help="semantics when synthesizing on the fly")
+    p.add_argument("--quiet", action="store_true", help="print only the summary")
+    add_json(p)
+    add_prefer(p, "without CONTROLLER: ")
+    p.set_defaults(run=run_simulate)
+
+
+def add_json(p: argparse.ArgumentParser) -> None:
+    """``--json`` of ``simulate`` and ``drive``: the run as one object (docs/json.md)."""
+    p.add_argument("--json", action="store_true",
+                   help="print the run (steps, summary, error) as one JSON object instead "
+                   "of the table (docs/json.md)")
+
+
+def settle_environment(args: argparse.Namespace, real_sensors: bool = False) -> None:
+    """Give CONTROLLER back from ``--env`` (whose ``nargs='+'`` also takes the positional
+    after it: ``SPEC --env random CONTROLLER``; a .yaml word stays a misplaced scenario), and
+    refuse a ``--seed`` nothing uses."""
+    kind, *rest = args.env or ["random"]
+    wanted = 1 if kind == "scripted" else 0
+    taken = rest[-1] if len(rest) == wanted + 1 else ""
+    if args.controller is None and taken and not taken.endswith((".yaml", ".yml")):
+        args.controller = rest[-1]
+        args.env = args.env[:-1]
+    if args.seed is not None and real_sensors:
+        raise UsageError("--seed seeds the simulated random environment; the serial backend "
+                         "reads real sensors")
+    if args.seed is not None and kind != "random":
+        raise UsageError(f"--seed seeds the random environment; --env {kind} uses no random "
+                         "numbers (drop --seed, or use --env random)")
+
+
+def environment_of(args: argparse.Namespace, bound: Session) -> Environment:
+    """The environment ``--env`` names (with its scenario file for ``scripted``)."""
+    kind, *rest = args.env or ["random"]
+    if kind not in ENVIRONMENTS:
+        raise UsageError(f"unknown environment '{kind}'; use one of {', '.join(ENVIRONMENTS)}")
+    if kind == "scripted":
+        if len(rest) != 1:
+            raise UsageError("--env scripted needs one scenario file: --env scripted FILE.yaml")
+        return environment(f"scripted:{rest[0]}", bound)
+    if rest:
+        raise UsageError(f"--env {kind} takes no file (got '{rest[0]}')")
+    return environment(kind, bound, args.seed or 0)
+
+
+def run_simulate(args: argparse.Namespace) -> int:
+    semantics = "robotics" if args.robotics_semantics else "default"
+    if args.steps is not None and args.steps < 0:
+        raise UsageError("--steps must not be negative")
+    settle_environment(args)
+    with progress_display() as progress:
+        bound = gaitc.session(args.spec, args.controller, args.encoding, semantics,
+                              args.prefer, progress)
+    if bound is None and (args.env or ["random"])[0] == "adversarial":
+        from gaitc.api.simulation import counter_session
+
+        with progress_display() as progress:
+            bound = counter_session(gaitc.load(args.spec, args.encoding or "onehot"),
+                                    semantics, progress)
+        if bound is not None:  # the environment plays its winning strategy
+            run = gaitc.simulate(bound, env="adversarial", steps=args.steps)
+            return report_run(run, bound.full_health, run.environment, args.quiet, args.out,
+                              args.json, realizable=False)
+    if bound is None:
+        print(f"{args.spec}: unrealizable: no controller to simulate", file=sys.stderr)
+        if args.json:
+            print_json(document("simulate", run_json(args.spec, None, None, None, False)))
+        return ExitCode.UNREALIZABLE
+    if bound.strategy.kind == "counterstrategy":
+        kind = (args.env or ["random"])[0]
+        run = gaitc.simulate(bound, env=kind, steps=args.steps, seed=args.seed or 0)
+        return report_run(run, bound.full_health, run.environment, args.quiet, args.out,
+                          args.json, realizable=False)
+    chosen = environment_of(args, bound)
+    run = gaitc.simulate(bound, env=chosen, steps=args.steps)
+    return report_run(run, bound.full_health, chosen.name, args.quiet, args.out, args.json)
+
+
+def report_run(
+    run: Run, full_health: Mapping[str, int], source: str, quiet: bool, out: str | None,
+    as_json: bool = False, extra: Mapping[str, Any] | None = None, realizable: bool = True,
+    command: str = "simulate",
+) -> int:
+    """Print ``run``'s step table and summary, save it to ``out``, return the exit code.
+
+    A run stopped by a broken assumption raises its error; a run along which the controller
+    broke a guarantee (with every assumption kept) is a user error (exit 1).  With
+    ``as_json`` one object is printed instead (with ``extra``'s keys), holding the error
+    that stopped the run, and the exit code is returned rather than the error raised.
+    """
+    from gaitc.sim.run import save_run
+    from gaitc.sim.terminal import step_table, summary_text, use_colour
+
+    if as_json:
+        if out:
+            save_run(run, out)
+        print_json(document(command, {**run_json(run.spec_file, run, source, out, realizable),
+                                      **(extra or {})}))
+        if run.error is not None:
+            print(render_error(run.error), file=sys.stderr)
+            return exit_code_of(run.error)
+        return ExitCode.USER if _broke_guarantee(run) else ExitCode.OK
+    colour = use_colour(sys.stdout)
+    if not quiet:
+        print(step_table(run, dict(full_health), colour))
+        print()
+    if run.summary is not None:
+        print(summary_text(run.summary, source, colour))
+    if out:
+        save_run(run, out)
+    if run.error is not None:
+        sys.stdout.flush()
+        raise run.error
+    return ExitCode.USER if _broke_guarantee(run) else ExitCode.OK
+
+
+def _broke_guarantee(run: Run) -> bool:
+    """Whether the controller broke a guarantee with every assumption kept (said on stderr)."""
+    summary = run.summary
+    if summary is not None and summary.assumptions_held and not summary.guarantees_held:
+        print("gaitc: error: the controller broke a guarantee along this run (see above)",
+              file=sys.stderr)
+        return True
+    return False

@@ -1,0 +1,288 @@
+"""The solving commands: ``check``, ``synth``, ``counter`` and ``verify``.
+
+Each parses its options, calls :func:`gaitc.check`, :func:`gaitc.synthesize`,
+:func:`gaitc.counterstrategy` or :func:`gaitc.verify` (:mod:`gaitc.api.solving`) and prints.
+"""
+
+from __future__ import annotations
+
+import argparse
+import functools
+import sys
+import time
+from typing import Any
+
+import gaitc
+from gaitc.api.isolation import HardLimits, cudd_budget_mb, run_limited
+from gaitc.api.solving import MAX_NODES, SOLVERS, read_controller, recorded_encoding
+from gaitc.cli.commands.arguments import (
+    add_prefer,
+    output_file,
+    positive_count,
+    positive_megabytes,
+    positive_seconds,
+)
+from gaitc.cli.exitcodes import ExitCode, exit_code_help
+from gaitc.cli.reporting import document, error_json, exit_code_of, print_json
+from gaitc.cli.status import progress_display
+from gaitc.diagnostics import GaitcError, UsageError, render_error
+from gaitc.solver.progress import Progress
+from gaitc.solver.symbolic import Options
+from gaitc.verifier.strategy import VerificationReport
+from ltlcompiler.encoding import ENCODINGS
+
+EXIT_CODES = exit_code_help({
+    ExitCode.OK: "every spec is realizable (check), the controller was written / verified",
+    ExitCode.USER: "an input file is wrong (syntax, names, malformed controller) or "
+    "verification failed",
+    ExitCode.UNREALIZABLE: "a spec is unrealizable (check, synth) or realizable (counter)",
+})
+
+
+def _common(p: argparse.ArgumentParser, solver: bool = True) -> None:
+    p.add_argument(
+        "--robotics-semantics",
+        action="store_true",
+        help="every initial state allowed by env_init and sys_init must be winning "
+        "(SLUGS --sysInitRoboticsSemantics); default: for every allowed input some output",
+    )
+    p.add_argument(
+        "--encoding",
+        choices=ENCODINGS,
+        default="onehot" if solver else None,
+        help="encoding of .gait specs (default onehot"
+        + ("" if solver else "; verify: the one recorded in the controller file") + ")",
+    )
+    if not solver:
+        return
+    p.add_argument("--solver", choices=SOLVERS, default="embedded")
+    p.add_argument("--slugs", metavar="PATH", help="the SLUGS binary (else $SLUGS or PATH)")
+    p.add_argument("--timeout", type=positive_seconds, metavar="SECONDS",
+                   help="stop after this long (exit 4; the solver is killed at most "
+                   "half a second later)")
+    p.add_argument("--memory-limit", type=positive_megabytes, metavar="MB",
+                   help="the most memory the solver process may take (exit 4 when it needs "
+                   "more)")
+    p.add_argument("--verbose", action="store_true",
+                   help="print each stage of the solve on a line of its own, with the "
+                   "solver's figures (rounds, BDD sizes); on a terminal a status line "
+                   "shows the stage and the time elapsed")
+
+
+def register(sub: Any) -> None:
+    fmt = argparse.RawDescriptionHelpFormatter
+    p = sub.add_parser(
+        "check",
+        help="decide realizability of specs",
+        description="Decide whether a controller exists for each SPEC (.gait, .slugsin, "
+        ".structuredslugs); prints 'FILE: realizable (0.12 s)' per file.",
+        epilog=EXIT_CODES,
+        formatter_class=fmt,
+    )
+    p.add_argument("specs", nargs="+", metavar="SPEC")
+    p.add_argument("--json", action="store_true",
+                   help="one JSON object per file (docs/json.md)")
+    _common(p)
+    p.set_defaults(run=run_check)
+
+    p = sub.add_parser(
+        "synth",
+        help="synthesize and verify a controller",
+        description="Synthesize an explicit controller (JSON, docs/controller-format.md), then "
+        "prove it with the independent verifier.",
+        epilog=EXIT_CODES,
+        formatter_class=fmt,
+    )
+    p.add_argument("spec", metavar="SPEC")
+    p.add_argument("-o", "--output", required=True, metavar="FILE", type=output_file)
+    p.add_argument("--no-verify", action="store_true", help="skip the verification step")
+    _json(p)
+    p.add_argument("--symbolic", action="store_true",
+                   help="write the strategy as BDDs (docs/controller-format.md, symbolic "
+                   "controllers); simulate, drive, verify and render map read it")
+    p.add_argument("--max-nodes", type=positive_count, default=MAX_NODES, metavar="N",
+                   help=f"keep the controller symbolic when the explicit automaton would pass "
+                   f"N nodes (default {MAX_NODES:,})")
+    add_prefer(p)
+    _common(p)
+    p.set_defaults(run=run_synth)
+
+    p = sub.add_parser(
+        "counter",
+        help="the environment's winning strategy of an unrealizable spec",
+        description="Write the environment's counter-strategy (JSON) of an unrealizable SPEC.",
+        epilog=EXIT_CODES,
+        formatter_class=fmt,
+    )
+    p.add_argument("spec", metavar="SPEC")
+    p.add_argument("-o", "--output", required=True, metavar="FILE", type=output_file)
+    _json(p)
+    _common(p)
+    p.set_defaults(run=run_counter)
+
+    p = sub.add_parser(
+        "verify",
+        help="prove that a controller realizes a spec",
+        description="Check a controller (or counter-strategy) against SPEC independently of "
+        "the solver. The semantics default to the one recorded in the controller file.",
+        epilog=EXIT_CODES,
+        formatter_class=fmt,
+    )
+    p.add_argument("spec", metavar="SPEC")
+    p.add_argument("controller", metavar="CONTROLLER")
+    _json(p)
+    _common(p, solver=False)
+    p.set_defaults(run=run_verify)
+
+
+# ---------------------------------------------------------------- helpers
+def _json(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--json", action="store_true",
+                   help="print one JSON object instead of the text (docs/json.md)")
+
+
+def _semantics(args: argparse.Namespace) -> str:
+    return "robotics" if args.robotics_semantics else "default"
+
+
+
+def _limits(args: argparse.Namespace) -> HardLimits:
+    return HardLimits(args.timeout, getattr(args, "memory_limit", None))
+
+
+def _options(args: argparse.Namespace) -> Options:
+    mb = getattr(args, "memory_limit", None)
+    return Options(memory_mb=None if mb is None else cudd_budget_mb(mb))
+
+
+def _solver_args(args: argparse.Namespace, progress: Progress | None) -> dict[str, Any]:
+    return {"semantics": _semantics(args), "solver": args.solver, "timeout": args.timeout,
+            "slugs": args.slugs, "options": _options(args), "progress": progress}
+
+
+# ---------------------------------------------------------------- commands
+def run_check(args: argparse.Namespace) -> int:
+    worst = ExitCode.OK
+    for path in args.specs:
+        started = time.monotonic()
+        record: dict[str, Any] = {"file": path, "semantics": _semantics(args),
+                                  "solver": args.solver, "engine": None, "error": None}
+        try:
+            _options(args)  # a memory limit too small fails here, before the fork
+            verdict = run_limited(functools.partial(_check_one, path, args), _limits(args))
+            record.update(verdict.to_json(), file=path)
+            code = ExitCode.OK if verdict.realizable else ExitCode.UNREALIZABLE
+        except UsageError:
+            raise
+        except GaitcError as err:
+            record.update(verdict="error", error=error_json(err))
+            code = exit_code_of(err)
+            print(render_error(err), file=sys.stderr)
+        record.setdefault("seconds", round(time.monotonic() - started, 3))
+        if args.json:
+            print_json(document("check", record))
+        elif record["verdict"] != "error":
+            print(f"{path}: {record['verdict']} ({record['seconds']:.2f} s)", flush=True)
+        worst = max(worst, code, key=_SEVERITY.index)
+    return worst
+
+
+def _check_one(path: str, args: argparse.Namespace) -> gaitc.Verdict:
+    """Load and decide one spec (in the limited child process when there are limits; CUDD's
+    share of the memory limit is what is left once the spec is loaded)."""
+    spec = gaitc.load(path, args.encoding)
+    with progress_display(args.verbose) as progress:
+        return gaitc.check(spec, **_solver_args(args, progress))
+
+
+_SEVERITY = (ExitCode.OK, ExitCode.UNREALIZABLE, ExitCode.USER, ExitCode.SOLVER)
+
+
+def _solve(args: argparse.Namespace, kind: str) -> tuple[gaitc.Spec, gaitc.Synthesis]:
+    _options(args)  # a memory limit too small fails here, before the fork
+
+    def work() -> tuple[gaitc.Spec, gaitc.Synthesis]:
+        spec = gaitc.load(args.spec, args.encoding)
+        with progress_display(args.verbose) as progress:
+            if kind == "counterstrategy":
+                return spec, gaitc.counterstrategy(spec, **_solver_args(args, progress))
+            form = "symbolic" if args.symbolic else "auto"
+            return spec, gaitc.synthesize(spec, verify=not args.no_verify, form=form,
+                                          max_nodes=args.max_nodes, prefer=args.prefer,
+                                          **_solver_args(args, progress))
+
+    return run_limited(work, _limits(args))
+
+
+def run_synth(args: argparse.Namespace) -> int:
+    _, found = _solve(args, "strategy")
+    if args.json:
+        return _synth_json(args, found)
+    if found.controller is None:
+        print(f"{args.spec}: unrealizable ({found.seconds:.2f} s); no controller written")
+        print("  hint: 'gaitc counter' shows how the environment wins", file=sys.stderr)
+        return ExitCode.UNREALIZABLE
+    if found.report is not None and not found.report.ok:
+        print(f"{args.spec}: realizable ({found.seconds:.2f} s), but the controller failed "
+              f"verification; {args.output} was not written")
+        return _print_report(found.report)
+    found.save(args.output)  # only a verified controller (or one --no-verify asked for)
+    print(
+        f"{args.spec}: realizable ({found.seconds:.2f} s); wrote {args.output} "
+        f"({found.size})"
+    )
+    if found.report is None:
+        return ExitCode.OK
+    return _print_report(found.report)
+
+
+def _synth_json(args: argparse.Namespace, found: gaitc.Synthesis) -> int:
+    """``synth --json`` and ``counter --json``: the same files written, one object printed."""
+    strategy = found.kind == "strategy"
+    # as without --json: synth writes only a verified controller, counter whatever it found
+    verified = not strategy or found.report is None or found.report.ok
+    written = found.controller is not None and verified
+    if written:
+        found.save(args.output)
+    print_json(document("synth" if strategy else "counter",
+                        {**found.to_json(), "output": args.output if written else None}))
+    if found.controller is None:
+        if strategy:
+            print("  hint: 'gaitc counter' shows how the environment wins", file=sys.stderr)
+        return ExitCode.UNREALIZABLE
+    return ExitCode.OK if verified else ExitCode.USER
+
+
+def _print_report(report: VerificationReport) -> int:
+    print(f"verified: {report.summary()}" if report.ok else f"NOT verified: {report.summary()}")
+    for problem in report.problems:
+        print(f"  - {problem}")
+    return ExitCode.OK if report.ok else ExitCode.USER
+
+
+def run_counter(args: argparse.Namespace) -> int:
+    _, found = _solve(args, "counterstrategy")
+    if args.json:
+        return _synth_json(args, found)
+    if found.controller is None:
+        print(f"{args.spec}: realizable ({found.seconds:.2f} s); there is no counter-strategy")
+        return ExitCode.UNREALIZABLE
+    found.save(args.output)
+    print(
+        f"{args.spec}: unrealizable ({found.seconds:.2f} s); wrote {args.output} "
+        f"({len(found.controller.nodes)} nodes)"
+    )
+    return ExitCode.OK
+
+
+def run_verify(args: argparse.Namespace) -> int:
+    encoding = args.encoding or recorded_encoding(args.controller) or "onehot"
+    spec = gaitc.load(args.spec, encoding)
+    controller = read_controller(args.controller, spec.gr1)
+    semantics = "robotics" if args.robotics_semantics else controller.semantics
+    report = gaitc.verify(spec, controller, semantics)
+    if not args.json:
+        return _print_report(report)
+    print_json(document("verify", {"file": args.spec, "controller": args.controller,
+                                   **report.to_json()}))
+    return ExitCode.OK if report.ok else ExitCode.USER

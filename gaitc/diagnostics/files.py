@@ -1,0 +1,130 @@
+"""Writing result files safely: a temporary file in the target folder, then a rename.
+
+Every command that writes a file (specs, controllers, runs, pictures) goes through
+:func:`write_atomically`, so an error or an interruption never leaves a half-written
+or lost file behind.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import stat
+import tempfile
+from pathlib import Path
+
+from gaitc.diagnostics import FileAccessError, GaitcError, MissingFileError, Span
+
+
+def decode_text(data: bytes, file: str, error: type[GaitcError]) -> str:
+    """``data`` as UTF-8 text; a positioned ``error`` at the first byte that is not."""
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError as err:
+        before = data[: err.start]
+        line = before.count(b"\n") + 1
+        # characters, not bytes, as the printer counts columns (the prefix is valid UTF-8)
+        column = len(before[before.rfind(b"\n") + 1:].decode("utf-8")) + 1
+        raise error(f"'{file}' is not UTF-8 text (byte 0x{data[err.start]:02x} at offset "
+                    f"{err.start}); save the file as UTF-8", Span(file, line, column)) from None
+
+
+def _ordinary_mode(target: Path) -> int:
+    """The mode ``open(target, "w")`` would leave: the old file's, else 0o666 minus umask.
+
+    (``mkstemp`` creates its file with mode 0600, which a plain rename would keep.)
+    """
+    try:
+        return stat.S_IMODE(target.stat().st_mode)
+    except OSError:
+        pass
+    mask = os.umask(0o022)
+    os.umask(mask)
+    return 0o666 & ~mask
+
+
+def _stream_in_place(target: Path) -> bool:
+    """Whether ``target`` is a FIFO or a device, which is written to, never replaced."""
+    try:
+        mode = target.stat().st_mode
+    except OSError:
+        return False
+    return stat.S_ISFIFO(mode) or stat.S_ISCHR(mode) or stat.S_ISBLK(mode)
+
+
+def read_input(path: str | Path, what: str = "") -> bytes:
+    """The bytes of the input file ``path`` (``what`` it is, for the message: "scenario",
+    "robot file"); a file that is missing, a folder or unreadable is a usage error (exit 2,
+    as for a missing spec), named with the file and the reason in words."""
+    name = f"{what} '{path}'" if what else f"'{path}'"
+    if "\0" in str(path):
+        raise FileAccessError(f"cannot read {name}: the name holds a NUL character")
+    try:
+        return Path(path).read_bytes()
+    except FileNotFoundError:
+        raise MissingFileError(f"cannot read {name}: no such file", path) from None
+    except IsADirectoryError:
+        raise FileAccessError(f"cannot read {name}: it is a directory", path) from None
+    except OSError as err:
+        raise FileAccessError(f"cannot read {name}: {err.strerror or err}", path) from None
+
+
+def _output_target(path: str | Path) -> Path:
+    """The file an output ``path`` names (a symbolic link followed); a folder, socket or
+    other kind that is neither a regular file nor a stream is refused."""
+    target = Path(path)
+    if target.is_symlink():
+        target = target.resolve()
+    if target.exists() and not target.is_file() and not _stream_in_place(target):
+        raise FileAccessError(f"cannot write '{path}': it is not a regular file")
+    return target
+
+
+def check_writable(path: str | Path) -> None:
+    """Refuse, before any work, an output ``path`` that :func:`write_atomically` could not
+    write: its folder is missing or not writable, or it is a folder or other non-file."""
+    target = _output_target(path)
+    if _stream_in_place(target):
+        return
+    folder = target.parent if str(target.parent) else Path(".")
+    if not folder.is_dir():
+        raise FileAccessError(f"cannot write '{path}': there is no folder '{folder}'")
+    if not os.access(folder, os.W_OK | os.X_OK):
+        raise FileAccessError(f"cannot write '{path}': the folder '{folder}' is not writable")
+    if target.exists() and not os.access(target, os.W_OK):
+        raise FileAccessError(f"cannot write '{path}': the file is read-only")
+
+
+def write_atomically(path: str | Path, data: str | bytes) -> None:
+    """Replace ``path`` by ``data`` (text is written as UTF-8 with ``\\n`` line ends).
+
+    A symbolic link is followed (its target is replaced, the link stays); a FIFO or a
+    device is written to in place, as a user who names ``/dev/stdout`` expects; any other
+    kind of file that is not a regular one (a directory, a socket) is refused.
+    """
+    target = _output_target(path)
+    payload = data.encode("utf-8") if isinstance(data, str) else data
+    if _stream_in_place(target):
+        try:
+            with open(target, "wb") as out:
+                out.write(payload)
+        except OSError as err:
+            raise FileAccessError(f"cannot write '{path}': {err.strerror or err}") from None
+        return
+    tmp: str | None = None
+    try:
+        folder = target.parent if str(target.parent) else Path(".")
+        fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=folder)
+        os.fchmod(fd, _ordinary_mode(target))
+        with os.fdopen(fd, "wb") as out:
+            out.write(payload)
+            out.flush()
+            os.fsync(out.fileno())
+        os.replace(tmp, target)
+        tmp = None
+    except OSError as err:
+        raise FileAccessError(f"cannot write '{path}': {err.strerror or err}") from None
+    finally:
+        if tmp is not None:
+            with contextlib.suppress(OSError):
+                os.unlink(tmp)

@@ -1,0 +1,69 @@
+"""YAML for the project's input files (robots, scenarios): safe loading, positioned errors.
+
+Every YAML reader goes through :func:`compose`: PyYAML's safe loader only, any YAML
+problem (bad syntax, a NUL or other character YAML forbids, nesting deeper than
+:data:`MAX_DEPTH`) becomes the caller's error class with the file, line and column.
+PyYAML also ends lines at \r, \x85 and U+2028/9; every position it reports (and every
+node's marks) is recounted from its character offset by the rule of ``source_lines``.
+"""
+
+from __future__ import annotations
+
+import yaml
+
+from gaitc.diagnostics import GaitcError, Span, span_at
+
+MAX_DEPTH = 200  # nested lists and mappings; the robot and scenario formats need five
+MAX_NODES = 200_000  # values in the document, counting each use of an alias
+
+
+def compose(text: str, file: str, error: type[GaitcError], what: str) -> yaml.Node | None:
+    """The YAML node tree of ``text`` (None for an empty document)."""
+    try:
+        root = yaml.compose(text, Loader=yaml.SafeLoader)
+    except yaml.MarkedYAMLError as err:
+        mark = err.problem_mark or err.context_mark
+        span = span_at(text, file, mark.index) if mark else Span(file, 1, 1)
+        raise error(f"{what} is not valid YAML: {err.problem}", span) from None
+    except yaml.reader.ReaderError as err:
+        raise error(f"{what} contains the character {err.character!r}, which YAML does not "
+                    "allow", span_at(text, file, err.position)) from None
+    except yaml.YAMLError as err:
+        raise error(f"{what} is not valid YAML: {err}", Span(file, 1, 1)) from None
+    except RecursionError:
+        raise error(f"{what} nests too deeply (the limit is {MAX_DEPTH} levels)",
+                    Span(file, 1, 1)) from None
+    if root is not None:
+        _check_depth(root, text, file, error, what)
+    return root
+
+
+def _recount(mark: yaml.Mark, text: str, file: str) -> yaml.Mark:
+    span = span_at(text, file, mark.index)
+    return yaml.Mark(mark.name, mark.index, span.line - 1, span.column - 1, "", 0)
+
+
+def _check_depth(root: yaml.Node, text: str, file: str, error: type[GaitcError],
+                 what: str) -> None:
+    """Bound the nesting, and recount every node's marks (see the module docstring)."""
+    stack: list[tuple[yaml.Node, int]] = [(root, 1)]
+    seen: set[int] = set()
+    visits = 0
+    while stack:
+        node, depth = stack.pop()
+        visits += 1
+        if visits > MAX_NODES:  # aliases can make a small file a huge tree
+            raise error(f"{what} has more than {MAX_NODES} values once its aliases are "
+                        "expanded", Span(file, 1, 1))
+        if id(node) not in seen:  # an alias shares its anchor's node: recount it once
+            seen.add(id(node))
+            node.start_mark = _recount(node.start_mark, text, file)
+            node.end_mark = _recount(node.end_mark, text, file)
+        if depth > MAX_DEPTH:
+            mark = node.start_mark
+            raise error(f"{what} nests deeper than {MAX_DEPTH} levels",
+                        Span(file, mark.line + 1, mark.column + 1))
+        if isinstance(node, yaml.SequenceNode):
+            stack.extend((child, depth + 1) for child in node.value)
+        elif isinstance(node, yaml.MappingNode):
+            stack.extend((child, depth + 1) for pair in node.value for child in pair)

@@ -1,0 +1,260 @@
+"""The controller loop on a valve board: sense, follow the controller, run the gait's valves.
+
+Turn order as in the lowering (Mealy, thesis eqs. 3.3-3.9): the sensed health levels and
+hazard are the environment's next input; the controller's successor with that input names
+the next region and the gait that gets there, whose valve sequence (chapter 2) is then run.
+The loop is gaitsim's Simulator with the sensors playing the environment, so a hardware run
+is checked by the monitor and saved like a simulated one (``gaitc render map --run``).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass
+
+from gaitc.diagnostics import SpecSemanticError
+from gaitc.gaitgraph.pairing import ValveSequence, resolve_primitive
+from gaitc.hw.backend import Backend, HardwareError, Interrupted, SensorReading, where
+from gaitc.hw.simulated import ScenarioFinished
+from gaitc.sim.domain import Domain, State
+from gaitc.sim.environments import Environment, Move, Request, Situation
+from gaitc.sim.monitor import Monitor
+from gaitc.sim.run import Run
+from gaitc.sim.simulator import Simulator
+from gaitc.sim.strategy import InputKey, StrategyView
+from ltlcompiler.model import GaitKind, Model
+
+
+@dataclass(frozen=True)
+class Executed:
+    """The valve states run for the gait of one step of the run."""
+
+    step: int
+    gait: str
+    valves: tuple[str, ...]
+
+
+def bind_primitives(model: Model, spec_dir: str) -> dict[str, ValveSequence]:
+    """The valve sequence of every gait but noGait; all must exist and have one valve count.
+
+    Raises :class:`SpecSemanticError` listing the gaits without a primitive.
+    """
+    legs = [leg.name for leg in model.legs]
+    gaits = [g for g in model.gaits if g.kind is not GaitKind.NONE]
+    missing = [g for g in gaits if g.primitive is None]
+    if missing:
+        names = ", ".join(g.name for g in missing)
+        raise SpecSemanticError(
+            f"cannot drive the robot: {len(missing)} gait(s) have no valve primitive: {names}",
+            missing[0].span,
+            "bind one to each gait: 'gaitc lint --primitives' suggests the valves of each, "
+            'or name a robot file with primitive "ROBOT.yaml" direction +x')
+    bound = {g.name: resolve_primitive(g, spec_dir, legs) for g in gaits}
+    counts = {len(seq.states[0]) for seq in bound.values() if seq.states}
+    if len(counts) > 1:
+        detail = ", ".join(f"{name}: {len(seq.states[0])}" for name, seq in sorted(bound.items())
+                           if seq.states)
+        raise SpecSemanticError(
+            f"the gaits' primitives drive different numbers of valves ({detail})",
+            gaits[0].span, "every primitive must address the same valve board")
+    return bound
+
+
+def valve_count(primitives: Mapping[str, ValveSequence], default: int) -> int:
+    """The number of valves the primitives address (``default`` when there are none)."""
+    for seq in primitives.values():
+        if seq.states:
+            return len(seq.states[0])
+    return default
+
+
+class Driver:
+    """Runs a controller on a backend, one sensed input and one gait per step."""
+
+    def __init__(self, strategy: StrategyView, domain: Domain, monitor: Monitor,
+                 primitives: Mapping[str, ValveSequence], backend: Backend,
+                 step_delay: float = 0.0, cycles: int = 1,
+                 progress: Callable[[str], None] | None = None,
+                 on_violation: str = "stop") -> None:
+        if on_violation not in VIOLATION_POLICIES:
+            raise ValueError(f"on_violation must be one of {', '.join(VIOLATION_POLICIES)}")
+        self.simulator = Simulator(strategy, domain, monitor)
+        self.domain = domain
+        self.primitives = dict(primitives)
+        self.backend = backend
+        self.step_delay = step_delay
+        self.cycles = cycles
+        self.progress = progress
+        self.executed: list[Executed] = []
+        self.interrupted = False
+        self.interruption = ""  # Ctrl-C, SIGTERM or SIGHUP
+        self.on_violation = on_violation
+        self.violations: list[str] = []  # readings that broke an assumption, as handled
+        self.no_gait = next(g.name for g in domain.model.gaits if g.kind is GaitKind.NONE)
+        self._ran_up_to = -1  # index of the last step whose gait was run
+
+    def run(self, steps: int, spec_file: str = "") -> Run:
+        """Open the backend, drive up to ``steps`` steps, vent and close; return the run."""
+        sensed = SensedEnvironment(self)
+        with self.backend:
+            try:
+                self.backend.vent()
+                run = self.simulator.run(sensed, steps, spec_file)
+                if run.error is None and not self.interrupted and run.steps:
+                    last = run.steps[-1]
+                    if last.index > self._ran_up_to:
+                        self.execute(last.index, last.gait)
+            except KeyboardInterrupt as stop:
+                self.interruption = interruption_name(stop)
+                self.backend.vent()
+                raise
+        if self.interrupted and run.summary is not None:
+            run.summary = dataclasses.replace(
+                run.summary,
+                stopped=f"interrupted ({self.interruption}); {self.backend.safety_note()}")
+        return run
+
+    def execute(self, step: int, gait: str) -> None:
+        """Run the valve sequence of ``gait`` (noGait: vent) and log it."""
+        if gait == self.no_gait:
+            states: tuple[str, ...] = (self.backend.vented,)
+        else:
+            seq = self.primitives.get(gait)
+            if seq is None:
+                raise HardwareError(f"gait {gait} has no valve primitive; cannot run it",
+                                    where(self.backend.name))
+            states = seq.states * self.cycles
+        if self.progress is not None:
+            self.progress(f"step {step}: {gait}: {' '.join(states)}")
+        for valves in states:
+            self.backend.apply(valves)
+            self.backend.wait(self.step_delay)
+        if "1" in states[-1]:  # no valve stays open outside its gait's step; the actuators
+            self.backend.vent()  # relax before the sensors are read
+            self.backend.wait(self.step_delay)
+        self.executed.append(Executed(step, gait, states))
+        self._ran_up_to = step
+
+    def moving_legs(self, gait: str) -> tuple[str, ...]:
+        """The legs ``gait`` may degrade (eq. 3.5): a move gait's legs; none for the others."""
+        found = next((g for g in self.domain.model.gaits if g.name == gait), None)
+        return found.legs if found is not None and found.kind is GaitKind.MOVE else ()
+
+    def sensed_input(self, reading: SensorReading, here: State | None) -> Request:
+        """The environment input that ``reading`` stands for, after checking it."""
+        domain = self.domain
+        legs = tuple(leg for leg, _ in reading.health)
+        if legs != domain.legs:
+            raise HardwareError(f"the sensors report legs {', '.join(legs)} but the spec has "
+                                f"{', '.join(domain.legs)}", where(self.backend.name))
+        for leg, level in reading.health:
+            if not 1 <= level <= domain.full[leg]:
+                raise HardwareError(f"the sensors report health level {level} for leg {leg}, "
+                                    f"outside 1..{domain.full[leg]}", where(self.backend.name),
+                                    "check the waveguide thresholds of the board")
+        if reading.hazard is not None and reading.hazard not in domain.hazard_regions:
+            raise HardwareError(f"the sensors report an unknown hazard '{reading.hazard}'",
+                                where(self.backend.name))
+        expected = domain.model.start if here is None else here.region
+        if reading.region is not None and reading.region != expected:
+            after = "at the start" if here is None else f"after gait {here.gait}"
+            raise HardwareError(
+                f"localisation reports region {reading.region} but the controller expects "
+                f"{expected} {after}: the gait did not get there; stopped with all valves "
+                "vented", where(self.backend.name),
+                "on the physics backend a gait moves the robot only as far as the model "
+                "predicts per cycle: repeat each gait with --cycles N or shrink the regions "
+                "with --cell-size MM (docs/models.md)" if self.backend.name.startswith("physics")
+                else "check the gait's valve sequence and the localisation map")
+        gait = self.no_gait if here is None else here.gait
+        values = domain.encode(State(expected, gait, reading.health, reading.hazard))
+        inputs: InputKey = tuple(int(values[name]) for name in self.simulator.strategy.inputs)
+        return Request(inputs, describe(reading, here))
+
+
+VIOLATION_POLICIES = ("stop", "hold", "worst")
+
+
+def substitute(moves: Sequence[Move], reading: SensorReading, here: State | None,
+               policy: str) -> Move:
+    """The accepted input that stands for a reading which breaks an assumption: ``hold``
+    keeps the levels the controller had (closest to them, then to the reading); ``worst``
+    takes the lowest levels the assumptions allow (then closest to the reading).  The
+    sensed hazard is kept when an accepted input has it."""
+    sensed = dict(reading.health)
+    before = dict(here.health) if here is not None else sensed
+
+    def distance(move: Move, to: Mapping[str, int]) -> int:
+        return sum(abs(level - to[leg]) for leg, level in move.state.health)
+
+    def rank(move: Move) -> tuple[int, int, int, InputKey]:
+        other_hazard = int(move.state.hazard != reading.hazard)
+        first = (distance(move, before) if policy == "hold"
+                 else sum(level for _, level in move.state.health))
+        return other_hazard, first, distance(move, sensed), move.inputs
+
+    return min(moves, key=rank)
+
+
+def describe(reading: SensorReading, here: State | None) -> str:
+    """A short account of a reading, for messages: the legs that changed and the hazard."""
+    before = dict(here.health) if here is not None else {}
+    changed = [f"{leg} {before[leg]}→{level}" for leg, level in reading.health
+               if leg in before and before[leg] != level]
+    parts = [f"sensed {', '.join(changed) if changed else 'no health change'}"]
+    parts.append(f"hazard {reading.hazard}" if reading.hazard else "no hazard")
+    return "; ".join(parts)
+
+
+class SensedEnvironment(Environment):
+    """The environment as the sensors see it: runs the last gait, then reads its outcome."""
+
+    name = "hardware"
+
+    def __init__(self, driver: Driver) -> None:
+        self.driver = driver
+        self.name = f"hardware ({driver.backend.name})"
+
+    def choose(self, situation: Situation) -> Request | None:
+        driver = self.driver
+        state = situation.state
+        try:
+            if state is not None:
+                driver.execute(situation.step - 1, state.gait)
+                driver.backend.step_context(driver.moving_legs(state.gait),
+                                            state.region in driver.domain.model.caches)
+            reading = driver.backend.read_sensors()
+        except ScenarioFinished:
+            return None
+        except KeyboardInterrupt as stop:
+            driver.interrupted = True
+            driver.interruption = interruption_name(stop)
+            driver.backend.vent()
+            return None
+        request = driver.sensed_input(reading, state)
+        moves = {m.inputs: m for m in situation.moves}
+        move = moves.get(request.inputs)
+        if move is None and driver.on_violation != "stop" and situation.moves:
+            move = substitute(situation.moves, reading, state, driver.on_violation)
+            used = ", ".join(f"{leg} {level}" for leg, level in move.state.health)
+            note = (f"step {situation.step}: {request.what} breaks an assumption; "
+                    f"{driver.on_violation}: taken as {used}, hazard "
+                    f"{move.state.hazard or 'none'}")
+            driver.violations.append(note)
+            if driver.progress is not None:
+                driver.progress(note)
+            request = Request(move.inputs, f"{request.what} ({driver.on_violation}: {used})")
+        if move is not None:
+            driver.backend.accepted(move)
+        return request
+
+
+def interruption_name(stop: KeyboardInterrupt) -> str:
+    """How a run was interrupted: ``Ctrl-C``, ``SIGTERM`` or ``SIGHUP``."""
+    return stop.name if isinstance(stop, Interrupted) else "Ctrl-C"
+
+
+def applied_states(executed: Sequence[Executed]) -> list[str]:
+    """Every valve state run, in order (flattens :attr:`Driver.executed`)."""
+    return [valves for entry in executed for valves in entry.valves]

@@ -1,0 +1,231 @@
+"""Localisation from an external tracker: poses on a local stream, mapped to regions.
+
+A motion-capture bridge streams poses as JSON (``{"x": 1.2, "y": 0.4}``, metres or any unit
+the map uses), one per UDP datagram (``udp://127.0.0.1:PORT``: gaitc listens) or one per
+line over TCP (``tcp://HOST:PORT``: gaitc connects).  The region is the one whose polygon
+holds the latest pose: polygons from a map file, or the cells of the spec's grid at a given
+cell size (origin at the grid's south-west corner, x east, y north).  :class:`Localised`
+wraps any backend and replaces the region of its readings, so the driver's check that the
+robot reached the region the controller expects (thesis section 3.3's region propositions)
+rests on the tracker.  Messages are bounded in size; malformed ones are counted and skipped;
+a pose older than ``max_age`` seconds, or none within ``timeout``, is an error.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import select
+import socket
+import time
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+
+from gaitc.diagnostics.files import decode_text, read_input
+from gaitc.hw.backend import Backend, HardwareError, SensorReading, where
+from gaitc.sim.environments import Move
+from ltlcompiler.model import Model
+
+MAX_MESSAGE = 4096  # bytes of one pose message
+MAX_BATCH = 10_000  # messages read per look at the stream
+Point = tuple[float, float]
+
+
+@dataclass(frozen=True)
+class Pose:
+    x: float
+    y: float
+    received: float  # time.monotonic() of its arrival
+
+
+class RegionMap:
+    """Named polygons; :meth:`region_at` says which one holds a point."""
+
+    def __init__(self, polygons: Mapping[str, Sequence[Point]]) -> None:
+        self.polygons = {name: tuple(points) for name, points in polygons.items()}
+
+    @classmethod
+    def from_grid(cls, model: Model, cell: float) -> RegionMap:
+        """The spec's grid cells as squares of side ``cell``."""
+        if model.grid is None or cell <= 0:
+            raise HardwareError("the spec declares no grid; give a map file (--map)",
+                                where("localisation"))
+        rows = model.grid[0]
+        out = {}
+        for r in model.regions:
+            if r.row is None or r.col is None:
+                continue
+            x0, y0 = r.col * cell, (rows - 1 - r.row) * cell
+            out[r.name] = ((x0, y0), (x0 + cell, y0), (x0 + cell, y0 + cell), (x0, y0 + cell))
+        return cls(out)
+
+    @classmethod
+    def from_file(cls, path: str | Path, regions: Sequence[str]) -> RegionMap:
+        """``regions: {name: [[x, y], ...], ...}`` in YAML; names must be the spec's."""
+        import yaml
+
+        name = str(path)
+        text = decode_text(read_input(path, "map"), name, HardwareError)
+        try:
+            data = yaml.safe_load(text)
+        except yaml.YAMLError as err:
+            raise HardwareError(f"cannot read the map {name}: {err}", where(name)) from None
+        table = data.get("regions") if isinstance(data, dict) else None
+        if not isinstance(table, dict):
+            raise HardwareError("a map file maps 'regions' to polygons", where(name))
+        out = {}
+        for region, points in table.items():
+            if str(region) not in regions:
+                raise HardwareError(f"the map names region {region!r}, which the spec has not",
+                                    where(name))
+            try:
+                polygon = [(float(p[0]), float(p[1])) for p in points]
+            except (TypeError, ValueError, IndexError):
+                polygon = []
+            if len(polygon) < 3 or not all(math.isfinite(v) for p in polygon for v in p):
+                raise HardwareError(f"region {region}: a polygon needs at least 3 [x, y] points",
+                                    where(name))
+            out[str(region)] = polygon
+        return cls(out)
+
+    def region_at(self, x: float, y: float) -> str | None:
+        """The first region (in map order) whose polygon holds (x, y); None outside all."""
+        for name, polygon in self.polygons.items():
+            if _inside(x, y, polygon):
+                return name
+        return None
+
+
+def _inside(x: float, y: float, polygon: Sequence[Point]) -> bool:
+    """Even-odd rule; points on the lower or left edge count as inside."""
+    inside = False
+    for (x1, y1), (x2, y2) in zip(polygon, (*polygon[1:], polygon[0]), strict=True):
+        if (y1 <= y < y2 or y2 <= y < y1) and x < x1 + (y - y1) * (x2 - x1) / (y2 - y1):
+            inside = not inside
+    return inside
+
+
+def parse_pose(message: bytes) -> tuple[float, float] | None:
+    """``{"x": .., "y": ..}`` → (x, y); None for anything else (bounded, finite numbers)."""
+    if len(message) > MAX_MESSAGE:
+        return None
+    try:
+        data = json.loads(message)
+        x, y = float(data["x"]), float(data["y"])
+    except (ValueError, TypeError, KeyError, RecursionError):
+        return None
+    return (x, y) if math.isfinite(x) and math.isfinite(y) else None
+
+
+class PoseStream:
+    """The tracker's stream: ``udp://HOST:PORT`` (listen) or ``tcp://HOST:PORT`` (connect)."""
+
+    def __init__(self, url: str, timeout: float = 1.0, max_age: float = 1.0) -> None:
+        self.url = url
+        self.timeout = timeout
+        self.max_age = max_age
+        self.latest: Pose | None = None
+        self.malformed = 0
+        scheme, _, rest = url.partition("://")
+        host, _, port = rest.rpartition(":")
+        if scheme not in ("udp", "tcp") or not host or not port.isdigit():
+            raise HardwareError(f"pose source {url!r} is not udp://HOST:PORT or tcp://HOST:PORT",
+                                where("--pose"))
+        self._pending = b""
+        try:
+            if scheme == "udp":
+                self.sock = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
+                self.sock.bind((host, int(port)))
+            else:
+                self.sock = socket.create_connection((host, int(port)), timeout=timeout)
+        except OSError as err:
+            raise HardwareError(f"cannot open the pose source {url}: {err}",
+                                where("--pose")) from None
+        self.sock.setblocking(False)
+        self.datagrams = scheme == "udp"
+
+    def _messages(self) -> list[bytes]:
+        out: list[bytes] = []
+        while len(out) < MAX_BATCH and select.select([self.sock], [], [], 0)[0]:
+            try:
+                data = self.sock.recv(MAX_MESSAGE + 1)
+            except OSError:
+                break
+            if self.datagrams:
+                out.append(data)
+                continue
+            if not data:
+                raise HardwareError(f"the pose source {self.url} closed the stream",
+                                    where("--pose"))
+            self._pending += data
+            *lines, self._pending = self._pending.split(b"\n")
+            out += lines
+            if len(self._pending) > MAX_MESSAGE:  # a line without an end: drop it
+                self._pending, self.malformed = b"", self.malformed + 1
+        return out
+
+    def pose(self) -> Pose:
+        """The latest pose, waiting up to ``timeout`` for a first one; raise when stale."""
+        deadline = time.monotonic() + self.timeout
+        while True:
+            for message in self._messages():
+                point = parse_pose(message)
+                if point is None:
+                    self.malformed += 1
+                else:
+                    self.latest = Pose(point[0], point[1], time.monotonic())
+            now = time.monotonic()
+            if self.latest is not None and now - self.latest.received <= self.max_age:
+                return self.latest
+            if now >= deadline:
+                what = "no pose" if self.latest is None else "no fresh pose"
+                raise HardwareError(f"{what} from the tracker at {self.url} within "
+                                    f"{self.timeout:g} s", where("--pose"),
+                                    "check that the motion-capture bridge is streaming")
+            select.select([self.sock], [], [], min(0.05, deadline - now))
+
+    def close(self) -> None:
+        self.sock.close()
+
+
+class Localised(Backend):
+    """A backend whose readings take their region from a pose stream and a region map."""
+
+    def __init__(self, inner: Backend, stream: PoseStream, regions: RegionMap) -> None:
+        super().__init__(inner.valve_count)
+        self.inner, self.stream, self.regions = inner, stream, regions
+        self.name = f"{inner.name}, poses {stream.url}"
+
+    def open(self) -> None:
+        self.inner.open()
+
+    def close(self) -> None:
+        try:
+            self.inner.close()
+        finally:
+            self.stream.close()
+
+    def apply(self, valves: str) -> None:
+        self.inner.apply(valves)
+
+    def wait(self, seconds: float) -> None:
+        self.inner.wait(seconds)
+
+    def step_context(self, in_use: tuple[str, ...], in_cache: bool) -> None:
+        self.inner.step_context(in_use, in_cache)
+
+    def accepted(self, move: Move) -> None:
+        self.inner.accepted(move)
+
+    def safety_note(self) -> str:
+        return self.inner.safety_note()
+
+    def read_sensors(self) -> SensorReading:
+        reading = self.inner.read_sensors()
+        pose = self.stream.pose()
+        region = self.regions.region_at(pose.x, pose.y)
+        if region is None:
+            raise HardwareError(f"the tracker puts the robot at ({pose.x:g}, {pose.y:g}), "
+                                "outside every region of the map", where(self.name))
+        return SensorReading(reading.health, reading.hazard, region)

@@ -1,0 +1,132 @@
+"""The physics backend: valve states run through a chapter 4 model, the region from the pose.
+
+Health levels and hazards come from the simulated robot (:mod:`gaitc.hw.simulated`, within the
+spec's assumptions); the chassis moves as the model predicts (thesis 4.1.1, via
+:mod:`gaitc.models`), each valve state held for the robot file's control period in simulated
+time, and a leg at health level 1 (inoperable) stays vented whatever its valve says.  The
+regions get a size and a position on the map (grid cells, or the layout of
+:mod:`gaitc.sim.placement`, as squares of ``cell`` mm), and the reading's region is the one
+under the chassis: a gait that does not carry the robot into the region the controller
+expects shows up as a run that breaks the spec, as it would on hardware.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from gaitc.hw.backend import Backend, HardwareError, SensorReading, where
+from gaitc.hw.localisation import RegionMap
+from gaitc.hw.simulated import SimulatedRobot
+from gaitc.models.motion import Pose2D
+from gaitc.models.spring_damper import SpringDamperModel, State
+from gaitc.sim.environments import Move
+from ltlcompiler.model import Model
+
+
+def region_map(model: Model, cell: float) -> RegionMap:
+    """Squares of side ``cell`` (mm) for the spec's regions: its grid, else the map layout."""
+    if model.grid is not None:
+        return RegionMap.from_grid(model, cell)
+    from gaitc.sim.placement import positions
+
+    half = cell / 2.0
+    squares = {
+        name: (
+            (x - half, y - half),
+            (x + half, y - half),
+            (x + half, y + half),
+            (x - half, y + half),
+        )
+        for name, (x, y) in positions(model, cell).items()
+    }
+    return RegionMap(squares)
+
+
+def centre(regions: RegionMap, name: str) -> Pose2D:
+    """The centre of a region's polygon (the mean of its corners), heading 0 (east)."""
+    points = regions.polygons[name]
+    return Pose2D(
+        sum(p[0] for p in points) / len(points), sum(p[1] for p in points) / len(points), 0.0
+    )
+
+
+@dataclass(frozen=True)
+class Placed:
+    """The chassis pose when the sensors were read, and the region under it."""
+
+    reading: int
+    pose: Pose2D
+    region: str | None
+
+
+class PhysicsRobot(Backend):
+    """A simulated robot whose chassis moves by the spring-damper model."""
+
+    def __init__(
+        self,
+        inner: SimulatedRobot,
+        model: SpringDamperModel,
+        regions: RegionMap,
+        start: Pose2D,
+        period: float,
+    ) -> None:
+        super().__init__(inner.valve_count)
+        self.inner, self.model, self.regions, self.start = inner, model, regions, start
+        self.period = period
+        self.name = f"physics model ({model.name}), {inner.environment.name}"
+        self.placed: list[Placed] = []
+        self.state: State | None = None
+        self.failed: frozenset[str] = frozenset()  # legs the last reading put at level 1
+        self._leg_of_valve = ["?"] * inner.valve_count
+        for limb in model.robot.limbs:
+            for valve in limb.valves:
+                self._leg_of_valve[valve] = limb.name
+
+    def open(self) -> None:
+        self.inner.open()
+        rest = self.model.steady_state((False,) * self.valve_count)
+        offset = np.array([self.start.x / 1000.0, self.start.y / 1000.0, 0.0])
+        offset[:2] -= rest.position[0, :2]
+        self.state = replace(rest, position=rest.position + offset, feet=rest.feet + offset)
+
+    def close(self) -> None:
+        self.inner.close()
+
+    def apply(self, valves: str) -> None:
+        self.inner.apply(valves)  # checks the shape and records it
+        if self.state is None:
+            raise HardwareError("the physics model is not open", where(self.name))
+        # an inoperable actuator (health level 1) no longer moves when its valve opens
+        pressurised = tuple(
+            c == "1" and leg not in self.failed
+            for c, leg in zip(valves, self._leg_of_valve, strict=True)
+        )
+        self.state = self.model.run(self.state, [pressurised], self.period)
+
+    def wait(self, seconds: float) -> None:
+        del seconds  # simulated time: each valve state is held for one control period
+
+    def accepted(self, move: Move) -> None:
+        self.inner.accepted(move)
+
+    @property
+    def pose(self) -> Pose2D:
+        if self.state is None:
+            return self.start
+        return self.state.pose()
+
+    def read_sensors(self) -> SensorReading:
+        reading = self.inner.read_sensors()
+        self.failed = frozenset(leg for leg, level in reading.health if level == 1)
+        pose = self.pose
+        region = self.regions.region_at(pose.x, pose.y)
+        self.placed.append(Placed(len(self.placed), pose, region))
+        if region is None:
+            raise HardwareError(
+                f"the model puts the robot at ({pose.x:.1f}, {pose.y:.1f}) mm, outside every "
+                "region of the map",
+                where(self.name),
+            )
+        return SensorReading(reading.health, reading.hazard, region)

@@ -1,0 +1,378 @@
+"""The GR(1) fixpoints: the system's winning region and the initial-state check.
+
+Implements the three-nested fixpoint of Bloem, Jobstmann, Piterman, Pnueli, Sa'ar,
+"Synthesis of Reactive(1) designs" (JCSS 78(3), 2012) in SLUGS's transition-based form
+(Ehlers & Raman, CAV 2016): νZ. ∧_j μY. ∨_i νX. CPre((J^s_j ∧ Z') ∨ Y' ∨ (¬J^e_i ∧ X')) with
+CPre(T) = ∀x'. ρe → ∃y'. ρs ∧ T, liveness goals evaluated on the transition, inner X
+fixpoints recycled across Z rounds (Browne, Clarke, Jha, Long, Marrero 1997) when asked for;
+Z narrowed goal by goal, each goal solved again only while Z shrinks (see Game.solve).
+"""
+
+from __future__ import annotations
+
+import time
+import warnings
+from collections.abc import Callable
+from dataclasses import dataclass, field
+
+import dd.cudd as cudd
+
+from gaitc.diagnostics import SolverError
+from gaitc.solver.options import (
+    RESIFT_BLOWUP,
+    RESIFT_NODES,
+    RESIFT_STEP,
+    RESTART_NODES,
+    SMALL_BITS,
+    SMALL_STEP,
+)
+from gaitc.solver.progress import Progress, Stage, goal_titles
+from gaitc.solver.symbolic import BDDNode, SymbolicSpec
+
+__all__ = ["ControllerTooLarge", "Game", "GameResult", "GameStats", "Limits", "OrderMisfit",
+           "Progress", "Stage", "out_of_memory", "too_large"]
+
+
+def time_limit_error(seconds: float) -> SolverError:
+    """The error of a solver run stopped by its time limit (here, or killed by a parent)."""
+    return SolverError(
+        f"synthesis stopped after the time limit of {seconds:g} s",
+        hint="raise --timeout, or simplify the specification (fewer grid cells or health "
+        "levels, the binary encoding)",
+    )
+
+
+def out_of_memory() -> SolverError:
+    """The error of a solver run that ran out of memory (CUDD's limit, Python's, the OS's)."""
+    return SolverError(
+        "synthesis ran out of memory",
+        hint="raise --memory-limit, or shrink the specification (grid, health levels, encoding)",
+    )
+
+
+class OrderMisfit(Exception):
+    """A game asked to (``Options.restart_misfit``) stops once its fixed order misfits, for
+    its caller to build it again in another order: sifting a manager in place can cost far
+    more than a fresh build of a small spec (a random 18-bit spec of two counters: the first
+    sifting 15 s, with a million nodes in the tables; the sifted build solves in 0.04 s)."""
+
+
+class ControllerTooLarge(SolverError):
+    """An explicit automaton would pass its node limit (a symbolic one may still fit)."""
+
+
+def too_large(what: str, max_nodes: int) -> ControllerTooLarge:
+    """The error of an explicit ``what`` (controller, counter-strategy) over ``max_nodes``."""
+    return ControllerTooLarge(f"the {what} has more than {max_nodes} nodes",
+                              hint="raise --max-nodes, or write a symbolic controller "
+                              "(synth --symbolic)")
+
+
+@dataclass
+class Limits:
+    """A wall-clock deadline, a memory check and a progress callback, checked inside the
+    fixpoint loops and the extraction."""
+
+    timeout: float | None = None
+    progress: Progress | None = None
+    started: float = field(default_factory=time.monotonic)
+    memory: Callable[[], None] | None = None  # raises MemoryError near the memory budget
+
+    def check(self) -> None:
+        if self.memory is not None:
+            self.memory()
+        if self.timeout is not None and time.monotonic() - self.started > self.timeout:
+            raise time_limit_error(self.timeout)
+
+    def report(self, words: str, detail: str = "", fraction: float | None = None) -> None:
+        """Tell the progress callback, if any, a :class:`~gaitc.solver.progress.Stage`."""
+        if self.progress is not None:
+            self.progress(Stage(words, detail, fraction))
+
+
+@dataclass
+class GameStats:
+    z_iterations: int = 0
+    y_iterations: int = 0
+    x_iterations: int = 0
+    peak_nodes: int = 0  # CUDD's peak of live nodes while solving
+    winning_nodes: int = 0
+    longest_step: float = 0.0  # seconds of the slowest CPre: how late a timeout can fire
+
+
+@dataclass
+class GameResult:
+    """The winning region and, when asked for, the per-goal transition layers of the last round.
+
+    ``layers[j]`` lists, ring by ring and for each environment goal, the transitions
+    (over pre and post variables, without ρs) that make progress towards system goal ``j``.
+    """
+
+    winning: BDDNode
+    layers: list[list[BDDNode]]
+    stats: GameStats
+    care: BDDNode  # ``winning`` is exact on these states (all states without a care set)
+    decided_early: bool = False  # stopped once the initial states were lost (check only)
+    rings: list[list[BDDNode]] = field(default_factory=list)  # with layers: Y_0 ⊆ Y_1 ⊆ ...
+
+
+class Game:
+    """The GR(1) game of a :class:`SymbolicSpec`: controllable predecessors and fixpoints."""
+
+    def __init__(self, sym: SymbolicSpec, limits: Limits | None = None,
+                 purpose: str = "solving the game") -> None:
+        self.sym = sym
+        self.limits = limits or Limits()
+        self.purpose = purpose  # the words its progress events start with
+        self.stats = GameStats()
+        # A fixed order sifts again once a step shows it misfits (_order_misfits), unless
+        # variables are pinned (Options.first: an order chosen on purpose, which sifting
+        # would undo; the resilience games split each sub-game at the top).
+        self._resift = not sym.options.reordering and not sym.options.first
+        # the step time that shows a misfit, the smaller of a small game's (solved without
+        # a race) and a refitted build's (restarted, or sifted once built); None: only the
+        # image's growth does
+        slow: list[float] = [limit for limit, applies in (
+            (SMALL_STEP, len(sym.input_bits) + len(sym.output_bits) <= SMALL_BITS),
+            (RESIFT_STEP, sym.refitted)) if applies]
+        self._slow_step = min(slow) if slow else None
+        self._sift_at: float | None = None  # when a refitted build's game sifts (sift_after)
+        self._care_post = sym.bdd.false  # the care set's primed copy, set by solve
+
+    def cpre(self, target: BDDNode) -> BDDNode:
+        """States from which the system can force the next transition into ``target``.
+
+        ``target`` ranges over pre and post variables; the result over pre variables.
+        """
+        return self._cpre_parts(target)[1]
+
+    def _cpre_parts(self, target: BDDNode) -> tuple[BDDNode, BDDNode]:
+        """The system's half of CPre(``target``), its ∃y' image, and CPre itself."""
+        sym = self.sym
+        if sym.options.partitioned and len(sym.sys_clusters) > 1:
+            acc = target
+            for cluster, qvars in sym.sys_clusters:
+                acc = cudd.and_exists(acc, cluster, qvars) if qvars else acc & cluster
+            rest = sym.post_outputs & sym.bdd.support(acc)
+            sys_can = sym.bdd.exist(rest, acc) if rest else acc
+        else:
+            sys_can = cudd.and_exists(sym.game_sys_trans, target, sym.post_outputs)
+        # ∀x'. (∃y'.¬ρe) ∨ sys_can  ==  ¬∃x'. ¬(∃y'.¬ρe) ∧ ¬sys_can
+        return sys_can, ~cudd.and_exists(~sym.game_env_blocks, ~sys_can, sym.post_inputs)
+
+    def solve(self, keep_layers: bool = False, stop_if_lost: str | None = None,
+              within: BDDNode | None = None) -> GameResult:
+        """Compute the winning region; with ``keep_layers``, also the strategy layers.
+
+        Every set is kept inside ``sym.care`` (exact there, see SymbolicSpec._care_set).  With
+        ``stop_if_lost`` (a semantics), stop as soon as Z fails the initial condition: the
+        winning region lies inside every Z, so it fails too.  ``within``, a set known to
+        hold the winning region (that of a game where the system has more moves), is where
+        Z starts instead of the care set: the same greatest fixpoint, by the argument
+        below, often in fewer rounds.
+
+        νZ is iterated goal by goal, Z ← Z ∧ Y_j(Z) (a chaotic iteration), and a goal is
+        solved again only while Z has shrunk since its last solution: once every goal's Y
+        was computed at the current Z and contains it, Z ⊆ ∧_j Y_j(Z) is a post-fixpoint,
+        so Z lies in the greatest fixpoint (Knaster-Tarski), and every Z stays above the
+        greatest fixpoint because each Y_j is monotone.  On the thesis grids, where the
+        first goal decides Z, two goals cost three solutions instead of four.
+        """
+        sym, st = self.sym, self.stats
+        n_goals = len(sym.sys_live)
+        titles = goal_titles(sym.spec) or ("true",)
+        z, z_post = sym.care, sym.prime(sym.care)
+        self._care_post = z_post
+        if within is not None:
+            z, z_post = z & within, z_post & sym.prime(within)
+        if sym.refitted and sym.options.sift_after is not None:
+            self._sift_at = time.monotonic() + sym.options.sift_after
+        layers: list[list[BDDNode]] = [[] for _ in range(n_goals)]
+        rings: list[list[BDDNode]] = [[] for _ in range(n_goals)]
+        recycled: dict[tuple[int, int], BDDNode] = {}
+        stable: set[int] = set()  # goals whose Y was computed at the current Z and holds it
+        solved: set[int] = set()
+        j = 0
+        while len(stable) < n_goals:
+            if j == 0:
+                st.z_iterations += 1
+            words = (f"{self.purpose}: round {st.z_iterations}, goal {j + 1} of "
+                     f"{n_goals} ({titles[j]})")
+            y, y_post, layers[j], rings[j] = self._goal(j, (z, z_post), words, keep_layers,
+                                                         recycled, j in solved)
+            solved.add(j)
+            shrunk = z & y
+            if shrunk == z:
+                stable.add(j)
+            else:
+                z, z_post = shrunk, z_post & y_post
+                stable = set()
+                if stop_if_lost is not None and not self.initially_winning(z, stop_if_lost):
+                    return self._result(z, layers, decided_early=True)
+            j = (j + 1) % n_goals
+        return self._result(z, layers, decided_early=False, rings=rings)
+
+    def _goal(self, j: int, zs: tuple[BDDNode, BDDNode], words: str, keep_layers: bool,
+              recycled: dict[tuple[int, int], BDDNode], again: bool
+              ) -> tuple[BDDNode, BDDNode, list[BDDNode], list[BDDNode]]:
+        """μY. ∨_i νX. CPre((J^s_j ∧ Z') ∨ Y' ∨ (¬J^e_i ∧ X')) for goal ``j`` at Z (``zs``:
+        Z and Z'), as Y and Y', with the transitions of each ring and assumption
+        (``keep_layers``) and the rings.
+
+        Y is kept over pre and over post variables, each ring's Y' the union of the
+        X' that its X fixpoints renamed anyway: renaming Y anew each ring cost as much as
+        all the X steps (thesis grid 30 x 30 at health 5, binary: the solve went from
+        129 s to 81 s CPU without it; docs/performance.md, section 6).  Z' comes the same
+        way, from the Y' that narrowed it.
+
+        A ring whose target (J^s_j ∧ Z') ∨ Y' is the last ring's has the last ring's X
+        fixpoints, so Y is complete without computing them again: in a safety game (no
+        liveness on either side) every round then costs one CPre step instead of four.
+
+        Once Y contains Z, the rings stop: the caller keeps only Z ∧ Y, which later rings
+        cannot change, and the strategy layers of the rings so far already lead every state
+        of Z to the goal (their targets lie in the rings, never beyond them).  GenBuf with
+        24 senders: 942 CPre steps instead of 1,212."""
+        sym, lim, st = self.sym, self.limits, self.stats
+        n_goals, n_assm = len(sym.sys_live), len(sym.env_live)
+        z, z_post = zs
+        started = time.monotonic()
+        live = sym.sys_live[j] & z_post  # in a misfit order, the largest set of the goal
+        if (self._restarts() and self._slow_step is not None
+                and time.monotonic() - started > self._slow_step):
+            raise OrderMisfit
+        bound, bound_post = (z, z_post) if sym.options.recycle else (sym.care, self._care_post)
+        y, y_post = sym.bdd.false, sym.bdd.false
+        layers: list[BDDNode] = []
+        rings: list[BDDNode] = []
+        first_middle = True
+        ring = 0
+        last_target = None
+        while True:
+            st.y_iterations += 1
+            ring += 1
+            lim.check()
+            lim.report(words, f"ring {ring}", j / n_goals)
+            live_or_lower = live | y_post
+            if live_or_lower == last_target:  # Y' added nothing to the target
+                if keep_layers:
+                    layers.extend(layers[-n_assm:])
+                    rings.append(y)
+                break
+            last_target = live_or_lower
+            good, good_post = y, y_post
+            for i in range(n_assm):
+                x, x_post = bound, bound_post
+                if sym.options.recycle and first_middle and again:
+                    x = recycled[(j, i)] & z
+                    x_post = sym.prime(x)
+                not_assm = ~sym.env_live[i]
+                x, x_post = self._nu_x(live_or_lower, not_assm, x, x_post, bound)
+                good, good_post = good | x, good_post | x_post
+                recycled[(j, i)] = x
+                if keep_layers:  # the transitions of the fixpoint's last step
+                    layers.append(live_or_lower | (x_post & not_assm))
+            first_middle = False
+            if keep_layers:
+                rings.append(good)
+            if good == y:
+                break
+            y, y_post = good, good_post
+            if z <= y:  # Z ⊆ Y: later rings add only states that Z ∧ Y drops
+                break
+        self._track(words, f"|Y| = {y.dag_size}, {ring} rings", (j + 1) / n_goals)
+        return y, y_post, layers, rings
+
+    def _nu_x(self, lower: BDDNode, not_assm: BDDNode, x: BDDNode, x_post: BDDNode,
+              bound: BDDNode) -> tuple[BDDNode, BDDNode]:
+        """νX. CPre(lower ∨ (¬J^e_i ∧ X')) ∧ bound from ``x`` (``x_post`` its primed copy)
+        down: the fixpoint over pre and over post variables."""
+        st = self.stats
+        stuck = not_assm == self.sym.bdd.false  # the step ignores X: one step is the fixpoint
+        while True:
+            st.x_iterations += 1
+            self.limits.check()
+            target = lower | (x_post & not_assm)
+            step = time.monotonic()
+            image, result = self._cpre_parts(target)
+            step = time.monotonic() - step
+            st.longest_step = max(st.longest_step, step)
+            misfit = self._resift and self._order_misfits(image, target, result, step)
+            del image, target  # live nodes steer sifting: hold only the sets the loop needs
+            new_x = result & bound
+            del result
+            if misfit and self._restarts():
+                raise OrderMisfit
+            if misfit:
+                self.resume_sifting()
+            if new_x == x:
+                return x, x_post
+            x, x_post = new_x, self.sym.prime(new_x)
+            if stuck:
+                return x, x_post
+
+    def _order_misfits(self, image: BDDNode, target: BDDNode, result: BDDNode,
+                       seconds: float) -> bool:
+        """Whether a CPre step from ``target`` to ``result`` through the ∃y' ``image``,
+        which took ``seconds``, shows that the fixed order does not fit the fixpoint's
+        sets: in a game of at most :data:`SMALL_BITS` state bits, a step slower than
+        :data:`SMALL_STEP`; after a refitted build (``SymbolicSpec.refitted``), one slower
+        than :data:`RESIFT_STEP`, or any step once the fixpoint has run
+        ``Options.sift_after`` seconds; in any other, an image of over
+        :data:`RESIFT_NODES` nodes and over :data:`RESIFT_BLOWUP` times the nodes of the
+        target and the result together (counted only then: counting is linear in the
+        sets)."""
+        if self._slow_step is not None and seconds > self._slow_step:
+            return True
+        if self._sift_at is not None and time.monotonic() > self._sift_at:
+            return True
+        if self.sym.refitted:
+            return False
+        size: int = image.dag_size
+        return size > RESIFT_NODES and size > RESIFT_BLOWUP * (target.dag_size
+                                                               + result.dag_size)
+
+    def _restarts(self) -> bool:
+        """Whether a misfit now stops the game (:class:`OrderMisfit`) instead of sifting in
+        place: when asked to and the manager holds over :data:`RESTART_NODES` live nodes,
+        which sifting in place would move about (below that, in-place sifting is cheaper
+        than a new build: random graph tasks of 18 bits, 1.2-1.8x)."""
+        return (self.sym.options.restart_misfit and self._resift
+                and self.sym.node_count() > RESTART_NODES)
+
+    def resume_sifting(self) -> None:
+        """Turn CUDD's sifting on for the rest of the game, once a step showed that the
+        fixed order misfits (:meth:`_order_misfits`): the order was chosen, or sifted,
+        for ρ, and the fixpoint's sets outgrow it."""
+        self._resift = False
+        self.sym.bdd.configure(reordering=True)
+
+    def _result(self, z: BDDNode, layers: list[list[BDDNode]], decided_early: bool,
+                rings: list[list[BDDNode]] | None = None) -> GameResult:
+        self.stats.winning_nodes = z.dag_size
+        with warnings.catch_warnings():  # dd warns that the unrelated 'mem' field changed unit
+            warnings.simplefilter("ignore")
+            peak = int(self.sym.bdd.statistics()["peak_live_nodes"])
+        self.stats.peak_nodes = max(self.stats.peak_nodes, peak)
+        return GameResult(z, layers, self.stats, self.sym.care, decided_early, rings or [])
+
+    def _track(self, words: str, detail: str, fraction: float) -> None:
+        nodes = self.sym.node_count()
+        self.stats.peak_nodes = max(self.stats.peak_nodes, nodes)
+        self.limits.report(words, f"{detail}, {nodes} live BDD nodes", fraction)
+
+    def initially_winning(self, winning: BDDNode, semantics: str) -> bool:
+        """The initial-state condition of SLUGS.
+
+        default: ∀x. θe → ∃y. θs ∧ W;  robotics (``--sysInitRoboticsSemantics``):
+        ∀x, y. θe ∧ θs → W.
+        """
+        sym = self.sym
+        if semantics == "robotics":
+            bad = sym.env_init & sym.sys_init & ~winning
+        elif semantics == "default":
+            good = sym.bdd.exist(sym.pre_outputs, sym.sys_init & winning)
+            bad = sym.env_init & ~good
+        else:
+            raise ValueError(f"unknown semantics {semantics!r}")
+        return bool(bad == sym.bdd.false)

@@ -1,0 +1,205 @@
+"""The BDD variable order of the embedded solver: mutex groups kept together, guards first.
+
+Invariants are the transition clauses over next-state variables only (one-hot mutexes,
+range limits); a group is the support of such a clause over one player's Boolean variables.
+Groups are ranked by how often they guard an implication (``A -> B``: A's groups rank up, B's
+down), so that a relation decides its case before it constrains the effect, the usual rule for
+small transition BDDs (Bryant 1986; Aziz, Tasiran, Brayton, "BDD variable ordering for
+interacting finite state machines", DAC 1994).  Measured in docs/performance.md.
+"""
+
+from __future__ import annotations
+
+from gaitc.ir.formula import Implies, Node, atoms
+from gaitc.ir.spec import Clause, GR1Spec, Variable
+
+Atoms = set[tuple[str, bool]]
+
+
+class AtomCache:
+    """``atoms`` of formulas, computed once per node object (big mutexes are walked once);
+    an implication's from its two sides, which the guard scores ask for too.  One cache
+    serves every pass of a :class:`~gaitc.solver.symbolic.SymbolicSpec` over its spec."""
+
+    def __init__(self) -> None:
+        self._seen: dict[int, tuple[Node, Atoms]] = {}
+
+    def __call__(self, node: Node) -> Atoms:
+        hit = self._seen.get(id(node))
+        if hit is None:
+            if isinstance(node, Implies):  # one level only: a chain of them stays iterative
+                hit = (node, self._walked(node.left) | self._walked(node.right))
+            else:
+                hit = (node, atoms(node))
+            self._seen[id(node)] = hit
+        return hit[1]
+
+    def _walked(self, node: Node) -> Atoms:
+        hit = self._seen.get(id(node))
+        if hit is None:
+            hit = self._seen[id(node)] = (node, atoms(node))
+        return hit[1]
+
+
+ORDERS = ("guards", "occurrence", "declaration")
+_SECTIONS = ("sys_trans", "env_trans", "env_init", "sys_init", "sys_liveness", "env_liveness")
+
+
+def invariant_clauses(
+    spec: GR1Spec, cache: AtomCache | None = None
+) -> tuple[list[Clause], list[Clause]]:
+    """The invariants of ρe (over primed inputs only) and of ρs (over primed variables only):
+    transition clauses over next-state variables, which hold in every state after the first."""
+    found = cache or AtomCache()
+    inputs = {v.name for v in spec.inputs}
+
+    def only_next(clause: Clause, names: set[str] | None) -> bool:
+        used = found(clause.formula)
+        return bool(used) and all(p and (names is None or n in names) for n, p in used)
+
+    env = [c for c in spec.env_trans if only_next(c, inputs)]
+    return env, [c for c in spec.sys_trans if only_next(c, None)]
+
+
+def variable_order(spec: GR1Spec, how: str, cache: AtomCache | None = None) -> list[Variable]:
+    """The variables of ``spec`` top to bottom for ordering ``how`` (one of :data:`ORDERS`)."""
+    declared = list(spec.inputs) + list(spec.outputs)
+    if how == "declaration":
+        return declared
+    if how not in ORDERS:
+        raise ValueError(f"unknown variable order {how!r}; use one of {ORDERS}")
+    found = cache or AtomCache()
+    occurrence = _occurrence(spec, declared, found)
+    if how == "occurrence":
+        return occurrence
+    rank = {v.name: k for k, v in enumerate(declared)}
+    groups = _groups(spec, declared, found)
+    score = _guard_scores(spec, groups, found)
+    first = {v.name: k for k, v in enumerate(occurrence)}
+    members: dict[str, list[Variable]] = {}
+    for v in declared:
+        members.setdefault(groups[v.name], []).append(v)
+    ordered = sorted(
+        members, key=lambda g: (-score.get(g, 0), min(first[v.name] for v in members[g]))
+    )
+    blocks = [sorted(members[g], key=lambda v: rank[v.name]) for g in ordered]
+    follower = _per_member(spec, [[v.name for v in b] for b in blocks], found)
+    out: list[Variable] = []
+    by_name = {v.name: v for v in declared}
+    placed = set(follower.values())
+    for block in blocks:
+        if len(block) == 1 and block[0].name in placed:
+            continue  # placed below its partner
+        for v in block:
+            out += [v] + ([by_name[follower[v.name]]] if v.name in follower else [])
+    return out
+
+
+def _per_member(spec: GR1Spec, blocks: list[list[str]], found: AtomCache) -> dict[str, str]:
+    """Variables that each belong to one member of a group, such as a lift's call button to
+    its floor or an arbiter's request to its grant: for a group of at least three members,
+    at least half of which are each the partner (:func:`_partners`) of exactly one
+    ungrouped variable, and none of more, each such member and its variable.
+
+    The variable is then placed right below its member, inside the group.  A relation
+    between a group and per-member variables kept apart needs a node for every combination
+    of the group's values above them (the lift's rule ``b_i & f_i -> !b_i'``, every floor
+    above every button); interleaved, each pair is decided in one place.  Lift with 64
+    floors: 3.6 s to check instead of 0.7 s (docs/performance.md).  A member that many
+    variables lean on (AMBA's ``start``) is a hub, not a pairing, and moves nothing."""
+    grouped = {name for b in blocks if len(b) > 1 for name in b}
+    lean: dict[str, list[str]] = {}
+    for v, m in _partners(spec, grouped, found).items():
+        lean.setdefault(m, []).append(v)
+    out: dict[str, str] = {}
+    for block in blocks:
+        paired = [m for m in block if len(lean.get(m, [])) == 1]
+        if (len(block) >= 3 and 2 * len(paired) >= len(block)
+                and all(len(lean.get(m, [])) <= 1 for m in block)):
+            out.update((m, lean[m][0]) for m in paired)
+    return out
+
+
+def _partners(spec: GR1Spec, grouped: set[str], found: AtomCache) -> dict[str, str]:
+    """For each variable outside a group that the clauses tie to one group member above all
+    (it shares strictly more clauses with that member than with any other), the member."""
+    shared: dict[str, dict[str, int]] = {}
+    for section in _SECTIONS:
+        for clause in spec.section(section):
+            names = {name for name, _ in found(clause.formula)}
+            members = names & grouped
+            for v in names - grouped:
+                counts = shared.setdefault(v, {})
+                for m in members:
+                    counts[m] = counts.get(m, 0) + 1
+    out: dict[str, str] = {}
+    for v, counts in shared.items():
+        ranked = sorted(counts.values(), reverse=True)
+        if ranked and (len(ranked) == 1 or ranked[0] > ranked[1]):
+            out[v] = max(counts, key=lambda m: counts[m])
+    return out
+
+
+def _occurrence(spec: GR1Spec, declared: list[Variable], found: AtomCache) -> list[Variable]:
+    """Variables in the order the transition clauses first mention them."""
+    by_name = {v.name: v for v in declared}
+    seen: dict[str, None] = {}
+    for section in _SECTIONS:
+        for clause in spec.section(section):
+            for name, _ in sorted(found(clause.formula)):
+                if name in by_name:
+                    seen.setdefault(name, None)
+    for v in declared:
+        seen.setdefault(v.name, None)
+    return [by_name[n] for n in seen]
+
+
+def _groups(spec: GR1Spec, declared: list[Variable], found: AtomCache) -> dict[str, str]:
+    """Each variable's group representative (union-find over one-player Boolean invariants)."""
+    parent = {v.name: v.name for v in declared}
+
+    def find(name: str) -> str:
+        while parent[name] != name:
+            parent[name] = parent[parent[name]]
+            name = parent[name]
+        return name
+
+    booleans = {v.name for v in declared if not v.is_integer}
+    players = [{v.name for v in spec.inputs}, {v.name for v in spec.outputs}]
+    env, sys = invariant_clauses(spec, found)
+    for clause in env + sys:
+        names = sorted({name for name, _ in found(clause.formula)})
+        if len(names) < 2 or not set(names) <= booleans:
+            continue
+        if not any(set(names) <= side for side in players):
+            continue
+        root = find(names[0])
+        for name in names[1:]:
+            parent[find(name)] = root
+    return {name: find(name) for name in parent}
+
+
+def _guard_scores(spec: GR1Spec, groups: dict[str, str], found: AtomCache) -> dict[str, int]:
+    """Per group: transition clauses it guards minus clauses whose effect it is."""
+    score: dict[str, int] = {}
+    for clause in list(spec.env_trans) + list(spec.sys_trans):
+        formula = clause.formula
+        if not isinstance(formula, Implies):
+            continue
+        guard = {groups[n] for n, _ in found(formula.left) if n in groups}
+        effect = {groups[n] for n, _ in found(formula.right) if n in groups}
+        for g in guard - effect:
+            score[g] = score.get(g, 0) + 1
+        for g in effect - guard:
+            score[g] = score.get(g, 0) - 1
+    return score
+
+
+def group_members(spec: GR1Spec) -> list[list[str]]:
+    """The mutex groups with two or more variables, each in declaration order (for reporting)."""
+    declared = list(spec.inputs) + list(spec.outputs)
+    groups = _groups(spec, declared, AtomCache())
+    out: dict[str, list[str]] = {}
+    for v in declared:
+        out.setdefault(groups[v.name], []).append(v.name)
+    return [names for names in out.values() if len(names) > 1]

@@ -1,0 +1,263 @@
+"""Explicit Mealy strategy extraction from the stored layers of the GR(1) fixpoint.
+
+Follows the construction of Bloem et al. (JCSS 2012, Sect. 5) as SLUGS implements it
+(``extensionExtractExplicitStrategy``): per system goal j, prefer transitions that reach the
+goal, else a lower Y ring, else stay in the X layer of an environment goal; the goal index
+advances past every goal the chosen transition satisfies.  Nodes are (state, goal) pairs,
+explored breadth-first from the initial states; among the allowed moves the preferences of
+:mod:`gaitc.solver.preferences` choose, then the smallest assignment in the BDD's variable order.
+"""
+
+from __future__ import annotations
+
+import time
+from collections import deque
+from collections.abc import Callable, Iterable, Sequence
+from typing import TYPE_CHECKING, Final, TypeVar
+
+from gaitc.diagnostics import SolverError
+from gaitc.ir.bddwalk import State, all_assignments, cofactor, first_assignment, holds_at
+from gaitc.ir.controller import Controller, ControllerNode, IntegerVar, integers_of
+from gaitc.solver.census import CENSUS_AFTER, Census
+from gaitc.solver.game import GameResult, Limits, too_large
+from gaitc.solver.steps import Steps, given
+from gaitc.solver.symbolic import BDDNode, SymbolicSpec
+
+#: An extraction tells its progress every this many nodes.
+REPORT_EVERY: Final = 1000
+#: The most choices whose smallest move (or input sets whose assignments) an extraction
+#: remembers at once.
+REMEMBERED: Final = 100_000
+T = TypeVar("T")
+
+if TYPE_CHECKING:  # gaitc.solver.preferences builds on this module (goal_strategies)
+    from gaitc.solver.preferences import MovePreferences
+
+
+# ---------------------------------------------------------------- canonical choices
+def assignments(sym: SymbolicSpec, u: BDDNode, bits: Sequence[str]) -> list[State]:
+    """Every assignment to ``bits`` (a superset of ``u``'s support), sorted."""
+    return all_assignments(sym.bdd, u, bits)
+
+
+def smallest(sym: SymbolicSpec, u: BDDNode, bits: Sequence[str]) -> State | None:
+    """The smallest assignment to ``bits`` inside ``u`` (None if empty), bits compared in
+    the static order whatever the current BDD order (:attr:`SymbolicSpec.choice_rank`)."""
+    return first_assignment(sym.bdd, u, bits, sym.choice_rank)
+
+
+def fix(sym: SymbolicSpec, u: BDDNode, bits: Sequence[str], values: Iterable[int]) -> BDDNode:
+    """``u`` with ``bits`` set to ``values`` (a cofactor)."""
+    return cofactor(sym.bdd, {b: bool(v) for b, v in zip(bits, values, strict=True)}, u)
+
+
+def primed(bits: Sequence[str]) -> list[str]:
+    return [b + "'" for b in bits]
+
+
+def spec_integers(sym: SymbolicSpec) -> dict[str, IntegerVar]:
+    """Integer variables of the spec, plus SLUGS-encoded bit groups among Boolean names."""
+    names = sym.input_bits + sym.output_bits
+    found = integers_of(names, frozenset(sym.input_bits))
+    for v in sym.spec.variables():
+        if v.is_integer and v.low is not None and v.high is not None:
+            owner = "env" if v in sym.spec.inputs else "sys"
+            found[v.name] = IntegerVar(v.low, v.high, tuple(sym.var_bits[v.name]), owner)
+    return found
+
+
+def initial_states(sym: SymbolicSpec, winning: BDDNode, semantics: str) -> list[State]:
+    """Initial states: one per θe-allowed input (default) or all of θe ∧ θs (robotics)."""
+    ins, outs = list(sym.input_bits), list(sym.output_bits)
+    if semantics == "robotics":
+        return assignments(sym, sym.env_init & sym.sys_init & winning, ins + outs)
+    out = []
+    for x in assignments(sym, sym.bdd.exist(sym.pre_outputs, sym.env_init), ins):
+        y = smallest(sym, fix(sym, sym.sys_init & winning, ins, x), outs)
+        if y is not None:
+            out.append(x + y)
+    return out
+
+
+# ---------------------------------------------------------------- strategy
+def goal_strategies(sym: SymbolicSpec, result: GameResult) -> list[BDDNode]:
+    """Per goal j, the transitions the controller takes: the first layer covering each case."""
+    out = []
+    for layers in result.layers:
+        covered = sym.bdd.false
+        strategy = sym.bdd.false
+        for paths in layers:
+            allowed = sym.sys_trans & paths
+            new_cases = sym.bdd.exist(sym.post_outputs, allowed) & ~covered
+            strategy |= new_cases & allowed
+            covered |= new_cases
+        out.append(strategy)
+    return out
+
+
+def remembered(compute: Callable[[BDDNode], T]) -> Callable[[BDDNode], T]:
+    """``compute`` with its answers kept by argument, at most :data:`REMEMBERED` at once
+    (then the memory starts again)."""
+    known: dict[BDDNode, T] = {}
+
+    def answer(u: BDDNode) -> T:
+        if u in known:
+            return known[u]
+        if len(known) >= REMEMBERED:
+            known.clear()
+        found = known[u] = compute(u)
+        return found
+
+    return answer
+
+
+def next_goal(sym: SymbolicSpec, goal: int, move: dict[str, bool]) -> int:
+    """Advance past every goal that ``move`` (a full pre/post assignment) satisfies."""
+    n = len(sym.sys_live)
+    current = goal
+    first = True
+    while (current != goal or first) and holds_at(sym.sys_live[current], move):
+        current = (current + 1) % n
+        first = False
+    return current
+
+
+def extract_strategy(
+    sym: SymbolicSpec,
+    result: GameResult,
+    semantics: str,
+    limits: Limits | None = None,
+    max_nodes: int | None = None,
+    prefer: MovePreferences | None = None,
+) -> Controller:
+    """The explicit Mealy controller of a realizable game (``result`` needs its layers);
+    ``prefer`` picks among the moves each step allows (:mod:`gaitc.solver.preferences`).
+
+    With ``max_nodes``, an extraction still running after :data:`~gaitc.solver.census.
+    CENSUS_AFTER` seconds counts its nodes on BDDs alongside (:class:`~gaitc.solver.census.
+    Census`, given a third of the time from then on), and stops as soon as the count passes
+    ``max_nodes``; until then it goes on as it would have."""
+    limits = limits or Limits()
+    ins, outs = list(sym.input_bits), list(sym.output_bits)
+    pre = ins + outs
+    post_in, post_out = primed(ins), primed(outs)
+    post = post_in + post_out
+    strategies = goal_strategies(sym, result)
+    index: dict[tuple[State, int], int] = {}
+    nodes: list[tuple[State, int]] = []
+    trans: list[list[int]] = []
+    queue: deque[int] = deque()
+
+    def node_of(state: State, goal: int) -> int:
+        key = (state, goal)
+        if key not in index:
+            if max_nodes is not None and len(nodes) >= max_nodes:
+                raise too_large("controller", max_nodes)
+            index[key] = len(nodes)
+            nodes.append(key)
+            trans.append([])
+            queue.append(index[key])
+        return index[key]
+
+    def relation(goal: int) -> Steps[BDDNode]:
+        moves = strategies[goal]
+        return given(moves) if prefer is None else prefer.relation_steps(goal, moves)
+
+    # Started after CENSUS_AFTER seconds: the move functions, then (with a node limit)
+    # the count; the functions, once there, replace the per-input steps below.
+    census: Census | None = Census(sym, relation, len(strategies), result.winning,
+                                   semantics, max_nodes, counting=max_nodes is not None)
+    expected: int | None = None  # the census's count, once it has one
+    functions: list[BDDNode] | None = None  # the census's move functions, once it has them
+    started = time.monotonic()
+    initial = [node_of(s, 0) for s in initial_states(sym, result.winning, semantics)]
+    bdd = sym.bdd
+    # The same few choices recur at state after state (one region and gait next, say):
+    # their smallest move is found once (thesis 10 x 10 health 3: 7,974 choices, 106 kinds).
+    smallest_of = remembered(lambda u: smallest(sym, u, post_out))
+    # So do the inputs ρe allows (a lift with 8 floors: 12,032 states, 256 input sets).
+    inputs_of = remembered(lambda u: assignments(sym, u, post_in))
+    while queue:
+        k = queue.popleft()
+        limits.check()
+        if census is not None:
+            spent = time.monotonic() - started
+            if spent > CENSUS_AFTER and spent - CENSUS_AFTER > 3 * census.seconds:
+                expected = census.advance()
+                functions = census.moves
+                if expected is not None and max_nodes is not None and expected > max_nodes:
+                    raise too_large("controller", max_nodes)
+                if census.done:
+                    census = None
+        if k % REPORT_EVERY == 0:
+            found = f"{len(nodes)} of {expected}" if expected else f"{len(nodes)}"
+            limits.report("extracting the controller", f"{found} nodes found, "
+                          f"{len(queue)} to expand", k / (expected or len(nodes)))
+        state, goal = nodes[k]
+        at = dict(zip(pre, map(bool, state), strict=True))
+        if functions is not None:
+            moves = _moves_at(sym, bdd.let(at, functions[goal]), post, len(post_in))
+        else:
+            moves = _chosen_moves(sym, at, goal, strategies[goal], prefer, post_in,
+                                  smallest_of, inputs_of)
+        targets = set()
+        for x, y in moves:
+            move = at | dict(zip(post, map(bool, x + y), strict=True))
+            targets.add(node_of(x + y, next_goal(sym, goal, move)))
+        trans[k] = sorted(targets)
+    return Controller(
+        variables=tuple(pre),
+        inputs=tuple(ins),
+        outputs=tuple(outs),
+        nodes=tuple(
+            ControllerNode(goal, state, tuple(t))
+            for (state, goal), t in zip(nodes, trans, strict=True)
+        ),
+        initial=tuple(sorted(set(initial))),
+        integers=spec_integers(sym),
+        kind="strategy",
+        semantics=semantics,
+    )
+
+
+def _chosen_moves(sym: SymbolicSpec, at: dict[str, bool], goal: int, strategy: BDDNode,
+                  prefer: MovePreferences | None, post_in: Sequence[str],
+                  smallest_of: Callable[[BDDNode], State | None],
+                  inputs_of: Callable[[BDDNode], list[State]]) -> list[tuple[State, State]]:
+    """The move (next input, next output) taken at the state ``at`` for goal ``goal``,
+    one per input ρe allows there, in input order: the smallest of the preferred moves."""
+    bdd = sym.bdd
+    here = bdd.let(at, strategy)
+    if prefer is not None:
+        here = prefer.allowed(at, goal, here)
+    env_here = bdd.let(at, sym.env_trans)
+    out = []
+    for x in inputs_of(bdd.exist(sym.post_outputs, env_here)):
+        at_x = dict(zip(post_in, map(bool, x), strict=True))
+        choices = cofactor(bdd, at_x, here)  # at_x is empty for a spec without inputs
+        preferred = choices & cofactor(bdd, at_x, env_here)
+        preferred = preferred if preferred != bdd.false else choices
+        if prefer is not None and preferred != bdd.false:
+            preferred = prefer.choose(at | at_x, goal, preferred)
+        y = smallest_of(preferred)
+        if y is None:
+            raise SolverError(
+                "internal error: the strategy has no move for an allowed input",
+                hint="please report this specification",
+            )
+        out.append((x, y))
+    return out
+
+
+def _moves_at(sym: SymbolicSpec, here: BDDNode, post: Sequence[str],
+              width: int) -> list[tuple[State, State]]:
+    """:func:`_chosen_moves` read off a census's move function at the state (``here``, its
+    cofactor there, over ``post``: the ``width`` primed inputs, then the primed outputs):
+    the same moves, in the same order, found by one enumeration instead of a few BDD
+    operations per input."""
+    found = all_assignments(sym.bdd, here, post)
+    moves = [(a[:width], a[width:]) for a in found]
+    if len({x for x, _ in moves}) != len(moves):
+        raise SolverError("internal error: a move function offers two moves for one input",
+                          hint="please report this specification")
+    return moves

@@ -1,0 +1,119 @@
+"""The verifiers' own reading of a spec: its clauses as BDDs over bits and primed bits.
+
+Shared by the explicit checkers (:mod:`gaitc.verifier.strategy`,
+:mod:`gaitc.verifier.counterstrategy`) and the symbolic one (:mod:`gaitc.verifier.symbolic`), and
+by nothing in the solver: a formula gets a translation here that is independent of
+:mod:`gaitc.solver.symbolic`.
+"""
+
+from __future__ import annotations
+
+import functools
+from collections.abc import Mapping, Sequence
+from typing import Any
+
+from gaitc.diagnostics import FormulaError
+from gaitc.ir.formula import And, Const, Expr, Iff, Implies, Not, Or, Var, Xor
+from gaitc.ir.manager import manager
+from gaitc.ir.spec import Clause, GR1Spec
+from gaitc.ir.traversal import Memo, Node, fold
+
+Bits = tuple[int, ...]
+
+
+def _rule(section: str, index: int, clause: Clause) -> str:
+    origin, span = clause.origin, clause.origin and clause.origin.span
+    where = f" '{origin.rule}'" if origin is not None else ""
+    return f"{section} clause #{index + 1}{where}" + (f" ({span})" if span else "")
+
+
+class Logic:
+    """BDDs of the spec's clauses over unprimed and primed (``x'``) bits, cached evaluation.
+
+    Every BDD whose id is a cache key passes through :meth:`support`, which keeps it
+    referenced, so CUDD cannot reuse the id for another function.
+    """
+
+    def __init__(self, spec: GR1Spec, order: Sequence[str] = ()) -> None:
+        """``order``: variables to put first in the BDD order (a controller's own order)."""
+        self.spec = spec
+        self.inputs = tuple(v.name for v in spec.inputs)
+        self.outputs = tuple(v.name for v in spec.outputs)
+        self.bdd = manager()
+        names = {n for b in self.inputs + self.outputs for n in (b, b + "'")}
+        self.bdd.declare(*(n for n in order if n in names))
+        for name in self.inputs + self.outputs:
+            self.bdd.declare(name, name + "'")
+        self._memo: Memo[Any] = {}
+        self._lets: dict[tuple[int, Bits], Any] = {}
+        self._support: dict[int, tuple[Any, tuple[str, ...]]] = {}
+        self._clauses: dict[str, list[tuple[str, Any]]] = {}
+
+    def clauses(self, section: str) -> list[tuple[str, Any]]:
+        """``(description, BDD)`` of every clause of ``section``."""
+        if section not in self._clauses:
+            items = self.spec.section(section)
+            self._clauses[section] = [
+                (_rule(section, k, c), self.translate(c.formula)) for k, c in enumerate(items)
+            ]
+        return self._clauses[section]
+
+    def translate(self, expr: Expr) -> Any:
+        """The BDD of a Boolean formula (memoised on node identity, so DAGs stay cheap)."""
+        return fold(expr, self._translate, lambda n: n.children() if isinstance(
+            n, (Not, And, Or, Xor, Iff, Implies)) else (), self._memo)  # others: rejected
+
+    def _translate(self, expr: Node, args: list[Any]) -> Any:
+        b = self.bdd
+        if isinstance(expr, Const):
+            return b.true if expr.value else b.false
+        if isinstance(expr, Var):
+            name = expr.name + ("'" if expr.primed else "")
+            if name not in b.vars:
+                raise FormulaError(f"'{expr.name}' is not a variable of the specification",
+                                   expr.span)
+            return b.var(name)
+        if isinstance(expr, Not):
+            return ~args[0]
+        if isinstance(expr, (And, Or)):
+            op, unit = ("and", b.true) if isinstance(expr, And) else ("or", b.false)
+            return functools.reduce(lambda x, y: b.apply(op, x, y), args, unit)
+        if isinstance(expr, (Xor, Iff, Implies)):
+            op = {Xor: "xor", Iff: "equiv", Implies: "implies"}[type(expr)]
+            return b.apply(op, args[0], args[1])
+        raise FormulaError(f"the verifier cannot check {type(expr).__name__} formulas; "
+                           "bit-blast integers first", expr.span)
+
+    def support(self, u: Any) -> tuple[str, ...]:
+        key = int(u)
+        if key not in self._support:  # keeps ``u`` alive: its id is a key of the other caches
+            self._support[key] = (u, tuple(sorted(self.bdd.support(u))))
+        return self._support[key][1]
+
+    def _let(self, u: Any, values: Mapping[str, bool], names: tuple[str, ...]) -> Any:
+        key = (int(u), tuple(int(values[n]) for n in names))
+        found = self._lets.get(key)
+        if found is None:
+            found = self._lets[key] = self.bdd.let({n: values[n] for n in names}, u)
+        return found
+
+    def holds(self, u: Any, valuation: Mapping[str, bool]) -> bool:
+        """Truth of ``u`` under ``valuation`` (must cover its support); cached on the support."""
+        names = self.support(u)
+        return bool((self._let(u, valuation, names) if names else u) == self.bdd.true)
+
+    def restrict(self, u: Any, current: Mapping[str, bool]) -> Any:
+        """``u`` with its unprimed bits fixed to ``current`` (cached on those bits)."""
+        key = -int(u)
+        if key not in self._support:
+            self._support[key] = (u, tuple(n for n in self.support(u) if not n.endswith("'")))
+        names = self._support[key][1]
+        return self._let(u, current, names) if names else u
+
+    def pick(self, u: Any, names: Sequence[str], primed: bool) -> tuple[dict[str, bool], int]:
+        """One assignment of ``u`` to ``names`` (unprimed keys) and how many there are."""
+        suffix = "'" if primed else ""
+        care = {n + suffix for n in names}
+        example = self.bdd.pick(u, care_vars=care) or {}
+        chosen = {n: bool(example.get(n + suffix, False)) for n in names}
+        return chosen, int(self.bdd.count(u, nvars=len(care)))

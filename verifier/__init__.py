@@ -1,6 +1,0 @@
-"""verifier: independent checks of the automata a solver returns.
-
-:mod:`verifier.strategy` proves that a controller realizes a GR(1) spec and
-:mod:`verifier.counterstrategy` that a counter-strategy defeats it. They share no code with
-:mod:`solver` (a test enforces it), so a solver bug cannot hide itself.
-"""
