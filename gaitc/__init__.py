@@ -18,6 +18,17 @@ notebook (see ``docs/api.md``):
 - :func:`simulate`: a run of a controller against an environment, checked against the spec;
 - :func:`copy_examples`: the example robots and specs shipped in the package, copied out.
 
+The robot half:
+
+- :func:`gaits`: gait primitives of a robot file, from the chapter 2 gait graph, a chapter 4
+  model, or a chapter 5 search in the global frame (:class:`GaitOptions`);
+- :func:`learn`: a gait learned online on a simulated or modelled robot (thesis chapter 5,
+  :class:`LearnOptions`);
+- :func:`drive`: a controller's gaits run on a valve board (:class:`SimulatedBoard`,
+  :class:`PhysicsBoard` or :class:`SerialBoard`; :class:`DriveOptions`);
+- :func:`characterize` and :func:`calibrate`: a limb's spring-damper parameters and the
+  legs' waveguide thresholds, fitted to recordings.
+
 Every error a user can cause is a :class:`GaitcError` with a source span, and also the
 builtin exception it means: a missing file is a :class:`FileNotFoundError`, a bad value a
 :class:`ValueError`, a solver that cannot finish a :class:`RuntimeError`.
@@ -31,9 +42,25 @@ import importlib
 from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
+    from gaitc.api.characterizing import Recordings, calibrate, characterize
+    from gaitc.api.driving import (
+        DriveOptions,
+        PhysicsBoard,
+        SerialBoard,
+        SimulatedBoard,
+        Tracker,
+        drive,
+    )
     from gaitc.api.emission import FORMATS, emit
     from gaitc.api.examples import copy_examples
     from gaitc.api.explaining import explain
+    from gaitc.api.gaits import (
+        GaitMethod,
+        GaitOptions,
+        GlobalSearch,
+        gaits,
+    )
+    from gaitc.api.learning import LearningBackend, LearnOptions, learn
     from gaitc.api.linting import lint
     from gaitc.api.loading import Spec, load, parse
     from gaitc.api.resilient import resilience
@@ -63,26 +90,32 @@ if TYPE_CHECKING:
     )
 
 #: Where each public name lives; modules load on first use, so ``gaitc --help`` and a
-#: Ctrl-C at start-up do not wait for the solver, the parser and the gait graph to import.
-_HOMES = {
-    "FORMATS": "gaitc.api.emission", "emit": "gaitc.api.emission",
-    "explain": "gaitc.api.explaining", "lint": "gaitc.api.linting",
-    "Spec": "gaitc.api.loading", "load": "gaitc.api.loading", "parse": "gaitc.api.loading",
-    "resilience": "gaitc.api.resilient", "Session": "gaitc.api.simulation",
-    "session": "gaitc.api.simulation", "simulate": "gaitc.api.simulation",
-    "SOLVERS": "gaitc.api.solving", "Synthesis": "gaitc.api.solving",
-    "Verdict": "gaitc.api.solving", "check": "gaitc.api.solving",
-    "counterstrategy": "gaitc.api.solving", "synthesize": "gaitc.api.solving",
-    "verify": "gaitc.api.solving",
-    "copy_examples": "gaitc.api.examples",
-    "GaitcError": "gaitc.diagnostics", "UsageError": "gaitc.diagnostics",
-    "FileAccessError": "gaitc.diagnostics", "MissingFileError": "gaitc.diagnostics",
-    "SpecSyntaxError": "gaitc.diagnostics", "SpecSemanticError": "gaitc.diagnostics",
-    "FormulaError": "gaitc.diagnostics", "SlugsFormatError": "gaitc.diagnostics",
-    "ControllerError": "gaitc.diagnostics", "SolverError": "gaitc.diagnostics",
-    "ScenarioError": "gaitc.diagnostics", "Span": "gaitc.diagnostics",
+#: Ctrl-C at start-up do not wait for the solver, the parser and the gait graph to import,
+#: and the packages below ``gaitc`` can import ``gaitc.diagnostics`` without a cycle.
+_MODULES: dict[str, tuple[str, ...]] = {
+    "gaitc.api.loading": ("Spec", "load", "parse"),
+    "gaitc.api.linting": ("lint",),
+    "gaitc.api.emission": ("FORMATS", "emit"),
+    "gaitc.api.solving": (
+        "SOLVERS", "Synthesis", "Verdict", "check", "counterstrategy", "synthesize", "verify",
+    ),
+    "gaitc.api.explaining": ("explain",),
+    "gaitc.api.resilient": ("resilience",),
+    "gaitc.api.simulation": ("Session", "session", "simulate"),
+    "gaitc.api.examples": ("copy_examples",),
+    "gaitc.api.gaits": ("GaitMethod", "GaitOptions", "GlobalSearch", "gaits"),
+    "gaitc.api.learning": ("LearnOptions", "LearningBackend", "learn"),
+    "gaitc.api.driving": (
+        "DriveOptions", "PhysicsBoard", "SerialBoard", "SimulatedBoard", "Tracker", "drive",
+    ),
+    "gaitc.api.characterizing": ("Recordings", "calibrate", "characterize"),
+    "gaitc.diagnostics": (
+        "ControllerError", "FileAccessError", "FormulaError", "GaitcError", "MissingFileError",
+        "ScenarioError", "SlugsFormatError", "SolverError", "Span", "SpecSemanticError",
+        "SpecSyntaxError", "UsageError",
+    ),
 }
-
+_HOMES = {name: module for module, names in _MODULES.items() for name in names}
 
 def __getattr__(name: str) -> Any:
     home = _HOMES.get(name)
@@ -103,12 +136,22 @@ __all__ = [
     "FORMATS",
     "SOLVERS",
     "ControllerError",
+    "DriveOptions",
     "FileAccessError",
     "FormulaError",
+    "GaitMethod",
+    "GaitOptions",
     "GaitcError",
+    "GlobalSearch",
+    "LearnOptions",
+    "LearningBackend",
     "MissingFileError",
+    "PhysicsBoard",
+    "Recordings",
     "ScenarioError",
+    "SerialBoard",
     "Session",
+    "SimulatedBoard",
     "SlugsFormatError",
     "SolverError",
     "Span",
@@ -116,13 +159,19 @@ __all__ = [
     "SpecSemanticError",
     "SpecSyntaxError",
     "Synthesis",
+    "Tracker",
     "UsageError",
     "Verdict",
+    "calibrate",
+    "characterize",
     "check",
     "copy_examples",
     "counterstrategy",
+    "drive",
     "emit",
     "explain",
+    "gaits",
+    "learn",
     "lint",
     "load",
     "parse",

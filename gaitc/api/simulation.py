@@ -11,7 +11,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING, Final
+from typing import TYPE_CHECKING, Any, Final
 
 from gaitc.api.loading import Spec, load
 from gaitc.api.solving import Synthesis, recorded_encoding, synthesize
@@ -183,3 +183,17 @@ def simulate(spec: Spec | Session | str | Path,
         raise UsageError("the number of steps must not be negative")
     return run_simulation(bound.strategy, bound.domain, bound.monitor, chosen, steps,
                           bound.spec.path)
+
+
+def run_document(file: str, run: Run | None, environment: str | None, output: str | None,
+                 realizable: bool = True) -> dict[str, Any]:
+    """A run as ``simulate --json`` and ``drive --json`` print it (docs/json.md): the run
+    (:meth:`Run.to_json`), the environment that played it, the file it was saved to, the
+    error that stopped it. ``run`` is None when an unrealizable spec left nothing to run."""
+    body: dict[str, Any] = {"legs": [], "steps": [], "summary": None}
+    if run is not None:
+        body.update(run.to_json())
+        body.pop("spec")  # the same as "file"
+    stopped = None if run is None or run.error is None else run.error.to_json()
+    return {**body, "file": file, "environment": environment, "realizable": realizable,
+            "output": output, "error": stopped}

@@ -35,8 +35,7 @@ def _where(span: Span | None) -> dict[str, Any]:
 
 def error_json(err: GaitcError) -> dict[str, Any]:
     """``err`` as ``{type, file, line, column, message, hint}``; null where unknown."""
-    return {"type": type(err).__name__, **_where(err.span), "message": err.message,
-            "hint": err.hint}
+    return err.to_json()
 
 
 def diagnostic_json(diag: Diagnostic) -> dict[str, Any]:
@@ -118,13 +117,8 @@ def compilation_json(spec: Spec, fmt: str, text: str, output: str) -> dict[str, 
 
 def run_json(file: str, run: Run | None, environment: str | None, output: str | None,
              realizable: bool = True) -> dict[str, Any]:
-    """The result of ``gaitc simulate`` and ``drive``: the run (:meth:`Run.to_json`), the
-    environment that played it, the file it was saved to, the error that stopped it.
-    ``run`` is None when an unrealizable spec left nothing to run."""
-    body: dict[str, Any] = {"legs": [], "steps": [], "summary": None}
-    if run is not None:
-        body.update(run.to_json())
-        body.pop("spec")  # the same as "file"
-    stopped = None if run is None or run.error is None else error_json(run.error)
-    return {**body, "file": file, "environment": environment, "realizable": realizable,
-            "output": output, "error": stopped}
+    """The result of ``gaitc simulate`` and ``drive``
+    (:func:`gaitc.api.simulation.run_document`)."""
+    from gaitc.api.simulation import run_document
+
+    return run_document(file, run, environment, output, realizable)

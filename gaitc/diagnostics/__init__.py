@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Final
+from typing import Any, Final
 
 
 @dataclass(frozen=True)
@@ -42,6 +42,15 @@ class GaitcError(Exception):
     def __str__(self) -> str:
         where = f"{self.span}: " if self.span is not None else ""
         return f"{where}{self.message}"
+
+    def to_json(self) -> dict[str, Any]:
+        """``{type, file, line, column, message, hint}``, null where unknown (docs/json.md)."""
+        span = self.span
+        return {"type": type(self).__name__,
+                "file": None if span is None else span.file,
+                "line": None if span is None else span.line,
+                "column": None if span is None else span.column,
+                "message": self.message, "hint": self.hint}
 
 
 class SpecSyntaxError(GaitcError, ValueError):

@@ -1,13 +1,13 @@
 """The ``calibrate`` command: waveguide thresholds per leg from recorded cycles (thesis 3.4.2).
 
-The work lives in :mod:`gaitc.hw.sensing`; this module reads the CSV, writes the sensing file
-that ``gaitc drive --sensing`` reads, and prints each leg's thresholds.
+The work lives in :func:`gaitc.calibrate` (:mod:`gaitc.api.characterizing`, over
+:mod:`gaitc.hw.sensing`); this module writes the sensing file that ``gaitc drive --sensing``
+reads and prints each leg's thresholds.
 """
 
 from __future__ import annotations
 
 import argparse
-from pathlib import Path
 from typing import Any
 
 from gaitc.cli.commands.arguments import output_file
@@ -37,16 +37,10 @@ def register(sub: Any) -> None:
 
 
 def run_calibrate(args: argparse.Namespace) -> int:
-    from gaitc.hw.sensing import calibrate, read_cycles, write_sensing
+    import gaitc
 
-    cycles = read_cycles(args.cycles)
-    calibration = calibrate(cycles)
-    out = args.out or str(Path(args.cycles).with_suffix(".sensing.yaml"))
-    write_sensing(out, calibration)
-    print(f"{'leg':<6} {'cycles':>6} {'levels':>6}  thresholds (top level first)  hysteresis")
-    for leg, cal in calibration.items():
-        count = sum(c.leg == leg for c in cycles)
-        th = ", ".join(f"{t:.4f}" for t in cal.thresholds)
-        print(f"{leg:<6} {count:>6} {cal.levels:>6}  {th:<28} {cal.hysteresis:.4f}")
+    calibrated = gaitc.calibrate(args.cycles)
+    out = calibrated.write(args.out)
+    print(calibrated)
     print(f"wrote {out}")
     return ExitCode.OK

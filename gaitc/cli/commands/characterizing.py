@@ -1,8 +1,8 @@
 """The ``characterize`` command: fit spring-damper parameters and write them (thesis 4.2.1).
 
-The fits live in :mod:`gaitc.models.characterization`, the file edit in
-:mod:`gaitc.models.robot_edit`; this module reads the options, prints each fit and writes
-the robot file (atomically, after checking that it still reads).
+The work lives in :func:`gaitc.characterize` (:mod:`gaitc.api.characterizing`); this module
+reads the options, prints each fit and writes the robot file (atomically, after checking
+that it still reads).
 """
 
 from __future__ import annotations
@@ -12,7 +12,6 @@ from typing import Any
 
 from gaitc.cli.commands.arguments import output_file
 from gaitc.cli.exitcodes import ExitCode, exit_code_help
-from gaitc.diagnostics import UsageError
 
 EPILOG = """CSV files (a header row, then one row per sample):
   --curvature FILE   time,curvature          s, 1/mm: a segment's response to a valve step
@@ -52,64 +51,12 @@ def register(sub: Any) -> None:
 
 
 def run_characterize(args: argparse.Namespace) -> int:
-    from gaitc.models.characterization import fit_curvature, fit_damping, fit_stiffness
-    from gaitc.models.description import load_spring_damper
-    from gaitc.models.robot_edit import matrix, number, write_fields
+    import gaitc
+    from gaitc.api.characterizing import Recordings
 
-    if not (args.curvature or args.stiffness or args.damping):
-        raise UsageError("give at least one of --curvature, --stiffness and --damping")
-    if args.damping and args.mass is None:
-        raise UsageError("--damping needs --mass G, the mass hung on the end effector")
-    robot = load_spring_damper(args.robot)
-    limb = next((x for x in robot.limbs if x.name == args.limb), None)
-    if limb is None:
-        raise UsageError(f"robot {robot.name} has no limb {args.limb!r} in its model section")
-    fields: dict[str, str] = {}
-    if args.curvature:
-        c = fit_curvature(args.curvature)
-        fields["dynamics"] = (
-            f"{{frequency: {number(c.frequency)}, damping_ratio: {number(c.damping_ratio)}}}"
-        )
-        print(
-            f"curvature: {number(c.rest_curvature)} -> {number(c.curvature)} 1/mm, "
-            f"frequency {number(c.frequency)} rad/s, damping ratio {number(c.damping_ratio)}, "
-            f"RMS error {c.residual:.3g} 1/mm"
-        )
-    spring = args.spring
-    if args.stiffness:
-        s = fit_stiffness(args.stiffness)
-        want = {p for p, _ in limb.stiffness if p}
-        if not want and len(s.matrices) > 1:
-            raise UsageError(
-                f"{args.stiffness}: states {', '.join(sorted(s.matrices))}, but limb "
-                f"{limb.name} has one stiffness matrix for every state; give one state, or "
-                "a matrix per valve pattern in the robot file"
-            )
-        if want and set(s.matrices) != want:
-            raise UsageError(
-                f"{args.stiffness}: states {', '.join(sorted(s.matrices))}; limb "
-                f"{limb.name} needs {', '.join(sorted(want))}"
-            )
-        entries = ", ".join(f'"{p}": {matrix(m)}' for p, m in sorted(s.matrices.items()))
-        fields["stiffness"] = (
-            "{" + entries + "}" if want else matrix(next(iter(s.matrices.values())))
-        )
-        for p, fitted in sorted(s.matrices.items()):
-            print(f"stiffness {p}: {matrix(fitted)} N/mm, RMS error {s.residual[p]:.3g} N")
-        vented = s.matrices.get("0" * len(limb.segments)) or next(iter(s.matrices.values()))
-        spring = spring if spring is not None else vented[2][2]
-    if args.damping:
-        if spring is None:
-            table = dict(limb.stiffness)
-            known = table.get("0" * len(limb.segments)) or next(iter(table.values()))
-            spring = known[2][2] / 1000.0
-        d = fit_damping(args.damping, args.mass, spring)
-        fields["damping"] = number(d.damping)
-        print(
-            f"damping: {number(d.damping)} N*s/mm (damping ratio {d.damping_ratio:.3g} with "
-            f"{number(spring)} N/mm and {number(args.mass)} g), RMS error {d.residual:.3g} mm"
-        )
-    out = args.out or args.robot
-    write_fields(args.robot, limb.name, fields, out)
-    print(f"wrote {', '.join(fields)} of limb {limb.name} to {out}")
+    data = Recordings(args.curvature, args.stiffness, args.damping, args.mass, args.spring)
+    fitted = gaitc.characterize(args.robot, args.limb, data)
+    print(fitted)
+    out = fitted.write(args.out)
+    print(f"wrote {', '.join(fitted.fields)} of limb {fitted.limb} to {out}")
     return ExitCode.OK

@@ -1,29 +1,23 @@
 """The ``drive`` command: run a controller's gaits on a valve board (simulated or serial).
 
-The work lives in :mod:`gaitc.hw` (backends, driver loop); this module parses options, binds
-the gaits to their valve primitives, picks the backend and prints the run.
+The work lives in :func:`gaitc.drive` (:mod:`gaitc.api.driving`); this module builds the
+board and :class:`~gaitc.api.driving.DriveOptions` from the options and prints the run.
 """
 
 from __future__ import annotations
 
 import argparse
 import sys
-from pathlib import Path
 from typing import Any
 
 import gaitc
-from gaitc.api.simulation import Session
-from gaitc.api.solving import recorded_encoding
+from gaitc.api.driving import VIOLATION_POLICIES
 from gaitc.cli.commands.arguments import add_prefer, positive_seconds, run_file
-from gaitc.cli.commands.simulating import add_json, environment_of, report_run, settle_environment
+from gaitc.cli.commands.simulating import add_json, env_text, report_run, settle_environment
 from gaitc.cli.exitcodes import ExitCode, exit_code_help
 from gaitc.cli.reporting import document, print_json, run_json
 from gaitc.cli.status import progress_display
 from gaitc.diagnostics import UsageError
-from gaitc.hw.backend import Backend, interrupt_on_signals
-from gaitc.hw.driver import VIOLATION_POLICIES
-from gaitc.sim.environments import Environment
-from gaitc.sim.scenario import ScriptedEnvironment
 from ltlcompiler.encoding import ENCODINGS
 
 EPILOG = """backends:
@@ -108,153 +102,71 @@ def register(sub: Any) -> None:
 
 
 def _check_options(args: argparse.Namespace) -> None:
+    """The checks only the command line needs: options given to a board that takes none."""
     settle_environment(args, real_sensors=args.backend == "serial")
-    if args.steps is not None and args.steps < 0:
-        raise UsageError("--steps must not be negative")
-    if args.cycles < 1:
-        raise UsageError("--cycles must be at least 1")
-    if args.step_delay is not None and args.step_delay < 0:
-        raise UsageError("--step-delay must not be negative")
-    if args.backend == "serial":
-        if not args.port:
-            raise UsageError("--backend serial needs --port URL (e.g. /dev/ttyUSB0 or "
-                             "socket://localhost:7000)")
-        if args.env:
-            raise UsageError("--env chooses the simulated robot's environment; the serial "
-                             "backend reads real sensors")
+    if args.backend == "serial" and args.env:
+        raise UsageError("--env chooses the simulated robot's environment; the serial "
+                         "backend reads real sensors")
     if (args.map or args.cell_size is not None) and not args.pose and args.backend != "physics":
         raise UsageError("--map and --cell-size place the poses of --pose or --backend physics")
     if args.robot and args.backend != "physics":
         raise UsageError("--robot is for --backend physics")
-    if args.map and args.cell_size is not None:
-        raise UsageError("give --map or --cell-size, not both")
-    if args.cell_size is not None and not args.cell_size > 0:
-        raise UsageError("--cell-size must be positive")
     if args.backend != "serial" and (args.port or args.channels or args.sensing):
         raise UsageError("--port, --channels and --sensing are for --backend serial")
 
 
-def _environment(args: argparse.Namespace, bound: Session) -> tuple[Environment, int | None]:
-    chosen = environment_of(args, bound)
-    scripted = chosen.scenario.steps if isinstance(chosen, ScriptedEnvironment) else None
-    return chosen, None if scripted is None else len(scripted)
+def board_of(args: argparse.Namespace) -> Any:
+    """The board ``--backend`` names, with its options."""
+    from gaitc.api.driving import PhysicsBoard, SerialBoard, SimulatedBoard
 
-
-def _backend(args: argparse.Namespace, loaded: Session, valves: int) -> tuple[Backend, int]:
-    steps: int = 20 if args.steps is None else args.steps
     if args.backend == "serial":
-        from gaitc.hw.sensing import read_sensing
-        from gaitc.hw.serial_board import SerialValveBoard, parse_channels
-
-        channels = parse_channels(args.channels) if args.channels else None
-        calibration = read_sensing(args.sensing) if args.sensing else None
-        return SerialValveBoard(args.port, valves, loaded.domain.legs, args.baud, args.timeout,
-                                channels=channels, levels=loaded.domain.full,
-                                calibration=calibration), steps
-    from gaitc.hw.simulated import SimulatedRobot
-
-    environment, scripted = _environment(args, loaded)
-    if scripted is not None and args.steps is None:
-        steps = scripted
-    robot = SimulatedRobot(loaded.strategy, loaded.domain, loaded.monitor, environment, valves)
+        return SerialBoard(args.port or "", args.baud, args.timeout, args.channels,
+                           args.sensing)
+    env, seed = env_text(args), args.seed or 0
     if args.backend == "physics":
-        return _physics(args, loaded, robot), steps
-    return robot, steps
+        return PhysicsBoard(args.robot, None if args.pose else args.map,
+                            None if args.pose else args.cell_size, env, seed)
+    return SimulatedBoard(env, seed)
 
 
-def _physics(args: argparse.Namespace, loaded: Session, robot: Any) -> Backend:
-    from gaitc.hw.localisation import RegionMap
-    from gaitc.hw.physics import PhysicsRobot, centre, region_map
-    from gaitc.models.description import load_spring_damper
-    from gaitc.models.spring_damper import SpringDamperModel
+def options_of(args: argparse.Namespace) -> Any:
+    from gaitc.api.driving import DriveOptions, Tracker
 
-    model = loaded.domain.model
-    path = args.robot or next((str(Path(args.spec).parent / g.primitive.robot)
-                               for g in model.gaits
-                               if g.primitive is not None and g.primitive.robot), None)
-    if path is None:
-        raise UsageError("--backend physics needs --robot ROBOT.yaml: no gait's primitive "
-                         "names a robot file")
-    described = load_spring_damper(path)
-    if described.valve_count != robot.valve_count:
-        raise UsageError(f"robot file {path} has {described.valve_count} valves but the gaits' "
-                         f"primitives drive {robot.valve_count}")
-    regions = (RegionMap.from_file(args.map, loaded.domain.regions) if args.map
-               else region_map(model, args.cell_size or 100.0))
-    if model.start not in regions.polygons:
-        raise UsageError(f"the map places no start region {model.start}")
-    return PhysicsRobot(robot, SpringDamperModel(described), regions,
-                        centre(regions, model.start), described.period)
-
-
-def _localised(args: argparse.Namespace, backend: Backend, loaded: Session) -> Backend:
-    from gaitc.hw.localisation import Localised, PoseStream, RegionMap
-
-    model = loaded.domain.model
-    regions = (RegionMap.from_file(args.map, loaded.domain.regions) if args.map
-               else RegionMap.from_grid(model, args.cell_size or 1.0))
-    return Localised(backend, PoseStream(args.pose, args.timeout), regions)
+    tracker = (Tracker(args.pose, args.map, args.cell_size, args.timeout) if args.pose
+               else None)
+    return DriveOptions(
+        steps=args.steps, step_delay=args.step_delay, cycles=args.cycles,
+        on_violation=args.on_violation, tracker=tracker, encoding=args.encoding,
+        semantics="robotics" if args.robotics_semantics else "default", prefer=args.prefer)
 
 
 def run_drive(args: argparse.Namespace) -> int:
-    from gaitc.hw.driver import Driver, bind_primitives, valve_count
-
     _check_options(args)
-    encoding = args.encoding or (recorded_encoding(args.controller) if args.controller
-                                 else None) or "onehot"
-    checked = gaitc.load(args.spec, encoding)
-    if checked.model is None:
-        raise UsageError(f"'{args.spec}': driving needs a .gait spec, which binds gaits to "
-                         "valve primitives")
-    primitives = bind_primitives(checked.model, str(Path(args.spec).parent))
-    semantics = "robotics" if args.robotics_semantics else "default"
+    board, options = board_of(args), options_of(args)
+    live = (None if args.quiet or args.json or args.backend in ("sim", "physics")
+            else _print_flush)
     with progress_display() as progress:
-        loaded = gaitc.session(checked, args.controller, semantics=semantics,
-                               prefer=args.prefer, progress=progress)
-    if loaded is None:
+        driven = gaitc.drive(args.spec, args.controller, board, options, progress, live)
+    if driven.run is None:
         print(f"{args.spec}: unrealizable: no controller to drive", file=sys.stderr)
         if args.json:
             print_json(document("drive", {**run_json(args.spec, None, None, None, False),
                                           "backend": args.backend, "violations": []}))
         return ExitCode.UNREALIZABLE
-    backend, steps = _backend(args, loaded, valve_count(primitives, len(loaded.domain.legs)))
-    if args.pose:
-        if args.backend == "physics":
-            raise UsageError("--pose reads a tracker; --backend physics computes the pose")
-        backend = _localised(args, backend, loaded)
-    delay = args.step_delay if args.step_delay is not None else (
-        0.5 if args.backend == "serial" else 0.0)
-    live = (None if args.quiet or args.json or args.backend in ("sim", "physics")
-            else _print_flush)
-    driver = Driver(loaded.strategy, loaded.domain, loaded.monitor, primitives, backend,
-                    delay, args.cycles, live, args.on_violation)
-    with interrupt_on_signals():  # SIGTERM and SIGHUP vent and keep the run, as Ctrl-C does
-        run = driver.run(steps, args.spec)
     if args.json:
-        extra = {"backend": args.backend, "violations": list(driver.violations)}
-        return report_run(run, dict(loaded.domain.full), backend.name, args.quiet, args.out,
+        extra = {"backend": args.backend, "violations": list(driven.violations)}
+        return report_run(driven.run, driven.full_health, driven.board, args.quiet, args.out,
                           True, extra, command="drive")
-    if driver.violations and live is None:
+    if driven.violations and live is None:
         print(f"readings that broke an assumption ({args.on_violation}): "
-              f"{len(driver.violations)}")
-        for note in driver.violations:
+              f"{len(driven.violations)}")
+        for note in driven.violations:
             print(f"  {note}")
     try:
-        return report_run(run, dict(loaded.domain.full), backend.name, args.quiet, args.out)
+        return report_run(driven.run, driven.full_health, driven.board, args.quiet, args.out)
     finally:
-        placed = getattr(backend, "placed", None)
-        if placed:  # the physics backend's poses, also for a run that broke the spec
-            _print_poses(placed, args.quiet)
-
-
-def _print_poses(placed: list[Any], quiet: bool) -> None:
-    """The chassis pose the physics model gave at each sensor reading."""
-    import math
-
-    print("chassis pose at each reading (mm, deg; region under the chassis):")
-    for p in placed if not quiet else placed[-1:]:
-        print(f"  {p.reading:>3}  x {p.pose.x:8.1f}  y {p.pose.y:8.1f}  "
-              f"heading {math.degrees(p.pose.theta):7.2f}  {p.region or 'outside the map'}")
+        if driven.poses:  # the physics backend's poses, also for a run that broke the spec
+            print(driven.poses_text(args.quiet))
 
 
 def _print_flush(line: str) -> None:

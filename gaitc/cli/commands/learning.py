@@ -1,21 +1,17 @@
-"""``gaitc gaits --method astar|lpa|dstar|mcts`` and ``gaitc learn``: gait synthesis in the global
-frame and its online refinement (thesis chapter 5), over :mod:`gaitc.search`."""
+"""``gaitc learn``: a gait learned online toward a displacement (thesis chapter 5), and the
+goal options it shares with ``gaitc gaits --method astar|lpa|dstar|mcts``.
+
+The work lives in :func:`gaitc.learn` (:mod:`gaitc.api.learning`); this module turns the
+options into :class:`~gaitc.api.learning.LearnOptions` and prints the loop as it runs.
+"""
 
 from __future__ import annotations
 
 import argparse
-from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 from gaitc.cli.commands.arguments import output_file
 from gaitc.cli.exitcodes import ExitCode, exit_code_help
-from gaitc.diagnostics import UsageError
-from gaitc.diagnostics.files import write_atomically
-
-if TYPE_CHECKING:
-    from gaitc.search.plans import GaitPlan
-
-BACKENDS = ("sim", "physics", "serial")
 
 
 def goal_arguments(p: argparse.ArgumentParser) -> None:
@@ -147,155 +143,34 @@ def register(sub: Any) -> None:
     p.set_defaults(run=run_learn)
 
 
-def _pair(text: str, option: str, default_angle: float) -> tuple[float, float]:
-    from gaitc.search.goals import numbers
+def search_of(args: argparse.Namespace) -> Any:
+    """The :class:`~gaitc.api.gaits.GlobalSearch` of the goal options."""
+    from gaitc.api.gaits import GlobalSearch
 
-    values = numbers(text, option, 1, 2)
-    if any(v <= 0 for v in values):
-        raise UsageError(f"{option}: must be positive, got {text!r}")
-    return values[0], values[1] if len(values) == 2 else default_angle
-
-
-def settings_of(args: argparse.Namespace) -> Any:
-    from gaitc.search.planners import Settings
-
-    for name in ("budget", "iterations", "horizon", "max_states"):
-        if getattr(args, name) < 1:
-            raise UsageError(f"--{name.replace('_', '-')} must be at least 1")
-    cell, angle = _pair(args.cell, "--cell", 2.0) if args.cell else (2.0, 2.0)
-    if abs(360.0 / angle - round(360.0 / angle)) > 1e-9:
-        raise UsageError(f"--cell: the angle {angle:g} deg must divide 360")
-    return Settings(
-        cell,
-        angle,
-        budget=args.budget,
-        iterations=args.iterations,
-        horizon=args.horizon,
-        seed=args.seed,
-    )
-
-
-def goal_of(args: argparse.Namespace) -> Any:
-    from gaitc.search.goals import parse_goal
-
-    if args.goal is None:
-        raise UsageError(f"--method {args.method} needs --goal DX,DY[,DTHETA] (mm, degrees)")
-    return parse_goal(args.goal, args.tolerance)
-
-
-def run_global(args: argparse.Namespace) -> int:
-    """``gaitc gaits --method astar|lpa|dstar|mcts``: one gait toward ``--goal``."""
-    from gaitc.gaitgraph.robot import load_robot
-    from gaitc.search.api import plan_gait
-
-    goal, settings = goal_of(args), settings_of(args)
-    robot = load_robot(args.robot)
-    plan = plan_gait(robot, goal, args.method, settings, args.max_states)
-    if getattr(args, "json", False):
-        return _plan_json(args, robot.name, plan)
-    if plan is None:
-        print(f"robot {robot.name}: no gait toward {goal} found")
-        return 1
-    states, poses, edges = plan.graph
-    print(
-        f"robot {robot.name}: {robot.valve_count} chambers, method {args.method}, "
-        f"{states} valve states, {poses} poses, {edges} transitions"
-    )
-    print(plan.table())
-    if not plan.reached and args.method == "mcts":
-        print(
-            f"the best cycle found misses the goal's tolerance ({goal.tolerance:g} mm, "
-            f"{goal.angle_tolerance:g} deg); more --iterations or a longer --horizon may help"
-        )
-    elif not plan.reached:
-        print(
-            f"the route reaches the goal's cells, but its continuous displacement misses the "
-            f"tolerance ({goal.tolerance:g} mm, {goal.angle_tolerance:g} deg): every "
-            "transition is propagated from a cell centre; a finer --cell helps"
-        )
-    if args.output:
-        write_atomically(args.output, plan.to_json())
-    if args.svg:
-        Path(args.svg).mkdir(parents=True, exist_ok=True)
-        path = Path(args.svg) / "gait-search.svg"
-        write_atomically(str(path), plan._repr_svg_())
-        print(f"wrote {path}")
-    return 0 if plan.reached else 1
-
-
-def _plan_json(args: argparse.Namespace, robot: str, plan: GaitPlan | None) -> int:
-    """``gaits --method astar|lpa|dstar|mcts --json``: the same files, the plan as one object."""
-    from gaitc.cli.reporting import document, print_json
-
-    written = []
-    if plan is not None and args.output:
-        write_atomically(args.output, plan.to_json())
-        written.append(args.output)
-    if plan is not None and args.svg:
-        Path(args.svg).mkdir(parents=True, exist_ok=True)
-        path = Path(args.svg) / "gait-search.svg"
-        write_atomically(str(path), plan._repr_svg_())
-        written.append(str(path))
-    states, poses, edges = plan.graph if plan is not None else (None, None, None)
-    print_json(document("gaits", {
-        "robot": robot, "method": args.method, "found": plan is not None,
-        "reached": plan is not None and plan.reached, "valve_states": states, "poses": poses,
-        "transitions": edges, "plan": None if plan is None else plan.to_dict(),
-        "written": written}))
-    return 0 if plan is not None and plan.reached else 1
+    return GlobalSearch(goal=args.goal, tolerance=args.tolerance, cell=args.cell,
+                        budget=args.budget, iterations=args.iterations, horizon=args.horizon)
 
 
 def run_learn(args: argparse.Namespace) -> int:
-    from gaitc.search.api import check_method
-    from gaitc.search.online import learn_gait
-    from gaitc.search.walker import Mismatch
+    import gaitc
+    from gaitc.api.learning import LearnOptions
 
-    check_method(args.method)
-    if args.backend not in BACKENDS:
-        raise UsageError(f"unknown backend {args.backend!r}; use sim or physics")
-    if args.backend == "serial":
-        raise UsageError(
-            "--backend serial is not available for learning: the valve board reports no "
-            "displacement of a transition (the chapter 4 EKF is not in gaitc); use --backend "
-            "sim or physics"
-        )
-    if args.mismatch < 0 or args.noise < 0 or not 0 <= args.infeasible < 1:
-        raise UsageError(
-            "--mismatch and --noise must not be negative, --infeasible must lie in [0, 1)"
-        )
-    if args.max_iterations < 1 or args.verify < 1:
-        raise UsageError("--max-iterations and --verify must be at least 1")
-    goal, settings = goal_of(args), settings_of(args)
-    mismatch = Mismatch(args.mismatch, args.noise, args.infeasible, args.seed, args.model_mismatch)
-    progress = None if args.quiet else _print_flush
-    result = learn_gait(
-        args.robot,
-        goal,
-        args.method,
-        mismatch,
-        settings,
-        args.max_states,
-        args.max_iterations,
-        args.verify,
-        progress,
-        args.backend,
-        args.predictions,
-        args.max_open,
-        args.grow,
-    )
-    print(result.summary())
+    options = LearnOptions(
+        method=args.method, backend=args.backend, predictions=args.predictions,
+        max_open=args.max_open, seed=args.seed, max_states=args.max_states,
+        mismatch=args.mismatch, noise=args.noise, model_mismatch=args.model_mismatch,
+        infeasible=args.infeasible, grow=args.grow, max_iterations=args.max_iterations,
+        verify=args.verify, search=search_of(args))
+    learned = gaitc.learn(args.robot, options, progress=None if args.quiet else _print_flush)
+    print(learned.learned.summary())
     if args.log:
-        write_atomically(args.log, result.to_json())
+        learned.save_log(args.log)
     if args.svg:
-        write_atomically(args.svg, result._repr_svg_())
+        learned.draw(args.svg)
         print(f"wrote {args.svg}")
-    error = result.error
-    if error is not None and error[0] > goal.tolerance:
-        print(
-            f"the executed displacement misses the goal's tolerance ({goal.tolerance:g} mm): "
-            "the measurements are noisy; raise --verify or loosen --tolerance"
-        )
-    return 0 if result.converged and error is not None else 1
+    for note in learned.notes:
+        print(note)
+    return 0 if learned.converged else 1
 
 
 def _print_flush(line: str) -> None:

@@ -94,18 +94,24 @@ def settle_environment(args: argparse.Namespace, real_sensors: bool = False) -> 
                          "numbers (drop --seed, or use --env random)")
 
 
-def environment_of(args: argparse.Namespace, bound: Session) -> Environment:
-    """The environment ``--env`` names (with its scenario file for ``scripted``)."""
+def env_text(args: argparse.Namespace) -> str:
+    """The environment ``--env`` names, as :func:`gaitc.api.simulation.environment` takes
+    it (``scripted:FILE.yaml`` for a scenario)."""
     kind, *rest = args.env or ["random"]
     if kind not in ENVIRONMENTS:
         raise UsageError(f"unknown environment '{kind}'; use one of {', '.join(ENVIRONMENTS)}")
     if kind == "scripted":
         if len(rest) != 1:
             raise UsageError("--env scripted needs one scenario file: --env scripted FILE.yaml")
-        return environment(f"scripted:{rest[0]}", bound)
+        return f"scripted:{rest[0]}"
     if rest:
         raise UsageError(f"--env {kind} takes no file (got '{rest[0]}')")
-    return environment(kind, bound, args.seed or 0)
+    return str(kind)
+
+
+def environment_of(args: argparse.Namespace, bound: Session) -> Environment:
+    """The environment ``--env`` names (with its scenario file for ``scripted``)."""
+    return environment(env_text(args), bound, args.seed or 0)
 
 
 def run_simulate(args: argparse.Namespace) -> int:
