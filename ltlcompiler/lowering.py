@@ -29,7 +29,9 @@ from gaitc.ir.formula import (
     conj,
     disj,
     has_primes,
+    node_kind,
     push_next,
+    unreachable,
 )
 from gaitc.ir.spec import SECTIONS, Clause, GR1Spec, Origin, section_named
 from gaitc.ir.traversal import Node, Text, fold, join_text, separated
@@ -251,23 +253,27 @@ def describe(expr: Expr | Term) -> str:
 
 def _describe(node: Node, texts: list[Text]) -> Text:
     """The text of ``node`` from the texts of its children (a step of the fold)."""
-    if isinstance(node, Const):
-        return "true" if node.value else "false"
-    if isinstance(node, Var):
-        return node.name + ("'" if node.primed else "")
-    if isinstance(node, IntVar):
-        return f"health({node.name})" + ("'" if node.primed else "")
-    if isinstance(node, IntConst):
-        return str(node.value)
     operands = [t if isinstance(c, _SIMPLE) else ("(", t, ")")
                 for c, t in zip(node.children(), texts, strict=True)]
-    if isinstance(node, Not):
-        return ("!", operands[0])
-    if isinstance(node, (And, Or, Xor, Iff, Implies)):
-        return separated(_BINARY[type(node)], operands)
-    if isinstance(node, Compare):
-        return (texts[0], f" {node.op} ", texts[1])
-    if isinstance(node, Add):
-        return separated(" + ", texts)
-    name = _WORDS.get(type(node), type(node).__name__)
-    return (name, "(", separated(", ", texts), ")")
+    kind = node_kind(node)
+    match kind:
+        case Const():
+            return "true" if kind.value else "false"
+        case Var():
+            return kind.name + ("'" if kind.primed else "")
+        case IntVar():
+            return f"health({kind.name})" + ("'" if kind.primed else "")
+        case IntConst():
+            return str(kind.value)
+        case Not():
+            return ("!", operands[0])
+        case And() | Or() | Xor() | Iff() | Implies():
+            return separated(_BINARY[type(kind)], operands)
+        case Compare():
+            return (texts[0], f" {kind.op} ", texts[1])
+        case Add():
+            return separated(" + ", texts)
+        case Next() | Always() | Eventually():
+            return (_WORDS[type(kind)], "(", separated(", ", texts), ")")
+        case _:
+            unreachable(kind)

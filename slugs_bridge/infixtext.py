@@ -11,9 +11,11 @@ from collections.abc import Mapping
 
 from gaitc.ir.formula import (
     Add,
+    Always,
     And,
     Compare,
     Const,
+    Eventually,
     Iff,
     Implies,
     IntConst,
@@ -22,9 +24,10 @@ from gaitc.ir.formula import (
     Node,
     Not,
     Or,
-    Term,
     Var,
     Xor,
+    node_kind,
+    unreachable,
 )
 
 # Binding strength in SLUGS's grammar: higher binds tighter; comparisons are atoms.
@@ -69,44 +72,46 @@ def emit_infix(
 
 def _pieces(node: Node, as_next: bool, names: Mapping[str, str]) -> str | list[_Piece]:
     """The text of a leaf, or what ``node`` is written as: literals and child nodes."""
-    if isinstance(node, (Var, IntVar)):
-        name = names.get(node.name, node.name)
-        if not node.primed:
-            return name
-        return f"X {name}" if as_next else name + "'"
-    if isinstance(node, Const):
-        return "TRUE" if node.value else "FALSE"
-    if isinstance(node, IntConst):
-        if node.value < 0:
+    kind = node_kind(node)
+    match kind:
+        case Var() | IntVar():
+            name = names.get(kind.name, kind.name)
+            if not kind.primed:
+                return name
+            return f"X {name}" if as_next else name + "'"
+        case Const():
+            return "TRUE" if kind.value else "FALSE"
+        case IntConst():
+            if kind.value < 0:
+                raise ValueError(
+                    f"cannot write the negative constant {kind.value} in structuredslugs")
+            return str(kind.value)
+        case Not() | Next():
+            sign = "!" if isinstance(kind, Not) else "X "
+            return [sign, *_bracketed(kind.arg, _level(kind.arg) < _level(kind))]
+        case And() | Or():
+            if len(kind.args) < 2:
+                return [kind.args[0]] if kind.args else (
+                    "TRUE" if isinstance(kind, And) else "FALSE")
+            level = _level(kind)
+            pieces: list[_Piece] = []
+            for index, arg in enumerate(kind.args):
+                if index:
+                    pieces.append(_SYMBOL[type(kind)])
+                pieces.extend(_bracketed(arg, _level(arg) <= level))
+            return pieces
+        case Iff() | Implies() | Xor():
+            level = _level(kind)
+            return [*_bracketed(kind.left, _level(kind.left) < level), _SYMBOL[type(kind)],
+                    *_bracketed(kind.right, _level(kind.right) <= level)]
+        case Compare():
+            return [kind.left, f" {kind.op} ", kind.right]
+        case Add():
+            # '+' is right-recursive in SLUGS's grammar, so a sum on the left needs brackets.
+            return [*_bracketed(kind.left, isinstance(kind.left, Add)), " + ", kind.right]
+        case Always() | Eventually():
             raise ValueError(
-                f"cannot write the negative constant {node.value} in structuredslugs"
-            )
-        return str(node.value)
-    if isinstance(node, (Not, Next)):
-        sign = "!" if isinstance(node, Not) else "X "
-        return [sign, *_bracketed(node.arg, _level(node.arg) < _level(node))]
-    if isinstance(node, (And, Or)):
-        if len(node.args) < 2:
-            return [node.args[0]] if node.args else ("TRUE" if isinstance(node, And) else "FALSE")
-        level = _level(node)
-        pieces: list[_Piece] = []
-        for index, arg in enumerate(node.args):
-            if index:
-                pieces.append(_SYMBOL[type(node)])
-            pieces.extend(_bracketed(arg, _level(arg) <= level))
-        return pieces
-    if isinstance(node, (Iff, Implies, Xor)):
-        level = _level(node)
-        return [*_bracketed(node.left, _level(node.left) < level), _SYMBOL[type(node)],
-                *_bracketed(node.right, _level(node.right) <= level)]
-    if isinstance(node, Compare):
-        return [node.left, f" {node.op} ", node.right]
-    if isinstance(node, Add):
-        # '+' is right-recursive in SLUGS's grammar, so a sum on the left needs brackets.
-        return [*_bracketed(node.left, isinstance(node.left, Add)), " + ", node.right]
-    if isinstance(node, Term):
-        raise ValueError(f"not an integer term: {node!r}")
-    raise ValueError(
-        f"cannot write {type(node).__name__} in structuredslugs: sections hold state and "
-        "transition formulas only"
-    )
+                f"cannot write {type(kind).__name__} in structuredslugs: sections hold state "
+                "and transition formulas only")
+        case _:
+            unreachable(kind)

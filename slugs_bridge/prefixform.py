@@ -11,7 +11,24 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-from gaitc.ir.formula import And, Const, Expr, Iff, Implies, Node, Not, Or, Var, Xor
+from gaitc.ir.formula import (
+    Always,
+    And,
+    Compare,
+    Const,
+    Eventually,
+    Expr,
+    Iff,
+    Implies,
+    Next,
+    Node,
+    Not,
+    Or,
+    Var,
+    Xor,
+    formula_kind,
+    unreachable,
+)
 from gaitc.ir.spec import SECTIONS, GR1Spec
 from slugs_bridge.slugsin import _buffered_nodes
 
@@ -55,17 +72,23 @@ def _chain(node: Expr, buffered: set[int]) -> _Plan:
 def _plan(node: Expr, buffered: set[int]) -> _Plan:
     if _chain_op(node) is not None:
         return _chain(node, buffered)
-    if isinstance(node, Not):
-        return [(False, node.arg)]
-    if isinstance(node, (Xor, Iff)):
-        return [(False, node.left), (False, node.right)]
-    if isinstance(node, (And, Or)):
-        return [(False, arg) for arg in node.args]  # at most one
-    if isinstance(node, (Var, Const)):
-        return []
-    raise ValueError(
-        f"cannot write {type(node).__name__} in slugsin: the format is Boolean and next-free"
-    )
+    kind = formula_kind(node)
+    match kind:
+        case Not():
+            return [(False, kind.arg)]
+        case Xor() | Iff():
+            return [(False, kind.left), (False, kind.right)]
+        case And() | Or():
+            return [(False, arg) for arg in kind.args]  # at most one
+        case Var() | Const():
+            return []
+        case Implies():  # always a chain (_chain_op)
+            return [(True, kind.left), (False, kind.right)]
+        case Compare() | Next() | Always() | Eventually():
+            raise ValueError(f"cannot write {type(kind).__name__} in slugsin: the format is "
+                             "Boolean and next-free")
+        case _:
+            unreachable(kind)
 
 
 def _build(node: Expr, plan: _Plan, done: dict[int, Expr]) -> Expr:

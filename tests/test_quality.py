@@ -88,3 +88,36 @@ def test_no_eval_or_exec_anywhere() -> None:
                         and node.func.id in ("eval", "exec", "compile")):
                     found.append(f"{path.relative_to(ROOT)}:{node.lineno}: {node.func.id}")
     assert found == []
+
+
+#: The dispatches over formula nodes (issue 33): each is a ``match`` ending in
+#: ``unreachable``, so that mypy reports a node kind one of them forgets.
+DISPATCHES = ("gaitc/ir/evaluation.py", "gaitc/ir/bitblast.py", "gaitc/sim/monitor.py",
+              "gaitc/solver/symbolic.py", "gaitc/verifier/logic.py", "ltlcompiler/lowering.py",
+              "slugs_bridge/prefixform.py", "slugs_bridge/infixtext.py")
+
+
+def test_formula_dispatches_are_checked_matches() -> None:
+    for name in DISPATCHES:
+        text = (ROOT / name).read_text(encoding="utf-8")
+        assert "match " in text and "unreachable(" in text, name
+
+
+def test_mypy_reports_a_forgotten_node_kind(tmp_path: Path) -> None:
+    probe = tmp_path / "probe.py"
+    probe.write_text(
+        '"""A dispatch that forgets Add."""\n'
+        "from gaitc.ir.formula import IntConst, IntVar, Node, term_kind, unreachable\n\n\n"
+        "def width(node: Node) -> int:\n"
+        "    kind = term_kind(node)\n"
+        "    match kind:\n"
+        "        case IntConst():\n"
+        "            return 0\n"
+        "        case IntVar():\n"
+        "            return 1\n"
+        "        case _:\n"
+        "            unreachable(kind)\n", encoding="utf-8")
+    result = subprocess.run([*_tool("mypy"), "--strict", str(probe)], cwd=ROOT,
+                            capture_output=True, text=True, check=False)
+    assert result.returncode == 1, result.stdout
+    assert 'incompatible type "Add"; expected "Never"' in result.stdout

@@ -31,6 +31,9 @@ from gaitc.ir.formula import (
     Term,
     Var,
     Xor,
+    formula_kind,
+    term_kind,
+    unreachable,
     walk,
 )
 from gaitc.ir.spec import SECTIONS, Clause, GR1Spec, Origin, Variable
@@ -141,18 +144,21 @@ def _flatten(term: Term, variables: Mapping[str, Variable]) -> tuple[tuple[Bits,
     def combine(node: Node, kids: list[tuple[tuple[Bits, ...], int]]) -> tuple[
         tuple[Bits, ...], int
     ]:
-        if isinstance(node, IntConst):
-            return (), node.value
-        if isinstance(node, Add):
-            (left, low), (right, high) = kids
-            return left + right, low + high
-        if isinstance(node, IntVar):
-            var = variables.get(node.name)
-            if var is None or not var.is_integer:
-                raise ValueError(f"'{node.name}' is not an integer variable of this spec")
-            assert var.low is not None
-            return ([Var(bit, node.primed) for bit in integer_bits(var)],), var.low
-        raise ValueError(f"not an integer term: {node!r}")
+        kind = term_kind(node)
+        match kind:
+            case IntConst():
+                return (), kind.value
+            case Add():
+                (left, low), (right, high) = kids
+                return left + right, low + high
+            case IntVar():
+                var = variables.get(kind.name)
+                if var is None or not var.is_integer:
+                    raise ValueError(f"'{kind.name}' is not an integer variable of this spec")
+                assert var.low is not None
+                return ([Var(bit, kind.primed) for bit in integer_bits(var)],), var.low
+            case _:
+                unreachable(kind)
 
     return fold(term, combine, lambda n: n.children() if isinstance(n, Add) else ())
 
@@ -197,19 +203,22 @@ def lower(expr: Expr, variables: Mapping[str, Variable], memo: Memo[Expr]) -> Ex
 
 
 def _lower_node(node: Node, kids: list[Expr], variables: Mapping[str, Variable]) -> Expr:
-    if isinstance(node, (Const, Var)):
-        return node
-    if isinstance(node, Compare):
-        return compare_bits(node, variables)
-    if isinstance(node, Not):
-        return Not(kids[0], span=node.span)
-    if isinstance(node, (And, Or)):
-        return type(node)(tuple(kids), span=node.span)
-    if isinstance(node, (Xor, Iff, Implies)):
-        return type(node)(kids[0], kids[1], span=node.span)
-    if isinstance(node, (Next, Always, Eventually)):
-        raise ValueError(f"{type(node).__name__} cannot appear in a GR(1) section")
-    raise ValueError(f"unknown formula node {type(node).__name__}")
+    kind = formula_kind(node)
+    match kind:
+        case Const() | Var():
+            return kind
+        case Compare():
+            return compare_bits(kind, variables)
+        case Not():
+            return Not(kids[0], span=kind.span)
+        case And() | Or():
+            return type(kind)(tuple(kids), span=kind.span)
+        case Xor() | Iff() | Implies():
+            return type(kind)(kids[0], kids[1], span=kind.span)
+        case Next() | Always() | Eventually():
+            raise ValueError(f"{type(kind).__name__} cannot appear in a GR(1) section")
+        case _:
+            unreachable(kind)
 
 
 def range_constraint(var: Variable, primed: bool) -> Expr | None:

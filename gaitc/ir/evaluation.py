@@ -13,20 +13,25 @@ from typing import Any
 from gaitc.diagnostics import FormulaError
 from gaitc.ir.formula import (
     Add,
+    Always,
     And,
     Compare,
     Const,
+    Eventually,
     Expr,
     Iff,
     Implies,
     IntConst,
     IntVar,
+    Next,
     Node,
     Not,
     Or,
     Term,
     Var,
     Xor,
+    node_kind,
+    unreachable,
 )
 from gaitc.ir.traversal import fold
 
@@ -38,31 +43,38 @@ def _key(name: str, primed: bool) -> str:
 
 
 def _value(node: Node, args: list[Any], valuation: Valuation) -> Any:
-    if isinstance(node, (Const, IntConst)):
-        return node.value
-    if isinstance(node, (Var, IntVar)):
-        value = valuation[_key(node.name, node.primed)]
-        return bool(value) if isinstance(node, Var) else int(value)
-    if isinstance(node, Add):
-        return args[0] + args[1]
-    if isinstance(node, Not):
-        return not args[0]
-    if isinstance(node, And):
-        return all(args)
-    if isinstance(node, Or):
-        return any(args)
-    if isinstance(node, Xor):
-        return args[0] != args[1]
-    if isinstance(node, Iff):
-        return args[0] == args[1]
-    if isinstance(node, Implies):
-        return (not args[0]) or args[1]
-    if isinstance(node, Compare):
-        a, b = args
-        return {
-            "=": a == b, "!=": a != b, "<": a < b, "<=": a <= b, ">": a > b, ">=": a >= b
-        }[node.op]
-    raise FormulaError(f"cannot evaluate temporal operator {type(node).__name__}", node.span)
+    kind = node_kind(node)
+    match kind:
+        case Const() | IntConst():
+            return kind.value
+        case Var():
+            return bool(valuation[_key(kind.name, kind.primed)])
+        case IntVar():
+            return int(valuation[_key(kind.name, kind.primed)])
+        case Add():
+            return args[0] + args[1]
+        case Not():
+            return not args[0]
+        case And():
+            return all(args)
+        case Or():
+            return any(args)
+        case Xor():
+            return args[0] != args[1]
+        case Iff():
+            return args[0] == args[1]
+        case Implies():
+            return (not args[0]) or args[1]
+        case Compare():
+            a, b = args
+            return {
+                "=": a == b, "!=": a != b, "<": a < b, "<=": a <= b, ">": a > b, ">=": a >= b
+            }[kind.op]
+        case Next() | Always() | Eventually():
+            raise FormulaError(f"cannot evaluate temporal operator {type(kind).__name__}",
+                               kind.span)
+        case _:
+            unreachable(kind)
 
 
 def _evaluate_node(root: Node, valuation: Valuation) -> Any:

@@ -17,7 +17,7 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Iterator, Mapping
 from dataclasses import dataclass, field
-from typing import cast
+from typing import NoReturn, cast
 
 from gaitc.diagnostics import FormulaError, Span
 from gaitc.ir.traversal import Node as Node
@@ -147,6 +147,42 @@ class Eventually(Expr):
 
 TRUE = Const(True)
 FALSE = Const(False)
+
+
+# ---------------------------------------------------------------- checked dispatch
+#: Every kind of integer term, and every kind of Boolean formula. A dispatch over formula
+#: nodes is a ``match`` over :func:`term_kind` or :func:`formula_kind` that ends in
+#: ``case _: unreachable(node)``: mypy then reports any kind a dispatch forgets.
+TermKind = IntConst | IntVar | Add
+FormulaKind = (Const | Var | Not | And | Or | Xor | Iff | Implies | Compare | Next | Always
+               | Eventually)
+TERM_KINDS = (IntConst, IntVar, Add)
+FORMULA_KINDS = (Const, Var, Not, And, Or, Xor, Iff, Implies, Compare, Next, Always,
+                 Eventually)
+
+
+def term_kind(node: Node) -> TermKind:
+    """``node`` as one of the term kinds (the traversal hands out the base class)."""
+    if not isinstance(node, TERM_KINDS):
+        raise TypeError(f"not an integer term: {type(node).__name__}")
+    return node
+
+
+def formula_kind(node: Node) -> FormulaKind:
+    """``node`` as one of the Boolean formula kinds."""
+    if not isinstance(node, FORMULA_KINDS):
+        raise TypeError(f"not a Boolean formula: {type(node).__name__}")
+    return node
+
+
+def node_kind(node: Node) -> TermKind | FormulaKind:
+    """``node`` as any kind of the IR."""
+    return term_kind(node) if isinstance(node, Term) else formula_kind(node)
+
+
+def unreachable(node: NoReturn) -> NoReturn:
+    """The last case of a checked dispatch: mypy proves it is never reached."""
+    raise AssertionError(f"a dispatch over formula nodes forgot {type(node).__name__}")
 
 
 # ---------------------------------------------------------------- construction helpers

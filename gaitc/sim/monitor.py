@@ -19,21 +19,25 @@ from gaitc.diagnostics import FormulaError, Span
 from gaitc.ir.evaluation import evaluate
 from gaitc.ir.formula import (
     Add,
+    Always,
     And,
     Compare,
     Const,
+    Eventually,
     Expr,
     Iff,
     Implies,
     IntConst,
     IntVar,
+    Next,
     Not,
     Or,
-    Term,
     Var,
     Xor,
     atoms,
     has_primes,
+    node_kind,
+    unreachable,
 )
 from gaitc.ir.spec import SECTIONS, Clause, GR1Spec
 from gaitc.ir.traversal import Node, fold, height
@@ -101,38 +105,45 @@ class _Compiler:
         return fn
 
     def _build(self, node: Node, parts: list[Fn]) -> Fn:
-        if isinstance(node, Const):
-            value = node.value
-            return lambda v: value
-        if isinstance(node, Var):
-            i = self.slot(node.name, node.primed)
-            return lambda v: v[i] != 0
-        if isinstance(node, IntConst):
-            number = node.value
-            return lambda v: number
-        if isinstance(node, IntVar):
-            i = self.slot(node.name, node.primed)
-            return lambda v: v[i]
-        if isinstance(node, Not):
-            (a,) = parts
-            return lambda v: not a(v)
-        if isinstance(node, (And, Or)):
-            return _junction(parts, isinstance(node, And))
-        if isinstance(node, (Add, Xor, Iff, Implies, Compare)):
-            a, b = parts
-            if isinstance(node, Add):
-                return lambda v: a(v) + b(v)
-            if isinstance(node, Xor):
-                return lambda v: a(v) != b(v)
-            if isinstance(node, Iff):
-                return lambda v: a(v) == b(v)
-            if isinstance(node, Implies):
-                return lambda v: not a(v) or b(v)
-            compare = _COMPARE[node.op]
+        kind = node_kind(node)
+        match kind:
+            case Const() | IntConst():
+                value = kind.value
+                return lambda v: value
+            case Var():
+                i = self.slot(kind.name, kind.primed)
+                return lambda v: v[i] != 0
+            case IntVar():
+                j = self.slot(kind.name, kind.primed)
+                return lambda v: v[j]
+            case Not():
+                (a,) = parts
+                return lambda v: not a(v)
+            case And() | Or():
+                return _junction(parts, isinstance(kind, And))
+            case Add() | Xor() | Iff() | Implies() | Compare():
+                return _binary(kind, parts[0], parts[1])
+            case Next() | Always() | Eventually():
+                raise TypeError(f"cannot compile {type(kind).__name__}")
+            case _:
+                unreachable(kind)
+
+
+def _binary(kind: Add | Xor | Iff | Implies | Compare, a: Fn, b: Fn) -> Fn:
+    match kind:
+        case Add():
+            return lambda v: a(v) + b(v)
+        case Xor():
+            return lambda v: a(v) != b(v)
+        case Iff():
+            return lambda v: a(v) == b(v)
+        case Implies():
+            return lambda v: not a(v) or b(v)
+        case Compare():
+            compare = _COMPARE[kind.op]
             return lambda v: compare(a(v), b(v))
-        if isinstance(node, Term):
-            raise TypeError(f"not a term: {node!r}")
-        raise TypeError(f"cannot compile {type(node).__name__}")
+        case _:
+            unreachable(kind)
 
 
 def _junction(parts: Sequence[Fn], conjunction: bool) -> Fn:

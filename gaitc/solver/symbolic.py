@@ -17,20 +17,26 @@ from gaitc.diagnostics import FormulaError
 from gaitc.ir.bits import spec_bits
 from gaitc.ir.formula import (
     Add,
+    Always,
     And,
     Compare,
     Const,
+    Eventually,
     Expr,
     Iff,
     Implies,
     IntConst,
     IntVar,
+    Next,
     Node,
     Not,
     Or,
     Term,
     Var,
     Xor,
+    formula_kind,
+    term_kind,
+    unreachable,
 )
 from gaitc.ir.manager import manager
 from gaitc.ir.spec import Clause, GR1Spec, Variable
@@ -291,40 +297,42 @@ class SymbolicSpec:
     def _translate(self, e: Node, args: list[BDDNode]) -> BDDNode:
         """The BDD of ``e`` from the BDDs of its operands (a step of the fold)."""
         b = self.bdd
-        if isinstance(e, Const):
-            return b.true if e.value else b.false
-        if isinstance(e, Var):
-            v = self.variables.get(e.name)
-            if v is None:
-                raise FormulaError(f"unknown variable '{e.name}'", e.span)
-            if v.is_integer:
+        kind = formula_kind(e)
+        match kind:
+            case Const():
+                return b.true if kind.value else b.false
+            case Var():
+                v = self.variables.get(kind.name)
+                if v is None:
+                    raise FormulaError(f"unknown variable '{kind.name}'", kind.span)
+                if v.is_integer:
+                    raise FormulaError(
+                        f"'{kind.name}' is an integer; compare it with a number (e.g. "
+                        f"{kind.name} = 0)", kind.span)
+                return self.bit(self.var_bits[kind.name][0], kind.primed)
+            case Not():
+                return ~args[0]
+            case And():
+                return self._conj(args)
+            case Or():
+                out = b.false
+                for a in args:
+                    out |= a
+                return out
+            case Xor():
+                return xor(args[0], args[1], b)
+            case Iff():
+                return ~xor(args[0], args[1], b)
+            case Implies():
+                return ~args[0] | args[1]
+            case Compare():
+                return self._compare(kind)
+            case Next() | Always() | Eventually():
                 raise FormulaError(
-                    f"'{e.name}' is an integer; compare it with a number (e.g. {e.name} = 0)",
-                    e.span,
-                )
-            return self.bit(self.var_bits[e.name][0], e.primed)
-        if isinstance(e, Not):
-            return ~args[0]
-        if isinstance(e, And):
-            return self._conj(args)
-        if isinstance(e, Or):
-            out = b.false
-            for a in args:
-                out |= a
-            return out
-        if isinstance(e, Xor):
-            return xor(args[0], args[1], b)
-        if isinstance(e, Iff):
-            return ~xor(args[0], args[1], b)
-        if isinstance(e, Implies):
-            return ~args[0] | args[1]
-        if isinstance(e, Compare):
-            return self._compare(e)
-        raise FormulaError(
-            f"'{type(e).__name__}' cannot appear in a GR(1) section; rewrite it without "
-            "temporal operators",
-            e.span,
-        )
+                    f"'{type(kind).__name__}' cannot appear in a GR(1) section; rewrite it "
+                    "without temporal operators", kind.span)
+            case _:
+                unreachable(kind)
 
     # ------------------------------------------------------------ integer arithmetic
     def _const_bits(self, value: int, width: int = 0) -> list[BDDNode]:
@@ -340,18 +348,21 @@ class SymbolicSpec:
         def combine(node: Node, kids: list[tuple[list[BDDNode], int]]) -> tuple[
             list[BDDNode], int
         ]:
-            if isinstance(node, IntConst):
-                return [], node.value
-            if isinstance(node, IntVar):
-                v = self.variables.get(node.name)
-                if v is None:
-                    raise FormulaError(f"unknown variable '{node.name}'", node.span)
-                bits = [self.bit(bit, node.primed) for bit in self.var_bits[node.name]]
-                return bits, v.low if v.low is not None else 0
-            if isinstance(node, Add):
-                (lb, lo), (rb, ro) = kids
-                return add(lb, rb, self.bdd), lo + ro
-            raise FormulaError(f"unsupported integer term {type(node).__name__}", node.span)
+            kind = term_kind(node)
+            match kind:
+                case IntConst():
+                    return [], kind.value
+                case IntVar():
+                    v = self.variables.get(kind.name)
+                    if v is None:
+                        raise FormulaError(f"unknown variable '{kind.name}'", kind.span)
+                    bits = [self.bit(bit, kind.primed) for bit in self.var_bits[kind.name]]
+                    return bits, v.low if v.low is not None else 0
+                case Add():
+                    (lb, lo), (rb, ro) = kids
+                    return add(lb, rb, self.bdd), lo + ro
+                case _:
+                    unreachable(kind)
 
         return fold(t, combine, lambda n: n.children() if isinstance(n, Add) else ())
 

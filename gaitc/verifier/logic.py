@@ -13,7 +13,23 @@ from collections.abc import Mapping, Sequence
 from typing import Any
 
 from gaitc.diagnostics import FormulaError
-from gaitc.ir.formula import And, Const, Expr, Iff, Implies, Not, Or, Var, Xor
+from gaitc.ir.formula import (
+    Always,
+    And,
+    Compare,
+    Const,
+    Eventually,
+    Expr,
+    Iff,
+    Implies,
+    Next,
+    Not,
+    Or,
+    Var,
+    Xor,
+    formula_kind,
+    unreachable,
+)
 from gaitc.ir.manager import manager
 from gaitc.ir.spec import Clause, GR1Spec
 from gaitc.ir.traversal import Memo, Node, fold
@@ -65,24 +81,33 @@ class Logic:
 
     def _translate(self, expr: Node, args: list[Any]) -> Any:
         b = self.bdd
-        if isinstance(expr, Const):
-            return b.true if expr.value else b.false
-        if isinstance(expr, Var):
-            name = expr.name + ("'" if expr.primed else "")
-            if name not in b.vars:
-                raise FormulaError(f"'{expr.name}' is not a variable of the specification",
-                                   expr.span)
-            return b.var(name)
-        if isinstance(expr, Not):
-            return ~args[0]
-        if isinstance(expr, (And, Or)):
-            op, unit = ("and", b.true) if isinstance(expr, And) else ("or", b.false)
-            return functools.reduce(lambda x, y: b.apply(op, x, y), args, unit)
-        if isinstance(expr, (Xor, Iff, Implies)):
-            op = {Xor: "xor", Iff: "equiv", Implies: "implies"}[type(expr)]
-            return b.apply(op, args[0], args[1])
-        raise FormulaError(f"the verifier cannot check {type(expr).__name__} formulas; "
-                           "bit-blast integers first", expr.span)
+        kind = formula_kind(expr)
+        match kind:
+            case Const():
+                return b.true if kind.value else b.false
+            case Var():
+                name = kind.name + ("'" if kind.primed else "")
+                if name not in b.vars:
+                    raise FormulaError(f"'{kind.name}' is not a variable of the specification",
+                                       kind.span)
+                return b.var(name)
+            case Not():
+                return ~args[0]
+            case And():
+                return functools.reduce(lambda x, y: b.apply("and", x, y), args, b.true)
+            case Or():
+                return functools.reduce(lambda x, y: b.apply("or", x, y), args, b.false)
+            case Xor():
+                return b.apply("xor", args[0], args[1])
+            case Iff():
+                return b.apply("equiv", args[0], args[1])
+            case Implies():
+                return b.apply("implies", args[0], args[1])
+            case Compare() | Next() | Always() | Eventually():
+                raise FormulaError(f"the verifier cannot check {type(kind).__name__} formulas; "
+                                   "bit-blast integers first", kind.span)
+            case _:
+                unreachable(kind)
 
     def support(self, u: Any) -> tuple[str, ...]:
         key = int(u)
