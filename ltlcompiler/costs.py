@@ -12,11 +12,11 @@ from __future__ import annotations
 
 from gaitc.ir.costs import Cost
 from gaitc.ir.formula import Expr, Not, conj, disj
-from ltlcompiler.encoding import Encoding, make_encoding
+from ltlcompiler.encoding import Encoding, EncodingName, make_encoding
 from ltlcompiler.model import GaitKind, Model
 
 
-def model_costs(model: Model, encoding: str = "onehot") -> tuple[Cost, ...]:
+def model_costs(model: Model, encoding: EncodingName = EncodingName.ONEHOT) -> tuple[Cost, ...]:
     """The ``hazard``, ``health`` and ``switches`` costs of ``model`` in ``encoding``.
 
     Turn order (see :func:`ltlcompiler.lowering.lower`): the next region and gait the robot

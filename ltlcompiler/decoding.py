@@ -10,7 +10,14 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 
 from gaitc.diagnostics import ControllerError
-from ltlcompiler.encoding import GAIT_VAR, HAZARD_VAR, REGION_VAR, health_prop, make_encoding
+from ltlcompiler.encoding import (
+    GAIT_VAR,
+    HAZARD_VAR,
+    REGION_VAR,
+    EncodingName,
+    health_prop,
+    make_encoding,
+)
 from ltlcompiler.model import Model
 
 
@@ -57,7 +64,7 @@ def _indexed(values: Mapping[str, int], var: str, names: list[str], what: str, l
     return value - low
 
 
-def decode(model: Model, encoding: str, values: Mapping[str, int]) -> RobotState:
+def decode(model: Model, encoding: EncodingName, values: Mapping[str, int]) -> RobotState:
     """The robot state in ``values`` (spec variable name -> 0/1 or integer value).
 
     Raises :class:`ControllerError` for a missing variable or an inconsistent valuation
@@ -88,7 +95,7 @@ def decode(model: Model, encoding: str, values: Mapping[str, int]) -> RobotState
     return RobotState(region, gait, tuple(health), hazard)
 
 
-def encode(model: Model, encoding: str, state: RobotState) -> dict[str, int]:
+def encode(model: Model, encoding: EncodingName, state: RobotState) -> dict[str, int]:
     """The spec variable values of ``state`` (the inverse of :func:`decode`), sorted by name."""
     make_encoding(model, encoding)
     regions = [r.name for r in model.regions]

@@ -6,9 +6,10 @@ from __future__ import annotations
 
 import itertools
 from collections.abc import Iterator, Sequence
-from typing import Final, Literal, get_args
+from typing import Final
 
 from gaitc.diagnostics import FormulaError, SpecSemanticError, UsageError
+from gaitc.diagnostics.choices import Choice
 from gaitc.ir.evaluation import evaluate
 from gaitc.ir.formula import (
     And,
@@ -31,10 +32,17 @@ from gaitc.ir.spec import Variable
 from gaitc.ir.traversal import Node, rebuild
 from ltlcompiler.model import Model
 
-EncodingName = Literal["onehot", "binary"]
-#: ``onehot``: the thesis's proposition per region, gait and health level; ``binary``:
-#: integer variables, bit-blasted as SLUGS's converter does.
-ENCODINGS: Final[tuple[EncodingName, ...]] = get_args(EncodingName)
+
+class EncodingName(Choice):
+    """How a ``.gait`` model becomes variables: ``onehot``, the thesis's proposition per
+    region, gait and health level; ``binary``, integer variables, bit-blasted as SLUGS's
+    converter does."""
+
+    ONEHOT = "onehot"
+    BINARY = "binary"
+
+
+ENCODINGS: Final = tuple(EncodingName)
 REGION_VAR = "region"
 GAIT_VAR = "gait"
 HAZARD_VAR = "hazard"
@@ -272,7 +280,7 @@ class Binary(Encoding):
         return cmp
 
 
-def make_encoding(model: Model, encoding: str) -> Encoding:
+def make_encoding(model: Model, encoding: EncodingName) -> Encoding:
     """The :class:`Encoding` named ``encoding`` ("onehot" or "binary") for ``model``."""
     if encoding == "onehot":
         return OneHot(model)
@@ -281,7 +289,7 @@ def make_encoding(model: Model, encoding: str) -> Encoding:
     raise UsageError(f"unknown encoding '{encoding}': use one of {', '.join(ENCODINGS)}")
 
 
-def check_names(model: Model, encoding: str) -> None:
+def check_names(model: Model, encoding: EncodingName) -> None:
     """Raise :class:`SpecSemanticError` when a user name collides with a generated name."""
     enc = make_encoding(model, encoding)
     seen: dict[str, Variable] = {}

@@ -35,11 +35,11 @@ from gaitc.ir.formula import (
 )
 from gaitc.ir.spec import SECTIONS, Clause, GR1Spec, Origin, section_named
 from gaitc.ir.traversal import Node, Text, fold, join_text, separated
-from ltlcompiler.encoding import Encoding, check_names, make_encoding
+from ltlcompiler.encoding import Encoding, EncodingName, check_names, make_encoding
 from ltlcompiler.model import NO_GAIT, GaitKind, Model, Section, UserFormula
 
 
-def lower(model: Model, encoding: str = "onehot") -> GR1Spec:
+def lower(model: Model, encoding: EncodingName = EncodingName.ONEHOT) -> GR1Spec:
     """The GR(1) specification of ``model`` in ``encoding`` ("onehot" or "binary").
 
     Sections: eqs. 3.3 and 3.4 in sys_trans; 3.5 (with 3.8's ¬φ_H in the antecedent),

@@ -31,7 +31,7 @@ from gaitc.ir.controller import (
 )
 from gaitc.ir.evaluation import evaluate
 from gaitc.ir.formula import conj
-from gaitc.ir.spec import GR1Spec
+from gaitc.ir.spec import GR1Spec, Semantics
 from slugs_bridge.slugsin import slugsin_renaming
 
 #: Options per task and semantics; every combination appears in SLUGS's ``optionCombinations``.
@@ -90,7 +90,7 @@ def _binary(slugs: str | None) -> str:
 
 
 def _run(
-    mode: str, slugsin_text: str, semantics: str, timeout: float | None, slugs: str | None
+    mode: str, slugsin_text: str, semantics: Semantics, timeout: float | None, slugs: str | None
 ) -> SlugsResult:
     if (mode, semantics) not in OPTIONS:
         raise ValueError(f"unknown SLUGS task {mode!r} / semantics {semantics!r}")
@@ -145,7 +145,7 @@ def _verdict(stderr: str, returncode: int) -> bool:
 
 
 def run_slugs_check(
-    slugsin_text: str, *, semantics: str = "default", timeout: float | None = None,
+    slugsin_text: str, *, semantics: Semantics = Semantics.DEFAULT, timeout: float | None = None,
     slugs: str | None = None,
 ) -> SlugsResult:
     """Decide realizability with ``slugs [--sysInitRoboticsSemantics] spec.slugsin``."""
@@ -153,7 +153,7 @@ def run_slugs_check(
 
 
 def run_slugs_synth(
-    slugsin_text: str, *, semantics: str = "default", timeout: float | None = None,
+    slugsin_text: str, *, semantics: Semantics = Semantics.DEFAULT, timeout: float | None = None,
     slugs: str | None = None,
 ) -> SlugsResult:
     """``slugs --explicitStrategy --jsonOutput ... spec.slugsin out.json``; ``output`` holds the
@@ -162,7 +162,7 @@ def run_slugs_synth(
 
 
 def run_slugs_counter(
-    slugsin_text: str, *, semantics: str = "default", timeout: float | None = None,
+    slugsin_text: str, *, semantics: Semantics = Semantics.DEFAULT, timeout: float | None = None,
     slugs: str | None = None,
 ) -> SlugsResult:
     """``slugs --counterStrategy ... out.txt spec.slugsin``; ``output`` holds SLUGS's textual
@@ -177,9 +177,8 @@ def _starts(spec: GR1Spec, variables: tuple[str, ...], node: ControllerNode) -> 
     return evaluate(conj(c.formula for c in spec.env_init + spec.sys_init), valuation)
 
 
-def controller_from_slugs_json(
-    text: str, spec: GR1Spec, semantics: str = "default", filename: str = "<slugs output>"
-) -> Controller:
+def controller_from_slugs_json(text: str, spec: GR1Spec, semantics: Semantics = Semantics.DEFAULT,
+                               filename: str = "<slugs output>") -> Controller:
     """SLUGS's JSON strategy as a :class:`Controller`, with the gaitc extras filled in.
 
     SLUGS does not mark initial nodes: it numbers the states of W ∧ θe ∧ θs first, with
@@ -205,9 +204,9 @@ def controller_from_slugs_json(
     return replace(raw, initial=initial, semantics=semantics, solver="slugs")
 
 
-def counterstrategy_from_slugs_text(
-    text: str, spec: GR1Spec, semantics: str = "default", filename: str = "<slugs output>"
-) -> Controller:
+def counterstrategy_from_slugs_text(text: str, spec: GR1Spec,
+                                    semantics: Semantics = Semantics.DEFAULT,
+                                    filename: str = "<slugs output>") -> Controller:
     """SLUGS's textual counter-strategy (``State N with rank (i,j) -> <v:0, ...>`` lines).
 
     Dead-end states (the system has no move) list only input bits; their output bits become 0.

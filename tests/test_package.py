@@ -166,3 +166,36 @@ def test_the_wheel_works_from_a_fresh_environment(wheel: Path, tmp_path: Path) -
         firmware = run("firmware", "build", "-o", "fw")
         assert firmware.returncode == 0, firmware.stderr
         assert (work / "fw" / "gaitboard.hex").exists()
+
+
+def test_files_from_a_newer_gaitc_are_refused_with_a_clear_message(tmp_path: Path) -> None:
+    """Each format gaitc reads back checks its version: a controller or a run written by a
+    newer gaitc is named as such, with the file, line and the way out."""
+    spec = gaitc.load(ROOT / "specs" / "patrol_2x2.gait")
+    found = gaitc.synthesize(spec)
+    found.save(tmp_path / "c.json")
+    data = json.loads((tmp_path / "c.json").read_text(encoding="utf-8"))
+    assert data["gaitc"]["format"] == 1
+    data["gaitc"]["format"] = 7
+    (tmp_path / "c.json").write_text(json.dumps(data), encoding="utf-8")
+    with pytest.raises(gaitc.ControllerError) as newer:
+        gaitc.verify(spec, tmp_path / "c.json")
+    assert newer.value.message == ("this controller file is format version 7, written by a "
+                                   "newer gaitc; this gaitc reads versions up to 1")
+    assert newer.value.hint is not None and "upgrade gaitc" in newer.value.hint
+    run = gaitc.simulate(spec, found, steps=2)
+    from gaitc.sim.run import read_jsonl, save_run
+
+    save_run(run, tmp_path / "r.jsonl")
+    lines = (tmp_path / "r.jsonl").read_text(encoding="utf-8").splitlines()
+    head = json.loads(lines[0])
+    assert head["kind"] == "run" and head["format"] == 2
+    assert len(read_jsonl(tmp_path / "r.jsonl").steps) == len(run.steps)
+    head["format"] = 3
+    (tmp_path / "r.jsonl").write_text("\n".join([json.dumps(head), *lines[1:]]) + "\n",
+                                      encoding="utf-8")
+    with pytest.raises(gaitc.ScenarioError) as run_newer:
+        read_jsonl(tmp_path / "r.jsonl")
+    assert run_newer.value.message.startswith("this run file is format version 3, written by "
+                                              "a newer gaitc")
+    assert run_newer.value.span is not None and run_newer.value.span.line == 1

@@ -107,7 +107,8 @@ def _file(tmp_path: Path, edit: Any) -> Path:
 
 BROKEN = [
     (lambda d: d["gaitc"].update(version=9),
-     "symbolic controller version 9 is not supported (this gaitc reads version 1)"),
+     "this symbolic controller file is format version 9, written by a newer gaitc; this gaitc "
+     "reads versions up to 1"),
     (lambda d: d["nodes"].__setitem__(0, [0, 5, 1]),
      "BDD node 0: reference 5 is not an earlier node"),
     (lambda d: d["nodes"].__setitem__(0, [999, 0, 1]),

@@ -33,7 +33,8 @@ from gaitc.analysis.sanity import ROBOT, Warning_, player_of, sanity
 from gaitc.analysis.units import Unit
 from gaitc.diagnostics import render, source_lines
 from gaitc.ir.controller import Controller
-from gaitc.ir.spec import GR1Spec
+from gaitc.ir.spec import GR1Spec, Semantics
+from ltlcompiler.encoding import EncodingName
 
 if TYPE_CHECKING:
     from gaitc.sim.run import Run
@@ -177,7 +178,7 @@ def kind_text(kind: Kind | None, player: str = ROBOT) -> str:
 
 
 def explain(spec: GR1Spec, file: str, source: str = "", model: Model | None = None,
-            encoding: str | None = None, semantics: str = "default",
+            encoding: EncodingName | None = None, semantics: Semantics = Semantics.DEFAULT,
             timeout: float | None = None, with_repairs: bool = True) -> Explanation:
     """Explain ``spec``: for a ``.gait`` spec pass its ``model``, ``encoding`` and ``source``."""
     started = time.monotonic()
@@ -225,7 +226,7 @@ def explain(spec: GR1Spec, file: str, source: str = "", model: Model | None = No
 
 
 def _final_move(spec: GR1Spec, counter: Controller, play: Play, model: Model,
-                encoding: str, run: Run) -> str | None:
+                encoding: EncodingName, run: Run) -> str | None:
     if not play.deadlock or not run.steps:
         return None
     from gaitc.sim.domain import Domain
@@ -245,7 +246,7 @@ def _goal_label(spec: GR1Spec, j: int) -> str:
     return rule.split(": ", 1)[1] if rule.startswith("goal") and ": " in rule else rule
 
 
-def _run(counter: Any, spec: GR1Spec, model: Model, encoding: str, play: Play,
+def _run(counter: Any, spec: GR1Spec, model: Model, encoding: EncodingName, play: Play,
          file: str) -> Run:
     from gaitc.sim.counterplay import path_run
     from gaitc.sim.domain import Domain

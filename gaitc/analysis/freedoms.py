@@ -16,7 +16,7 @@ from gaitc.analysis.oracle import Oracle
 from gaitc.analysis.units import with_clauses
 from gaitc.ir.formula import Expr, Implies, Not, conj, disj
 from gaitc.ir.spec import Clause, GR1Spec, Origin
-from ltlcompiler.encoding import Encoding, make_encoding
+from ltlcompiler.encoding import Encoding, EncodingName, make_encoding
 from ltlcompiler.model import GaitKind, Model
 
 
@@ -68,13 +68,13 @@ def _restrictions(model: Model, enc: Encoding, taken: tuple[Freedom, ...]
     return extra
 
 
-def restricted(spec: GR1Spec, model: Model, encoding: str,
+def restricted(spec: GR1Spec, model: Model, encoding: EncodingName,
                taken: tuple[Freedom, ...]) -> GR1Spec:
     """``spec`` with the freedoms ``taken`` away from the environment."""
     return with_clauses(spec, _restrictions(model, make_encoding(model, encoding), taken))
 
 
-def needed_freedoms(spec: GR1Spec, model: Model, encoding: str, oracle: Oracle
+def needed_freedoms(spec: GR1Spec, model: Model, encoding: EncodingName, oracle: Oracle
                     ) -> tuple[Freedom, ...]:
     """A 1-minimal set of freedoms with which the environment still wins (``spec`` must be
     unrealizable); every freedom outside it is taken away in the test."""

@@ -11,7 +11,7 @@ from dataclasses import dataclass, field
 
 from gaitc.diagnostics import SolverError
 from gaitc.ir.controller import Controller
-from gaitc.ir.spec import GR1Spec
+from gaitc.ir.spec import GR1Spec, Semantics
 from gaitc.solver import synthesis
 from gaitc.solver.portfolio import engine_options
 from gaitc.solver.symbolic import Options
@@ -21,7 +21,7 @@ from gaitc.solver.symbolic import Options
 class Oracle:
     """Solves variants under one semantics until ``deadline`` (a ``time.monotonic`` value)."""
 
-    semantics: str = "default"
+    semantics: Semantics = Semantics.DEFAULT
     deadline: float | None = None
     calls: int = 0
     seconds: float = 0.0
@@ -31,7 +31,7 @@ class Oracle:
     _options: Options | None = field(default=None, repr=False)
 
     @classmethod
-    def within(cls, semantics: str, timeout: float | None) -> Oracle:
+    def within(cls, semantics: Semantics, timeout: float | None) -> Oracle:
         deadline = None if timeout is None else time.monotonic() + timeout
         return cls(semantics, deadline)
 

@@ -17,11 +17,11 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, replace
 
 from gaitc.ir.formula import Compare, Expr, Implies, IntConst, IntVar, conj, disj
-from gaitc.ir.spec import Clause, GR1Spec, Origin, Variable
+from gaitc.ir.spec import Clause, GR1Spec, Origin, Semantics, Variable
 from gaitc.solver.game import Game
 from gaitc.solver.ordering import variable_order
 from gaitc.solver.symbolic import BDDNode, Options, SymbolicSpec
-from ltlcompiler.encoding import health_prop, make_encoding
+from ltlcompiler.encoding import EncodingName, health_prop, make_encoding
 from ltlcompiler.lowering import lower
 from ltlcompiler.model import Model
 
@@ -42,7 +42,7 @@ def cap_name(leg: str) -> str:
     return f"{PREFIX}{leg}"
 
 
-def parametric_spec(model: Model, encoding: str, domains: Mapping[str, Sequence[int]]
+def parametric_spec(model: Model, encoding: EncodingName, domains: Mapping[str, Sequence[int]]
                     ) -> GR1Spec:
     """The spec of ``model`` with each leg's cap a rigid parameter ranging over its domain."""
     raised = replace(model, legs=tuple(
@@ -94,7 +94,7 @@ TOP_LIMIT = 1 << 16
 BLOCK_LIMIT = 1 << 20
 
 
-def cap_order(model: Model, encoding: str, spec: GR1Spec,
+def cap_order(model: Model, encoding: EncodingName, spec: GR1Spec,
               domains: Mapping[str, Sequence[int]]) -> tuple[str, ...]:
     """``Options.first`` for the game of ``spec`` (see :data:`TOP_LIMIT`)."""
     vectors = 1
@@ -130,8 +130,8 @@ class _Solved:
     peak_nodes: int
 
 
-def _solve(model: Model, encoding: str, domains: Mapping[str, Sequence[int]],
-           semantics: str) -> _Solved:
+def _solve(model: Model, encoding: EncodingName, domains: Mapping[str, Sequence[int]],
+           semantics: Semantics) -> _Solved:
     spec = parametric_spec(model, encoding, domains)
     sym = SymbolicSpec(spec, Options(first=cap_order(model, encoding, spec, domains)))
     result = Game(sym).solve()
@@ -155,8 +155,9 @@ def _vectors(solved: _Solved, legs: tuple[str, ...], domains: Mapping[str, Seque
     return vectors
 
 
-def winning_caps(model: Model, encoding: str, domains: Mapping[str, Sequence[int]],
-                 semantics: str = "default", minimal_only: bool = False) -> ParametricResult:
+def winning_caps(model: Model, encoding: EncodingName, domains: Mapping[str, Sequence[int]],
+                 semantics: Semantics = Semantics.DEFAULT,
+                 minimal_only: bool = False) -> ParametricResult:
     """Every cap vector (one value per leg, in ``model.legs`` order) the robot wins from;
     with ``minimal_only``, just the minimal ones (the Pareto front of an upward-closed set
     over contiguous domains), computed on the BDD before anything is enumerated."""
@@ -179,7 +180,8 @@ class FailureSets:
     peak_nodes: int
 
 
-def failure_sets(model: Model, encoding: str, semantics: str = "default") -> FailureSets:
+def failure_sets(model: Model, encoding: EncodingName,
+                 semantics: Semantics = Semantics.DEFAULT) -> FailureSets:
     """The failure sets from one game whose caps range over {1, full}, read off the BDD.
 
     Flipping leg L between failed and full negates the bits of its cap that are 1 in
@@ -222,7 +224,7 @@ def failure_sets(model: Model, encoding: str, semantics: str = "default") -> Fai
 
 
 def winning_parameters(sym: SymbolicSpec, winning: BDDNode, param_bits: Sequence[str],
-                       semantics: str) -> BDDNode:
+                       semantics: Semantics) -> BDDNode:
     """The parameter values (a BDD over ``param_bits``) with an admissible initial state from
     which the robot wins under ``semantics`` (SLUGS's initial condition, per parameter)."""
     bdd = sym.bdd

@@ -18,19 +18,20 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from gaitc.diagnostics import SolverError, UsageError
-from gaitc.ir.spec import GR1Spec
+from gaitc.ir.spec import GR1Spec, Semantics
+from ltlcompiler.encoding import EncodingName
 from ltlcompiler.lowering import lower
 from ltlcompiler.model import Model
 
 Progress = Callable[[int, int, float], None]  # (done, total, seconds so far)
 
 
-def variant_realizable(model: Model, encoding: str, semantics: str) -> bool:
+def variant_realizable(model: Model, encoding: EncodingName, semantics: Semantics) -> bool:
     """Lower ``model`` and decide it (the unit of work sent to workers)."""
     return spec_realizable(lower(model, encoding), semantics)
 
 
-def spec_realizable(spec: GR1Spec, semantics: str, first: tuple[str, ...] = ()) -> bool:
+def spec_realizable(spec: GR1Spec, semantics: Semantics, first: tuple[str, ...] = ()) -> bool:
     """Decide a ready-made spec, ``first`` pinned to the top of the BDD order. The static
     order, without the solver's race (gaitc.solver.portfolio): variants of a robot's task are
     the family it is tuned for, and the workers of --jobs and --dask already fill the
@@ -46,8 +47,8 @@ def spec_realizable(spec: GR1Spec, semantics: str, first: tuple[str, ...] = ()) 
 class Pool:
     """Where variant checks run, and how many have run."""
 
-    encoding: str
-    semantics: str = "default"
+    encoding: EncodingName
+    semantics: Semantics = Semantics.DEFAULT
     jobs: int = 1
     dask: str | None = None
     progress: Progress | None = None

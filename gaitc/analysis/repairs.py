@@ -15,6 +15,7 @@ from dataclasses import dataclass
 from gaitc.analysis.oracle import Oracle
 from gaitc.diagnostics import GaitcError, source_lines
 from gaitc.ir.formula import Var
+from ltlcompiler.encoding import EncodingName
 from ltlcompiler.frontend import model_from_text
 from ltlcompiler.lowering import lower
 from ltlcompiler.model import Model
@@ -129,7 +130,7 @@ def candidate_edits(model: Model, text: str, visited: list[str]) -> list[_Edit]:
     return sorted(edits, key=lambda e: e.cost)
 
 
-def repairs(model: Model, text: str, filename: str, encoding: str, oracle: Oracle,
+def repairs(model: Model, text: str, filename: str, encoding: EncodingName, oracle: Oracle,
             visited: list[str]) -> tuple[Repair, ...]:
     """The verified single-edit repairs, cheapest first; for each leg only its least raise."""
     lines = source_lines(text)

@@ -36,6 +36,8 @@ from gaitc.analysis.variants import (
     with_health,
 )
 from gaitc.diagnostics import GaitcError
+from gaitc.ir.spec import Semantics
+from ltlcompiler.encoding import EncodingName
 from ltlcompiler.model import Model
 
 METHODS: Final = ("parametric", "lattice")
@@ -179,9 +181,10 @@ def _sets(sets: tuple[tuple[str, ...], ...]) -> str:
     return " ".join("{" + ", ".join(s) + "}" for s in sets)
 
 
-def resilience(model: Model, encoding: str, file: str = "", semantics: str = "default",
-               method: str = "parametric", health_bound: int | None = None,
-               place_caches: int | None = None, pool: Pool | None = None) -> Resilience:
+def resilience(model: Model, encoding: EncodingName, file: str = "",
+               semantics: Semantics = Semantics.DEFAULT, method: str = "parametric",
+               health_bound: int | None = None, place_caches: int | None = None,
+               pool: Pool | None = None) -> Resilience:
     """Every answer of the module docstring for ``model``."""
     if method not in METHODS:
         raise ValueError(f"unknown method {method!r}; use one of {', '.join(METHODS)}")
@@ -253,8 +256,8 @@ def _ordered(sets: tuple[frozenset[str], ...], elements: list[str]
     return tuple(sorted(items, key=lambda t: (len(t), [rank[x] for x in t])))
 
 
-def _any_time(model: Model, encoding: str, legs: list[str], pool: Pool, semantics: str,
-              minimal_fatal: tuple[tuple[str, ...], ...] = ()
+def _any_time(model: Model, encoding: EncodingName, legs: list[str], pool: Pool,
+              semantics: Semantics, minimal_fatal: tuple[tuple[str, ...], ...] = ()
               ) -> tuple[int, tuple[tuple[str, ...], ...]]:
     """The largest k with any k legs breaking survived (one game per k), and the sets of
     k + 1 breakable legs that defeat the robot: one game per candidate set when there are
@@ -296,8 +299,8 @@ def defeat_candidates(model: Model, legs: list[str], size: int,
     return [c for c in combos if any(f <= frozenset(c) for f in fatal)]
 
 
-def _defeating(model: Model, encoding: str, legs: list[str], size: int, semantics: str
-               ) -> tuple[tuple[str, ...], ...]:
+def _defeating(model: Model, encoding: EncodingName, legs: list[str], size: int,
+               semantics: Semantics) -> tuple[tuple[str, ...], ...]:
     from gaitc.ir.formula import Var
     from gaitc.solver.game import Game
     from gaitc.solver.symbolic import Options, SymbolicSpec
@@ -315,8 +318,8 @@ def _defeating(model: Model, encoding: str, legs: list[str], size: int, semantic
     return tuple(sorted(found, key=lambda s: [rank[x] for x in s]))
 
 
-def _health(report: Resilience, model: Model, encoding: str, semantics: str, method: str,
-            bound: int | None, pool: Pool, notes: list[str]) -> Resilience:
+def _health(report: Resilience, model: Model, encoding: EncodingName, semantics: Semantics,
+            method: str, bound: int | None, pool: Pool, notes: list[str]) -> Resilience:
     names = [leg.name for leg in model.legs]
     top = bound or max(leg.health for leg in model.legs)
     uniform = None

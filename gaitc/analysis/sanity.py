@@ -24,7 +24,7 @@ from gaitc.ir.formula import FALSE
 from gaitc.ir.spec import Clause, GR1Spec, Origin, Variable
 from gaitc.solver.game import Game
 from gaitc.solver.symbolic import BDDNode, SymbolicSpec
-from ltlcompiler.encoding import make_encoding
+from ltlcompiler.encoding import EncodingName, make_encoding
 from ltlcompiler.model import NO_GAIT, Model
 
 _DUMMY = "gaitc_sanity_choice"
@@ -107,7 +107,8 @@ def vacuous_goals(sym: SymbolicSpec) -> tuple[int, ...]:
                  if (steps & ~sym.translate(goal.formula)) == sym.bdd.false)
 
 
-def unused_parts(sym: SymbolicSpec, model: Model, encoding: str) -> dict[str, tuple[str, ...]]:
+def unused_parts(sym: SymbolicSpec, model: Model,
+                 encoding: EncodingName) -> dict[str, tuple[str, ...]]:
     """Regions, gaits and caches in no state that a play inside the winning region reaches."""
     winning = Game(sym).solve().winning
     moves = sym.env_trans & sym.sys_trans & sym.prime(winning)
@@ -135,7 +136,7 @@ def player_of(model: Model | None) -> str:
     return ROBOT if model is not None else SYSTEM
 
 
-def sanity(spec: GR1Spec, model: Model | None, encoding: str | None, oracle: Oracle
+def sanity(spec: GR1Spec, model: Model | None, encoding: EncodingName | None, oracle: Oracle
            ) -> tuple[Warning_, ...]:
     """Every sanity warning of a realizable ``spec``."""
     found: list[Warning_] = []

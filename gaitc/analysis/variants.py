@@ -13,7 +13,7 @@ from dataclasses import replace
 
 from gaitc.ir.formula import Const, Expr, Iff, Implies, Not, Var, conj, substitute
 from gaitc.ir.spec import Clause, GR1Spec, Origin, Variable
-from ltlcompiler.encoding import make_encoding
+from ltlcompiler.encoding import EncodingName, make_encoding
 from ltlcompiler.lowering import lower
 from ltlcompiler.model import GaitKind, Model, UserFormula
 
@@ -116,8 +116,8 @@ def breakable_name(leg: str) -> str:
     return f"{BREAKABLE}{leg}"
 
 
-def anytime_spec(model: Model, encoding: str, k: int, breakable: Iterable[str] | None = None,
-                 parametric: bool = False) -> GR1Spec:
+def anytime_spec(model: Model, encoding: EncodingName, k: int,
+                 breakable: Iterable[str] | None = None, parametric: bool = False) -> GR1Spec:
     """The spec in which the environment may, at any step, break legs for good (at most
     ``k`` of those in ``breakable``, default all): a broken leg's gaits are off from the
     step it breaks on, whatever its health, and no cache mends it. With ``parametric``,

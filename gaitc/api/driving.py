@@ -25,6 +25,8 @@ from gaitc.api.loading import Spec, load
 from gaitc.api.simulation import ENVIRONMENTS, Session, environment, run_document, session
 from gaitc.api.solving import recorded_encoding
 from gaitc.diagnostics import UsageError
+from gaitc.ir.spec import Semantics
+from ltlcompiler.encoding import EncodingName
 
 if TYPE_CHECKING:
     from gaitc.gaitgraph.pairing import ValveSequence
@@ -106,8 +108,8 @@ class DriveOptions:
     cycles: int = 1
     on_violation: str = "stop"
     tracker: Tracker | None = None
-    encoding: str | None = None
-    semantics: str = "default"
+    encoding: EncodingName | str | None = None
+    semantics: Semantics | str = Semantics.DEFAULT
     prefer: str | Sequence[str] | None = None
 
 
@@ -172,8 +174,8 @@ def drive(spec: Spec | str | Path,
     chosen = board if board is not None else SimulatedBoard()
     opts = options or DriveOptions()
     _check(chosen, opts)
-    encoding = opts.encoding or (recorded_encoding(controller)
-                                 if isinstance(controller, (str, Path)) else None) or "onehot"
+    recorded = recorded_encoding(controller) if isinstance(controller, (str, Path)) else None
+    encoding = opts.encoding or recorded or EncodingName.ONEHOT
     checked = spec if isinstance(spec, Spec) else load(spec, encoding)
     if checked.model is None:
         raise UsageError(f"'{checked.path}': driving needs a .gait spec, which binds gaits to "

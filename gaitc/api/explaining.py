@@ -8,10 +8,10 @@ from pathlib import Path
 from gaitc.analysis.explanation import Explanation
 from gaitc.analysis.explanation import explain as explain_spec
 from gaitc.api.loading import Spec, load
-from gaitc.ir.spec import GR1Spec
+from gaitc.ir.spec import GR1Spec, Semantics
 
 
-def explain(spec: Spec | GR1Spec | str | Path, semantics: str = "default",
+def explain(spec: Spec | GR1Spec | str | Path, semantics: Semantics | str = Semantics.DEFAULT,
             timeout: float | None = None, repairs: bool = True) -> Explanation:
     """The :class:`~gaitc.analysis.explanation.Explanation` of ``spec`` (a path is loaded).
 
@@ -22,10 +22,11 @@ def explain(spec: Spec | GR1Spec | str | Path, semantics: str = "default",
     >>> why.repairs[0].change
     'add a cache at nw'
     """
+    chosen = Semantics.parse(semantics, "semantics")
     if isinstance(spec, (str, Path)):
         spec = load(spec)
     if isinstance(spec, GR1Spec):
-        return explain_spec(spec, spec.name or "<spec>", semantics=semantics, timeout=timeout,
+        return explain_spec(spec, spec.name or "<spec>", semantics=chosen, timeout=timeout,
                             with_repairs=repairs)
-    return explain_spec(spec.gr1, spec.path, spec.text, spec.model, spec.encoding, semantics,
-                        timeout, repairs)
+    return explain_spec(spec.gr1, spec.path, spec.text, spec.model, spec.encoding,
+                        semantics=chosen, timeout=timeout, with_repairs=repairs)

@@ -17,7 +17,7 @@ from gaitc.api.presentation import table
 from gaitc.diagnostics import Diagnostic, SlugsFormatError, SpecSyntaxError, UsageError
 from gaitc.diagnostics.files import decode_text, read_input
 from gaitc.ir.spec import SECTIONS, GR1Spec
-from ltlcompiler.encoding import ENCODINGS
+from ltlcompiler.encoding import EncodingName
 
 if TYPE_CHECKING:
     from ltlcompiler.model import Model
@@ -40,7 +40,7 @@ class Spec:
     path: str
     gr1: GR1Spec
     model: Model | None = field(default=None, repr=False)
-    encoding: str | None = None
+    encoding: EncodingName | None = None
     diagnostics: tuple[Diagnostic, ...] = field(default=(), repr=False)
     sha256: str = field(default="", repr=False)
     text: str = field(default="", repr=False, compare=False)  # the source, for messages
@@ -90,9 +90,9 @@ class Spec:
         return table("GR(1) specification", rows)
 
 
-def _check_encoding(encoding: str) -> None:
-    if encoding not in ENCODINGS:
-        raise UsageError(f"unknown encoding '{encoding}'; use one of {', '.join(ENCODINGS)}")
+def encoding_named(encoding: EncodingName | str) -> EncodingName:
+    """``encoding`` as an :class:`EncodingName`; an unknown one is a :class:`UsageError`."""
+    return EncodingName.parse(encoding, "encoding")
 
 
 def _kind(name: str) -> str:
@@ -119,7 +119,8 @@ def _decode(data: bytes, path: str, suffix: str) -> str:
                        else SlugsFormatError)
 
 
-def load(path: str | Path, encoding: str = "onehot", kind: str | None = None) -> Spec:
+def load(path: str | Path, encoding: EncodingName | str = EncodingName.ONEHOT,
+         kind: str | None = None) -> Spec:
     """Read ``path`` (.gait, .slugsin, .structuredslugs) into a :class:`Spec`.
 
     The suffix picks the reader unless ``kind`` (one of the suffixes, say ``".gait"``) does.
@@ -129,25 +130,26 @@ def load(path: str | Path, encoding: str = "onehot", kind: str | None = None) ->
     encoding or an unreadable file.
     """
     name = str(path)
-    _check_encoding(encoding)
+    chosen = encoding_named(encoding)
     suffix = _kind(name) if kind is None else _kind(f"spec{kind}")
     raw = read_input(name)
-    return _build(_decode(raw, name, suffix), name, suffix, encoding,
+    return _build(_decode(raw, name, suffix), name, suffix, chosen,
                   hashlib.sha256(raw).hexdigest())
 
 
-def parse(text: str, name: str = "<string>.gait", encoding: str = "onehot") -> Spec:
+def parse(text: str, name: str = "<string>.gait",
+          encoding: EncodingName | str = EncodingName.ONEHOT) -> Spec:
     """A :class:`Spec` from ``text``; the suffix of ``name`` picks the reader (``.gait``
     when ``name`` has none of the known suffixes), and spans name ``name``."""
-    _check_encoding(encoding)
+    chosen = encoding_named(encoding)
     suffix = Path(name).suffix.lower()
     if suffix not in SUFFIXES:
         suffix = ".gait"
     digest = hashlib.sha256(text.encode("utf-8")).hexdigest()
-    return _build(text, name, suffix, encoding, digest)
+    return _build(text, name, suffix, chosen, digest)
 
 
-def _build(text: str, name: str, suffix: str, encoding: str, digest: str) -> Spec:
+def _build(text: str, name: str, suffix: str, encoding: EncodingName, digest: str) -> Spec:
     if suffix in GAIT_SUFFIXES:
         from ltlcompiler.frontend import model_from_text
         from ltlcompiler.lowering import lower

@@ -10,12 +10,14 @@ from gaitc.analysis.resilience import Resilience, cache_sites
 from gaitc.analysis.resilience import resilience as analyse
 from gaitc.api.loading import Spec, load
 from gaitc.diagnostics import UsageError
+from gaitc.ir.spec import Semantics
+from ltlcompiler.encoding import EncodingName
 
 
 def resilience(spec: Spec | str | Path, method: str = "parametric",
                health_bound: int | None = None, place_caches: int | None = None,
-               semantics: str = "default", jobs: int = 1, dask: str | None = None,
-               progress: Progress | None = None) -> Resilience:
+               semantics: Semantics | str = Semantics.DEFAULT, jobs: int = 1,
+               dask: str | None = None, progress: Progress | None = None) -> Resilience:
     """The :class:`~gaitc.analysis.resilience.Resilience` report of a ``.gait`` spec.
 
     ``method``: ``parametric`` (one game with rigid per-leg caps answers every failure set
@@ -29,8 +31,9 @@ def resilience(spec: Spec | str | Path, method: str = "parametric",
     >>> report.single_points_of_failure
     ('L1', 'L4', 'L6', 'L8')
     """
+    chosen = Semantics.parse(semantics, "semantics")
     if not isinstance(spec, Spec):
-        spec = load(spec, "binary")
+        spec = load(spec, EncodingName.BINARY)
     if spec.model is None or spec.encoding is None:
         raise UsageError(f"'{spec.path}': resilience needs a .gait spec, which says what the "
                          "legs, caches and hazards are")
@@ -43,6 +46,6 @@ def resilience(spec: Spec | str | Path, method: str = "parametric",
         raise UsageError(f"--place-caches {place_caches}: the map has only {sites} regions "
                          "no hazard covers")
     bound = health_bound or min(3, max(leg.health for leg in spec.model.legs))
-    with Pool(spec.encoding, semantics, jobs, dask, progress) as pool:
-        return analyse(spec.model, spec.encoding, spec.path, semantics, method, bound,
+    with Pool(spec.encoding, chosen, jobs, dask, progress) as pool:
+        return analyse(spec.model, spec.encoding, spec.path, chosen, method, bound,
                        place_caches, pool)

@@ -18,11 +18,13 @@ from gaitc.api.solving import Synthesis, recorded_encoding, synthesize
 from gaitc.diagnostics import UsageError
 from gaitc.ir.bddfile import SymbolicController
 from gaitc.ir.controller import Controller
+from gaitc.ir.spec import Semantics
 from gaitc.sim.domain import Domain
 from gaitc.sim.environments import AdversarialEnvironment, Environment, RandomEnvironment
 from gaitc.sim.monitor import Monitor
 from gaitc.sim.strategy import StrategyView, explicit, load_strategy, view_of
 from gaitc.solver.progress import Progress
+from ltlcompiler.encoding import EncodingName
 
 if TYPE_CHECKING:
     from gaitc.sim.run import Run
@@ -56,7 +58,8 @@ class Session:
 
 def session(spec: Spec | str | Path,
             controller: Controller | SymbolicController | Synthesis | str | Path | None = None,
-            encoding: str | None = None, semantics: str = "default",
+            encoding: EncodingName | str | None = None,
+            semantics: Semantics | str = Semantics.DEFAULT,
             prefer: str | Sequence[str] | None = None,
             progress: Progress | None = None) -> Session | None:
     """Bind ``spec`` (a ``.gait`` :class:`Spec` or path) to ``controller`` (an automaton, a
@@ -75,7 +78,7 @@ def session(spec: Spec | str | Path,
     if not isinstance(spec, Spec):
         if encoding is None and isinstance(controller, (str, Path)):
             encoding = recorded_encoding(controller)
-        spec = load(spec, encoding or "onehot")
+        spec = load(spec, encoding or EncodingName.ONEHOT)
     if spec.model is None:
         raise UsageError(f"'{spec.path}': simulating, driving and drawing a controller need "
                          "a .gait spec, which says what the variables mean (regions, gaits, "
@@ -91,17 +94,17 @@ def session(spec: Spec | str | Path,
         if automaton is None:
             return None
         strategy = view_of(automaton, spec.gr1, "<synthesized>")
-    domain = Domain(spec.model, spec.encoding or "onehot")
+    domain = Domain(spec.model, spec.encoding or EncodingName.ONEHOT)
     return Session(spec, spec.model, strategy, domain, Monitor(spec.gr1))
 
 
-def counter_session(spec: Spec | str | Path, semantics: str = "default",
+def counter_session(spec: Spec | str | Path, semantics: Semantics | str = Semantics.DEFAULT,
                     progress: Progress | None = None) -> Session | None:
     """``spec`` bound to its counter-strategy (the environment's winning strategy), for the
     adversarial environment of an unrealizable spec; None when the spec is realizable."""
     from gaitc.api.solving import counterstrategy
 
-    loaded = spec if isinstance(spec, Spec) else load(spec, "onehot")
+    loaded = spec if isinstance(spec, Spec) else load(spec, EncodingName.ONEHOT)
     found = counterstrategy(loaded, semantics, verify=False, progress=progress)
     return None if found.controller is None else session(loaded, found, None, semantics)
 
@@ -149,7 +152,7 @@ def _counter_play(bound: Session, env: object, steps: int | None, seed: int) -> 
 def simulate(spec: Spec | Session | str | Path,
              controller: Controller | SymbolicController | Synthesis | str | Path | None = None,
              env: str | Scenario | Environment = "random", steps: int | None = None,
-             seed: int = 0, semantics: str = "default",
+             seed: int = 0, semantics: Semantics | str = Semantics.DEFAULT,
              prefer: str | Sequence[str] | None = None) -> Run:
     """Run ``controller`` (synthesized when None) for ``spec`` against ``env`` for ``steps``
     steps (default 50, or the scenario's length) and check every step against the spec.

@@ -26,12 +26,13 @@ from gaitc.ir.controller import (
 )
 from gaitc.ir.costs import Cost
 from gaitc.ir.quotient import merge_equivalent
-from gaitc.ir.spec import SEMANTICS, GR1Spec
+from gaitc.ir.spec import GR1Spec, Semantics
 from gaitc.solver.game import GameStats, out_of_memory
 from gaitc.solver.progress import Progress, Stage
 from gaitc.solver.symbolic import Options
 from gaitc.solver.synthesis import FORMS
 from gaitc.verifier.strategy import VerificationReport
+from ltlcompiler.encoding import EncodingName
 
 if TYPE_CHECKING:
     from gaitc.sim.graphics import Picture
@@ -51,7 +52,7 @@ class Verdict:
     file: str
     realizable: bool
     seconds: float
-    semantics: str = "default"
+    semantics: Semantics = Semantics.DEFAULT
     solver: str = "embedded"
     stats: GameStats | None = field(default=None, repr=False)
     engine: str = ""  # embedded solver: the configuration that answered (gaitc.solver.portfolio)
@@ -93,7 +94,7 @@ class Synthesis:
     controller: Controller | SymbolicController | None
     report: VerificationReport | None
     seconds: float
-    semantics: str = "default"
+    semantics: Semantics = Semantics.DEFAULT
     solver: str = "embedded"
     #: The automaton's nodes before equivalent ones were merged (gaitc.ir.quotient), when any were.
     merged_from: int | None = None
@@ -156,7 +157,7 @@ class Synthesis:
             raise UsageError("drawing an automaton needs a .gait spec, which says what its "
                              "variables mean")
         strategy = strategy_from_controller(self.controller, self.spec.gr1, self.spec.path)
-        domain = Domain(self.spec.model, self.spec.encoding or "onehot")
+        domain = Domain(self.spec.model, self.spec.encoding or EncodingName.ONEHOT)
         return automaton_view(strategy, domain)
 
     def __repr__(self) -> str:
@@ -180,10 +181,8 @@ class Synthesis:
         return table(repr(self)[1:-1], rows)
 
 
-def _semantics(semantics: str) -> str:
-    if semantics not in SEMANTICS:
-        raise UsageError(f"unknown semantics '{semantics}'; use one of {', '.join(SEMANTICS)}")
-    return semantics
+def _semantics(semantics: Semantics | str) -> Semantics:
+    return Semantics.parse(semantics, "semantics")
 
 
 def _solver(solver: str) -> str:
@@ -203,7 +202,7 @@ def _slugsin(spec: GR1Spec) -> str:
     return emit_slugsin(bitblast(spec))
 
 
-def check(spec: SpecLike, semantics: str = "default", solver: str = "embedded",
+def check(spec: SpecLike, semantics: Semantics | str = Semantics.DEFAULT, solver: str = "embedded",
           timeout: float | None = None, slugs: str | None = None,
           options: Options | None = None, progress: Progress | None = None) -> Verdict:
     """Decide whether a controller exists for ``spec``.
@@ -214,7 +213,7 @@ def check(spec: SpecLike, semantics: str = "default", solver: str = "embedded",
     """
     spec = resolve(spec)
     gr1, started = as_gr1(spec), time.monotonic()
-    _semantics(semantics)
+    semantics = _semantics(semantics)
     if _solver(solver) == "slugs":
         from slugs_bridge.runner import run_slugs_check
 
@@ -231,11 +230,10 @@ def check(spec: SpecLike, semantics: str = "default", solver: str = "embedded",
                    solver, checked.stats, checked.engine)
 
 
-def synthesize(spec: SpecLike, semantics: str = "default", solver: str = "embedded",
-               timeout: float | None = None, slugs: str | None = None,
+def synthesize(spec: SpecLike, semantics: Semantics | str = Semantics.DEFAULT,
+               solver: str = "embedded", timeout: float | None = None, slugs: str | None = None,
                options: Options | None = None, progress: Progress | None = None,
-               verify: bool = True, form: str = "auto",
-               max_nodes: int | None = MAX_NODES,
+               verify: bool = True, form: str = "auto", max_nodes: int | None = MAX_NODES,
                prefer: str | Sequence[str] | None = None) -> Synthesis:
     """A controller for ``spec``, proved by the independent verifier unless ``verify`` is
     False; ``.controller`` is None when the spec is unrealizable.
@@ -254,28 +252,27 @@ def synthesize(spec: SpecLike, semantics: str = "default", solver: str = "embedd
     if form == "symbolic" and solver != "embedded":
         raise UsageError("symbolic controllers come from the embedded solver; drop --solver "
                          "slugs or --symbolic")
-    return _solve(resolve(spec), "strategy", semantics, solver, timeout, slugs, options,
+    return _solve(resolve(spec), "strategy", _semantics(semantics), solver, timeout, slugs, options,
                   progress, verify, form, max_nodes, prefer)
 
 
-def counterstrategy(spec: SpecLike, semantics: str = "default",
+def counterstrategy(spec: SpecLike, semantics: Semantics | str = Semantics.DEFAULT,
                     solver: str = "embedded", timeout: float | None = None,
                     slugs: str | None = None, options: Options | None = None,
                     progress: Progress | None = None, verify: bool = True) -> Synthesis:
     """The environment's winning strategy for an unrealizable ``spec``, verified;
     ``.controller`` is None when the spec is realizable."""
-    return _solve(resolve(spec), "counterstrategy", semantics, solver, timeout, slugs, options,
-                  progress, verify, "explicit", None)
+    return _solve(resolve(spec), "counterstrategy", _semantics(semantics), solver, timeout,
+                  slugs, options, progress, verify, "explicit", None)
 
 
-def _solve(spec: Spec | GR1Spec, kind: Kind, semantics: str, solver: str,
+def _solve(spec: Spec | GR1Spec, kind: Kind, semantics: Semantics, solver: str,
            timeout: float | None, slugs: str | None, options: Options | None,
            progress: Progress | None, check_it: bool, form: str,
            max_nodes: int | None, prefer: str | Sequence[str] | None = None) -> Synthesis:
     from gaitc.solver.preferences import preference_order
 
     gr1, started = as_gr1(spec), time.monotonic()
-    _semantics(semantics)
     order = preference_order(prefer)
     weighed = [name for name in order if name != "goal"]
     if prefer is not None and weighed and not (isinstance(spec, Spec) and spec.model):
@@ -323,10 +320,10 @@ def _costs(spec: Spec | GR1Spec, order: Sequence[str]) -> tuple[Cost, ...]:
         return ()
     from ltlcompiler.costs import model_costs
 
-    return model_costs(spec.model, spec.encoding or "onehot")
+    return model_costs(spec.model, spec.encoding or EncodingName.ONEHOT)
 
 
-def _slugs_automaton(gr1: GR1Spec, kind: Kind, semantics: str, timeout: float | None,
+def _slugs_automaton(gr1: GR1Spec, kind: Kind, semantics: Semantics, timeout: float | None,
                      slugs: str | None) -> Controller | None:
     from slugs_bridge import runner
 
@@ -345,7 +342,7 @@ def _slugs_automaton(gr1: GR1Spec, kind: Kind, semantics: str, timeout: float | 
 
 def verify(spec: SpecLike,
            controller: Controller | SymbolicController | Synthesis | str | Path,
-           semantics: str | None = None) -> VerificationReport:
+           semantics: Semantics | str | None = None) -> VerificationReport:
     """Prove independently that ``controller`` (a strategy, explicit or symbolic) realizes
     ``spec``, or that a counter-strategy defeats it; a path is read as a controller file.
     ``semantics`` defaults to the one recorded in the controller."""
@@ -383,7 +380,7 @@ def read_controller(path: str | Path, spec: GR1Spec | None = None
     return controller_from_dict(data, str(path), spec)
 
 
-def recorded_encoding(path: str | Path) -> str | None:
+def recorded_encoding(path: str | Path) -> EncodingName | None:
     """The encoding a controller file says its spec was compiled with, if it says one."""
     import json
 
@@ -394,4 +391,4 @@ def recorded_encoding(path: str | Path) -> str | None:
         encoding = data["gaitc"]["source"]["encoding"]
     except (OSError, ValueError, KeyError, TypeError, RecursionError):
         return None
-    return str(encoding) if encoding in ENCODINGS else None
+    return EncodingName(encoding) if encoding in ENCODINGS else None

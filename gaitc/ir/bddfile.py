@@ -24,6 +24,7 @@ from typing import Any, Final
 from gaitc.diagnostics import ControllerError, Span
 from gaitc.diagnostics.versions import SYMBOLIC_CONTROLLER
 from gaitc.ir.controller import SYMBOLIC_FORMAT, IntegerVar
+from gaitc.ir.spec import Semantics
 
 #: The single roots every symbolic controller has, and the per-goal lists.
 SINGLE_ROOTS: Final = ("winning", "env_init", "sys_init", "env_trans")
@@ -48,7 +49,7 @@ class SymbolicController:
     nodes: tuple[tuple[int, Ref, Ref], ...]
     roots: Mapping[str, Ref | tuple[Ref, ...]]
     integers: Mapping[str, IntegerVar] = field(default_factory=dict)
-    semantics: str = "default"
+    semantics: Semantics = Semantics.DEFAULT
     solver: str = "embedded"
     source: Mapping[str, str] | None = None
     choice: tuple[str, ...] = ()  # bits, most significant first, for picking the smallest
@@ -228,7 +229,7 @@ def symbolic_from_dict(data: Any, filename: str = "<controller>") -> SymbolicCon
     integers = _integers(extras.get("integers", {}), bits, span)
     source = extras.get("source")
     return SymbolicController(
-        inputs, outputs, order, nodes, roots, integers, str(semantics),
+        inputs, outputs, order, nodes, roots, integers, Semantics(str(semantics)),
         str(extras.get("solver", "embedded")),
         {str(k): str(v) for k, v in source.items()} if isinstance(source, dict) else None,
         choice)

@@ -17,7 +17,7 @@ from gaitc.diagnostics import ControllerError, Span, span_at
 from gaitc.diagnostics.files import decode_text, read_input
 from gaitc.diagnostics.versions import CONTROLLER
 from gaitc.ir.bits import bit_name, parse_first_bit, spec_bits
-from gaitc.ir.spec import SEMANTICS, GR1Spec
+from gaitc.ir.spec import SEMANTICS, GR1Spec, Semantics
 
 KINDS = ("strategy", "counterstrategy")
 #: ``gaitc.format`` of a symbolic controller file (:mod:`gaitc.ir.bddfile`).
@@ -55,7 +55,7 @@ class Controller:
     integers: Mapping[str, IntegerVar] = field(default_factory=dict)
     kind: str = "strategy"
     solver: str = "embedded"
-    semantics: str = "default"
+    semantics: Semantics = Semantics.DEFAULT
     source: Mapping[str, str] | None = None
     slugs_version: str = "0.0.1"
 
@@ -241,7 +241,7 @@ def controller_from_dict(
             integers=integers_of(names, frozenset(inputs)),
             kind=kind,
             solver=str(extras.get("solver", "embedded")),
-            semantics=str(semantics),
+            semantics=Semantics(str(semantics)),
             source=dict(source) if isinstance(source, dict) else None,
             slugs_version=str(data.get("slugs", "0.0.1")),
         )

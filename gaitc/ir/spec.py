@@ -16,6 +16,7 @@ from dataclasses import dataclass, field, replace
 from typing import Final, Literal, get_args
 
 from gaitc.diagnostics import Span
+from gaitc.diagnostics.choices import Choice
 from gaitc.ir.formula import Expr
 
 Section = Literal["env_init", "sys_init", "env_trans", "sys_trans", "env_liveness", "sys_liveness"]
@@ -31,11 +32,16 @@ def section_named(player: str, part: str) -> Section:
     raise ValueError(f"no section {player}_{part}; the sections are {', '.join(SECTIONS)}")
 
 
-Semantics = Literal["default", "robotics"]
-#: ``default``: for every input allowed by θe some output satisfying θs is winning (SLUGS's
-#: default); ``robotics``: every state allowed by θe ∧ θs is winning
-#: (SLUGS's ``--sysInitRoboticsSemantics``).
-SEMANTICS: Final[tuple[Semantics, ...]] = get_args(Semantics)
+class Semantics(Choice):
+    """How the initial condition is read: ``default``, for every input allowed by θe some
+    output satisfying θs is winning (SLUGS's default); ``robotics``, every state allowed by
+    θe ∧ θs is winning (SLUGS's ``--sysInitRoboticsSemantics``)."""
+
+    DEFAULT = "default"
+    ROBOTICS = "robotics"
+
+
+SEMANTICS: Final = tuple(Semantics)
 
 
 def semantics_named(name: str) -> Semantics:

@@ -13,6 +13,7 @@ from dataclasses import dataclass
 from gaitc.ir.evaluation import evaluate
 from gaitc.ir.formula import Always, Eventually, Expr, Or, Var, atoms, has_primes, push_next
 from ltlcompiler.decoding import RobotState, decode, encode
+from ltlcompiler.encoding import EncodingName
 from ltlcompiler.model import Model
 
 
@@ -70,7 +71,7 @@ def model_goals(model: Model) -> tuple[Goal, ...]:
 class Domain:
     """A model plus an encoding: decodes valuations and answers questions about the map."""
 
-    def __init__(self, model: Model, encoding: str) -> None:
+    def __init__(self, model: Model, encoding: EncodingName) -> None:
         self.model = model
         self.encoding = encoding
         self.legs: tuple[str, ...] = tuple(leg.name for leg in model.legs)

@@ -21,6 +21,7 @@ from typing import Final
 
 import dd.cudd as cudd
 
+from gaitc.ir.spec import Semantics
 from gaitc.solver.steps import Steps, given, run_through
 from gaitc.solver.symbolic import BDDNode, SymbolicSpec
 
@@ -68,7 +69,7 @@ def advances(sym: SymbolicSpec) -> list[list[BDDNode]]:
     return out
 
 
-def initial_nodes(sym: SymbolicSpec, winning: BDDNode, semantics: str) -> BDDNode:
+def initial_nodes(sym: SymbolicSpec, winning: BDDNode, semantics: Semantics) -> BDDNode:
     """The states of :func:`gaitc.solver.strategy.initial_states`, as one BDD."""
     if semantics == "robotics":
         return sym.env_init & sym.sys_init & winning
@@ -78,7 +79,7 @@ def initial_nodes(sym: SymbolicSpec, winning: BDDNode, semantics: str) -> BDDNod
 
 
 def node_count(sym: SymbolicSpec, relations: Sequence[BDDNode], winning: BDDNode,
-               semantics: str, cap: int | None = None) -> int:
+               semantics: Semantics, cap: int | None = None) -> int:
     """The number of nodes :func:`gaitc.solver.strategy.extract_strategy` makes when goal ``j``
     moves by ``relations[j]`` (after the preferences; over the state and the primed inputs
     and outputs); once the count passes ``cap`` the search stops and returns what it has."""
@@ -114,7 +115,7 @@ class Census:
     extract_strategy`).  With ``counting`` False the census ends there, with no count."""
 
     def __init__(self, sym: SymbolicSpec, relation: Callable[[int], Steps[BDDNode]], goals: int,
-                 winning: BDDNode, semantics: str, cap: int | None = None,
+                 winning: BDDNode, semantics: Semantics, cap: int | None = None,
                  counting: bool = True) -> None:
         self.count: int | None = None
         self.moves: list[BDDNode] | None = None
@@ -135,7 +136,7 @@ class Census:
         return self.count
 
     def _census(self, sym: SymbolicSpec, relation: Callable[[int], Steps[BDDNode]], n: int,
-                winning: BDDNode, semantics: str, cap: int | None,
+                winning: BDDNode, semantics: Semantics, cap: int | None,
                 counting: bool) -> Steps[int | None]:
         """The census itself, a slice per step."""
         steps = self.moves = yield from move_functions(sym, relation, n)

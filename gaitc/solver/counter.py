@@ -17,6 +17,7 @@ import dd.cudd as cudd
 
 from gaitc.diagnostics import SolverError
 from gaitc.ir.controller import Controller, ControllerNode
+from gaitc.ir.spec import Semantics
 from gaitc.solver.game import Limits, too_large
 from gaitc.solver.strategy import REPORT_EVERY, assignments, fix, primed, smallest, spec_integers
 from gaitc.solver.symbolic import BDDNode, SymbolicSpec
@@ -120,7 +121,7 @@ class CounterGame:
 def extract_counterstrategy(
     sym: SymbolicSpec,
     winning: BDDNode,
-    semantics: str,
+    semantics: Semantics,
     limits: Limits | None = None,
     max_nodes: int | None = None,
 ) -> Controller:

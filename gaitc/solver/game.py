@@ -18,6 +18,7 @@ from dataclasses import dataclass, field
 import dd.cudd as cudd
 
 from gaitc.diagnostics import SolverError
+from gaitc.ir.spec import Semantics
 from gaitc.solver.options import (
     RESIFT_BLOWUP,
     RESIFT_NODES,
@@ -160,7 +161,7 @@ class Game:
         # ∀x'. (∃y'.¬ρe) ∨ sys_can  ==  ¬∃x'. ¬(∃y'.¬ρe) ∧ ¬sys_can
         return sys_can, ~cudd.and_exists(~sym.game_env_blocks, ~sys_can, sym.post_inputs)
 
-    def solve(self, keep_layers: bool = False, stop_if_lost: str | None = None,
+    def solve(self, keep_layers: bool = False, stop_if_lost: Semantics | None = None,
               within: BDDNode | None = None) -> GameResult:
         """Compute the winning region; with ``keep_layers``, also the strategy layers.
 
@@ -361,7 +362,7 @@ class Game:
         self.stats.peak_nodes = max(self.stats.peak_nodes, nodes)
         self.limits.report(words, f"{detail}, {nodes} live BDD nodes", fraction)
 
-    def initially_winning(self, winning: BDDNode, semantics: str) -> bool:
+    def initially_winning(self, winning: BDDNode, semantics: Semantics) -> bool:
         """The initial-state condition of SLUGS.
 
         default: ∀x. θe → ∃y. θs ∧ W;  robotics (``--sysInitRoboticsSemantics``):

@@ -18,6 +18,7 @@ from typing import TYPE_CHECKING, Final, TypeVar
 from gaitc.diagnostics import SolverError
 from gaitc.ir.bddwalk import State, all_assignments, cofactor, first_assignment, holds_at
 from gaitc.ir.controller import Controller, ControllerNode, IntegerVar, integers_of
+from gaitc.ir.spec import Semantics
 from gaitc.solver.census import CENSUS_AFTER, Census
 from gaitc.solver.game import GameResult, Limits, too_large
 from gaitc.solver.steps import Steps, given
@@ -66,7 +67,7 @@ def spec_integers(sym: SymbolicSpec) -> dict[str, IntegerVar]:
     return found
 
 
-def initial_states(sym: SymbolicSpec, winning: BDDNode, semantics: str) -> list[State]:
+def initial_states(sym: SymbolicSpec, winning: BDDNode, semantics: Semantics) -> list[State]:
     """Initial states: one per θe-allowed input (default) or all of θe ∧ θs (robotics)."""
     ins, outs = list(sym.input_bits), list(sym.output_bits)
     if semantics == "robotics":
@@ -125,7 +126,7 @@ def next_goal(sym: SymbolicSpec, goal: int, move: dict[str, bool]) -> int:
 def extract_strategy(
     sym: SymbolicSpec,
     result: GameResult,
-    semantics: str,
+    semantics: Semantics,
     limits: Limits | None = None,
     max_nodes: int | None = None,
     prefer: MovePreferences | None = None,

@@ -13,13 +13,14 @@ the runtime needs nothing of them.
 from __future__ import annotations
 
 from gaitc.ir.bddfile import SymbolicController, node_table
+from gaitc.ir.spec import Semantics
 from gaitc.solver.game import GameResult, Limits
 from gaitc.solver.preferences import MovePreferences
 from gaitc.solver.strategy import goal_strategies, spec_integers
 from gaitc.solver.symbolic import SymbolicSpec
 
 
-def symbolic_controller(sym: SymbolicSpec, result: GameResult, semantics: str,
+def symbolic_controller(sym: SymbolicSpec, result: GameResult, semantics: Semantics,
                         prefer: MovePreferences | None = None,
                         limits: Limits | None = None) -> SymbolicController:
     """The symbolic controller of a realizable game (``result`` needs its layers); with

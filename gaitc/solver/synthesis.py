@@ -21,7 +21,7 @@ from gaitc.ir.bits import spec_bits
 from gaitc.ir.controller import Controller
 from gaitc.ir.costs import Cost
 from gaitc.ir.formula import atoms
-from gaitc.ir.spec import SEMANTICS, GR1Spec
+from gaitc.ir.spec import SEMANTICS, GR1Spec, Semantics
 from gaitc.solver.counter import extract_counterstrategy
 from gaitc.solver.game import ControllerTooLarge, Game, GameStats, Limits, Progress, out_of_memory
 from gaitc.solver.portfolio import STATIC, solve_chosen
@@ -47,7 +47,7 @@ def state_bits(spec: GR1Spec) -> int:
     return len(inputs) + len(outputs)
 
 
-def _check_semantics(semantics: str) -> None:
+def _check_semantics(semantics: Semantics) -> None:
     if semantics not in SEMANTICS:
         raise ValueError(f"semantics must be one of {SEMANTICS}, not {semantics!r}")
 
@@ -75,7 +75,7 @@ def memory_guard() -> Iterator[None]:
         raise
 
 
-def _game(spec: GR1Spec, semantics: str, options: Options, limits: Limits
+def _game(spec: GR1Spec, semantics: Semantics, options: Options, limits: Limits
           ) -> tuple[SymbolicSpec, Game]:
     """The symbolic game of ``spec``, after the checks the game relies on."""
     _check_semantics(semantics)
@@ -114,7 +114,7 @@ def _check_env_trans(spec: GR1Spec) -> None:
 
 def check(
     spec: GR1Spec,
-    semantics: str = "default",
+    semantics: Semantics = Semantics.DEFAULT,
     timeout: float | None = None,
     progress: Progress | None = None,
     options: Options | None = None,
@@ -142,7 +142,7 @@ FORMS: Final = ("explicit", "symbolic", "auto")
 
 def synthesize(
     spec: GR1Spec,
-    semantics: str = "default",
+    semantics: Semantics = Semantics.DEFAULT,
     timeout: float | None = None,
     progress: Progress | None = None,
     options: Options | None = None,
@@ -163,7 +163,7 @@ def synthesize(
 
 def synthesize_controller(
     spec: GR1Spec,
-    semantics: str = "default",
+    semantics: Semantics = Semantics.DEFAULT,
     timeout: float | None = None,
     progress: Progress | None = None,
     options: Options | None = None,
@@ -203,7 +203,7 @@ def synthesize_controller(
 
 def counterstrategy(
     spec: GR1Spec,
-    semantics: str = "default",
+    semantics: Semantics = Semantics.DEFAULT,
     timeout: float | None = None,
     progress: Progress | None = None,
     options: Options | None = None,

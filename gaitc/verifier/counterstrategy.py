@@ -11,13 +11,13 @@ from __future__ import annotations
 from typing import Any
 
 from gaitc.ir.controller import Controller
-from gaitc.ir.spec import GR1Spec
+from gaitc.ir.spec import GR1Spec, Semantics
 from gaitc.verifier.logic import Bits
 from gaitc.verifier.strategy import Check, VerificationReport, few_nodes
 
 
 def verify_counterstrategy(
-    spec: GR1Spec, controller: Controller, semantics: str = "default"
+    spec: GR1Spec, controller: Controller, semantics: Semantics = Semantics.DEFAULT
 ) -> VerificationReport:
     """Prove that ``controller`` (an environment counter-strategy) makes ``spec`` unrealizable.
 

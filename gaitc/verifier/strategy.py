@@ -17,7 +17,7 @@ import networkx as nx
 from gaitc.ir.bitblast import bitblast
 from gaitc.ir.bits import bits_mismatch
 from gaitc.ir.controller import Controller
-from gaitc.ir.spec import SEMANTICS, GR1Spec
+from gaitc.ir.spec import SEMANTICS, GR1Spec, Semantics
 from gaitc.verifier.logic import Bits, Logic
 
 MAX_PROBLEMS = 60
@@ -34,7 +34,7 @@ class VerificationReport:
     edges: int = 0
     sccs: int = 0
     kind: str = "strategy"
-    semantics: str = "default"
+    semantics: Semantics = Semantics.DEFAULT
     symbolic: bool = False  # checked by fixpoints over BDDs (gaitc.verifier.symbolic), no graph
 
     def __repr__(self) -> str:
@@ -67,7 +67,7 @@ class VerificationReport:
 class Check:
     """State shared by the checks of one controller: valuations, reachable nodes, the graph."""
 
-    def __init__(self, spec: GR1Spec, controller: Controller, semantics: str) -> None:
+    def __init__(self, spec: GR1Spec, controller: Controller, semantics: Semantics) -> None:
         if semantics not in SEMANTICS:
             raise ValueError(f"unknown semantics {semantics!r}; use one of {', '.join(SEMANTICS)}")
         self.semantics, self.ctrl = semantics, controller
@@ -222,7 +222,8 @@ def few_nodes(nodes: Sequence[int], limit: int = 12) -> str:
 
 
 # ---------------------------------------------------------------- strategies (system wins)
-def verify(spec: GR1Spec, controller: Controller, semantics: str = "default") -> VerificationReport:
+def verify(spec: GR1Spec, controller: Controller,
+           semantics: Semantics = Semantics.DEFAULT) -> VerificationReport:
     """Prove that ``controller`` (a Mealy strategy) realizes ``spec`` under ``semantics``.
 
     Checks initial coverage, safety (every ρe-allowed input answered, every edge keeps ρs)

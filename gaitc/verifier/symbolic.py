@@ -28,7 +28,7 @@ import dd.cudd as cudd
 from gaitc.ir.bddfile import SymbolicController, materialize
 from gaitc.ir.bitblast import bitblast
 from gaitc.ir.bits import bits_mismatch
-from gaitc.ir.spec import GR1Spec
+from gaitc.ir.spec import GR1Spec, Semantics
 from gaitc.verifier.logic import Logic
 from gaitc.verifier.strategy import MAX_PROBLEMS, VerificationReport
 
@@ -87,7 +87,7 @@ class _Loop:
 
 
 def verify_symbolic(spec: GR1Spec, ctrl: SymbolicController,
-                    semantics: str | None = None) -> VerificationReport:
+                    semantics: Semantics | None = None) -> VerificationReport:
     """Prove that the symbolic controller ``ctrl`` realizes ``spec`` (see the module text)."""
     chosen = semantics or ctrl.semantics
     loop = _Loop(spec, ctrl)
@@ -102,7 +102,7 @@ def verify_symbolic(spec: GR1Spec, ctrl: SymbolicController,
     return _check(loop, materialize(loop.bdd, ctrl), chosen)
 
 
-def _check(loop: _Loop, roots: dict[str, Any], semantics: str) -> VerificationReport:
+def _check(loop: _Loop, roots: dict[str, Any], semantics: Semantics) -> VerificationReport:
     b, problems = loop.bdd, []
     outs = set(loop.logic.outputs)
     theta_e, theta_s = loop.section("env_init"), loop.section("sys_init")
@@ -181,7 +181,7 @@ def _fair_avoiding(loop: _Loop, avoiding: Any, env_goals: list[Any], within: Any
         z = new_z
 
 
-def _report(problems: list[str], count: int, semantics: str) -> VerificationReport:
+def _report(problems: list[str], count: int, semantics: Semantics) -> VerificationReport:
     shown = problems[:MAX_PROBLEMS]
     return VerificationReport(not shown, tuple(shown), (), count, 0, 0, "strategy", semantics,
                               symbolic=True)

@@ -20,7 +20,7 @@ from gaitc.cli.status import progress_display
 from gaitc.diagnostics import UsageError, render_error
 from gaitc.sim.environments import Environment
 from gaitc.sim.run import Run
-from ltlcompiler.encoding import ENCODINGS
+from ltlcompiler.encoding import ENCODINGS, EncodingName
 
 EPILOG = """environments:
   --env random [--seed N]   uniform among the inputs the controller accepts (default, seed 0)
@@ -126,7 +126,7 @@ def run_simulate(args: argparse.Namespace) -> int:
         from gaitc.api.simulation import counter_session
 
         with progress_display() as progress:
-            bound = counter_session(gaitc.load(args.spec, args.encoding or "onehot"),
+            bound = counter_session(gaitc.load(args.spec, args.encoding or EncodingName.ONEHOT),
                                     semantics, progress)
         if bound is not None:  # the environment plays its winning strategy
             run = gaitc.simulate(bound, env="adversarial", steps=args.steps)
