@@ -121,3 +121,24 @@ def test_mypy_reports_a_forgotten_node_kind(tmp_path: Path) -> None:
                             capture_output=True, text=True, check=False)
     assert result.returncode == 1, result.stdout
     assert 'incompatible type "Add"; expected "Never"' in result.stdout
+
+
+def test_no_long_positional_lists() -> None:
+    """Issue 33: a call passes at most 7 arguments by position and a function takes at most
+    7 positional parameters; longer lists are keywords or option dataclasses."""
+    import ast
+
+    found = []
+    for package in PACKAGES:
+        for path in sorted((ROOT / package).rglob("*.py")):
+            for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+                where = f"{path.relative_to(ROOT)}:{getattr(node, 'lineno', 0)}"
+                if isinstance(node, ast.Call) and len(node.args) >= 8:
+                    found.append(f"{where}: a call with {len(node.args)} positional arguments")
+                if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
+                    positional = [a.arg for a in node.args.posonlyargs + node.args.args
+                                  if a.arg not in ("self", "cls")]
+                    if len(positional) >= 8:
+                        found.append(f"{where}: {node.name} takes {len(positional)} "
+                                     "positional parameters")
+    assert found == [], "\n".join(found)

@@ -73,8 +73,8 @@ def _law(hold_x: float, activation: float, sliding: bool) -> tuple[bool, float, 
         np.ones(1),
         np.zeros(1),
         np.array([activation]),
-        _table(),
-        np.array([sliding]),
+        table=_table(),
+        was_sliding=np.array([sliding]),
     )
     return bool(c.sliding[0]), float(c.force_x[0]), float(c.slip_x[0])
 

@@ -178,7 +178,7 @@ def kind_text(kind: Kind | None, player: str = ROBOT) -> str:
 
 
 def explain(spec: GR1Spec, file: str, source: str = "", model: Model | None = None,
-            encoding: EncodingName | None = None, semantics: Semantics = Semantics.DEFAULT,
+            *, encoding: EncodingName | None = None, semantics: Semantics = Semantics.DEFAULT,
             timeout: float | None = None, with_repairs: bool = True) -> Explanation:
     """Explain ``spec``: for a ``.gait`` spec pass its ``model``, ``encoding`` and ``source``."""
     started = time.monotonic()
@@ -220,9 +220,24 @@ def explain(spec: GR1Spec, file: str, source: str = "", model: Model | None = No
     if with_repairs and model is not None and encoding is not None and source:
         visited = [s.region for s in run.steps] if run is not None else []
         fixes = repairs(model, source, file, encoding, oracle, visited)
-    return Explanation(file, False, failure.kind, goals, core, freedoms, play, counter, run,
-                       tuple(story), fixes, (), oracle.calls, time.monotonic() - started,
-                       source, player)
+    return Explanation(
+        file=file,
+        realizable=False,
+        kind=failure.kind,
+        goals=goals,
+        core=core,
+        freedoms=freedoms,
+        play=play,
+        counter=counter,
+        run=run,
+        story=tuple(story),
+        repairs=fixes,
+        warnings=(),
+        solver_calls=oracle.calls,
+        seconds=time.monotonic() - started,
+        source=source,
+        player=player,
+    )
 
 
 def _final_move(spec: GR1Spec, counter: Controller, play: Play, model: Model,

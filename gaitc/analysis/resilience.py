@@ -182,7 +182,7 @@ def _sets(sets: tuple[tuple[str, ...], ...]) -> str:
 
 
 def resilience(model: Model, encoding: EncodingName, file: str = "",
-               semantics: Semantics = Semantics.DEFAULT, method: str = "parametric",
+               semantics: Semantics = Semantics.DEFAULT, *, method: str = "parametric",
                health_bound: int | None = None, place_caches: int | None = None,
                pool: Pool | None = None) -> Resilience:
     """Every answer of the module docstring for ``model``."""
@@ -225,8 +225,16 @@ def resilience(model: Model, encoding: EncodingName, file: str = "",
                        single_points_of_failure=tuple(s[0] for s in minimal if len(s) == 1))
         k, defeating = _any_time(model, encoding, candidates, pool, semantics, minimal)
         report = _with(report, any_time_k=k, defeating_sets=defeating)
-        report = _health(report, model, encoding, semantics, method, health_bound, pool,
-                         notes)
+        report = _health(
+            report=report,
+            model=model,
+            encoding=encoding,
+            semantics=semantics,
+            method=method,
+            bound=health_bound,
+            pool=pool,
+            notes=notes,
+        )
         report = _caches_and_hazards(report, model, place_caches, pool, notes)
         return _finish(report, pool, started, notes, param_seconds)
     finally:
@@ -319,7 +327,7 @@ def _defeating(model: Model, encoding: EncodingName, legs: list[str], size: int,
 
 
 def _health(report: Resilience, model: Model, encoding: EncodingName, semantics: Semantics,
-            method: str, bound: int | None, pool: Pool, notes: list[str]) -> Resilience:
+            *, method: str, bound: int | None, pool: Pool, notes: list[str]) -> Resilience:
     names = [leg.name for leg in model.legs]
     top = bound or max(leg.health for leg in model.legs)
     uniform = None

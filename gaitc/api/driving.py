@@ -190,8 +190,17 @@ def drive(spec: Spec | str | Path,
         backend = _localised(opts.tracker, backend, bound)
     delay = opts.step_delay if opts.step_delay is not None else (
         0.5 if isinstance(chosen, SerialBoard) else 0.0)
-    driver = Driver(bound.strategy, bound.domain, bound.monitor, primitives, backend,
-                    delay, opts.cycles, live, opts.on_violation)
+    driver = Driver(
+        strategy=bound.strategy,
+        domain=bound.domain,
+        monitor=bound.monitor,
+        primitives=primitives,
+        backend=backend,
+        step_delay=delay,
+        cycles=opts.cycles,
+        progress=live,
+        on_violation=opts.on_violation,
+    )
     with interrupt_on_signals():  # SIGTERM and SIGHUP vent and keep the run, as Ctrl-C does
         run = driver.run(steps, checked.path)
     return Drive(checked.path, backend.name, run, dict(bound.domain.full),
@@ -243,8 +252,8 @@ def _backend(board: Board, opts: DriveOptions, bound: Session, spec_path: str,
         channels = parse_channels(board.channels) if board.channels else None
         calibration = read_sensing(board.sensing) if board.sensing else None
         return SerialValveBoard(board.port, valves, bound.domain.legs, board.baud,
-                                board.timeout, channels=channels, levels=bound.domain.full,
-                                calibration=calibration), steps
+                                timeout=board.timeout, channels=channels,
+                                levels=bound.domain.full, calibration=calibration), steps
     from gaitc.hw.simulated import SimulatedRobot
 
     chosen = board_environment(board, bound)

@@ -28,5 +28,5 @@ def explain(spec: Spec | GR1Spec | str | Path, semantics: Semantics | str = Sema
     if isinstance(spec, GR1Spec):
         return explain_spec(spec, spec.name or "<spec>", semantics=chosen, timeout=timeout,
                             with_repairs=repairs)
-    return explain_spec(spec.gr1, spec.path, spec.text, spec.model, spec.encoding,
+    return explain_spec(spec.gr1, spec.path, spec.text, spec.model, encoding=spec.encoding,
                         semantics=chosen, timeout=timeout, with_repairs=repairs)

@@ -127,9 +127,21 @@ def learn(robot: str | Path, options: LearnOptions | None = None,
     goal, settings = opts.search.target(opts.method), opts.search.settings(opts.seed)
     mismatch = Mismatch(opts.mismatch, opts.noise, opts.infeasible, opts.seed,
                         opts.model_mismatch)
-    learned = learn_gait(str(robot), goal, opts.method, mismatch, settings, opts.max_states,
-                         opts.max_iterations, opts.verify, progress, backend.value,
-                         opts.predictions, opts.max_open, opts.grow)
+    learned = learn_gait(
+        robot=str(robot),
+        goal=goal,
+        method=opts.method,
+        mismatch=mismatch,
+        settings=settings,
+        max_states=opts.max_states,
+        max_iterations=opts.max_iterations,
+        verify=opts.verify,
+        progress=progress,
+        backend=backend.value,
+        predictions=opts.predictions,
+        max_open=opts.max_open,
+        grow=opts.grow,
+    )
     return Learning(learned, goal)
 
 

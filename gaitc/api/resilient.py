@@ -16,7 +16,7 @@ from ltlcompiler.encoding import EncodingName
 
 def resilience(spec: Spec | str | Path, method: str = "parametric",
                health_bound: int | None = None, place_caches: int | None = None,
-               semantics: Semantics | str = Semantics.DEFAULT, jobs: int = 1,
+               *, semantics: Semantics | str = Semantics.DEFAULT, jobs: int = 1,
                dask: str | None = None, progress: Progress | None = None) -> Resilience:
     """The :class:`~gaitc.analysis.resilience.Resilience` report of a ``.gait`` spec.
 
@@ -47,5 +47,13 @@ def resilience(spec: Spec | str | Path, method: str = "parametric",
                          "no hazard covers")
     bound = health_bound or min(3, max(leg.health for leg in spec.model.legs))
     with Pool(spec.encoding, chosen, jobs, dask, progress) as pool:
-        return analyse(spec.model, spec.encoding, spec.path, chosen, method, bound,
-                       place_caches, pool)
+        return analyse(
+            model=spec.model,
+            encoding=spec.encoding,
+            file=spec.path,
+            semantics=chosen,
+            method=method,
+            health_bound=bound,
+            place_caches=place_caches,
+            pool=pool,
+        )

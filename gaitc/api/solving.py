@@ -231,7 +231,7 @@ def check(spec: SpecLike, semantics: Semantics | str = Semantics.DEFAULT, solver
 
 
 def synthesize(spec: SpecLike, semantics: Semantics | str = Semantics.DEFAULT,
-               solver: str = "embedded", timeout: float | None = None, slugs: str | None = None,
+               solver: str = "embedded", timeout: float | None = None, *, slugs: str | None = None,
                options: Options | None = None, progress: Progress | None = None,
                verify: bool = True, form: str = "auto", max_nodes: int | None = MAX_NODES,
                prefer: str | Sequence[str] | None = None) -> Synthesis:
@@ -252,22 +252,45 @@ def synthesize(spec: SpecLike, semantics: Semantics | str = Semantics.DEFAULT,
     if form == "symbolic" and solver != "embedded":
         raise UsageError("symbolic controllers come from the embedded solver; drop --solver "
                          "slugs or --symbolic")
-    return _solve(resolve(spec), "strategy", _semantics(semantics), solver, timeout, slugs, options,
-                  progress, verify, form, max_nodes, prefer)
+    return _solve(
+        spec=resolve(spec),
+        kind="strategy",
+        semantics=_semantics(semantics),
+        solver=solver,
+        timeout=timeout,
+        slugs=slugs,
+        options=options,
+        progress=progress,
+        check_it=verify,
+        form=form,
+        max_nodes=max_nodes,
+        prefer=prefer,
+    )
 
 
 def counterstrategy(spec: SpecLike, semantics: Semantics | str = Semantics.DEFAULT,
                     solver: str = "embedded", timeout: float | None = None,
-                    slugs: str | None = None, options: Options | None = None,
+                    slugs: str | None = None, *, options: Options | None = None,
                     progress: Progress | None = None, verify: bool = True) -> Synthesis:
     """The environment's winning strategy for an unrealizable ``spec``, verified;
     ``.controller`` is None when the spec is realizable."""
-    return _solve(resolve(spec), "counterstrategy", _semantics(semantics), solver, timeout,
-                  slugs, options, progress, verify, "explicit", None)
+    return _solve(
+        spec=resolve(spec),
+        kind="counterstrategy",
+        semantics=_semantics(semantics),
+        solver=solver,
+        timeout=timeout,
+        slugs=slugs,
+        options=options,
+        progress=progress,
+        check_it=verify,
+        form="explicit",
+        max_nodes=None,
+    )
 
 
 def _solve(spec: Spec | GR1Spec, kind: Kind, semantics: Semantics, solver: str,
-           timeout: float | None, slugs: str | None, options: Options | None,
+           *, timeout: float | None, slugs: str | None, options: Options | None,
            progress: Progress | None, check_it: bool, form: str,
            max_nodes: int | None, prefer: str | Sequence[str] | None = None) -> Synthesis:
     from gaitc.solver.preferences import preference_order
@@ -289,9 +312,17 @@ def _solve(spec: Spec | GR1Spec, kind: Kind, semantics: Semantics, solver: str,
         elif kind == "strategy":
             from gaitc.solver import synthesis
 
-            automaton = synthesis.synthesize_controller(gr1, semantics, timeout, progress,
-                                                        options, max_nodes, form, order,
-                                                        _costs(spec, order))
+            automaton = synthesis.synthesize_controller(
+                spec=gr1,
+                semantics=semantics,
+                timeout=timeout,
+                progress=progress,
+                options=options,
+                max_nodes=max_nodes,
+                form=form,
+                prefer=order,
+                costs=_costs(spec, order),
+            )
         else:
             from gaitc.solver import synthesis
 
@@ -311,7 +342,16 @@ def _solve(spec: Spec | GR1Spec, kind: Kind, semantics: Semantics, solver: str,
             if progress is not None:
                 progress(Stage("checking the controller with the independent verifier"))
             report = verify(spec, automaton, semantics)
-    return Synthesis(spec, kind, automaton, report, seconds, semantics, solver, merged_from)
+    return Synthesis(
+        spec=spec,
+        kind=kind,
+        controller=automaton,
+        report=report,
+        seconds=seconds,
+        semantics=semantics,
+        solver=solver,
+        merged_from=merged_from,
+    )
 
 
 def _costs(spec: Spec | GR1Spec, order: Sequence[str]) -> tuple[Cost, ...]:

@@ -150,7 +150,16 @@ def forward(robot: Robot, states: NDArray[np.int64] | list[int]) -> Geometry:
     fixed = np.asarray([p for _, p in robot.contacts], dtype=float).reshape(-1, 3)
     feet = tips[:, [j for j, leg in enumerate(robot.legs) if leg.foot]]
     contacts = np.concatenate([np.broadcast_to(fixed, (n, len(fixed), 3)), feet], axis=1)
-    return Geometry(st, kappa, phi, base, axes, tips, cg, contacts)
+    return Geometry(
+        states=st,
+        kappa=kappa,
+        phi=phi,
+        base=base,
+        axes=axes,
+        tips=tips,
+        cg=cg,
+        contacts=contacts,
+    )
 
 
 def leg_polyline(

@@ -71,7 +71,16 @@ class Edges:
     def concat(parts: list[Edges]) -> Edges:
         if not parts:
             z, f = np.zeros(0, np.int64), np.zeros(0)
-            return Edges(z, z, f, f, f, f, z, z)
+            return Edges(
+                src=z,
+                dst=z,
+                dx=f,
+                dy=f,
+                rot=f,
+                slip=f,
+                condition=z,
+                shared=z,
+            )
         return Edges(*(np.concatenate([getattr(p, k) for p in parts]) for k in _FIELDS))
 
     def take(self, rows: Ints) -> Edges:
@@ -194,14 +203,15 @@ def _evaluate(
         sel = np.nonzero(ok)[0]
         out.append(
             Edges(
-                src[sel],
-                dst[sel],
-                trans[sel, 0],
-                trans[sel, 1],
-                theta[sel],
-                slip[sel],
-                cond[sel],
-                np.full(len(sel), shared, dtype=np.int64),
+
+                src=src[sel],
+                dst=dst[sel],
+                dx=trans[sel, 0],
+                dy=trans[sel, 1],
+                rot=theta[sel],
+                slip=slip[sel],
+                condition=cond[sel],
+                shared=np.full(len(sel), shared, dtype=np.int64),
             )
         )
     return out

@@ -158,12 +158,13 @@ def _neighbours(robot: Robot, state: int, patterns: list[list[int]]) -> set[int]
 def _relabel(edges: Edges, row: int, src: int, dst: int) -> Edges:
     one = edges.take(np.array([row], dtype=np.int64))
     return Edges(
-        np.array([src]),
-        np.array([dst]),
-        one.dx,
-        one.dy,
-        one.rot,
-        one.slip,
-        one.condition,
-        one.shared,
+
+        src=np.array([src]),
+        dst=np.array([dst]),
+        dx=one.dx,
+        dy=one.dy,
+        rot=one.rot,
+        slip=one.slip,
+        condition=one.condition,
+        shared=one.shared,
     )

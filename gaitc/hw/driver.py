@@ -74,7 +74,7 @@ class Driver:
 
     def __init__(self, strategy: StrategyView, domain: Domain, monitor: Monitor,
                  primitives: Mapping[str, ValveSequence], backend: Backend,
-                 step_delay: float = 0.0, cycles: int = 1,
+                 *, step_delay: float = 0.0, cycles: int = 1,
                  progress: Callable[[str], None] | None = None,
                  on_violation: str = "stop") -> None:
         if on_violation not in VIOLATION_POLICIES:

@@ -145,7 +145,7 @@ class SerialValveBoard(Backend):
     """The valve board behind a pyserial URL, speaking the gaitc line protocol v2."""
 
     def __init__(self, url: str, valve_count: int, legs: Sequence[str], baudrate: int = 115200,
-                 timeout: float = 1.0, retries: int = 2,
+                 *, timeout: float = 1.0, retries: int = 2,
                  channels: Sequence[int] | None = None,
                  levels: Mapping[str, int] | None = None,
                  calibration: Mapping[str, LegCalibration] | None = None) -> None:

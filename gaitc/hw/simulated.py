@@ -66,10 +66,18 @@ class SimulatedRobot(Backend):
         moves = self.view.moves(node)
         strategy = self.view.strategy
         situation = Situation(
-            self._step, node, here, moves, self.domain, self._next_goal(), self.view.monitor,
-            None if node is None else strategy.values[node],
-            tuple(strategy.values[m.node] for m in moves),
-            strategy if isinstance(strategy, Strategy) else None)
+
+            step=self._step,
+            node=node,
+            state=here,
+            moves=moves,
+            domain=self.domain,
+            next_goal=self._next_goal(),
+            monitor=self.view.monitor,
+            values=None if node is None else strategy.values[node],
+            successor_values=tuple(strategy.values[m.node] for m in moves),
+            strategy=strategy if isinstance(strategy, Strategy) else None,
+        )
         request = self.environment.choose(situation)
         if request is None:
             raise ScenarioFinished("the simulated environment has no more steps",

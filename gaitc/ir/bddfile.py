@@ -229,10 +229,18 @@ def symbolic_from_dict(data: Any, filename: str = "<controller>") -> SymbolicCon
     integers = _integers(extras.get("integers", {}), bits, span)
     source = extras.get("source")
     return SymbolicController(
-        inputs, outputs, order, nodes, roots, integers, Semantics(str(semantics)),
-        str(extras.get("solver", "embedded")),
-        {str(k): str(v) for k, v in source.items()} if isinstance(source, dict) else None,
-        choice)
+
+        inputs=inputs,
+        outputs=outputs,
+        order=order,
+        nodes=nodes,
+        roots=roots,
+        integers=integers,
+        semantics=Semantics(str(semantics)),
+        solver=str(extras.get("solver", "embedded")),
+        source={str(k): str(v) for k, v in source.items()} if isinstance(source, dict) else None,
+        choice=choice,
+    )
 
 
 def _need(cond: bool, message: str, span: Span) -> None:

@@ -242,14 +242,15 @@ class _Track:
         q0, q1 = self.rest.posture.vertices[0, :, :2], new.posture.vertices[0, :, :2]
         loads = self.loads if new is self.rest else self.model._loads(new)
         velocity, momentum, power = _implicit_step(
-            masses,
-            (rho0 + rho1) / 2,
-            (rho1 - rho0) / dt,
-            (q0 + q1) / 2,
-            (q1 - q0) / dt,
-            self.model.kinematics.friction * (self.loads + loads) / 2,  # trapezoid rule
-            self.momentum,
-            dt,
+
+            masses=masses,
+            rho=(rho0 + rho1) / 2,
+            rho_dot=(rho1 - rho0) / dt,
+            q=(q0 + q1) / 2,
+            q_dot=(q1 - q0) / dt,
+            drag=self.model.kinematics.friction * (self.loads + loads) / 2,
+            momentum=self.momentum,
+            dt=dt,
         )
         # the centre of mass moves with the momentum (exactly still without friction); the
         # heading frame follows from it, the turn and the new shape
@@ -293,7 +294,7 @@ def _implicit_step(
     rho: Array,
     rho_dot: Array,
     q: Array,
-    q_dot: Array,
+    *, q_dot: Array,
     drag: Array,
     momentum: Array,
     dt: float,

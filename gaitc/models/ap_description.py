@@ -294,17 +294,18 @@ def _connection(r: Reader, node: yaml.Node, comps: list[Component]) -> Connectio
             v = v / np.linalg.norm(v)
             axis = (float(v[0]), float(v[1]), float(v[2]))
     return Connection(
-        source.name,
-        target.name,
-        point,
-        arc,
-        _v3(r, m["to_point"], "to_point") if "to_point" in m else (0.0, 0.0, 0.0),
-        _v3(r, m["offset"], "offset") if "offset" in m else (0.0, 0.0, 0.0),
-        _rotation(r, m["rotation"])
+
+        source=source.name,
+        target=target.name,
+        point=point,
+        arc=arc,
+        target_point=_v3(r, m["to_point"], "to_point") if "to_point" in m else (0.0, 0.0, 0.0),
+        offset=_v3(r, m["offset"], "offset") if "offset" in m else (0.0, 0.0, 0.0),
+        rotation=_rotation(r, m["rotation"])
         if "rotation" in m
         else ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0)),
-        joint,
-        axis,
+        joint=joint,
+        axis=axis,
     )
 
 

@@ -79,7 +79,7 @@ def coulomb(
     cos: Array,
     sin: Array,
     activation: Array,
-    table: FrictionTable,
+    *, table: FrictionTable,
     was_sliding: NDArray[np.bool_],
 ) -> Contact:
     """Coulomb friction with stiction for massless feet; every argument is (..., n).

@@ -67,22 +67,22 @@ class LimbArrays:
                 key = "" if "" in matrices else "".join("1" if b else "0" for b in own)
                 table[i, p] = np.array(matrices[key])
         arrays = cls(
-            tuple(limb.name for limb in limbs),
-            length,
-            rest,
-            full,
-            real,
-            freq,
-            zeta,
-            valve,
-            np.array([limb.pitch for limb in limbs]),
-            np.array([limb.yaw for limb in limbs]),
-            np.array([limb.position for limb in limbs]).reshape(n, 3),
-            np.array([limb.damping for limb in limbs]),
-            table,
-            bits,
-            0.0,
-            float(length.sum(axis=1).max(initial=0.0)) or 1.0,
+            names=tuple(limb.name for limb in limbs),
+            length=length,
+            rest=rest,
+            full=full,
+            real=real,
+            frequency=freq,
+            damping_ratio=zeta,
+            valve=valve,
+            pitch=np.array([limb.pitch for limb in limbs]),
+            yaw=np.array([limb.yaw for limb in limbs]),
+            offset=np.array([limb.position for limb in limbs]).reshape(n, 3),
+            damping=np.array([limb.damping for limb in limbs]),
+            table=table,
+            bits=bits,
+            inertia=0.0,
+            max_length=float(length.sum(axis=1).max(initial=0.0)) or 1.0,
         )
         masses = np.array([limb.mass for limb in limbs])
         centres = arrays.to_world(arrays.centre_of_mass(rest), np.zeros(3), 0.0)

@@ -129,15 +129,16 @@ class SpringDamperModel:
         position = np.zeros((b, 3))
         position[:, 2] = height
         return State(
-            position,
-            np.zeros((b, 3)),
-            np.zeros(b),
-            np.zeros(b),
-            kappa,
-            np.zeros_like(kappa),
-            feet,
-            np.zeros((b, n), dtype=bool),
-            np.zeros((b, n), dtype=bool),
+
+            position=position,
+            velocity=np.zeros((b, 3)),
+            theta=np.zeros(b),
+            omega=np.zeros(b),
+            kappa=kappa,
+            kappa_rate=np.zeros_like(kappa),
+            feet=feet,
+            contact=np.zeros((b, n), dtype=bool),
+            sliding=np.zeros((b, n), dtype=bool),
         )
 
     def steady_states(self, valves: Sequence[ValveState]) -> list[State]:
@@ -227,15 +228,16 @@ class SpringDamperModel:
         contact = contact & (normal > 0.0)
         normal = np.where(contact, normal, 0.0)
         fr = coulomb(
-            hold_x,
-            hold_y,
-            normal,
-            b,
-            c,
-            s,
-            a.activation(fraction),
-            self.friction,
-            state.sliding & contact,
+
+            hold_x=hold_x,
+            hold_y=hold_y,
+            normal=normal,
+            damping=b,
+            cos=c,
+            sin=s,
+            activation=a.activation(fraction),
+            table=self.friction,
+            was_sliding=state.sliding & contact,
         )
         # a massless foot slides at most until its force is back on the friction cone
         slip_x, slip_y = fr.slip_x * self.dt, fr.slip_y * self.dt
@@ -275,15 +277,16 @@ class SpringDamperModel:
         omega = state.omega + dt * torque / a.inertia
         self.steps += len(state.theta)
         return State(
-            state.position + dt * velocity,
-            velocity,
-            state.theta + dt * omega,
-            omega,
-            kappa,
-            kappa_rate,
-            f.feet,
-            f.contact,
-            f.sliding,
+
+            position=state.position + dt * velocity,
+            velocity=velocity,
+            theta=state.theta + dt * omega,
+            omega=omega,
+            kappa=kappa,
+            kappa_rate=kappa_rate,
+            feet=f.feet,
+            contact=f.contact,
+            sliding=f.sliding,
         )
 
     def energy(self, state: State) -> Array:

@@ -50,7 +50,7 @@ def open_session(
     goal: Goal,
     method: str,
     backend: str = "sim",
-    predictions: str | None = None,
+    *, predictions: str | None = None,
     mismatch: Mismatch | None = None,
     settings: Settings | None = None,
     max_states: int = 10_000,

@@ -82,7 +82,7 @@ def observe_step(
     edge: int,
     step: Step | None,
     measured: dict[int, list[Step]],
-    threshold: float,
+    *, threshold: float,
     changed: list[tuple[Point, Point]],
     at: tuple[float, float, float],
     reached: tuple[float, float, float] | None,
@@ -122,5 +122,15 @@ def whole_cycle(
     cycle.walking = time.perf_counter() - began
     for i, (e, step) in enumerate(seen):
         reached = path[i + 1] if i + 1 < len(path) else None
-        observe_step(planner, e, step, measured, threshold, changed, path[i], reached, cycle)
+        observe_step(
+            planner=planner,
+            edge=e,
+            step=step,
+            measured=measured,
+            threshold=threshold,
+            changed=changed,
+            at=path[i],
+            reached=reached,
+            cycle=cycle,
+        )
     return cycle

@@ -89,7 +89,16 @@ class MonteCarloPlanner:
         dst = self.model.dst[rows]
         ok = self.model.alive[rows] & (self.hops[dst] >= 0) & (self.hops[dst] <= room)
         untried = [int(r) for r in self.rng.permutation(rows[ok])]
-        return TreeNode(pose, x, y, h, depth, parent, e, untried)
+        return TreeNode(
+            pose=pose,
+            x=x,
+            y=y,
+            heading=h,
+            depth=depth,
+            parent=parent,
+            edge=e,
+            untried=untried,
+        )
 
     def score(self, x: float, y: float, heading: float, length: int) -> float:
         """Reward in [0, 1]: progress toward the goal, less heading error and length."""

@@ -131,7 +131,7 @@ def learn(
     walker: Walker,
     plan: GaitPlan | None = None,
     max_iterations: int = 40,
-    verify: int = 5,
+    *, verify: int = 5,
     threshold: float = 0.5,
     progress: Callable[[str], None] | None = None,
     grower: Grower | None = None,
@@ -163,18 +163,19 @@ def learn(
                 cycle = whole_cycle(planner, walker, plan.edges, measured, threshold, changed)
             iterations.append(
                 Iteration(
-                    index,
-                    cycle.edges,
-                    _valves(model, plan.start, cycle.edges),
-                    plan.displacement,
-                    cycle.executed,
-                    cycle.completed,
-                    cycle.fresh,
-                    cycle.moved,
-                    cycle.failed,
-                    plan_seconds,
-                    time.perf_counter() - began - cycle.walking,
-                    tuple((p[0], p[1]) for p in cycle.path),
+
+                    index=index,
+                    edges=cycle.edges,
+                    valves=_valves(model, plan.start, cycle.edges),
+                    predicted=plan.displacement,
+                    executed=cycle.executed,
+                    completed=cycle.completed,
+                    newly_explored=cycle.fresh,
+                    changed=cycle.moved,
+                    failed=cycle.failed,
+                    plan_seconds=plan_seconds,
+                    update_seconds=time.perf_counter() - began - cycle.walking,
+                    path=tuple((p[0], p[1]) for p in cycle.path),
                 )
             )
             if progress is not None:
@@ -207,14 +208,15 @@ def learn(
     if plan is not None:
         plan = planner.plan()  # the same gait (nothing changed), with the explored cells
     return Learned(
-        first,
-        plan,
-        tuple(iterations),
-        converged,
-        final_executed,
-        verify,
-        stopped,
-        tuple(changed),
+
+        first=first,
+        final=plan,
+        iterations=tuple(iterations),
+        converged=converged,
+        executed=final_executed,
+        verify_cycles=verify,
+        stopped=stopped,
+        changed=tuple(changed),
     )
 
 
@@ -266,7 +268,7 @@ def learn_gait(
     method: str = "lpa",
     mismatch: Mismatch | None = None,
     settings: Settings | None = None,
-    max_states: int = 10_000,
+    *, max_states: int = 10_000,
     max_iterations: int = 40,
     verify: int = 5,
     progress: Callable[[str], None] | None = None,
@@ -286,15 +288,16 @@ def learn_gait(
     from gaitc.search.backends import open_session
 
     session = open_session(
-        robot,
-        goal_for(goal),
-        method,
-        backend,
-        predictions,
-        mismatch,
-        settings,
-        max_states,
-        max_open,
+
+        robot=robot,
+        goal=goal_for(goal),
+        method=method,
+        backend=backend,
+        predictions=predictions,
+        mismatch=mismatch,
+        settings=settings,
+        max_states=max_states,
+        max_open=max_open,
     )
     grower = session.grower if grow else None
     return learn(
@@ -302,7 +305,7 @@ def learn_gait(
         session.walker,
         session.plan,
         max_iterations,
-        verify,
+        verify=verify,
         progress=progress,
         grower=grower,
     )

@@ -96,16 +96,17 @@ class HybridPlanner:
             nodes = route.explored if search is None else search.explored()
             explored = sorted({lattice.centre(n)[1:3] for n in nodes})
         return make_plan(
-            self.model,
-            self.robot,
-            self.method,
-            self.goal,
-            self.start,
-            route.edges,
-            route.expanded,
-            seconds,
-            tuple(explored),
-            (self.settings.cell, self.settings.cell_angle),
+
+            model=self.model,
+            robot=self.robot,
+            method=self.method,
+            goal=self.goal,
+            start=self.start,
+            edges=route.edges,
+            expanded=route.expanded,
+            seconds=seconds,
+            explored=tuple(explored),
+            cell=(self.settings.cell, self.settings.cell_angle),
         )
 
     def observe(self, edge: int, step: Step | None, differs: bool = True) -> None:
@@ -172,15 +173,16 @@ class TreePlanner:
             return None
         cells = sorted({(n.x, n.y) for n in _nodes(self.tree.root)}) if explored else []
         plan = make_plan(
-            self.model,
-            self.robot,
-            "mcts",
-            self.goal,
-            self.start,
-            best.edges,
-            self.tree.iterations,
-            seconds,
-            tuple(cells),
+
+            model=self.model,
+            robot=self.robot,
+            method="mcts",
+            goal=self.goal,
+            start=self.start,
+            edges=best.edges,
+            expanded=self.tree.iterations,
+            seconds=seconds,
+            explored=tuple(cells),
         )
         return replace(plan, cell=(0.0, 0.0))
 

@@ -154,7 +154,7 @@ def make_plan(
     robot: str,
     method: str,
     goal: Goal,
-    start: int,
+    *, start: int,
     edges: tuple[int, ...],
     expanded: int,
     seconds: float,
@@ -169,28 +169,30 @@ def make_plan(
         target = int(model.dst[e])
         steps.append(
             PlanStep(
-                e,
-                int(model.src[e]),
-                target,
-                model.labels[target],
-                step.dx,
-                step.dy,
-                step.rotation,
-                float(model.slip[e]),
+
+                edge=e,
+                source=int(model.src[e]),
+                target=target,
+                valves=model.labels[target],
+                dx=step.dx,
+                dy=step.dy,
+                rotation=step.rotation,
+                slip=float(model.slip[e]),
             )
         )
         x, y, h = compose(x, y, h, step)
     return GaitPlan(
-        robot,
-        method,
-        goal,
-        start,
-        model.labels[start],
-        tuple(steps),
-        (x, y, h),
-        expanded,
-        seconds,
-        explored,
-        cell,
+
+        robot=robot,
+        method=method,
+        goal=goal,
+        start=start,
+        start_valves=model.labels[start],
+        steps=tuple(steps),
+        displacement=(x, y, h),
+        expanded=expanded,
+        seconds=seconds,
+        explored=explored,
+        cell=cell,
         groups=model.groups,
     )

@@ -57,14 +57,15 @@ def model_transitions(path: str | Path, max_open: int = 1) -> ModelPredictions:
     dst = np.array([index[b] for _, b in pairs], np.int64)
     motion = [graph.motion[p] for p in pairs]
     model = TransitionModel(
-        len(states),
-        src,
-        dst,
-        np.array([m.x for m in motion]),
-        np.array([m.y for m in motion]),
-        np.array([math.degrees(m.theta) for m in motion]),
-        np.zeros(len(pairs)),
-        [valve_text(s) for s in graph.states],
+
+        poses=len(states),
+        src=src,
+        dst=dst,
+        dx=np.array([m.x for m in motion]),
+        dy=np.array([m.y for m in motion]),
+        rot=np.array([math.degrees(m.theta) for m in motion]),
+        slip=np.zeros(len(pairs)),
+        labels=[valve_text(s) for s in graph.states],
     )
     model.groups = _groups(loaded.valve_legs)
     return ModelPredictions(loaded, graph, model, index[(False,) * len(loaded.valve_legs)])

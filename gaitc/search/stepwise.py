@@ -52,11 +52,31 @@ def replanning_cycle(
         out = walker.last
         tried.append(e)
         if out is None or out.edge != e or out.measured is None:
-            observe_step(planner, e, None, measured, threshold, changed, pose, None, cycle)
+            observe_step(
+                planner=planner,
+                edge=e,
+                step=None,
+                measured=measured,
+                threshold=threshold,
+                changed=changed,
+                at=pose,
+                reached=None,
+                cycle=cycle,
+            )
             rest = None
             break
         reached = compose(*pose, out.measured)
-        observe_step(planner, e, out.measured, measured, threshold, changed, pose, reached, cycle)
+        observe_step(
+            planner=planner,
+            edge=e,
+            step=out.measured,
+            measured=measured,
+            threshold=threshold,
+            changed=changed,
+            at=pose,
+            reached=reached,
+            cycle=cycle,
+        )
         pose = reached
         path.append(pose)
         before = rest[1:]

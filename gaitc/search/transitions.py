@@ -52,7 +52,7 @@ class TransitionModel:
         dy: Floats,
         rot: Floats,
         slip: Floats,
-        labels: list[str] | None = None,
+        *, labels: list[str] | None = None,
     ) -> None:
         order = np.lexsort((dst, src))
         self.poses = poses
@@ -86,7 +86,15 @@ class TransitionModel:
         count = graph.robot.valve_count
         labels = [valve_string(int(s), count) for s in graph.poses.state]
         model = TransitionModel(
-            len(graph), e.src, e.dst, e.dx, e.dy, np.degrees(e.rot), e.slip, labels
+
+            poses=len(graph),
+            src=e.src,
+            dst=e.dst,
+            dx=e.dx,
+            dy=e.dy,
+            rot=np.degrees(e.rot),
+            slip=e.slip,
+            labels=labels,
         )
         model.groups = tuple(len(leg.chambers) for leg in graph.robot.legs)
         return model
@@ -94,14 +102,15 @@ class TransitionModel:
     def copy(self) -> TransitionModel:
         """An independent copy (the walker keeps the original predictions)."""
         out = TransitionModel(
-            self.poses,
-            self.src,
-            self.dst,
-            self.dx,
-            self.dy,
-            self.rot,
-            self.slip,
-            list(self.labels),
+
+            poses=self.poses,
+            src=self.src,
+            dst=self.dst,
+            dx=self.dx,
+            dy=self.dy,
+            rot=self.rot,
+            slip=self.slip,
+            labels=list(self.labels),
         )
         out.alive = self.alive.copy()
         out.alive_list = self.alive.tolist()

@@ -217,12 +217,19 @@ def read_jsonl(path: str | Path) -> Run:
             elif kind == "step":
                 health = tuple((str(k), int(v)) for k, v in dict(data["health"]).items())
                 run.steps.append(Step(
-                    int(data["step"]), int(data["node"]), str(data["region"]),
-                    str(data["gait"]), _strs(data["legs_used"]), health,
-                    None if data.get("hazard") is None else str(data["hazard"]),
-                    _strs(data.get("goals", [])), _strs(data.get("degraded", [])),
-                    _strs(data.get("failed", [])), _strs(data.get("repaired", [])),
-                    tuple((str(k), int(v)) for k, v in dict(data.get("values", {})).items()),
+
+                    index=int(data["step"]),
+                    node=int(data["node"]),
+                    region=str(data["region"]),
+                    gait=str(data["gait"]),
+                    legs_used=_strs(data["legs_used"]),
+                    health=health,
+                    hazard=None if data.get("hazard") is None else str(data["hazard"]),
+                    goals=_strs(data.get("goals", [])),
+                    degraded=_strs(data.get("degraded", [])),
+                    failed=_strs(data.get("failed", [])),
+                    repaired=_strs(data.get("repaired", [])),
+                    values=tuple((str(k), int(v)) for k, v in dict(data.get("values", {})).items()),
                 ))
                 numbers.append(number)
         except GaitcError:  # the format version's own message

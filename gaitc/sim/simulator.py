@@ -104,9 +104,20 @@ class Simulator:
             repaired = [leg for leg, level in st.health if level > before.get(leg, level)]
         prev_state = None if previous is None else self.state(previous.node)
         # degraded/failed are set on this step once the next one is known (Run.add)
-        return Step(0, node, st.region, st.gait, self.domain.legs_used(st.gait), st.health,
-                    st.hazard, self.domain.goals_reached(st, prev_state), (), (),
-                    tuple(repaired), self._named(node))
+        return Step(
+            index=0,
+            node=node,
+            region=st.region,
+            gait=st.gait,
+            legs_used=self.domain.legs_used(st.gait),
+            health=st.health,
+            hazard=st.hazard,
+            goals=self.domain.goals_reached(st, prev_state),
+            degraded=(),
+            failed=(),
+            repaired=tuple(repaired),
+            values=self._named(node),
+        )
 
     def _input_names(self, inputs: InputKey) -> dict[str, int]:
         return dict(zip(self.strategy.inputs, inputs, strict=True))
@@ -150,10 +161,18 @@ class Simulator:
             here = None if previous is None else self.state(previous.node)
             moves = self.moves(node)
             situation = Situation(
-                index, node, here, moves, self.domain, goals[goal_index] if goals else None,
-                self.monitor, None if node is None else self.strategy.values[node],
-                self._successor_values(node, moves),
-                self.strategy if isinstance(self.strategy, Strategy) else None)
+
+                step=index,
+                node=node,
+                state=here,
+                moves=moves,
+                domain=self.domain,
+                next_goal=goals[goal_index] if goals else None,
+                monitor=self.monitor,
+                values=None if node is None else self.strategy.values[node],
+                successor_values=self._successor_values(node, moves),
+                strategy=self.strategy if isinstance(self.strategy, Strategy) else None,
+            )
             try:
                 if node is not None and not moves:
                     raise self._refuse(index, node, Request(()))

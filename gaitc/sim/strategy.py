@@ -85,9 +85,15 @@ def strategy_from_controller(controller: Controller, spec: GR1Spec, file: str = 
     if not initial:
         initial = _initial_nodes(spec, variables, values)
     return Strategy(
-        variables, len(inputs), tuple(values),
-        tuple(tuple(sorted(n.trans)) for n in controller.nodes),
-        tuple(n.rank for n in controller.nodes), initial, controller.kind, file,
+
+        variables=variables,
+        n_inputs=len(inputs),
+        values=tuple(values),
+        successors=tuple(tuple(sorted(n.trans)) for n in controller.nodes),
+        ranks=tuple(n.rank for n in controller.nodes),
+        initial=initial,
+        kind=controller.kind,
+        file=file,
     )
 
 

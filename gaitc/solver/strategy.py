@@ -199,8 +199,16 @@ def extract_strategy(
         if functions is not None:
             moves = _moves_at(sym, bdd.let(at, functions[goal]), post, len(post_in))
         else:
-            moves = _chosen_moves(sym, at, goal, strategies[goal], prefer, post_in,
-                                  smallest_of, inputs_of)
+            moves = _chosen_moves(
+                sym=sym,
+                at=at,
+                goal=goal,
+                strategy=strategies[goal],
+                prefer=prefer,
+                post_in=post_in,
+                smallest_of=smallest_of,
+                inputs_of=inputs_of,
+            )
         targets = set()
         for x, y in moves:
             move = at | dict(zip(post, map(bool, x + y), strict=True))
@@ -222,7 +230,7 @@ def extract_strategy(
 
 
 def _chosen_moves(sym: SymbolicSpec, at: dict[str, bool], goal: int, strategy: BDDNode,
-                  prefer: MovePreferences | None, post_in: Sequence[str],
+                  *, prefer: MovePreferences | None, post_in: Sequence[str],
                   smallest_of: Callable[[BDDNode], State | None],
                   inputs_of: Callable[[BDDNode], list[State]]) -> list[tuple[State, State]]:
     """The move (next input, next output) taken at the state ``at`` for goal ``goal``,

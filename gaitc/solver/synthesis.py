@@ -145,7 +145,7 @@ def synthesize(
     semantics: Semantics = Semantics.DEFAULT,
     timeout: float | None = None,
     progress: Progress | None = None,
-    options: Options | None = None,
+    *, options: Options | None = None,
     max_nodes: int | None = None,
     prefer: Sequence[str] = (),
     costs: Sequence[Cost] = (),
@@ -155,8 +155,17 @@ def synthesize(
     ``prefer`` orders the preferences of :mod:`gaitc.solver.preferences` (empty: the first move in
     BDD order); ``costs`` gives the terms of the cost-based ones (e.g. a robot model's).
     """
-    found = synthesize_controller(spec, semantics, timeout, progress, options, max_nodes,
-                                  "explicit", prefer, costs)
+    found = synthesize_controller(
+        spec=spec,
+        semantics=semantics,
+        timeout=timeout,
+        progress=progress,
+        options=options,
+        max_nodes=max_nodes,
+        form="explicit",
+        prefer=prefer,
+        costs=costs,
+    )
     assert not isinstance(found, SymbolicController)
     return found
 
@@ -166,7 +175,7 @@ def synthesize_controller(
     semantics: Semantics = Semantics.DEFAULT,
     timeout: float | None = None,
     progress: Progress | None = None,
-    options: Options | None = None,
+    *, options: Options | None = None,
     max_nodes: int | None = None,
     form: str = "auto",
     prefer: Sequence[str] = (),

@@ -211,9 +211,16 @@ class Check:
     def report(self, kind: str) -> VerificationReport:
         extra = len(self.problems) - MAX_PROBLEMS
         problems = self.problems[:MAX_PROBLEMS] + [f"... and {extra} more problem(s)"] * (extra > 0)
-        return VerificationReport(not problems, tuple(problems), tuple(self.notes[:MAX_PROBLEMS]),
-                                  len(self.reachable), self.graph.number_of_edges(), self.sccs,
-                                  kind, self.semantics)
+        return VerificationReport(
+            ok=not problems,
+            problems=tuple(problems),
+            notes=tuple(self.notes[:MAX_PROBLEMS]),
+            nodes=len(self.reachable),
+            edges=self.graph.number_of_edges(),
+            sccs=self.sccs,
+            kind=kind,
+            semantics=self.semantics,
+        )
 
 
 def few_nodes(nodes: Sequence[int], limit: int = 12) -> str:

@@ -183,5 +183,14 @@ def _fair_avoiding(loop: _Loop, avoiding: Any, env_goals: list[Any], within: Any
 
 def _report(problems: list[str], count: int, semantics: Semantics) -> VerificationReport:
     shown = problems[:MAX_PROBLEMS]
-    return VerificationReport(not shown, tuple(shown), (), count, 0, 0, "strategy", semantics,
-                              symbolic=True)
+    return VerificationReport(
+        ok=not shown,
+        problems=tuple(shown),
+        notes=(),
+        nodes=count,
+        edges=0,
+        sccs=0,
+        kind="strategy",
+        semantics=semantics,
+        symbolic=True,
+    )

@@ -155,15 +155,16 @@ def run_drive(args: argparse.Namespace) -> int:
         return ExitCode.UNREALIZABLE
     if args.json:
         extra = {"backend": args.backend, "violations": list(driven.violations)}
-        return report_run(driven.run, driven.full_health, driven.board, args.quiet, args.out,
-                          True, extra, command="drive")
+        return report_run(driven.run, driven.full_health, driven.board, args.quiet,
+                          out=args.out, as_json=True, extra=extra, command="drive")
     if driven.violations and live is None:
         print(f"readings that broke an assumption ({args.on_violation}): "
               f"{len(driven.violations)}")
         for note in driven.violations:
             print(f"  {note}")
     try:
-        return report_run(driven.run, driven.full_health, driven.board, args.quiet, args.out)
+        return report_run(driven.run, driven.full_health, driven.board, args.quiet,
+                          out=args.out)
     finally:
         if driven.poses:  # the physics backend's poses, also for a run that broke the spec
             print(driven.poses_text(args.quiet))

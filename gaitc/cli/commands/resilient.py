@@ -64,9 +64,10 @@ def run_resilience(args: argparse.Namespace) -> int:
         raise UsageError("--jobs must be at least 1")
     semantics = "robotics" if args.robotics_semantics else "default"
     spec = gaitc.load(args.spec, args.encoding)
-    report = gaitc.resilience(spec, args.method, args.health_bound, args.place_caches,
-                              semantics, args.jobs, args.dask,
-                              terminal_progress("resilience"))
+    report = gaitc.resilience(spec, method=args.method, health_bound=args.health_bound,
+                              place_caches=args.place_caches, semantics=semantics,
+                              jobs=args.jobs, dask=args.dask,
+                              progress=terminal_progress("resilience"))
     if args.output:
         fmt = report.picture().save(args.output)
         print(f"wrote {args.output} ({fmt})", file=sys.stderr)

@@ -130,8 +130,8 @@ def run_simulate(args: argparse.Namespace) -> int:
                                     semantics, progress)
         if bound is not None:  # the environment plays its winning strategy
             run = gaitc.simulate(bound, env="adversarial", steps=args.steps)
-            return report_run(run, bound.full_health, run.environment, args.quiet, args.out,
-                              args.json, realizable=False)
+            return report_run(run, bound.full_health, run.environment, args.quiet, out=args.out,
+                              as_json=args.json, realizable=False)
     if bound is None:
         print(f"{args.spec}: unrealizable: no controller to simulate", file=sys.stderr)
         if args.json:
@@ -140,15 +140,16 @@ def run_simulate(args: argparse.Namespace) -> int:
     if bound.strategy.kind == "counterstrategy":
         kind = (args.env or ["random"])[0]
         run = gaitc.simulate(bound, env=kind, steps=args.steps, seed=args.seed or 0)
-        return report_run(run, bound.full_health, run.environment, args.quiet, args.out,
-                          args.json, realizable=False)
+        return report_run(run, bound.full_health, run.environment, args.quiet, out=args.out,
+                          as_json=args.json, realizable=False)
     chosen = environment_of(args, bound)
     run = gaitc.simulate(bound, env=chosen, steps=args.steps)
-    return report_run(run, bound.full_health, chosen.name, args.quiet, args.out, args.json)
+    return report_run(run, bound.full_health, chosen.name, args.quiet, out=args.out,
+                      as_json=args.json)
 
 
 def report_run(
-    run: Run, full_health: Mapping[str, int], source: str, quiet: bool, out: str | None,
+    run: Run, full_health: Mapping[str, int], source: str, quiet: bool, *, out: str | None,
     as_json: bool = False, extra: Mapping[str, Any] | None = None, realizable: bool = True,
     command: str = "simulate",
 ) -> int:
