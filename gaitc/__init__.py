@@ -43,6 +43,7 @@ from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
     from gaitc.api.characterizing import Recordings, calibrate, characterize
+    from gaitc.api.drawing import controller_policy, draw_automaton, draw_map, draw_spec
     from gaitc.api.driving import (
         DriveOptions,
         PhysicsBoard,
@@ -103,6 +104,7 @@ _MODULES: dict[str, tuple[str, ...]] = {
     "gaitc.api.resilient": ("resilience",),
     "gaitc.api.simulation": ("Session", "session", "simulate"),
     "gaitc.api.examples": ("copy_examples",),
+    "gaitc.api.drawing": ("controller_policy", "draw_automaton", "draw_map", "draw_spec"),
     "gaitc.api.gaits": ("GaitMethod", "GaitOptions", "GlobalSearch", "gaits"),
     "gaitc.api.learning": ("LearnOptions", "LearningBackend", "learn"),
     "gaitc.api.driving": (
@@ -165,8 +167,12 @@ __all__ = [
     "calibrate",
     "characterize",
     "check",
+    "controller_policy",
     "copy_examples",
     "counterstrategy",
+    "draw_automaton",
+    "draw_map",
+    "draw_spec",
     "drive",
     "emit",
     "explain",

@@ -199,3 +199,10 @@ def test_files_from_a_newer_gaitc_are_refused_with_a_clear_message(tmp_path: Pat
     assert run_newer.value.message.startswith("this run file is format version 3, written by "
                                               "a newer gaitc")
     assert run_newer.value.span is not None and run_newer.value.span.line == 1
+
+
+def test_every_public_name_has_a_home() -> None:
+    """``gaitc.__all__`` and the lazy table agree, and every name loads."""
+    assert sorted(gaitc.__all__) == sorted(gaitc._HOMES)
+    for name in gaitc.__all__:
+        assert getattr(gaitc, name) is not None, name

@@ -130,45 +130,19 @@ def _save(picture: Picture, args: argparse.Namespace) -> int:
     return ExitCode.OK
 
 
-def _model(path: str) -> Any:
-    loaded = gaitc.load(path)
-    if loaded.model is None:
-        raise UsageError(f"'{path}': maps need a .gait spec")
-    return loaded.model
+def _unrealizable(args: argparse.Namespace, what: str) -> int:
+    print(f"{args.spec}: unrealizable: no controller to {what}", file=sys.stderr)
+    return ExitCode.UNREALIZABLE
 
 
 def run_automaton(args: argparse.Namespace) -> int:
-    from gaitc.sim.automaton_view import automaton_view
-    from gaitc.sim.strategy import explicit
-
     output_format(args.output, args.format)  # fail on a bad format before synthesizing
-    if args.max_nodes < 1:
-        raise UsageError("--max-nodes must be at least 1")
-    _check_steps(args.steps)
-    if args.steps is not None and args.quotient is not None:
-        raise UsageError("--steps draws single nodes; leave out --quotient")
     with progress_display() as progress:
-        loaded = gaitc.session(args.spec, args.controller, args.encoding, prefer=args.prefer,
-                               progress=progress)
-    if loaded is None:
-        print(f"{args.spec}: unrealizable: no controller to draw", file=sys.stderr)
-        return ExitCode.UNREALIZABLE
-    if args.steps is not None:
-        from gaitc.sim.steps_view import steps_view
-
-        return _save(steps_view(loaded.strategy, loaded.domain, args.steps, args.max_nodes),
-                     args)
-    strategy = explicit(loaded.strategy, "drawing the automaton")
-    view = automaton_view(strategy, loaded.domain, args.quotient, args.max_nodes)
-    if args.quotient == "none" and len(loaded.strategy) > args.max_nodes:
-        print(f"gaitc: the automaton has {len(loaded.strategy)} nodes; --quotient region-gait "
-              "or --quotient region draws a smaller picture", file=sys.stderr)
-    return _save(view, args)
-
-
-def _check_steps(steps: int | None) -> None:
-    if steps is not None and steps < 0:
-        raise UsageError(f"--steps must be 0 or more (the moves from the start), not {steps}")
+        picture = gaitc.draw_automaton(
+            args.spec, args.controller, quotient=args.quotient, steps=args.steps,
+            max_nodes=args.max_nodes, encoding=args.encoding, prefer=args.prefer,
+            progress=progress)
+    return _unrealizable(args, "draw") if picture is None else _save(picture, args)
 
 
 def _policy_format(path: str | None, fmt: str | None) -> str:
@@ -184,27 +158,21 @@ def _policy_format(path: str | None, fmt: str | None) -> str:
 
 def run_policy(args: argparse.Namespace) -> int:
     from gaitc.diagnostics.files import write_atomically
-    from gaitc.sim.policy import controller_policy
     from gaitc.sim.policy_view import policy_view
 
     fmt = _policy_format(args.output, args.format)  # fail on a bad format before synthesizing
     if args.output is None and fmt not in TABLE_FORMATS:
         raise UsageError(f"--format {fmt} draws a picture: give -o FILE")
-    if args.max_nodes < 1:
-        raise UsageError("--max-nodes must be at least 1")
-    _check_steps(args.steps)
-    if args.max_rules is not None and args.max_rules < 1:
-        raise UsageError("--max-rules must be at least 1")
     with progress_display() as progress:
-        loaded = gaitc.session(args.spec, args.controller, args.encoding, prefer=args.prefer,
-                               progress=progress)
-    if loaded is None:
-        print(f"{args.spec}: unrealizable: no controller to project", file=sys.stderr)
-        return ExitCode.UNREALIZABLE
-    policy = controller_policy(loaded.strategy, loaded.domain, args.steps, args.max_nodes,
-                               args.max_rules)
+        found = gaitc.controller_policy(
+            args.spec, args.controller, steps=args.steps, max_nodes=args.max_nodes,
+            max_rules=args.max_rules, encoding=args.encoding, prefer=args.prefer,
+            progress=progress)
+    if found is None:
+        return _unrealizable(args, "project")
+    policy, bound = found
     if fmt not in TABLE_FORMATS:
-        return _save(policy_view(policy, loaded.domain), args)
+        return _save(policy_view(policy, bound.domain), args)
     text = {"text": policy.text, "md": policy.markdown, "html": policy.html}[fmt]()
     if args.output is None:
         sys.stdout.write(text)
@@ -215,32 +183,10 @@ def run_policy(args: argparse.Namespace) -> int:
 
 
 def run_map(args: argparse.Namespace) -> int:
-    from gaitc.sim.map_view import map_view
-    from gaitc.sim.run import read_jsonl
-
     output_format(args.output, args.format)
-    model = _model(args.spec)
-    run = None
-    if args.run_file is not None:
-        run = read_jsonl(args.run_file)
-        _check_run(run, model, args.run_file)
-    return _save(map_view(model, run, args.max_steps), args)
-
-
-def _check_run(run: Any, model: Any, path: str) -> None:
-    from gaitc.diagnostics import ScenarioError, Span
-
-    regions = {r.name for r in model.regions}
-    legs = {leg.name for leg in model.legs}
-    for step in run.steps:
-        if step.region not in regions or not {leg for leg, _ in step.health} <= legs:
-            raise ScenarioError(f"this run does not belong to '{model.file or 'the spec'}': "
-                                f"step {step.index} is in region '{step.region}'",
-                                Span(path, 1, 1))
+    return _save(gaitc.draw_map(args.spec, args.run_file, args.max_steps), args)
 
 
 def run_spec(args: argparse.Namespace) -> int:
-    from gaitc.sim.map_view import spec_view
-
     output_format(args.output, args.format)
-    return _save(spec_view(_model(args.spec)), args)
+    return _save(gaitc.draw_spec(args.spec), args)
