@@ -21,9 +21,9 @@ from gaitc.ir.bddfile import SymbolicController
 from gaitc.ir.spec import GR1Spec
 from gaitc.solver import strategy, synthesis
 from gaitc.solver.census import Census, node_count
-from gaitc.solver.game import ControllerTooLarge, GameResult, Limits
+from gaitc.solver.game import ControllerTooLarge, GameResult, Limits, goal_strategies
 from gaitc.solver.preferences import MovePreferences, preference_order
-from gaitc.solver.strategy import extract_strategy, goal_strategies
+from gaitc.solver.strategy import extract_strategy
 from gaitc.solver.symbolic import Options, SymbolicSpec
 from gaitc.verifier.symbolic import verify_symbolic
 from slugs_bridge.formats import load_spec_file

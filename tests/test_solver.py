@@ -26,9 +26,9 @@ from gaitc.ir.formula import (
 from gaitc.ir.spec import SEMANTICS, Clause, GR1Spec, Variable
 from gaitc.solver import game as game_module
 from gaitc.solver import synthesis
+from gaitc.solver.canonical import smallest
 from gaitc.solver.game import Game
 from gaitc.solver.portfolio import SIFTED, engine_options
-from gaitc.solver.strategy import smallest
 from gaitc.solver.symbolic import Options, SymbolicSpec
 from gaitc.verifier.counterstrategy import verify_counterstrategy
 from gaitc.verifier.strategy import verify

@@ -34,8 +34,7 @@ from gaitc.sim.simulator import Simulator
 from gaitc.sim.strategy import strategy_from_controller
 from gaitc.sim.symbolic_view import SymbolicStrategy
 from gaitc.solver import synthesis
-from gaitc.solver.game import Game
-from gaitc.solver.strategy import goal_strategies
+from gaitc.solver.game import Game, goal_strategies
 from gaitc.solver.symbolic import SymbolicSpec
 from gaitc.verifier.symbolic import verify_symbolic
 

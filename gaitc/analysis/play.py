@@ -174,7 +174,7 @@ def narrate_values(counter: Controller, play: Play) -> list[str]:
 def deadlock_move(spec: GR1Spec, counter: Controller, node: int) -> dict[str, int] | None:
     """The environment's winning last input at the deadlock ``node``: one its assumptions
     allow and after which no robot answer keeps the guarantees (bits by name)."""
-    from gaitc.solver.strategy import fix, primed, smallest
+    from gaitc.solver.canonical import fix, primed, smallest
     from gaitc.solver.symbolic import SymbolicSpec
 
     sym = SymbolicSpec(spec)

@@ -70,7 +70,7 @@ def advances(sym: SymbolicSpec) -> list[list[BDDNode]]:
 
 
 def initial_nodes(sym: SymbolicSpec, winning: BDDNode, semantics: Semantics) -> BDDNode:
-    """The states of :func:`gaitc.solver.strategy.initial_states`, as one BDD."""
+    """The states of :func:`gaitc.solver.canonical.initial_states`, as one BDD."""
     if semantics == "robotics":
         return sym.env_init & sym.sys_init & winning
     outs = list(sym.output_bits)

@@ -18,8 +18,8 @@ import dd.cudd as cudd
 from gaitc.diagnostics import SolverError
 from gaitc.ir.controller import Controller, ControllerNode
 from gaitc.ir.spec import Semantics
+from gaitc.solver.canonical import REPORT_EVERY, assignments, fix, primed, smallest, spec_integers
 from gaitc.solver.game import Limits, too_large
-from gaitc.solver.strategy import REPORT_EVERY, assignments, fix, primed, smallest, spec_integers
 from gaitc.solver.symbolic import BDDNode, SymbolicSpec
 
 State = tuple[int, ...]

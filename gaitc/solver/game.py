@@ -377,3 +377,18 @@ class Game:
         else:
             raise ValueError(f"unknown semantics {semantics!r}")
         return bool(bad == sym.bdd.false)
+
+
+def goal_strategies(sym: SymbolicSpec, result: GameResult) -> list[BDDNode]:
+    """Per goal j, the transitions the controller takes: the first layer covering each case."""
+    out = []
+    for layers in result.layers:
+        covered = sym.bdd.false
+        strategy = sym.bdd.false
+        for paths in layers:
+            allowed = sym.sys_trans & paths
+            new_cases = sym.bdd.exist(sym.post_outputs, allowed) & ~covered
+            strategy |= new_cases & allowed
+            covered |= new_cases
+        out.append(strategy)
+    return out

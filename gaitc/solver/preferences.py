@@ -23,7 +23,7 @@ import dd.cudd as cudd
 from gaitc.diagnostics import UsageError
 from gaitc.ir.bddwalk import Cofactors, cofactor, holds_at
 from gaitc.ir.costs import Cost
-from gaitc.solver.game import Game, GameResult, Limits
+from gaitc.solver.game import Game, GameResult, Limits, goal_strategies
 from gaitc.solver.steps import Steps, run_through
 from gaitc.solver.symbolic import BDDNode, SymbolicSpec
 
@@ -102,8 +102,6 @@ class MovePreferences:
     def _avoiding_game(self, hazards: Sequence[BDDNode], limits: Limits | None) -> None:
         """Solve the game without the hazard moves: where it is won, its strategy avoids
         every active hazard for ever and still reaches every goal."""
-        from gaitc.solver.strategy import goal_strategies
-
         sym = self.sym
         avoid = sym.bdd.true
         for term in hazards:

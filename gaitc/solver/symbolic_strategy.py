@@ -14,9 +14,9 @@ from __future__ import annotations
 
 from gaitc.ir.bddfile import SymbolicController, node_table
 from gaitc.ir.spec import Semantics
-from gaitc.solver.game import GameResult, Limits
+from gaitc.solver.canonical import spec_integers
+from gaitc.solver.game import GameResult, Limits, goal_strategies
 from gaitc.solver.preferences import MovePreferences
-from gaitc.solver.strategy import goal_strategies, spec_integers
 from gaitc.solver.symbolic import SymbolicSpec
 
 
