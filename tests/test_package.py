@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import json
 import os
+import shutil
 import subprocess
 import sys
 import venv
@@ -38,11 +39,15 @@ def _shadowing_folder(folder: Path) -> Path:
 @pytest.fixture(scope="module")
 def wheel(tmp_path_factory: pytest.TempPathFactory) -> Path:
     out = tmp_path_factory.mktemp("wheel")
-    build = tmp_path_factory.mktemp("build")
+    # a copy of the sources, so that the build leaves nothing (egg-info, build/) behind
+    source = tmp_path_factory.mktemp("source") / "gaitc"
+    shutil.copytree(ROOT, source, symlinks=True, ignore=shutil.ignore_patterns(
+        ".venv", ".git", "*.egg-info", "build", "__pycache__", ".mypy_cache", ".ruff_cache",
+        ".pytest_cache", ".hypothesis"))
     done = subprocess.run(
         [sys.executable, "-m", "pip", "wheel", "--no-deps", "--no-build-isolation", "-q",
-         "-w", str(out), str(ROOT)],
-        capture_output=True, text=True, check=False, cwd=build,
+         "-w", str(out), str(source)],
+        capture_output=True, text=True, check=False, cwd=out,
         env={**os.environ, "PIP_DISABLE_PIP_VERSION_CHECK": "1"})
     assert done.returncode == 0, done.stderr
     (found,) = out.glob("gaitc-*.whl")
@@ -139,15 +144,15 @@ def test_the_wheel_works_from_a_fresh_environment(wheel: Path, tmp_path: Path) -
     env_dir = tmp_path / "venv"
     venv.EnvBuilder(with_pip=True).create(env_dir)
     python = env_dir / "bin" / "python"
+    clean = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "VIRTUAL_ENV")}
     install = subprocess.run(
         [str(python), "-m", "pip", "install", "-q", "--disable-pip-version-check", str(wheel)],
-        capture_output=True, text=True, check=False)
+        capture_output=True, text=True, check=False, cwd=tmp_path, env=clean)
     if install.returncode != 0 and "No matching distribution" in install.stderr:
         pytest.skip(f"a dependency is not in the package index here: {install.stderr[-300:]}")
     assert install.returncode == 0, install.stderr
     gaitc_bin = env_dir / "bin" / "gaitc"
     work = _shadowing_folder(tmp_path / "lab")
-    clean = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "VIRTUAL_ENV")}
 
     def run(*argv: str) -> subprocess.CompletedProcess[str]:
         return subprocess.run([str(gaitc_bin), *argv], cwd=work, capture_output=True,
