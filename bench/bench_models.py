@@ -17,9 +17,9 @@ import math
 import time
 from pathlib import Path
 
-from gaitc.models.description import parse_spring_damper
 from gaitc.models.gait_graph import build_graph, valve_states
-from gaitc.models.spring_damper import SpringDamperModel
+from gaitc.models.spring_damper.description import parse_spring_damper
+from gaitc.models.spring_damper.model import SpringDamperModel
 
 ROBOTS = Path(__file__).resolve().parent.parent / "specs" / "robots"
 PERIOD = 6.0

@@ -19,7 +19,7 @@ from pathlib import Path
 
 import numpy as np
 
-from gaitc.models.active_passive import ActivePassiveModel
+from gaitc.models.active_passive.model import ActivePassiveModel
 from gaitc.models.motion import Pose2D, ValveState
 
 ROBOT = Path(__file__).resolve().parent.parent / "specs" / "robots" / "silicone6.yaml"

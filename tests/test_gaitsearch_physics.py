@@ -10,7 +10,7 @@ import pytest
 
 from gaitc.cli import main
 from gaitc.diagnostics import UsageError
-from gaitc.models.description import load_spring_damper
+from gaitc.models.spring_damper.description import load_spring_damper
 from gaitc.search import Mismatch, Settings, learn_gait
 from gaitc.search.backends import default_predictions
 from gaitc.search.goals import Goal

@@ -18,7 +18,7 @@ from gaitc.cli import main
 from gaitc.gaitgraph.robot import load_robot
 from gaitc.gaitgraph.search import search
 from gaitc.hw.sensing import calibrate, read_sensing
-from gaitc.models.description import load_spring_damper
+from gaitc.models.spring_damper.description import load_spring_damper
 
 ROOT = Path(__file__).resolve().parent.parent
 SYMMETRIC6 = str(ROOT / "specs" / "robots" / "symmetric6.yaml")

@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 
 from gaitc.gaitgraph.robot import RobotFileError, load_robot
-from gaitc.models.ap_description import load_active_passive, parse_active_passive
+from gaitc.models.active_passive.description import load_active_passive, parse_active_passive
 
 ROBOTS = Path(__file__).resolve().parent.parent / "specs" / "robots"
 

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp, trapezoid
 
-from gaitc.models.active_passive_frenet import (
+from gaitc.models.active_passive.frenet import (
     backbone,
     centroid,
     frenet_centroid,

@@ -11,9 +11,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from gaitc.models.active_passive import ActivePassiveModel, Step, settle_time, step_response
-from gaitc.models.active_passive_statics import normal_loads
-from gaitc.models.ap_description import parse_active_passive
+from gaitc.models.active_passive.description import parse_active_passive
+from gaitc.models.active_passive.model import ActivePassiveModel, Step, settle_time, step_response
+from gaitc.models.active_passive.statics import normal_loads
 from gaitc.models.motion import MotionModel, Pose2D, ValveState
 
 ROBOT = Path(__file__).resolve().parent.parent / "specs" / "robots" / "silicone6.yaml"
@@ -212,7 +212,7 @@ def test_normal_loads_balance_the_weight_as_evenly_as_possible() -> None:
 
 
 def test_the_catalogue_entry_finds_a_forward_gait() -> None:
-    from gaitc.models.active_passive import loaded_model
+    from gaitc.models.active_passive.model import loaded_model
     from gaitc.models.catalogue import search_gaits
 
     loaded = loaded_model(ROBOT)

@@ -17,7 +17,7 @@ from gaitc.models.characterization import (
     fit_stiffness,
     step_response,
 )
-from gaitc.models.description import load_spring_damper
+from gaitc.models.spring_damper.description import load_spring_damper
 
 ONE_LEG = Path(__file__).parent / "data" / "softmodels" / "one_leg.yaml"
 

@@ -8,8 +8,8 @@ import pytest
 
 from gaitc.diagnostics import render_error
 from gaitc.gaitgraph.robot import load_robot
-from gaitc.models.description import load_spring_damper, parse_spring_damper
 from gaitc.models.fields import ModelFileError
+from gaitc.models.spring_damper.description import load_spring_damper, parse_spring_damper
 
 ROBOTS = Path(__file__).parent.parent / "specs" / "robots"
 ONE_LEG = Path(__file__).parent / "data" / "softmodels" / "one_leg.yaml"

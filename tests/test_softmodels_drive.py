@@ -11,9 +11,9 @@ from gaitc.cli import main
 from gaitc.hw.backend import SensorReading
 from gaitc.hw.localisation import RegionMap
 from gaitc.hw.physics import PhysicsRobot, centre, region_map
-from gaitc.models.description import load_spring_damper
 from gaitc.models.motion import Pose2D
-from gaitc.models.spring_damper import SpringDamperModel
+from gaitc.models.spring_damper.description import load_spring_damper
+from gaitc.models.spring_damper.model import SpringDamperModel
 from ltlcompiler.frontend import load_model
 
 DATA = Path(__file__).parent / "data" / "softmodels"

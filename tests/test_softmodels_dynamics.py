@@ -10,9 +10,9 @@ import numpy as np
 import pytest
 
 from gaitc.models.characterization import step_response
-from gaitc.models.description import Coefficients, ToeFriction, load_spring_damper
 from gaitc.models.motion import Pose2D
-from gaitc.models.spring_damper import SpringDamperModel
+from gaitc.models.spring_damper.description import Coefficients, ToeFriction, load_spring_damper
+from gaitc.models.spring_damper.model import SpringDamperModel
 
 DATA = Path(__file__).parent / "data" / "softmodels"
 RADIAL8 = Path(__file__).parent.parent / "specs" / "robots" / "radial8.yaml"

@@ -7,9 +7,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from gaitc.models.description import Coefficients, ToeFriction, load_spring_damper
-from gaitc.models.friction import FrictionTable, coulomb
-from gaitc.models.spring_damper import SpringDamperModel
+from gaitc.models.spring_damper.description import Coefficients, ToeFriction, load_spring_damper
+from gaitc.models.spring_damper.friction import FrictionTable, coulomb
+from gaitc.models.spring_damper.model import SpringDamperModel
 
 ONE_LEG = Path(__file__).parent / "data" / "softmodels" / "one_leg.yaml"
 

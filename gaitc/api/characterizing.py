@@ -69,8 +69,8 @@ def characterize(robot: str | Path, limb: str, data: Recordings) -> Characteriza
     """Fit the second-order curvature model, the stiffness matrices and the damping of
     ``limb`` of the robot file ``robot`` from ``data`` (thesis 4.2.1)."""
     from gaitc.models.characterization import fit_curvature, fit_damping, fit_stiffness
-    from gaitc.models.description import load_spring_damper
     from gaitc.models.robot_edit import matrix, number
+    from gaitc.models.spring_damper.description import load_spring_damper
 
     if not (data.curvature or data.stiffness or data.damping):
         raise UsageError("give at least one of --curvature, --stiffness and --damping")

@@ -268,8 +268,8 @@ def _backend(board: Board, opts: DriveOptions, bound: Session, spec_path: str,
 def _physics(board: PhysicsBoard, bound: Session, robot: Any, spec_path: str) -> Backend:
     from gaitc.hw.localisation import RegionMap
     from gaitc.hw.physics import PhysicsRobot, centre, region_map
-    from gaitc.models.description import load_spring_damper
-    from gaitc.models.spring_damper import SpringDamperModel
+    from gaitc.models.spring_damper.description import load_spring_damper
+    from gaitc.models.spring_damper.model import SpringDamperModel
 
     model = bound.domain.model
     path = board.robot or next((str(Path(spec_path).parent / g.primitive.robot)

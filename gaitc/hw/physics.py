@@ -20,7 +20,7 @@ from gaitc.hw.backend import Backend, HardwareError, SensorReading, where
 from gaitc.hw.localisation import RegionMap
 from gaitc.hw.simulated import SimulatedRobot
 from gaitc.models.motion import Pose2D
-from gaitc.models.spring_damper import SpringDamperModel, State
+from gaitc.models.spring_damper.model import SpringDamperModel, State
 from gaitc.sim.environments import Move
 from ltlcompiler.model import Model
 

@@ -16,8 +16,8 @@ from gaitc.models.motion import LoadedModel
 
 
 def _spring_damper(path: str | Path) -> LoadedModel:
-    from gaitc.models.description import load_spring_damper
-    from gaitc.models.spring_damper import SpringDamperModel
+    from gaitc.models.spring_damper.description import load_spring_damper
+    from gaitc.models.spring_damper.model import SpringDamperModel
 
     robot = load_spring_damper(path)
     model = SpringDamperModel(robot)
@@ -31,7 +31,7 @@ def _spring_damper(path: str | Path) -> LoadedModel:
 
 
 def _active_passive(path: str | Path) -> LoadedModel:
-    from gaitc.models.active_passive import loaded_model
+    from gaitc.models.active_passive.model import loaded_model
 
     return loaded_model(path)
 

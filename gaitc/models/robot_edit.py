@@ -3,7 +3,7 @@
 The file is edited as text, so its comments and layout stay: a value that is there is
 replaced where it stands, a missing key is added to the limb's mapping (inside the braces
 of a flow mapping, on a new line of a block one).  The result is read back with
-:func:`~gaitc.models.description.parse_spring_damper` before it replaces the file.
+:func:`~gaitc.models.spring_damper.description.parse_spring_damper` before it replaces the file.
 """
 
 from __future__ import annotations
@@ -14,8 +14,8 @@ from pathlib import Path
 import yaml
 
 from gaitc.diagnostics.files import decode_text, read_input, write_atomically
-from gaitc.models.description import parse_spring_damper, section_node
 from gaitc.models.fields import Fields, ModelFileError
+from gaitc.models.spring_damper.description import parse_spring_damper, section_node
 
 
 def number(value: float) -> str:

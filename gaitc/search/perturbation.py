@@ -17,7 +17,12 @@ import dataclasses
 import numpy as np
 
 from gaitc.diagnostics import UsageError
-from gaitc.models.description import Coefficients, Limb, SpringDamperRobot, ToeFriction
+from gaitc.models.spring_damper.description import (
+    Coefficients,
+    Limb,
+    SpringDamperRobot,
+    ToeFriction,
+)
 
 _CONTACTS = ("heel", "outward", "inward", "lateral")
 

@@ -18,7 +18,7 @@ import numpy as np
 
 from gaitc.hw.backend import Backend, HardwareError, SensorReading, where
 from gaitc.models.motion import LoadedModel
-from gaitc.models.spring_damper import SpringDamperModel, State
+from gaitc.models.spring_damper.model import SpringDamperModel, State
 from gaitc.search.perturbation import perturbed
 from gaitc.search.transitions import Step, TransitionModel
 from gaitc.search.walker import Outcome

@@ -16,8 +16,8 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from gaitc.models.active_passive_frenet import segment
-from gaitc.models.active_passive_robot import (
+from gaitc.models.active_passive.frenet import segment
+from gaitc.models.active_passive.robot import (
     ActivePassiveRobot,
     Component,
     Connection,

@@ -20,7 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from gaitc.models.description import Limb
+from gaitc.models.spring_damper.description import Limb
 
 Array = NDArray[np.float64]
 

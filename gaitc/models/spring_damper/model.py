@@ -22,10 +22,10 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from gaitc.models.description import SpringDamperRobot
-from gaitc.models.friction import FrictionTable, coulomb
-from gaitc.models.limbs import LimbArrays
 from gaitc.models.motion import Pose2D, ValveState
+from gaitc.models.spring_damper.description import SpringDamperRobot
+from gaitc.models.spring_damper.friction import FrictionTable, coulomb
+from gaitc.models.spring_damper.limbs import LimbArrays
 
 Array = NDArray[np.float64]
 Flags = NDArray[np.bool_]

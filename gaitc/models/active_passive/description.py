@@ -18,16 +18,16 @@ import yaml
 
 from gaitc.diagnostics.files import decode_text
 from gaitc.gaitgraph.robot import Robot, parse_robot
-from gaitc.models.active_passive_robot import (
+from gaitc.models.active_passive.reader import Reader
+from gaitc.models.active_passive.robot import (
     ActivePassiveRobot,
     ActiveShape,
     Component,
     Connection,
     PassiveRange,
 )
-from gaitc.models.active_passive_yaml import Reader
-from gaitc.models.description import section_node
 from gaitc.models.fields import ModelFileError
+from gaitc.models.spring_damper.description import section_node
 
 SECTION = "active_passive"
 NEWTON_MM = 1e6  # one N·mm in the model's energy unit g·mm²/s²

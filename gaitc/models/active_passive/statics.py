@@ -19,7 +19,7 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.optimize import minimize, nnls
 
-from gaitc.models.active_passive_kinematics import GRAVITY, Kinematics, Posture, Prepared
+from gaitc.models.active_passive.kinematics import GRAVITY, Kinematics, Posture, Prepared
 
 Array = NDArray[np.float64]
 

@@ -2,7 +2,7 @@
 
 One valve transition is simulated as in thesis 4.2.2: the active curvatures follow their
 second-order step responses (f_q); at every time step the passive states come from the
-minimum-energy problem (:mod:`gaitc.models.active_passive_statics`); the planar motion of the
+minimum-energy problem (:mod:`gaitc.models.active_passive.statics`); the planar motion of the
 heading frame then follows from the particle system of component centres of mass, whose
 linear and angular momentum change only by the viscous friction at the wireframe vertices
 (F = −μ N v, loads N from the minimum-load static problem).  Both phases are taken in one
@@ -21,10 +21,10 @@ import numpy as np
 from numpy.typing import NDArray
 
 from gaitc.gaitgraph.robot import Robot
-from gaitc.models.active_passive_kinematics import GRAVITY, Kinematics
-from gaitc.models.active_passive_robot import ActivePassiveRobot, Component
-from gaitc.models.active_passive_statics import Rest, RestSolver, normal_loads
-from gaitc.models.ap_description import load_active_passive
+from gaitc.models.active_passive.description import load_active_passive
+from gaitc.models.active_passive.kinematics import GRAVITY, Kinematics
+from gaitc.models.active_passive.robot import ActivePassiveRobot, Component
+from gaitc.models.active_passive.statics import Rest, RestSolver, normal_loads
 from gaitc.models.motion import LoadedModel, Pose2D, ValveState
 
 Array = NDArray[np.float64]

@@ -1,7 +1,7 @@
 """The robot tuple (A, C, M) of the active/passive model (thesis 4.1.2) as frozen dataclasses.
 
-Read from a robot file by :mod:`gaitc.models.ap_description`; angles in radians, stiffness in
-g·mm²/s² per rad², lengths mm, masses g.
+Read from a robot file by :mod:`gaitc.models.active_passive.description`; angles in radians,
+stiffness in g·mm²/s² per rad², lengths mm, masses g.
 """
 
 from __future__ import annotations

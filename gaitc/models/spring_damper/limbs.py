@@ -15,8 +15,8 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from gaitc.models.description import SpringDamperRobot
 from gaitc.models.motion import ValveState
+from gaitc.models.spring_damper.description import SpringDamperRobot
 
 Array = NDArray[np.float64]
 
