@@ -13,7 +13,7 @@ from collections.abc import Callable
 from functools import partial
 from typing import TypeVar
 
-from gaitc.api.emission import emit
+from gaitc.api.compiling import emit
 from gaitc.ir.spec import SECTIONS
 from ltlcompiler.frontend import model_from_text
 from ltlcompiler.lowering import lower

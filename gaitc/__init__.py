@@ -42,7 +42,9 @@ import importlib
 from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
+    from gaitc.api.answers import explain, resilience
     from gaitc.api.characterizing import Recordings, calibrate, characterize
+    from gaitc.api.compiling import FORMATS, OutputFormat, emit, lint
     from gaitc.api.drawing import controller_policy, draw_automaton, draw_map, draw_spec
     from gaitc.api.driving import (
         DriveOptions,
@@ -52,9 +54,7 @@ if TYPE_CHECKING:
         Tracker,
         drive,
     )
-    from gaitc.api.emission import FORMATS, emit
     from gaitc.api.examples import copy_examples
-    from gaitc.api.explaining import explain
     from gaitc.api.gaits import (
         GaitMethod,
         GaitOptions,
@@ -62,9 +62,7 @@ if TYPE_CHECKING:
         gaits,
     )
     from gaitc.api.learning import LearningBackend, LearnOptions, learn
-    from gaitc.api.linting import lint
     from gaitc.api.loading import Spec, load, parse
-    from gaitc.api.resilient import resilience
     from gaitc.api.simulation import Session, session, simulate
     from gaitc.api.solving import (
         SOLVERS,
@@ -95,13 +93,11 @@ if TYPE_CHECKING:
 #: and the packages below ``gaitc`` can import ``gaitc.diagnostics`` without a cycle.
 _MODULES: dict[str, tuple[str, ...]] = {
     "gaitc.api.loading": ("Spec", "load", "parse"),
-    "gaitc.api.linting": ("lint",),
-    "gaitc.api.emission": ("FORMATS", "emit"),
+    "gaitc.api.compiling": ("FORMATS", "OutputFormat", "emit", "lint"),
     "gaitc.api.solving": (
         "SOLVERS", "Synthesis", "Verdict", "check", "counterstrategy", "synthesize", "verify",
     ),
-    "gaitc.api.explaining": ("explain",),
-    "gaitc.api.resilient": ("resilience",),
+    "gaitc.api.answers": ("explain", "resilience"),
     "gaitc.api.simulation": ("Session", "session", "simulate"),
     "gaitc.api.examples": ("copy_examples",),
     "gaitc.api.drawing": ("controller_policy", "draw_automaton", "draw_map", "draw_spec"),
@@ -148,6 +144,7 @@ __all__ = [
     "LearnOptions",
     "LearningBackend",
     "MissingFileError",
+    "OutputFormat",
     "PhysicsBoard",
     "Recordings",
     "ScenarioError",

@@ -10,7 +10,7 @@ from collections.abc import Callable
 
 import pytest
 
-from gaitc.api.emission import emit
+from gaitc.api.compiling import emit
 from gaitc.ir.bitblast import bitblast
 from gaitc.ir.formula import (
     Add,

@@ -7,7 +7,7 @@ import json
 
 import pytest
 
-from gaitc.api.emission import FORMATS, emit
+from gaitc.api.compiling import FORMATS, emit
 from gaitc.diagnostics import SlugsFormatError, Span
 from gaitc.ir.bitblast import bitblast
 from gaitc.ir.formula import And, Compare, Iff, Implies, IntConst, IntVar, Not, Or, Var, Xor

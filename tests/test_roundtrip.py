@@ -4,7 +4,7 @@ For random small ``.gait`` models (random legs, health levels, gaits, grids, haz
 assumptions and guarantees) whose names include the words the formats reserve (``F G X U
 W TRUE FALSE next`` and more), and for every spec in ``specs/``: each format
 (structuredslugs, slugsin, ltl) in each encoding (onehot, binary) is written with
-:func:`gaitc.api.emission.emit` and read back.  structuredslugs and ltl give the spec itself
+:func:`gaitc.api.compiling.emit` and read back.  structuredslugs and ltl give the spec itself
 (:class:`GR1Spec` equality ignores origins); slugsin is bit-blasted and has only ``! & | ^``,
 so it gives :func:`slugs_bridge.prefixform.prefix_spec` of the bit-blasted spec.
 """
@@ -18,7 +18,7 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from gaitc.api.emission import FORMATS, emit
+from gaitc.api.compiling import FORMATS, emit
 from gaitc.api.loading import parse
 from gaitc.ir.bitblast import bitblast
 from gaitc.ir.spec import GR1Spec

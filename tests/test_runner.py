@@ -219,7 +219,7 @@ def test_live_slugs_agrees_with_recorded_verdicts(semantics: str) -> None:
 @pytest.mark.parametrize("semantics", SEMANTICS)
 def test_live_slugs_agrees_on_gaitcs_translation_of_every_example(semantics: str) -> None:
     """Every example, in whichever format, read by gaitc and written back as slugsin."""
-    from gaitc.api.emission import emit
+    from gaitc.api.compiling import emit
     from gaitc.api.loading import load
 
     binary = _live_binary()

@@ -15,7 +15,7 @@ from pathlib import Path
 
 import pytest
 
-from gaitc.api.emission import FORMATS
+from gaitc.api.compiling import FORMATS
 from gaitc.cli import main
 from gaitc.cli.commands.compiling import compile_text
 from gaitc.diagnostics import UsageError

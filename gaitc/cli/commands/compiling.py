@@ -11,7 +11,7 @@ import sys
 from typing import TYPE_CHECKING, Any
 
 import gaitc
-from gaitc.api.emission import FORMATS, emit, output_format
+from gaitc.api.compiling import FORMATS, emit, output_format
 from gaitc.api.loading import Spec, load, reader_of
 from gaitc.cli.commands.arguments import output_file
 from gaitc.cli.exitcodes import ExitCode

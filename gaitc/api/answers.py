@@ -1,17 +1,43 @@
-"""Resilience: which leg failures and health levels a ``.gait`` task tolerates, and which
-caches and hazard sets it needs or survives (:mod:`gaitc.analysis.resilience`)."""
+"""Answers beyond the verdict: why a spec is unrealizable and what would fix it
+(:func:`explain`, over :mod:`gaitc.analysis.explanation`), and which leg failures, health
+levels, caches and hazards its task tolerates or needs (:func:`resilience`, over
+:mod:`gaitc.analysis.resilience`). Every answer comes from solving variants of the spec again.
+"""
 
 from __future__ import annotations
 
 from pathlib import Path
 
+from gaitc.analysis.explanation import Explanation
+from gaitc.analysis.explanation import explain as explain_spec
 from gaitc.analysis.pool import Pool, Progress
 from gaitc.analysis.resilience import Resilience, cache_sites
 from gaitc.analysis.resilience import resilience as analyse
 from gaitc.api.loading import Spec, load
 from gaitc.diagnostics import UsageError
-from gaitc.ir.spec import Semantics
+from gaitc.ir.spec import GR1Spec, Semantics
 from ltlcompiler.encoding import EncodingName
+
+
+def explain(spec: Spec | GR1Spec | str | Path, semantics: Semantics | str = Semantics.DEFAULT,
+            timeout: float | None = None, repairs: bool = True) -> Explanation:
+    """The :class:`~gaitc.analysis.explanation.Explanation` of ``spec`` (a path is loaded).
+
+    >>> import gaitc
+    >>> why = gaitc.explain("specs/unrealizable_2x2.gait")
+    >>> why.kind, why.goals
+    ('liveness', ('visit se',))
+    >>> why.repairs[0].change
+    'add a cache at nw'
+    """
+    chosen = Semantics.parse(semantics, "semantics")
+    if isinstance(spec, (str, Path)):
+        spec = load(spec)
+    if isinstance(spec, GR1Spec):
+        return explain_spec(spec, spec.name or "<spec>", semantics=chosen, timeout=timeout,
+                            with_repairs=repairs)
+    return explain_spec(spec.gr1, spec.path, spec.text, spec.model, encoding=spec.encoding,
+                        semantics=chosen, timeout=timeout, with_repairs=repairs)
 
 
 def resilience(spec: Spec | str | Path, method: str = "parametric",

@@ -1,0 +1,101 @@
+"""Compiling: the checks gaitc makes of a spec without solving it (:func:`lint`), and the
+spec written in one of the output formats exactly as ``gaitc compile`` writes it
+(:func:`emit`).
+
+Linting a ``.gait`` spec gives the checker's warnings, lowers it in both encodings (which
+catches names that clash once encoded) and pairs gaits with their valve primitives
+(:mod:`gaitc.gaitgraph.pairing`); a ``.slugsin``, ``.structuredslugs`` or ``.ltl`` spec is
+read (every syntax and type error with its span) and has no further checks.
+
+``structuredslugs`` and ``slugsin`` are SLUGS's two formats, ``ltl`` the readable LTL text;
+each has one writer in :mod:`slugs_bridge` (clauses preceded by a ``#`` comment naming the
+rule and ``.gait`` line they came from, names a format cannot carry renamed), and this
+module only picks it.  slugsin bit-blasts integer variables first.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Final, NoReturn
+
+from gaitc.api.loading import Spec, SpecLike, as_gr1, load, reader_of
+from gaitc.diagnostics import Diagnostic
+from gaitc.diagnostics.choices import Choice
+from ltlcompiler.encoding import ENCODINGS
+
+
+class OutputFormat(Choice):
+    """The formats ``gaitc compile`` writes."""
+
+    STRUCTUREDSLUGS = "structuredslugs"
+    SLUGSIN = "slugsin"
+    LTL = "ltl"
+
+
+FORMATS: Final = tuple(OutputFormat)
+
+
+def lint(spec: Spec | str | Path, primitives: bool = False) -> tuple[Diagnostic, ...]:
+    """The warnings (and primitive errors) of a spec; a path is read as ``.gait`` unless its
+    suffix names another format (:func:`gaitc.api.loading.reader_of`).
+
+    Gaits without a valve primitive are reported when ``primitives`` is set or once any
+    gait of the spec binds one. Errors in the spec itself raise, as :func:`gaitc.load` does.
+    """
+    from ltlcompiler.lowering import lower
+
+    if not isinstance(spec, Spec):
+        spec = load(spec, kind=reader_of(str(spec)))
+    model = spec.model
+    if model is None:
+        return tuple(spec.diagnostics)
+    for encoding in ENCODINGS:
+        if encoding != spec.encoding:
+            lower(model, encoding)
+    diagnostics = list(spec.diagnostics)
+    if primitives or any(g.primitive is not None for g in model.gaits):
+        from gaitc.gaitgraph.pairing import check_gaits
+
+        folder = str(Path(spec.path).resolve().parent)
+        diagnostics += check_gaits(model.gaits, folder, legs=[leg.name for leg in model.legs])
+    return tuple(diagnostics)
+
+
+def emit(spec: SpecLike, fmt: OutputFormat | str = OutputFormat.STRUCTUREDSLUGS) -> str:
+    """``spec`` written in ``fmt`` (an :class:`OutputFormat` or its name).
+
+    >>> import gaitc
+    >>> s = gaitc.parse("legs L1 health 2\\ngait g uses L1 moves north\\n"
+    ...                 "grid 2 x 1\\nstart r0\\n", name="tiny.gait")
+    >>> print(gaitc.emit(s, "ltl").splitlines()[0])
+    # GR(1) specification in LTL: G = always, F = eventually, X = next state
+    """
+    chosen = OutputFormat.parse(fmt, "format")
+    gr1 = as_gr1(spec)
+    if chosen is OutputFormat.STRUCTUREDSLUGS:
+        from slugs_bridge.structured import emit_structuredslugs
+
+        return emit_structuredslugs(gr1)
+    if chosen is OutputFormat.SLUGSIN:
+        from gaitc.ir.bitblast import bitblast
+        from slugs_bridge.slugsin import emit_slugsin
+
+        return emit_slugsin(bitblast(gr1))
+    if chosen is OutputFormat.LTL:
+        from slugs_bridge.ltltext import emit_ltl
+
+        return emit_ltl(gr1)
+    every_format_is_written: NoReturn = chosen  # mypy: no format left over
+    raise AssertionError(every_format_is_written)
+
+
+def output_format(output: str, requested: str | None) -> OutputFormat:
+    """``requested``, else the format the suffix of ``output`` names, as the readers take
+    it (:mod:`gaitc.api.loading`: ``.slugsin`` and ``.txt`` are slugsin, ``.ltl`` LTL text),
+    else structuredslugs."""
+    if requested is not None:
+        return OutputFormat.parse(requested, "format")
+    suffix = Path(output).suffix.lstrip(".").lower()
+    if suffix == "txt":
+        return OutputFormat.SLUGSIN
+    return OutputFormat(suffix) if suffix in ("slugsin", "ltl") else OutputFormat.STRUCTUREDSLUGS
