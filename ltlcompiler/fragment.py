@@ -6,6 +6,7 @@
 
 from __future__ import annotations
 
+import difflib
 from collections.abc import Mapping, Sequence
 
 from gaitc.diagnostics import FormulaError, Span, SpecSemanticError
@@ -114,10 +115,12 @@ class FormulaChecker:
                 var.span,
             )
         if kind is None:
+            usable = [n for n, k in self.ns.kinds.items() if k in ("region", "gait", "hazard")]
             raise SpecSemanticError(
                 f"unknown name '{var.name}' in formula; formulas may use regions, gaits, "
                 "hazards, noGait and health(LEG)",
                 var.span,
+                hint=_nearest(var.name, [*usable, "noGait"]),
             )
         if var.name in self.blocked:
             raise SpecSemanticError(
@@ -140,8 +143,10 @@ class FormulaChecker:
         kind = self.ns.kinds.get(leg.name)
         if kind != "leg":
             what = f"a {kind}" if kind else "not declared"
+            legs = [n for n, k in self.ns.kinds.items() if k == "leg"]
             raise SpecSemanticError(
-                f"health({leg.name}) needs a leg, but '{leg.name}' is {what}", leg.span
+                f"health({leg.name}) needs a leg, but '{leg.name}' is {what}", leg.span,
+                hint=_nearest(leg.name, legs),
             )
         levels = self.health[leg.name]
         if not 1 <= value.value <= levels:
@@ -150,3 +155,9 @@ class FormulaChecker:
                 f"levels 1..{levels}",
                 value.span,
             )
+
+
+def _nearest(word: str, names: list[str]) -> str | None:
+    """"did you mean" the declared name closest to a misspelt one (None if none is close)."""
+    close = difflib.get_close_matches(word, names, n=1, cutoff=0.6)
+    return f"did you mean '{close[0]}'?" if close else None

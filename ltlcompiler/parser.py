@@ -273,7 +273,47 @@ def _bad_character(char: str, pos: int, text: str, here: Span) -> GaitcError:
         f"unexpected character '{shown}': names use letters, digits and '_', "
         "comments start with '#'",
         here,
+        _range_slip(char, pos, text),
     )
+
+
+def _range_slip(char: str, pos: int, text: str) -> str | None:
+    """``L1-L8`` (or ``L1 - L8``, ``L1:L8``) written for the range ``L1..L8``."""
+    if char not in "-:" or pos < 0:
+        return None
+    before = re.search(r"([A-Za-z_]\w*?)(\d+)\s*$", text[max(0, pos - 40):pos])
+    after = re.match(r"\s*([A-Za-z_]\w*?)(\d+)\b", text[pos + 1:pos + 41])
+    if before is None or after is None or before.group(1) != after.group(1):
+        return None
+    first, last = before.group(1) + before.group(2), after.group(1) + after.group(2)
+    return f"a range of names is written with two dots: {first}..{last}"
+
+
+#: Statements of other tools or of plain English that a .gait file writes otherwise.
+_SLIPS: dict[str, str] = {
+    "goal": "visit {rest} infinitely often",
+    "goals": "visit {rest} infinitely often",
+    "reach": "visit {rest} infinitely often",
+    "patrol": "visit {rest} infinitely often",
+    "avoid": "guarantee always !({rest})",
+    "never": "guarantee always !({rest})",
+    "initial": "start {rest}",
+    "init": "start {rest}",
+    "leg": "legs {rest}",
+}
+
+
+def _statement_slip(tok: Token, text: str) -> str | None:
+    """A hint for a statement written in another tool's words (``goal a, b``)."""
+    word = str(tok)
+    if tok.type != "NAME" or word.lower() not in _SLIPS or tok.line is None:
+        return None
+    line = source_lines(text)[tok.line - 1]
+    column = (tok.column or 1) - 1
+    if line[:column].strip():
+        return None  # not at the start of a statement
+    rest = line[column + len(word):].split("#")[0].strip() or "..."
+    return f"write '{_SLIPS[word.lower()].format(rest=rest)}'"
 
 
 def _doubled_operator(tok: Token, text: str, file: str) -> GaitcError | None:
@@ -332,6 +372,7 @@ def _syntax_error(err: UnexpectedInput, text: str, file: str) -> GaitcError:
         if found is not None:
             return found
         hint = _suggestion(str(tok), _keywords(expected)) if tok.type == "NAME" else None
+        hint = _statement_slip(tok, text) or hint
         return SpecSyntaxError(
             f"unexpected {_describe_token(tok)}; expected {_describe_expected(expected)}",
             token_span(file, tok),

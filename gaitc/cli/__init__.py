@@ -47,7 +47,20 @@ class _Parser(argparse.ArgumentParser):
     commands: tuple[str, ...] = ()  # the subcommands' names (the top-level parser's)
 
     def error(self, message: str) -> None:  # type: ignore[override]
-        raise UsageError(message)
+        raise UsageError(message, hint=_did_you_mean(message))
+
+
+def _did_you_mean(message: str) -> str | None:
+    """For argparse's "invalid choice: 'sytnh' (choose from ...)", the nearest choice."""
+    import difflib
+    import re
+
+    found = re.search(r"invalid choice: '([^']*)' \(choose from (.*)\)", message)
+    if found is None:
+        return None
+    choices = re.findall(r"'([^']*)'", found.group(2))
+    close = difflib.get_close_matches(found.group(1), choices, n=1, cutoff=0.6)
+    return f"did you mean '{close[0]}'?" if close else None
 
 
 def build_parser() -> _Parser:
@@ -176,6 +189,8 @@ def _run(argv: Sequence[str] | None, signals: _Signals | None) -> int:
             return ending
         if isinstance(err, UsageError):
             print(f"gaitc: usage error: {err.message}", file=sys.stderr)
+            if err.hint:
+                print(f"  hint: {err.hint}", file=sys.stderr)
         else:
             print(render_error(err), file=sys.stderr)
         if as_json:
