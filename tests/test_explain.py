@@ -33,7 +33,8 @@ UNREALIZABLE = {
     "initial.gait": "initial", "safety.gait": "safety", "corridor_guarantee.gait": "liveness",
     "hazard_cut.gait": "liveness", "few_levels.gait": "liveness",
     "failed_direction.gait": "liveness", "unrealizable_2x2.gait": "liveness",
-    "thesis_robot_a_health2.gait": "liveness",
+    "thesis_robot_a_health2.gait": "liveness", "all_legs_short.gait": "liveness",
+    "spill_pair.gait": "liveness",
 }
 IN_SPECS = ("unrealizable_2x2.gait", "thesis_robot_a_health2.gait")  # the rest: DATA
 SPECS = {name: (ROOT / "specs" if name in IN_SPECS else DATA) / name for name in UNREALIZABLE}
@@ -157,6 +158,57 @@ def test_hazard_repairs_and_the_story() -> None:
                            "assume hazard set fire is off infinitely often"]
     assert [f.describe() for f in why.freedoms] == ["switch hazard set fire on"]
     assert any("hazard fire on" in line for line in why.story)
+
+
+def test_raising_every_legs_health_is_the_first_repair() -> None:
+    """No single leg's raise and no cache helps; the one line ``health 2`` -> ``4`` does."""
+    why = gaitc.explain(DATA / "all_legs_short.gait")
+    first = why.repairs[0]
+    assert first.change == "raise every leg's health to 4"
+    assert first.diff == ("-legs L1..L4 health 2", "+legs L1..L4 health 4")
+    assert why.repairs[-1].change == "drop the goal visit b2"  # dropping a goal comes last
+    # re-solved here: one level less is not enough
+    short = gaitc.parse(first.text.replace("health 4", "health 3"), name="short.gait")
+    assert not gaitc.check(short).realizable and gaitc.check(
+        gaitc.parse(first.text, name="fixed.gait")).realizable
+
+
+def test_a_cache_is_the_first_repair() -> None:
+    why = gaitc.explain(DATA / "few_levels.gait")
+    assert why.repairs[0].change.startswith("add a cache at ")
+    assert not any(r.change.startswith("raise") for r in why.repairs)
+
+
+def test_two_edits_where_no_single_one_works() -> None:
+    why = gaitc.explain(DATA / "spill_pair.gait")
+    pair = why.repairs[0]
+    assert " and " in pair.change and pair.change.startswith("raise every leg's health")
+    assert "two of these edits together" in why.repairs_tried
+    # each half alone leaves the spec unrealizable (the test solves both)
+    source = (DATA / "spill_pair.gait").read_text(encoding="utf-8")
+    health_only = source.replace("health 2", "health 4")
+    hazard_only = source.replace("hazard spill: b\n", "")
+    for text in (health_only, hazard_only):
+        assert not gaitc.check(gaitc.parse(text, name="half.gait")).realizable
+    assert gaitc.check(gaitc.parse(pair.text, name="pair.gait")).realizable
+
+
+def test_no_repair_says_what_was_tried(capsys: pytest.CaptureFixture[str]) -> None:
+    """Two goals behind the robot, which can only walk east: no edit of the kinds searched
+    (and no pair of them) helps, and dropping either goal leaves the other; the
+    explanation says so and names every kind it tried."""
+    text = ("legs L1..L2 health 2\ngait east uses L1 moves east\n"
+            "grid 1 x 3 cells a, b, c\nstart c\nvisit a, b infinitely often\n")
+    why = gaitc.explain(gaitc.parse(text, name="behind.gait"))
+    assert not why.realizable and why.repairs == ()
+    assert why.repairs_tried == ("raise a leg's health", "raise every leg's health",
+                                 "add a cache", "two of these edits together", "drop a goal")
+    assert "no repair found; tried: raise a leg's health; raise every leg's health; add a " \
+           "cache; two of these edits together; drop a goal" in why.lines()
+    # checked independently: dropping either goal still leaves the spec unrealizable
+    for kept in ("a", "b"):
+        alone = text.replace("visit a, b", f"visit {kept}")
+        assert not gaitc.check(gaitc.parse(alone, name="one.gait")).realizable
 
 
 def test_a_permanently_failed_leg_is_repaired_by_health() -> None:

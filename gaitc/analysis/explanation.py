@@ -56,6 +56,7 @@ class Explanation:
     run: Run | None = field(default=None, repr=False)
     story: tuple[str, ...] = ()
     repairs: tuple[Repair, ...] = ()
+    repairs_tried: tuple[str, ...] = ()  # the kinds of edit the repair search tried
     warnings: tuple[Warning_, ...] = ()
     solver_calls: int = 0
     seconds: float = 0.0
@@ -92,6 +93,7 @@ class Explanation:
             "goals": list(self.goals), "core": self.core_json(),
             "environment": [f.to_json() for f in self.freedoms], "play": play,
             "repairs": [r.to_json() for r in self.repairs],
+            "repairs_tried": list(self.repairs_tried),
             "warnings": [w.to_json() for w in self.warnings],
             "solver_calls": self.solver_calls, "seconds": round(self.seconds, 3),
         }
@@ -138,6 +140,8 @@ class Explanation:
             for number, repair in enumerate(self.repairs, 1):
                 out.append(f"  {number}. {repair.change}")
                 out.extend(f"       {d}" for d in repair.diff)
+        elif self.repairs_tried:
+            out.append("no repair found; tried: " + "; ".join(self.repairs_tried))
         out.append(f"({self.solver_calls} solver calls, {self.seconds:.2f} s)")
         return out
 
@@ -217,9 +221,11 @@ def explain(spec: GR1Spec, file: str, source: str = "", model: Model | None = No
         else:
             story = narrate_values(counter, play)
     fixes: tuple[Repair, ...] = ()
+    tried: tuple[str, ...] = ()
     if with_repairs and model is not None and encoding is not None and source:
         visited = [s.region for s in run.steps] if run is not None else []
-        fixes = repairs(model, source, file, encoding, oracle, visited)
+        searched = repairs(model, source, file, encoding, oracle, visited)
+        fixes, tried = searched.found, searched.tried
     return Explanation(
         file=file,
         realizable=False,
@@ -232,6 +238,7 @@ def explain(spec: GR1Spec, file: str, source: str = "", model: Model | None = No
         run=run,
         story=tuple(story),
         repairs=fixes,
+        repairs_tried=tried,
         warnings=(),
         solver_calls=oracle.calls,
         seconds=time.monotonic() - started,

@@ -1,16 +1,21 @@
-"""Repairs: single edits of a ``.gait`` file that make an unrealizable spec realizable.
+"""Repairs: edits of a ``.gait`` file that make an unrealizable spec realizable.
 
-Each candidate is an edit of the source text (raise a leg's health, add a cache, take a
-region out of a hazard set, assume a hazard set is off infinitely often, drop a goal or a
-``guarantee`` line); the edited text is parsed, checked, lowered and solved again, and only
-the edits that give a realizable spec are kept, cheapest first.
+The edits are those a roboticist makes: raise one leg's health, raise every leg's health at
+once, add a cache, take a region out of a hazard set, assume a hazard set is off infinitely
+often, drop a ``guarantee`` line, and, last, drop a goal. When no single edit short of
+dropping a goal works, pairs of the cheaper edits are tried (a cache and more health, a
+fairness assumption and a cache...). Every candidate is an edit of the source text; the
+edited text is parsed, checked, lowered and solved again, and only the edits that give a
+realizable spec are kept, ranked by how little they change (cost, then the order above).
 """
 
 from __future__ import annotations
 
+import itertools
 import re
-from collections.abc import Iterator
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
+from typing import Final
 
 from gaitc.analysis.oracle import Oracle
 from gaitc.diagnostics import GaitcError, source_lines
@@ -20,8 +25,19 @@ from ltlcompiler.frontend import model_from_text
 from ltlcompiler.lowering import lower
 from ltlcompiler.model import Model
 
-MAX_HEALTH_STEP = 2  # raise a leg by at most this many levels
+MAX_HEALTH_STEP = 2  # raise one leg by at most this many levels
+MAX_ALL_HEALTH_STEP = 3  # raise every leg by at most this many levels
 MAX_CACHE_CANDIDATES = 60
+#: The most pairs of edits solved when no single edit works.
+MAX_PAIRS: Final = 40
+#: The single edits a pair is made of: the cheapest of each kind.
+PAIR_POOL: Final = 12
+
+#: The kinds of edit, in the order they are preferred at equal cost.
+KINDS: Final = ("raise a leg's health", "raise every leg's health", "add a cache",
+                "take a region out of a hazard set", "assume a hazard is off infinitely often",
+                "drop a guarantee", "drop a goal")
+GOAL_DROP: Final = KINDS[-1]
 
 
 @dataclass(frozen=True)
@@ -40,20 +56,50 @@ class Repair:
 
 
 @dataclass(frozen=True)
+class Repairs:
+    """The repairs found, and the kinds of edit tried (to say so when none worked)."""
+
+    found: tuple[Repair, ...]
+    tried: tuple[str, ...]
+
+
+@dataclass(frozen=True)
 class _Edit:
+    """Lines replaced (1-based line, its new lines; none: the line is deleted) and lines
+    appended at the end of the file."""
+
     change: str
     cost: int
-    line: int | None  # 1-based line replaced (None: lines appended at the end)
-    new: tuple[str, ...]  # replacement lines (empty: the line is deleted)
+    kind: str
+    replaced: tuple[tuple[int, tuple[str, ...]], ...] = ()
+    appended: tuple[str, ...] = ()
+
+    def lines(self) -> frozenset[int]:
+        return frozenset(line for line, _ in self.replaced)
+
+    def rank(self) -> tuple[int, int]:
+        return self.cost, KINDS.index(self.kind)
 
 
 def _apply(lines: list[str], edit: _Edit) -> tuple[str, tuple[str, ...]]:
-    if edit.line is None:
-        text = "\n".join([*lines, *edit.new]) + "\n"
-        return text, tuple(f"+{n}" for n in edit.new)
-    index = edit.line - 1
-    out = [*lines[:index], *edit.new, *lines[index + 1:]]
-    return "\n".join(out) + "\n", (f"-{lines[index]}", *(f"+{n}" for n in edit.new))
+    out = list(lines)
+    diff: list[str] = []
+    for line, new in sorted(edit.replaced, reverse=True):
+        out[line - 1:line] = list(new)
+    for line, new in sorted(edit.replaced):
+        diff += [f"-{lines[line - 1]}", *(f"+{n}" for n in new)]
+    out += edit.appended
+    diff += [f"+{n}" for n in edit.appended]
+    return "\n".join(out) + "\n", tuple(diff)
+
+
+def _joined(first: _Edit, second: _Edit) -> _Edit | None:
+    """Both edits at once, or None where they touch the same line or are of one kind."""
+    if first.kind == second.kind or first.lines() & second.lines():
+        return None
+    return _Edit(f"{first.change} and {second.change}", first.cost + second.cost,
+                 max(first.kind, second.kind, key=KINDS.index),
+                 first.replaced + second.replaced, first.appended + second.appended)
 
 
 def _health_edits(model: Model, lines: list[str]) -> Iterator[_Edit]:
@@ -74,16 +120,37 @@ def _health_edits(model: Model, lines: list[str]) -> Iterator[_Edit]:
             else:
                 keep = f"{indent}legs {', '.join(others)} health {leg.health}"
                 new = (keep, f"{indent}leg {leg.name} health {k}")
-            yield _Edit(f"raise leg {leg.name}'s health to {k}", step, leg.span.line, new)
+            yield _Edit(f"raise leg {leg.name}'s health to {k}", step, KINDS[0],
+                        ((leg.span.line, new),))
 
 
-def _cache_edits(model: Model, visited: list[str]) -> Iterator[_Edit]:
+def _all_health_edits(model: Model, lines: list[str]) -> Iterator[_Edit]:
+    """Every leg's health raised by the same step, on every line that declares legs."""
+    declared = sorted({leg.span.line for leg in model.legs if leg.span is not None})
+    if len(model.legs) < 2 or not declared:
+        return
+    for step in range(1, MAX_ALL_HEALTH_STEP + 1):
+        replaced = []
+        for number in declared:
+            line = lines[number - 1]
+            found = re.search(r"\bhealth\s+(\d+)", line)
+            if found is None:
+                return
+            raised = str(int(found.group(1)) + step)
+            replaced.append((number, (line[: found.start(1)] + raised + line[found.end(1):],)))
+        levels = sorted({leg.health + step for leg in model.legs})
+        what = (f"to {levels[0]}" if len(levels) == 1
+                else f"by {step} level{'s' if step > 1 else ''}")
+        yield _Edit(f"raise every leg's health {what}", step + 1, KINDS[1], tuple(replaced))
+
+
+def _cache_edits(model: Model, visited: Sequence[str]) -> Iterator[_Edit]:
     hazardous = {r for h in model.hazards for r in h.regions}
     names = [r.name for r in model.regions]
     order = list(dict.fromkeys([*visited, *names]))
     candidates = [r for r in order if r not in model.caches and r not in hazardous]
     for region in candidates[:MAX_CACHE_CANDIDATES]:
-        yield _Edit(f"add a cache at {region}", 1, None, (f"cache {region}",))
+        yield _Edit(f"add a cache at {region}", 1, KINDS[2], appended=(f"cache {region}",))
 
 
 def _hazard_edits(model: Model, lines: list[str]) -> Iterator[_Edit]:
@@ -97,10 +164,10 @@ def _hazard_edits(model: Model, lines: list[str]) -> Iterator[_Edit]:
             new = (f"{head}{sep} {', '.join(rest)}",) if rest and sep else ()
             if not sep:
                 continue
-            yield _Edit(f"take {region} out of hazard set {hazard.name}", 1,
-                        hazard.span.line, new)
-        yield _Edit(f"assume hazard set {hazard.name} is off infinitely often", 2, None,
-                    (f"assume always eventually !{hazard.name}",))
+            yield _Edit(f"take {region} out of hazard set {hazard.name}", 1, KINDS[3],
+                        ((hazard.span.line, new),))
+        yield _Edit(f"assume hazard set {hazard.name} is off infinitely often", 2, KINDS[4],
+                    appended=(f"assume always eventually !{hazard.name}",))
 
 
 def _goal_edits(model: Model, lines: list[str]) -> Iterator[_Edit]:
@@ -116,38 +183,91 @@ def _goal_edits(model: Model, lines: list[str]) -> Iterator[_Edit]:
             new: tuple[str, ...] = (f"{found.group(1)}{', '.join(rest)}{found.group(2)}",)
         else:
             new = ()
-        yield _Edit(f"drop the goal visit {goal.formula.name}", 4, goal.span.line, new)
+        yield _Edit(f"drop the goal visit {goal.formula.name}", 5, GOAL_DROP,
+                    ((goal.span.line, new),))
     for uf in model.guarantees:
         if uf.span is not None:
-            yield _Edit(f"drop the guarantee on line {uf.span.line}", 3, uf.span.line, ())
+            yield _Edit(f"drop the guarantee on line {uf.span.line}", 3, KINDS[5],
+                        ((uf.span.line, ()),))
 
 
-def candidate_edits(model: Model, text: str, visited: list[str]) -> list[_Edit]:
+def candidate_edits(model: Model, text: str, visited: Sequence[str]) -> list[_Edit]:
     """Every single edit tried, cheapest first (``visited`` regions get caches first)."""
     lines = source_lines(text)
-    edits = [*_health_edits(model, lines), *_cache_edits(model, visited),
-             *_hazard_edits(model, lines), *_goal_edits(model, lines)]
-    return sorted(edits, key=lambda e: e.cost)
+    edits = [*_health_edits(model, lines), *_all_health_edits(model, lines),
+             *_cache_edits(model, visited), *_hazard_edits(model, lines),
+             *_goal_edits(model, lines)]
+    return sorted(edits, key=_Edit.rank)
+
+
+class _Search:
+    """Solves edited variants of one source text, remembering what worked."""
+
+    def __init__(self, text: str, filename: str, encoding: EncodingName,
+                 oracle: Oracle) -> None:
+        self.lines = source_lines(text)
+        self.filename, self.encoding, self.oracle = filename, encoding, oracle
+
+    def works(self, edit: _Edit) -> Repair | None:
+        edited, diff = _apply(self.lines, edit)
+        try:
+            variant, _ = model_from_text(edited, self.filename)
+            realizable = self.oracle.realizable(lower(variant, self.encoding))
+        except GaitcError:
+            return None  # the edit breaks the file (a name it removed is still used)
+        return Repair(edit.change, diff, edit.cost, edited) if realizable else None
 
 
 def repairs(model: Model, text: str, filename: str, encoding: EncodingName, oracle: Oracle,
-            visited: list[str]) -> tuple[Repair, ...]:
-    """The verified single-edit repairs, cheapest first; for each leg only its least raise."""
-    lines = source_lines(text)
+            visited: Sequence[str]) -> Repairs:
+    """The verified repairs, ranked; for each leg only its least raise, and every leg's
+    health only its least raise. When no single edit short of dropping a goal works, pairs
+    of the cheaper edits (at most :data:`MAX_PAIRS`) are tried before the goal drops."""
+    search = _Search(text, filename, encoding, oracle)
     found: list[Repair] = []
     raised: set[str] = set()
-    for edit in candidate_edits(model, text, visited):
-        leg = re.match(r"raise leg (\S+)'s", edit.change)
-        if leg is not None and leg.group(1) in raised:
+    candidates = candidate_edits(model, text, visited)
+    tried = [kind for kind in KINDS if any(e.kind == kind for e in candidates)]
+    singles = [e for e in candidates if e.kind != GOAL_DROP]
+    for edit in singles:
+        subject = _raised_subject(edit)
+        if subject is not None and subject in raised:
             continue
-        edited, diff = _apply(lines, edit)
-        try:
-            variant, _ = model_from_text(edited, filename)
-            realizable = oracle.realizable(lower(variant, encoding))
-        except GaitcError:
-            continue  # the edit breaks the file (a name it removed is still used)
-        if realizable:
-            if leg is not None:
-                raised.add(leg.group(1))
-            found.append(Repair(edit.change, diff, edit.cost, edited))
-    return tuple(found)
+        repair = search.works(edit)
+        if repair is not None:
+            if subject is not None:
+                raised.add(subject)
+            found.append(repair)
+    if not found:
+        pairs = _pairs(singles)
+        if pairs:
+            tried.insert(len(tried) - (GOAL_DROP in tried), "two of these edits together")
+        for edit in pairs:
+            repair = search.works(edit)
+            if repair is not None:
+                found.append(repair)
+                break  # the least pair: more would repeat it with extra edits
+    for edit in candidates:
+        if edit.kind == GOAL_DROP:
+            repair = search.works(edit)
+            if repair is not None:
+                found.append(repair)
+    return Repairs(tuple(found), tuple(tried))
+
+
+def _raised_subject(edit: _Edit) -> str | None:
+    """The leg a health raise raises (``*`` for every leg), to keep only its least raise."""
+    if edit.kind == KINDS[1]:
+        return "*"
+    leg = re.match(r"raise leg (\S+)'s", edit.change)
+    return leg.group(1) if leg is not None and edit.kind == KINDS[0] else None
+
+
+def _pairs(singles: list[_Edit]) -> list[_Edit]:
+    """The cheapest pairs of edits of different kinds, cheapest first, at most
+    :data:`MAX_PAIRS`; each kind contributes its :data:`PAIR_POOL` cheapest edits."""
+    pool: list[_Edit] = []
+    for kind in KINDS[:-1]:
+        pool += [e for e in singles if e.kind == kind][:PAIR_POOL]
+    joined = [j for a, b in itertools.combinations(pool, 2) if (j := _joined(a, b)) is not None]
+    return sorted(joined, key=_Edit.rank)[:MAX_PAIRS]
