@@ -21,11 +21,12 @@ from gaitc.analysis.explanation import Explanation
 from gaitc.analysis.freedoms import Freedom, freedoms
 from gaitc.cli import main
 from gaitc.ir.evaluation import evaluate
-from gaitc.ir.formula import Implies, Not, conj, disj
+from gaitc.ir.formula import Implies, Not, atoms, conj, disj
 from gaitc.ir.spec import Clause, GR1Spec
 from gaitc.solver import synthesis
 from gaitc.verifier.counterstrategy import verify_counterstrategy
 from ltlcompiler.encoding import make_encoding
+from ltlcompiler.model import Model
 
 ROOT = Path(__file__).resolve().parent.parent
 DATA = ROOT / "tests" / "data" / "explain"
@@ -142,6 +143,54 @@ def _check_play(spec: gaitc.Spec, why: Explanation) -> None:
                                 **{f"{k}'": v for k, v in counter.values(b).items()}})
         for a, b in itertools.pairwise(loop))]
     assert missed and tuple(missed) == play.missed
+    _check_summary(spec, why)
+
+
+def _region_distance(model: Model, targets: set[str]) -> dict[str, int]:
+    """Moves along the map's transitions from each region to ``targets`` (the test's own
+    breadth-first search, not the explanation's)."""
+    distance = dict.fromkeys(targets, 0)
+    frontier = sorted(targets)
+    while frontier:
+        nxt = []
+        for t in model.transitions:
+            if t.target in frontier and t.source not in distance and t.gaits:
+                distance[t.source] = distance[t.target] + 1
+                nxt.append(t.source)
+        frontier = nxt
+    return distance
+
+
+def _check_summary(spec: gaitc.Spec, why: Explanation) -> None:
+    """The summary before the steps names the lost goal and the environment's decisive
+    moves, each of which happens in the replayed run where it says; and the robot tries:
+    somewhere in the play it gets closer on the map to the goal it loses than it started."""
+    model, play, run = spec.model, why.play, why.run
+    if model is None or play is None or run is None or play.deadlock:
+        return
+    labels = [c.origin.rule.split(": ", 1)[1] for c in spec.gr1.sys_liveness
+              if c.origin is not None and c.origin.rule.startswith("goal")]
+    lost = [labels[j] for j in play.missed if j < len(labels)]
+    assert why.story[0] == f"the robot is kept from {', '.join(lost)}"
+    moves = why.story[1]
+    if moves.startswith("the environment's decisive moves: "):
+        for item in moves.removeprefix("the environment's decisive moves: ").split("; "):
+            index, region = item.split(" ")[1], item.split(" ")[3].rstrip(":")
+            step = run.steps[int(index)]
+            assert step.region == region, item
+            assert step.failed or step.degraded or step.hazard is not None, item
+    else:
+        assert moves.startswith("the environment never has to act in this play")
+    regions = {r.name for r in model.regions}
+    targets = {name for j in play.missed for name, _ in atoms(spec.gr1.sys_liveness[j].formula)
+               if name in regions}
+    if targets and spec.encoding == "onehot" and len({s.region for s in run.steps}) > 1:
+        distance = _region_distance(model, targets)
+        far = len(regions)
+        start = distance.get(run.steps[0].region, far)
+        closest = min(distance.get(s.region, far) for s in run.steps)
+        assert closest < start or start == 0 or why.story[1].startswith(
+            "the environment never"), (start, closest)
 
 
 def test_the_robot_needs_the_corridor_the_guarantee_closes() -> None:

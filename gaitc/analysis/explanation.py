@@ -12,6 +12,7 @@ from __future__ import annotations
 import contextlib
 import html
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
@@ -27,6 +28,7 @@ from gaitc.analysis.play import (
     last_move,
     narrate,
     narrate_values,
+    summarise,
 )
 from gaitc.analysis.repairs import Repair, repairs
 from gaitc.analysis.sanity import ROBOT, Warning_, player_of, sanity
@@ -212,12 +214,12 @@ def explain(spec: GR1Spec, file: str, source: str = "", model: Model | None = No
         story = [f"the environment's first state leaves the {player} no initial state that "
                  "keeps its initial guarantees (see the core)"]
     elif counter is not None:
-        play = choose_play(counter, spec, failure.blocked_goals)
+        play = _trying_play(counter, spec, model, encoding, failure.blocked_goals)
         if model is not None and encoding is not None:
             run = _run(counter, spec, model, encoding, play, file)
-            story = narrate(run, play, [_goal_label(spec, j) for j in range(
-                len(spec.sys_liveness))], _final_move(focused, counter, play, model, encoding,
-                                                     run))
+            labels = [_goal_label(spec, j) for j in range(len(spec.sys_liveness))]
+            story = [*summarise(run, play, labels), *narrate(
+                run, play, labels, _final_move(focused, counter, play, model, encoding, run))]
         else:
             story = narrate_values(counter, play)
     fixes: tuple[Repair, ...] = ()
@@ -258,6 +260,82 @@ def _final_move(spec: GR1Spec, counter: Controller, play: Play, model: Model,
         return None
     state = Domain(model, encoding).decode(values)
     return last_move(run.steps[-1], state.health, state.hazard)
+
+
+def _trying_play(counter: Controller, spec: GR1Spec, model: Model | None,
+                 encoding: EncodingName | None, blocked: tuple[int, ...]) -> Play:
+    """The play in which the robot heads for the goal it is kept from. Where the failure
+    analysis named no blocked goal, the robot heads for each goal in turn, and the first
+    play that the environment wins by keeping that very goal away is shown."""
+    def attempt(goals: tuple[int, ...]) -> Play:
+        toward = (_region_progress(counter, spec, model, encoding, goals)
+                  if model is not None and encoding is not None else None)
+        return choose_play(counter, spec, goals, toward)
+
+    if blocked:
+        return attempt(blocked)
+    plays = [(j, attempt((j,))) for j in range(len(spec.sys_liveness))]
+
+    def shows(j: int, play: Play) -> tuple[bool, bool, int]:
+        """A play worth showing: lost, with the robot moving; best where it loses the very
+        goal it heads for, then where it tries most (distinct states on its path)."""
+        tried = len(set(play.path))
+        return (play.deadlock or bool(play.missed)) and tried > 1, j in play.missed, tried
+
+    best = max(plays, key=lambda item: (shows(*item), -item[0]), default=None)
+    return best[1] if best is not None and shows(*best)[0] else attempt(())
+
+
+def _goal_regions(spec: GR1Spec, model: Model, goals: tuple[int, ...]) -> set[str]:
+    """The regions the blocked goals (``sys_liveness`` indices) name: the goal statements'
+    clauses come first among the liveness clauses, in the order of ``model.goals``."""
+    from gaitc.ir.formula import atoms
+
+    from_goals = [j for j, c in enumerate(spec.sys_liveness)
+                  if c.origin is not None and c.origin.rule.startswith("goal")]
+    if len(from_goals) != len(model.goals):
+        return set()
+    regions = {r.name for r in model.regions}
+    found: set[str] = set()
+    for j, goal in zip(from_goals, model.goals, strict=True):
+        if j in goals:
+            found |= {name for name, _ in atoms(goal.formula) if name in regions}
+    return found
+
+
+def _region_progress(counter: Controller, spec: GR1Spec, model: Model,
+                     encoding: EncodingName, goals: tuple[int, ...]
+                     ) -> Callable[[int], int] | None:
+    """For each counter-strategy node, the robot's distance on the map (moves along τ) to
+    the regions of the goals it is kept from; None where the goals name no region."""
+    from collections import deque
+
+    from ltlcompiler.decoding import decode
+
+    targets = _goal_regions(spec, model, goals)
+    if not targets:
+        return None
+    into: dict[str, list[str]] = {}
+    for t in model.transitions:
+        if t.source != t.target and t.gaits:
+            into.setdefault(t.target, []).append(t.source)
+    distance = dict.fromkeys(targets, 0)
+    queue = deque(targets)
+    while queue:
+        here = queue.popleft()
+        for before in into.get(here, ()):
+            if before not in distance:
+                distance[before] = distance[here] + 1
+                queue.append(before)
+    far = len(model.regions) + 1
+    regions: dict[int, str] = {}
+
+    def progress(node: int) -> int:
+        if node not in regions:
+            regions[node] = decode(model, encoding, counter.values(node)).region
+        return distance.get(regions[node], far)
+
+    return progress
 
 
 def _goal_label(spec: GR1Spec, j: int) -> str:

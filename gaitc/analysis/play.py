@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import itertools
 from collections import deque
+from collections.abc import Callable
 from dataclasses import dataclass
 
 from gaitc.ir.controller import Controller
@@ -34,17 +35,22 @@ class Play:
         return self.loop_start is None
 
 
-def choose_play(counter: Controller, spec: GR1Spec, goals: tuple[int, ...] = ()) -> Play:
+def choose_play(counter: Controller, spec: GR1Spec, goals: tuple[int, ...] = (),
+                toward: Callable[[int], int] | None = None) -> Play:
     """The play in which the robot does its best against the counter-strategy.
 
     Where it can, the robot avoids states from which the environment forces a deadlock and
-    heads for the nearest node where one of ``goals`` holds (new nodes first); where it
-    cannot, it delays the deadlock as long as possible. The play ends at a deadlock or when
-    it closes a loop.
+    heads for the goals it is kept from: each move makes the most progress ``toward`` them
+    (for a ``.gait`` spec, the region distance to the lost goal on the map), then toward the
+    nearest node of the counter-strategy where one of ``goals`` holds, new nodes before
+    nodes seen already. Where it cannot avoid a deadlock, it delays it as long as possible.
+    The play ends at a deadlock or when it closes a loop: the robot tried, and the
+    environment's answers brought it back.
     """
     level = deadlock_levels([node.trans for node in counter.nodes])
     distance = _goal_distance(counter, spec, goals or tuple(range(len(spec.sys_liveness))))
     far = len(counter.nodes) + 1
+    progress = toward if toward is not None else (lambda node: 0)
     start = min(counter.initial, key=lambda n: (level[n] is not None, -(level[n] or 0), n))
     path, seen = [start], {start: 0}
     while True:
@@ -53,7 +59,7 @@ def choose_play(counter: Controller, spec: GR1Spec, goals: tuple[int, ...] = ())
             return Play(tuple(path), None)
         safe = [s for s in options if level[s] is None]
         if safe:
-            nxt = min(safe, key=lambda s: (s in seen, distance.get(s, far), s))
+            nxt = min(safe, key=lambda s: (distance.get(s, far), progress(s), s in seen, s))
         else:
             nxt = min(options, key=lambda s: (-(level[s] or 0), s in seen, s))
         if nxt in seen:
@@ -124,6 +130,59 @@ def narrate(run: Run, play: Play, goal_names: list[str], final: str | None = Non
                      f"{play.loop_start}..{len(play.path) - 2} for ever: {goals} never "
                      "holds again")
     return lines
+
+
+def summarise(run: Run, play: Play, goal_names: list[str]) -> list[str]:
+    """The play in a few sentences before its steps: the goal the robot is kept from, the
+    environment's decisive moves (where, under which gait, what they do to the legs and
+    hazards), and the pattern that repeats or the state the robot is left in."""
+    if not run.steps:
+        return []
+    lost = ", ".join(goal_names[j] for j in play.missed) if play.missed else None
+    lines = [f"the robot is kept from {lost}" if lost else
+             "the robot is driven to a state with no legal move"]
+    moves: list[tuple[int, str]] = []
+    previous: Step | None = None
+    for step in run.steps:
+        done = _environment_move(step, previous)
+        if done:
+            where = f"in {step.region}" + (
+                f" under gait {step.gait}" if step.gait and step.gait != "noGait" else "")
+            moves.append((step.index, f"{where}: {done}"))
+        previous = step
+    if moves:
+        shown = "; ".join(f"step {i} {text}" for i, text in moves[:4])
+        more = f" (and {len(moves) - 4} more)" if len(moves) > 4 else ""
+        lines.append(f"the environment's decisive moves: {shown}{more}")
+    target = lost or "its goal"
+    last = run.steps[-1]
+    if not moves:
+        lines.append(f"the environment never has to act in this play: every move the robot "
+                     f"could make toward {target} leads to a state from which the environment "
+                     "wins, so it stays where it can")
+    elif play.loop_start is not None:
+        looped = [text for i, text in moves if i > play.loop_start]
+        if looped:
+            lines.append(f"this repeats for ever: each time the robot is {looped[0]}")
+        else:
+            lines.append(f"after that the robot can only stay in {last.region}: the moves "
+                         f"toward {target} need legs that have failed, or lead where the "
+                         "environment wins")
+    return lines
+
+
+def _environment_move(step: Step, previous: Step | None) -> str:
+    """What the environment does on the move into ``step``: a hazard switched on, legs the
+    step's gait makes fail or lose a level."""
+    parts = []
+    if step.hazard is not None and (previous is None or previous.hazard != step.hazard):
+        parts.append(f"hazard {step.hazard} turns on")
+    if step.failed:
+        parts.append(f"{_legs(step.failed)} fail{'s' if len(step.failed) == 1 else ''}")
+    if step.degraded:
+        parts.append(f"{_legs(step.degraded)} lose{'s' if len(step.degraded) == 1 else ''} "
+                     "a level")
+    return " and ".join(parts)
 
 
 def _sentence(step: Step, previous: Step | None) -> str:
