@@ -35,7 +35,7 @@ EDGES = [
 def toy() -> TransitionModel:
     src, dst, dx, dy = (np.array(c) for c in zip(*EDGES, strict=True))
     z = np.zeros(len(EDGES))
-    return TransitionModel(4, src, dst, dx, dy, z, z, ["000", "100", "010", "001"])
+    return TransitionModel(4, src, dst, dx, dy, z, z, labels=["000", "100", "010", "001"])
 
 
 @pytest.mark.parametrize("method", ["astar", "lpa", "mcts"])
