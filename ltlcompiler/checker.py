@@ -173,10 +173,12 @@ class _Checker:
                 "failed), so the gait can never be selected",
                 failed[0].span,
             ))
+        fired = tuple(used)  # the order the gait names its legs: their firing order
         order = list(self.health)
         used.sort(key=order.index)
         kind = GaitKind.CORRECTION if st.correction else GaitKind.MOVE
-        return Gait(name, kind, tuple(used), span=st.span, primitive=self._primitive(st))
+        return Gait(name, kind, tuple(used), span=st.span, primitive=self._primitive(st),
+                    fired=fired)
 
     def _primitive(self, st: s.GaitDecl) -> Primitive | None:
         prim = st.primitive

@@ -62,6 +62,13 @@ class Gait:
     legs: tuple[str, ...]  # L_G(g), sorted in declaration order of legs
     span: Span | None = field(default=None, compare=False, repr=False)
     primitive: Primitive | None = None
+    # the legs in the order the gait names them: the order its actuators fire (thesis 3.4.1)
+    fired: tuple[str, ...] = field(default=(), compare=False)
+
+    @property
+    def firing_order(self) -> tuple[str, ...]:
+        """The legs in the order they are pressurised: as the gait names them."""
+        return self.fired or self.legs
 
 
 @dataclass(frozen=True)

@@ -7,6 +7,7 @@ from pathlib import Path
 
 import pytest
 
+import gaitc
 from gaitc.cli import main
 
 SPECS = Path(__file__).resolve().parent.parent / "specs"
@@ -90,3 +91,31 @@ def test_the_suggested_valves_are_readable_and_pass_lint(
     spec.write_text("\n".join(lines) + "\n", encoding="utf-8")
     assert main(["lint", "--primitives", str(spec)]) == 0
     assert capsys.readouterr().err == ""
+
+
+def test_suggested_valves_keep_the_declared_firing_order() -> None:
+    """Issue 34: ``uses L2, L1`` fires L2 first, so the suggestion pressurises L2 first, and
+    gaits that fire the same legs in opposite orders get different suggestions."""
+    text = ("legs L1..L2 health 2\ngait north uses L1, L2 moves north\n"
+            "gait south uses L2, L1 moves south\ngrid 2 x 1\nstart r0\n")
+    hints = {d.message.split()[1]: d.hint for d in gaitc.lint(
+        gaitc.parse(text, name="order.gait"), primitives=True)}
+    assert hints["north"] is not None and hints["north"].startswith(
+        "add valves 10, 01 (L1, then L2 pressurised")
+    assert hints["south"] is not None and hints["south"].startswith(
+        "add valves 01, 10 (L2, then L1 pressurised")
+
+
+def test_two_directions_with_one_valve_sequence_are_a_warning() -> None:
+    text = ("legs L1..L2 health 2\ngait north uses L1, L2 moves north valves 10, 01\n"
+            "gait south uses L2, L1 moves south valves 10, 01\ngrid 2 x 1\nstart r0\n")
+    found = [d for d in gaitc.lint(gaitc.parse(text, name="same.gait"))
+             if "same valve sequence" in d.message]
+    assert [(d.severity, d.message) for d in found] == [(
+        "warning", "gaits north and south move the robot differently but run the same valve "
+        "sequence (10, 01): the robot cannot do both")]
+    assert found[0].span is not None and found[0].span.line == 3
+    # the same sequence in the same direction is two names for one gait: no warning
+    twin = text.replace("moves south", "moves north")
+    assert not [d for d in gaitc.lint(gaitc.parse(twin, name="twin.gait"))
+                if "same valve sequence" in d.message]

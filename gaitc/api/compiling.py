@@ -57,7 +57,12 @@ def lint(spec: Spec | str | Path, primitives: bool = False) -> tuple[Diagnostic,
         from gaitc.gaitgraph.pairing import check_gaits
 
         folder = str(Path(spec.path).resolve().parent)
-        diagnostics += check_gaits(model.gaits, folder, legs=[leg.name for leg in model.legs])
+        moves: dict[str, frozenset[tuple[str, str]]] = {}
+        for move in model.transitions:
+            for name in move.gaits:
+                moves[name] = moves.get(name, frozenset()) | {(move.source, move.target)}
+        diagnostics += check_gaits(model.gaits, folder, legs=[leg.name for leg in model.legs],
+                                   moves=moves)
     return tuple(diagnostics)
 
 

@@ -8,7 +8,7 @@ legs the spec says the gait uses, since the health reasoning (eq. 3.5) relies on
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -131,25 +131,30 @@ def _primitive_hint(gait: Gait, order: Sequence[str]) -> str:
     robot_file = 'primitive "ROBOT.yaml" direction D (D one of +x, -x, +y, -y; north is +y)'
     if not gait.legs:
         return f"add {robot_file}"
-    states = ["".join("1" if leg == used else "0" for leg in order) for used in gait.legs]
+    fired = gait.firing_order
+    states = ["".join("1" if leg == used else "0" for leg in order) for used in fired]
     if len(states) == 1:
         states.append("0" * len(order))
-    steps = ", then ".join(gait.legs) + (" pressurised" if len(gait.legs) > 1 else
-                                         " pressurised, then vented")
+    steps = ", then ".join(fired) + (" pressurised" if len(fired) > 1 else
+                                     " pressurised, then vented")
     return (f"add valves {', '.join(states)} ({steps}; one digit per leg, in the order "
             f"{', '.join(order)}) or {robot_file}")
 
 
 def check_gaits(
-    gaits: Sequence[Gait], spec_dir: str, legs: Sequence[str] | None = None
+    gaits: Sequence[Gait], spec_dir: str, legs: Sequence[str] | None = None,
+    moves: Mapping[str, frozenset[tuple[str, str]]] | None = None,
 ) -> list[Diagnostic]:
     """Lint the gait-primitive bindings of a spec.
 
     Warnings for gaits without a primitive; errors for primitives that cannot be resolved
-    or whose pressurised legs differ from the legs the gait uses.
+    or whose pressurised legs differ from the legs the gait uses; and, given ``moves`` (the
+    region transitions each gait makes), a warning for two gaits that move differently but
+    run the same valve sequence, which the robot cannot tell apart.
     """
     out: list[Diagnostic] = []
     order = _leg_order(gaits, legs)
+    resolved: dict[str, ValveSequence] = {}
     for gait in gaits:
         if gait.kind is GaitKind.NONE:
             continue
@@ -172,6 +177,7 @@ def check_gaits(
             continue
         if gait.kind is not GaitKind.MOVE:
             continue
+        resolved[gait.name] = seq
         known = set(seq.leg_of_valve)
         unknown = [leg for leg in gait.legs if leg not in known]
         if unknown:
@@ -196,4 +202,25 @@ def check_gaits(
                     "the spec's leg-to-gait map drives the health reasoning; make them agree",
                 )
             )
+    if moves is not None:
+        out += _same_sequences(gaits, resolved, moves)
+    return out
+
+
+def _same_sequences(gaits: Sequence[Gait], resolved: Mapping[str, ValveSequence],
+                    moves: Mapping[str, frozenset[tuple[str, str]]]) -> list[Diagnostic]:
+    """Gaits that move differently but whose primitives run identical valve states."""
+    out: list[Diagnostic] = []
+    first: dict[tuple[tuple[str, ...], tuple[str, ...]], str] = {}
+    spans = {g.name: g.span for g in gaits}
+    for name, seq in resolved.items():
+        key = (seq.states, seq.leg_of_valve)
+        other = first.setdefault(key, name)
+        if other != name and moves.get(other, frozenset()) != moves.get(name, frozenset()):
+            out.append(Diagnostic(
+                f"gaits {other} and {name} move the robot differently but run the same valve "
+                f"sequence ({', '.join(seq.states)}): the robot cannot do both",
+                spans.get(name), "warning",
+                "fire the legs of one of them in another order (the order 'uses' names "
+                "them), or give it its own primitive"))
     return out
