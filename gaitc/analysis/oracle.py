@@ -6,15 +6,29 @@ solver calls and their time (benchmarks print them) and a deadline for the whole
 
 from __future__ import annotations
 
+import os
 import time
+from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass, field
+from typing import Final
 
 from gaitc.diagnostics import SolverError
+from gaitc.diagnostics.processes import can_fork, mask_held, signals_held
 from gaitc.ir.controller import Controller
 from gaitc.ir.spec import GR1Spec, Semantics
 from gaitc.solver import synthesis
 from gaitc.solver.portfolio import engine_options
 from gaitc.solver.symbolic import Options
+
+#: The processes that solve a batch of variants at once (the cores, at most four).
+WORKERS: Final = max(1, min(4, len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity")
+                             else (os.cpu_count() or 1)))
+
+
+def _decide(spec: GR1Spec, semantics: Semantics, options: Options,
+            timeout: float | None) -> bool:
+    """One variant, in a worker process."""
+    return synthesis.check(spec, semantics, timeout, options=options).realizable
 
 
 @dataclass
@@ -69,6 +83,30 @@ class Oracle:
             self.seconds += time.monotonic() - started
         self._memo[spec] = answer
         return answer
+
+    def realizable_all(self, specs: list[GR1Spec]) -> list[bool]:
+        """Whether each of ``specs`` is realizable, in order: remembered answers first, the
+        rest solved at once on :data:`WORKERS` processes (one when there is only one to
+        solve, or one core), each with the configuration the first call's race chose."""
+        unknown = list(dict.fromkeys(s for s in specs if s not in self._memo))
+        workers = min(WORKERS, len(unknown))
+        if workers <= 1 or self._options is None or not can_fork():
+            return [self.realizable(s) for s in specs]
+        started = time.monotonic()
+        self.calls += len(unknown)
+        left = self._left()
+        try:
+            with ProcessPoolExecutor(workers, initializer=mask_held, initargs=(False,)) as pool:
+                with signals_held():  # the workers fork here; Ctrl-C waits for them
+                    futures = [pool.submit(_decide, spec, self.semantics, self._options, left)
+                               for spec in unknown]
+                answers = [future.result() for future in futures]
+        except SolverError as err:
+            raise self._timed_out(err) from None
+        finally:
+            self.seconds += time.monotonic() - started
+        self._memo.update(zip(unknown, answers, strict=True))
+        return [self._memo[s] for s in specs]
 
     def counterstrategy(self, spec: GR1Spec) -> Controller | None:
         """The environment's winning strategy, or None when ``spec`` is realizable."""

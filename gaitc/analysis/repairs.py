@@ -17,9 +17,10 @@ from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 from typing import Final
 
-from gaitc.analysis.oracle import Oracle
+from gaitc.analysis.oracle import WORKERS, Oracle
 from gaitc.diagnostics import GaitcError, source_lines
 from gaitc.ir.formula import Var
+from gaitc.ir.spec import GR1Spec
 from ltlcompiler.encoding import EncodingName
 from ltlcompiler.frontend import model_from_text
 from ltlcompiler.lowering import lower
@@ -201,58 +202,71 @@ def candidate_edits(model: Model, text: str, visited: Sequence[str]) -> list[_Ed
 
 
 class _Search:
-    """Solves edited variants of one source text, remembering what worked."""
+    """Solves edited variants of one source text, many at once (:meth:`Oracle.realizable_all`)."""
 
     def __init__(self, text: str, filename: str, encoding: EncodingName,
                  oracle: Oracle) -> None:
         self.lines = source_lines(text)
         self.filename, self.encoding, self.oracle = filename, encoding, oracle
 
-    def works(self, edit: _Edit) -> Repair | None:
-        edited, diff = _apply(self.lines, edit)
-        try:
-            variant, _ = model_from_text(edited, self.filename)
-            realizable = self.oracle.realizable(lower(variant, self.encoding))
-        except GaitcError:
-            return None  # the edit breaks the file (a name it removed is still used)
-        return Repair(edit.change, diff, edit.cost, edited) if realizable else None
+    def working(self, edits: Sequence[_Edit]) -> list[tuple[_Edit, Repair]]:
+        """The edits among ``edits`` that make the spec realizable, with their repairs."""
+        ready: list[tuple[_Edit, str, tuple[str, ...], GR1Spec]] = []
+        for edit in edits:
+            edited, diff = _apply(self.lines, edit)
+            try:
+                variant, _ = model_from_text(edited, self.filename)
+                ready.append((edit, edited, diff, lower(variant, self.encoding)))
+            except GaitcError:
+                continue  # the edit breaks the file (a name it removed is still used)
+        answers = self.oracle.realizable_all([spec for *_, spec in ready])
+        return [(edit, Repair(edit.change, diff, edit.cost, edited))
+                for (edit, edited, diff, _), works in zip(ready, answers, strict=True) if works]
 
 
 def repairs(model: Model, text: str, filename: str, encoding: EncodingName, oracle: Oracle,
             visited: Sequence[str]) -> Repairs:
     """The verified repairs, ranked; for each leg only its least raise, and every leg's
     health only its least raise. When no single edit short of dropping a goal works, pairs
-    of the cheaper edits (at most :data:`MAX_PAIRS`) are tried before the goal drops."""
+    of the cheaper edits (at most :data:`MAX_PAIRS`) are tried before the goal drops.
+
+    Candidates are solved in rounds, each round at once: the single edits with the first
+    step of every health raise, then the next step of the raises that did not work yet."""
     search = _Search(text, filename, encoding, oracle)
-    found: list[Repair] = []
-    raised: set[str] = set()
     candidates = candidate_edits(model, text, visited)
     tried = [kind for kind in KINDS if any(e.kind == kind for e in candidates)]
     singles = [e for e in candidates if e.kind != GOAL_DROP]
-    for edit in singles:
-        subject = _raised_subject(edit)
-        if subject is not None and subject in raised:
-            continue
-        repair = search.works(edit)
-        if repair is not None:
+    found: list[tuple[_Edit, Repair]] = []
+    raised: set[str] = set()
+    steps = sorted({_step(e) for e in singles})
+    for step in steps:
+        batch = [e for e in singles if _step(e) == step
+                 and (_raised_subject(e) is None or _raised_subject(e) not in raised)]
+        for edit, repair in search.working(batch):
+            subject = _raised_subject(edit)
             if subject is not None:
                 raised.add(subject)
-            found.append(repair)
+            found.append((edit, repair))
     if not found:
         pairs = _pairs(singles)
         if pairs:
             tried.insert(len(tried) - (GOAL_DROP in tried), "two of these edits together")
-        for edit in pairs:
-            repair = search.works(edit)
-            if repair is not None:
-                found.append(repair)
-                break  # the least pair: more would repeat it with extra edits
-    for edit in candidates:
-        if edit.kind == GOAL_DROP:
-            repair = search.works(edit)
-            if repair is not None:
-                found.append(repair)
-    return Repairs(tuple(found), tuple(tried))
+        chunk = 2 * WORKERS
+        for start in range(0, len(pairs), chunk):
+            works = search.working(pairs[start:start + chunk])
+            if works:  # the least pair: more would repeat it with extra edits
+                found.append(min(works, key=lambda item: item[0].rank()))
+                break
+    found.sort(key=lambda item: item[0].rank())
+    drops = search.working([e for e in candidates if e.kind == GOAL_DROP])
+    return Repairs(tuple(r for _, r in [*found, *drops]), tuple(tried))
+
+
+def _step(edit: _Edit) -> int:
+    """The round an edit is solved in: a health raise by k levels in round k, others in 1."""
+    if edit.kind == KINDS[0]:
+        return edit.cost
+    return edit.cost - 1 if edit.kind == KINDS[1] else 1
 
 
 def _raised_subject(edit: _Edit) -> str | None:
