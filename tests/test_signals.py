@@ -168,3 +168,44 @@ def test_a_ctrl_c_that_some_code_swallowed_still_ends_the_run_as_interrupted(
     finally:
         signal.signal(signal.SIGINT, previous)
     assert capsys.readouterr().err == "gaitc: interrupted\n"
+
+
+def _children(pid: int) -> list[int]:
+    try:
+        text = Path(f"/proc/{pid}/task/{pid}/children").read_text(encoding="ascii")
+    except OSError:
+        return []
+    return [int(p) for p in text.split()]
+
+
+@pytest.mark.skipif(not Path("/proc/self/task").exists() or os.cpu_count() == 1,
+                    reason="needs /proc and two cores (the repair workers)")
+@pytest.mark.parametrize("signum", [signal.SIGTERM, signal.SIGINT])
+def test_a_signal_during_the_repair_workers_stops_them_all(tmp_path: Path,
+                                                           signum: signal.Signals) -> None:
+    """explain solves repair candidates on worker processes: a signal while they run ends
+    the run with its one line and exit code, and no worker outlives it."""
+    spec = tmp_path / "lab8.gait"
+    spec.write_text((ROOT / "tests" / "data" / "explain" / "spill_pair.gait").read_text(
+        encoding="utf-8").replace("health 2", "health 5").replace(
+        "grid 1 x 4 cells a, b, c, d", "grid 1 x 8 cells a, b, c, d, e, f, g, h"),
+        encoding="utf-8")
+    proc = subprocess.Popen([sys.executable, "-m", "gaitc", "explain", str(spec)],
+                            stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True,
+                            start_new_session=True)
+    workers: list[int] = []
+    deadline = time.monotonic() + 60
+    while proc.poll() is None and time.monotonic() < deadline and len(workers) < 2:
+        workers = _children(proc.pid)
+        time.sleep(0.01)
+    if len(workers) < 2:
+        proc.kill()
+        pytest.skip("the run ended before its repair workers started")
+    os.kill(proc.pid, signum)
+    _, err = proc.communicate(timeout=30)
+    code, line = ENDINGS[signum]
+    assert proc.returncode == code, err
+    assert err.strip().splitlines()[-1] == line and "Traceback" not in err
+    time.sleep(0.2)
+    assert [w for w in workers if Path(f"/proc/{w}").exists()
+            and "Z" not in Path(f"/proc/{w}/stat").read_text().split()[2]] == []

@@ -6,11 +6,13 @@ solver calls and their time (benchmarks print them) and a deadline for the whole
 
 from __future__ import annotations
 
+import multiprocessing
 import os
+import signal
 import time
-from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass, field
-from typing import Final
+from multiprocessing.connection import Connection
+from typing import Any, Final
 
 from gaitc.diagnostics import SolverError
 from gaitc.diagnostics.processes import can_fork, mask_held, signals_held
@@ -25,10 +27,55 @@ WORKERS: Final = max(1, min(4, len(os.sched_getaffinity(0)) if hasattr(os, "sche
                              else (os.cpu_count() or 1)))
 
 
-def _decide(spec: GR1Spec, semantics: Semantics, options: Options,
-            timeout: float | None) -> bool:
-    """One variant, in a worker process."""
-    return synthesis.check(spec, semantics, timeout, options=options).realizable
+def _worker(share: list[GR1Spec], semantics: Semantics, options: Options,
+            timeout: float | None, out: Connection) -> None:
+    """A worker process: decide its share of the variants (it has them from the fork, so
+    nothing is pickled on the way in) and send the answers, or the solver's error, back.
+    Ctrl-C is the parent's to handle; SIGTERM (the parent stopping it) ends it quietly."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    mask_held(False)
+    try:
+        out.send([synthesis.check(spec, semantics, timeout, options=options).realizable
+                  for spec in share])
+    except SolverError as err:
+        out.send(err)
+    finally:
+        out.close()
+
+
+def _solve_shares(shares: list[list[GR1Spec]], semantics: Semantics, options: Options,
+                  timeout: float | None) -> list[list[bool]]:
+    """Each share decided in its own forked process; every worker is stopped and reaped
+    whatever happens here (an error, Ctrl-C, SIGTERM)."""
+    context = multiprocessing.get_context("fork")
+    running: list[tuple[Any, Connection]] = []
+    try:
+        for share in shares:
+            receiver, sender = context.Pipe(duplex=False)
+            with signals_held():  # a Ctrl-C during the fork waits until it is done
+                child = context.Process(target=_worker, args=(share, semantics, options,
+                                                              timeout, sender), daemon=True)
+                child.start()
+            sender.close()
+            running.append((child, receiver))
+        out: list[list[bool]] = []
+        for child, receiver in running:
+            try:
+                got = receiver.recv()
+            except EOFError:
+                raise SolverError(f"a solver process ended without an answer (exit code "
+                                  f"{child.exitcode}), perhaps out of memory") from None
+            if isinstance(got, SolverError):
+                raise got
+            out.append(got)
+        return out
+    finally:
+        for child, receiver in running:
+            if child.is_alive():
+                child.terminate()
+            child.join()
+            receiver.close()
 
 
 @dataclass
@@ -95,17 +142,15 @@ class Oracle:
         started = time.monotonic()
         self.calls += len(unknown)
         left = self._left()
+        shares = [unknown[k::workers] for k in range(workers)]
         try:
-            with ProcessPoolExecutor(workers, initializer=mask_held, initargs=(False,)) as pool:
-                with signals_held():  # the workers fork here; Ctrl-C waits for them
-                    futures = [pool.submit(_decide, spec, self.semantics, self._options, left)
-                               for spec in unknown]
-                answers = [future.result() for future in futures]
+            answers_of = _solve_shares(shares, self.semantics, self._options, left)
         except SolverError as err:
             raise self._timed_out(err) from None
         finally:
             self.seconds += time.monotonic() - started
-        self._memo.update(zip(unknown, answers, strict=True))
+        for share, answers in zip(shares, answers_of, strict=True):
+            self._memo.update(zip(share, answers, strict=True))
         return [self._memo[s] for s in specs]
 
     def counterstrategy(self, spec: GR1Spec) -> Controller | None:
