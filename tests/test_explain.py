@@ -35,7 +35,7 @@ UNREALIZABLE = {
     "hazard_cut.gait": "liveness", "few_levels.gait": "liveness",
     "failed_direction.gait": "liveness", "unrealizable_2x2.gait": "liveness",
     "thesis_robot_a_health2.gait": "liveness", "all_legs_short.gait": "liveness",
-    "spill_pair.gait": "liveness",
+    "spill_pair.gait": "liveness", "spare_leg.gait": "liveness",
 }
 IN_SPECS = ("unrealizable_2x2.gait", "thesis_robot_a_health2.gait")  # the rest: DATA
 SPECS = {name: (ROOT / "specs" if name in IN_SPECS else DATA) / name for name in UNREALIZABLE}
@@ -220,6 +220,26 @@ def test_raising_every_legs_health_is_the_first_repair() -> None:
     short = gaitc.parse(first.text.replace("health 4", "health 3"), name="short.gait")
     assert not gaitc.check(short).realizable and gaitc.check(
         gaitc.parse(first.text, name="fixed.gait")).realizable
+
+
+def test_a_gait_on_the_spare_leg_is_a_repair() -> None:
+    why = gaitc.explain(DATA / "spare_leg.gait")
+    added = [r for r in why.repairs if r.change.startswith("add gait")]
+    assert [r.change for r in added] == ["add gait east_2 on L3, moving as east does"]
+    assert added[0].diff == ("+gait east_2 uses L3 moves east",)
+    assert gaitc.check(gaitc.parse(added[0].text, name="spare.gait")).realizable
+
+
+def test_an_unblocked_cell_is_a_repair() -> None:
+    """The goal lies past a blocked cell: unblocking it is the first repair."""
+    text = ("legs L1..L2 health 3\ngait east uses L1 moves east\ngait west uses L2 moves west\n"
+            "grid 1 x 3 cells a, b, c\nblock b\ncache a, c\nstart a\n"
+            "visit c infinitely often\n")
+    why = gaitc.explain(gaitc.parse(text, name="blocked.gait"))
+    first = why.repairs[0]
+    assert (first.change, first.diff) == ("unblock the cell b", ("-block b",))
+    assert gaitc.check(gaitc.parse(first.text, name="open.gait")).realizable
+    assert not gaitc.check(gaitc.parse(text, name="blocked.gait")).realizable
 
 
 def test_a_cache_is_the_first_repair() -> None:

@@ -226,7 +226,8 @@ def explain(spec: GR1Spec, file: str, source: str = "", model: Model | None = No
     tried: tuple[str, ...] = ()
     if with_repairs and model is not None and encoding is not None and source:
         visited = [s.region for s in run.steps] if run is not None else []
-        searched = repairs(model, source, file, encoding, oracle, visited)
+        failed = sorted({leg for s in run.steps for leg in s.failed}) if run is not None else []
+        searched = repairs(model, source, file, encoding, oracle, visited, failed)
         fixes, tried = searched.found, searched.tried
     return Explanation(
         file=file,

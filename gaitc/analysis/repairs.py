@@ -1,8 +1,9 @@
 """Repairs: edits of a ``.gait`` file that make an unrealizable spec realizable.
 
 The edits are those a roboticist makes: raise one leg's health, raise every leg's health at
-once, add a cache, take a region out of a hazard set, assume a hazard set is off infinitely
-often, drop a ``guarantee`` line, and, last, drop a goal. When no single edit short of
+once, add a cache, unblock a cell, take a region out of a hazard set, add a gait on the legs
+the play left healthy, assume a hazard set is off infinitely often, drop a ``guarantee``
+line, and, last, drop a goal. When no single edit short of
 dropping a goal works, pairs of the cheaper edits are tried (a cache and more health, a
 fairness assumption and a cache...). Every candidate is an edit of the source text; the
 edited text is parsed, checked, lowered and solved again, and only the edits that give a
@@ -36,8 +37,10 @@ PAIR_POOL: Final = 12
 
 #: The kinds of edit, in the order they are preferred at equal cost.
 KINDS: Final = ("raise a leg's health", "raise every leg's health", "add a cache",
-                "take a region out of a hazard set", "assume a hazard is off infinitely often",
+                "unblock a cell", "take a region out of a hazard set",
+                "add a gait on healthy legs", "assume a hazard is off infinitely often",
                 "drop a guarantee", "drop a goal")
+UNBLOCK, NEW_GAIT = KINDS[3], KINDS[5]
 GOAL_DROP: Final = KINDS[-1]
 
 
@@ -88,7 +91,10 @@ def _apply(lines: list[str], edit: _Edit) -> tuple[str, tuple[str, ...]]:
     for line, new in sorted(edit.replaced, reverse=True):
         out[line - 1:line] = list(new)
     for line, new in sorted(edit.replaced):
-        diff += [f"-{lines[line - 1]}", *(f"+{n}" for n in new)]
+        if new and new[0] == lines[line - 1]:  # lines added after an unchanged one
+            diff += [f"+{n}" for n in new[1:]]
+        else:
+            diff += [f"-{lines[line - 1]}", *(f"+{n}" for n in new)]
     out += edit.appended
     diff += [f"+{n}" for n in edit.appended]
     return "\n".join(out) + "\n", tuple(diff)
@@ -165,10 +171,48 @@ def _hazard_edits(model: Model, lines: list[str]) -> Iterator[_Edit]:
             new = (f"{head}{sep} {', '.join(rest)}",) if rest and sep else ()
             if not sep:
                 continue
-            yield _Edit(f"take {region} out of hazard set {hazard.name}", 1, KINDS[3],
+            yield _Edit(f"take {region} out of hazard set {hazard.name}", 1, KINDS[4],
                         ((hazard.span.line, new),))
-        yield _Edit(f"assume hazard set {hazard.name} is off infinitely often", 2, KINDS[4],
+        yield _Edit(f"assume hazard set {hazard.name} is off infinitely often", 2, KINDS[6],
                     appended=(f"assume always eventually !{hazard.name}",))
+
+
+def _unblock_edits(lines: list[str]) -> Iterator[_Edit]:
+    """Each blocked cell of a ``block`` line taken out of it (the line goes with its last)."""
+    for number, line in enumerate(lines, 1):
+        found = re.match(r"(\s*block\s+)([^#]*?)(\s*(#.*)?)$", line)
+        if found is None:
+            continue
+        cells = [c.strip() for c in re.split(r",(?![^()]*\))", found.group(2)) if c.strip()]
+        for cell in cells:
+            rest = [c for c in cells if c != cell]
+            new = (f"{found.group(1)}{', '.join(rest)}{found.group(3)}",) if rest else ()
+            yield _Edit(f"unblock the cell {cell}", 1, UNBLOCK, ((number, new),))
+
+
+def _gait_edits(model: Model, lines: list[str], failed: Sequence[str]) -> Iterator[_Edit]:
+    """For each gait that uses a leg the play failed, the same moves on as many legs that
+    did not fail (the first in declaration order), as a new gait after it."""
+    used = {leg for g in model.gaits for leg in g.legs}
+    healthy = sorted((leg.name for leg in model.legs if leg.name not in failed
+                      and leg.health > 1), key=lambda name: name in used)  # spare legs first
+    names = {g.name for g in model.gaits}
+    for gait in model.gaits:
+        if gait.span is None or not set(gait.legs) & set(failed):
+            continue
+        if len(healthy) < len(gait.legs) or set(gait.legs) <= set(healthy):
+            continue
+        line = lines[gait.span.line - 1]
+        found = re.match(r"(\s*gait\s+)(\w+)(\s+uses\s+)(.*?)(\s+moves\b.*?)"
+                         r"(\s+(valves|primitive)\b.*)?$", line)
+        if found is None:
+            continue
+        new_name = next(f"{gait.name}_{k}" for k in range(2, 100)
+                        if f"{gait.name}_{k}" not in names)
+        legs = ", ".join(healthy[: len(gait.legs)])
+        added = f"{found.group(1)}{new_name}{found.group(3)}{legs}{found.group(5)}"
+        yield _Edit(f"add gait {new_name} on {legs}, moving as {gait.name} does", 2, NEW_GAIT,
+                    ((gait.span.line, (line, added)),))
 
 
 def _goal_edits(model: Model, lines: list[str]) -> Iterator[_Edit]:
@@ -188,15 +232,18 @@ def _goal_edits(model: Model, lines: list[str]) -> Iterator[_Edit]:
                     ((goal.span.line, new),))
     for uf in model.guarantees:
         if uf.span is not None:
-            yield _Edit(f"drop the guarantee on line {uf.span.line}", 3, KINDS[5],
+            yield _Edit(f"drop the guarantee on line {uf.span.line}", 3, KINDS[7],
                         ((uf.span.line, ()),))
 
 
-def candidate_edits(model: Model, text: str, visited: Sequence[str]) -> list[_Edit]:
-    """Every single edit tried, cheapest first (``visited`` regions get caches first)."""
+def candidate_edits(model: Model, text: str, visited: Sequence[str],
+                    failed: Sequence[str] = ()) -> list[_Edit]:
+    """Every single edit tried, cheapest first (``visited`` regions get caches first; the
+    legs ``failed`` in the play are replaced in new gaits)."""
     lines = source_lines(text)
     edits = [*_health_edits(model, lines), *_all_health_edits(model, lines),
-             *_cache_edits(model, visited), *_hazard_edits(model, lines),
+             *_cache_edits(model, visited), *_unblock_edits(lines),
+             *_hazard_edits(model, lines), *_gait_edits(model, lines, failed),
              *_goal_edits(model, lines)]
     return sorted(edits, key=_Edit.rank)
 
@@ -225,7 +272,7 @@ class _Search:
 
 
 def repairs(model: Model, text: str, filename: str, encoding: EncodingName, oracle: Oracle,
-            visited: Sequence[str]) -> Repairs:
+            visited: Sequence[str], failed: Sequence[str] = ()) -> Repairs:
     """The verified repairs, ranked; for each leg only its least raise, and every leg's
     health only its least raise. When no single edit short of dropping a goal works, pairs
     of the cheaper edits (at most :data:`MAX_PAIRS`) are tried before the goal drops.
@@ -233,7 +280,7 @@ def repairs(model: Model, text: str, filename: str, encoding: EncodingName, orac
     Candidates are solved in rounds, each round at once: the single edits with the first
     step of every health raise, then the next step of the raises that did not work yet."""
     search = _Search(text, filename, encoding, oracle)
-    candidates = candidate_edits(model, text, visited)
+    candidates = candidate_edits(model, text, visited, failed)
     tried = [kind for kind in KINDS if any(e.kind == kind for e in candidates)]
     singles = [e for e in candidates if e.kind != GOAL_DROP]
     found: list[tuple[_Edit, Repair]] = []
