@@ -44,11 +44,16 @@ def wheel(tmp_path_factory: pytest.TempPathFactory) -> Path:
     shutil.copytree(ROOT, source, symlinks=True, ignore=shutil.ignore_patterns(
         ".venv", ".git", "*.egg-info", "build", "__pycache__", ".mypy_cache", ".ruff_cache",
         ".pytest_cache", ".hypothesis"))
-    done = subprocess.run(
-        [sys.executable, "-m", "pip", "wheel", "--no-deps", "--no-build-isolation", "-q",
-         "-w", str(out), str(source)],
-        capture_output=True, text=True, check=False, cwd=out,
-        env={**os.environ, "PIP_DISABLE_PIP_VERSION_CHECK": "1"})
+    env = {**os.environ, "PIP_DISABLE_PIP_VERSION_CHECK": "1"}
+    # the environment's own setuptools when it is new enough (fast, offline), else pip's
+    # isolated build with the pyproject's build requirements
+    for isolation in (["--no-build-isolation"], []):
+        done = subprocess.run(
+            [sys.executable, "-m", "pip", "wheel", "--no-deps", *isolation, "-q",
+             "-w", str(out), str(source)],
+            capture_output=True, text=True, check=False, cwd=out, env=env)
+        if done.returncode == 0:
+            break
     assert done.returncode == 0, done.stderr
     (found,) = out.glob("gaitc-*.whl")
     return found
