@@ -25,7 +25,7 @@ from typing import TYPE_CHECKING, Any
 
 from gaitc.diagnostics import SpecSemanticError, UsageError
 from gaitc.diagnostics.choices import Choice
-from gaitc.diagnostics.files import write_atomically
+from gaitc.diagnostics.files import make_folder, write_atomically
 from gaitc.diagnostics.versions import GAITS
 
 if TYPE_CHECKING:
@@ -339,7 +339,7 @@ class GlobalGait:
     def draw(self, folder: str | Path) -> list[str]:
         if self.plan is None:
             return []
-        Path(folder).mkdir(parents=True, exist_ok=True)
+        make_folder(folder)
         path = Path(folder) / "gait-search.svg"
         write_atomically(path, self.plan._repr_svg_())
         return [str(path)]

@@ -8,12 +8,13 @@ or lost file behind.
 from __future__ import annotations
 
 import contextlib
+import errno
 import os
 import stat
 import tempfile
 from pathlib import Path
 
-from gaitc.diagnostics import FileAccessError, GaitcError, MissingFileError, Span
+from gaitc.diagnostics import FileAccessError, GaitcError, MissingFileError, Span, source_lines
 
 
 def decode_text(data: bytes, file: str, error: type[GaitcError]) -> str:
@@ -71,18 +72,60 @@ def read_input(path: str | Path, what: str = "") -> bytes:
 
 def _output_target(path: str | Path) -> Path:
     """The file an output ``path`` names (a symbolic link followed); a folder, socket or
-    other kind that is neither a regular file nor a stream is refused."""
+    other kind that is neither a regular file nor a stream is refused, and so is a name the
+    system cannot look up (a link that points to itself, a name too long)."""
     target = Path(path)
-    if target.is_symlink():
-        target = target.resolve()
-    if target.exists() and not target.is_file() and not _stream_in_place(target):
-        raise FileAccessError(f"cannot write '{path}': it is not a regular file")
+    try:
+        if target.is_symlink():
+            target = target.resolve(strict=False)
+        if target.exists() and not target.is_file() and not _stream_in_place(target):
+            raise FileAccessError(f"cannot write '{path}': it is not a regular file")
+    except RuntimeError:  # Path.resolve of a link loop (Python 3.10-3.12)
+        raise FileAccessError(f"cannot write '{path}': the symbolic link points to "
+                              "itself") from None
+    except OSError as err:
+        if isinstance(err, FileAccessError):
+            raise
+        raise FileAccessError(f"cannot write '{path}': {_reason(err)}") from None
     return target
+
+
+def _reason(err: OSError) -> str:
+    """An operating system error in words, without Python's ``[Errno N]`` prefix."""
+    if err.errno == errno.ELOOP:
+        return "the symbolic link points to itself"
+    if err.errno == errno.ENAMETOOLONG:
+        return "the file name is too long for the file system"
+    return str(err.strerror or err)
+
+
+def make_folder(path: str | Path) -> Path:
+    """The output folder ``path``, made with its parents if missing; a file in the way or a
+    folder that cannot be made is a :class:`FileAccessError` naming the path."""
+    folder = Path(path)
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+    except FileExistsError:
+        raise FileAccessError(f"cannot write into '{path}': it is a file, not a folder",
+                              path) from None
+    except OSError as err:
+        raise FileAccessError(f"cannot make the folder '{path}': {_reason(err)}",
+                              path) from None
+    return folder
 
 
 def check_writable(path: str | Path) -> None:
     """Refuse, before any work, an output ``path`` that :func:`write_atomically` could not
     write: its folder is missing or not writable, or it is a folder or other non-file."""
+    try:
+        _check_writable(path)
+    except FileAccessError:
+        raise
+    except OSError as err:
+        raise FileAccessError(f"cannot write '{path}': {_reason(err)}") from None
+
+
+def _check_writable(path: str | Path) -> None:
     target = _output_target(path)
     if _stream_in_place(target):
         return
@@ -109,7 +152,7 @@ def write_atomically(path: str | Path, data: str | bytes) -> None:
             with open(target, "wb") as out:
                 out.write(payload)
         except OSError as err:
-            raise FileAccessError(f"cannot write '{path}': {err.strerror or err}") from None
+            raise FileAccessError(f"cannot write '{path}': {_reason(err)}") from None
         return
     tmp: str | None = None
     try:
@@ -123,8 +166,26 @@ def write_atomically(path: str | Path, data: str | bytes) -> None:
         os.replace(tmp, target)
         tmp = None
     except OSError as err:
-        raise FileAccessError(f"cannot write '{path}': {err.strerror or err}") from None
+        raise FileAccessError(f"cannot write '{path}': {_reason(err)}") from None
     finally:
         if tmp is not None:
             with contextlib.suppress(OSError):
                 os.unlink(tmp)
+
+
+def csv_rows(text: str, name: str, error: type[GaitcError]) -> list[list[str]]:
+    """The rows of a CSV ``text`` split at the project's line ends (\\n, \\r\\n or a lone \\r,
+    as everywhere else); a row the csv module cannot read (a field over its size limit, a
+    quote left open) is ``error`` at that line."""
+    import csv
+
+    rows: list[list[str]] = []
+    for number, line in enumerate(source_lines(text), 1):
+        try:
+            rows.extend(csv.reader([line]))
+        except csv.Error as err:
+            reason = ("a carriage return (\\r) inside the line" if "new-line" in str(err)
+                      else str(err))
+            raise error(f"line {number} is not a CSV row: {reason}", Span(name, number, 1)
+                        ) from None
+    return rows

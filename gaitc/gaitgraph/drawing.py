@@ -15,6 +15,7 @@ import numpy as np
 import pydot
 
 from gaitc.diagnostics import GaitcError
+from gaitc.diagnostics.files import make_folder
 from gaitc.gaitgraph.cycles import GaitCycle
 from gaitc.gaitgraph.graph import GaitGraph, PoseKey
 from gaitc.gaitgraph.kinematics import Array, forward, leg_polyline, valve_int
@@ -222,7 +223,7 @@ def write_drawings(
 ) -> list[str]:
     """Write the graph drawing and a top view of each pose of each gait; returns the paths."""
     out = Path(directory)
-    out.mkdir(parents=True, exist_ok=True)
+    make_folder(out)
     written = []
     best = gaits[0] if gaits and all(p < len(graph) for p in gaits[0].poses) else None
     dot = graph_dot(graph, best, 1 if best is not None else None)

@@ -21,6 +21,7 @@ from pathlib import Path
 from types import TracebackType
 
 from gaitc.diagnostics import GaitcError, Span
+from gaitc.diagnostics.files import make_folder
 
 SOURCES = Path(__file__).resolve().parent / "board"
 MCU = "atmega328p"
@@ -92,7 +93,7 @@ def build(out_dir: str | Path, simulator: bool = True) -> Image:
                             _where("firmware build"),
                             "run gaitc from a checkout of the repository (pip install -e .)")
     out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
+    make_folder(out)
     elf, hexfile = out / "gaitboard.elf", out / "gaitboard.hex"
     _run(["avr-gcc", *AVR_FLAGS, "-o", str(elf), str(SOURCES / "gaitboard.c")],
          "avr-gcc gaitboard.c")

@@ -13,7 +13,6 @@ step in a cache resets every leg to healthy (eq. 3.6: the actuators were replace
 
 from __future__ import annotations
 
-import csv
 import itertools
 import math
 from collections.abc import Iterable, Mapping, Sequence
@@ -21,7 +20,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from gaitc.diagnostics import GaitcError, Span
-from gaitc.diagnostics.files import decode_text, read_input
+from gaitc.diagnostics.files import csv_rows, decode_text, read_input
 
 NOMINAL_DEPTH = 0.6  # curvature feature of a healthy actuator when nothing is calibrated
 DEFAULT_HYSTERESIS = 0.03
@@ -203,7 +202,7 @@ def read_cycles(path: str | Path) -> list[Cycle]:
     """``leg,cycle,level,intensity`` rows (one per sample, in time order) → cycles."""
     name = str(path)
     text = decode_text(read_input(path, "recording"), name, CalibrationError)
-    rows = list(csv.reader(text.splitlines()))
+    rows = csv_rows(text, name, CalibrationError)
     if not rows or [c.strip() for c in rows[0]] != ["leg", "cycle", "level", "intensity"]:
         raise CalibrationError("the first line must be the header leg,cycle,level,intensity",
                                Span(name, 1, 1))

@@ -15,8 +15,6 @@ Errors in the files are :class:`CharacterizationError` with the file, line and c
 
 from __future__ import annotations
 
-import csv
-import io
 import math
 from dataclasses import dataclass
 from pathlib import Path
@@ -26,7 +24,7 @@ from numpy.typing import NDArray
 from scipy.optimize import least_squares
 
 from gaitc.diagnostics import Span
-from gaitc.diagnostics.files import decode_text, read_input
+from gaitc.diagnostics.files import csv_rows, decode_text, read_input
 from gaitc.models.fields import ModelFileError
 
 Array = NDArray[np.float64]
@@ -57,7 +55,7 @@ def read_columns(path: str | Path, columns: tuple[str, ...]) -> tuple[list[str],
     name = str(path)
     data = read_input(path, "recording")
     text = decode_text(data, name, CharacterizationError)
-    rows = list(csv.reader(io.StringIO(text)))
+    rows = csv_rows(text, name, CharacterizationError)
     if not rows or [c.strip() for c in rows[0]] != list(columns):
         raise CharacterizationError(
             f"{name} must start with the header {','.join(columns)}", Span(name, 1, 1)

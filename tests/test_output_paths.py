@@ -1,0 +1,75 @@
+"""Output paths and recordings that used to end in an internal error (issue 38): a link
+that points to itself, a file name too long, a file where a folder should be, a full
+device, and CSV rows the csv module cannot read. Each is now one line naming the path or
+the file and line, with the usage (2) or user (1) exit code."""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+import pytest
+
+from gaitc.cli import main
+
+ROOT = Path(__file__).resolve().parent.parent
+PATROL = str(ROOT / "specs" / "patrol_2x2.gait")
+ONE_LEG = ROOT / "tests" / "data" / "softmodels" / "one_leg.yaml"
+
+
+def _last(capsys: pytest.CaptureFixture[str]) -> str:
+    return capsys.readouterr().err.strip().splitlines()[0]
+
+
+def test_a_link_to_itself(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    loop = tmp_path / "loop.json"
+    loop.symlink_to(loop)
+    assert main(["synth", PATROL, "-o", str(loop)]) == 2
+    assert _last(capsys) == (f"gaitc: usage error: argument -o/--output: cannot write "
+                             f"'{loop}': the symbolic link points to itself")
+
+
+def test_a_name_too_long(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    name = tmp_path / ("x" * 300 + ".json")
+    assert main(["synth", PATROL, "-o", str(name)]) == 2
+    assert _last(capsys).endswith(f"cannot write '{name}': the file name is too long for "
+                                  "the file system")
+
+
+def test_a_file_where_the_drawings_go(tmp_path: Path,
+                                      capsys: pytest.CaptureFixture[str]) -> None:
+    taken = tmp_path / "existing.txt"
+    taken.write_text("mine", encoding="utf-8")
+    robot = str(ROOT / "specs" / "robots" / "symmetric6.yaml")
+    assert main(["gaits", robot, "--svg", str(taken)]) == 2
+    assert _last(capsys) == (f"gaitc: usage error: cannot write into '{taken}': it is a "
+                             "file, not a folder")
+    assert taken.read_text(encoding="utf-8") == "mine"
+
+
+@pytest.mark.skipif(not os.path.exists("/dev/full"), reason="needs /dev/full")
+def test_a_full_device(capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["synth", PATROL, "-o", "/dev/full"]) == 2
+    assert _last(capsys) == "gaitc: usage error: cannot write '/dev/full': No space left on device"
+
+
+def test_a_field_over_the_csv_limit(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    big = tmp_path / "legs.csv"
+    big.write_text("leg,cycle,level,intensity\nL1,1,2," + "9" * 140_000 + "\n",
+                   encoding="utf-8")
+    assert main(["calibrate", str(big), "-o", str(tmp_path / "out.sensing.yaml")]) == 1
+    assert _last(capsys) == (f"{big}:2:1: error: line 2 is not a CSV row: field larger than "
+                             "field limit (131072)")
+    assert not (tmp_path / "out.sensing.yaml").exists()
+
+
+def test_a_carriage_return_inside_a_line(tmp_path: Path,
+                                         capsys: pytest.CaptureFixture[str]) -> None:
+    curve = tmp_path / "curv.csv"
+    curve.write_bytes(b"time,curvature\n0.0,0.01\n0.1,0.0\r2\n")
+    robot = tmp_path / "one_leg.yaml"
+    robot.write_bytes(ONE_LEG.read_bytes())
+    assert main(["characterize", str(robot), "L1", "--curvature", str(curve)]) == 1
+    assert _last(capsys) == (f"{curve}:3:1: error: line 3 is not a CSV row: a carriage "
+                             "return (\\r) inside the line")
+    assert robot.read_bytes() == ONE_LEG.read_bytes()
