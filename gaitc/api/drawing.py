@@ -35,12 +35,6 @@ def _check_steps(steps: int | None) -> None:
         raise UsageError(f"--steps must be 0 or more (the moves from the start), not {steps}")
 
 
-def _bound(spec: Spec | str | Path, controller: Controller | str | Path | None,
-           encoding: EncodingName | str | None, prefer: str | Sequence[str] | None,
-           progress: Progress | None) -> Session | None:
-    return session(spec, controller, encoding, prefer=prefer, progress=progress)
-
-
 def draw_automaton(spec: Spec | str | Path, controller: Controller | str | Path | None = None,
                    *, quotient: str | None = None, steps: int | None = None,
                    max_nodes: int = 40, encoding: EncodingName | str | None = None,
@@ -58,7 +52,7 @@ def draw_automaton(spec: Spec | str | Path, controller: Controller | str | Path 
     _check_steps(steps)
     if steps is not None and quotient is not None:
         raise UsageError("--steps draws single nodes; leave out --quotient")
-    bound = _bound(spec, controller, encoding, prefer, progress)
+    bound = session(spec, controller, encoding, prefer=prefer, progress=progress)
     if bound is None:
         return None
     if steps is not None:
@@ -88,7 +82,7 @@ def controller_policy(spec: Spec | str | Path,
     _check_steps(steps)
     if max_rules is not None and max_rules < 1:
         raise UsageError("--max-rules must be at least 1")
-    bound = _bound(spec, controller, encoding, prefer, progress)
+    bound = session(spec, controller, encoding, prefer=prefer, progress=progress)
     if bound is None:
         return None
     return project(bound.strategy, bound.domain, steps, max_nodes, max_rules), bound

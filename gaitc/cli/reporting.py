@@ -20,7 +20,6 @@ from gaitc.diagnostics import Diagnostic, GaitcError, SolverError, Span, UsageEr
 if TYPE_CHECKING:
     from gaitc.analysis.explanation import Explanation
     from gaitc.api.loading import Spec
-    from gaitc.sim.run import Run
 
 #: The version of the JSON objects documented in docs/json.md; raised when a key changes
 #: meaning or disappears (adding a key does not change it).
@@ -113,12 +112,3 @@ def compilation_json(spec: Spec, fmt: str, text: str, output: str) -> dict[str, 
             "bytes": len(text.encode("utf-8")), "lines": text.count("\n"),
             "text": text if output == "-" else None,
             "warnings": [diagnostic_json(d) for d in spec.diagnostics]}
-
-
-def run_json(file: str, run: Run | None, environment: str | None, output: str | None,
-             realizable: bool = True) -> dict[str, Any]:
-    """The result of ``gaitc simulate`` and ``drive``
-    (:func:`gaitc.api.simulation.run_document`)."""
-    from gaitc.api.simulation import run_document
-
-    return run_document(file, run, environment, output, realizable)

@@ -12,10 +12,11 @@ from typing import Any
 
 import gaitc
 from gaitc.api.driving import VIOLATION_POLICIES
+from gaitc.api.simulation import run_document
 from gaitc.cli.commands.arguments import add_prefer, positive_seconds, run_file
 from gaitc.cli.commands.simulating import add_json, env_text, report_run, settle_environment
 from gaitc.cli.exitcodes import ExitCode, exit_code_help
-from gaitc.cli.reporting import document, print_json, run_json
+from gaitc.cli.reporting import document, print_json
 from gaitc.cli.status import progress_display
 from gaitc.diagnostics import UsageError
 from ltlcompiler.encoding import ENCODINGS
@@ -150,7 +151,7 @@ def run_drive(args: argparse.Namespace) -> int:
     if driven.run is None:
         print(f"{args.spec}: unrealizable: no controller to drive", file=sys.stderr)
         if args.json:
-            print_json(document("drive", {**run_json(args.spec, None, None, None, False),
+            print_json(document("drive", {**run_document(args.spec, None, None, None, False),
                                           "backend": args.backend, "violations": []}))
         return ExitCode.UNREALIZABLE
     if args.json:

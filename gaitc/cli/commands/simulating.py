@@ -12,10 +12,10 @@ from collections.abc import Mapping
 from typing import Any
 
 import gaitc
-from gaitc.api.simulation import ENVIRONMENTS, Session, environment
+from gaitc.api.simulation import ENVIRONMENTS, Session, environment, run_document
 from gaitc.cli.commands.arguments import add_prefer, run_file
 from gaitc.cli.exitcodes import ExitCode, exit_code_help
-from gaitc.cli.reporting import document, exit_code_of, print_json, run_json
+from gaitc.cli.reporting import document, exit_code_of, print_json
 from gaitc.cli.status import progress_display
 from gaitc.diagnostics import UsageError, render_error
 from gaitc.sim.environments import Environment
@@ -135,7 +135,7 @@ def run_simulate(args: argparse.Namespace) -> int:
     if bound is None:
         print(f"{args.spec}: unrealizable: no controller to simulate", file=sys.stderr)
         if args.json:
-            print_json(document("simulate", run_json(args.spec, None, None, None, False)))
+            print_json(document("simulate", run_document(args.spec, None, None, None, False)))
         return ExitCode.UNREALIZABLE
     if bound.strategy.kind == "counterstrategy":
         kind = (args.env or ["random"])[0]
@@ -166,7 +166,7 @@ def report_run(
     if as_json:
         if out:
             save_run(run, out)
-        print_json(document(command, {**run_json(run.spec_file, run, source, out, realizable),
+        print_json(document(command, {**run_document(run.spec_file, run, source, out, realizable),
                                       **(extra or {})}))
         if run.error is not None:
             print(render_error(run.error), file=sys.stderr)
