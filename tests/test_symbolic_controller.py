@@ -246,4 +246,4 @@ def test_the_api_gives_and_verifies_symbolic_controllers() -> None:
     run = gaitc.simulate(spec, found, steps=20)
     assert run.summary is not None and run.summary.guarantees_held
     with pytest.raises(UsageError, match="unknown controller form"):
-        gaitc.synthesize(spec, form="compact")
+        gaitc.synthesize(spec, form="tabular")

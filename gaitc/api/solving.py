@@ -15,7 +15,15 @@ from typing import TYPE_CHECKING, Any, Final, Literal, get_args
 
 from gaitc.api.loading import Spec, SpecLike, as_gr1, resolve
 from gaitc.api.presentation import table
-from gaitc.diagnostics import SolverError, UsageError
+from gaitc.compact.controller import (
+    CompactController,
+    compact_from_dict,
+    compact_to_json,
+    is_compact,
+    to_symbolic,
+)
+from gaitc.compact.fields import Vocabulary, check_covers, robot_vocabulary, spec_vocabulary
+from gaitc.diagnostics import ControllerError, SolverError, UsageError
 from gaitc.diagnostics.files import write_atomically
 from gaitc.ir.bddfile import SymbolicController, is_symbolic, symbolic_from_dict, symbolic_to_json
 from gaitc.ir.controller import (
@@ -43,6 +51,10 @@ SOLVERS: Final[tuple[SolverName, ...]] = get_args(SolverName)
 Kind = Literal["strategy", "counterstrategy"]
 #: Above this many nodes ``synthesize`` keeps the controller symbolic (form ``auto``).
 MAX_NODES: Final = 100_000
+#: The forms ``synthesize`` writes: the solver's (:data:`gaitc.solver.synthesis.FORMS`) and
+#: ``compact``, decision diagrams over the robot's words (:mod:`gaitc.compact`).
+COMPACT: Final = "compact"
+Automaton = Controller | SymbolicController | CompactController
 
 
 @dataclass(frozen=True)
@@ -91,13 +103,15 @@ class Synthesis:
 
     spec: Spec | GR1Spec = field(repr=False)
     kind: Kind
-    controller: Controller | SymbolicController | None
+    controller: Automaton | None
     report: VerificationReport | None
     seconds: float
     semantics: Semantics = Semantics.DEFAULT
     solver: str = "embedded"
     #: The automaton's nodes before equivalent ones were merged (gaitc.ir.quotient), when any were.
     merged_from: int | None = None
+    #: A compact controller's source: the symbolic controller's BDD nodes.
+    symbolic_nodes: int | None = None
 
     @property
     def realizable(self) -> bool:
@@ -115,6 +129,13 @@ class Synthesis:
         """The controller's size in words: explicit nodes, or a symbolic one's BDD nodes."""
         if self.controller is None:
             return "none"
+        if isinstance(self.controller, CompactController):
+            from gaitc.codegen.tables import table_bytes
+
+            c = self.controller
+            return (f"compact, {c.rules} rules, {c.decision_nodes} decision nodes, "
+                    f"{table_bytes(c)} bytes of tables; the symbolic strategy it comes from "
+                    f"has {self.symbolic_nodes} BDD nodes")
         if isinstance(self.controller, SymbolicController):
             return f"symbolic, {len(self.controller.nodes)} BDD nodes"
         merged = "" if self.merged_from is None else f", {self.merged_from} before merging"
@@ -123,14 +144,24 @@ class Synthesis:
     def to_json(self) -> dict[str, Any]:
         """The outcome for ``gaitc synth --json`` and ``counter --json`` (docs/json.md)."""
         symbolic = isinstance(self.controller, SymbolicController)
-        return {
+        out = {
             "file": _name(self.spec), "kind": self.kind,
             "verdict": "realizable" if self.realizable else "unrealizable",
             "seconds": round(self.seconds, 3), "semantics": self.semantics,
             "solver": self.solver, "symbolic": symbolic,
             "nodes": None if self.controller is None else len(self.controller.nodes),
             "nodes_before_merging": self.merged_from,
+            "compact": None,
             "verification": None if self.report is None else self.report.to_json()}
+        if isinstance(self.controller, CompactController):
+            from gaitc.codegen.tables import table_bytes
+
+            c = self.controller
+            out["nodes"] = c.decision_nodes
+            out["compact"] = {"rules": c.rules, "decision_nodes": c.decision_nodes,
+                              "moves": len(c.moves), "table_bytes": table_bytes(c),
+                              "symbolic_nodes": self.symbolic_nodes}
+        return out
 
     def save(self, path: str | Path) -> None:
         """Write the controller as JSON (docs/controller-format.md), atomically."""
@@ -139,6 +170,8 @@ class Synthesis:
                              f"{'realizable' if self.realizable else 'unrealizable'}")
         if isinstance(self.controller, SymbolicController):
             write_atomically(path, symbolic_to_json(self.controller))
+        elif isinstance(self.controller, CompactController):
+            write_atomically(path, compact_to_json(self.controller))
         else:
             write_atomically(path, controller_to_json(self.controller))
 
@@ -150,9 +183,9 @@ class Synthesis:
 
         if self.controller is None:
             raise UsageError(f"there is no {self.kind} to draw")
-        if isinstance(self.controller, SymbolicController):
-            raise UsageError("a symbolic controller has no automaton to draw; draw a run of "
-                             "it (gaitc.simulate(...).picture())")
+        if not isinstance(self.controller, Controller):
+            raise UsageError("a symbolic or compact controller has no automaton to draw; "
+                             "draw a run of it (gaitc.simulate(...).picture())")
         if not isinstance(self.spec, Spec) or self.spec.model is None:
             raise UsageError("drawing an automaton needs a .gait spec, which says what its "
                              "variables mean")
@@ -239,7 +272,9 @@ def synthesize(spec: SpecLike, semantics: Semantics | str = Semantics.DEFAULT,
     False; ``.controller`` is None when the spec is unrealizable.
 
     ``form`` (:data:`gaitc.solver.synthesis.FORMS`): ``explicit`` an automaton, ``symbolic`` BDDs
-    (:mod:`gaitc.ir.bddfile`), ``auto`` an automaton unless it would pass ``max_nodes`` nodes.
+    (:mod:`gaitc.ir.bddfile`), ``auto`` an automaton unless it would pass ``max_nodes`` nodes,
+    ``compact`` decision diagrams over the robot's words (:mod:`gaitc.compact`), made from
+    the symbolic strategy and proved on every state by the symbolic verifier.
 
     ``prefer`` orders the move preferences of the controller (either form) among the winning
     moves (``gaitc.solver.preferences``: ``hazard``, ``health``, ``goal``, ``switches``; a list or
@@ -247,11 +282,12 @@ def synthesize(spec: SpecLike, semantics: Semantics | str = Semantics.DEFAULT,
     move (the behaviour before them).  They apply to the embedded solver; ``hazard``,
     ``health`` and ``switches`` need a ``.gait`` spec.
     """
-    if form not in FORMS:
-        raise UsageError(f"unknown controller form '{form}'; use one of {', '.join(FORMS)}")
-    if form == "symbolic" and solver != "embedded":
-        raise UsageError("symbolic controllers come from the embedded solver; drop --solver "
-                         "slugs or --symbolic")
+    if form not in (*FORMS, COMPACT):
+        raise UsageError(f"unknown controller form '{form}'; use one of "
+                         f"{', '.join((*FORMS, COMPACT))}")
+    if form in ("symbolic", COMPACT) and solver != "embedded":
+        raise UsageError(f"{form} controllers come from the embedded solver; drop --solver "
+                         f"slugs or --{form}")
     return _solve(
         spec=resolve(spec),
         kind="strategy",
@@ -296,13 +332,14 @@ def _solve(spec: Spec | GR1Spec, kind: Kind, semantics: Semantics, solver: str,
     from gaitc.solver.preferences import preference_order
 
     gr1, started = as_gr1(spec), time.monotonic()
+    symbolic_nodes: int | None = None
     order = preference_order(prefer)
     weighed = [name for name in order if name != "goal"]
     if prefer is not None and weighed and not (isinstance(spec, Spec) and spec.model):
         raise UsageError(f"--prefer {','.join(weighed)} weighs moves by the robot model of a "
                          ".gait spec, and this spec has none (SLUGS input); use --prefer goal "
                          "or none")
-    automaton: Controller | SymbolicController | None
+    automaton: Automaton | None
     try:
         if _solver(solver) == "slugs":
             if prefer is not None and order:
@@ -319,10 +356,15 @@ def _solve(spec: Spec | GR1Spec, kind: Kind, semantics: Semantics, solver: str,
                 progress=progress,
                 options=options,
                 max_nodes=max_nodes,
-                form=form,
+                form="symbolic" if form == COMPACT else form,
                 prefer=order,
                 costs=_costs(spec, order),
             )
+            if form == COMPACT and isinstance(automaton, SymbolicController):
+                if progress is not None:
+                    progress(Stage("writing the strategy as decision diagrams"))
+                symbolic_nodes = len(automaton.nodes)
+                automaton = compact(spec, automaton)
         else:
             from gaitc.solver import synthesis
 
@@ -351,7 +393,32 @@ def _solve(spec: Spec | GR1Spec, kind: Kind, semantics: Semantics, solver: str,
         semantics=semantics,
         solver=solver,
         merged_from=merged_from,
+        symbolic_nodes=symbolic_nodes,
     )
+
+
+def vocabulary_of(spec: Spec | GR1Spec, ctrl: SymbolicController) -> Vocabulary:
+    """The fields a compact controller of ``spec`` decides in: the robot's words for a
+    ``.gait`` spec, else one field per declared variable."""
+    if isinstance(spec, Spec) and spec.model is not None:
+        robot = robot_vocabulary(spec.model, spec.encoding or EncodingName.ONEHOT,
+                                 ctrl.integers)
+        try:
+            check_covers(robot, ctrl.inputs, ctrl.outputs)
+            return robot
+        except ControllerError:
+            pass  # a model whose bits the robot's words do not cover: the spec's own
+    found = spec_vocabulary(as_gr1(spec), ctrl.integers)
+    check_covers(found, ctrl.inputs, ctrl.outputs)
+    return found
+
+
+def compact(spec: SpecLike, controller: SymbolicController) -> CompactController:
+    """The compact controller (:mod:`gaitc.compact`) of a symbolic controller of ``spec``."""
+    from gaitc.compact.extraction import compact_from_symbolic
+
+    resolved = resolve(spec)
+    return compact_from_symbolic(controller, vocabulary_of(resolved, controller))
 
 
 def _costs(spec: Spec | GR1Spec, order: Sequence[str]) -> tuple[Cost, ...]:
@@ -381,23 +448,25 @@ def _slugs_automaton(gr1: GR1Spec, kind: Kind, semantics: Semantics, timeout: fl
 
 
 def verify(spec: SpecLike,
-           controller: Controller | SymbolicController | Synthesis | str | Path,
+           controller: Automaton | Synthesis | str | Path,
            semantics: Semantics | str | None = None) -> VerificationReport:
     """Prove independently that ``controller`` (a strategy, explicit or symbolic) realizes
     ``spec``, or that a counter-strategy defeats it; a path is read as a controller file.
     ``semantics`` defaults to the one recorded in the controller."""
     spec = resolve(spec)
     gr1 = as_gr1(spec)
-    automaton: Controller | SymbolicController
+    automaton: Automaton
     if isinstance(controller, Synthesis):
         if controller.controller is None:
             raise UsageError(f"there is no {controller.kind} to verify")
         automaton = controller.controller
-    elif isinstance(controller, (Controller, SymbolicController)):
+    elif isinstance(controller, (Controller, SymbolicController, CompactController)):
         automaton = controller
     else:
         automaton = read_controller(controller, gr1)
     chosen = _semantics(semantics or automaton.semantics)
+    if isinstance(automaton, CompactController):
+        automaton = to_symbolic(automaton)
     if isinstance(automaton, SymbolicController):
         from gaitc.verifier.symbolic import verify_symbolic
 
@@ -411,12 +480,13 @@ def verify(spec: SpecLike,
     return verify_strategy(gr1, automaton, chosen)
 
 
-def read_controller(path: str | Path, spec: GR1Spec | None = None
-                    ) -> Controller | SymbolicController:
-    """A controller file of either form: an explicit automaton or a symbolic controller."""
+def read_controller(path: str | Path, spec: GR1Spec | None = None) -> Automaton:
+    """A controller file of any form: an explicit automaton, a symbolic or a compact one."""
     data = read_controller_json(str(path))
     if is_symbolic(data):
         return symbolic_from_dict(data, str(path))
+    if is_compact(data):
+        return compact_from_dict(data, str(path))
     return controller_from_dict(data, str(path), spec)
 
 

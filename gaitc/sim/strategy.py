@@ -10,6 +10,12 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from gaitc.compact.controller import (
+    CompactController,
+    compact_from_dict,
+    is_compact,
+    to_symbolic,
+)
 from gaitc.diagnostics import ControllerError, Span
 from gaitc.ir.bddfile import SymbolicController, is_symbolic, symbolic_from_dict
 from gaitc.ir.bits import bits_mismatch, spec_bits
@@ -126,13 +132,16 @@ def _check_ranges(
                 )
 
 
-def view_of(controller: Controller | SymbolicController, spec: GR1Spec, file: str = ""
-            ) -> StrategyView:
-    """The run view of a controller of either form, checked against ``spec``."""
+def view_of(controller: Controller | SymbolicController | CompactController, spec: GR1Spec,
+            file: str = "") -> StrategyView:
+    """The run view of a controller of any form, checked against ``spec``; a compact one
+    runs as the symbolic controller whose relations allow just its moves."""
     if isinstance(controller, Controller):
         return strategy_from_controller(controller, spec, file)
     from gaitc.sim.symbolic_view import SymbolicStrategy
 
+    if isinstance(controller, CompactController):
+        controller = to_symbolic(controller, spec)
     return SymbolicStrategy(controller, spec, file)
 
 
@@ -142,6 +151,8 @@ def load_strategy(path: str | Path, spec: GR1Spec) -> StrategyView:
     data = read_controller_json(str(path))
     if is_symbolic(data):
         return view_of(symbolic_from_dict(data, str(path)), spec, str(path))
+    if is_compact(data):
+        return view_of(compact_from_dict(data, str(path)), spec, str(path))
     return strategy_from_controller(controller_from_dict(data, str(path), spec), spec, str(path))
 
 

@@ -57,7 +57,14 @@ class Logic:
         self.outputs = tuple(v.name for v in spec.outputs)
         self.bdd = manager()
         names = {n for b in self.inputs + self.outputs for n in (b, b + "'")}
-        self.bdd.declare(*(n for n in order if n in names))
+        listed = [n for n in order if n in names]
+        known = set(listed)
+        for n in listed:  # a bit the order leaves out goes next to its other copy
+            partner = n[:-1] if n.endswith("'") else n + "'"
+            self.bdd.declare(n)
+            if partner not in known:
+                self.bdd.declare(partner)
+                known.add(partner)
         for name in self.inputs + self.outputs:
             self.bdd.declare(name, name + "'")
         self._memo: Memo[Any] = {}

@@ -15,6 +15,7 @@ from gaitc.cli.commands import (
     explaining,
     firmware,
     gaits,
+    generating,
     learning,
     rendering,
     resilient,
@@ -23,4 +24,5 @@ from gaitc.cli.commands import (
 )
 
 COMMAND_MODULES = (compiling, solving, explaining, resilient, simulating, rendering, gaits,
-                   learning, driving, firmware, calibrating, characterizing, examples)
+                   learning, driving, firmware, generating, calibrating, characterizing,
+                   examples)

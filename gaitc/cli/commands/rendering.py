@@ -83,6 +83,10 @@ def register(sub: Any) -> None:
     p.add_argument("--max-rules", type=int, metavar="N",
                    help="at most N rules per region: the most mixed conditions stay joined, "
                    "marked ~, listing every move they cover (default: exact rules)")
+    p.add_argument("--compact", action="store_true",
+                   help="the compact controller whole: one table of rules per goal, every "
+                   "state covered (a compact or symbolic CONTROLLER, or one synthesized); "
+                   "the default for a compact CONTROLLER")
     p.add_argument("--encoding", choices=("onehot", "binary"))
     add_prefer(p, "without CONTROLLER: ")
     p.add_argument("-o", "--output", metavar="FILE", type=output_file,
@@ -157,12 +161,20 @@ def _policy_format(path: str | None, fmt: str | None) -> str:
 
 
 def run_policy(args: argparse.Namespace) -> int:
-    from gaitc.diagnostics.files import write_atomically
     from gaitc.sim.policy_view import policy_view
 
     fmt = _policy_format(args.output, args.format)  # fail on a bad format before synthesizing
     if args.output is None and fmt not in TABLE_FORMATS:
         raise UsageError(f"--format {fmt} draws a picture: give -o FILE")
+    if args.compact or _is_compact_file(args.controller):
+        if fmt not in TABLE_FORMATS:
+            raise UsageError(f"--format {fmt}: a compact controller is drawn as tables "
+                             "(text, md or html)")
+        tables = gaitc.compact_policy(args.spec, args.controller, prefer=args.prefer)
+        if tables is None:
+            return _unrealizable(args, "tabulate")
+        return _write_table({"text": tables.text, "md": tables.markdown,
+                             "html": tables.html}[fmt](), fmt, args)
     with progress_display() as progress:
         found = gaitc.controller_policy(
             args.spec, args.controller, steps=args.steps, max_nodes=args.max_nodes,
@@ -174,6 +186,21 @@ def run_policy(args: argparse.Namespace) -> int:
     if fmt not in TABLE_FORMATS:
         return _save(policy_view(policy, bound.domain), args)
     text = {"text": policy.text, "md": policy.markdown, "html": policy.html}[fmt]()
+    return _write_table(text, fmt, args)
+
+
+def _is_compact_file(path: str | None) -> bool:
+    if path is None:
+        return False
+    from gaitc.api.solving import read_controller
+    from gaitc.compact.controller import CompactController
+
+    return isinstance(read_controller(path), CompactController)
+
+
+def _write_table(text: str, fmt: str, args: argparse.Namespace) -> int:
+    from gaitc.diagnostics.files import write_atomically
+
     if args.output is None:
         sys.stdout.write(text)
         return ExitCode.OK

@@ -100,6 +100,11 @@ def register(sub: Any) -> None:
     p.add_argument("--symbolic", action="store_true",
                    help="write the strategy as BDDs (docs/controller-format.md, symbolic "
                    "controllers); simulate, drive, verify and render map read it")
+    p.add_argument("--compact", action="store_true",
+                   help="write the strategy as decision diagrams over the robot's words "
+                   "(regions, gaits, leg health, hazards), proved on every state; 'render "
+                   "policy' prints them as rules, 'codegen' turns them into C for a host or "
+                   "the valve board")
     p.add_argument("--max-nodes", type=positive_count, default=MAX_NODES, metavar="N",
                    help=f"keep the controller symbolic when the explicit automaton would pass "
                    f"N nodes (default {MAX_NODES:,})")
@@ -206,7 +211,10 @@ def _solve(args: argparse.Namespace, kind: str) -> tuple[gaitc.Spec, gaitc.Synth
         with progress_display(args.verbose) as progress:
             if kind == "counterstrategy":
                 return spec, gaitc.counterstrategy(spec, **_solver_args(args, progress))
-            form = "symbolic" if args.symbolic else "auto"
+            if args.symbolic and args.compact:
+                raise UsageError("--symbolic and --compact are two forms of the controller: "
+                                 "give one")
+            form = "compact" if args.compact else "symbolic" if args.symbolic else "auto"
             return spec, gaitc.synthesize(spec, verify=not args.no_verify, form=form,
                                           max_nodes=args.max_nodes, prefer=args.prefer,
                                           **_solver_args(args, progress))

@@ -231,6 +231,59 @@ static uint8_t same(const char *a, const char *b)
     return *a == *b;
 }
 
+#ifdef GAITC_CONTROLLER
+/* A generated controller linked in (gaitc codegen --target avr): "C s VVV" starts it from
+ * the first input values, "C x VVV" makes one step; VVV holds one base-36 digit per input
+ * field (0-9, a-z).  The answer: "M <move> g=<goal> o=<output values, base 36>". */
+#include "gaitc_controller.h"
+
+static gaitc_state controller;
+static uint8_t controller_started;
+
+static char digit36(uint8_t v) { return (char)(v < 10 ? '0' + v : 'a' + v - 10); }
+
+static uint8_t controller_command(void)
+{
+    uint8_t in[GAITC_INPUTS + 1], k;
+    uint16_t move = 0;
+    if (line_len != 4 + GAITC_INPUTS || line[1] != ' ' || line[3] != ' '
+        || (line[2] != 's' && line[2] != 'x')) {
+        refuse("C needs s or x and one digit per input");
+        return 0;
+    }
+    for (k = 0; k < GAITC_INPUTS; k++) {
+        char c = line[4 + k];
+        if (c >= '0' && c <= '9') in[k] = (uint8_t)(c - '0');
+        else if (c >= 'a' && c <= 'z') in[k] = (uint8_t)(c - 'a' + 10);
+        else {
+            refuse("C needs base-36 digits");
+            return 0;
+        }
+    }
+    if (!gaitc_valid(in)) {
+        refuse("C input out of range");
+        return 0;
+    }
+    if (line[2] == 's') {
+        gaitc_start(&controller, in);
+        controller_started = 1;
+    } else if (!controller_started) {
+        refuse("C x before C s");
+        return 0;
+    } else {
+        move = gaitc_step(&controller, in);
+    }
+    puts_("M ");
+    put_uint(move);
+    puts_(" g=");
+    put_uint(controller.goal);
+    puts_(" o=");
+    for (k = 0; k < GAITC_FIELDS; k++) put(digit36(controller.value[k]));
+    end_line();
+    return 1;
+}
+#endif
+
 static void execute(void)
 {
     if (same(line, "PING")) {
@@ -267,6 +320,10 @@ static void execute(void)
         puts_("OK wd=");
         put_uint(wd_period);
         end_line();
+#ifdef GAITC_CONTROLLER
+    } else if (line[0] == 'C') {
+        if (!controller_command()) return;
+#endif
     } else if (same(line, "HANG")) {
         /* self-test of the hardware watchdog: stop serving; the reset vents */
         cli();

@@ -1,0 +1,97 @@
+"""Compact controllers for people and for boards: rule tables and generated C.
+
+- :func:`compact_policy`: a compact controller as one table of rules per goal, in the
+  robot's words (``gaitc render policy --compact``); it displays itself in a notebook;
+- :func:`generate`: C for a host or the valve board (``gaitc codegen``), after proving the
+  controller against the spec, so a controller of another spec or a tampered file never
+  reaches a robot.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from gaitc.api.loading import Spec, SpecLike, resolve
+from gaitc.api.solving import compact, read_controller, synthesize, verify
+from gaitc.codegen.build import Built, Target, build
+from gaitc.codegen.tables import table_bytes
+from gaitc.compact.controller import CompactController
+from gaitc.compact.rules import RuleTables, rule_tables
+from gaitc.diagnostics import ControllerError, Span, UsageError
+from gaitc.ir.bddfile import SymbolicController
+from gaitc.ir.controller import Controller
+
+
+def _goal_labels(spec: Spec | object) -> list[str]:
+    if isinstance(spec, Spec) and spec.model is not None:
+        from gaitc.sim.domain import model_goals
+
+        return [g.label for g in model_goals(spec.model)]
+    return []
+
+
+def compact_of(spec: SpecLike, controller: CompactController | SymbolicController | Controller
+               | str | Path | None = None, *, prefer: str | None = None
+               ) -> CompactController | None:
+    """The compact controller of ``spec``: ``controller`` itself, a symbolic one compacted,
+    or (None) a new one synthesized; None when the spec is unrealizable."""
+    resolved = resolve(spec)
+    found: CompactController | SymbolicController | Controller
+    file = ""
+    if controller is None:
+        made = synthesize(resolved, form="compact", prefer=prefer)
+        if made.controller is None:
+            return None
+        assert isinstance(made.controller, CompactController)
+        return made.controller
+    if isinstance(controller, (str, Path)):
+        file = str(controller)
+        found = read_controller(controller)
+    else:
+        found = controller
+    if isinstance(found, SymbolicController):
+        return compact(resolved, found)
+    if isinstance(found, Controller):
+        raise ControllerError(
+            "an explicit controller has no compact form of its own", Span(file or
+                                                                           "<controller>", 1, 1),
+            hint="synthesize one with 'gaitc synth --compact' (or --symbolic, then compact it)")
+    return found
+
+
+def compact_policy(spec: SpecLike, controller: CompactController | SymbolicController | str
+                   | Path | None = None, *, prefer: str | None = None) -> RuleTables | None:
+    """One table of rules per goal (see :mod:`gaitc.compact.rules`); None when the spec is
+    unrealizable."""
+    resolved = resolve(spec)
+    found = compact_of(resolved, controller, prefer=prefer)
+    if found is None:
+        return None
+    return rule_tables(found, _goal_labels(resolved), table_bytes(found))
+
+
+def generate(spec: SpecLike, controller: CompactController | SymbolicController | str | Path,
+             target: Target | str, out_dir: str | Path) -> Built:
+    """C for ``target`` (``c`` or ``avr``) in ``out_dir``, from a compact (or symbolic)
+    controller proved against ``spec`` first; a controller that fails the proof, or an AVR
+    build that does not fit, writes nothing."""
+    chosen = Target.parse(str(target), "--target")
+    resolved = resolve(spec)
+    file = str(controller) if isinstance(controller, (str, Path)) else ""
+    found = compact_of(resolved, controller)
+    assert found is not None
+    report = verify(resolved, found)
+    if not report.ok:
+        name = resolved.path if isinstance(resolved, Spec) else "the spec"
+        raise ControllerError(
+            f"the controller does not realize {name}: {report.problems[0]}",
+            Span(file or "<controller>", 1, 1),
+            hint="it belongs to another spec or was changed; synthesize it again with "
+            "'gaitc synth --compact'")
+    if chosen == Target.AVR and any(len(f.labels) > 36 for f in found.vocabulary.inputs):
+        raise UsageError("the board's C command reads one base-36 digit per input: an input "
+                         "field with more than 36 values needs --target c")
+    return build(found, out_dir, chosen, file)
+
+
+__all__ = ["Target", "compact_of", "compact_policy", "generate"]

@@ -1,0 +1,169 @@
+"""Writing, compiling and sizing generated controllers for a host (``c``) or the board (``avr``).
+
+``c``: ``gaitc_controller.h`` and ``gaitc_controller.c`` plus ``gaitc-run``, the controller
+behind a line protocol on standard input (``host/driver.c``), for a Raspberry Pi class host
+and for the tests that compare it with the Python runner.  No size limit.
+
+``avr``: the same two files compiled into the valve-board firmware (``gaitboard.c`` with
+``GAITC_CONTROLLER``), so the board decides on its own.  The image's flash (text + data) and
+RAM (data + bss) are measured with ``avr-size`` and compared with the ATmega328P's 32 KB and
+2 KB; a controller that does not fit is refused with the numbers, and nothing is left in the
+output folder.
+"""
+
+from __future__ import annotations
+
+import json
+import shutil
+import subprocess
+import tempfile
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any, Final
+
+from gaitc.codegen.emitter import header, source
+from gaitc.codegen.tables import Tables, flatten
+from gaitc.compact.controller import CompactController
+from gaitc.diagnostics import Span
+from gaitc.diagnostics.choices import Choice
+from gaitc.diagnostics.files import make_folder, write_atomically
+from gaitc.hw.firmware import AVR_FLAGS, HOST_FLAGS, SOURCES, FirmwareError, missing_tools
+
+HOST = Path(__file__).resolve().parent / "host"
+#: The ATmega328P: 32 KB of flash (the bootloader's 512 bytes kept free) and 2 KB of RAM, of
+#: which the stack needs some: a build whose static RAM passes RAM_LIMIT is refused.
+FLASH_LIMIT: Final = 32 * 1024 - 512
+RAM_LIMIT: Final = 2048 - 256
+
+
+class Target(Choice):
+    """Where generated code runs."""
+
+    C = "c"
+    AVR = "avr"
+
+
+@dataclass(frozen=True)
+class Built:
+    """What codegen wrote: the sources, the program or image, and its sizes."""
+
+    target: Target
+    files: tuple[Path, ...]
+    program: Path | None  # gaitc-run (c) or gaitboard.elf (avr)
+    table_bytes: int
+    flash: int | None = None
+    ram: int | None = None
+
+    def summary(self) -> str:
+        text = f"{self.table_bytes} bytes of tables"
+        if self.flash is not None and self.ram is not None:
+            text += (f"; firmware image {self.flash} of {FLASH_LIMIT} bytes of flash, "
+                     f"{self.ram} of {RAM_LIMIT} bytes of static RAM")
+        return text
+
+    def to_json(self) -> dict[str, Any]:
+        return {"target": str(self.target), "files": [str(f) for f in self.files],
+                "program": None if self.program is None else str(self.program),
+                "table_bytes": self.table_bytes, "flash": self.flash, "ram": self.ram,
+                "flash_limit": FLASH_LIMIT if self.target == Target.AVR else None,
+                "ram_limit": RAM_LIMIT if self.target == Target.AVR else None}
+
+
+def _where(file: str) -> Span:
+    return Span(file or "<codegen>", 1, 1)
+
+
+def _run(argv: list[str], what: str) -> str:
+    try:
+        done = subprocess.run(argv, capture_output=True, text=True, check=False)
+    except OSError as err:
+        raise FirmwareError(f"cannot run {argv[0]}: {err}", _where(what)) from None
+    if done.returncode != 0:
+        detail = (done.stderr or done.stdout).strip().splitlines()
+        raise FirmwareError(f"{what} failed: " + (" | ".join(detail[-5:]) or "no output"),
+                            _where(what))
+    return done.stdout
+
+
+def write_sources(ctrl: CompactController, folder: Path, tables: Tables | None = None
+                  ) -> tuple[Path, Path]:
+    """``gaitc_controller.h`` and ``.c`` in ``folder``, each written whole or not at all."""
+    make_folder(folder)
+    h, c = folder / "gaitc_controller.h", folder / "gaitc_controller.c"
+    write_atomically(h, header(ctrl))
+    write_atomically(c, source(ctrl, tables))
+    return h, c
+
+
+def sizes(elf: Path) -> tuple[int, int]:
+    """Flash (text + data) and static RAM (data + bss) of an AVR image, by avr-size."""
+    out = _run(["avr-size", "-A", str(elf)], "avr-size")
+    section: dict[str, int] = {}
+    for line in out.splitlines():
+        parts = line.split()
+        if len(parts) >= 2 and parts[0].startswith(".") and parts[1].isdigit():
+            section[parts[0]] = int(parts[1])
+    text, data, bss = (section.get(s, 0) for s in (".text", ".data", ".bss"))
+    return text + data, data + bss
+
+
+def build(ctrl: CompactController, out_dir: str | Path, target: Target | str,
+          file: str = "") -> Built:
+    """Generate and compile ``ctrl`` for ``target`` into ``out_dir`` (see the module text).
+    Compiled in a scratch folder first: a refused or failed build leaves ``out_dir`` as it
+    was."""
+    chosen = Target.parse(str(target), "--target")
+    tables = flatten(ctrl)
+    out = Path(out_dir)
+    with tempfile.TemporaryDirectory(prefix="gaitc-codegen-") as scratch:
+        work = Path(scratch)
+        h, c = write_sources(ctrl, work, tables)
+        if chosen == Target.C:
+            program: Path | None = None
+            if shutil.which("gcc") is not None:
+                program = work / "gaitc-run"
+                _run(["gcc", *HOST_FLAGS, "-DGAITC_DUMP", f"-I{work}", "-o", str(program),
+                      str(c), str(HOST / "driver.c")], "gcc gaitc_controller.c")
+            return _publish(work, out, [h, c], program, Built(chosen, (), None, tables.bytes))
+        need = missing_tools(simulator=False)
+        if need:
+            raise FirmwareError(f"cannot build the board's firmware: missing {', '.join(need)}",
+                                _where(file), "apt-get install gcc-avr avr-libc "
+                                "(scripts/setup.sh does it)")
+        elf = work / "gaitboard.elf"
+        _run(["avr-gcc", *AVR_FLAGS, "-DGAITC_CONTROLLER", f"-I{work}", "-o", str(elf),
+              str(SOURCES / "gaitboard.c"), str(c)], "avr-gcc gaitboard.c with the controller")
+        flash, ram = sizes(elf)
+        if flash > FLASH_LIMIT or ram > RAM_LIMIT:
+            raise FirmwareError(
+                f"the controller does not fit on the ATmega328P: the firmware would take "
+                f"{flash} bytes of flash (limit {FLASH_LIMIT}) and {ram} bytes of static RAM "
+                f"(limit {RAM_LIMIT}); its tables alone are {tables.bytes} bytes",
+                _where(file), "use --target c for a larger host, or simplify the task "
+                "(fewer regions, gaits or health levels)")
+        hexfile = work / "gaitboard.hex"
+        _run(["avr-objcopy", "-O", "ihex", "-R", ".eeprom", str(elf), str(hexfile)],
+             "avr-objcopy gaitboard.elf")
+        return _publish(work, out, [h, c, hexfile], elf,
+                        Built(chosen, (), None, tables.bytes, flash, ram))
+
+
+def _publish(work: Path, out: Path, files: list[Path], program: Path | None,
+             built: Built) -> Built:
+    make_folder(out)
+    written = []
+    for path in [*files, *([program] if program is not None else [])]:
+        target = out / path.name
+        tmp = out / f".{path.name}.part"
+        shutil.copy2(path, tmp)
+        tmp.replace(target)
+        written.append(target)
+    return Built(built.target, tuple(written[:len(files)]),
+                 written[-1] if program is not None else None, built.table_bytes,
+                 built.flash, built.ram)
+
+
+def read_dump(text: str) -> dict[str, list[int]]:
+    """The tables a compiled ``gaitc-run`` prints for ``d``."""
+    data = json.loads(text)
+    return {k: [int(v) for v in values] for k, values in data.items()}

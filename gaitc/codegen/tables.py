@@ -1,0 +1,89 @@
+"""A compact controller flattened to the integer tables that generated code reads.
+
+Layout (every table read-only, in flash on a microcontroller):
+
+* ``node_slot[n]`` (1 byte) the slot node n reads, ``node_first[n]`` (2 bytes) where its
+  children start in ``kids``;
+* ``kids[k]`` (2 bytes): a child, a node index below ``LEAF`` or ``LEAF | value`` for a leaf;
+* ``moves[m * outputs + i]`` (1 byte): output field i's value in move m;
+* ``roots`` (2 bytes each): per goal the move diagram, per goal the goal diagram, the start;
+* ``slot_field[s]``, ``slot_next[s]`` (1 byte each): which field a slot reads, and whether the
+  value the environment just chose.
+
+:func:`table_bytes` is the size of these tables; it is what ``synth`` reports and what must
+fit in the board's flash beside the firmware.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Final
+
+from gaitc.compact.controller import CompactController
+from gaitc.compact.diagram import leaf_value, reachable_nodes
+from gaitc.diagnostics import ControllerError
+
+LEAF: Final = 0x8000  # a child reference at or above this is a leaf
+
+
+@dataclass(frozen=True)
+class Tables:
+    """The flattened controller (see the module text)."""
+
+    node_slot: tuple[int, ...]
+    node_first: tuple[int, ...]
+    kids: tuple[int, ...]
+    moves: tuple[int, ...]
+    roots: tuple[int, ...]
+    slot_field: tuple[int, ...]
+    slot_next: tuple[int, ...]
+    field_sizes: tuple[int, ...]
+    field_inputs: tuple[int, ...]  # per field 1 when the environment sets it
+    goals: int
+
+    @property
+    def bytes(self) -> int:
+        return (len(self.node_slot) + 2 * len(self.node_first) + 2 * len(self.kids)
+                + len(self.moves) + 2 * len(self.roots) + 2 * len(self.slot_field)
+                + 2 * len(self.field_sizes))
+
+
+def flatten(ctrl: CompactController) -> Tables:
+    """The tables of ``ctrl``: only nodes some root reaches, renumbered children first."""
+    used = reachable_nodes(ctrl.nodes, ctrl.roots)
+    number = {old: new for new, old in enumerate(used)}
+    if len(used) >= LEAF or len(ctrl.moves) >= LEAF:
+        raise ControllerError(f"the controller has {len(used)} decision nodes and "
+                              f"{len(ctrl.moves)} moves; generated code holds at most "
+                              f"{LEAF - 1} of each")
+    fields = list(ctrl.vocabulary.fields)
+    if any(len(f.labels) > 255 for f in fields):
+        raise ControllerError("a field has more than 255 values; generated code reads one "
+                              "byte per field")
+
+    def ref(r: int) -> int:
+        return LEAF | leaf_value(r) if r < 0 else number[r]
+
+    node_slot: list[int] = []
+    node_first: list[int] = []
+    kids: list[int] = []
+    for old in used:
+        branch = ctrl.nodes[old]
+        node_slot.append(branch.field)
+        node_first.append(len(kids))
+        kids.extend(ref(k) for k in branch.kids)
+    index = {f.name: k for k, f in enumerate(fields)}
+    return Tables(
+        node_slot=tuple(node_slot), node_first=tuple(node_first), kids=tuple(kids),
+        moves=tuple(v for move in ctrl.moves for v in move),
+        roots=tuple(ref(r) for r in ctrl.roots),
+        slot_field=tuple(index[s.field.name] for s in ctrl.slots),
+        slot_next=tuple(int(s.next) for s in ctrl.slots),
+        field_sizes=tuple(len(f.labels) for f in fields),
+        field_inputs=tuple(int(f.is_input) for f in fields),
+        goals=ctrl.goal_count)
+
+
+def table_bytes(ctrl: CompactController) -> int:
+    """The bytes of generated tables for ``ctrl``."""
+    return flatten(ctrl).bytes

@@ -1,0 +1,405 @@
+"""The compact controller: decision diagrams over fields, its file format and its run.
+
+A compact controller is a GR(1) strategy written as small functions, not as an automaton:
+
+* ``moves[j]``: for goal j, the next output values (the leaf, a row of :attr:`moves`) from
+  the current field values and the inputs the environment just chose;
+* ``reached[j]``: whether the current state meets goal j (a boolean diagram), which moves
+  the goal counter on, as every GR(1) controller's counter does (Bloem et al., JCSS 78(3)
+  2012, Sect. 5);
+* ``start``: under the default semantics, the first outputs from the first inputs; under the
+  robotics semantics, which first states the controller accepts (a boolean diagram).
+
+Its only memory is the goal counter and the last state, so a microcontroller runs it from
+tables in flash (:mod:`gaitc.codegen`).  :func:`to_symbolic` turns it back into BDD relations
+so that the independent verifier (:mod:`gaitc.verifier.symbolic`) proves it on every state.
+"""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Final
+
+from gaitc.compact.diagram import Branch, Ref, Slot, evaluate, leaf_value, paths, reachable_nodes
+from gaitc.compact.fields import Field, Vocabulary
+from gaitc.diagnostics import ControllerError, Span
+from gaitc.ir.bddfile import SymbolicController, node_table
+from gaitc.ir.controller import IntegerVar
+from gaitc.ir.spec import GR1Spec, Semantics
+
+COMPACT_FORMAT: Final = "compact"
+COMPACT_VERSION: Final = 1
+
+
+@dataclass(frozen=True)
+class CompactController:
+    """Decision diagrams over :attr:`slots` sharing one node table (see the module text)."""
+
+    vocabulary: Vocabulary
+    slots: tuple[Slot, ...]
+    nodes: tuple[Branch, ...]
+    moves: tuple[tuple[int, ...], ...]  # per move, one value index per output field
+    move_roots: tuple[Ref, ...]
+    reached_roots: tuple[Ref, ...]
+    start_root: Ref
+    inputs: tuple[str, ...]  # the spec's bits, as in its other controller files
+    outputs: tuple[str, ...]
+    integers: Mapping[str, IntegerVar] = field(default_factory=dict)
+    semantics: Semantics = Semantics.DEFAULT
+    solver: str = "embedded"
+    source: Mapping[str, str] | None = None
+
+    # ---------------------------------------------------------------- sizes
+    @property
+    def goal_count(self) -> int:
+        return len(self.move_roots)
+
+    @property
+    def roots(self) -> tuple[Ref, ...]:
+        return (*self.move_roots, *self.reached_roots, self.start_root)
+
+    @property
+    def decision_nodes(self) -> int:
+        """Decision nodes below any root (the table's size in nodes)."""
+        return len(reachable_nodes(self.nodes, self.roots))
+
+    @property
+    def rules(self) -> int:
+        """Rules of the move diagrams: one per path from a goal's root to a move."""
+        return sum(len(paths(self.nodes, root, len(self.slots))) for root in self.move_roots)
+
+    @property
+    def kind(self) -> str:
+        return COMPACT_FORMAT
+
+    # ---------------------------------------------------------------- reading
+    def slot_values(self, state: Mapping[str, int], chosen: Mapping[str, int]) -> list[int]:
+        """One value per slot from the current field values and the inputs just chosen."""
+        out = []
+        for slot in self.slots:
+            source = chosen if slot.next else state
+            out.append(source.get(slot.field.name, 0))
+        return out
+
+    def decide(self, goal: int, state: Mapping[str, int], chosen: Mapping[str, int]
+               ) -> dict[str, int]:
+        """The next output values for goal ``goal`` (field name -> value index)."""
+        move = evaluate(self.nodes, self.move_roots[goal], self.slot_values(state, chosen))
+        return dict(zip((f.name for f in self.vocabulary.outputs), self.moves[move],
+                        strict=True))
+
+    def first(self, chosen: Mapping[str, int]) -> dict[str, int]:
+        """The first outputs for the first inputs ``chosen`` (default semantics)."""
+        if self.semantics == Semantics.ROBOTICS:
+            raise ValueError("under the robotics semantics the first state is given, not chosen")
+        move = evaluate(self.nodes, self.start_root, self.slot_values({}, chosen))
+        return dict(zip((f.name for f in self.vocabulary.outputs), self.moves[move],
+                        strict=True))
+
+    def accepts(self, state: Mapping[str, int]) -> bool:
+        """Whether the controller can start in ``state`` (robotics semantics)."""
+        return bool(evaluate(self.nodes, self.start_root, self.slot_values(state, {})))
+
+    def advance(self, goal: int, state: Mapping[str, int]) -> int:
+        """The goal counter after ``state``: past every goal the state meets, in turn."""
+        values = self.slot_values(state, {})
+        n, current = self.goal_count, goal
+        for _ in range(n):
+            if not evaluate(self.nodes, self.reached_roots[current], values):
+                break
+            current = (current + 1) % n
+        return current
+
+    # ---------------------------------------------------------------- display
+    def summary(self) -> str:
+        return (f"{self.rules} rules, {self.decision_nodes} decision nodes, "
+                f"{self.goal_count} goal(s), {len(self.moves)} distinct moves")
+
+    def __repr__(self) -> str:
+        source = f" for {self.source['file']!r}" if self.source and "file" in self.source else ""
+        return f"<CompactController{source}: {self.summary()}>"
+
+    def _repr_html_(self) -> str:
+        from gaitc.compact.rules import rule_tables
+
+        return rule_tables(self).html()
+
+
+class Runner:
+    """A compact controller run step by step, as the board runs it: the state of every field
+    and the goal counter."""
+
+    def __init__(self, ctrl: CompactController, first: Mapping[str, int]) -> None:
+        """Start from the first inputs (default semantics) or the whole first state
+        (robotics semantics), each as field name -> value index."""
+        self.ctrl = ctrl
+        if ctrl.semantics == Semantics.ROBOTICS:
+            if not ctrl.accepts(first):
+                raise ControllerError("the controller cannot start in this state")
+            self.state = dict(first)
+        else:
+            self.state = dict(first) | ctrl.first(first)
+        self.goal = 0
+
+    def step(self, chosen: Mapping[str, int]) -> dict[str, int]:
+        """The environment chose the inputs ``chosen``: the controller's outputs."""
+        move = self.ctrl.decide(self.goal, self.state, chosen)
+        self.goal = self.ctrl.advance(self.goal, self.state)
+        self.state = dict(self.state) | dict(chosen) | move
+        return move
+
+
+# -------------------------------------------------------------------- back to BDDs
+def relations(bdd: Any, ctrl: CompactController) -> dict[str, Any]:
+    """The diagrams as BDDs of ``bdd`` over the spec's bits: per goal the move relation
+    (path cube and move cube), the goal functions and the start relation or set."""
+    built: dict[Ref, Any] = {}
+    move_cubes = [_move_cube(bdd, ctrl, k, primed=True) for k in range(len(ctrl.moves))]
+
+    def diagram(root: Ref, leaves: Sequence[Any]) -> Any:
+        built.clear()
+        for index in reachable_nodes(ctrl.nodes, [root]):
+            branch = ctrl.nodes[index]
+            slot = ctrl.slots[branch.field]
+            out = bdd.false
+            for value, kid in enumerate(branch.kids):
+                below = leaves[leaf_value(kid)] if kid < 0 else built[kid]
+                out |= bdd.cube(slot.field.cube(value, slot.next)) & below
+            built[index] = out
+        return leaves[leaf_value(root)] if root < 0 else built[root]
+
+    truth = [bdd.false, bdd.true]
+    start_leaves: Sequence[Any] = truth if ctrl.semantics == Semantics.ROBOTICS else move_cubes
+    start = diagram(ctrl.start_root, start_leaves)
+    if ctrl.semantics != Semantics.ROBOTICS:
+        # the start diagram reads the first inputs as next values: bring them to now
+        rename = {b + "'": b for b in (*ctrl.inputs, *ctrl.outputs)}
+        start = bdd.let(rename, start)
+    return {
+        "strategies": [diagram(r, move_cubes) for r in ctrl.move_roots],
+        "goals": [diagram(r, truth) for r in ctrl.reached_roots],
+        "start": start,
+    }
+
+
+def _move_cube(bdd: Any, ctrl: CompactController, index: int, primed: bool) -> Any:
+    cube: dict[str, bool] = {}
+    for f, value in zip(ctrl.vocabulary.outputs, ctrl.moves[index], strict=True):
+        cube.update(f.cube(value, primed))
+    return bdd.cube(cube)
+
+
+def diagram_order(ctrl: CompactController) -> list[str]:
+    """A BDD variable order that follows the diagrams: the bits of each slot in slot order,
+    then the other bits, the outputs' next values last (where the leaves set them)."""
+    order: list[str] = []
+    for slot in ctrl.slots:  # a field's bits next to their next values: ρe stays small
+        if slot.field.is_input:
+            order.extend(v for b in sorted(slot.field.bits) for v in (b + "'", b)
+                         if v not in set(order))
+        else:
+            order.extend(b for b in sorted(slot.field.bits) if b not in set(order))
+    rest = [v for b in (*ctrl.inputs, *ctrl.outputs) for v in (b, b + "'")]
+    post_out = {b + "'" for b in ctrl.outputs}
+    order += [v for v in rest if v not in set(order) and v not in post_out]
+    return order + [b + "'" for b in ctrl.outputs]
+
+
+def to_symbolic(ctrl: CompactController, spec: GR1Spec | None = None) -> SymbolicController:
+    """The compact controller as a :class:`SymbolicController` whose relations allow just
+    the moves it makes, for the independent verifier and the symbolic runtime.  With
+    ``spec``, its θe and ρe are the controller's (a runtime enumerates the environment's
+    moves from them); without, they are left true (the verifier reads the spec's own)."""
+    from gaitc.ir.manager import manager
+
+    env_init = env_trans = None
+    if spec is not None:
+        from gaitc.ir.bitblast import bitblast
+        from gaitc.verifier.logic import Logic
+
+        logic = Logic(bitblast(spec), diagram_order(ctrl))
+        bdd = logic.bdd
+        env_init, env_trans = bdd.true, bdd.true
+        for _, u in logic.clauses("env_init"):
+            env_init &= u
+        for _, u in logic.clauses("env_trans"):
+            env_trans &= u
+    else:
+        bdd = manager()
+        bdd.declare(*diagram_order(ctrl))
+    roots = relations(bdd, ctrl)
+    table = {
+        "winning": bdd.true,
+        "env_init": bdd.true if env_init is None else env_init,
+        "sys_init": roots["start"],
+        "env_trans": bdd.true if env_trans is None else env_trans,
+        "goals": roots["goals"],
+        "strategies": roots["strategies"],
+    }
+    order, nodes, refs = node_table(bdd, table)
+    return SymbolicController(inputs=ctrl.inputs, outputs=ctrl.outputs, order=order,
+                              nodes=nodes, roots=refs, integers=dict(ctrl.integers),
+                              semantics=ctrl.semantics, solver=ctrl.solver, source=ctrl.source)
+
+
+# -------------------------------------------------------------------- JSON
+def compact_to_dict(ctrl: CompactController) -> dict[str, Any]:
+    return {
+        "gaitc": {
+            "format": COMPACT_FORMAT, "version": COMPACT_VERSION, "solver": ctrl.solver,
+            "semantics": str(ctrl.semantics), "domain": ctrl.vocabulary.domain,
+            "inputs": list(ctrl.inputs), "outputs": list(ctrl.outputs),
+            "integers": {name: {"low": iv.low, "high": iv.high, "bits": list(iv.bits),
+                                "owner": iv.owner}
+                         for name, iv in sorted(ctrl.integers.items())},
+            **({"source": dict(ctrl.source)} if ctrl.source is not None else {}),
+        },
+        "fields": [{"name": f.name, "input": f.is_input, "numeric": f.numeric,
+                    "values": [{"label": label, "bits": {b: int(on) for b, on in cube}}
+                               for label, cube in zip(f.labels, f.cubes, strict=True)]}
+                   for f in ctrl.vocabulary.fields],
+        "slots": [[f"{s.field.name}", int(s.next)] for s in ctrl.slots],
+        "moves": [list(m) for m in ctrl.moves],
+        "roots": {"moves": list(ctrl.move_roots), "reached": list(ctrl.reached_roots),
+                  "start": ctrl.start_root},
+        "nodes": [[b.field, list(b.kids), list(b.unused)] for b in ctrl.nodes],
+    }
+
+
+def compact_to_json(ctrl: CompactController) -> str:
+    """Deterministic JSON text (one node per line), ending in a newline."""
+    data = compact_to_dict(ctrl)
+    nodes = data.pop("nodes")
+    body = json.dumps(data, sort_keys=True, indent=1)[:-2]
+    lines = ",\n".join(f"  {json.dumps(n)}" for n in nodes)
+    return body + ',\n "nodes": [\n' + lines + ("\n" if lines else "") + " ]\n}\n"
+
+
+def is_compact(data: Any) -> bool:
+    extras = data.get("gaitc") if isinstance(data, dict) else None
+    return isinstance(extras, dict) and extras.get("format") == COMPACT_FORMAT
+
+
+class _Reader:
+    """Checks a parsed compact controller file, naming the first thing wrong."""
+
+    def __init__(self, file: str) -> None:
+        self.span = Span(file or "<controller>", 1, 1)
+
+    def fail(self, what: str) -> ControllerError:
+        return ControllerError(f"malformed compact controller: {what}", self.span,
+                               hint="write it again with 'gaitc synth --compact'")
+
+    def need(self, ok: bool, what: str) -> None:
+        if not ok:
+            raise self.fail(what)
+
+    def ints(self, value: Any, what: str) -> list[int]:
+        self.need(isinstance(value, list) and all(type(v) is int for v in value),
+                  f"{what} must be a list of integers")
+        return list(value)
+
+
+def compact_from_dict(data: Any, file: str = "") -> CompactController:
+    """Read a compact controller; a malformed or tampered file raises ControllerError."""
+    r = _Reader(file)
+    r.need(is_compact(data), "it is not a compact controller (no gaitc.format 'compact')")
+    head = data["gaitc"]
+    r.need(head.get("version") == COMPACT_VERSION,
+           f"format version {head.get('version')!r}, this gaitc reads {COMPACT_VERSION}")
+    try:
+        semantics = Semantics(head.get("semantics", "default"))
+    except ValueError:
+        raise r.fail(f"unknown semantics {head.get('semantics')!r}") from None
+    inputs, outputs = head.get("inputs"), head.get("outputs")
+    r.need(isinstance(inputs, list) and all(isinstance(b, str) for b in inputs)
+           and isinstance(outputs, list) and all(isinstance(b, str) for b in outputs),
+           "gaitc.inputs and gaitc.outputs must be lists of bit names")
+    bits = set(inputs) | set(outputs)
+    fields = []
+    raw_fields = data.get("fields")
+    r.need(isinstance(raw_fields, list) and bool(raw_fields), "'fields' must be a non-empty list")
+    for k, raw in enumerate(raw_fields):
+        r.need(isinstance(raw, dict) and isinstance(raw.get("name"), str)
+               and isinstance(raw.get("values"), list) and bool(raw["values"]),
+               f"field {k} needs a name and a non-empty list of values")
+        labels, cubes = [], []
+        for value in raw["values"]:
+            r.need(isinstance(value, dict) and isinstance(value.get("label"), str)
+                   and isinstance(value.get("bits"), dict)
+                   and all(b in bits and v in (0, 1) for b, v in value["bits"].items()),
+                   f"a value of field {raw['name']!r} is not a label with bits of the spec")
+            labels.append(value["label"])
+            cubes.append(tuple(sorted((b, bool(v)) for b, v in value["bits"].items())))
+        fields.append(Field(raw["name"], bool(raw.get("input")), tuple(labels), tuple(cubes),
+                            bool(raw.get("numeric"))))
+    vocabulary = Vocabulary(tuple(fields), str(head.get("domain", "spec")))
+    by_name = {f.name: f for f in fields}
+    slots = []
+    raw_slots = data.get("slots")
+    r.need(isinstance(raw_slots, list), "'slots' must be a list")
+    for raw in raw_slots:
+        r.need(isinstance(raw, list) and len(raw) == 2 and raw[0] in by_name
+               and raw[1] in (0, 1), f"slot {raw!r} names no field")
+        slots.append(Slot(by_name[raw[0]], bool(raw[1])))
+    outs = vocabulary.outputs
+    moves = []
+    raw_moves = data.get("moves")
+    r.need(isinstance(raw_moves, list), "'moves' must be a list")
+    for raw in raw_moves:
+        row = r.ints(raw, "a move")
+        r.need(len(row) == len(outs) and all(0 <= v < len(f.labels)
+                                             for v, f in zip(row, outs, strict=True)),
+               f"move {row} has no value for every output field")
+        moves.append(tuple(row))
+    nodes = []
+    raw_nodes = data.get("nodes")
+    r.need(isinstance(raw_nodes, list), "'nodes' must be a list")
+    for index, raw in enumerate(raw_nodes):
+        r.need(isinstance(raw, list) and len(raw) == 3 and type(raw[0]) is int
+               and 0 <= raw[0] < len(slots), f"node {index} reads no slot")
+        kids = r.ints(raw[1], f"node {index}'s children")
+        unused = r.ints(raw[2], f"node {index}'s unused values")
+        r.need(all(0 <= v < len(kids) for v in unused), f"node {index}'s unused values")
+        r.need(len(kids) == len(slots[raw[0]].field.labels),
+               f"node {index} has {len(kids)} children for a field of "
+               f"{len(slots[raw[0]].field.labels)} values")
+        for kid in kids:
+            r.need(kid < index if kid >= 0 else leaf_value(kid) < max(len(moves), 2),
+                   f"node {index} points to {kid}, which is not an earlier node or a leaf")
+        nodes.append(Branch(raw[0], tuple(kids), tuple(unused)))
+    roots = data.get("roots")
+    r.need(isinstance(roots, dict), "'roots' must be an object")
+    move_roots = r.ints(roots.get("moves"), "roots.moves")
+    reached = r.ints(roots.get("reached"), "roots.reached")
+    start = roots.get("start")
+    r.need(type(start) is int, "roots.start must be an integer")
+    r.need(len(move_roots) == len(reached) and bool(move_roots),
+           "roots.moves and roots.reached need one root per goal")
+    for ref in (*move_roots, *reached, start):
+        r.need(ref < len(nodes) if ref >= 0 else leaf_value(ref) < max(len(moves), 2),
+               f"root {ref} is not a node or a leaf")
+    integers = {}
+    for name, iv in (head.get("integers") or {}).items():
+        r.need(isinstance(iv, dict) and {"low", "high", "bits", "owner"} <= set(iv),
+               f"integer {name!r} needs low, high, bits and owner")
+        integers[name] = IntegerVar(int(iv["low"]), int(iv["high"]), tuple(iv["bits"]),
+                                    str(iv["owner"]))
+    source = head.get("source")
+    return CompactController(
+        vocabulary=vocabulary, slots=tuple(slots), nodes=tuple(nodes), moves=tuple(moves),
+        move_roots=tuple(move_roots), reached_roots=tuple(reached), start_root=start,
+        inputs=tuple(inputs), outputs=tuple(outputs), integers=integers, semantics=semantics,
+        solver=str(head.get("solver", "embedded")),
+        source=dict(source) if isinstance(source, dict) else None)
+
+
+def read_compact(path: str | Path) -> CompactController:
+    """Read a compact controller file (see :func:`compact_from_dict`)."""
+    from gaitc.ir.controller import read_controller_json
+
+    data = read_controller_json(str(path))
+    return compact_from_dict(data, str(path))

@@ -1,0 +1,291 @@
+"""Decision diagrams over fields: a controller's choices, with its freedom used to shrink them.
+
+A strategy relation S(x, y, x', y') of a solved GR(1) game allows, at most states, several
+moves; any function that picks one of them wins (Bloem et al., JCSS 78(3) 2012, Sect. 5).
+Extracting one bit of y' at a time, as circuit synthesis does, and minimising each with the
+don't-cares of the other bits (Coudert and Madre's restrict) is the classic way to spend that
+freedom.  Here it is spent on readability instead: the diagram branches on whole fields
+(:mod:`gaitc.compact.fields`) in a fixed order and stops at the first point where one move
+is allowed in every state left, so a leaf says "whatever the rest, make this move".  A child
+whose states are all outside the care set (no reachable state of the game goes there) takes
+the most common sibling, and equal children collapse their parent: the result is a reduced,
+ordered multi-valued decision diagram (Srinivasan, Kam, Malik, Brayton, ICCAD 1990) whose
+size depends on the field order, which :func:`build` lets the caller choose (the caller
+tries several and keeps the smallest, the analogue of reordering).
+
+Node references: ``r >= 0`` is node ``r``; ``r < 0`` is leaf ``-r - 1`` (a move index, or 0/1
+for a boolean diagram).
+"""
+
+from __future__ import annotations
+
+from collections import Counter
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any
+
+from gaitc.compact.fields import Field
+
+Ref = int
+
+
+def leaf(value: int) -> Ref:
+    return -value - 1
+
+
+def leaf_value(ref: Ref) -> int:
+    return -ref - 1
+
+
+@dataclass(frozen=True)
+class Branch:
+    """A decision node: which field it reads (its position in the diagram's field list)
+    and one child per value of that field."""
+
+    field: int
+    kids: tuple[Ref, ...]
+    #: values no state of the care set has here (their child was chosen to share a
+    #: sibling's); tables say nothing of them
+    unused: tuple[int, ...] = ()
+
+
+@dataclass(frozen=True)
+class Slot:
+    """A field as the decision function reads it: current (``next=False``) or the value
+    the environment just chose (``next=True``, inputs only)."""
+
+    field: Field
+    next: bool = False
+
+    @property
+    def name(self) -> str:
+        return f"{self.field.name}'" if self.next else self.field.name
+
+
+DONT_CARE: Ref = 2**31  # a child no state of the care set reaches
+
+
+class Builder:
+    """Builds diagrams into one shared node table (roots of several goals share nodes)."""
+
+    def __init__(self, bdd: Any, slots: Sequence[Slot], outputs: Sequence[Field],
+                 primed_outputs: bool = True, greedy: bool = False) -> None:
+        self.bdd = bdd
+        self.greedy = greedy
+        self.slots = tuple(slots)
+        self.outputs = tuple(outputs)
+        self.primed = primed_outputs
+        self.nodes: list[Branch] = []
+        self.moves: list[tuple[int, ...]] = []
+        self._node_index: dict[Branch, int] = {}
+        self._move_index: dict[tuple[int, ...], int] = {}
+        self._memo: dict[tuple[int, int, int, int], Ref] = {}
+        self._recent: list[int] = []
+        self._commons: dict[tuple[int, int], Any] = {}
+        self._slot_bits = [frozenset(b + ("'" if s.next else "") for b in s.field.bits)
+                           for s in self.slots]
+        self._decision_bits = frozenset().union(*self._slot_bits) if self._slot_bits \
+            else frozenset()
+
+    # ------------------------------------------------------------------ interning
+    def _node(self, branch: Branch) -> Ref:
+        found = self._node_index.get(branch)
+        if found is None:
+            found = self._node_index[branch] = len(self.nodes)
+            self.nodes.append(branch)
+        return found
+
+    def _move(self, values: tuple[int, ...]) -> int:
+        found = self._move_index.get(values)
+        if found is None:
+            found = self._move_index[values] = len(self.moves)
+            self.moves.append(values)
+        return found
+
+    def move_cube(self, index: int) -> dict[str, bool]:
+        out: dict[str, bool] = {}
+        for f, value in zip(self.outputs, self.moves[index], strict=True):
+            out.update(f.cube(value, self.primed))
+        return out
+
+    # ------------------------------------------------------------------ moves
+    def build_moves(self, care: Any, relation: Any) -> Ref:
+        """The diagram of a function that picks, at every state of ``care``, a move that
+        ``relation`` allows (``care`` must lie inside the relation's domain)."""
+        return self._build(0, care, relation, self._move_leaf, 0)
+
+    def _common(self, care: Any, relation: Any) -> Any:
+        """The moves ``relation`` allows in every state of ``care``."""
+        key = (int(care), int(relation))
+        found = self._commons.get(key)
+        if found is None:
+            bdd = self.bdd
+            found = ~bdd.exist(self._decision_bits, care & ~relation)
+            if found != bdd.false:
+                found &= bdd.exist(self._decision_bits, care & relation)
+            self._commons[key] = (found, care, relation)  # keeps the ids alive
+            return found
+        return found[0]
+
+    def _move_leaf(self, care: Any, relation: Any) -> Ref | None:
+        bdd = self.bdd
+        common = self._common(care, relation)
+        if common == bdd.false:
+            return None
+        for index in reversed(self._recent):  # a sibling's move first: equal leaves merge
+            if bdd.let(self.move_cube(index), common) != bdd.false:
+                return leaf(index)
+        values = []
+        for f in self.outputs:
+            for k in range(len(f.labels)):
+                narrowed = bdd.let(f.cube(k, self.primed), common)
+                if narrowed != bdd.false:
+                    values.append(k)
+                    common = narrowed
+                    break
+            else:
+                return None  # the allowed moves encode no value of this field
+        index = self._move(tuple(values))
+        self._recent = [*[i for i in self._recent if i != index][-7:], index]
+        return leaf(index)
+
+    # ------------------------------------------------------------------ booleans
+    def build_boolean(self, care: Any, function: Any) -> Ref:
+        """The diagram of ``function`` on ``care`` (anything outside it)."""
+        return self._build(0, care, function, self._bool_leaf, 1)
+
+    def _bool_leaf(self, care: Any, function: Any) -> Ref | None:
+        false = self.bdd.false
+        if care & ~function == false:
+            return leaf(1)
+        if care & function == false:
+            return leaf(0)
+        return None
+
+    # ------------------------------------------------------------------ the recursion
+    def _build(self, level: int, care: Any, target: Any, at_leaf: Any, kind: int) -> Ref:
+        bdd = self.bdd
+        if care == bdd.false:
+            return DONT_CARE
+        key = (level, int(care), int(target), kind)
+        found = self._memo.get(key)
+        if found is not None:
+            return found
+        result: Ref | None = at_leaf(care, target)
+        if result is None:
+            result = self._split(level, care, target, at_leaf, kind)
+        self._memo[key] = result
+        return result
+
+    def _best_slot(self, level: int, care: Any, target: Any, at_leaf: Any,
+                   support: frozenset[str]) -> int:
+        """The slot (from ``level`` on) whose values settle the most cases at once: the
+        share of its values that lead straight to a leaf or to no state (one step of
+        lookahead, as decision-tree learners choose their tests)."""
+        bdd = self.bdd
+        best, best_score = level, -1.0
+        wanted = [i for i in range(level, len(self.slots)) if self._slot_bits[i] & support]
+        # the inputs as they were before the environment moved decide last: a controller
+        # rarely needs them once it sees the new ones
+        chosen_first = [i for i in wanted if self.slots[i].next or not self.slots[i].field.is_input]
+        for index in chosen_first or wanted:
+            slot = self.slots[index]
+            settled = 0
+            for value in range(len(slot.field.labels)):
+                cube = slot.field.cube(value, slot.next)
+                sub = bdd.let(cube, care)
+                if sub == bdd.false or self._settles(at_leaf, sub, bdd.let(cube, target)):
+                    settled += 1
+            score = settled / len(slot.field.labels)
+            if score > best_score:
+                best, best_score = index, score
+        return best
+
+    def _settles(self, at_leaf: Any, care: Any, target: Any) -> bool:
+        if at_leaf == self._move_leaf:
+            return bool(self._common(care, target) != self.bdd.false)
+        return at_leaf(care, target) is not None
+
+    def _split(self, level: int, care: Any, target: Any, at_leaf: Any, kind: int) -> Ref:
+        bdd = self.bdd
+        support = bdd.support(care) | bdd.support(target)
+        while level < len(self.slots) and not (self._slot_bits[level] & support):
+            level += 1
+        if level == len(self.slots):
+            raise ValueError("no field decides between the moves: the relation depends on "
+                             "bits outside the fields")
+        if self.greedy:
+            level = self._best_slot(level, care, target, at_leaf, support)
+        slot = self.slots[level]
+        kids = []
+        saved = self._recent
+        self._recent = []
+        for value in range(len(slot.field.labels)):
+            cube = slot.field.cube(value, slot.next)
+            kids.append(self._build(0 if self.greedy else level + 1, bdd.let(cube, care),
+                                    bdd.let(cube, target),
+                                    at_leaf, kind))
+        self._recent = saved
+        known = [k for k in kids if k != DONT_CARE]
+        if not known:
+            return DONT_CARE
+        common = Counter(known).most_common(1)[0][0]
+        filled = tuple(common if k == DONT_CARE else k for k in kids)
+        if all(k == filled[0] for k in filled):
+            return filled[0]
+        unused = tuple(v for v, k in enumerate(kids) if k == DONT_CARE)
+        return self._node(Branch(level, filled, unused))
+
+
+def evaluate(nodes: Sequence[Branch], root: Ref, values: Sequence[int]) -> int:
+    """The leaf that ``values`` (one value index per slot) lead to from ``root``."""
+    ref = root
+    while ref >= 0:
+        branch = nodes[ref]
+        ref = branch.kids[values[branch.field]]
+    return leaf_value(ref)
+
+
+def reachable_nodes(nodes: Sequence[Branch], roots: Sequence[Ref]) -> list[int]:
+    """The nodes below ``roots``, each once, children before parents."""
+    seen: set[int] = set()
+    order: list[int] = []
+    for root in roots:
+        stack = [(root, False)]
+        while stack:
+            ref, done = stack.pop()
+            if ref < 0 or ref == DONT_CARE:
+                continue
+            if done:
+                order.append(ref)
+                continue
+            if ref in seen:
+                continue
+            seen.add(ref)
+            stack.append((ref, True))
+            stack.extend((k, False) for k in reversed(nodes[ref].kids))
+    return order
+
+
+def paths(nodes: Sequence[Branch], root: Ref, n_slots: int
+          ) -> list[tuple[tuple[frozenset[int] | None, ...], int]]:
+    """Every path from ``root`` to a leaf, as one value set per slot (None: not tested) and
+    the leaf; edges of a node to the same child are one path with the values joined, and
+    values no state has (:attr:`Branch.unused`) are left out."""
+    out: list[tuple[tuple[frozenset[int] | None, ...], int]] = []
+    stack: list[tuple[Ref, tuple[frozenset[int] | None, ...]]] = [(root, (None,) * n_slots)]
+    while stack:
+        ref, cond = stack.pop()
+        if ref < 0:
+            out.append((cond, leaf_value(ref)))
+            continue
+        branch = nodes[ref]
+        grouped: dict[Ref, list[int]] = {}
+        for value, kid in enumerate(branch.kids):
+            if value not in branch.unused:
+                grouped.setdefault(kid, []).append(value)
+        for kid, values in reversed(list(grouped.items())):
+            narrowed = list(cond)
+            narrowed[branch.field] = frozenset(values)
+            stack.append((kid, tuple(narrowed)))
+    return out

@@ -1,0 +1,196 @@
+"""From a solved game's strategy relations to the smallest compact controller found.
+
+Input: the roots of a symbolic controller (:mod:`gaitc.ir.bddfile`): the winning region W,
+ρe, θe, θs, the goals and per goal j the relation S_j of moves that make progress towards
+goal j.  For goal j the care set is W ∧ ρe ∧ ∃y'.S_j: every state a run can be in, with every
+input the assumptions allow; outside it the function may do anything.  Each candidate field
+order (:data:`ORDERS`) gives one diagram per goal, the goal diagrams and the start diagram
+in one shared table; the order with the fewest decision nodes wins (the analogue of dynamic
+reordering, over a handful of orders that put the robot's own state first).
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from typing import Any, Final
+
+from gaitc.compact.controller import CompactController, relations
+from gaitc.compact.diagram import DONT_CARE, Builder, Slot, leaf
+from gaitc.compact.fields import Vocabulary
+from gaitc.ir.bddfile import SymbolicController, materialize
+from gaitc.ir.spec import Semantics
+
+#: Field orders tried: the robot's outputs (where it is, how it got there) first, then the
+#: inputs just chosen, then the current inputs; the second puts the inputs in reverse.
+ORDERS: Final = ("greedy",)
+#: Every order :func:`slot_order` knows (the fixed ones are faster, rarely smaller).
+ALL_ORDERS: Final = ("greedy", "outputs-first", "inputs-reversed")
+#: At most this many rounds of shrinking the care sets (each usually halves the gain).
+ROUNDS: Final = 4
+
+
+def slot_order(vocabulary: Vocabulary, how: str) -> list[Slot]:
+    outs = [Slot(f) for f in vocabulary.outputs]
+    chosen = [Slot(f, True) for f in vocabulary.inputs]
+    now = [Slot(f) for f in vocabulary.inputs]
+    if how == "inputs-reversed":
+        chosen.reverse()
+        now.reverse()
+    return outs + chosen + now
+
+
+@dataclass(frozen=True)
+class Game:
+    """A solved game's roots (dd.cudd functions of ``bdd`` over ``inputs``, ``outputs`` and
+    their primed copies), named as in :data:`gaitc.ir.bddfile.SINGLE_ROOTS`."""
+
+    bdd: Any
+    roots: Mapping[str, Any]
+    inputs: tuple[str, ...]
+    outputs: tuple[str, ...]
+    semantics: Semantics
+
+
+def compact_from_roots(game: Game, vocabulary: Vocabulary, orders: Sequence[str] = ORDERS,
+                       deadline: float | None = None) -> CompactController:
+    """The compact controller of ``game``, the smallest of ``orders``.  ``deadline`` (a
+    ``time.monotonic()`` value) stops trying further orders once passed."""
+    best: CompactController | None = None
+    for how in orders:
+        found = _one_order(game, vocabulary, slot_order(vocabulary, how), how == "greedy")
+        if best is None or found.decision_nodes < best.decision_nodes:
+            best = found
+        if deadline is not None and time.monotonic() > deadline:
+            break
+    assert best is not None
+    return best
+
+
+def _one_order(game: Game, vocabulary: Vocabulary, slots: list[Slot], greedy: bool = False
+               ) -> CompactController:
+    """The diagrams for one field order, shrunk round by round: each round's care sets are
+    the states the previous round's function reaches, and its moves may only lead into
+    them, so the sets stay closed while they shrink (until the size stops falling)."""
+    bdd, roots, inputs, outputs = game.bdd, game.roots, game.inputs, game.outputs
+    semantics = game.semantics
+    prime = {b: b + "'" for b in (*inputs, *outputs)}
+    winning, env_trans = roots["winning"], roots["env_trans"]
+    post_out = {b + "'" for b in outputs}
+    strategies = list(roots["strategies"])
+    moving = counter_moves(bdd, roots["goals"])
+    start_ok = roots["sys_init"] & winning
+    if semantics == Semantics.ROBOTICS:
+        init = roots["env_init"] & start_ok
+    else:
+        init = bdd.exist(set(outputs), roots["env_init"]) & start_ok
+    reach = reachable(bdd, init, strategies, env_trans, moving, inputs, outputs)
+    allowed, first_ok = strategies, start_ok
+    best: CompactController | None = None
+    for _ in range(ROUNDS):
+        builder = Builder(bdd, slots, vocabulary.outputs, greedy=greedy)
+        move_roots = [_defined(builder.build_moves(here & env_trans
+                                                   & bdd.exist(post_out, relation), relation))
+                      for here, relation in zip(reach, allowed, strict=True)]
+        anywhere = bdd.false
+        for here in reach:
+            anywhere |= here
+        reached_roots = [_defined(builder.build_boolean(anywhere, goal), leaf(1))
+                         for goal in roots["goals"]]
+        if semantics == Semantics.ROBOTICS:
+            start = _defined(builder.build_boolean(bdd.true, init), leaf(0))
+        else:
+            first = bdd.exist(set(outputs), init)
+            start = _defined(builder.build_moves(bdd.let(prime, first),
+                                                 bdd.let(prime, first_ok)))
+        found = CompactController(
+            vocabulary=vocabulary, slots=tuple(slots), nodes=tuple(builder.nodes),
+            moves=tuple(builder.moves), move_roots=tuple(move_roots),
+            reached_roots=tuple(reached_roots), start_root=start, inputs=tuple(inputs),
+            outputs=tuple(outputs), semantics=semantics)
+        if best is not None and found.decision_nodes >= best.decision_nodes:
+            break
+        best = found
+        made = relations(bdd, found)
+        begin = init if semantics == Semantics.ROBOTICS else made["start"]
+        shrunk = reachable(bdd, begin, made["strategies"], env_trans, moving, inputs, outputs)
+        if shrunk == reach:
+            break
+        reach = shrunk
+        allowed = []
+        for j, relation in enumerate(strategies):
+            into = bdd.false
+            for k, here in enumerate(reach):
+                into |= moving[j][k] & bdd.let(prime, here)
+            allowed.append(relation & into)
+        first_ok = start_ok & reach[0]
+    assert best is not None
+    return best
+
+
+def counter_moves(bdd: Any, goals: Sequence[Any]) -> list[list[Any]]:
+    """``moving[j][k]``: the states after which the goal counter goes from j to k (goals
+    j..k-1 hold there and k does not; or every goal holds and it stays at j)."""
+    n = len(goals)
+    moving: list[list[Any]] = []
+    for j in range(n):
+        row, met = [bdd.false] * n, bdd.true
+        for t in range(n):
+            k = (j + t) % n
+            row[k] |= met & ~goals[k]
+            met &= goals[k]
+        row[j] |= met
+        moving.append(row)
+    return moving
+
+
+def reachable(bdd: Any, init: Any, strategies: Sequence[Any], env_trans: Any,
+              moving: Sequence[Sequence[Any]], inputs: Sequence[str],
+              outputs: Sequence[str]) -> list[Any]:
+    """Per goal j, the states a run can be in while it pursues goal j when the controller
+    may make any move of ``strategies[j]``, from ``init`` at goal 1: the care sets.  Closed
+    under every move allowed, so a function that picks any of them never leaves them."""
+    pre = set(inputs) | set(outputs)
+    unprime = {b + "'": b for b in pre}
+    n = len(strategies)
+    reach = [bdd.false] * n
+    frontier = [init if j == 0 else bdd.false for j in range(n)]
+    while any(f != bdd.false for f in frontier):
+        for j in range(n):
+            reach[j] |= frontier[j]
+        found = [bdd.false] * n
+        for j in range(n):
+            if frontier[j] == bdd.false:
+                continue
+            steps = frontier[j] & env_trans & strategies[j]
+            for k in range(n):
+                if moving[j][k] != bdd.false:
+                    found[k] |= bdd.let(unprime, bdd.exist(pre, steps & moving[j][k]))
+        frontier = [found[k] & ~reach[k] for k in range(n)]
+    return reach
+
+
+def _defined(ref: int, otherwise: int | None = None) -> int:
+    """A root whose care set is empty (no state needs it) points to any leaf."""
+    if ref != DONT_CARE:
+        return ref
+    return otherwise if otherwise is not None else leaf(0)
+
+
+def compact_from_symbolic(ctrl: SymbolicController, vocabulary: Vocabulary,
+                          orders: Sequence[str] = ORDERS) -> CompactController:
+    """The compact controller of a stored symbolic controller."""
+    from dataclasses import replace
+
+    from gaitc.ir.manager import manager
+
+    bdd = manager()
+    bits = ctrl.inputs + ctrl.outputs
+    declared = list(ctrl.order) + [v for b in bits for v in (b, b + "'")
+                                  if v not in set(ctrl.order)]
+    bdd.declare(*declared)
+    roots = materialize(bdd, ctrl)
+    found = compact_from_roots(Game(bdd, roots, ctrl.inputs, ctrl.outputs, ctrl.semantics),
+                               vocabulary, orders)
+    return replace(found, integers=dict(ctrl.integers), solver=ctrl.solver, source=ctrl.source)
