@@ -14,6 +14,7 @@ output folder.
 from __future__ import annotations
 
 import json
+import re
 import shutil
 import subprocess
 import tempfile
@@ -130,9 +131,25 @@ def build(ctrl: CompactController, out_dir: str | Path, target: Target | str,
             raise FirmwareError(f"cannot build the board's firmware: missing {', '.join(need)}",
                                 _where(file), "apt-get install gcc-avr avr-libc "
                                 "(scripts/setup.sh does it)")
+        if tables.bytes > FLASH_LIMIT:  # the compiler would refuse arrays this large
+            raise FirmwareError(
+                f"the controller does not fit on the ATmega328P: its tables alone are "
+                f"{tables.bytes} bytes, more than the {FLASH_LIMIT} bytes of flash",
+                _where(file), "use --target c for a larger host, or simplify the task "
+                "(fewer regions, gaits or health levels)")
         elf = work / "gaitboard.elf"
-        _run(["avr-gcc", *AVR_FLAGS, "-DGAITC_CONTROLLER", f"-I{work}", "-o", str(elf),
-              str(SOURCES / "gaitboard.c"), str(c)], "avr-gcc gaitboard.c with the controller")
+        try:
+            _run(["avr-gcc", *AVR_FLAGS, "-DGAITC_CONTROLLER", f"-I{work}", "-o", str(elf),
+                  str(SOURCES / "gaitboard.c"), str(c)], "avr-gcc gaitboard.c with the controller")
+        except FirmwareError as err:
+            over = re.search(r"region .(text|data). overflowed by (\d+) bytes", err.message)
+            if over is None:
+                raise
+            raise FirmwareError(
+                f"the controller does not fit on the ATmega328P: the firmware overflows its "
+                f"{'flash' if over.group(1) == 'text' else 'RAM'} by {over.group(2)} bytes; "
+                f"its tables alone are {tables.bytes} bytes", _where(file),
+                "use --target c for a larger host, or simplify the task") from None
         flash, ram = sizes(elf)
         if flash > FLASH_LIMIT or ram > RAM_LIMIT:
             raise FirmwareError(

@@ -1,0 +1,142 @@
+"""A compact controller compiled into the valve-board firmware and run in simavr (issue 35).
+
+``gaitc codegen --target avr`` links the generated tables into ``gaitboard.c``; the board then
+answers ``C s``/``C x`` with its own decision.  Checked here on robot A: the board gives the
+Python runner's move, goal and outputs on each of 10,000 steps of random and adversarial
+environment input; a malformed command still vents; an image too large is refused with its
+sizes and leaves the output folder as it was.  Marked ``firmware``; skipped without the AVR
+toolchain or libsimavr.
+"""
+
+from __future__ import annotations
+
+import sys
+from collections.abc import Iterator
+from dataclasses import replace
+from pathlib import Path
+
+import pytest
+import serial
+
+import gaitc
+from gaitc.codegen.build import Target, build
+from gaitc.compact.controller import CompactController, Runner
+from gaitc.compact.diagram import Branch, Slot
+from gaitc.compact.fields import Field, Vocabulary
+from gaitc.hw.firmware import FirmwareError, Image, SimulatedBoard, missing_tools
+from gaitc.hw.firmware import build as build_firmware
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from test_compact import _walk
+
+pytestmark = [
+    pytest.mark.firmware,
+    pytest.mark.skipif(bool(missing_tools()), reason="the AVR toolchain or libsimavr is missing"),
+]
+
+ROOT = Path(__file__).resolve().parent.parent
+ROBOT_A = ROOT / "specs" / "thesis_robot_a.gait"
+DIGITS = "0123456789abcdefghijklmnopqrstuvwxyz"
+
+
+@pytest.fixture(scope="module")
+def robot_a() -> tuple[gaitc.Spec, CompactController]:
+    spec = gaitc.load(ROBOT_A)
+    made = gaitc.synthesize(spec, form="compact")
+    assert made.verified and isinstance(made.controller, CompactController)
+    return spec, made.controller
+
+
+@pytest.fixture(scope="module")
+def board_image(robot_a: tuple[gaitc.Spec, CompactController],
+                tmp_path_factory: pytest.TempPathFactory) -> Image:
+    plain = build_firmware(tmp_path_factory.mktemp("plain"))
+    built = build(robot_a[1], tmp_path_factory.mktemp("board"), Target.AVR)
+    assert built.program is not None and built.flash is not None and built.ram is not None
+    assert built.flash < 32 * 1024 and built.ram < 2048
+    return Image(built.program, built.program.with_suffix(".hex"), plain.simulator)
+
+
+@pytest.fixture()
+def link(board_image: Image, tmp_path: Path) -> Iterator[serial.Serial]:
+    with SimulatedBoard(board_image, tmp_path / "pins.jsonl") as sim:
+        port = serial.Serial(sim.port, 115200, timeout=2.0)
+        port.write(b"PING\n")
+        assert port.readline().startswith(b"PONG gaitboard/2.0")
+        yield port
+        port.close()
+
+
+def ask(port: serial.Serial, line: str) -> str:
+    port.write(line.encode("ascii") + b"\n")
+    return port.readline().decode("ascii").strip()
+
+
+def digits(ctrl: CompactController, values: dict[str, int]) -> str:
+    return "".join(DIGITS[values[f.name]] for f in ctrl.vocabulary.inputs)
+
+
+def test_the_board_makes_the_python_moves_for_10000_steps(
+        robot_a: tuple[gaitc.Spec, CompactController], link: serial.Serial) -> None:
+    spec, ctrl = robot_a
+    fields = ctrl.vocabulary.fields
+    steps = 0
+    for adversarial, seed in ((False, 11), (True, 12)):
+        walk = _walk(spec, ctrl, 5000, seed, adversarial)
+        first, _ = next(walk)
+        run = Runner(ctrl, first)
+        state = "".join(DIGITS[run.state[f.name]] for f in fields)
+        assert ask(link, f"C s {digits(ctrl, first)}") == f"M 0 g=0 o={state}"
+        for chosen, _ in walk:
+            move_values = run.step(chosen)
+            move = ctrl.moves.index(tuple(move_values[f.name] for f in ctrl.vocabulary.outputs))
+            state = "".join(DIGITS[run.state[f.name]] for f in fields)
+            assert ask(link, f"C x {digits(ctrl, chosen)}") == f"M {move} g={run.goal} o={state}"
+            steps += 1
+    assert steps >= 10_000
+
+
+def test_a_malformed_controller_command_is_refused_and_vents(
+        robot_a: tuple[gaitc.Spec, CompactController], link: serial.Serial) -> None:
+    _, ctrl = robot_a
+    full = "2" * len(ctrl.vocabulary.inputs)
+    assert ask(link, f"C x {full}") == "ERR C x before C s; vented"
+    assert ask(link, "C s 12") == "ERR C needs s or x and one digit per input; vented"
+    assert ask(link, f"C s {'z' * len(full)}") == "ERR C input out of range; vented"
+    assert ask(link, f"C s {full[:-1]}!") == "ERR C needs base-36 digits; vented"
+
+
+def _too_big(ctrl: CompactController, count: int = 400, width: int = 200
+             ) -> CompactController:
+    """A controller with ``count`` decision nodes on an input field of ``width`` values,
+    each a distinct link of a chain."""
+    wide = Field("wide", True, tuple(str(k) for k in range(width)),
+                 tuple(((f"w{k}", True),) for k in range(width)))
+    vocabulary = Vocabulary((*ctrl.vocabulary.fields, wide), ctrl.vocabulary.domain)
+    slot = len(ctrl.slots)
+    nodes = [Branch(slot, tuple([-1] * (width - 1) + [-2]))]
+    for k in range(1, count):
+        nodes.append(Branch(slot, tuple([k - 1] * (width - 1) + [-1 - (k % 2)])))
+    return replace(ctrl, vocabulary=vocabulary, slots=(*ctrl.slots, Slot(wide, True)),
+                   nodes=tuple(nodes), move_roots=(count - 1,) * ctrl.goal_count)
+
+
+def test_a_controller_that_does_not_fit_is_refused_with_its_sizes(
+        robot_a: tuple[gaitc.Spec, CompactController], tmp_path: Path) -> None:
+    out = tmp_path / "board"
+    out.mkdir()
+    (out / "keep.txt").write_text("mine", encoding="utf-8")
+    with pytest.raises(FirmwareError) as caught:
+        build(_too_big(robot_a[1]), out, Target.AVR)
+    assert caught.value.message == (
+        "the controller does not fit on the ATmega328P: its tables alone are 161296 bytes, "
+        "more than the 32256 bytes of flash")
+    assert sorted(p.name for p in out.iterdir()) == ["keep.txt"]
+    # over the limit only once compiled: 143 nodes of 100 values (29 KB of tables)
+    with pytest.raises(FirmwareError) as caught:
+        build(_too_big(robot_a[1], 143, 100), out, Target.AVR)
+    message = caught.value.message
+    assert message.startswith("the controller does not fit on the ATmega328P: the firmware "
+                              "would take ")
+    assert "bytes of flash (limit 32256)" in message and "bytes of static RAM" in message
+    assert sorted(p.name for p in out.iterdir()) == ["keep.txt"]
