@@ -11,6 +11,7 @@ toolchain or libsimavr.
 from __future__ import annotations
 
 import sys
+import time
 from collections.abc import Iterator
 from dataclasses import replace
 from pathlib import Path
@@ -20,10 +21,11 @@ import serial
 
 import gaitc
 from gaitc.codegen.build import Target, build
+from gaitc.codegen.tables import table_bytes
 from gaitc.compact.controller import CompactController, Runner
 from gaitc.compact.diagram import Branch, Slot
 from gaitc.compact.fields import Field, Vocabulary
-from gaitc.hw.firmware import FirmwareError, Image, SimulatedBoard, missing_tools
+from gaitc.hw.firmware import FirmwareError, Image, SimulatedBoard, missing_tools, vented_after
 from gaitc.hw.firmware import build as build_firmware
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
@@ -128,8 +130,10 @@ def test_a_controller_that_does_not_fit_is_refused_with_its_sizes(
     (out / "keep.txt").write_text("mine", encoding="utf-8")
     with pytest.raises(FirmwareError) as caught:
         build(_too_big(robot_a[1]), out, Target.AVR)
+    tables = table_bytes(_too_big(robot_a[1]))
+    assert tables > 32256
     assert caught.value.message == (
-        "the controller does not fit on the ATmega328P: its tables alone are 161296 bytes, "
+        f"the controller does not fit on the ATmega328P: its tables alone are {tables} bytes, "
         "more than the 32256 bytes of flash")
     assert sorted(p.name for p in out.iterdir()) == ["keep.txt"]
     # over the limit only once compiled: 143 nodes of 100 values (29 KB of tables)
@@ -140,3 +144,65 @@ def test_a_controller_that_does_not_fit_is_refused_with_its_sizes(
                               "would take ")
     assert "bytes of flash (limit 32256)" in message and "bytes of static RAM" in message
     assert sorted(p.name for p in out.iterdir()) == ["keep.txt"]
+
+
+# ---------------------------------------------------------------------------- the board alone
+RADIAL8 = ROOT / "specs" / "radial8_patrol.gait"
+
+
+def _reports(port: serial.Serial, count: int) -> list[str]:
+    out = []
+    while len(out) < count:
+        line = port.readline().decode("ascii").strip()
+        assert line, f"the board fell silent after {out}"
+        assert line.startswith("A "), line
+        out.append(line)
+    return out
+
+
+def test_the_board_runs_the_task_alone_and_vents_only_on_its_own_checks(
+        tmp_path: Path, tmp_path_factory: pytest.TempPathFactory) -> None:
+    spec = gaitc.load(RADIAL8)
+    made = gaitc.synthesize(spec, form="compact")
+    assert made.verified and isinstance(made.controller, CompactController)
+    ctrl = made.controller
+    built = gaitc.generate(spec, ctrl, "avr", tmp_path / "board")
+    assert built.program is not None
+    assert "gaitc_board.h" in [p.name for p in built.files]
+    plain = build_firmware(tmp_path_factory.mktemp("plain"))
+    image = Image(built.program, built.program.with_suffix(".hex"), plain.simulator)
+    fields = ctrl.vocabulary.fields
+    first = {f.name: len(f.labels) - 1 for f in ctrl.vocabulary.inputs}  # every leg healthy
+    with SimulatedBoard(image, tmp_path / "pins.jsonl") as sim:
+        port = serial.Serial(sim.port, 115200, timeout=3.0)
+        assert ask(port, "PING").startswith("PONG gaitboard/2.0")
+        port.write(f"A 60 {digits(ctrl, first)}\n".encode("ascii"))
+        seen = _reports(port, 8)
+        run = Runner(ctrl, first)
+        for report in seen:
+            step, move, goal, values = report.split(" ")[1:]
+            state = {f.name: DIGITS.index(c) for f, c in zip(fields, values[2:], strict=True)}
+            if step != "0":  # the board graded the inputs itself: the runner takes them
+                chosen = {f.name: state[f.name] for f in ctrl.vocabulary.inputs}
+                made_move = run.step(chosen)
+                index = ctrl.moves.index(tuple(made_move[f.name]
+                                               for f in ctrl.vocabulary.outputs))
+                assert move == f"m={index}" and goal == f"g={run.goal}"
+            assert state == run.state
+        # the host goes away: the board carries on (in normal mode silence vents in 500 ms)
+        port.close()
+        cut = sim.time_ms()
+        time.sleep(2.0)
+        later = [t for t, _ in sim.record() if t > cut + 1000]
+        assert later, "the board stopped when the host went away"
+        # a sensor reading its assumptions forbid (a healthy leg reads as failed at once, a
+        # drop of two levels in one step): the board vents on its own, for good
+        for leg in range(8):
+            sim.set_depth(leg, 0.02)
+        time.sleep(3.0)
+        record = sim.record()
+        assert record[-1][1] == "00000000"
+        assert vented_after(record, cut) is not None
+        settled = record[-1][0]
+        time.sleep(1.0)
+        assert sim.record()[-1][0] == settled  # nothing opened again

@@ -141,6 +141,7 @@ def test_the_python_run_makes_the_symbolic_runtimes_moves(
     run = Runner(ctrl, first_in)
     assert {k: run.state[k] for k in first_out} == first_out
     for chosen, made in walk:
+        assert ctrl.assumes(run.state, chosen)
         assert run.step(chosen) == made
 
 
@@ -156,10 +157,10 @@ def test_the_file_round_trips_and_is_deterministic(
 @pytest.mark.parametrize(("change", "message"), [
     (lambda d: d["gaitc"].update(version=9),
      "malformed compact controller: format version 9, this gaitc reads 1"),
-    (lambda d: d["nodes"].append([0, [7, 7], []]),
-     "malformed compact controller: node 6 has 2 children for a field of 20 values"),
-    (lambda d: d["roots"].update(moves=[99, 0]),
-     "malformed compact controller: root 99 is not a node or a leaf"),
+    (lambda d: d["nodes"].insert(0, [0, [7, 7], []]),
+     "malformed compact controller: node 0 has 2 children for a field of 20 values"),
+    (lambda d: d["roots"].update(moves=[99999, 0]),
+     "malformed compact controller: root 99999 is not a node or a leaf"),
     (lambda d: d["moves"].append([1]),
      "malformed compact controller: move [1] has no value for every output field"),
     (lambda d: d.pop("slots"), "malformed compact controller: 'slots' must be a list"),
@@ -279,4 +280,4 @@ def from_tables(template: CompactController, tables: dict[str, list[int]]) -> Co
                    moves=tuple(tuple(moves[k:k + outputs]) for k in range(0, len(moves),
                                                                           outputs)),
                    move_roots=tuple(roots[:goals]), reached_roots=tuple(roots[goals:2 * goals]),
-                   start_root=roots[2 * goals])
+                   start_root=roots[2 * goals], assumed_root=roots[2 * goals + 1])

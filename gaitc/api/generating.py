@@ -13,6 +13,7 @@ from pathlib import Path
 
 from gaitc.api.loading import Spec, SpecLike, resolve
 from gaitc.api.solving import compact, read_controller, synthesize, verify
+from gaitc.codegen.board import BoardTables
 from gaitc.codegen.build import Built, Target, build
 from gaitc.codegen.tables import table_bytes
 from gaitc.compact.controller import CompactController
@@ -91,7 +92,25 @@ def generate(spec: SpecLike, controller: CompactController | SymbolicController 
     if chosen == Target.AVR and any(len(f.labels) > 36 for f in found.vocabulary.inputs):
         raise UsageError("the board's C command reads one base-36 digit per input: an input "
                          "field with more than 36 values needs --target c")
-    return build(found, out_dir, chosen, file)
+    return build(found, out_dir, chosen, file, _board(resolved, found, chosen))
+
+
+def _board(spec: Spec | object, ctrl: CompactController, target: Target) -> BoardTables | None:
+    """The tables that let the board run the task alone: for the avr target, a robot spec
+    whose every gait has a valve primitive (else the board only answers C commands)."""
+    if target != Target.AVR or not isinstance(spec, Spec) or spec.model is None:
+        return None
+    if ctrl.vocabulary.domain != "robot":
+        return None
+    from gaitc.codegen.board import board_tables
+    from gaitc.diagnostics import SpecSemanticError
+    from gaitc.hw.driver import bind_primitives
+
+    try:
+        primitives = bind_primitives(spec.model, str(Path(spec.path).parent))
+    except SpecSemanticError:
+        return None
+    return board_tables(ctrl, primitives)
 
 
 __all__ = ["Target", "compact_of", "compact_policy", "generate"]

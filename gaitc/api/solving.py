@@ -133,9 +133,10 @@ class Synthesis:
             from gaitc.codegen.tables import table_bytes
 
             c = self.controller
-            return (f"compact, {c.rules} rules, {c.decision_nodes} decision nodes, "
-                    f"{table_bytes(c)} bytes of tables; the symbolic strategy it comes from "
-                    f"has {self.symbolic_nodes} BDD nodes")
+            return (f"compact, {c.rules} rules, {c.decision_nodes} decision nodes "
+                    f"(+{c.monitor_nodes} for the assumption monitor), {table_bytes(c)} bytes "
+                    f"of tables; the symbolic strategy it comes from has {self.symbolic_nodes} "
+                    "BDD nodes")
         if isinstance(self.controller, SymbolicController):
             return f"symbolic, {len(self.controller.nodes)} BDD nodes"
         merged = "" if self.merged_from is None else f", {self.merged_from} before merging"
@@ -159,6 +160,7 @@ class Synthesis:
             c = self.controller
             out["nodes"] = c.decision_nodes
             out["compact"] = {"rules": c.rules, "decision_nodes": c.decision_nodes,
+                              "monitor_nodes": c.monitor_nodes,
                               "moves": len(c.moves), "table_bytes": table_bytes(c),
                               "symbolic_nodes": self.symbolic_nodes}
         return out

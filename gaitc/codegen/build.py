@@ -22,6 +22,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Final
 
+from gaitc.codegen.board import BoardTables, board_header
 from gaitc.codegen.emitter import header, source
 from gaitc.codegen.tables import Tables, flatten
 from gaitc.compact.controller import CompactController
@@ -109,10 +110,11 @@ def sizes(elf: Path) -> tuple[int, int]:
 
 
 def build(ctrl: CompactController, out_dir: str | Path, target: Target | str,
-          file: str = "") -> Built:
+          file: str = "", board: BoardTables | None = None) -> Built:
     """Generate and compile ``ctrl`` for ``target`` into ``out_dir`` (see the module text).
     Compiled in a scratch folder first: a refused or failed build leaves ``out_dir`` as it
-    was."""
+    was.  With ``board`` (avr), the firmware also runs the task on its own
+    (:mod:`gaitc.codegen.board`)."""
     chosen = Target.parse(str(target), "--target")
     tables = flatten(ctrl)
     out = Path(out_dir)
@@ -138,8 +140,14 @@ def build(ctrl: CompactController, out_dir: str | Path, target: Target | str,
                 _where(file), "use --target c for a larger host, or simplify the task "
                 "(fewer regions, gaits or health levels)")
         elf = work / "gaitboard.elf"
+        defines = ["-DGAITC_CONTROLLER"]
+        extra: list[Path] = []
+        if board is not None:
+            extra.append(work / "gaitc_board.h")
+            write_atomically(extra[0], board_header(board))
+            defines.append("-DGAITC_BOARD")
         try:
-            _run(["avr-gcc", *AVR_FLAGS, "-DGAITC_CONTROLLER", f"-I{work}", "-o", str(elf),
+            _run(["avr-gcc", *AVR_FLAGS, *defines, f"-I{work}", "-o", str(elf),
                   str(SOURCES / "gaitboard.c"), str(c)], "avr-gcc gaitboard.c with the controller")
         except FirmwareError as err:
             over = re.search(r"region .(text|data). overflowed by (\d+) bytes", err.message)
@@ -161,7 +169,7 @@ def build(ctrl: CompactController, out_dir: str | Path, target: Target | str,
         hexfile = work / "gaitboard.hex"
         _run(["avr-objcopy", "-O", "ihex", "-R", ".eeprom", str(elf), str(hexfile)],
              "avr-objcopy gaitboard.elf")
-        return _publish(work, out, [h, c, hexfile], elf,
+        return _publish(work, out, [h, c, *extra, hexfile], elf,
                         Built(chosen, (), None, tables.bytes, flash, ram))
 
 

@@ -72,6 +72,8 @@ def header(ctrl: CompactController) -> str:
         "uint8_t gaitc_accepts(const gaitc_state *s);",
         "/* one step: the environment chose in; returns the move, s holds the new outputs */",
         "uint16_t gaitc_step(gaitc_state *s, const uint8_t in[GAITC_INPUTS]);",
+        "/* 1 when the assumptions (rho_e) allow the inputs in from state s */",
+        "uint8_t gaitc_assumed(const gaitc_state *s, const uint8_t in[GAITC_INPUTS]);",
         "/* 1 when every input value is in its field's range */",
         "uint8_t gaitc_valid(const uint8_t in[GAITC_INPUTS]);",
         "",
@@ -110,6 +112,7 @@ def source(ctrl: CompactController, tables: Tables | None = None) -> str:
         "#define GAITC_MOVE_ROOT(g) (g)",
         "#define GAITC_REACHED_ROOT(g) (GAITC_GOALS + (g))",
         "#define GAITC_START_ROOT (2 * GAITC_GOALS)",
+        "#define GAITC_ASSUMED_ROOT (2 * GAITC_GOALS + 1)",
         "",
         _array("uint8_t", "node_slot", t.node_slot),
         _array("uint16_t", "node_first", t.node_first),
@@ -163,6 +166,11 @@ void gaitc_start(gaitc_state *s, const uint8_t in[GAITC_INPUTS])
     s->goal = 0;
     set_outputs(s, walk(GAITC_U16(roots[GAITC_START_ROOT]), s->value, in));
     set_inputs(s, in);
+}
+
+uint8_t gaitc_assumed(const gaitc_state *s, const uint8_t in[GAITC_INPUTS])
+{
+    return (uint8_t)walk(GAITC_U16(roots[GAITC_ASSUMED_ROOT]), s->value, in);
 }
 
 uint8_t gaitc_accepts(const gaitc_state *s)

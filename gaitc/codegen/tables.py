@@ -6,7 +6,8 @@ Layout (every table read-only, in flash on a microcontroller):
   children start in ``kids``;
 * ``kids[k]`` (2 bytes): a child, a node index below ``LEAF`` or ``LEAF | value`` for a leaf;
 * ``moves[m * outputs + i]`` (1 byte): output field i's value in move m;
-* ``roots`` (2 bytes each): per goal the move diagram, per goal the goal diagram, the start;
+* ``roots`` (2 bytes each): per goal the move diagram, per goal the goal diagram, the start
+  and the assumptions;
 * ``slot_field[s]``, ``slot_next[s]`` (1 byte each): which field a slot reads, and whether the
   value the environment just chose.
 

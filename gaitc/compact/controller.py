@@ -8,7 +8,10 @@ A compact controller is a GR(1) strategy written as small functions, not as an a
   the goal counter on, as every GR(1) controller's counter does (Bloem et al., JCSS 78(3)
   2012, Sect. 5);
 * ``start``: under the default semantics, the first outputs from the first inputs; under the
-  robotics semantics, which first states the controller accepts (a boolean diagram).
+  robotics semantics, which first states the controller accepts (a boolean diagram);
+* ``assumed``: whether the inputs just chosen are a move ρe allows from the current state,
+  on every state the controller can be in: a board that runs the controller on its own
+  vents when its sensors break the assumptions its guarantee rests on.
 
 Its only memory is the goal counter and the last state, so a microcontroller runs it from
 tables in flash (:mod:`gaitc.codegen`).  :func:`to_symbolic` turns it back into BDD relations
@@ -45,6 +48,7 @@ class CompactController:
     move_roots: tuple[Ref, ...]
     reached_roots: tuple[Ref, ...]
     start_root: Ref
+    assumed_root: Ref
     inputs: tuple[str, ...]  # the spec's bits, as in its other controller files
     outputs: tuple[str, ...]
     integers: Mapping[str, IntegerVar] = field(default_factory=dict)
@@ -59,12 +63,17 @@ class CompactController:
 
     @property
     def roots(self) -> tuple[Ref, ...]:
-        return (*self.move_roots, *self.reached_roots, self.start_root)
+        return (*self.move_roots, *self.reached_roots, self.start_root, self.assumed_root)
 
     @property
     def decision_nodes(self) -> int:
-        """Decision nodes below any root (the table's size in nodes)."""
-        return len(reachable_nodes(self.nodes, self.roots))
+        """Decision nodes of the controller proper: below the move, goal and start roots."""
+        return len(reachable_nodes(self.nodes, self.roots[:-1]))
+
+    @property
+    def monitor_nodes(self) -> int:
+        """Decision nodes only the assumption monitor (the ``assumed`` diagram) uses."""
+        return len(reachable_nodes(self.nodes, self.roots)) - self.decision_nodes
 
     @property
     def rules(self) -> int:
@@ -103,6 +112,10 @@ class CompactController:
         """Whether the controller can start in ``state`` (robotics semantics)."""
         return bool(evaluate(self.nodes, self.start_root, self.slot_values(state, {})))
 
+    def assumes(self, state: Mapping[str, int], chosen: Mapping[str, int]) -> bool:
+        """Whether ρe allows the inputs ``chosen`` from ``state``."""
+        return bool(evaluate(self.nodes, self.assumed_root, self.slot_values(state, chosen)))
+
     def advance(self, goal: int, state: Mapping[str, int]) -> int:
         """The goal counter after ``state``: past every goal the state meets, in turn."""
         values = self.slot_values(state, {})
@@ -115,7 +128,8 @@ class CompactController:
 
     # ---------------------------------------------------------------- display
     def summary(self) -> str:
-        return (f"{self.rules} rules, {self.decision_nodes} decision nodes, "
+        return (f"{self.rules} rules, {self.decision_nodes} decision nodes "
+                f"(and {self.monitor_nodes} for the assumption monitor), "
                 f"{self.goal_count} goal(s), {len(self.moves)} distinct moves")
 
     def __repr__(self) -> str:
@@ -264,7 +278,7 @@ def compact_to_dict(ctrl: CompactController) -> dict[str, Any]:
         "slots": [[f"{s.field.name}", int(s.next)] for s in ctrl.slots],
         "moves": [list(m) for m in ctrl.moves],
         "roots": {"moves": list(ctrl.move_roots), "reached": list(ctrl.reached_roots),
-                  "start": ctrl.start_root},
+                  "start": ctrl.start_root, "assumed": ctrl.assumed_root},
         "nodes": [[b.field, list(b.kids), list(b.unused)] for b in ctrl.nodes],
     }
 
@@ -375,11 +389,12 @@ def compact_from_dict(data: Any, file: str = "") -> CompactController:
     r.need(isinstance(roots, dict), "'roots' must be an object")
     move_roots = r.ints(roots.get("moves"), "roots.moves")
     reached = r.ints(roots.get("reached"), "roots.reached")
-    start = roots.get("start")
+    start, assumed = roots.get("start"), roots.get("assumed")
     r.need(type(start) is int, "roots.start must be an integer")
+    r.need(type(assumed) is int, "roots.assumed must be an integer")
     r.need(len(move_roots) == len(reached) and bool(move_roots),
            "roots.moves and roots.reached need one root per goal")
-    for ref in (*move_roots, *reached, start):
+    for ref in (*move_roots, *reached, start, assumed):
         r.need(ref < len(nodes) if ref >= 0 else leaf_value(ref) < max(len(moves), 2),
                f"root {ref} is not a node or a leaf")
     integers = {}
@@ -392,8 +407,8 @@ def compact_from_dict(data: Any, file: str = "") -> CompactController:
     return CompactController(
         vocabulary=vocabulary, slots=tuple(slots), nodes=tuple(nodes), moves=tuple(moves),
         move_roots=tuple(move_roots), reached_roots=tuple(reached), start_root=start,
-        inputs=tuple(inputs), outputs=tuple(outputs), integers=integers, semantics=semantics,
-        solver=str(head.get("solver", "embedded")),
+        assumed_root=assumed, inputs=tuple(inputs), outputs=tuple(outputs), integers=integers,
+        semantics=semantics, solver=str(head.get("solver", "embedded")),
         source=dict(source) if isinstance(source, dict) else None)
 
 

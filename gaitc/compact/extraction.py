@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import time
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any, Final
 
 from gaitc.compact.controller import CompactController, relations
@@ -32,7 +32,12 @@ ROUNDS: Final = 4
 
 
 def slot_order(vocabulary: Vocabulary, how: str) -> list[Slot]:
+    """The slots in the order a fixed-order diagram reads them.  ``greedy`` puts each input's
+    new value next to its current one, the order in which ρe (a conjunction over inputs,
+    each relating a value to the next) has a small diagram."""
     outs = [Slot(f) for f in vocabulary.outputs]
+    if how == "greedy":
+        return outs + [s for f in vocabulary.inputs for s in (Slot(f, True), Slot(f))]
     chosen = [Slot(f, True) for f in vocabulary.inputs]
     now = [Slot(f) for f in vocabulary.inputs]
     if how == "inputs-reversed":
@@ -87,7 +92,7 @@ def _one_order(game: Game, vocabulary: Vocabulary, slots: list[Slot], greedy: bo
         init = bdd.exist(set(outputs), roots["env_init"]) & start_ok
     reach = reachable(bdd, init, strategies, env_trans, moving, inputs, outputs)
     allowed, first_ok = strategies, start_ok
-    best: CompactController | None = None
+    best: tuple[CompactController, Builder, Any] | None = None
     for _ in range(ROUNDS):
         builder = Builder(bdd, slots, vocabulary.outputs, greedy=greedy)
         move_roots = [_defined(builder.build_moves(here & env_trans
@@ -107,11 +112,12 @@ def _one_order(game: Game, vocabulary: Vocabulary, slots: list[Slot], greedy: bo
         found = CompactController(
             vocabulary=vocabulary, slots=tuple(slots), nodes=tuple(builder.nodes),
             moves=tuple(builder.moves), move_roots=tuple(move_roots),
-            reached_roots=tuple(reached_roots), start_root=start, inputs=tuple(inputs),
+            reached_roots=tuple(reached_roots), start_root=start, assumed_root=leaf(1),
+            inputs=tuple(inputs),
             outputs=tuple(outputs), semantics=semantics)
-        if best is not None and found.decision_nodes >= best.decision_nodes:
+        if best is not None and found.decision_nodes >= best[0].decision_nodes:
             break
-        best = found
+        best = found, builder, anywhere
         made = relations(bdd, found)
         begin = init if semantics == Semantics.ROBOTICS else made["start"]
         shrunk = reachable(bdd, begin, made["strategies"], env_trans, moving, inputs, outputs)
@@ -126,7 +132,10 @@ def _one_order(game: Game, vocabulary: Vocabulary, slots: list[Slot], greedy: bo
             allowed.append(relation & into)
         first_ok = start_ok & reach[0]
     assert best is not None
-    return best
+    found, builder, anywhere = best
+    builder.greedy = False  # in slot order, where each input's values sit side by side
+    assumed = _defined(builder.build_boolean(anywhere, env_trans), leaf(1))
+    return replace(found, nodes=tuple(builder.nodes), assumed_root=assumed)
 
 
 def counter_moves(bdd: Any, goals: Sequence[Any]) -> list[list[Any]]:
@@ -181,8 +190,6 @@ def _defined(ref: int, otherwise: int | None = None) -> int:
 def compact_from_symbolic(ctrl: SymbolicController, vocabulary: Vocabulary,
                           orders: Sequence[str] = ORDERS) -> CompactController:
     """The compact controller of a stored symbolic controller."""
-    from dataclasses import replace
-
     from gaitc.ir.manager import manager
 
     bdd = manager()

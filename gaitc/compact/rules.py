@@ -137,7 +137,8 @@ def rule_tables(ctrl: CompactController, goal_labels: Sequence[str] = (),
     start: tuple[Rule, ...] = ()
     if ctrl.semantics != "robotics":
         start = _rules(ctrl, ctrl.start_root)
-    size = f"{ctrl.rules} rules, {ctrl.decision_nodes} decision nodes"
+    size = (f"{ctrl.rules} rules, {ctrl.decision_nodes} decision nodes "
+            f"(+{ctrl.monitor_nodes} for the assumption monitor)")
     if table_bytes is not None:
         size += f", {table_bytes} bytes of tables"
     return RuleTables(goals, start, size)

@@ -128,8 +128,15 @@ static void put_uint(uint16_t v)
 
 static void end_line(void) { puts_("\r\n"); }
 
+#ifdef GAITC_BOARD
+static uint8_t autonomous;   /* 1 while the board runs the task on its own */
+#endif
+
 static void refuse(const char *why)
 {
+#ifdef GAITC_BOARD
+    autonomous = 0;
+#endif
     vent();
     puts_("ERR ");
     puts_(why);
@@ -282,6 +289,148 @@ static uint8_t controller_command(void)
     end_line();
     return 1;
 }
+
+#ifdef GAITC_BOARD
+/* The task run by the board alone (gaitc codegen --target avr with valve primitives):
+ * "A MS VVV" starts the controller from the first inputs VVV and then, step after step, puts
+ * the chosen gait's valve sequence on the pins (MS ms per valve state), vents, grades the
+ * legs the gait used from their waveguide dips and asks the controller for the next gait.
+ * Each step is reported as "A <step> m=<move> g=<goal> o=<field values>"; the host only
+ * watches, and its silence no longer vents.  The board vents and stops on its own checks:
+ * a grading out of range, or inputs the spec's assumptions do not allow (the controller's
+ * guarantee would no longer hold).  "H K" sets the active hazard (K a base-36 digit),
+ * "AX" stops. */
+#include "gaitc_board.h"
+
+#define SETTLE_MS 40        /* after venting, before the waveguides are read at rest */
+
+static uint8_t auto_phase, auto_index, auto_hazard;
+static uint16_t auto_dwell, auto_steps, auto_first, auto_last;
+static uint32_t auto_since;
+
+static uint8_t input_of(uint8_t field) { return pgm_read_byte(&board_input_pos[field]); }
+
+static void auto_begin_gait(void)
+{
+    uint8_t gait = controller.value[GAITC_BOARD_GAIT_FIELD];
+    auto_first = pgm_read_word(&board_sequence_first[gait]);
+    auto_last = pgm_read_word(&board_sequence_first[gait + 1]);
+    auto_index = 0;
+    auto_phase = 0;
+    auto_since = millis();
+    if (auto_first < auto_last) set_valves(pgm_read_byte(&board_sequence[auto_first]));
+}
+
+static uint8_t grade(uint8_t channel)
+{
+    uint16_t rest = read_adc(&adc_now[channel]), low = read_adc(&adc_low[channel]);
+    uint16_t feature = rest > low ? (uint16_t)(1000UL * (rest - low) / rest) : 0;
+    uint8_t level = pgm_read_byte(&board_top_level[channel]), k;
+    uint8_t count = pgm_read_byte(&board_threshold_count[channel]);
+    for (k = 0; k < count; k++)
+        if (feature < pgm_read_word(&board_threshold[channel][k]) && level) level--;
+    return level;
+}
+
+static void auto_report(uint16_t move)
+{
+    uint8_t k;
+    puts_("A ");
+    put_uint(auto_steps);
+    puts_(" m=");
+    put_uint(move);
+    puts_(" g=");
+    put_uint(controller.goal);
+    puts_(" o=");
+    for (k = 0; k < GAITC_FIELDS; k++) put(digit36(controller.value[k]));
+    end_line();
+}
+
+static void auto_step(void)
+{
+    uint8_t in[GAITC_INPUTS + 1], f, ch, used = 0, i;
+    uint16_t move;
+    for (i = auto_first; i < auto_last; i++) used |= pgm_read_byte(&board_sequence[i]);
+    for (f = 0; f < GAITC_FIELDS; f++)
+        if (input_of(f) != 255) in[input_of(f)] = controller.value[f];
+    for (ch = 0; ch < 8; ch++) {
+        f = pgm_read_byte(&board_leg_field[ch]);
+        if (f != 255 && (used & (1 << ch))) in[input_of(f)] = grade(ch);
+    }
+    if (GAITC_BOARD_HAZARD_FIELD != 255) in[input_of(GAITC_BOARD_HAZARD_FIELD)] = auto_hazard;
+    if (!gaitc_valid(in) || !gaitc_assumed(&controller, in)) {
+        refuse("sensed inputs break the assumptions");
+        return;
+    }
+    move = gaitc_step(&controller, in);
+    auto_steps++;
+    auto_report(move);
+    auto_begin_gait();
+}
+
+static void auto_tick(void)
+{
+    uint32_t now = millis();
+    if (auto_phase == 0) {
+        if (now - auto_since < auto_dwell) return;
+        auto_index++;
+        auto_since = now;
+        if (auto_first + auto_index < auto_last) {
+            set_valves(pgm_read_byte(&board_sequence[auto_first + auto_index]));
+        } else {
+            vent();
+            auto_phase = 1;
+        }
+    } else if (now - auto_since >= SETTLE_MS) {
+        auto_step();
+    }
+}
+
+static uint8_t auto_command(void)
+{
+    uint8_t in[GAITC_INPUTS + 1], k, n = 0;
+    uint16_t dwell = 0;
+    const char *p = line + 2;
+    if (same(line, "AX")) {
+        autonomous = 0;
+        vent();
+        puts_("OK stopped");
+        end_line();
+        return 1;
+    }
+    if (line[0] == 'H' && line[1] == ' ' && line_len == 3) {
+        char c = line[2];
+        auto_hazard = (uint8_t)(c >= 'a' ? c - 'a' + 10 : c - '0');
+        puts_("OK");
+        end_line();
+        return 1;
+    }
+    while (*p >= '0' && *p <= '9' && n < 5) dwell = (uint16_t)(dwell * 10 + (*p++ - '0')), n++;
+    if (line[1] != ' ' || !n || dwell < 20 || dwell > 5000 || *p != ' '
+        || (uint8_t)(line + line_len - (p + 1)) != GAITC_INPUTS) {
+        refuse("A needs a dwell of 20..5000 ms and one digit per input");
+        return 0;
+    }
+    for (k = 0, p++; k < GAITC_INPUTS; k++, p++) {
+        if (*p >= '0' && *p <= '9') in[k] = (uint8_t)(*p - '0');
+        else if (*p >= 'a' && *p <= 'z') in[k] = (uint8_t)(*p - 'a' + 10);
+        else in[k] = 255;
+    }
+    if (!gaitc_valid(in)) {
+        refuse("A input out of range");
+        return 0;
+    }
+    gaitc_start(&controller, in);
+    controller_started = 1;
+    auto_hazard = GAITC_BOARD_HAZARD_FIELD != 255 ? controller.value[GAITC_BOARD_HAZARD_FIELD] : 0;
+    auto_dwell = dwell;
+    auto_steps = 0;
+    autonomous = 1;
+    auto_report(0);
+    auto_begin_gait();
+    return 1;
+}
+#endif
 #endif
 
 static void execute(void)
@@ -307,6 +456,9 @@ static void execute(void)
             }
             if (c == '1') bits |= (uint8_t)(1 << i);
         }
+#ifdef GAITC_BOARD
+        autonomous = 0;
+#endif
         set_valves(bits);
         puts_("OK");
         end_line();
@@ -323,6 +475,10 @@ static void execute(void)
 #ifdef GAITC_CONTROLLER
     } else if (line[0] == 'C') {
         if (!controller_command()) return;
+#ifdef GAITC_BOARD
+    } else if (line[0] == 'A' || (line[0] == 'H' && line[1] == ' ')) {
+        if (!auto_command()) return;
+#endif
 #endif
     } else if (same(line, "HANG")) {
         /* self-test of the hardware watchdog: stop serving; the reset vents */
@@ -394,6 +550,10 @@ int main(void)
             vent();
             discarding = 3;
         }
+#ifdef GAITC_BOARD
+        if (autonomous) auto_tick();
+        else
+#endif
         if (valves && millis() - last_valid >= wd_period) vent();
         /* idle until the next interrupt (the 1 ms tick at the latest); no byte is missed:
          * interrupts are enabled only by the instruction before sleep */
