@@ -15,11 +15,15 @@ the play from the environment restricted to the freedoms it needs), then one tab
 
 from __future__ import annotations
 
+import sys
 import time
 from collections.abc import Callable
 from pathlib import Path
 
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
+
 import gaitc
+from bench.families.lab8 import GAITS
 from gaitc.analysis import core, failure, freedoms, repairs
 from gaitc.analysis.oracle import Oracle
 
@@ -28,28 +32,14 @@ TARGET_SECONDS = 30.0
 LAB_TARGET_SECONDS = 20.0
 
 #: The 8-leg robot of issue 34: the bench lies past hazard set spill, and fumes covers c1.
-LAB_ROBOT = """\
-robot "lab8"
-legs L1..L8 health {health}
-gait n1 uses L1, L5 moves north
-gait n2 uses L2, L6 moves north
-gait n3 uses L3, L7 moves north
-gait s1 uses L4, L8 moves south
-gait s2 uses L1, L6 moves south
-gait s3 uses L2, L7 moves south
-gait e1 uses L3, L8 moves east
-gait e2 uses L4, L5 moves east
-gait e3 uses L1, L7 moves east
-gait w1 uses L2, L8 moves west
-gait w2 uses L3, L5 moves west
-gait w3 uses L4, L6 moves west
-grid 3 x 5 cells dock, a1, a2, a3, a4, b0, b1, b2, b3, b4, c0, c1, c2, c3, bench
+LAB_ROBOT = ('robot "lab8"\nlegs L1..L8 health {health}\n' + GAITS.replace("{", "{{")
+             + """grid 3 x 5 cells dock, a1, a2, a3, a4, b0, b1, b2, b3, b4, c0, c1, c2, c3, bench
 cache dock, b0
 hazard spill: a3, b3
 hazard fumes: c1
 start dock
 visit bench, dock infinitely often
-"""
+""")
 
 
 def tasks() -> list[tuple[str, str]]:
@@ -103,8 +93,6 @@ def table() -> None:
 
 
 def main() -> None:
-    import sys
-
     if "--quick" not in sys.argv:
         parts()
     table()

@@ -249,6 +249,17 @@ static uint8_t controller_started;
 
 static char digit36(uint8_t v) { return (char)(v < 10 ? '0' + v : 'a' + v - 10); }
 
+/* " g=<goal> o=<every field's value, base 36>" and the end of the line */
+static void put_state(void)
+{
+    uint8_t k;
+    puts_(" g=");
+    put_uint(controller.goal);
+    puts_(" o=");
+    for (k = 0; k < GAITC_FIELDS; k++) put(digit36(controller.value[k]));
+    end_line();
+}
+
 static uint8_t controller_command(void)
 {
     uint8_t in[GAITC_INPUTS + 1], k;
@@ -282,11 +293,7 @@ static uint8_t controller_command(void)
     }
     puts_("M ");
     put_uint(move);
-    puts_(" g=");
-    put_uint(controller.goal);
-    puts_(" o=");
-    for (k = 0; k < GAITC_FIELDS; k++) put(digit36(controller.value[k]));
-    end_line();
+    put_state();
     return 1;
 }
 
@@ -334,16 +341,11 @@ static uint8_t grade(uint8_t channel)
 
 static void auto_report(uint16_t move)
 {
-    uint8_t k;
     puts_("A ");
     put_uint(auto_steps);
     puts_(" m=");
     put_uint(move);
-    puts_(" g=");
-    put_uint(controller.goal);
-    puts_(" o=");
-    for (k = 0; k < GAITC_FIELDS; k++) put(digit36(controller.value[k]));
-    end_line();
+    put_state();
 }
 
 static void auto_step(void)
