@@ -52,7 +52,11 @@ def _avr(spec: gaitc.Spec, ctrl: CompactController) -> str:
         try:
             built = gaitc.generate(spec, ctrl, Target.AVR, folder)
         except GaitcError:
-            return "too big"
+            try:
+                built = gaitc.generate(spec, ctrl, Target.AVR, folder, monitor=False)
+            except GaitcError:
+                return "too big"
+            return f"too big; {built.flash}/{built.ram} without the monitor"
     return f"{built.flash}/{built.ram}"
 
 

@@ -98,6 +98,46 @@ def test_the_board_makes_the_python_moves_for_10000_steps(
     assert steps >= 10_000
 
 
+def test_the_8_leg_robot_makes_the_python_moves_on_the_board_without_its_monitor(
+        tmp_path: Path, tmp_path_factory: pytest.TempPathFactory) -> None:
+    """The generated 8-leg, health-3 robot (bench lab8 3x5: 17,217 explicit nodes): with its
+    assumption monitor it does not fit the ATmega328P, without it it does, and the board
+    gives the Python moves for 10,000 steps."""
+    sys.path.insert(0, str(ROOT))
+    from bench.families.lab8 import lab8
+
+    spec = gaitc.parse(lab8(3, 5), name=str(tmp_path / "lab8.gait"))
+    made = gaitc.synthesize(spec, form="compact")
+    assert made.verified and isinstance(made.controller, CompactController)
+    ctrl = made.controller
+    with pytest.raises(FirmwareError, match="does not fit on the ATmega328P"):
+        gaitc.generate(spec, ctrl, "avr", tmp_path / "full")
+    assert not (tmp_path / "full").exists()
+    built = gaitc.generate(spec, ctrl, "avr", tmp_path / "board", monitor=False)
+    assert built.program is not None and built.flash is not None and built.flash < 32256
+    plain = build_firmware(tmp_path_factory.mktemp("plain"))
+    image = Image(built.program, built.program.with_suffix(".hex"), plain.simulator)
+    fields = ctrl.vocabulary.fields
+    steps = 0
+    with SimulatedBoard(image, tmp_path / "pins.jsonl") as sim:
+        port = serial.Serial(sim.port, 115200, timeout=2.0)
+        for adversarial, seed in ((False, 21), (True, 22)):
+            walk = _walk(spec, ctrl, 5000, seed, adversarial)
+            first, _ = next(walk)
+            run = Runner(ctrl, first)
+            state = "".join(DIGITS[run.state[f.name]] for f in fields)
+            assert ask(port, f"C s {digits(ctrl, first)}") == f"M 0 g=0 o={state}"
+            for chosen, _ in walk:
+                values = run.step(chosen)
+                move = ctrl.moves.index(tuple(values[f.name] for f in ctrl.vocabulary.outputs))
+                state = "".join(DIGITS[run.state[f.name]] for f in fields)
+                assert ask(port, f"C x {digits(ctrl, chosen)}") == (
+                    f"M {move} g={run.goal} o={state}")
+                steps += 1
+        port.close()
+    assert steps >= 10_000
+
+
 def test_a_malformed_controller_command_is_refused_and_vents(
         robot_a: tuple[gaitc.Spec, CompactController], link: serial.Serial) -> None:
     _, ctrl = robot_a

@@ -37,6 +37,7 @@ from gaitc.diagnostics import ControllerError
 from gaitc.sim.strategy import view_of
 
 ROOT = Path(__file__).resolve().parent.parent
+needs_gcc_early = pytest.mark.skipif(shutil.which("gcc") is None, reason="gcc is not installed")
 SPECS = ROOT / "specs"
 ROBOT_A = SPECS / "thesis_robot_a.gait"
 QUICK = ["thesis_robot_a.gait", "thesis_robot_b.gait", "corridor_hazard.gait",
@@ -195,6 +196,23 @@ def test_a_truncated_file_and_another_specs_controller_are_refused(
     err = capsys.readouterr().err
     assert err.startswith(f"{controller}:1:1: error: the controller does not realize ")
     assert not (tmp_path / "out").exists()
+
+
+@needs_gcc_early
+def test_codegen_reports_its_sizes_and_can_leave_the_monitor_out(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    spec = SPECS / "corridor_hazard.gait"
+    controller = tmp_path / "c.json"
+    assert main(["synth", str(spec), "--compact", "-o", str(controller)]) == 0
+    capsys.readouterr()
+    sizes = []
+    for extra in ([], ["--no-monitor"]):
+        assert main(["codegen", str(spec), str(controller), "--target", "c", "-o",
+                     str(tmp_path / f"out{len(extra)}"), "--json", *extra]) == 0
+        found = json.loads(capsys.readouterr().out)
+        assert found["target"] == "c" and found["flash"] is None
+        sizes.append(found["table_bytes"])
+    assert sizes[1] < sizes[0]
 
 
 def test_render_policy_prints_the_tables_whole(tmp_path: Path,

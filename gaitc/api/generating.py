@@ -9,6 +9,7 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
 from pathlib import Path
 
 from gaitc.api.loading import Spec, SpecLike, resolve
@@ -17,6 +18,7 @@ from gaitc.codegen.board import BoardTables
 from gaitc.codegen.build import Built, Target, build
 from gaitc.codegen.tables import table_bytes
 from gaitc.compact.controller import CompactController
+from gaitc.compact.diagram import leaf
 from gaitc.compact.rules import RuleTables, rule_tables
 from gaitc.diagnostics import ControllerError, Span, UsageError
 from gaitc.ir.bddfile import SymbolicController
@@ -72,10 +74,11 @@ def compact_policy(spec: SpecLike, controller: CompactController | SymbolicContr
 
 
 def generate(spec: SpecLike, controller: CompactController | SymbolicController | str | Path,
-             target: Target | str, out_dir: str | Path) -> Built:
+             target: Target | str, out_dir: str | Path, *, monitor: bool = True) -> Built:
     """C for ``target`` (``c`` or ``avr``) in ``out_dir``, from a compact (or symbolic)
     controller proved against ``spec`` first; a controller that fails the proof, or an AVR
-    build that does not fit, writes nothing."""
+    build that does not fit, writes nothing.  ``monitor=False`` leaves the assumption
+    monitor out: the board then checks only that the levels it grades are in range."""
     chosen = Target.parse(str(target), "--target")
     resolved = resolve(spec)
     file = str(controller) if isinstance(controller, (str, Path)) else ""
@@ -92,6 +95,8 @@ def generate(spec: SpecLike, controller: CompactController | SymbolicController 
     if chosen == Target.AVR and any(len(f.labels) > 36 for f in found.vocabulary.inputs):
         raise UsageError("the board's C command reads one base-36 digit per input: an input "
                          "field with more than 36 values needs --target c")
+    if not monitor:
+        found = replace(found, assumed_root=leaf(1))
     return build(found, out_dir, chosen, file, _board(resolved, found, chosen))
 
 

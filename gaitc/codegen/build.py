@@ -36,6 +36,8 @@ HOST = Path(__file__).resolve().parent / "host"
 #: which the stack needs some: a build whose static RAM passes RAM_LIMIT is refused.
 FLASH_LIMIT: Final = 32 * 1024 - 512
 RAM_LIMIT: Final = 2048 - 256
+HINT_TOO_BIG: Final = ("use --target c for a larger host, --no-monitor to leave the assumption "
+                       "monitor out, or simplify the task (fewer regions, gaits or levels)")
 
 
 class Target(Choice):
@@ -137,8 +139,7 @@ def build(ctrl: CompactController, out_dir: str | Path, target: Target | str,
             raise FirmwareError(
                 f"the controller does not fit on the ATmega328P: its tables alone are "
                 f"{tables.bytes} bytes, more than the {FLASH_LIMIT} bytes of flash",
-                _where(file), "use --target c for a larger host, or simplify the task "
-                "(fewer regions, gaits or health levels)")
+                _where(file), HINT_TOO_BIG)
         elf = work / "gaitboard.elf"
         defines = ["-DGAITC_CONTROLLER"]
         extra: list[Path] = []
@@ -157,15 +158,14 @@ def build(ctrl: CompactController, out_dir: str | Path, target: Target | str,
                 f"the controller does not fit on the ATmega328P: the firmware overflows its "
                 f"{'flash' if over.group(1) == 'text' else 'RAM'} by {over.group(2)} bytes; "
                 f"its tables alone are {tables.bytes} bytes", _where(file),
-                "use --target c for a larger host, or simplify the task") from None
+                HINT_TOO_BIG) from None
         flash, ram = sizes(elf)
         if flash > FLASH_LIMIT or ram > RAM_LIMIT:
             raise FirmwareError(
                 f"the controller does not fit on the ATmega328P: the firmware would take "
                 f"{flash} bytes of flash (limit {FLASH_LIMIT}) and {ram} bytes of static RAM "
                 f"(limit {RAM_LIMIT}); its tables alone are {tables.bytes} bytes",
-                _where(file), "use --target c for a larger host, or simplify the task "
-                "(fewer regions, gaits or health levels)")
+                _where(file), HINT_TOO_BIG)
         hexfile = work / "gaitboard.hex"
         _run(["avr-objcopy", "-O", "ihex", "-R", ".eeprom", str(elf), str(hexfile)],
              "avr-objcopy gaitboard.elf")

@@ -40,12 +40,17 @@ def register(sub: Any) -> None:
     p.add_argument("--target", required=True, choices=[str(t) for t in gaitc.Target],
                    help="c: a host (no size limit); avr: the valve board's firmware")
     p.add_argument("-o", "--out", required=True, metavar="DIR", help="output folder")
+    p.add_argument("--no-monitor", action="store_true",
+                   help="leave the assumption monitor out (smaller tables): a board running "
+                   "alone then checks only that the levels it grades are in range, not that "
+                   "they are moves the spec's assumptions allow")
     p.add_argument("--json", action="store_true", help="print the result as JSON")
     p.set_defaults(run=run_codegen)
 
 
 def run_codegen(args: argparse.Namespace) -> int:
-    built = gaitc.generate(args.spec, args.controller, args.target, args.out)
+    built = gaitc.generate(args.spec, args.controller, args.target, args.out,
+                           monitor=not args.no_monitor)
     if args.json:
         print_json(document("codegen", {"file": args.spec, "controller": args.controller,
                                         **built.to_json()}))
