@@ -195,3 +195,16 @@ def test_cli_on_violation(tmp_path: Path, capsys: pytest.CaptureFixture[str]) ->
     assert "worst: taken as L1 2, L2 3, hazard none" in out
     assert main(argv) == 1  # stop, the default
     assert "breaks the assumption 'eq. 3.5" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("thresholds", ["[.nan, 0.2]", "[0.4, -.inf]", "[.inf, 0.2]",
+                                        "[true, 0.2]"])
+def test_a_sensing_file_with_a_threshold_that_is_no_finite_number_is_refused(
+        tmp_path: Path, thresholds: str) -> None:
+    path = tmp_path / "bad.sensing.yaml"
+    path.write_text(f"legs:\n  L1:\n    thresholds: {thresholds}\n", encoding="utf-8")
+    with pytest.raises(CalibrationError) as caught:
+        read_sensing(path)
+    assert caught.value.message == ("leg L1: thresholds must be a descending list of finite "
+                                    "numbers and hysteresis a finite number >= 0")
+    assert caught.value.span is not None and caught.value.span.file == str(path)

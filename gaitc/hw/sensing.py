@@ -284,10 +284,12 @@ def read_sensing(path: str | Path) -> dict[str, LegCalibration]:
         th = entry.get("thresholds") if isinstance(entry, dict) else None
         margin = entry.get("hysteresis", DEFAULT_HYSTERESIS) if isinstance(entry, dict) else 0
         if (not isinstance(th, list) or not th
-                or not all(isinstance(t, int | float) for t in [*th, margin])
+                or not all(isinstance(t, int | float) and not isinstance(t, bool)
+                           and math.isfinite(t) for t in [*th, margin])
                 or any(a <= b for a, b in itertools.pairwise(th)) or margin < 0):
             raise CalibrationError(f"leg {leg}: thresholds must be a descending list of "
-                                   "numbers and hysteresis a number >= 0", _where(name))
+                                   "finite numbers and hysteresis a finite number >= 0",
+                                   Span(name, 1, 1))
         out[str(leg)] = LegCalibration(tuple(float(t) for t in th), float(margin))
     return out
 
