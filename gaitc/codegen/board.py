@@ -13,6 +13,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 from dataclasses import dataclass
 
+from gaitc.codegen.tables import input_positions
 from gaitc.compact.controller import CompactController
 from gaitc.gaitgraph.pairing import ValveSequence
 from gaitc.hw.sensing import LegCalibration, default_calibration
@@ -65,12 +66,9 @@ def board_tables(ctrl: CompactController, primitives: Mapping[str, ValveSequence
         states = bound.states if bound is not None else ()
         sequences.append(tuple(sum(1 << i for i, c in enumerate(s[:CHANNELS]) if c == "1")
                                for s in states))
-    input_pos, n = [], 0
-    for f in ctrl.vocabulary.fields:
-        input_pos.append(n if f.is_input else NONE)
-        n += int(f.is_input)
     return BoardTables(tuple(leg_field), tuple(top), tuple(thresholds), tuple(sequences),
-                       fields["gait"], fields.get("hazard", NONE), tuple(input_pos))
+                       fields["gait"], fields.get("hazard", NONE),
+                       input_positions(ctrl.vocabulary.fields))
 
 
 def board_header(t: BoardTables) -> str:

@@ -16,7 +16,6 @@ from __future__ import annotations
 import json
 import re
 import shutil
-import subprocess
 import tempfile
 from dataclasses import dataclass
 from pathlib import Path
@@ -29,7 +28,14 @@ from gaitc.compact.controller import CompactController
 from gaitc.diagnostics import Span
 from gaitc.diagnostics.choices import Choice
 from gaitc.diagnostics.files import make_folder, write_atomically
-from gaitc.hw.firmware import AVR_FLAGS, HOST_FLAGS, SOURCES, FirmwareError, missing_tools
+from gaitc.hw.firmware import (
+    AVR_FLAGS,
+    HOST_FLAGS,
+    SOURCES,
+    FirmwareError,
+    missing_tools,
+    run_tool,
+)
 
 HOST = Path(__file__).resolve().parent / "host"
 #: The ATmega328P: 32 KB of flash (the bootloader's 512 bytes kept free) and 2 KB of RAM, of
@@ -77,18 +83,6 @@ def _where(file: str) -> Span:
     return Span(file or "<codegen>", 1, 1)
 
 
-def _run(argv: list[str], what: str) -> str:
-    try:
-        done = subprocess.run(argv, capture_output=True, text=True, check=False)
-    except OSError as err:
-        raise FirmwareError(f"cannot run {argv[0]}: {err}", _where(what)) from None
-    if done.returncode != 0:
-        detail = (done.stderr or done.stdout).strip().splitlines()
-        raise FirmwareError(f"{what} failed: " + (" | ".join(detail[-5:]) or "no output"),
-                            _where(what))
-    return done.stdout
-
-
 def write_sources(ctrl: CompactController, folder: Path, tables: Tables | None = None
                   ) -> tuple[Path, Path]:
     """``gaitc_controller.h`` and ``.c`` in ``folder``, each written whole or not at all."""
@@ -101,7 +95,7 @@ def write_sources(ctrl: CompactController, folder: Path, tables: Tables | None =
 
 def sizes(elf: Path) -> tuple[int, int]:
     """Flash (text + data) and static RAM (data + bss) of an AVR image, by avr-size."""
-    out = _run(["avr-size", "-A", str(elf)], "avr-size")
+    out = run_tool(["avr-size", "-A", str(elf)], "avr-size")
     section: dict[str, int] = {}
     for line in out.splitlines():
         parts = line.split()
@@ -127,9 +121,10 @@ def build(ctrl: CompactController, out_dir: str | Path, target: Target | str,
             program: Path | None = None
             if shutil.which("gcc") is not None:
                 program = work / "gaitc-run"
-                _run(["gcc", *HOST_FLAGS, "-DGAITC_DUMP", f"-I{work}", "-o", str(program),
+                run_tool(["gcc", *HOST_FLAGS, "-DGAITC_DUMP", f"-I{work}", "-o", str(program),
                       str(c), str(HOST / "driver.c")], "gcc gaitc_controller.c")
-            return _publish(work, out, [h, c], program, Built(chosen, (), None, tables.bytes))
+            files, built = _publish(out, [h, c], program)
+            return Built(chosen, files, built, tables.bytes)
         need = missing_tools(simulator=False)
         if need:
             raise FirmwareError(f"cannot build the board's firmware: missing {', '.join(need)}",
@@ -148,7 +143,7 @@ def build(ctrl: CompactController, out_dir: str | Path, target: Target | str,
             write_atomically(extra[0], board_header(board))
             defines.append("-DGAITC_BOARD")
         try:
-            _run(["avr-gcc", *AVR_FLAGS, *defines, f"-I{work}", "-o", str(elf),
+            run_tool(["avr-gcc", *AVR_FLAGS, *defines, f"-I{work}", "-o", str(elf),
                   str(SOURCES / "gaitboard.c"), str(c)], "avr-gcc gaitboard.c with the controller")
         except FirmwareError as err:
             over = re.search(r"region .(text|data). overflowed by (\d+) bytes", err.message)
@@ -167,25 +162,26 @@ def build(ctrl: CompactController, out_dir: str | Path, target: Target | str,
                 f"(limit {RAM_LIMIT}); its tables alone are {tables.bytes} bytes",
                 _where(file), HINT_TOO_BIG)
         hexfile = work / "gaitboard.hex"
-        _run(["avr-objcopy", "-O", "ihex", "-R", ".eeprom", str(elf), str(hexfile)],
+        run_tool(["avr-objcopy", "-O", "ihex", "-R", ".eeprom", str(elf), str(hexfile)],
              "avr-objcopy gaitboard.elf")
-        return _publish(work, out, [h, c, *extra, hexfile], elf,
-                        Built(chosen, (), None, tables.bytes, flash, ram))
+        files, built = _publish(out, [h, c, *extra, hexfile], elf)
+        return Built(chosen, files, built, tables.bytes, flash, ram)
 
 
-def _publish(work: Path, out: Path, files: list[Path], program: Path | None,
-             built: Built) -> Built:
+def _copy(path: Path, out: Path) -> Path:
+    """``path`` into ``out`` whole or not at all, its mode kept (a program stays runnable)."""
+    target, tmp = out / path.name, out / f".{path.name}.part"
+    shutil.copy2(path, tmp)
+    tmp.replace(target)
+    return target
+
+
+def _publish(out: Path, files: list[Path], program: Path | None
+             ) -> tuple[tuple[Path, ...], Path | None]:
+    """The built ``files`` and ``program`` copied from the scratch folder into ``out``."""
     make_folder(out)
-    written = []
-    for path in [*files, *([program] if program is not None else [])]:
-        target = out / path.name
-        tmp = out / f".{path.name}.part"
-        shutil.copy2(path, tmp)
-        tmp.replace(target)
-        written.append(target)
-    return Built(built.target, tuple(written[:len(files)]),
-                 written[-1] if program is not None else None, built.table_bytes,
-                 built.flash, built.ram)
+    return (tuple(_copy(f, out) for f in files),
+            None if program is None else _copy(program, out))
 
 
 def read_dump(text: str) -> dict[str, list[int]]:

@@ -17,14 +17,17 @@ fit in the board's flash beside the firmware.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Final
 
 from gaitc.compact.controller import CompactController
 from gaitc.compact.diagram import leaf_value, reachable_nodes
+from gaitc.compact.fields import Field
 from gaitc.diagnostics import ControllerError
 
 LEAF: Final = 0x8000  # a child reference at or above this is a leaf
+NOT_INPUT: Final = 255  # the input position of an output field
 
 
 @dataclass(frozen=True)
@@ -39,14 +42,15 @@ class Tables:
     slot_field: tuple[int, ...]
     slot_next: tuple[int, ...]
     field_sizes: tuple[int, ...]
-    field_inputs: tuple[int, ...]  # per field 1 when the environment sets it
+    input_pos: tuple[int, ...]  # per field its place among the inputs, NOT_INPUT for outputs
+    output_field: tuple[int, ...]  # per output, its field
     goals: int
 
     @property
     def bytes(self) -> int:
         return (len(self.node_slot) + 2 * len(self.node_first) + 2 * len(self.kids)
                 + len(self.moves) + 2 * len(self.roots) + 2 * len(self.slot_field)
-                + 2 * len(self.field_sizes))
+                + 2 * len(self.field_sizes) + len(self.output_field))
 
 
 def flatten(ctrl: CompactController) -> Tables:
@@ -81,8 +85,19 @@ def flatten(ctrl: CompactController) -> Tables:
         slot_field=tuple(index[s.field.name] for s in ctrl.slots),
         slot_next=tuple(int(s.next) for s in ctrl.slots),
         field_sizes=tuple(len(f.labels) for f in fields),
-        field_inputs=tuple(int(f.is_input) for f in fields),
+        input_pos=input_positions(ctrl.vocabulary.fields),
+        output_field=tuple(k for k, f in enumerate(fields) if not f.is_input),
         goals=ctrl.goal_count)
+
+
+def input_positions(fields: Sequence[Field]) -> tuple[int, ...]:
+    """Per field its place in the generated code's input array (:data:`NOT_INPUT` for an
+    output field)."""
+    out, n = [], 0
+    for f in fields:
+        out.append(n if f.is_input else NOT_INPUT)
+        n += int(f.is_input)
+    return tuple(out)
 
 
 def table_bytes(ctrl: CompactController) -> int:

@@ -23,7 +23,6 @@ from __future__ import annotations
 import json
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
-from pathlib import Path
 from typing import Any, Final
 
 from gaitc.compact.diagram import Branch, Ref, Slot, evaluate, leaf_value, paths, reachable_nodes
@@ -170,12 +169,16 @@ class Runner:
 def relations(bdd: Any, ctrl: CompactController) -> dict[str, Any]:
     """The diagrams as BDDs of ``bdd`` over the spec's bits: per goal the move relation
     (path cube and move cube), the goal functions and the start relation or set."""
-    built: dict[Ref, Any] = {}
     move_cubes = [_move_cube(bdd, ctrl, k, primed=True) for k in range(len(ctrl.moves))]
+    truth = [bdd.false, bdd.true]
+    # nodes shared by several roots are built once per reading of the leaves
+    cache: dict[int, dict[Ref, Any]] = {id(move_cubes): {}, id(truth): {}}
 
     def diagram(root: Ref, leaves: Sequence[Any]) -> Any:
-        built.clear()
+        built = cache[id(leaves)]
         for index in reachable_nodes(ctrl.nodes, [root]):
+            if index in built:
+                continue
             branch = ctrl.nodes[index]
             slot = ctrl.slots[branch.field]
             out = bdd.false
@@ -185,7 +188,6 @@ def relations(bdd: Any, ctrl: CompactController) -> dict[str, Any]:
             built[index] = out
         return leaves[leaf_value(root)] if root < 0 else built[root]
 
-    truth = [bdd.false, bdd.true]
     start_leaves: Sequence[Any] = truth if ctrl.semantics == Semantics.ROBOTICS else move_cubes
     start = diagram(ctrl.start_root, start_leaves)
     if ctrl.semantics != Semantics.ROBOTICS:
@@ -275,7 +277,7 @@ def compact_to_dict(ctrl: CompactController) -> dict[str, Any]:
                     "values": [{"label": label, "bits": {b: int(on) for b, on in cube}}
                                for label, cube in zip(f.labels, f.cubes, strict=True)]}
                    for f in ctrl.vocabulary.fields],
-        "slots": [[f"{s.field.name}", int(s.next)] for s in ctrl.slots],
+        "slots": [[s.field.name, int(s.next)] for s in ctrl.slots],
         "moves": [list(m) for m in ctrl.moves],
         "roots": {"moves": list(ctrl.move_roots), "reached": list(ctrl.reached_roots),
                   "start": ctrl.start_root, "assumed": ctrl.assumed_root},
@@ -410,11 +412,3 @@ def compact_from_dict(data: Any, file: str = "") -> CompactController:
         assumed_root=assumed, inputs=tuple(inputs), outputs=tuple(outputs), integers=integers,
         semantics=semantics, solver=str(head.get("solver", "embedded")),
         source=dict(source) if isinstance(source, dict) else None)
-
-
-def read_compact(path: str | Path) -> CompactController:
-    """Read a compact controller file (see :func:`compact_from_dict`)."""
-    from gaitc.ir.controller import read_controller_json
-
-    data = read_controller_json(str(path))
-    return compact_from_dict(data, str(path))

@@ -57,10 +57,6 @@ class Slot:
     field: Field
     next: bool = False
 
-    @property
-    def name(self) -> str:
-        return f"{self.field.name}'" if self.next else self.field.name
-
 
 DONT_CARE: Ref = 2**31  # a child no state of the care set reaches
 
@@ -69,12 +65,11 @@ class Builder:
     """Builds diagrams into one shared node table (roots of several goals share nodes)."""
 
     def __init__(self, bdd: Any, slots: Sequence[Slot], outputs: Sequence[Field],
-                 primed_outputs: bool = True, greedy: bool = False) -> None:
+                 greedy: bool = False) -> None:
         self.bdd = bdd
         self.greedy = greedy
         self.slots = tuple(slots)
         self.outputs = tuple(outputs)
-        self.primed = primed_outputs
         self.nodes: list[Branch] = []
         self.moves: list[tuple[int, ...]] = []
         self._node_index: dict[Branch, int] = {}
@@ -105,7 +100,7 @@ class Builder:
     def move_cube(self, index: int) -> dict[str, bool]:
         out: dict[str, bool] = {}
         for f, value in zip(self.outputs, self.moves[index], strict=True):
-            out.update(f.cube(value, self.primed))
+            out.update(f.cube(value, True))
         return out
 
     # ------------------------------------------------------------------ moves
@@ -138,7 +133,7 @@ class Builder:
         values = []
         for f in self.outputs:
             for k in range(len(f.labels)):
-                narrowed = bdd.let(f.cube(k, self.primed), common)
+                narrowed = bdd.let(f.cube(k, True), common)
                 if narrowed != bdd.false:
                     values.append(k)
                     common = narrowed

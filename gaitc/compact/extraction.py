@@ -11,7 +11,6 @@ reordering, over a handful of orders that put the robot's own state first).
 
 from __future__ import annotations
 
-import time
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, replace
 from typing import Any, Final
@@ -19,28 +18,37 @@ from typing import Any, Final
 from gaitc.compact.controller import CompactController, relations
 from gaitc.compact.diagram import DONT_CARE, Builder, Slot, leaf
 from gaitc.compact.fields import Vocabulary
-from gaitc.ir.bddfile import SymbolicController, materialize
+from gaitc.diagnostics.choices import Choice
+from gaitc.ir.bddfile import SymbolicController, declare, materialize
 from gaitc.ir.spec import Semantics
 
-#: Field orders tried: the robot's outputs (where it is, how it got there) first, then the
-#: inputs just chosen, then the current inputs; the second puts the inputs in reverse.
-ORDERS: Final = ("greedy",)
-#: Every order :func:`slot_order` knows (the fixed ones are faster, rarely smaller).
-ALL_ORDERS: Final = ("greedy", "outputs-first", "inputs-reversed")
+
+class FieldOrder(Choice):
+    """How a diagram picks the field each node reads: by lookahead (``greedy``), or in a
+    fixed order, the robot's outputs first, then the inputs just chosen and the current
+    ones (``outputs-first``; ``inputs-reversed`` takes the inputs last to first)."""
+
+    GREEDY = "greedy"
+    OUTPUTS_FIRST = "outputs-first"
+    INPUTS_REVERSED = "inputs-reversed"
+
+
+#: The orders tried by default (the fixed ones are faster, rarely smaller).
+ORDERS: Final = (FieldOrder.GREEDY,)
 #: At most this many rounds of shrinking the care sets (each usually halves the gain).
 ROUNDS: Final = 4
 
 
-def slot_order(vocabulary: Vocabulary, how: str) -> list[Slot]:
+def slot_order(vocabulary: Vocabulary, how: FieldOrder) -> list[Slot]:
     """The slots in the order a fixed-order diagram reads them.  ``greedy`` puts each input's
     new value next to its current one, the order in which ρe (a conjunction over inputs,
     each relating a value to the next) has a small diagram."""
     outs = [Slot(f) for f in vocabulary.outputs]
-    if how == "greedy":
+    if how == FieldOrder.GREEDY:
         return outs + [s for f in vocabulary.inputs for s in (Slot(f, True), Slot(f))]
     chosen = [Slot(f, True) for f in vocabulary.inputs]
     now = [Slot(f) for f in vocabulary.inputs]
-    if how == "inputs-reversed":
+    if how == FieldOrder.INPUTS_REVERSED:
         chosen.reverse()
         now.reverse()
     return outs + chosen + now
@@ -58,17 +66,15 @@ class Game:
     semantics: Semantics
 
 
-def compact_from_roots(game: Game, vocabulary: Vocabulary, orders: Sequence[str] = ORDERS,
-                       deadline: float | None = None) -> CompactController:
-    """The compact controller of ``game``, the smallest of ``orders``.  ``deadline`` (a
-    ``time.monotonic()`` value) stops trying further orders once passed."""
+def compact_from_roots(game: Game, vocabulary: Vocabulary,
+                       orders: Sequence[FieldOrder] = ORDERS) -> CompactController:
+    """The compact controller of ``game``, the smallest of ``orders``."""
     best: CompactController | None = None
     for how in orders:
-        found = _one_order(game, vocabulary, slot_order(vocabulary, how), how == "greedy")
+        found = _one_order(game, vocabulary, slot_order(vocabulary, how),
+                           how == FieldOrder.GREEDY)
         if best is None or found.decision_nodes < best.decision_nodes:
             best = found
-        if deadline is not None and time.monotonic() > deadline:
-            break
     assert best is not None
     return best
 
@@ -188,15 +194,12 @@ def _defined(ref: int, otherwise: int | None = None) -> int:
 
 
 def compact_from_symbolic(ctrl: SymbolicController, vocabulary: Vocabulary,
-                          orders: Sequence[str] = ORDERS) -> CompactController:
+                          orders: Sequence[FieldOrder] = ORDERS) -> CompactController:
     """The compact controller of a stored symbolic controller."""
     from gaitc.ir.manager import manager
 
     bdd = manager()
-    bits = ctrl.inputs + ctrl.outputs
-    declared = list(ctrl.order) + [v for b in bits for v in (b, b + "'")
-                                  if v not in set(ctrl.order)]
-    bdd.declare(*declared)
+    declare(bdd, ctrl)
     roots = materialize(bdd, ctrl)
     found = compact_from_roots(Game(bdd, roots, ctrl.inputs, ctrl.outputs, ctrl.semantics),
                                vocabulary, orders)

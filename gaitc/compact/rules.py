@@ -14,6 +14,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 from gaitc.compact.diagram import Slot, paths
+from gaitc.ir.spec import Semantics
 
 if TYPE_CHECKING:
     from gaitc.compact.controller import CompactController
@@ -118,14 +119,13 @@ def move_words(ctrl: CompactController, move: int) -> str:
     return ", ".join(f"{f.name}' = {f.labels[values[f.name]]}" for f in outs)
 
 
-def _rules(ctrl: CompactController, root: int, labels: Sequence[str] | None = None
-           ) -> tuple[Rule, ...]:
+def _rules(ctrl: CompactController, root: int) -> tuple[Rule, ...]:
     robot = ctrl.vocabulary.domain == "robot"
     out = []
     for cond, leaf in paths(ctrl.nodes, root, len(ctrl.slots)):
         words = tuple(condition(ctrl.slots[k], chosen, robot)
                       for k, chosen in enumerate(cond) if chosen is not None)
-        out.append(Rule(words, labels[leaf] if labels is not None else move_words(ctrl, leaf)))
+        out.append(Rule(words, move_words(ctrl, leaf)))
     return tuple(out)
 
 
@@ -135,7 +135,7 @@ def rule_tables(ctrl: CompactController, goal_labels: Sequence[str] = (),
     labels = list(goal_labels) or [f"goal {j + 1}" for j in range(ctrl.goal_count)]
     goals = tuple((labels[j], _rules(ctrl, root)) for j, root in enumerate(ctrl.move_roots))
     start: tuple[Rule, ...] = ()
-    if ctrl.semantics != "robotics":
+    if ctrl.semantics != Semantics.ROBOTICS:
         start = _rules(ctrl, ctrl.start_root)
     size = (f"{ctrl.rules} rules, {ctrl.decision_nodes} decision nodes "
             f"(+{ctrl.monitor_nodes} for the assumption monitor)")

@@ -66,7 +66,9 @@ def missing_tools(simulator: bool = True) -> list[str]:
     return missing
 
 
-def _run(argv: list[str], what: str) -> None:
+def run_tool(argv: list[str], what: str) -> str:
+    """Run a toolchain program; its standard output, or :class:`FirmwareError` saying what
+    failed (the last lines of its errors) or that it is not installed."""
     try:
         done = subprocess.run(argv, capture_output=True, text=True, check=False)
     except OSError as err:
@@ -77,6 +79,7 @@ def _run(argv: list[str], what: str) -> None:
         detail = (done.stderr or done.stdout).strip().splitlines()
         raise FirmwareError(f"{what} failed: " + (" | ".join(detail[-5:]) or "no output"),
                             _where(what))
+    return done.stdout
 
 
 def build(out_dir: str | Path, simulator: bool = True) -> Image:
@@ -95,14 +98,14 @@ def build(out_dir: str | Path, simulator: bool = True) -> Image:
     out = Path(out_dir)
     make_folder(out)
     elf, hexfile = out / "gaitboard.elf", out / "gaitboard.hex"
-    _run(["avr-gcc", *AVR_FLAGS, "-o", str(elf), str(SOURCES / "gaitboard.c")],
+    run_tool(["avr-gcc", *AVR_FLAGS, "-o", str(elf), str(SOURCES / "gaitboard.c")],
          "avr-gcc gaitboard.c")
-    _run(["avr-objcopy", "-O", "ihex", "-R", ".eeprom", str(elf), str(hexfile)],
+    run_tool(["avr-objcopy", "-O", "ihex", "-R", ".eeprom", str(elf), str(hexfile)],
          "avr-objcopy gaitboard.elf")
     sim = None
     if simulator:
         sim = out / "gaitboard-sim"
-        _run(["gcc", *HOST_FLAGS, "-o", str(sim), str(SOURCES / "harness.c"), "-lsimavr",
+        run_tool(["gcc", *HOST_FLAGS, "-o", str(sim), str(SOURCES / "harness.c"), "-lsimavr",
               "-lm"],
              "gcc harness.c (libsimavr)")
     return Image(elf, hexfile, sim)

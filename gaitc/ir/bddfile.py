@@ -147,6 +147,14 @@ def _ref(child: Any, index: Mapping[int, Ref], true: Any, false: Any) -> Ref:
     return -found if child.negated else found
 
 
+def declare(bdd: Any, ctrl: SymbolicController) -> None:
+    """Declare ``ctrl``'s variables in ``bdd``: its order first, then every other bit and
+    primed bit of its inputs and outputs."""
+    listed = set(ctrl.order)
+    bdd.declare(*ctrl.order, *(v for b in ctrl.variables for v in (b, b + "'")
+                              if v not in listed))
+
+
 def materialize(bdd: Any, ctrl: SymbolicController) -> dict[str, Any]:
     """Every root of ``ctrl`` as a function of ``bdd`` (whose variables include ``order``).
 

@@ -15,7 +15,7 @@ from collections.abc import Callable, Iterator, Mapping
 from typing import Any, Generic, TypeVar
 
 from gaitc.diagnostics import ControllerError, Span
-from gaitc.ir.bddfile import SymbolicController, materialize
+from gaitc.ir.bddfile import SymbolicController, declare, materialize
 from gaitc.ir.bddwalk import State, all_assignments, first_assignment, holds_at
 from gaitc.ir.bits import bits_mismatch, spec_bits
 from gaitc.ir.manager import manager
@@ -46,9 +46,7 @@ class SymbolicStrategy(NodeReading):
         self._decoders = _decoders(ctrl, self.variables, file)
         self.bdd = manager()
         bits = ctrl.inputs + ctrl.outputs
-        declared = list(ctrl.order) + [v for b in bits for v in (b, b + "'")
-                                      if v not in set(ctrl.order)]
-        self.bdd.declare(*declared)
+        declare(self.bdd, ctrl)
         roots = materialize(self.bdd, ctrl)
         self.winning, self.env_init, self.sys_init = (
             roots["winning"], roots["env_init"], roots["sys_init"])

@@ -249,6 +249,19 @@ static uint8_t controller_started;
 
 static char digit36(uint8_t v) { return (char)(v < 10 ? '0' + v : 'a' + v - 10); }
 
+/* n base-36 digits (0-9, a-z) from s into values; 0 when one is not such a digit */
+static uint8_t read_digits36(const char *s, uint8_t *values, uint8_t n)
+{
+    uint8_t k;
+    for (k = 0; k < n; k++) {
+        char c = s[k];
+        if (c >= '0' && c <= '9') values[k] = (uint8_t)(c - '0');
+        else if (c >= 'a' && c <= 'z') values[k] = (uint8_t)(c - 'a' + 10);
+        else return 0;
+    }
+    return 1;
+}
+
 /* " g=<goal> o=<every field's value, base 36>" and the end of the line */
 static void put_state(void)
 {
@@ -262,21 +275,16 @@ static void put_state(void)
 
 static uint8_t controller_command(void)
 {
-    uint8_t in[GAITC_INPUTS + 1], k;
+    uint8_t in[GAITC_INPUTS + 1];
     uint16_t move = 0;
     if (line_len != 4 + GAITC_INPUTS || line[1] != ' ' || line[3] != ' '
         || (line[2] != 's' && line[2] != 'x')) {
         refuse("C needs s or x and one digit per input");
         return 0;
     }
-    for (k = 0; k < GAITC_INPUTS; k++) {
-        char c = line[4 + k];
-        if (c >= '0' && c <= '9') in[k] = (uint8_t)(c - '0');
-        else if (c >= 'a' && c <= 'z') in[k] = (uint8_t)(c - 'a' + 10);
-        else {
-            refuse("C needs base-36 digits");
-            return 0;
-        }
+    if (!read_digits36(line + 4, in, GAITC_INPUTS)) {
+        refuse("C needs base-36 digits");
+        return 0;
     }
     if (!gaitc_valid(in)) {
         refuse("C input out of range");
@@ -390,7 +398,7 @@ static void auto_tick(void)
 
 static uint8_t auto_command(void)
 {
-    uint8_t in[GAITC_INPUTS + 1], k, n = 0;
+    uint8_t in[GAITC_INPUTS + 1], n = 0;
     uint16_t dwell = 0;
     const char *p = line + 2;
     if (same(line, "AX")) {
@@ -401,8 +409,10 @@ static uint8_t auto_command(void)
         return 1;
     }
     if (line[0] == 'H' && line[1] == ' ' && line_len == 3) {
-        char c = line[2];
-        auto_hazard = (uint8_t)(c >= 'a' ? c - 'a' + 10 : c - '0');
+        if (!read_digits36(line + 2, &auto_hazard, 1)) {
+            refuse("H needs a base-36 digit");
+            return 0;
+        }
         puts_("OK");
         end_line();
         return 1;
@@ -413,12 +423,7 @@ static uint8_t auto_command(void)
         refuse("A needs a dwell of 20..5000 ms and one digit per input");
         return 0;
     }
-    for (k = 0, p++; k < GAITC_INPUTS; k++, p++) {
-        if (*p >= '0' && *p <= '9') in[k] = (uint8_t)(*p - '0');
-        else if (*p >= 'a' && *p <= 'z') in[k] = (uint8_t)(*p - 'a' + 10);
-        else in[k] = 255;
-    }
-    if (!gaitc_valid(in)) {
+    if (!read_digits36(p + 1, in, GAITC_INPUTS) || !gaitc_valid(in)) {
         refuse("A input out of range");
         return 0;
     }
