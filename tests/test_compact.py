@@ -165,6 +165,10 @@ def test_the_file_round_trips_and_is_deterministic(
     (lambda d: d["moves"].append([1]),
      "malformed compact controller: move [1] has no value for every output field"),
     (lambda d: d.pop("slots"), "malformed compact controller: 'slots' must be a list"),
+    (lambda d: d["gaitc"].update(integers={"x": {"low": "a", "high": 3, "bits": ["r12"],
+                                                 "owner": "sys"}}),
+     "malformed compact controller: 'gaitc.integers.x' must give low <= high, its bits and "
+     "owner"),
 ])
 def test_a_tampered_file_is_one_line_naming_it(
         compacts: dict[str, tuple[Spec, CompactController]], tmp_path: Path,

@@ -29,7 +29,7 @@ from gaitc.compact.diagram import Branch, Ref, Slot, evaluate, leaf_value, paths
 from gaitc.compact.fields import Field, Vocabulary
 from gaitc.diagnostics import ControllerError, Span
 from gaitc.ir.bddfile import SymbolicController, node_table
-from gaitc.ir.controller import IntegerVar
+from gaitc.ir.controller import IntegerVar, integers_from_json, integers_to_json
 from gaitc.ir.spec import GR1Spec, Semantics
 
 COMPACT_FORMAT: Final = "compact"
@@ -268,9 +268,7 @@ def compact_to_dict(ctrl: CompactController) -> dict[str, Any]:
             "format": COMPACT_FORMAT, "version": COMPACT_VERSION, "solver": ctrl.solver,
             "semantics": str(ctrl.semantics), "domain": ctrl.vocabulary.domain,
             "inputs": list(ctrl.inputs), "outputs": list(ctrl.outputs),
-            "integers": {name: {"low": iv.low, "high": iv.high, "bits": list(iv.bits),
-                                "owner": iv.owner}
-                         for name, iv in sorted(ctrl.integers.items())},
+            "integers": integers_to_json(ctrl.integers),
             **({"source": dict(ctrl.source)} if ctrl.source is not None else {}),
         },
         "fields": [{"name": f.name, "input": f.is_input, "numeric": f.numeric,
@@ -399,12 +397,7 @@ def compact_from_dict(data: Any, file: str = "") -> CompactController:
     for ref in (*move_roots, *reached, start, assumed):
         r.need(ref < len(nodes) if ref >= 0 else leaf_value(ref) < max(len(moves), 2),
                f"root {ref} is not a node or a leaf")
-    integers = {}
-    for name, iv in (head.get("integers") or {}).items():
-        r.need(isinstance(iv, dict) and {"low", "high", "bits", "owner"} <= set(iv),
-               f"integer {name!r} needs low, high, bits and owner")
-        integers[name] = IntegerVar(int(iv["low"]), int(iv["high"]), tuple(iv["bits"]),
-                                    str(iv["owner"]))
+    integers = integers_from_json(head.get("integers", {}), bits, r.need)
     source = head.get("source")
     return CompactController(
         vocabulary=vocabulary, slots=tuple(slots), nodes=tuple(nodes), moves=tuple(moves),

@@ -23,7 +23,7 @@ from typing import Any, Final
 
 from gaitc.diagnostics import ControllerError, Span
 from gaitc.diagnostics.versions import SYMBOLIC_CONTROLLER
-from gaitc.ir.controller import SYMBOLIC_FORMAT, IntegerVar
+from gaitc.ir.controller import SYMBOLIC_FORMAT, IntegerVar, integers_from_json, integers_to_json
 from gaitc.ir.spec import Semantics
 
 #: The single roots every symbolic controller has, and the per-goal lists.
@@ -185,11 +185,7 @@ def symbolic_to_json(ctrl: SymbolicController) -> str:
             "semantics": ctrl.semantics,
             "inputs": list(ctrl.inputs),
             "outputs": list(ctrl.outputs),
-            "integers": {
-                name: {"low": iv.low, "high": iv.high, "bits": list(iv.bits),
-                       "owner": iv.owner}
-                for name, iv in sorted(ctrl.integers.items())
-            },
+            "integers": integers_to_json(ctrl.integers),
             **({"source": dict(ctrl.source)} if ctrl.source is not None else {}),
         },
         "order": list(ctrl.order),
@@ -234,7 +230,8 @@ def symbolic_from_dict(data: Any, filename: str = "<controller>") -> SymbolicCon
     semantics = extras.get("semantics", "default")
     _need(semantics in SEMANTICS, f"'gaitc.semantics' must be one of {', '.join(SEMANTICS)}",
           span)
-    integers = _integers(extras.get("integers", {}), bits, span)
+    integers = integers_from_json(extras.get("integers", {}), bits,
+                                  lambda ok, message: _need(ok, message, span))
     source = extras.get("source")
     return SymbolicController(
 
@@ -310,16 +307,3 @@ def _roots(value: Any, n_nodes: int, span: Span) -> dict[str, Ref | tuple[Ref, .
           "goal each", span)
     return out
 
-
-def _integers(value: Any, bits: set[str], span: Span) -> dict[str, IntegerVar]:
-    _need(isinstance(value, dict), "'gaitc.integers' must be an object", span)
-    out: dict[str, IntegerVar] = {}
-    for name, raw in value.items():
-        ok = (isinstance(raw, dict) and _is_int(raw.get("low")) and _is_int(raw.get("high"))
-              and raw["low"] <= raw["high"] and raw.get("owner") in ("env", "sys")
-              and isinstance(raw.get("bits"), list) and raw["bits"]
-              and all(isinstance(b, str) and b in bits for b in raw["bits"]))
-        _need(bool(ok), f"'gaitc.integers.{name}' must give low <= high, its bits and "
-              "owner", span)
-        out[str(name)] = IntegerVar(raw["low"], raw["high"], tuple(raw["bits"]), raw["owner"])
-    return out

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import html
 import json
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -93,6 +93,32 @@ class Controller:
         return self.nodes[node].trans
 
 
+def integers_to_json(integers: Mapping[str, IntegerVar]) -> dict[str, Any]:
+    """The ``gaitc.integers`` object every controller file carries, sorted by name."""
+    return {name: {"low": iv.low, "high": iv.high, "bits": list(iv.bits), "owner": iv.owner}
+            for name, iv in sorted(integers.items())}
+
+
+def integers_from_json(value: Any, bits: set[str],
+                       need: Callable[[bool, str], None]) -> dict[str, IntegerVar]:
+    """Read a ``gaitc.integers`` object, calling ``need(ok, message)`` on each check (the
+    caller's reader raises with its own words)."""
+    need(isinstance(value, dict), "'gaitc.integers' must be an object")
+    out: dict[str, IntegerVar] = {}
+    for name, raw in value.items():
+        ok = (isinstance(raw, dict) and _is_int(raw.get("low")) and _is_int(raw.get("high"))
+              and raw["low"] <= raw["high"] and raw.get("owner") in ("env", "sys")
+              and isinstance(raw.get("bits"), list) and raw["bits"]
+              and all(isinstance(b, str) and b in bits for b in raw["bits"]))
+        need(bool(ok), f"'gaitc.integers.{name}' must give low <= high, its bits and owner")
+        out[str(name)] = IntegerVar(raw["low"], raw["high"], tuple(raw["bits"]), raw["owner"])
+    return out
+
+
+def _is_int(v: Any) -> bool:
+    return isinstance(v, int) and not isinstance(v, bool)
+
+
 def integers_of(bit_names: tuple[str, ...], inputs: frozenset[str]) -> dict[str, IntegerVar]:
     """Recognise SLUGS integer encodings (``x@0.MIN.MAX``, ``x@1``, ...) among bit names."""
     out: dict[str, IntegerVar] = {}
@@ -121,10 +147,7 @@ def controller_to_dict(c: Controller) -> dict[str, Any]:
         "kind": c.kind,
         "inputs": list(c.inputs),
         "outputs": list(c.outputs),
-        "integers": {
-            name: {"low": iv.low, "high": iv.high, "bits": list(iv.bits), "owner": iv.owner}
-            for name, iv in sorted(c.integers.items())
-        },
+        "integers": integers_to_json(c.integers),
         "initial": list(c.initial),
         "values": {str(k): c.values(k) for k in range(len(c.nodes))},
     }
