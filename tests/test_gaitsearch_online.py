@@ -104,7 +104,7 @@ def test_cli_gaits_lpa_and_learn(tmp_path: Path, capsys: pytest.CaptureFixture[s
     out = tmp_path / "plan.json"
     assert main(["gaits", ROBOT, "--method", "lpa", "--goal", "40,0", "-o", str(out)]) == 0
     text = capsys.readouterr().out
-    assert text.startswith("robot symmetric6: 24 chambers, method lpa, 100 valve states")
+    assert text.startswith("robot symmetric6: 24 chambers, kinematic gait graph, method lpa, 100 valve states")
     assert json.loads(out.read_text())["method"] == "lpa"
     log, svg = tmp_path / "log.json", tmp_path / "run.svg"
     code = main(
@@ -200,7 +200,8 @@ def test_an_exhausted_budget_is_a_solver_error(capsys: pytest.CaptureFixture[str
     code = main(["gaits", ROBOT, "--method", "astar", "--goal", "400,0", "--budget", "5"])
     assert code == 4
     err = capsys.readouterr().err
-    assert "no gait for goal (400 mm, 0 mm, 0 deg) within 5 node expansions (astar)" in err
+    assert ("no gait for goal (400 mm, 0 mm, 0 deg) within 5 node expansions per search and "
+            "10 in all, over 1000 valve states (astar)") in err
     assert "Traceback" not in err
 
 

@@ -81,7 +81,28 @@ def test_a_gait_that_does_not_go_far_enough_breaks_the_spec(
     assert "localisation reports region a but the controller expects b after gait east" in (
         captured.err
     )
+    assert "gait east went the right way (a direction error of 3 deg) but not far enough: " \
+        "it moved the chassis 24.8 mm (24.8 mm east, 1.4 mm south), 24.8 mm along the " \
+        "100.0 mm from a to b" in captured.err
+    assert "repeat each gait with --cycles N" in captured.err
     assert _poses(captured.out)[-1][2] == "a"
+
+
+def test_a_miswired_gait_is_reported_as_going_the_wrong_way(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    """The east gait's valves fire L3, which moves the chassis south: the report names the
+    direction error and the primitive, and does not say to repeat the gait."""
+    code = main(["drive", str(DATA / "radial8_miswired.gait"), "--backend", "physics",
+                 "--robot", RADIAL8, "--steps", "4", "--cycles", "1", "--cell-size", "100"])
+    err = capsys.readouterr().err
+    assert code == 1
+    assert ("localisation reports region a but the controller expects b after gait east: "
+            "gait east went the wrong way: it moved the chassis 20.0 mm (0.0 mm east, 20.0 mm "
+            "south), toward -90 deg, but b lies toward 0 deg from a, a direction error of "
+            "90 deg; its primitive (inline) runs 00000000, 00100000; stopped with all valves "
+            "vented") in err
+    assert "--cycles" not in err
 
 
 def test_regions_get_positions_and_sizes() -> None:

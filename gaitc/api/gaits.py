@@ -29,6 +29,7 @@ from gaitc.diagnostics.files import make_folder, write_atomically
 from gaitc.diagnostics.versions import GAITS
 
 if TYPE_CHECKING:
+    from gaitc.gaitgraph.displacement import Stillness
     from gaitc.gaitgraph.robot import Robot
     from gaitc.gaitgraph.search import SearchResult
     from gaitc.models.catalogue import ModelSearch
@@ -107,10 +108,11 @@ def _pair(text: str, option: str, default_angle: float) -> tuple[float, float]:
 @dataclass(frozen=True)
 class GaitOptions:
     """What :func:`gaits` searches: ``direction`` (``+x``, ``-y`` or an angle in degrees)
-    for chapter 2 and the models, ``method`` (None: chapter 2), ``model`` (a chapter 4 model
-    by name, :data:`gaitc.models.catalogue.MODELS`) with valve states of at most
-    ``max_open`` open valves, the ``seed`` of the random searches, at most ``max_states``
-    valve states, and the chapter 5 ``search``."""
+    for chapter 2 and the models, ``method`` (None: chapter 2), ``model`` (None: the chapter 4
+    model the robot file declares, else the kinematic graph; ``"kinematic"``: the kinematic
+    graph; or a model by name, :data:`gaitc.models.catalogue.MODEL_CHOICES`) with valve
+    states of at most ``max_open`` open valves, the ``seed`` of the random searches, at most
+    ``max_states`` valve states, and the chapter 5 ``search``."""
 
     direction: str = "+x"
     method: GaitMethod | str | None = None
@@ -144,6 +146,7 @@ class KinematicGaits:
     direction: str
     seed: int
     max_states: int
+    still: Stillness | None = None  # the graph's moving cycles, when no gait was found
 
     @property
     def found(self) -> bool:
@@ -151,14 +154,26 @@ class KinematicGaits:
 
     @property
     def hints(self) -> tuple[str, ...]:
-        """Advice for a search that found nothing (the command prints it on stderr)."""
+        """Why a search found nothing and what to do (the command prints it on stderr)."""
         if self.found:
             return ()
-        from gaitc.models.catalogue import MODELS
-
-        return (f"hint: the chapter 2 graph is kinematic and frictionless; a robot that walks "
-                f"by friction needs a dynamic model: --model {' or '.join(sorted(MODELS))} "
-                "(docs/models.md)",)
+        edges = len(self.result.graph.edges)
+        if self.still is not None and not self.still.moves:
+            why = (f"the kinematic gait graph has no displacement: every cycle of its {edges} "
+                   "transitions returns the chassis to where it started (chapter 2's model "
+                   "is frictionless, so feet that only push or slide move nothing)")
+        else:
+            why = (f"no cycle of the kinematic gait graph's {edges} transitions goes toward "
+                   f"{self.direction}")
+        if self.robot.models:
+            fix = (f"drop --model kinematic to search the robot file's {self.robot.models[0]} "
+                   "model, which models friction")
+        else:
+            fix = ("a robot that walks by friction needs a chapter 4 model: add a 'model:' "
+                   "section to the robot file (docs/models.md)")
+        if self.result.limit_reached:
+            fix = f"raise --max-states (the search stopped at {self.max_states}); or {fix}"
+        return (f"{why}; {fix}",)
 
     def __str__(self) -> str:
         from gaitc.gaitgraph.report import gait_table
@@ -207,12 +222,26 @@ class ModelGaits:
     found_search: ModelSearch
     model: str
     direction: str
+    still: Stillness | None = None  # the graph's moving cycles, when no gait was found
 
     @property
     def found(self) -> bool:
         return bool(self.found_search.gaits)
 
-    hints: tuple[str, ...] = ()
+    @property
+    def hints(self) -> tuple[str, ...]:
+        """Why a search found nothing and what to do (the command prints it on stderr)."""
+        if self.found:
+            return ()
+        edges = len(self.found_search.graph.motion)
+        if self.still is not None and not self.still.moves:
+            return (f"the {self.model} model's gait graph has no displacement: every cycle of "
+                    f"its {edges} simulated transitions returns the chassis to where it "
+                    "started; check the model's friction and limb parameters "
+                    "(docs/models.md), or allow more open valves with --max-open",)
+        return (f"no cycle of the {self.model} model's {edges} simulated transitions goes "
+                f"toward {self.direction}; more open valves (--max-open) give the search "
+                "more valve states",)
 
     def __str__(self) -> str:
         from gaitc.models.gait_graph import gait_rows
@@ -290,6 +319,8 @@ class GlobalGait:
     method: str
     goal: Goal
     plan: GaitPlan | None
+    model: str = "kinematic"  # the gait graph searched: kinematic or a chapter 4 model
+    reason: str | None = None  # why there is no plan, when the graph says so at once
 
     @property
     def found(self) -> bool:
@@ -300,19 +331,21 @@ class GlobalGait:
     def __str__(self) -> str:
         plan, goal = self.plan, self.goal
         if plan is None:
-            return f"robot {self.robot}: no gait toward {goal} found"
+            why = f": {self.reason}" if self.reason else ""
+            return f"robot {self.robot}: no gait toward {goal} found ({self.model}){why}"
         states, poses, edges = plan.graph
-        lines = [f"robot {self.robot}: {self.chambers} chambers, method {self.method}, "
-                 f"{states} valve states, {poses} poses, {edges} transitions", plan.table()]
+        lines = [f"robot {self.robot}: {self.chambers} chambers, {self.model} gait graph, "
+                 f"method {self.method}, {states} valve states, {poses} poses, {edges} "
+                 "transitions", plan.table()]
         if not plan.reached and self.method == "mcts":
             lines.append(f"the best cycle found misses the goal's tolerance ({goal.tolerance:g}"
                          f" mm, {goal.angle_tolerance:g} deg); more --iterations or a longer "
                          "--horizon may help")
         elif not plan.reached:
-            lines.append(f"the route reaches the goal's cells, but its continuous displacement "
-                         f"misses the tolerance ({goal.tolerance:g} mm, "
-                         f"{goal.angle_tolerance:g} deg): every transition is propagated from "
-                         "a cell centre; a finer --cell helps")
+            lines.append(f"no cycle within the search budget meets the tolerance "
+                         f"({goal.tolerance:g} mm, {goal.angle_tolerance:g} deg); this is the "
+                         "closest found, after re-planning toward tighter goal cells and on a "
+                         "finer lattice; a larger --budget or --max-states may help")
         return "\n".join(lines)
 
     def _repr_html_(self) -> str:
@@ -324,7 +357,8 @@ class GlobalGait:
     def to_json(self) -> dict[str, Any]:
         plan = self.plan
         states, poses, edges = plan.graph if plan is not None else (None, None, None)
-        return {"robot": self.robot, "method": self.method, "found": plan is not None,
+        return {"robot": self.robot, "method": self.method, "model": self.model,
+                "reason": self.reason, "found": plan is not None,
                 "reached": plan is not None and plan.reached, "valve_states": states,
                 "poses": poses, "transitions": edges,
                 "plan": None if plan is None else plan.to_dict()}
@@ -351,27 +385,33 @@ GaitSearch = KinematicGaits | ModelGaits | GlobalGait
 def gaits(robot: str | Path, options: GaitOptions | None = None) -> GaitSearch:
     """Gait primitives of the robot file ``robot`` (see the module's docstring).
 
+    The robot file decides the gait graph: its chapter 4 model when it declares one, else
+    the kinematic graph of chapter 2; ``options.model`` overrides it.
+
     >>> import gaitc
     >>> found = gaitc.gaits("specs/robots/symmetric6.yaml", gaitc.GaitOptions("+x"))
     >>> found.found, found.to_json()["gaits"][0]["rank"]
     (True, 1)
     """
+    from gaitc.gaitgraph.robot import load_robot
+    from gaitc.models.catalogue import chosen_model
+
     opts = options or GaitOptions()
     method = GaitMethod.parse(opts.method, "search method") if opts.method is not None else None
     if opts.max_states < 1:
         raise UsageError("--max-states must be at least 1")
-    if opts.model is not None:
-        return _model_gaits(str(robot), opts, method)
+    loaded = load_robot(robot)
+    model = chosen_model(loaded, opts.model)
     if method is not None and method.is_global:
-        return _global_gait(str(robot), opts, method)
+        return _global_gait(str(robot), loaded, opts, method, model)
     if opts.search.goal is not None:
         raise UsageError(f"--goal is for --method astar, lpa, dstar or mcts; the chapter 2 "
                          f"search (--method {(method or GaitMethod.CHAPTER2).value}) takes "
                          "--direction")
-    from gaitc.gaitgraph.robot import load_robot
+    if model is not None:
+        return _model_gaits(str(robot), opts, method, model)
     from gaitc.gaitgraph.search import search
 
-    loaded = load_robot(robot)
     direction = _direction(opts.direction)
     full = loaded.valve_count <= 12 and 1 << loaded.valve_count <= opts.max_states
     chosen = (method.value if method not in (None, GaitMethod.CHAPTER2) and method is not None
@@ -380,34 +420,60 @@ def gaits(robot: str | Path, options: GaitOptions | None = None) -> GaitSearch:
         raise UsageError(f"--seed seeds the random and reset searches; the full search of "
                          f"robot {loaded.name} tries every valve state, without random numbers")
     result = search(loaded, direction, chosen, opts.seed, opts.max_states)
-    return KinematicGaits(loaded, result, chosen, opts.direction, opts.seed, opts.max_states)
+    still = None
+    if not result.gaits:
+        from gaitc.gaitgraph.displacement import stillness
+
+        e = result.graph.edges
+        still = stillness(len(result.graph), e.src.tolist(), e.dst.tolist(), e.dx.tolist(),
+                          e.dy.tolist(), [math.degrees(r) for r in e.rot.tolist()])
+    return KinematicGaits(loaded, result, chosen, opts.direction, opts.seed, opts.max_states,
+                          still)
 
 
-def _model_gaits(robot: str, opts: GaitOptions, method: GaitMethod | None) -> ModelGaits:
-    from gaitc.models.catalogue import MODELS, load_model, search_gaits
+def _model_gaits(robot: str, opts: GaitOptions, method: GaitMethod | None,
+                 model: str) -> ModelGaits:
+    from gaitc.models.catalogue import load_model, sampled_states, search_gaits
 
-    if opts.seed != 0:
-        raise UsageError("--seed seeds the random and reset searches; --model searches "
-                         "the model's whole gait graph, without random numbers")
-    if method is not None or opts.search.goal is not None:
-        raise UsageError("--model searches the model's gait graph; --method and --goal are "
-                         "for the kinematic searches")
-    if opts.model not in MODELS:
-        raise UsageError(f"unknown model {opts.model!r}; use one of {', '.join(sorted(MODELS))}")
+    if method is GaitMethod.RESET:
+        raise UsageError(f"--method reset searches the kinematic graph's reset edges (thesis "
+                         f"2.5.2); the robot file's {model} model has none: add --model "
+                         "kinematic, or use --method full or random")
+    if opts.seed != 0 and method is not GaitMethod.RANDOM:
+        raise UsageError(f"--seed seeds the random searches; the {model} model's gait graph "
+                         "is searched whole, without random numbers (--method random samples "
+                         "--max-states valve states)")
     if opts.max_open < 1:
         raise UsageError("--max-open must be at least 1")
     direction = _direction(opts.direction)
-    loaded = load_model(opts.model, robot)
-    return ModelGaits(search_gaits(loaded, direction, opts.max_open), opts.model,
-                      opts.direction)
+    loaded = load_model(model, robot)
+    count = len(loaded.valve_legs)
+    limit = opts.max_states if method is GaitMethod.RANDOM else 1 << count
+    states = sampled_states(count, opts.max_open, limit, opts.seed)
+    found = search_gaits(loaded, direction, opts.max_open, states)
+    still = None
+    if not found.gaits:
+        from gaitc.gaitgraph.displacement import stillness
+
+        index = {s: i for i, s in enumerate(found.graph.states)}
+        pairs = sorted(found.graph.motion, key=lambda p: (index[p[0]], index[p[1]]))
+        steps = [found.graph.motion[p] for p in pairs]
+        still = stillness(len(index), [index[a] for a, _ in pairs],
+                          [index[b] for _, b in pairs], [p.x for p in steps],
+                          [p.y for p in steps], [math.degrees(p.theta) for p in steps])
+    return ModelGaits(found, model, opts.direction, still)
 
 
-def _global_gait(robot: str, opts: GaitOptions, method: GaitMethod) -> GlobalGait:
-    from gaitc.gaitgraph.robot import load_robot
-    from gaitc.search.api import plan_gait
+def _global_gait(robot: str, loaded: Robot, opts: GaitOptions, method: GaitMethod,
+                 model: str | None) -> GlobalGait:
+    from gaitc.search.api import first_planner, model_planner
 
     goal = opts.search.target(method.value)
     settings = opts.search.settings(opts.seed)
-    loaded = load_robot(robot)
-    plan = plan_gait(loaded, goal, method.value, settings, opts.max_states)
-    return GlobalGait(loaded.name, loaded.valve_count, method.value, goal, plan)
+    if model is None:
+        first = first_planner(loaded, goal, method.value, settings, opts.max_states)
+    else:
+        first = model_planner(robot, goal, method.value, settings, max_open=opts.max_open,
+                              model=model, max_states=opts.max_states)[0]
+    return GlobalGait(loaded.name, loaded.valve_count, method.value, goal, first.plan,
+                      model or "kinematic", first.reason)

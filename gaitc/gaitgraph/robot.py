@@ -83,6 +83,9 @@ class Robot:
     legs: tuple[Leg, ...]  # parents come before their children
     settings: Settings
     gaits: tuple[StoredGait, ...]
+    #: the chapter 4 models the file's ``model:`` section declares, by their names in
+    #: :data:`MODEL_SECTIONS` (in file order; the first is the one searched by default)
+    models: tuple[str, ...] = ()
 
     @property
     def valve_count(self) -> int:
@@ -188,7 +191,10 @@ class FieldReader:
 # ---------------------------------------------------------------- the file format
 
 _TOP = {"robot", "description", "chassis", "defaults", "legs", "gait_graph", "gaits"}
-_TOP |= {"model"}  # chapter 4 model parameters, read by softmodels (docs/models.md)
+_TOP |= {"model"}  # chapter 4 model parameters, read by gaitc.models (docs/models.md)
+#: The sections of ``model:``, each a chapter 4 model, and the name the commands give it
+#: (``--model``; :data:`gaitc.models.catalogue.MODELS` has a loader for each).
+MODEL_SECTIONS = {"spring_damper": "spring-damper", "active_passive": "active-passive"}
 _CHASSIS = {"mass", "cg", "outline", "contacts"}
 _LEG = {
     "name",
@@ -280,7 +286,17 @@ def parse_robot(text: str, path: str = "<robot>") -> Robot:
         if "gaits" in top
         else ()
     )
-    return Robot(**{**robot.__dict__, "gaits": gaits})
+    models = _models(r, top["model"]) if "model" in top else ()
+    return Robot(**{**robot.__dict__, "gaits": gaits, "models": models})
+
+
+def _models(r: FieldReader, node: yaml.Node) -> tuple[str, ...]:
+    """The models a ``model:`` section declares (their own readers check the rest)."""
+    sections = r.mapping(node, "model", set(MODEL_SECTIONS))
+    if not sections:
+        raise r.fail(node, f"the model section declares no model; use "
+                     f"{' or '.join(sorted(MODEL_SECTIONS))}")
+    return tuple(MODEL_SECTIONS[key] for key in sections)
 
 
 def _any(node: yaml.Node) -> set[str]:

@@ -77,6 +77,40 @@ def level_from_waveguide(extension: float, thresholds: Sequence[float]) -> int:
     return 1
 
 
+@dataclass(frozen=True)
+class Course:
+    """The last gait's chassis motion (mm, world frame) against the move it was to make,
+    from the centre of its start region to the centre of the region expected."""
+
+    moved: tuple[float, float]
+    wanted: tuple[float, float]
+
+    @property
+    def error(self) -> float:
+        """The angle between the motion and the move, degrees in [0, 180]."""
+        import math
+
+        (mx, my), (wx, wy) = self.moved, self.wanted
+        if math.hypot(mx, my) < 1e-9 or math.hypot(wx, wy) < 1e-9:
+            return 180.0
+        turn = math.degrees(math.atan2(my, mx) - math.atan2(wy, wx))
+        return abs((turn + 180.0) % 360.0 - 180.0)
+
+    @property
+    def progress(self) -> float:
+        """How far (mm) the motion went along the move."""
+        import math
+
+        (mx, my), (wx, wy) = self.moved, self.wanted
+        length = math.hypot(wx, wy)
+        return 0.0 if length < 1e-9 else (mx * wx + my * wy) / length
+
+
+#: A gait whose motion is this many degrees or more off its move went the wrong way
+#: (rather than too short).
+WRONG_WAY = 45.0
+
+
 class Backend(ABC):
     """A valve board plus sensors; a context manager that vents every valve when it closes."""
 
@@ -123,6 +157,13 @@ class Backend(ABC):
     def safety_note(self) -> str:
         """What is known of the valves after the last vent (for messages)."""
         return "all valves vented"
+
+    def course(self, source: str, target: str) -> Course | None:
+        """Where the chassis went during the last gait, against the move from region
+        ``source`` to region ``target``, for a backend that knows the chassis pose and the
+        regions' places (the default: unknown)."""
+        del source, target
+        return None
 
     def vent(self) -> None:
         """Vent every valve."""

@@ -10,12 +10,20 @@ is checked by the monitor and saved like a simulated one (``gaitc render map --r
 from __future__ import annotations
 
 import dataclasses
+import math
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 
 from gaitc.diagnostics import SpecSemanticError
 from gaitc.gaitgraph.pairing import ValveSequence, resolve_primitive
-from gaitc.hw.backend import Backend, HardwareError, Interrupted, SensorReading, where
+from gaitc.hw.backend import (
+    WRONG_WAY,
+    Backend,
+    HardwareError,
+    Interrupted,
+    SensorReading,
+    where,
+)
 from gaitc.hw.simulated import ScenarioFinished
 from gaitc.sim.domain import Domain, State
 from gaitc.sim.environments import Environment, Move, Request, Situation
@@ -93,6 +101,7 @@ class Driver:
         self.violations: list[str] = []  # readings that broke an assumption, as handled
         self.no_gait = next(g.name for g in domain.model.gaits if g.kind is GaitKind.NONE)
         self._ran_up_to = -1  # index of the last step whose gait was run
+        self._left = domain.model.start  # the region the last gait set out from
 
     def run(self, steps: int, spec_file: str = "") -> Run:
         """Open the backend, drive up to ``steps`` steps, vent and close; return the run."""
@@ -158,19 +167,63 @@ class Driver:
                                 where(self.backend.name))
         expected = domain.model.start if here is None else here.region
         if reading.region is not None and reading.region != expected:
-            after = "at the start" if here is None else f"after gait {here.gait}"
-            raise HardwareError(
-                f"localisation reports region {reading.region} but the controller expects "
-                f"{expected} {after}: the gait did not get there; stopped with all valves "
-                "vented", where(self.backend.name),
-                "on the physics backend a gait moves the robot only as far as the model "
-                "predicts per cycle: repeat each gait with --cycles N or shrink the regions "
-                "with --cell-size MM (docs/models.md)" if self.backend.name.startswith("physics")
-                else "check the gait's valve sequence and the localisation map")
+            raise self._off_course(reading.region, expected, here)
+        self._left = expected
         gait = self.no_gait if here is None else here.gait
         values = domain.encode(State(expected, gait, reading.health, reading.hazard))
         inputs: InputKey = tuple(int(values[name]) for name in self.simulator.strategy.inputs)
         return Request(inputs, describe(reading, here))
+
+
+    def _off_course(self, found: str, expected: str, here: State | None) -> HardwareError:
+        """The error for a reading in another region than the controller expects: a gait
+        that went the wrong way (its motion against the move, in degrees, and its
+        primitive) or one that went the right way but not far enough."""
+        after = "at the start" if here is None else f"after gait {here.gait}"
+        head = (f"localisation reports region {found} but the controller expects {expected} "
+                f"{after}")
+        tail = "stopped with all valves vented"
+        course = None if here is None else self.backend.course(self._left, expected)
+        if course is None or here is None:
+            physics = self.backend.name.startswith("physics")
+            return HardwareError(
+                f"{head}: the gait did not get there; {tail}", where(self.backend.name),
+                "on the physics backend a gait moves the robot only as far as the model "
+                "predicts per cycle: repeat each gait with --cycles N or shrink the regions "
+                "with --cell-size MM (docs/models.md)" if physics
+                else "check the gait's valve sequence and the localisation map")
+        mx, my = course.moved
+        moved = (f"moved the chassis {math.hypot(mx, my):.1f} mm ({_compass(mx, 'east', 'west')}"
+                 f", {_compass(my, 'north', 'south')})")
+        toward = f"toward {math.degrees(math.atan2(my, mx)):.0f} deg"
+        wanted = math.degrees(math.atan2(course.wanted[1], course.wanted[0]))
+        seq = self.primitives.get(here.gait)
+        primitive = ("" if seq is None else
+                     f"; its primitive ({seq.source}) runs {', '.join(seq.states)}")
+        if course.error >= WRONG_WAY:
+            return HardwareError(
+                f"{head}: gait {here.gait} went the wrong way: it {moved}, {toward}, but "
+                f"{expected} lies toward {wanted:.0f} deg from {self._left}, a direction "
+                f"error of {course.error:.0f} deg{primitive}; {tail}",
+                where(self.backend.name),
+                "check the primitive: a valve wired to another leg, or legs fired in "
+                "another order, sends the robot elsewhere ('gaitc gaits ROBOT --direction D' "
+                "predicts each direction's valve sequence)")
+        return HardwareError(
+            f"{head}: gait {here.gait} went the right way (a direction error of "
+            f"{course.error:.0f} deg) but not far enough: it {moved}, {course.progress:.1f} "
+            f"mm along the {_length(course.wanted):.1f} mm from {self._left} to {expected}; "
+            f"{tail}", where(self.backend.name),
+            "a gait moves the robot only as far as its cycle does: repeat each gait with "
+            "--cycles N or shrink the regions with --cell-size MM (docs/models.md)")
+
+
+def _compass(value: float, positive: str, negative: str) -> str:
+    return f"{abs(value):.1f} mm {positive if value >= 0 else negative}"
+
+
+def _length(vector: tuple[float, float]) -> float:
+    return math.hypot(*vector)
 
 
 VIOLATION_POLICIES = ("stop", "hold", "worst")

@@ -23,7 +23,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from gaitc.diagnostics.files import decode_text, read_input
-from gaitc.hw.backend import Backend, HardwareError, SensorReading, where
+from gaitc.hw.backend import Backend, Course, HardwareError, SensorReading, where
 from gaitc.sim.environments import Move
 from ltlcompiler.model import Model
 
@@ -220,6 +220,9 @@ class Localised(Backend):
 
     def safety_note(self) -> str:
         return self.inner.safety_note()
+
+    def course(self, source: str, target: str) -> Course | None:
+        return self.inner.course(source, target)
 
     def read_sensors(self) -> SensorReading:
         reading = self.inner.read_sensors()

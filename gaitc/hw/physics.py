@@ -16,7 +16,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from gaitc.hw.backend import Backend, HardwareError, SensorReading, where
+from gaitc.hw.backend import Backend, Course, HardwareError, SensorReading, where
 from gaitc.hw.localisation import RegionMap
 from gaitc.hw.simulated import SimulatedRobot
 from gaitc.models.motion import Pose2D
@@ -116,6 +116,16 @@ class PhysicsRobot(Backend):
         if self.state is None:
             return self.start
         return self.state.pose()
+
+    def course(self, source: str, target: str) -> Course | None:
+        """The chassis motion between the last two readings against the move from the
+        centre of ``source`` to the centre of ``target``."""
+        if len(self.placed) < 2 or source not in self.regions.polygons \
+                or target not in self.regions.polygons:
+            return None
+        before, after = self.placed[-2].pose, self.placed[-1].pose
+        a, b = centre(self.regions, source), centre(self.regions, target)
+        return Course((after.x - before.x, after.y - before.y), (b.x - a.x, b.y - a.y))
 
     def read_sensors(self) -> SensorReading:
         reading = self.inner.read_sensors()

@@ -9,18 +9,17 @@ predictions come from the chapter 4 model's gait graph where the robot file has 
 
 from __future__ import annotations
 
-import dataclasses
 from dataclasses import dataclass
 from pathlib import Path
 
 from gaitc.diagnostics import UsageError
-from gaitc.gaitgraph.robot import Robot, load_robot
+from gaitc.gaitgraph.robot import Robot
 from gaitc.search.goals import Goal
 from gaitc.search.growth import Grower
 from gaitc.search.physics_walker import PhysicsWalker
-from gaitc.search.planners import Planner, Settings, make_planner
+from gaitc.search.planners import Planner, Settings
 from gaitc.search.plans import GaitPlan
-from gaitc.search.predictions import PREDICTIONS, has_model, model_transitions
+from gaitc.search.predictions import PREDICTIONS, has_model
 from gaitc.search.walker import Mismatch, SimulatedWalker
 
 BACKENDS = ("sim", "physics")
@@ -57,7 +56,7 @@ def open_session(
     max_open: int = 1,
 ) -> Session:
     """The first plan for ``goal`` over ``predictions`` and the walker of ``backend``."""
-    from gaitc.search.api import check_method, first_planner, goal_for, graph_batches
+    from gaitc.search.api import check_method, first_planner, graph_batches, model_planner
 
     check_method(method)
     settings = settings or Settings()
@@ -80,7 +79,8 @@ def open_session(
                 "kinematic graph's poses (valve state and contact set) have no counterpart "
                 "in the model, so use --predictions model"
             )
-        planner, bot, plan = first_planner(robot, goal, method, settings, max_states)
+        first = first_planner(robot, goal, method, settings, max_states)
+        planner, bot, plan = first.planner, first.robot, first.plan
         walker: Walker = SimulatedWalker(
             planner.model.copy(),
             planner.start,
@@ -96,13 +96,9 @@ def open_session(
     if max_open < 1:
         raise UsageError("--max-open must be at least 1")
     path = robot if not isinstance(robot, Robot) else ""
-    load_robot(path)  # the robot file's own errors first, with their positions
-    found = model_transitions(path, max_open)
-    model = found.model
-    planner = make_planner(method, model, found.loaded.robot, found.start, goal_for(goal), settings)
-    plan = planner.plan()
-    if plan is not None:
-        plan = dataclasses.replace(plan, graph=(model.poses, model.poses, len(model)))
+    first, found = model_planner(path, goal, method, settings, max_open=max_open,
+                                 max_states=max_states)
+    planner, plan, model = first.planner, first.plan, found.model
     if backend == "physics":
         walker = PhysicsWalker(
             model.copy(), found.start, found.loaded, mismatch.noise, mismatch.seed, mismatch.model

@@ -53,15 +53,25 @@ class HybridPlanner:
         goal: Goal,
         settings: Settings,
         method: str = "lpa",
+        aim: Goal | None = None,
     ) -> None:
         self.model, self.robot, self.start, self.goal = model, robot, start, goal
         self.settings, self.method = settings, method
+        # the lattice's goal cells may be a tighter disc than the goal (``aim``), so that a
+        # route's continuous displacement, snapped cell by cell, still lands in the goal
         self.lattice = Lattice(
-            model, start, goal, settings.cell, settings.cell_angle, settings.slip_cost
+            model, start, aim or goal, settings.cell, settings.cell_angle, settings.slip_cost
         )
         self.lpa = lifelong(self.lattice, settings.budget) if method == "lpa" else None
         self.dstar = DStarLite(self.lattice, settings.budget) if method == "dstar" else None
         self.expanded = 0
+
+    def set_budget(self, budget: int) -> None:
+        """Expansions each later search (or repair) may take."""
+        self.settings = replace(self.settings, budget=budget)
+        for engine in (self.lpa, self.dstar):
+            if engine is not None:
+                engine.budget = budget
 
     def plan(self, explored: bool = True) -> GaitPlan | None:
         """Search (or repair) and return the gait; ``explored`` adds the explored cells."""
@@ -204,8 +214,11 @@ Planner = HybridPlanner | TreePlanner
 
 
 def make_planner(
-    method: str, model: TransitionModel, robot: str, start: int, goal: Goal, settings: Settings
+    method: str, model: TransitionModel, robot: str, start: int, goal: Goal, settings: Settings,
+    aim: Goal | None = None,
 ) -> Planner:
+    """The planner of ``method``; a lattice planner's goal cells are those of ``aim`` (by
+    default the goal itself)."""
     if method == "mcts":
         return TreePlanner(model, robot, start, goal, settings)
-    return HybridPlanner(model, robot, start, goal, settings, method)
+    return HybridPlanner(model, robot, start, goal, settings, method, aim)

@@ -13,26 +13,20 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
-import yaml
 
-from gaitc.models.catalogue import load_model
+from gaitc.gaitgraph.robot import load_robot
+from gaitc.models.catalogue import chosen_model, load_model
 from gaitc.models.gait_graph import ModelGraph, build_graph, valve_states, valve_text
 from gaitc.models.motion import LoadedModel
 from gaitc.search.transitions import TransitionModel
 
 PREDICTIONS = ("kinematic", "model")
-MODEL = "spring-damper"  # the one chapter 4 model a robot file can carry so far
 
 
 def has_model(path: str | Path) -> bool:
-    """Whether the robot file has a ``model: spring_damper:`` section (read loosely; the
-    model's own reader reports what is wrong with it)."""
-    try:
-        data = yaml.safe_load(Path(path).read_text(encoding="utf-8"))
-    except (OSError, UnicodeDecodeError, yaml.YAMLError):
-        return False
-    section = data.get("model") if isinstance(data, dict) else None
-    return isinstance(section, dict) and "spring_damper" in section
+    """Whether the robot file declares a chapter 4 model (read by the robot file's own
+    reader, so a broken file is reported with its position)."""
+    return bool(load_robot(path).models)
 
 
 @dataclass(frozen=True)
@@ -45,19 +39,23 @@ class ModelPredictions:
     start: int  # the all-vented valve state
 
 
-def model_transitions(path: str | Path, max_open: int = 1) -> ModelPredictions:
-    """The spring-damper gait graph of the robot file over valve states with at most
-    ``max_open`` valves open, as a :class:`TransitionModel` (mm, degrees; no slip)."""
-    loaded = load_model(MODEL, path)
-    states = valve_states(len(loaded.valve_legs), max_open)
+def model_transitions(path: str | Path, max_open: int = 1, model: str | None = None,
+                      states: list[tuple[bool, ...]] | None = None) -> ModelPredictions:
+    """The gait graph of the robot file's chapter 4 model (``model``, by default the one the
+    file declares first) over valve states with at most ``max_open`` valves open (or the
+    given ``states``, the vented one among them), as a :class:`TransitionModel` (mm,
+    degrees; no slip)."""
+    name = model or chosen_model(load_robot(path), None) or "spring-damper"
+    loaded = load_model(name, path)
+    if states is None:
+        states = valve_states(len(loaded.valve_legs), max_open)
     graph = build_graph(loaded.model, states, loaded.period)
     index = {s: i for i, s in enumerate(graph.states)}
     pairs = sorted(graph.motion)
     src = np.array([index[a] for a, _ in pairs], np.int64)
     dst = np.array([index[b] for _, b in pairs], np.int64)
     motion = [graph.motion[p] for p in pairs]
-    model = TransitionModel(
-
+    transitions = TransitionModel(
         poses=len(states),
         src=src,
         dst=dst,
@@ -67,8 +65,8 @@ def model_transitions(path: str | Path, max_open: int = 1) -> ModelPredictions:
         slip=np.zeros(len(pairs)),
         labels=[valve_text(s) for s in graph.states],
     )
-    model.groups = _groups(loaded.valve_legs)
-    return ModelPredictions(loaded, graph, model, index[(False,) * len(loaded.valve_legs)])
+    transitions.groups = _groups(loaded.valve_legs)
+    return ModelPredictions(loaded, graph, transitions, index[(False,) * len(loaded.valve_legs)])
 
 
 def _groups(legs: tuple[str, ...]) -> tuple[int, ...]:

@@ -35,7 +35,7 @@ def search_arguments(p: argparse.ArgumentParser) -> None:
     """The robot file and search options, shared by ``gaits`` and ``render gaits``."""
     from gaitc.api.gaits import GaitMethod
     from gaitc.cli.commands.learning import goal_arguments
-    from gaitc.models.catalogue import MODELS
+    from gaitc.models.catalogue import MODEL_CHOICES
 
     p.add_argument("robot", metavar="ROBOT.yaml")
     p.add_argument("--direction", default="+x", help="+x, -x, +y, -y or an angle in degrees")
@@ -47,11 +47,12 @@ def search_arguments(p: argparse.ArgumentParser) -> None:
                    help="seed of the random and reset searches and of chapter 5's (default 0)")
     p.add_argument("--max-states", type=int, default=10_000, help="valve states to try at most")
     p.add_argument(
-        "--model", choices=sorted(MODELS),
-        help="search the gait graph of a dynamic model (thesis 4.2.2) instead of the "
-        "kinematic one; needs the robot file's 'model:' section (docs/models.md)")
+        "--model", choices=MODEL_CHOICES,
+        help="the gait graph to search: by default the chapter 4 model the robot file's "
+        "'model:' section declares (thesis 4.2.2, docs/models.md), else the kinematic graph "
+        "of chapter 2; 'kinematic' asks for that one whatever the file declares")
     p.add_argument("--max-open", type=int, default=1, metavar="N",
-                   help="--model: valve states with at most N valves open (1)")
+                   help="a model's gait graph: valve states with at most N valves open (1)")
     goal_arguments(p)
 
 
