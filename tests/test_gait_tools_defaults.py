@@ -139,7 +139,7 @@ def _cycles_move(poses: int, edges: list[Edge]) -> set[int]:
 
 def _still(poses: int, edges: list[Edge]) -> frozenset[int]:
     cols = list(zip(*edges, strict=True)) if edges else [(), (), (), (), ()]
-    return stillness(poses, *cols).moving_poses  # type: ignore[arg-type]
+    return stillness(poses, *cols).moving_poses
 
 
 _motions = st.tuples(st.sampled_from([0.0, 3.0, -2.0]), st.sampled_from([0.0, 1.5]),

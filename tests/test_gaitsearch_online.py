@@ -104,7 +104,8 @@ def test_cli_gaits_lpa_and_learn(tmp_path: Path, capsys: pytest.CaptureFixture[s
     out = tmp_path / "plan.json"
     assert main(["gaits", ROBOT, "--method", "lpa", "--goal", "40,0", "-o", str(out)]) == 0
     text = capsys.readouterr().out
-    assert text.startswith("robot symmetric6: 24 chambers, kinematic gait graph, method lpa, 100 valve states")
+    assert text.startswith(
+        "robot symmetric6: 24 chambers, kinematic gait graph, method lpa, 100 valve states")
     assert json.loads(out.read_text())["method"] == "lpa"
     log, svg = tmp_path / "log.json", tmp_path / "run.svg"
     code = main(

@@ -93,7 +93,7 @@ def test_the_doc_has_a_table_for_every_command_and_shared_object() -> None:
     for name in ("the rules", "the error object", "lint", "the diagnostic object", "compile",
                  "check", "synth and counter", "verify", "the verification object",
                  "simulate", "drive", "the step object", "the summary object", "explain",
-                 "resilience", "gaits", "gaits --method astar, lpa, mcts"):
+                 "resilience", "gaits", "gaits --method astar, lpa, dstar, mcts"):
         assert DOCUMENTED.get(name), name
     assert DOCUMENTED["the rules"] == COMMON
     assert DOCUMENTED["the error object"] == {"type", "file", "line", "column", "message",
@@ -229,7 +229,7 @@ def test_gaits_both_searches(tmp_path: Path, capsys: pytest.CaptureFixture[str])
     saved = json.loads(out.read_text())
     assert {k: obj[k] for k in saved} == saved
     code, obj = one(["gaits", ROBOT, "--method", "astar", "--goal", "40,0", "--json"], capsys)
-    assert code == 0 and set(obj) == COMMON | keys("gaits --method astar, lpa, mcts")
+    assert code == 0 and set(obj) == COMMON | keys("gaits --method astar, lpa, dstar, mcts")
     assert obj["found"] and obj["reached"] and obj["plan"]["method"] == "astar"
 
 
