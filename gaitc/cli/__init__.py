@@ -63,7 +63,12 @@ def _did_you_mean(message: str) -> str | None:
     return f"did you mean '{close[0]}'?" if close else None
 
 
-def build_parser() -> _Parser:
+def build_parser(words: Sequence[str] | None = None) -> _Parser:
+    """The command line's parser.  Given the command line ``words``, only the module of the
+    command they name is imported and registered (the other commands get a bare entry, so
+    that their names are still known), and ``--version`` alone registers none; without a
+    command, or with an unknown one, every command is registered, for ``gaitc --help`` and
+    the "did you mean" of a misspelling."""
     parser = _Parser(
         prog="gaitc",
         description="Compile .gait robot specifications to GR(1), synthesize and run controllers.",
@@ -71,15 +76,34 @@ def build_parser() -> _Parser:
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     from gaitc import __version__
+    from gaitc.cli.commands import COMMANDS, all_modules, command_module
 
     parser.add_argument("--version", action="version", version=f"gaitc {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
-    from gaitc.cli.commands import COMMAND_MODULES
-
-    for module in COMMAND_MODULES:
-        module.register(sub)
-    parser.commands = tuple(sub.choices)
+    chosen = _command_word(words) if words is not None else None
+    bare = chosen is None and words is not None and "--version" in words
+    if chosen in COMMANDS or bare:
+        if chosen is not None:
+            command_module(chosen).register(sub)
+        for name in COMMANDS:
+            if name not in sub.choices:
+                sub.add_parser(name)
+    else:
+        for module in all_modules():
+            module.register(sub)
+    parser.commands = tuple(name for name in COMMANDS if name in sub.choices)
     return parser
+
+
+def _command_word(words: Sequence[str]) -> str | None:
+    """The command a command line names: its first word that is not an option (the
+    top-level parser's options, --help and --version, take no value)."""
+    for word in words:
+        if word == "--":
+            return None
+        if not word.startswith("-"):
+            return word
+    return None
 
 
 class Terminated(BaseException):
@@ -174,7 +198,7 @@ def _run(argv: Sequence[str] | None, signals: _Signals | None) -> int:
     # --json before parsing, for usage errors; after parsing, the command's own option
     as_json, command = reporting.json_requested(words), None
     try:
-        parser = build_parser()
+        parser = build_parser(words)
         command = reporting.command_named(words, parser.commands)
         args = _parse(parser, words)
         as_json = bool(getattr(args, "json", False))

@@ -2,27 +2,49 @@
 
 ``register`` adds its subcommands and sets ``run=<function(args) -> int>`` as the
 parser default; the function returns an exit code (see :mod:`gaitc.cli`).
+
+:data:`COMMANDS` names the module of every subcommand without importing it, so that the
+command line imports only the module of the command it runs (and that module imports the
+library it needs when it runs): ``gaitc --version`` or ``gaitc lint`` do not load the
+solver, numpy or networkx.
 """
 
 from __future__ import annotations
 
-from gaitc.cli.commands import (
-    calibrating,
-    characterizing,
-    compiling,
-    driving,
-    examples,
-    explaining,
-    firmware,
-    gaits,
-    generating,
-    learning,
-    rendering,
-    resilient,
-    simulating,
-    solving,
-)
+import importlib
+from types import ModuleType
+from typing import Final
 
-COMMAND_MODULES = (compiling, solving, explaining, resilient, simulating, rendering, gaits,
-                   learning, driving, firmware, generating, calibrating, characterizing,
-                   examples)
+#: Every subcommand and the module (of this package) that registers it, in the order
+#: ``gaitc --help`` lists them.
+COMMANDS: Final = {
+    "lint": "compiling",
+    "compile": "compiling",
+    "check": "solving",
+    "synth": "solving",
+    "counter": "solving",
+    "verify": "solving",
+    "explain": "explaining",
+    "resilience": "resilient",
+    "simulate": "simulating",
+    "render": "rendering",
+    "gaits": "gaits",
+    "learn": "learning",
+    "drive": "driving",
+    "firmware": "firmware",
+    "codegen": "generating",
+    "calibrate": "calibrating",
+    "characterize": "characterizing",
+    "examples": "examples",
+}
+
+
+def command_module(command: str) -> ModuleType:
+    """The module that registers ``command`` (one of :data:`COMMANDS`)."""
+    return importlib.import_module(f"{__name__}.{COMMANDS[command]}")
+
+
+def all_modules() -> list[ModuleType]:
+    """Every command module, each once, in the order of :data:`COMMANDS`."""
+    return [importlib.import_module(f"{__name__}.{name}")
+            for name in dict.fromkeys(COMMANDS.values())]

@@ -1,0 +1,54 @@
+"""The command line imports only what the command it runs needs (issue 37's start-up):
+the parser registers the named command's module alone, and ``--version`` none."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+
+import pytest
+
+from gaitc.cli import build_parser, main
+from gaitc.cli.commands import COMMANDS, all_modules
+
+
+def test_the_registry_names_every_command_a_module_registers() -> None:
+    assert build_parser().commands == tuple(COMMANDS)
+    assert len(all_modules()) == len(set(COMMANDS.values()))
+
+
+@pytest.mark.parametrize("command", sorted(COMMANDS))
+def test_a_named_command_gets_the_same_parser_as_with_every_command(command: str) -> None:
+    alone, every = build_parser([command]), build_parser()
+    assert alone.commands == every.commands
+    sub_alone = alone._subparsers._group_actions[0].choices[command]  # type: ignore[union-attr]
+    sub_every = every._subparsers._group_actions[0].choices[command]  # type: ignore[union-attr]
+    assert sub_alone.format_help() == sub_every.format_help()
+
+
+def _modules_after(*words: str) -> set[str]:
+    code = ("import sys, json\nfrom gaitc.cli import main\n"
+            f"try:\n    main({list(words)!r})\nexcept SystemExit:\n    pass\n"
+            "print(json.dumps(sorted(sys.modules)))")
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                          check=True)
+    return set(json.loads(done.stdout.splitlines()[-1]))
+
+
+def test_version_loads_no_command() -> None:
+    loaded = _modules_after("--version")
+    assert not {m for m in loaded if m.startswith("gaitc.cli.commands.")}
+    assert not {"dd", "numpy", "networkx", "lark"} & loaded
+
+
+def test_lint_loads_neither_the_solver_nor_numpy() -> None:
+    loaded = _modules_after("lint", "gaitc/examples/patrol_2x2.gait")
+    assert not {"dd", "numpy", "networkx", "gaitc.solver.game"} & loaded
+    assert "gaitc.cli.commands.compiling" in loaded
+    assert "gaitc.cli.commands.solving" not in loaded
+
+
+def test_a_misspelt_command_still_gets_its_suggestion(capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["sytnh"]) == 2
+    assert "did you mean 'synth'?" in capsys.readouterr().err
