@@ -310,15 +310,15 @@ def test_prefer_with_a_controller_is_refused_by_render_and_drive_too(
 
 
 @pytest.mark.parametrize(("words", "message"), [
-    (["--method", "full", "--seed", "3"],
+    (["--model", "kinematic", "--method", "full", "--seed", "3"],
      "--seed seeds the random and reset searches; the full search of robot radial8 tries "
      "every valve state, without random numbers"),
-    (["--seed", "3"],  # chapter 2's default for 8 chambers is the full search
+    (["--model", "kinematic", "--seed", "3"],  # chapter 2's default for 8 chambers: full
      "--seed seeds the random and reset searches; the full search of robot radial8 tries "
      "every valve state, without random numbers"),
-    (["--model", "spring-damper", "--seed", "3"],
-     "--seed seeds the random and reset searches; --model searches the model's whole gait "
-     "graph, without random numbers"),
+    (["--seed", "3"],  # the robot file's spring-damper model, searched whole
+     "--seed seeds the random searches; the spring-damper model's gait graph is searched "
+     "whole, without random numbers (--method random samples --max-states valve states)"),
 ])
 def test_a_seed_the_gait_search_would_not_use_is_refused(
         capsys: pytest.CaptureFixture[str], words: list[str], message: str) -> None:

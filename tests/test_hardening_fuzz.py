@@ -136,7 +136,8 @@ def test_a_babbling_board_is_a_bounded_garbled_answer() -> None:
 
 def test_full_gait_search_honours_max_states(capsys: pytest.CaptureFixture[str]) -> None:
     start = time.perf_counter()
-    code, err = _run(capsys, "gaits", RADIAL8, "--method", "full", "--max-states", "50")
+    code, err = _run(capsys, "gaits", RADIAL8, "--model", "kinematic", "--method", "full",
+                     "--max-states", "50")
     assert code == 2 and "enumerates all 2^8 = 256 valve states" in err[0]
     assert "more than --max-states 50" in err[0]
     assert time.perf_counter() - start < 3
@@ -146,7 +147,7 @@ def test_full_gait_search_honours_max_states(capsys: pytest.CaptureFixture[str])
 def test_other_searches_stop_at_max_states_and_say_so(
         capsys: pytest.CaptureFixture[str], method: str | None) -> None:
     chosen = [] if method is None else ["--method", method]
-    assert main(["gaits", RADIAL8, "--max-states", "40", *chosen]) == 1
+    assert main(["gaits", RADIAL8, "--model", "kinematic", "--max-states", "40", *chosen]) == 1
     out = capsys.readouterr().out
     assert f"method {method or 'random'}, 40 valve states" in out
     assert "the search stopped at --max-states 40 of the 256 valve states" in out
