@@ -73,6 +73,10 @@ _LOOKALIKES = {
 
 @cache
 def _lark() -> Lark:
+    """The parser of gait.lark.  Lark's analysis of the grammar takes about 50 ms, a quarter
+    of a ``gaitc lint``, so its result is cached in the user's cache folder (Lark's own
+    cache: the file holds a hash of the grammar, the options and Lark's version, and a file
+    that does not match, or cannot be read, is built again and rewritten)."""
     text = resources.files("ltlcompiler").joinpath("gait.lark").read_text(encoding="utf-8")
     return Lark(
         text,
@@ -81,7 +85,25 @@ def _lark() -> Lark:
         propagate_positions=True,
         maybe_placeholders=True,
         lexer_callbacks={"NAME": _reserved},
+        cache=_cache_file() or False,
     )
+
+
+def _cache_file() -> str | None:
+    """Where the analysed grammar is cached: ``$XDG_CACHE_HOME/gaitc`` (``~/.cache/gaitc``),
+    a folder only its user may read; None when it cannot be made."""
+    import os
+    from pathlib import Path
+
+    base = os.environ.get("XDG_CACHE_HOME") or str(Path.home() / ".cache")
+    folder = Path(base) / "gaitc"
+    try:
+        folder.mkdir(mode=0o700, parents=True, exist_ok=True)
+        if not os.access(folder, os.W_OK) or folder.stat().st_uid != os.getuid():
+            return None
+    except (OSError, RuntimeError):  # no home, a read-only file system, ...
+        return None
+    return str(folder / "gait-grammar.lark-cache")
 
 
 def _reserved(tok: Token) -> Token:

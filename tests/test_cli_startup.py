@@ -4,8 +4,10 @@ the parser registers the named command's module alone, and ``--version`` none.""
 from __future__ import annotations
 
 import json
+import os
 import subprocess
 import sys
+from pathlib import Path
 
 import pytest
 
@@ -52,3 +54,33 @@ def test_lint_loads_neither_the_solver_nor_numpy() -> None:
 def test_a_misspelt_command_still_gets_its_suggestion(capsys: pytest.CaptureFixture[str]) -> None:
     assert main(["sytnh"]) == 2
     assert "did you mean 'synth'?" in capsys.readouterr().err
+
+
+def test_check_loads_neither_networkx_nor_numpy_nor_the_compact_controllers() -> None:
+    loaded = _modules_after("check", "gaitc/examples/patrol_2x2.gait")
+    assert "dd" in loaded
+    assert not {"networkx", "numpy", "gaitc.compact", "gaitc.compact.controller"} & loaded
+
+
+def _lint_with_cache_home(home: str) -> subprocess.CompletedProcess[str]:
+    env = {**os.environ, "XDG_CACHE_HOME": home}
+    return subprocess.run([sys.executable, "-m", "gaitc", "lint", "gaitc/examples/patrol_2x2.gait"],
+                          capture_output=True, text=True, env=env, check=False)
+
+
+def test_the_grammar_cache_is_written_and_a_broken_one_is_rebuilt(tmp_path: Path) -> None:
+    first = _lint_with_cache_home(str(tmp_path))
+    cached = tmp_path / "gaitc" / "gait-grammar.lark-cache"
+    assert first.returncode == 0 and first.stderr == "" and cached.is_file()
+    assert (tmp_path / "gaitc").stat().st_mode & 0o077 == 0  # the user's alone
+    cached.write_bytes(b"not a cache\n" + b"\x80" * 50)
+    again = _lint_with_cache_home(str(tmp_path))
+    assert (again.returncode, again.stdout, again.stderr) == (0, first.stdout, "")
+    assert not cached.read_bytes().startswith(b"not a cache")  # written anew
+
+
+def test_without_a_cache_folder_the_grammar_is_built_each_time(tmp_path: Path) -> None:
+    blocked = tmp_path / "a-file"
+    blocked.write_text("", encoding="utf-8")
+    done = _lint_with_cache_home(str(blocked))  # the cache folder cannot be made inside
+    assert done.returncode == 0 and done.stderr == ""

@@ -15,11 +15,10 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Final
 
-import dd.cudd as cudd
-
 from gaitc.analysis.ddmin import ddmin
 from gaitc.analysis.oracle import Oracle
 from gaitc.analysis.units import ASSUMPTION_SECTIONS, Unit, keep_only, units
+from gaitc.ir.cuddlib import cudd
 from gaitc.ir.formula import FALSE
 from gaitc.ir.spec import Clause, GR1Spec, Origin, Variable
 from gaitc.solver.game import Game

@@ -7,22 +7,15 @@ decides and synthesizes; every automaton is then proved by the independent check
 
 from __future__ import annotations
 
+import sys
 import time
 from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, Final, Literal, get_args
+from typing import TYPE_CHECKING, Any, Final, Literal, TypeGuard, get_args
 
 from gaitc.api.loading import Spec, SpecLike, as_gr1, resolve
 from gaitc.api.presentation import table
-from gaitc.compact.controller import (
-    CompactController,
-    compact_from_dict,
-    compact_to_json,
-    is_compact,
-    to_symbolic,
-)
-from gaitc.compact.fields import Vocabulary, check_covers, robot_vocabulary, spec_vocabulary
 from gaitc.diagnostics import ControllerError, SolverError, UsageError
 from gaitc.diagnostics.files import write_atomically
 from gaitc.ir.bddfile import SymbolicController, is_symbolic, symbolic_from_dict, symbolic_to_json
@@ -43,6 +36,10 @@ from gaitc.verifier.strategy import VerificationReport
 from ltlcompiler.encoding import EncodingName
 
 if TYPE_CHECKING:
+    from typing import TypeAlias
+
+    from gaitc.compact.controller import CompactController
+    from gaitc.compact.fields import Vocabulary
     from gaitc.sim.graphics import Picture
 
 SolverName = Literal["embedded", "slugs"]
@@ -54,7 +51,9 @@ MAX_NODES: Final = 100_000
 #: The forms ``synthesize`` writes: the solver's (:data:`gaitc.solver.synthesis.FORMS`) and
 #: ``compact``, decision diagrams over the robot's words (:mod:`gaitc.compact`).
 COMPACT: Final = "compact"
-Automaton = Controller | SymbolicController | CompactController
+#: A controller in any of its forms (the compact one is imported where it is used: a
+#: plain ``check`` does not load gaitc.compact).
+Automaton: TypeAlias = "Controller | SymbolicController | CompactController"
 
 
 @dataclass(frozen=True)
@@ -129,7 +128,7 @@ class Synthesis:
         """The controller's size in words: explicit nodes, or a symbolic one's BDD nodes."""
         if self.controller is None:
             return "none"
-        if isinstance(self.controller, CompactController):
+        if _compact(self.controller):
             from gaitc.codegen.tables import table_bytes
 
             c = self.controller
@@ -154,7 +153,7 @@ class Synthesis:
             "nodes_before_merging": self.merged_from,
             "compact": None,
             "verification": None if self.report is None else self.report.to_json()}
-        if isinstance(self.controller, CompactController):
+        if _compact(self.controller):
             from gaitc.codegen.tables import table_bytes
 
             c = self.controller
@@ -172,10 +171,12 @@ class Synthesis:
                              f"{'realizable' if self.realizable else 'unrealizable'}")
         if isinstance(self.controller, SymbolicController):
             write_atomically(path, symbolic_to_json(self.controller))
-        elif isinstance(self.controller, CompactController):
-            write_atomically(path, compact_to_json(self.controller))
-        else:
+        elif isinstance(self.controller, Controller):
             write_atomically(path, controller_to_json(self.controller))
+        else:
+            from gaitc.compact.controller import compact_to_json
+
+            write_atomically(path, compact_to_json(self.controller))
 
     def picture(self) -> Picture:
         """The automaton drawn in domain terms (needs a ``.gait`` spec and Graphviz)."""
@@ -399,9 +400,18 @@ def _solve(spec: Spec | GR1Spec, kind: Kind, semantics: Semantics, solver: str,
     )
 
 
+def _compact(value: object) -> TypeGuard[CompactController]:
+    """Whether ``value`` is a compact controller; none can exist before gaitc.compact is
+    imported, so a ``check`` need not import it to ask."""
+    module = sys.modules.get("gaitc.compact.controller")
+    return module is not None and isinstance(value, module.CompactController)
+
+
 def vocabulary_of(spec: Spec | GR1Spec, ctrl: SymbolicController) -> Vocabulary:
     """The fields a compact controller of ``spec`` decides in: the robot's words for a
     ``.gait`` spec, else one field per declared variable."""
+    from gaitc.compact.fields import check_covers, robot_vocabulary, spec_vocabulary
+
     if isinstance(spec, Spec) and spec.model is not None:
         robot = robot_vocabulary(spec.model, spec.encoding or EncodingName.ONEHOT,
                                  ctrl.integers)
@@ -462,12 +472,14 @@ def verify(spec: SpecLike,
         if controller.controller is None:
             raise UsageError(f"there is no {controller.kind} to verify")
         automaton = controller.controller
-    elif isinstance(controller, (Controller, SymbolicController, CompactController)):
-        automaton = controller
-    else:
+    elif isinstance(controller, (str, Path)):
         automaton = read_controller(controller, gr1)
+    else:
+        automaton = controller
     chosen = _semantics(semantics or automaton.semantics)
-    if isinstance(automaton, CompactController):
+    if not isinstance(automaton, (Controller, SymbolicController)):
+        from gaitc.compact.controller import to_symbolic
+
         automaton = to_symbolic(automaton)
     if isinstance(automaton, SymbolicController):
         from gaitc.verifier.symbolic import verify_symbolic
@@ -487,6 +499,8 @@ def read_controller(path: str | Path, spec: GR1Spec | None = None) -> Automaton:
     data = read_controller_json(str(path))
     if is_symbolic(data):
         return symbolic_from_dict(data, str(path))
+    from gaitc.compact.controller import compact_from_dict, is_compact
+
     if is_compact(data):
         return compact_from_dict(data, str(path))
     return controller_from_dict(data, str(path), spec)

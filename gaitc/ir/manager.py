@@ -15,7 +15,7 @@ from __future__ import annotations
 
 from typing import Final
 
-import dd.cudd as cudd
+from gaitc.ir.cuddlib import cudd
 
 #: The computed table's initial slots (dd's default: 262,144).
 INITIAL_CACHE_SLOTS: Final = 1 << 16

@@ -19,8 +19,7 @@ import time
 from collections.abc import Callable, Sequence
 from typing import Final
 
-import dd.cudd as cudd
-
+from gaitc.ir.cuddlib import cudd
 from gaitc.ir.spec import Semantics
 from gaitc.solver.steps import Steps, given, run_through
 from gaitc.solver.symbolic import BDDNode, SymbolicSpec

@@ -13,10 +13,9 @@ from __future__ import annotations
 from collections import deque
 from dataclasses import dataclass
 
-import dd.cudd as cudd
-
 from gaitc.diagnostics import SolverError
 from gaitc.ir.controller import Controller, ControllerNode
+from gaitc.ir.cuddlib import cudd
 from gaitc.ir.spec import Semantics
 from gaitc.solver.canonical import REPORT_EVERY, assignments, fix, primed, smallest, spec_integers
 from gaitc.solver.game import Limits, too_large

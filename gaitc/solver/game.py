@@ -15,9 +15,8 @@ import warnings
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
-import dd.cudd as cudd
-
 from gaitc.diagnostics import SolverError
+from gaitc.ir.cuddlib import cudd
 from gaitc.ir.spec import Semantics
 from gaitc.solver.options import (
     RESIFT_BLOWUP,

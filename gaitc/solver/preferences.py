@@ -18,11 +18,10 @@ import copy
 from collections.abc import Iterable, Mapping, Sequence
 from typing import Final
 
-import dd.cudd as cudd
-
 from gaitc.diagnostics import UsageError
 from gaitc.ir.bddwalk import Cofactors, cofactor, holds_at
 from gaitc.ir.costs import Cost
+from gaitc.ir.cuddlib import cudd
 from gaitc.solver.game import Game, GameResult, Limits, goal_strategies
 from gaitc.solver.steps import Steps, run_through
 from gaitc.solver.symbolic import BDDNode, SymbolicSpec

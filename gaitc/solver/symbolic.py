@@ -11,10 +11,9 @@ import warnings
 from collections.abc import Callable, Iterable, Sequence
 from typing import Any
 
-import dd.cudd as cudd
-
 from gaitc.diagnostics import FormulaError
 from gaitc.ir.bits import spec_bits
+from gaitc.ir.cuddlib import cudd
 from gaitc.ir.formula import (
     Add,
     Always,

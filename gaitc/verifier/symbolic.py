@@ -23,11 +23,10 @@ from __future__ import annotations
 
 from typing import Any
 
-import dd.cudd as cudd
-
 from gaitc.ir.bddfile import SymbolicController, materialize
 from gaitc.ir.bitblast import bitblast
 from gaitc.ir.bits import bits_mismatch
+from gaitc.ir.cuddlib import cudd
 from gaitc.ir.spec import GR1Spec, Semantics
 from gaitc.verifier.logic import Logic
 from gaitc.verifier.strategy import MAX_PROBLEMS, VerificationReport
