@@ -67,7 +67,8 @@ def test_grid_cells_and_map_polygons(tmp_path: Path) -> None:
     assert drawn.region_at(1, 1) == "c" and drawn.region_at(1.8, 1.5) is None
     for text, message in [("regions:\n  moon: [[0, 0], [1, 0], [0, 1]]\n", "region 'moon'"),
                           ("regions:\n  c: [[0, 0], [1, 0]]\n", "at least 3"),
-                          ("regions:\n  c: [[0, 0], [1, x], [0, 1]]\n", "at least 3"),
+                          ("regions:\n  c: [[0, 0], [1, x], [0, 1]]\n",
+                           "a polygon point must be \\[x, y\\], two finite numbers"),
                           ("- 1\n", "maps 'regions'")]:
         path.write_text(text, encoding="utf-8")
         with pytest.raises(HardwareError, match=message):

@@ -123,16 +123,35 @@ def span_at(text: str, file: str, offset: int) -> Span:
 
     An offset at the very end (a reader that ran out of text after the last ``\n``)
     points just past the end of the last line, which exists, rather than at a line after it.
+    For many offsets of one text, :class:`LineTable` gives the same spans in linear time.
     """
-    offset = max(0, min(offset, len(text)))
-    if offset == len(text) and text.endswith("\n"):
-        offset -= 2 if text.endswith("\r\n") else 1
-    before = text[:offset]
-    start = before.rfind("\n") + 1
-    column = offset - start + 1
-    if column > 1 and text[start:offset].endswith("\r") and text[offset:offset + 1] in ("\n", ""):
-        column -= 1  # the \r that source_lines drops before a \n
-    return Span(file, before.count("\n") + 1, column)
+    return LineTable(text, file).span(offset)
+
+
+class LineTable:
+    """:func:`span_at` for many offsets of one text: the line ends are found once, and each
+    offset's line by bisection (a YAML file's every node is positioned this way)."""
+
+    def __init__(self, text: str, file: str) -> None:
+        import re
+
+        self.text, self.file = text, file
+        self.ends = [m.start() for m in re.finditer("\n", text)]
+
+    def span(self, offset: int) -> Span:
+        """The span of character ``offset`` (see :func:`span_at`)."""
+        import bisect
+
+        text = self.text
+        offset = max(0, min(offset, len(text)))
+        if offset == len(text) and text.endswith("\n"):
+            offset -= 2 if text.endswith("\r\n") else 1
+        line = bisect.bisect_left(self.ends, offset)  # newlines before the offset
+        start = self.ends[line - 1] + 1 if line else 0
+        column = offset - start + 1
+        if column > 1 and text[offset - 1] == "\r" and text[offset:offset + 1] in ("\n", ""):
+            column -= 1  # the \r that source_lines drops before a \n
+        return Span(self.file, line + 1, column)
 
 
 @dataclass(frozen=True)

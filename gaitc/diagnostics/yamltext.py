@@ -9,9 +9,11 @@ node's marks) is recounted from its character offset by the rule of ``source_lin
 
 from __future__ import annotations
 
+import math
+
 import yaml
 
-from gaitc.diagnostics import GaitcError, Span, span_at
+from gaitc.diagnostics import GaitcError, LineTable, Span, span_at
 
 MAX_DEPTH = 200  # nested lists and mappings; the robot and scenario formats need five
 MAX_NODES = 200_000  # values in the document, counting each use of an alias
@@ -38,8 +40,8 @@ def compose(text: str, file: str, error: type[GaitcError], what: str) -> yaml.No
     return root
 
 
-def _recount(mark: yaml.Mark, text: str, file: str) -> yaml.Mark:
-    span = span_at(text, file, mark.index)
+def _recount(mark: yaml.Mark, lines: LineTable) -> yaml.Mark:
+    span = lines.span(mark.index)
     return yaml.Mark(mark.name, mark.index, span.line - 1, span.column - 1, "", 0)
 
 
@@ -47,6 +49,7 @@ def _check_depth(root: yaml.Node, text: str, file: str, error: type[GaitcError],
                  what: str) -> None:
     """Bound the nesting, and recount every node's marks (see the module docstring)."""
     stack: list[tuple[yaml.Node, int]] = [(root, 1)]
+    lines = LineTable(text, file)
     seen: set[int] = set()
     visits = 0
     while stack:
@@ -57,8 +60,8 @@ def _check_depth(root: yaml.Node, text: str, file: str, error: type[GaitcError],
                         "expanded", Span(file, 1, 1))
         if id(node) not in seen:  # an alias shares its anchor's node: recount it once
             seen.add(id(node))
-            node.start_mark = _recount(node.start_mark, text, file)
-            node.end_mark = _recount(node.end_mark, text, file)
+            node.start_mark = _recount(node.start_mark, lines)
+            node.end_mark = _recount(node.end_mark, lines)
         if depth > MAX_DEPTH:
             mark = node.start_mark
             raise error(f"{what} nests deeper than {MAX_DEPTH} levels",
@@ -67,3 +70,30 @@ def _check_depth(root: yaml.Node, text: str, file: str, error: type[GaitcError],
             stack.extend((child, depth + 1) for child in node.value)
         elif isinstance(node, yaml.MappingNode):
             stack.extend((child, depth + 1) for pair in node.value for child in pair)
+
+
+def node_span(file: str, node: yaml.Node) -> Span:
+    """Where a node of a :func:`compose` tree starts (its marks are recounted)."""
+    return Span(file, node.start_mark.line + 1, node.start_mark.column + 1)
+
+
+def mapping_of(node: yaml.Node | None) -> dict[str, tuple[yaml.Node, yaml.Node]] | None:
+    """A mapping node's entries by key text, each with its key and value node (the first of
+    a repeated key wins); None for any other node."""
+    if not isinstance(node, yaml.MappingNode):
+        return None
+    out: dict[str, tuple[yaml.Node, yaml.Node]] = {}
+    for key, value in node.value:
+        out.setdefault(str(key.value), (key, value))
+    return out
+
+
+def finite_number(node: yaml.Node) -> float | None:
+    """A plain scalar that is a finite number (not a Boolean, NaN or infinite); else None."""
+    if not isinstance(node, yaml.ScalarNode) or node.style is not None:
+        return None
+    try:
+        value = float(node.value)
+    except ValueError:
+        return None
+    return value if math.isfinite(value) else None

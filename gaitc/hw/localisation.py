@@ -22,6 +22,9 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
+import yaml
+
+from gaitc.diagnostics import Span
 from gaitc.diagnostics.files import decode_text, read_input
 from gaitc.hw.backend import Backend, Course, HardwareError, SensorReading, where
 from gaitc.sim.environments import Move
@@ -62,31 +65,38 @@ class RegionMap:
 
     @classmethod
     def from_file(cls, path: str | Path, regions: Sequence[str]) -> RegionMap:
-        """``regions: {name: [[x, y], ...], ...}`` in YAML; names must be the spec's."""
-        import yaml
+        """``regions: {name: [[x, y], ...], ...}`` in YAML; names must be the spec's.  Every
+        error names the file and the position of the value at fault."""
+        from gaitc.diagnostics.yamltext import compose, finite_number, mapping_of, node_span
 
         name = str(path)
         text = decode_text(read_input(path, "map"), name, HardwareError)
-        try:
-            data = yaml.safe_load(text)
-        except yaml.YAMLError as err:
-            raise HardwareError(f"cannot read the map {name}: {err}", where(name)) from None
-        table = data.get("regions") if isinstance(data, dict) else None
-        if not isinstance(table, dict):
-            raise HardwareError("a map file maps 'regions' to polygons", where(name))
+        root = compose(text, name, HardwareError, "the map")
+        table = mapping_of(root)
+        entry = None if table is None else table.get("regions")
+        polygons = mapping_of(None if entry is None else entry[1])
+        if polygons is None:
+            at = node_span(name, entry[1] if entry else root) if root is not None \
+                else Span(name, 1, 1)
+            raise HardwareError("a map file maps 'regions' to polygons", at)
         out = {}
-        for region, points in table.items():
-            if str(region) not in regions:
+        for region, (key, value) in polygons.items():
+            if region not in regions:
                 raise HardwareError(f"the map names region {region!r}, which the spec has not",
-                                    where(name))
-            try:
-                polygon = [(float(p[0]), float(p[1])) for p in points]
-            except (TypeError, ValueError, IndexError):
-                polygon = []
-            if len(polygon) < 3 or not all(math.isfinite(v) for p in polygon for v in p):
+                                    node_span(name, key))
+            points = value.value if isinstance(value, yaml.SequenceNode) else []
+            polygon = []
+            for point in points:
+                xy = point.value if isinstance(point, yaml.SequenceNode) else []
+                numbers = [n for n in (finite_number(v) for v in xy) if n is not None]
+                if len(xy) != 2 or len(numbers) != 2:
+                    raise HardwareError(f"region {region}: a polygon point must be [x, y], two "
+                                        "finite numbers", node_span(name, point))
+                polygon.append((numbers[0], numbers[1]))
+            if len(polygon) < 3:
                 raise HardwareError(f"region {region}: a polygon needs at least 3 [x, y] points",
-                                    where(name))
-            out[str(region)] = polygon
+                                    node_span(name, value))
+            out[region] = polygon
         return cls(out)
 
     def region_at(self, x: float, y: float) -> str | None:

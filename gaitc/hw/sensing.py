@@ -19,6 +19,8 @@ from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
+import yaml
+
 from gaitc.diagnostics import GaitcError, Span
 from gaitc.diagnostics.files import csv_rows, decode_text, read_input
 
@@ -266,31 +268,44 @@ def write_sensing(path: str | Path, calibration: Mapping[str, LegCalibration]) -
 
 
 def read_sensing(path: str | Path) -> dict[str, LegCalibration]:
-    """Read a sensing file written by :func:`write_sensing` (or by hand, in YAML)."""
-    import yaml
+    """Read a sensing file written by :func:`write_sensing` (or by hand, in YAML); every
+    error names the file and the position of the value at fault."""
+    from gaitc.diagnostics.yamltext import compose, finite_number, mapping_of, node_span
 
     name = str(path)
     text = decode_text(read_input(path, "sensing file"), name, CalibrationError)
-    try:
-        data = yaml.safe_load(text)
-    except yaml.YAMLError as err:
-        raise CalibrationError(f"cannot read the sensing file {name}: {err}",
-                               _where(name)) from None
-    legs = data.get("legs") if isinstance(data, dict) else None
-    if not isinstance(legs, dict):
-        raise CalibrationError("a sensing file maps 'legs' to thresholds", Span(name, 1, 1))
+    root = compose(text, name, CalibrationError, "the sensing file")
+    table = mapping_of(root)
+    entry = None if table is None else table.get("legs")
+    legs = mapping_of(None if entry is None else entry[1])
+    if legs is None:
+        at = node_span(name, entry[1] if entry else root) if root is not None \
+            else Span(name, 1, 1)
+        raise CalibrationError("a sensing file maps 'legs' to thresholds", at)
     out = {}
-    for leg, entry in legs.items():
-        th = entry.get("thresholds") if isinstance(entry, dict) else None
-        margin = entry.get("hysteresis", DEFAULT_HYSTERESIS) if isinstance(entry, dict) else 0
-        if (not isinstance(th, list) or not th
-                or not all(isinstance(t, int | float) and not isinstance(t, bool)
-                           and math.isfinite(t) for t in [*th, margin])
-                or any(a <= b for a, b in itertools.pairwise(th)) or margin < 0):
-            raise CalibrationError(f"leg {leg}: thresholds must be a descending list of "
-                                   "finite numbers and hysteresis a finite number >= 0",
-                                   Span(name, 1, 1))
-        out[str(leg)] = LegCalibration(tuple(float(t) for t in th), float(margin))
+    for leg, (key, value) in legs.items():
+        fields = mapping_of(value)
+        wrong = (f"leg {leg}: thresholds must be a descending list of finite numbers and "
+                 "hysteresis a finite number >= 0")
+        listed = None if fields is None else fields.get("thresholds")
+        if fields is None or listed is None or not isinstance(listed[1], yaml.SequenceNode) \
+                or not listed[1].value:
+            raise CalibrationError(wrong, node_span(name, value if fields is None else key))
+        thresholds = []
+        for item in listed[1].value:
+            number = finite_number(item)
+            if number is None:
+                raise CalibrationError(wrong, node_span(name, item))
+            thresholds.append(number)
+        margin = DEFAULT_HYSTERESIS
+        if "hysteresis" in fields:
+            found = finite_number(fields["hysteresis"][1])
+            if found is None or found < 0:
+                raise CalibrationError(wrong, node_span(name, fields["hysteresis"][1]))
+            margin = found
+        if any(a <= b for a, b in itertools.pairwise(thresholds)):
+            raise CalibrationError(wrong, node_span(name, listed[1]))
+        out[leg] = LegCalibration(tuple(thresholds), margin)
     return out
 
 

@@ -1,0 +1,139 @@
+"""The robot-side YAML readers on the hardened path (issue 38): the map of ``drive --map``
+and the sensing file of ``drive --sensing`` report every problem at its file:line:col in the
+project's words, deep nesting included, and the span-tracking reader is linear in the size
+of its input."""
+
+from __future__ import annotations
+
+import time
+from pathlib import Path
+
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+
+from gaitc.diagnostics import GaitcError, LineTable, Span, source_lines, span_at
+from gaitc.diagnostics.yamltext import compose
+from gaitc.hw.backend import HardwareError
+from gaitc.hw.localisation import RegionMap
+from gaitc.hw.sensing import CalibrationError, read_sensing
+
+REGIONS = ("a", "b")
+
+
+def _map(tmp_path: Path, text: str) -> Path:
+    path = tmp_path / "m.yaml"
+    path.write_text(text, encoding="utf-8")
+    return path
+
+
+@pytest.mark.parametrize(("text", "message", "line", "column"), [
+    ("regions:\n  a: [[0, 0], [1, 0], {x: 1}]\n", "region a: a polygon point must be [x, y], "
+     "two finite numbers", 2, 23),
+    ("regions:\n  a: [[0, 0], [1, .nan], [0, 1]]\n", "region a: a polygon point must be "
+     "[x, y], two finite numbers", 2, 15),
+    ("regions:\n  a: [[0, 0], [1, 0]]\n", "region a: a polygon needs at least 3 [x, y] "
+     "points", 2, 6),
+    ("regions:\n  c: [[0, 0], [1, 0], [0, 1]]\n", "the map names region 'c', which the spec "
+     "has not", 2, 3),
+    ("regions: [1, 2]\n", "a map file maps 'regions' to polygons", 1, 10),
+    ("just: text\n", "a map file maps 'regions' to polygons", 1, 1),
+    ("regions:\n  a: [[0, 0], [1, true], [0, 1]]\n", "region a: a polygon point must be "
+     "[x, y], two finite numbers", 2, 15),
+])
+def test_map_errors_are_positioned(tmp_path: Path, text: str, message: str, line: int,
+                                   column: int) -> None:
+    path = _map(tmp_path, text)
+    with pytest.raises(HardwareError) as caught:
+        RegionMap.from_file(path, REGIONS)
+    assert caught.value.message == message
+    assert caught.value.span == Span(str(path), line, column)
+
+
+def test_a_map_nested_a_thousand_deep_is_a_positioned_error(tmp_path: Path) -> None:
+    path = _map(tmp_path, "regions:\n  a: " + "[" * 1000 + "]" * 1000 + "\n")
+    with pytest.raises(HardwareError) as caught:
+        RegionMap.from_file(path, REGIONS)
+    assert caught.value.message == "the map nests too deeply (the limit is 200 levels)"
+    assert caught.value.span is not None and caught.value.span.file == str(path)
+
+
+def test_a_good_map_reads(tmp_path: Path) -> None:
+    path = _map(tmp_path, "regions:\n  a: [[0, 0], [1, 0], [0, 1]]\n"
+                "  b: [[1, 0], [2, 0], [2, 1], [1, 1]]\n")
+    regions = RegionMap.from_file(path, REGIONS)
+    assert regions.region_at(0.2, 0.2) == "a" and regions.region_at(1.5, 0.5) == "b"
+
+
+@pytest.mark.parametrize(("text", "line", "column"), [
+    ("legs:\n  L1: {thresholds: [0.4, .nan]}\n", 2, 26),
+    ("legs:\n  L1: {thresholds: [0.2, 0.4]}\n", 2, 20),
+    ("legs:\n  L1: {thresholds: [0.4, 0.2], hysteresis: -1}\n", 2, 44),
+    ("legs:\n  L1: {thresholds: [0.4, \"0.2\"]}\n", 2, 26),
+    ("legs:\n  L1: 3\n", 2, 7),
+    ("legs:\n  L1: {thresholds: []}\n", 2, 3),
+])
+def test_sensing_errors_are_positioned(tmp_path: Path, text: str, line: int,
+                                       column: int) -> None:
+    path = tmp_path / "s.sensing.yaml"
+    path.write_text(text, encoding="utf-8")
+    with pytest.raises(CalibrationError) as caught:
+        read_sensing(path)
+    assert caught.value.message == ("leg L1: thresholds must be a descending list of finite "
+                                    "numbers and hysteresis a finite number >= 0")
+    assert caught.value.span == Span(str(path), line, column)
+
+
+def test_a_sensing_file_nested_deep_is_a_positioned_error(tmp_path: Path) -> None:
+    path = tmp_path / "s.sensing.yaml"
+    path.write_text("legs:\n  L1: " + "{a: " * 1000 + "1" + "}" * 1000 + "\n", encoding="utf-8")
+    with pytest.raises(CalibrationError) as caught:
+        read_sensing(path)
+    assert caught.value.message == "the sensing file nests too deeply (the limit is 200 levels)"
+
+
+def test_a_good_sensing_file_reads(tmp_path: Path) -> None:
+    path = tmp_path / "s.sensing.yaml"
+    path.write_text("legs:\n  L1: {thresholds: [0.4, 0.2], hysteresis: 0.01}\n  L2: "
+                    "{thresholds: [0.5]}\n", encoding="utf-8")
+    found = read_sensing(path)
+    assert found["L1"].thresholds == (0.4, 0.2) and found["L1"].hysteresis == 0.01
+    assert found["L2"].thresholds == (0.5,)
+
+
+# -- positions in linear time -----------------------------------------------------------------
+
+def _brute(text: str, file: str, offset: int) -> Span:
+    """span_at as it was, a count from the start for every offset (quadratic over a file)."""
+    offset = max(0, min(offset, len(text)))
+    if offset == len(text) and text.endswith("\n"):
+        offset -= 2 if text.endswith("\r\n") else 1
+    before = text[:offset]
+    start = before.rfind("\n") + 1
+    column = offset - start + 1
+    if column > 1 and text[start:offset].endswith("\r") and text[offset:offset + 1] in ("\n", ""):
+        column -= 1
+    return Span(file, before.count("\n") + 1, column)
+
+
+@given(st.text(alphabet="ab\n\r\x85 ", max_size=40), st.data())
+def test_the_line_table_gives_the_spans_of_the_count(text: str, data: st.DataObject) -> None:
+    table = LineTable(text, "f")
+    for offset in data.draw(st.lists(st.integers(-2, len(text) + 2), max_size=8)):
+        assert table.span(offset) == _brute(text, "f", offset) == span_at(text, "f", offset)
+        if text and 0 <= offset < len(text) and text[offset] != "\n":
+            span = table.span(offset)
+            assert span.line <= max(1, len(source_lines(text)))
+
+
+def test_the_yaml_reader_is_linear_in_its_input() -> None:
+    def seconds(n: int) -> float:
+        text = "items:\n" + "".join(f"  - {{name: n{i}, v: [{i}, {i + 1}]}}\n" for i in range(n))
+        began = time.perf_counter()
+        compose(text, "f.yaml", GaitcError, "file")
+        return time.perf_counter() - began
+
+    small, large = seconds(2000), seconds(16000)
+    # eight times the input: a linear reader takes about eight times as long, the old
+    # quadratic count about sixty times; the bound leaves room for a loaded machine
+    assert large < 20 * small + 0.5
