@@ -205,11 +205,31 @@ def render(
             if span.end_line == span.line and span.end_column is not None:
                 width = max(1, span.end_column - col + 1)
             width = min(width, max(1, len(line) - col + 1))
+            line, col, width = _excerpt(line, col, width)
             out.append(f"    {_printable(line)}")
             out.append("    " + " " * (col - 1) + "^" * width)
     if hint:
         out.append(f"  hint: {hint}")
     return "\n".join(out)
+
+
+#: The longest source line an error shows whole; a longer one (a controller file written
+#: on one line, a minified map) is cut to a window around the column, marked with "...".
+EXCERPT = 100
+
+
+def _excerpt(line: str, col: int, width: int) -> tuple[str, int, int]:
+    """``line`` cut to at most :data:`EXCERPT` characters around column ``col`` (1-based),
+    with the column and the caret's width within the cut."""
+    if len(line) <= EXCERPT:
+        return line, col, width
+    room = EXCERPT - 6  # the two "..." marks
+    width = min(width, room // 2)
+    start = max(0, min(col - 1 - room // 3, len(line) - room))
+    cut = line[start:start + room]
+    head = "..." if start > 0 else ""
+    tail = "..." if start + room < len(line) else ""
+    return head + cut + tail, col - start + len(head), width
 
 
 def _printable(line: str) -> str:

@@ -63,7 +63,7 @@ def _choose(strategy: Strategy, domain: Domain, quotient: str | None,
         return quotient, notes
     if len(strategy) <= max_nodes:
         return "none", notes
-    regions_gaits = {_group_key(domain.decode(strategy.valuation(n)), "region-gait")
+    regions_gaits = {_group_key(domain.node_state(strategy, n), "region-gait")
                      for n in range(len(strategy))}
     chosen = "region-gait" if len(regions_gaits) <= max_nodes else "region"
     notes.append(f"the automaton has {len(strategy)} nodes, more than --max-nodes "
@@ -84,7 +84,7 @@ def automaton_view(strategy: Strategy, domain: Domain, quotient: str | None = No
                    max_nodes: int = DEFAULT_MAX_NODES) -> AutomatonView:
     """Draw ``strategy``; ``quotient`` None picks one automatically above ``max_nodes``."""
     chosen, notes = _choose(strategy, domain, quotient, max_nodes)
-    states = [domain.decode(strategy.valuation(n)) for n in range(len(strategy))]
+    states = [domain.node_state(strategy, n) for n in range(len(strategy))]
     region_order = {r: i for i, r in enumerate(domain.regions)}
     gait_order = {g: i for i, g in enumerate(domain.gait_legs)}
     goal_labels = [g.label for g in domain.goals]

@@ -9,12 +9,17 @@ from __future__ import annotations
 from collections import deque
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
+from gaitc.diagnostics import ControllerError, Span
 from gaitc.ir.evaluation import evaluate
 from gaitc.ir.formula import Always, Eventually, Expr, Or, Var, atoms, has_primes, push_next
 from ltlcompiler.decoding import RobotState, decode, encode
 from ltlcompiler.encoding import EncodingName
 from ltlcompiler.model import Model
+
+if TYPE_CHECKING:
+    from gaitc.sim.view import StrategyView
 
 
 @dataclass(frozen=True)
@@ -91,6 +96,19 @@ class Domain:
         """The domain state of spec-level ``values`` (by ``ltlcompiler.decoding.decode``)."""
         robot = decode(self.model, self.encoding, values)
         return State(robot.region, robot.gait, robot.health, robot.hazard)
+
+    def node_state(self, strategy: StrategyView, node: int) -> State:
+        """The domain state of node ``node`` of a controller; a node whose values are no
+        state of the spec (two regions at once, no gait) is an error naming the controller's
+        file and the node, as ``gaitc verify`` would."""
+        try:
+            return self.decode(strategy.valuation(node))
+        except ControllerError as err:
+            raise ControllerError(
+                f"node {node} of the controller: {err.message}",
+                Span(strategy.file or "<controller>", 1, 1),
+                "the controller was edited or belongs to another spec: check it with "
+                "'gaitc verify SPEC CONTROLLER', or synthesize it again") from None
 
     def encode(self, state: State) -> dict[str, int]:
         """Spec-level values of ``state`` (by ``ltlcompiler.decoding.encode``)."""

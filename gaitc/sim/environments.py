@@ -126,7 +126,7 @@ class AdversarialEnvironment(Environment):
             return None
         if self._harm is None or self._harm[0] is not strategy:
             domain = situation.domain
-            states = [domain.decode(strategy.valuation(n)) for n in range(len(strategy))]
+            states = [domain.node_state(strategy, n) for n in range(len(strategy))]
             self._harm = (strategy, harm_table(strategy, domain, states))
         return self._harm[1]
 

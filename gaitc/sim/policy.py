@@ -151,10 +151,10 @@ def decisions(
     """Per region, every move the controller makes from ``nodes`` (successors in order)."""
     out: dict[str, list[Decision]] = {}
     for node in nodes:
-        here = domain.decode(strategy.valuation(node))
+        here = domain.node_state(strategy, node)
         goal = goal_label(domain, strategy.ranks[node])
         for succ in strategy.options(node).values():
-            there = domain.decode(strategy.valuation(succ))
+            there = domain.node_state(strategy, succ)
             out.setdefault(here.region, []).append(
                 (features(domain, goal, there), Move(there.gait, there.region))
             )

@@ -46,7 +46,7 @@ class Simulator:
             values = self.strategy.values[node]
             found = self._by_values.get(values)
             if found is None:
-                found = self.domain.decode(self.strategy.valuation(node))
+                found = self.domain.node_state(self.strategy, node)
                 self._by_values[values] = found
             self._states[node] = found
         return found

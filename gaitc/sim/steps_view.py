@@ -61,7 +61,7 @@ def steps_view(
     ``cap`` of them) and the moves between them, with a note of what was cut."""
     depth, capped = reachable(strategy, steps, cap)
     order = sorted(depth, key=lambda n: (depth[n], n))
-    states = {n: domain.decode(strategy.valuation(n)) for n in order}
+    states = {n: domain.node_state(strategy, n) for n in order}
     graph = pydot.Dot("steps", graph_type="digraph", rankdir="LR", fontname="Helvetica")
     graph.set_node_defaults(
         shape="box",
