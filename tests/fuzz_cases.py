@@ -30,6 +30,24 @@ SCENARIOS: tuple[tuple[str, str], ...] = (
     ("flow.yaml", "# a comment\nsteps: [{}, {hazard: h}, {degrade: [L2, L3]}, {}]\n"),
 )
 HAZARD_SPEC = ROOT / "tests" / "data" / "hazard_patrol.gait"
+SHUTTLE = ROOT / "tests" / "data" / "softmodels" / "radial8_shuttle.gait"
+RADIAL8 = SPECS / "robots" / "radial8.yaml"
+MAPS: tuple[tuple[str, str], ...] = (
+    ("cells.yaml", "regions:\n  a: [[0, 0], [100, 0], [100, 100], [0, 100]]\n"
+                   "  b: [[100, 0], [200, 0], [200, 100], [100, 100]]\n"),
+    ("flow.yaml", "regions: {a: [[0, 0], [100, 0], [0, 100]], b: [[100, 0], [300, 0], "
+                  "[300, 100], [100, 100]]}\n"),
+)
+SENSING: tuple[tuple[str, str], ...] = (
+    ("legs.sensing.yaml", "# thresholds\nlegs:\n  L1: {thresholds: [0.4], hysteresis: 0.02}\n"
+                          "  L2: {thresholds: [0.35]}\n"),
+    ("block.sensing.yaml", "legs:\n  L3:\n    thresholds:\n      - 0.5\n    hysteresis: 0\n"),
+)
+CALIBRATION: tuple[tuple[str, str], ...] = (
+    ("legs.csv", "leg,cycle,level,intensity\n" + "".join(
+        f"L1,{c},{2 - c % 2},{v}\n" for c in range(4)
+        for v in (900, 890, 600 if c % 2 == 0 else 850, 880, 900))),
+)
 PATROL = SPECS / "patrol_2x2.gait"
 LTL_SOURCES = (PATROL, SPECS / "thesis_robot_a.gait", GOLDEN / "features.gait")
 # One gait bound to a stored primitive of the robot file (a search when it has none).
@@ -56,13 +74,15 @@ class Fixtures:
         self.patrol_controller = folder / "patrol.json"
         self.hazard_controller = folder / "hazard.json"
         self.run_file = folder / "patrol.run.jsonl"
+        self.shuttle_controller = folder / "shuttle.json"
         made = [
+            _quiet(["synth", str(SHUTTLE), "-o", str(self.shuttle_controller)]),
             _quiet(["synth", str(PATROL), "-o", str(self.patrol_controller)]),
             _quiet(["synth", str(HAZARD_SPEC), "-o", str(self.hazard_controller)]),
             _quiet(["simulate", str(PATROL), str(self.patrol_controller), "--env", "random",
                     "--seed", "3", "--steps", "12", "--out", str(self.run_file), "--quiet"]),
         ]
-        if made != [0, 0, 0]:
+        if made != [0, 0, 0, 0]:
             raise RuntimeError(f"could not prepare the fuzz fixtures in {folder}: {made}")
         self.ltl: list[Path] = []  # the readable LTL text 'compile --format ltl' writes
         for spec in LTL_SOURCES:
@@ -144,6 +164,24 @@ def _run_commands(path: Path, _seed: str, fx: Fixtures) -> list[tuple[str, list[
                             "-o", str(fx.out / "map.dot")])]
 
 
+def _map_commands(path: Path, _seed: str, fx: Fixtures) -> list[tuple[str, list[str]]]:
+    return [("drive physics --map", ["drive", str(SHUTTLE), str(fx.shuttle_controller),
+                                     "--backend", "physics", "--robot", str(RADIAL8),
+                                     "--map", str(path), "--steps", "2", "--cycles", "1"])]
+
+
+def _sensing_commands(path: Path, _seed: str, fx: Fixtures) -> list[tuple[str, list[str]]]:
+    # the sensing file is read and checked against the spec before the port is opened;
+    # loop:// is pyserial's loopback, which answers no handshake (exit 1 when it is good)
+    return [("drive serial --sensing", ["drive", str(SHUTTLE), str(fx.shuttle_controller),
+                                        "--backend", "serial", "--port", "loop://",
+                                        "--sensing", str(path), "--steps", "1"])]
+
+
+def _calibration_commands(path: Path, _seed: str, fx: Fixtures) -> list[tuple[str, list[str]]]:
+    return [("calibrate", ["calibrate", str(path), "-o", str(fx.out / "legs.sensing.yaml")])]
+
+
 def controller_seeds(fx: Fixtures) -> tuple[tuple[str, bytes], ...]:
     return (("patrol.json", fx.patrol_controller.read_bytes()),
             ("hazard.json", fx.hazard_controller.read_bytes()))
@@ -164,6 +202,10 @@ def kinds(fx: Fixtures) -> dict[str, Kind]:
              _scenario_commands),
         Kind("controller", ".json", controller_seeds(fx), _controller_commands),
         Kind("run", ".jsonl", (("patrol.run.jsonl", fx.run_file.read_bytes()),), _run_commands),
+        Kind("map", ".yaml", tuple((n, t.encode()) for n, t in MAPS), _map_commands, 3.0),
+        Kind("sensing", ".yaml", tuple((n, t.encode()) for n, t in SENSING), _sensing_commands),
+        Kind("calibration", ".csv", tuple((n, t.encode()) for n, t in CALIBRATION),
+             _calibration_commands),
     ]
     return {kind.name: kind for kind in found}
 

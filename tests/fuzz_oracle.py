@@ -69,13 +69,32 @@ def location_problems(stderr: str, files: dict[str, bytes]) -> list[str]:
                 continue
             expected = "    " + _as_shown(lines[line - 1])
             shown = out[number + 1] if number + 1 < len(out) else ""
-            if shown != expected:
+            if shown != expected and not _excerpt_of(shown[4:], expected[4:], column):
                 problems.append(f"wrong line: {message[:120]!r} shows {shown[:80]!r}, "
                                 f"line {line} is {expected[:80]!r}")
             elif not 1 <= column <= len(lines[line - 1]) + 1:
                 problems.append(f"wrong line: {message[:120]!r}: column {column} of a line "
                                 f"of {len(lines[line - 1])} characters")
     return problems
+
+
+def _excerpt_of(shown: str, full: str, column: int) -> bool:
+    """Whether ``shown`` is a cut of the long line ``full`` (one screen line, "..." where it
+    was cut) that holds the character at ``column``."""
+    from gaitc.diagnostics import EXCERPT
+
+    head = shown.startswith("...")
+    inner = shown[3 if head else 0:]
+    if inner.endswith("...") and len(full) > EXCERPT:
+        inner = inner[:-3]
+    if len(full) <= EXCERPT or len(shown) > EXCERPT or not inner:
+        return False
+    start = 0 if not head else 1
+    while (start := full.find(inner, start)) >= 0:  # a repetitive line may hold it twice
+        if start < column <= start + len(inner) + 1:
+            return True
+        start += 1
+    return False
 
 
 def run_command(command: str, argv: list[str], files: dict[str, bytes],

@@ -137,3 +137,21 @@ def test_the_yaml_reader_is_linear_in_its_input() -> None:
     # eight times the input: a linear reader takes about eight times as long, the old
     # quadratic count about sixty times; the bound leaves room for a loaded machine
     assert large < 20 * small + 0.5
+
+
+def test_a_sensing_file_for_other_legs_is_refused_where_it_names_them(tmp_path: Path) -> None:
+    from gaitc.hw.sensing import HealthSensing
+
+    path = tmp_path / "s.sensing.yaml"
+    path.write_text("legs:\n  L1: {thresholds: [0.4]}\n  L9: {thresholds: [0.4]}\n",
+                    encoding="utf-8")
+    with pytest.raises(CalibrationError) as caught:
+        HealthSensing({"L1": 2, "L2": 2}, read_sensing(path))
+    assert caught.value.message == ("the sensing file calibrates leg L9, which the spec has "
+                                    "not (its legs: L1, L2)")
+    assert caught.value.span == Span(str(path), 3, 3)
+    path.write_text("legs:\n  L2: {thresholds: [0.4, 0.2]}\n", encoding="utf-8")
+    with pytest.raises(CalibrationError) as caught:
+        HealthSensing({"L1": 2, "L2": 2}, read_sensing(path))
+    assert caught.value.message == "leg L2 is calibrated for 3 levels but the spec gives it 2"
+    assert caught.value.span == Span(str(path), 2, 3)

@@ -174,9 +174,10 @@ def write_atomically(path: str | Path, data: str | bytes) -> None:
 
 
 def csv_rows(text: str, name: str, error: type[GaitcError]) -> list[list[str]]:
-    """The rows of a CSV ``text`` split at the project's line ends (\\n, \\r\\n or a lone \\r,
-    as everywhere else); a row the csv module cannot read (a field over its size limit, a
-    quote left open) is ``error`` at that line."""
+    """The rows of a CSV ``text`` split at the project's line ends (``\\n``, a ``\\r`` before it
+    dropped: :func:`gaitc.diagnostics.source_lines`, as everywhere else); a row the csv
+    module cannot read (a field over its size limit, a quote left open, a lone ``\\r``) is
+    ``error`` at that line."""
     import csv
 
     rows: list[list[str]] = []

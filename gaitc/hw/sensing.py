@@ -16,7 +16,7 @@ from __future__ import annotations
 import itertools
 import math
 from collections.abc import Iterable, Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import yaml
@@ -41,6 +41,7 @@ class LegCalibration:
 
     thresholds: tuple[float, ...]
     hysteresis: float = DEFAULT_HYSTERESIS
+    span: Span | None = field(default=None, compare=False, repr=False)  # in a sensing file
 
     @property
     def levels(self) -> int:
@@ -100,12 +101,18 @@ class HealthSensing:
                  calibration: Mapping[str, LegCalibration] | None = None) -> None:
         self.full = dict(full)
         given = dict(calibration or {})
+        for leg, cal in given.items():
+            if leg not in self.full:  # a misspelt leg would leave the real one uncalibrated
+                raise CalibrationError(
+                    f"the sensing file calibrates leg {leg}, which the spec has not (its legs: "
+                    f"{', '.join(self.full)})", cal.span or _where("sensing"))
         self.calibration = {leg: given.get(leg, default_calibration(n))
                             for leg, n in self.full.items()}
         for leg, cal in self.calibration.items():
             if cal.levels != self.full[leg]:
                 raise CalibrationError(f"leg {leg} is calibrated for {cal.levels} levels but "
-                                       f"the spec gives it {self.full[leg]}", _where("sensing"))
+                                       f"the spec gives it {self.full[leg]}",
+                                       cal.span or _where("sensing"))
         self.levels = dict(self.full)
         self.rest: dict[str, float] = {}
         self.features: dict[str, float] = {}  # the last feature of each graded leg
@@ -305,7 +312,7 @@ def read_sensing(path: str | Path) -> dict[str, LegCalibration]:
             margin = found
         if any(a <= b for a, b in itertools.pairwise(thresholds)):
             raise CalibrationError(wrong, node_span(name, listed[1]))
-        out[leg] = LegCalibration(tuple(thresholds), margin)
+        out[leg] = LegCalibration(tuple(thresholds), margin, node_span(name, key))
     return out
 
 
