@@ -16,7 +16,8 @@ import yaml
 from gaitc.diagnostics import GaitcError, LineTable, Span, span_at
 
 MAX_DEPTH = 200  # nested lists and mappings; the robot and scenario formats need five
-MAX_NODES = 200_000  # values in the document, counting each use of an alias
+MAX_NODES = 200_000  # values that aliases add to the document (each use of an alias expands
+# its anchor's values again): a few lines can otherwise stand for billions of values
 
 
 def compose(text: str, file: str, error: type[GaitcError], what: str) -> yaml.Node | None:
@@ -51,14 +52,15 @@ def _check_depth(root: yaml.Node, text: str, file: str, error: type[GaitcError],
     stack: list[tuple[yaml.Node, int]] = [(root, 1)]
     lines = LineTable(text, file)
     seen: set[int] = set()
-    visits = 0
+    expanded = 0
     while stack:
         node, depth = stack.pop()
-        visits += 1
-        if visits > MAX_NODES:  # aliases can make a small file a huge tree
-            raise error(f"{what} has more than {MAX_NODES} values once its aliases are "
-                        "expanded", Span(file, 1, 1))
-        if id(node) not in seen:  # an alias shares its anchor's node: recount it once
+        if id(node) in seen:  # an alias shares its anchor's node: a value again
+            expanded += 1
+            if expanded > MAX_NODES:  # aliases can make a small file a huge tree
+                raise error(f"{what} has more than {MAX_NODES} values once its aliases are "
+                            "expanded", Span(file, 1, 1))
+        else:  # recount each node once
             seen.add(id(node))
             node.start_mark = _recount(node.start_mark, lines)
             node.end_mark = _recount(node.end_mark, lines)
