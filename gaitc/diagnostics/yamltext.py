@@ -10,6 +10,7 @@ node's marks) is recounted from its character offset by the rule of ``source_lin
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 import yaml
 
@@ -99,3 +100,22 @@ def finite_number(node: yaml.Node) -> float | None:
     except ValueError:
         return None
     return value if math.isfinite(value) else None
+
+
+def keyed_section(path: str | Path, error: type[GaitcError], what: str, key: str,
+                  expected: str) -> tuple[str, dict[str, tuple[yaml.Node, yaml.Node]]]:
+    """Read the YAML file ``path`` (``what``, as messages name it) and return its name and
+    the mapping under its top-level ``key``; anything else is ``error(expected)`` where the
+    file went wrong (the value of ``key``, else the document)."""
+    from gaitc.diagnostics.files import decode_text, read_input
+
+    name = str(path)
+    text = decode_text(read_input(path, what), name, error)
+    root = compose(text, name, error, f"the {what}")
+    table = mapping_of(root)
+    entry = None if table is None else table.get(key)
+    section = mapping_of(None if entry is None else entry[1])
+    if section is None:
+        at = entry[1] if entry is not None else root
+        raise error(expected, node_span(name, at) if at is not None else Span(name, 1, 1))
+    return name, section

@@ -24,8 +24,6 @@ from pathlib import Path
 
 import yaml
 
-from gaitc.diagnostics import Span
-from gaitc.diagnostics.files import decode_text, read_input
 from gaitc.hw.backend import Backend, Course, HardwareError, SensorReading, where
 from gaitc.sim.environments import Move
 from ltlcompiler.model import Model
@@ -67,18 +65,10 @@ class RegionMap:
     def from_file(cls, path: str | Path, regions: Sequence[str]) -> RegionMap:
         """``regions: {name: [[x, y], ...], ...}`` in YAML; names must be the spec's.  Every
         error names the file and the position of the value at fault."""
-        from gaitc.diagnostics.yamltext import compose, finite_number, mapping_of, node_span
+        from gaitc.diagnostics.yamltext import finite_number, keyed_section, node_span
 
-        name = str(path)
-        text = decode_text(read_input(path, "map"), name, HardwareError)
-        root = compose(text, name, HardwareError, "the map")
-        table = mapping_of(root)
-        entry = None if table is None else table.get("regions")
-        polygons = mapping_of(None if entry is None else entry[1])
-        if polygons is None:
-            at = node_span(name, entry[1] if entry else root) if root is not None \
-                else Span(name, 1, 1)
-            raise HardwareError("a map file maps 'regions' to polygons", at)
+        name, polygons = keyed_section(path, HardwareError, "map", "regions",
+                                       "a map file maps 'regions' to polygons")
         out = {}
         for region, (key, value) in polygons.items():
             if region not in regions:

@@ -277,18 +277,10 @@ def write_sensing(path: str | Path, calibration: Mapping[str, LegCalibration]) -
 def read_sensing(path: str | Path) -> dict[str, LegCalibration]:
     """Read a sensing file written by :func:`write_sensing` (or by hand, in YAML); every
     error names the file and the position of the value at fault."""
-    from gaitc.diagnostics.yamltext import compose, finite_number, mapping_of, node_span
+    from gaitc.diagnostics.yamltext import finite_number, keyed_section, mapping_of, node_span
 
-    name = str(path)
-    text = decode_text(read_input(path, "sensing file"), name, CalibrationError)
-    root = compose(text, name, CalibrationError, "the sensing file")
-    table = mapping_of(root)
-    entry = None if table is None else table.get("legs")
-    legs = mapping_of(None if entry is None else entry[1])
-    if legs is None:
-        at = node_span(name, entry[1] if entry else root) if root is not None \
-            else Span(name, 1, 1)
-        raise CalibrationError("a sensing file maps 'legs' to thresholds", at)
+    name, legs = keyed_section(path, CalibrationError, "sensing file", "legs",
+                               "a sensing file maps 'legs' to thresholds")
     out = {}
     for leg, (key, value) in legs.items():
         fields = mapping_of(value)
