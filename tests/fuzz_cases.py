@@ -43,6 +43,12 @@ SENSING: tuple[tuple[str, str], ...] = (
                           "  L2: {thresholds: [0.35]}\n"),
     ("block.sensing.yaml", "legs:\n  L3:\n    thresholds:\n      - 0.5\n    hysteresis: 0\n"),
 )
+ONE_LIMB = ROOT / "tests" / "data" / "softmodels" / "one_limb.yaml"
+# a curvature step response (time s, curvature 1/mm) of about 12 rad/s, damping ratio 0.9
+CURVATURE: tuple[tuple[str, str], ...] = (
+    ("step.csv", "time,curvature\n" + "".join(
+        f"{k * 0.05:.2f},{0.022 - 0.014 * (1.1 ** -k):.5f}\n" for k in range(40))),
+)
 CALIBRATION: tuple[tuple[str, str], ...] = (
     ("legs.csv", "leg,cycle,level,intensity\n" + "".join(
         f"L1,{c},{2 - c % 2},{v}\n" for c in range(4)
@@ -182,6 +188,11 @@ def _calibration_commands(path: Path, _seed: str, fx: Fixtures) -> list[tuple[st
     return [("calibrate", ["calibrate", str(path), "-o", str(fx.out / "legs.sensing.yaml")])]
 
 
+def _curvature_commands(path: Path, _seed: str, fx: Fixtures) -> list[tuple[str, list[str]]]:
+    return [("characterize --curvature", ["characterize", str(ONE_LIMB), "L1", "--curvature",
+                                          str(path), "-o", str(fx.out / "limb.yaml")])]
+
+
 def controller_seeds(fx: Fixtures) -> tuple[tuple[str, bytes], ...]:
     return (("patrol.json", fx.patrol_controller.read_bytes()),
             ("hazard.json", fx.hazard_controller.read_bytes()))
@@ -206,6 +217,8 @@ def kinds(fx: Fixtures) -> dict[str, Kind]:
         Kind("sensing", ".yaml", tuple((n, t.encode()) for n, t in SENSING), _sensing_commands),
         Kind("calibration", ".csv", tuple((n, t.encode()) for n, t in CALIBRATION),
              _calibration_commands),
+        Kind("curvature", ".csv", tuple((n, t.encode()) for n, t in CURVATURE),
+             _curvature_commands),
     ]
     return {kind.name: kind for kind in found}
 

@@ -20,7 +20,7 @@ LIMIT = 10.0  # seconds per run; generous, the machine is shared
 # Mutants per kind: the whole file stays under a minute on one core.
 PER_KIND = {"gait": 60, "slugsin": 40, "structuredslugs": 40, "ltl": 40, "robot": 6,
             "scenario": 60, "controller": 60, "run": 60, "map": 12, "sensing": 40,
-            "calibration": 40}
+            "calibration": 40, "curvature": 30}
 FUZZ = settings(deadline=None, derandomize=True, database=None,
                 suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large,
                                        HealthCheck.function_scoped_fixture])
