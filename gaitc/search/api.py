@@ -107,17 +107,18 @@ def miss(goal: Goal, plan: GaitPlan) -> float:
 
 def settle(
     model: TransitionModel, robot: str, start: int, goal: Goal, method: str, settings: Settings
-) -> tuple[Planner, GaitPlan | None]:
+) -> tuple[Planner, GaitPlan | None, int]:
     """Plan on one graph; when a lattice route reaches the goal's cells but its continuous
     displacement misses the goal (each transition is propagated from a cell centre, thesis
     5.2.2), plan again, aiming at goal cells within a tolerance shrunk by the miss, then on
     a lattice of half the cell, all within ``settings.budget`` expansions.  Returns the
-    planner of the best plan (one that reaches the goal when any does).  Raises
+    planner of the best plan (one that reaches the goal when any does), the plan and the
+    expansions (MCTS: iterations) spent in all.  Raises
     :class:`~gaitc.search.planners.SearchLimitError` when the first search runs out."""
     planner = make_planner(method, model, robot, start, goal, settings)
     plan = planner.plan()
     if method == "mcts" or plan is None or plan.reached:
-        return planner, plan
+        return planner, plan, planner.expanded
     best: tuple[Planner, GaitPlan] = (planner, plan)
     spent, aim, finer = planner.expanded, goal, settings
     for round_ in range(REFINEMENTS):
@@ -151,11 +152,7 @@ def settle(
     chosen, plan = best
     if isinstance(chosen, HybridPlanner):
         chosen.set_budget(settings.budget)  # the online loop's repairs get the whole budget
-    return chosen, plan
-
-
-def _spent(planner: Planner) -> int:
-    return planner.expanded
+    return chosen, plan, spent
 
 
 def _tighter(current: float, over: float, cell: float, tolerance: float) -> float:
@@ -219,7 +216,8 @@ def first_planner(
         here_settings = dataclasses.replace(settings, budget=max(1, min(share, left)))
         last = last or left <= here_settings.budget
         try:
-            planner, plan = settle(model, bot.name, start, target, method, here_settings)
+            planner, plan, spent = settle(model, bot.name, start, target, method,
+                                          here_settings)
         except SearchLimitError as err:
             left -= here_settings.budget
             if not last:
@@ -231,7 +229,7 @@ def first_planner(
                 f"search and {TOTAL_BUDGETS * settings.budget - max(left, 0)} in all, over "
                 f"{len(graph.states)} valve states ({method})",
                 None, "raise --budget, coarsen --cell or loosen --tolerance") from err
-        left -= _spent(planner)
+        left -= spent
         if isinstance(planner, HybridPlanner):
             planner.set_budget(settings.budget)
         if plan is not None:
@@ -275,7 +273,7 @@ def model_planner(
         planner = make_planner(method, transitions, name, start, target, settings)
         kind = f"{found.graph.model} model's"
         return FirstPlan(planner, bot, None, still_reason(kind, len(transitions))), found
-    planner, plan = settle(transitions, name, start, target, method, settings)
+    planner, plan, _ = settle(transitions, name, start, target, method, settings)
     if plan is not None:
         plan = dataclasses.replace(plan, graph=shape)
     return FirstPlan(planner, bot, plan), found
