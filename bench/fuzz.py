@@ -26,13 +26,12 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
 
-from fuzz_cases import Fixtures, kinds, run_case
+from fuzz_cases import KIND_NAMES, Fixtures, kinds, run_case
 from fuzz_mutate import mutate
 from fuzz_oracle import OUTCOMES, Verdict
 from fuzz_serial import EXCHANGES, exchange
 
-ALL_KINDS = ("gait", "slugsin", "structuredslugs", "ltl", "robot", "scenario", "controller",
-             "run", "serial")
+ALL_KINDS = (*KIND_NAMES, "serial")  # the file kinds, and the board's serial replies
 SERIAL_COMMANDS = ("board",)
 
 

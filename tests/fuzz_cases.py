@@ -198,6 +198,11 @@ def controller_seeds(fx: Fixtures) -> tuple[tuple[str, bytes], ...]:
             ("hazard.json", fx.hazard_controller.read_bytes()))
 
 
+#: Every fuzzed kind by name, in the order of :func:`kinds` (``bench/fuzz.py --kinds``).
+KIND_NAMES = ("gait", "slugsin", "structuredslugs", "ltl", "robot", "scenario", "controller",
+              "run", "map", "sensing", "calibration", "curvature")
+
+
 def kinds(fx: Fixtures) -> dict[str, Kind]:
     """Every fuzzed input kind that a gaitc command reads, by name."""
     found = [
@@ -220,6 +225,7 @@ def kinds(fx: Fixtures) -> dict[str, Kind]:
         Kind("curvature", ".csv", tuple((n, t.encode()) for n, t in CURVATURE),
              _curvature_commands),
     ]
+    assert tuple(kind.name for kind in found) == KIND_NAMES
     return {kind.name: kind for kind in found}
 
 
