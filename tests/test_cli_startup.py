@@ -84,3 +84,12 @@ def test_without_a_cache_folder_the_grammar_is_built_each_time(tmp_path: Path) -
     blocked.write_text("", encoding="utf-8")
     done = _lint_with_cache_home(str(blocked))  # the cache folder cannot be made inside
     assert done.returncode == 0 and done.stderr == ""
+
+
+def test_help_before_a_command_lists_every_command_with_its_summary(
+        capsys: pytest.CaptureFixture[str]) -> None:
+    with pytest.raises(SystemExit):
+        main(["-h", "synth"])
+    out = capsys.readouterr().out
+    assert "synthesize and verify a controller" in out
+    assert "explain why a spec is unrealizable, and how to repair it" in out

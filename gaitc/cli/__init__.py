@@ -97,9 +97,10 @@ def build_parser(words: Sequence[str] | None = None) -> _Parser:
 
 def _command_word(words: Sequence[str]) -> str | None:
     """The command a command line names: its first word that is not an option (the
-    top-level parser's options, --help and --version, take no value)."""
+    top-level parser's options, --help and --version, take no value); None when --help
+    comes first, since the top-level help lists every command."""
     for word in words:
-        if word == "--":
+        if word in ("--", "-h", "--help"):
             return None
         if not word.startswith("-"):
             return word
