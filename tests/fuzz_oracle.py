@@ -15,7 +15,7 @@ import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from gaitc.diagnostics import GaitcError, source_lines
+from gaitc.diagnostics import GaitcError, source_lines, without_bom
 
 LOCATION = re.compile(r"(\d+):(\d+): ")
 OUTCOMES = ("accepted", "user error", "other exit", "internal", "past limit", "wrong line")
@@ -60,7 +60,7 @@ def location_problems(stderr: str, files: dict[str, bytes]) -> list[str]:
             if m is None:
                 continue
             line, column = int(m.group(1)), int(m.group(2))
-            lines = source_lines(data.decode("utf-8", errors="replace"))
+            lines = source_lines(without_bom(data.decode("utf-8", errors="replace")))
             if not 1 <= line <= max(len(lines), 1):
                 problems.append(f"wrong line: {message[:120]!r} but the file has "
                                 f"{len(lines)} lines")

@@ -155,3 +155,28 @@ def test_a_sensing_file_for_other_legs_is_refused_where_it_names_them(tmp_path: 
         HealthSensing({"L1": 2, "L2": 2}, read_sensing(path))
     assert caught.value.message == "leg L2 is calibrated for 3 levels but the spec gives it 2"
     assert caught.value.span == Span(str(path), 2, 3)
+
+
+def test_a_calibration_level_beyond_the_languages_limit_is_refused_at_its_line(
+        tmp_path: Path) -> None:
+    """A level of a billion used to make calibrate list every level below it (a hang the
+    fuzz campaign found)."""
+    from gaitc.hw.sensing import read_cycles
+
+    path = tmp_path / "legs.csv"
+    path.write_text("leg,cycle,level,intensity\nL1,0,1000000000,900\n", encoding="utf-8")
+    with pytest.raises(CalibrationError) as caught:
+        read_cycles(path)
+    assert caught.value.message == ("line 2: levels run from 1 to 100 (the health levels a "
+                                    ".gait leg may have) and intensities are finite numbers")
+    assert caught.value.span == Span(str(path), 2, 1)
+
+
+def test_a_bad_byte_after_a_byte_order_mark_is_counted_as_the_readers_count(
+        tmp_path: Path) -> None:
+    """Line 1's columns start after a byte order mark, in every reader and the printer."""
+    path = tmp_path / "m.yaml"
+    path.write_bytes(b"\xef\xbb\xbfregion\xbf: 1\n")
+    with pytest.raises(HardwareError) as caught:
+        RegionMap.from_file(path, REGIONS)
+    assert caught.value.span == Span(str(path), 1, 7)

@@ -24,8 +24,12 @@ def decode_text(data: bytes, file: str, error: type[GaitcError]) -> str:
     except UnicodeDecodeError as err:
         before = data[: err.start]
         line = before.count(b"\n") + 1
-        # characters, not bytes, as the printer counts columns (the prefix is valid UTF-8)
-        column = len(before[before.rfind(b"\n") + 1:].decode("utf-8")) + 1
+        # characters, not bytes, as the printer counts columns (the prefix is valid UTF-8);
+        # line 1's columns start after a byte order mark, as every reader's do
+        head = before[before.rfind(b"\n") + 1:]
+        if line == 1:
+            head = head.removeprefix("\ufeff".encode())
+        column = len(head.decode("utf-8")) + 1
         raise error(f"'{file}' is not UTF-8 text (byte 0x{data[err.start]:02x} at offset "
                     f"{err.start}); save the file as UTF-8", Span(file, line, column)) from None
 

@@ -23,6 +23,7 @@ import yaml
 
 from gaitc.diagnostics import GaitcError, Span
 from gaitc.diagnostics.files import csv_rows, decode_text, read_input
+from ltlcompiler.checker import MAX_HEALTH
 
 NOMINAL_DEPTH = 0.6  # curvature feature of a healthy actuator when nothing is calibrated
 DEFAULT_HYSTERESIS = 0.03
@@ -225,8 +226,9 @@ def read_cycles(path: str | Path) -> list[Cycle]:
         except ValueError:
             raise CalibrationError(f"line {number}: expected leg,cycle,level,intensity with a "
                                    "whole level and a number", Span(name, number, 1)) from None
-        if lv < 1 or not math.isfinite(sample):
-            raise CalibrationError(f"line {number}: levels start at 1 and intensities are "
+        if not 1 <= lv <= MAX_HEALTH or not math.isfinite(sample):
+            raise CalibrationError(f"line {number}: levels run from 1 to {MAX_HEALTH} (the "
+                                   "health levels a .gait leg may have) and intensities are "
                                    "finite numbers", Span(name, number, 1))
         known = grouped.setdefault(key, (lv, []))
         if known[0] != lv:
