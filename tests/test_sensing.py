@@ -148,7 +148,7 @@ def test_sensing_file_round_trip_and_cli(tmp_path: Path,
         read_sensing(tmp_path / "bad.yaml")
     csv_path.write_text("leg,cycle,level,intensity\nL1,1,0,5\n", encoding="utf-8")
     assert main(["calibrate", str(csv_path)]) == 1
-    assert f"{csv_path}:2:1: error: line 2: levels start at 1" in capsys.readouterr().err
+    assert f"{csv_path}:2:1: error: line 2: levels run from 1 to 100" in capsys.readouterr().err
 
 
 # ---------------------------------------------------------------------------- --on-violation
