@@ -422,11 +422,9 @@ def gaits(robot: str | Path, options: GaitOptions | None = None) -> GaitSearch:
     result = search(loaded, direction, chosen, opts.seed, opts.max_states)
     still = None
     if not result.gaits:
-        from gaitc.gaitgraph.displacement import stillness
+        from gaitc.search.transitions import TransitionModel
 
-        e = result.graph.edges
-        still = stillness(len(result.graph), e.src.tolist(), e.dst.tolist(), e.dx.tolist(),
-                          e.dy.tolist(), [math.degrees(r) for r in e.rot.tolist()])
+        still = TransitionModel.from_graph(result.graph).stillness()
     return KinematicGaits(loaded, result, chosen, opts.direction, opts.seed, opts.max_states,
                           still)
 
@@ -453,14 +451,9 @@ def _model_gaits(robot: str, opts: GaitOptions, method: GaitMethod | None,
     found = search_gaits(loaded, direction, opts.max_open, states)
     still = None
     if not found.gaits:
-        from gaitc.gaitgraph.displacement import stillness
+        from gaitc.search.predictions import graph_transitions
 
-        index = {s: i for i, s in enumerate(found.graph.states)}
-        pairs = sorted(found.graph.motion, key=lambda p: (index[p[0]], index[p[1]]))
-        steps = [found.graph.motion[p] for p in pairs]
-        still = stillness(len(index), [index[a] for a, _ in pairs],
-                          [index[b] for _, b in pairs], [p.x for p in steps],
-                          [p.y for p in steps], [math.degrees(p.theta) for p in steps])
+        still = graph_transitions(found.graph, loaded.valve_legs).stillness()
     return ModelGaits(found, model, opts.direction, still)
 
 

@@ -32,7 +32,6 @@ from gaitc.solver.game import GameStats, out_of_memory
 from gaitc.solver.progress import Progress, Stage
 from gaitc.solver.symbolic import Options
 from gaitc.solver.synthesis import FORMS
-from gaitc.verifier.strategy import VerificationReport
 from ltlcompiler.encoding import EncodingName
 
 if TYPE_CHECKING:
@@ -41,6 +40,7 @@ if TYPE_CHECKING:
     from gaitc.compact.controller import CompactController
     from gaitc.compact.fields import Vocabulary
     from gaitc.sim.graphics import Picture
+    from gaitc.verifier.strategy import VerificationReport
 
 SolverName = Literal["embedded", "slugs"]
 #: ``embedded``: the BDD solver in :mod:`gaitc.solver`; ``slugs``: an installed SLUGS binary.

@@ -8,6 +8,7 @@ waveguide curvature thresholds of thesis section 3.4.2), the active hazard and t
 from __future__ import annotations
 
 import contextlib
+import math
 import signal
 import threading
 from abc import ABC, abstractmethod
@@ -88,8 +89,6 @@ class Course:
     @property
     def error(self) -> float:
         """The angle between the motion and the move, degrees in [0, 180]."""
-        import math
-
         (mx, my), (wx, wy) = self.moved, self.wanted
         if math.hypot(mx, my) < 1e-9 or math.hypot(wx, wy) < 1e-9:
             return 180.0
@@ -99,8 +98,6 @@ class Course:
     @property
     def progress(self) -> float:
         """How far (mm) the motion went along the move."""
-        import math
-
         (mx, my), (wx, wy) = self.moved, self.wanted
         length = math.hypot(wx, wy)
         return 0.0 if length < 1e-9 else (mx * wx + my * wy) / length

@@ -174,7 +174,6 @@ class Driver:
         inputs: InputKey = tuple(int(values[name]) for name in self.simulator.strategy.inputs)
         return Request(inputs, describe(reading, here))
 
-
     def _off_course(self, found: str, expected: str, here: State | None) -> HardwareError:
         """The error for a reading in another region than the controller expects: a gait
         that went the wrong way (its motion against the move, in degrees, and its
@@ -212,7 +211,7 @@ class Driver:
         return HardwareError(
             f"{head}: gait {here.gait} went the right way (a direction error of "
             f"{course.error:.0f} deg) but not far enough: it {moved}, {course.progress:.1f} "
-            f"mm along the {_length(course.wanted):.1f} mm from {self._left} to {expected}; "
+            f"mm along the {math.hypot(*course.wanted):.1f} mm from {self._left} to {expected}; "
             f"{tail}", where(self.backend.name),
             "a gait moves the robot only as far as its cycle does: repeat each gait with "
             "--cycles N or shrink the regions with --cell-size MM (docs/models.md)")
@@ -220,10 +219,6 @@ class Driver:
 
 def _compass(value: float, positive: str, negative: str) -> str:
     return f"{abs(value):.1f} mm {positive if value >= 0 else negative}"
-
-
-def _length(vector: tuple[float, float]) -> float:
-    return math.hypot(*vector)
 
 
 VIOLATION_POLICIES = ("stop", "hold", "worst")

@@ -9,13 +9,13 @@ search after each batch until one reaches the goal or ``max_states`` are in.
 from __future__ import annotations
 
 import dataclasses
+import math
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
 from gaitc.diagnostics import UsageError
-from gaitc.gaitgraph.displacement import stillness
 from gaitc.gaitgraph.graph import GaitGraph, random_states
 from gaitc.gaitgraph.robot import Robot, RobotFileError, load_robot
 from gaitc.search.goals import Goal, parse_goal
@@ -162,9 +162,7 @@ def _tighter(current: float, over: float, cell: float, tolerance: float) -> floa
 
 def _motionless(model: TransitionModel, start: int) -> bool:
     """No cycle through the start pose moves the chassis (:mod:`gaitc.gaitgraph.displacement`)."""
-    return start not in stillness(model.poses, model.src.tolist(), model.dst.tolist(),
-                                  model.dx.tolist(), model.dy.tolist(),
-                                  model.rot.tolist()).moving_poses
+    return start not in model.stillness().moving_poses
 
 
 def still_reason(kind: str, transitions: int) -> str:
@@ -201,6 +199,7 @@ def first_planner(
         order = []
     added = 0
     best: FirstPlan | None = None
+    closest = math.inf
     left = TOTAL_BUDGETS * settings.budget
     while True:
         if order:
@@ -235,11 +234,10 @@ def first_planner(
         if plan is not None:
             plan = dataclasses.replace(plan, graph=(len(graph.states), len(graph), len(model)))
         here = FirstPlan(planner, bot, plan)
-        if plan is not None and (best is None or best.plan is None
-                                 or miss(target, plan) < miss(target, best.plan)):
-            best = here
+        if plan is not None and miss(target, plan) < closest:  # the closest of all batches
+            best, closest = here, miss(target, plan)
         if (plan is not None and plan.reached) or last:
-            return here if best is None or best.plan is None else best
+            return best or here
 
 
 def model_planner(
@@ -255,7 +253,7 @@ def model_planner(
     (``model``, by default the one it declares; thesis 4.2.2) with valve states of at most
     ``max_open`` open valves (at most ``max_states`` of them, a seeded sample beyond), and
     the predictions it planned on."""
-    from gaitc.models.catalogue import sampled_states
+    from gaitc.models.catalogue import chosen_model, sampled_states
 
     check_method(method)
     if max_open < 1:
@@ -265,7 +263,7 @@ def model_planner(
     bot, target = load_robot(path), goal_for(goal)
     settings = settings or Settings()
     chambers = bot.valve_count
-    found = model_transitions(path, max_open, model,
+    found = model_transitions(path, max_open, model or chosen_model(bot, None),
                               sampled_states(chambers, max_open, max_states, settings.seed))
     transitions, start, name = found.model, found.start, found.loaded.robot
     shape = (transitions.poses, transitions.poses, len(transitions))

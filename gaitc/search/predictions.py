@@ -45,28 +45,35 @@ def model_transitions(path: str | Path, max_open: int = 1, model: str | None = N
     file declares first) over valve states with at most ``max_open`` valves open (or the
     given ``states``, the vented one among them), as a :class:`TransitionModel` (mm,
     degrees; no slip)."""
+    # a file that declares no model: the spring-damper reader says so, at the position
     name = model or chosen_model(load_robot(path), None) or "spring-damper"
     loaded = load_model(name, path)
     if states is None:
         states = valve_states(len(loaded.valve_legs), max_open)
     graph = build_graph(loaded.model, states, loaded.period)
     index = {s: i for i, s in enumerate(graph.states)}
+    return ModelPredictions(loaded, graph, graph_transitions(graph, loaded.valve_legs),
+                            index[(False,) * len(loaded.valve_legs)])
+
+
+def graph_transitions(graph: ModelGraph, valve_legs: tuple[str, ...]) -> TransitionModel:
+    """A model's gait graph as a :class:`TransitionModel`: one pose per valve state, in the
+    graph's order (mm, degrees; no slip)."""
+    index = {s: i for i, s in enumerate(graph.states)}
     pairs = sorted(graph.motion)
-    src = np.array([index[a] for a, _ in pairs], np.int64)
-    dst = np.array([index[b] for _, b in pairs], np.int64)
     motion = [graph.motion[p] for p in pairs]
     transitions = TransitionModel(
-        poses=len(states),
-        src=src,
-        dst=dst,
+        poses=len(graph.states),
+        src=np.array([index[a] for a, _ in pairs], np.int64),
+        dst=np.array([index[b] for _, b in pairs], np.int64),
         dx=np.array([m.x for m in motion]),
         dy=np.array([m.y for m in motion]),
         rot=np.array([math.degrees(m.theta) for m in motion]),
         slip=np.zeros(len(pairs)),
         labels=[valve_text(s) for s in graph.states],
     )
-    transitions.groups = _groups(loaded.valve_legs)
-    return ModelPredictions(loaded, graph, transitions, index[(False,) * len(loaded.valve_legs)])
+    transitions.groups = _groups(valve_legs)
+    return transitions
 
 
 def _groups(legs: tuple[str, ...]) -> tuple[int, ...]:

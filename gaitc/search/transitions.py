@@ -13,6 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
+from gaitc.gaitgraph.displacement import Stillness, stillness
 from gaitc.gaitgraph.graph import GaitGraph
 from gaitc.gaitgraph.kinematics import valve_string
 
@@ -98,6 +99,14 @@ class TransitionModel:
         )
         model.groups = tuple(len(leg.chambers) for leg in graph.robot.legs)
         return model
+
+    def stillness(self) -> Stillness:
+        """Which cycles of the live transitions move the chassis
+        (:mod:`gaitc.gaitgraph.displacement`)."""
+        live = self.alive
+        return stillness(self.poses, self.src[live].tolist(), self.dst[live].tolist(),
+                         self.dx[live].tolist(), self.dy[live].tolist(),
+                         self.rot[live].tolist())
 
     def copy(self) -> TransitionModel:
         """An independent copy (the walker keeps the original predictions)."""

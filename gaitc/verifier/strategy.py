@@ -12,6 +12,8 @@ from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
+import networkx as nx
+
 from gaitc.ir.bitblast import bitblast
 from gaitc.ir.bits import bits_mismatch
 from gaitc.ir.controller import Controller
@@ -75,8 +77,6 @@ class Check:
         self.notes: list[str] = []
         self.reachable: list[int] = []
         self.valuations: list[dict[str, bool]] = []
-        import networkx as nx  # here, not at the top: ``check`` imports this module too
-
         self.graph: Any = nx.DiGraph()
         self.sccs = 0
         self._conj: dict[tuple[str, Bits | None], Any] = {}
@@ -193,8 +193,6 @@ class Check:
     def fair_sccs(self, avoid: str, index: int, need: str | None) -> list[list[int]]:
         """SCCs of the edges not satisfying clause ``index`` of ``avoid`` in which every clause
         of ``need`` holds on some internal edge: a fair cycle that starves the avoided goal."""
-        import networkx as nx
-
         count = len(self.spec.section(need)) if need is not None else 0
         keep = [(a, b, d) for a, b, d in self.graph.edges(data=True)
                 if index not in d.get(avoid, ())]

@@ -10,7 +10,7 @@ import argparse
 import functools
 import sys
 import time
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import gaitc
 from gaitc.api.isolation import HardLimits, cudd_budget_mb, run_limited
@@ -28,8 +28,10 @@ from gaitc.cli.status import progress_display
 from gaitc.diagnostics import GaitcError, UsageError, render_error
 from gaitc.solver.progress import Progress
 from gaitc.solver.symbolic import Options
-from gaitc.verifier.strategy import VerificationReport
 from ltlcompiler.encoding import ENCODINGS
+
+if TYPE_CHECKING:
+    from gaitc.verifier.strategy import VerificationReport
 
 EXIT_CODES = exit_code_help({
     ExitCode.OK: "every spec is realizable (check), the controller was written / verified",
