@@ -81,21 +81,29 @@ def digits(ctrl: CompactController, values: dict[str, int]) -> str:
 def test_the_board_makes_the_python_moves_for_10000_steps(
         robot_a: tuple[gaitc.Spec, CompactController], link: serial.Serial) -> None:
     spec, ctrl = robot_a
+    assert _replay(spec, ctrl, link, (11, 12)) >= 10_000
+
+
+def _replay(spec: gaitc.Spec, ctrl: CompactController, port: serial.Serial,
+            seeds: tuple[int, int]) -> int:
+    """Walk 5,000 steps with a random and 5,000 with an adversarial environment (seeded),
+    asking the board each step and checking its move, goal and state against the Python
+    runner's; the number of steps compared."""
     fields = ctrl.vocabulary.fields
     steps = 0
-    for adversarial, seed in ((False, 11), (True, 12)):
+    for adversarial, seed in zip((False, True), seeds, strict=True):
         walk = _walk(spec, ctrl, 5000, seed, adversarial)
         first, _ = next(walk)
         run = Runner(ctrl, first)
         state = "".join(DIGITS[run.state[f.name]] for f in fields)
-        assert ask(link, f"C s {digits(ctrl, first)}") == f"M 0 g=0 o={state}"
+        assert ask(port, f"C s {digits(ctrl, first)}") == f"M 0 g=0 o={state}"
         for chosen, _ in walk:
-            move_values = run.step(chosen)
-            move = ctrl.moves.index(tuple(move_values[f.name] for f in ctrl.vocabulary.outputs))
+            values = run.step(chosen)
+            move = ctrl.moves.index(tuple(values[f.name] for f in ctrl.vocabulary.outputs))
             state = "".join(DIGITS[run.state[f.name]] for f in fields)
-            assert ask(link, f"C x {digits(ctrl, chosen)}") == f"M {move} g={run.goal} o={state}"
+            assert ask(port, f"C x {digits(ctrl, chosen)}") == f"M {move} g={run.goal} o={state}"
             steps += 1
-    assert steps >= 10_000
+    return steps
 
 
 def test_the_8_leg_robot_makes_the_python_moves_on_the_board_without_its_monitor(
@@ -117,23 +125,9 @@ def test_the_8_leg_robot_makes_the_python_moves_on_the_board_without_its_monitor
     assert built.program is not None and built.flash is not None and built.flash < 32256
     plain = build_firmware(tmp_path_factory.mktemp("plain"))
     image = Image(built.program, built.program.with_suffix(".hex"), plain.simulator)
-    fields = ctrl.vocabulary.fields
-    steps = 0
     with SimulatedBoard(image, tmp_path / "pins.jsonl") as sim:
         port = serial.Serial(sim.port, 115200, timeout=2.0)
-        for adversarial, seed in ((False, 21), (True, 22)):
-            walk = _walk(spec, ctrl, 5000, seed, adversarial)
-            first, _ = next(walk)
-            run = Runner(ctrl, first)
-            state = "".join(DIGITS[run.state[f.name]] for f in fields)
-            assert ask(port, f"C s {digits(ctrl, first)}") == f"M 0 g=0 o={state}"
-            for chosen, _ in walk:
-                values = run.step(chosen)
-                move = ctrl.moves.index(tuple(values[f.name] for f in ctrl.vocabulary.outputs))
-                state = "".join(DIGITS[run.state[f.name]] for f in fields)
-                assert ask(port, f"C x {digits(ctrl, chosen)}") == (
-                    f"M {move} g={run.goal} o={state}")
-                steps += 1
+        steps = _replay(spec, ctrl, port, (21, 22))
         port.close()
     assert steps >= 10_000
 
