@@ -209,3 +209,68 @@ def test_a_signal_during_the_repair_workers_stops_them_all(tmp_path: Path,
     time.sleep(0.2)
     assert [w for w in workers if Path(f"/proc/{w}").exists()
             and "Z" not in Path(f"/proc/{w}/stat").read_text().split()[2]] == []
+
+
+def _long_spec(tmp_path: Path) -> Path:
+    """Thesis robot A with 100 health levels a leg: its check runs for many seconds."""
+    text = (ROOT / "specs" / "thesis_robot_a.gait").read_text(encoding="utf-8")
+    spec = tmp_path / "robot_a_h100.gait"
+    spec.write_text(text.replace("health 3", "health 100"), encoding="utf-8")
+    return spec
+
+
+def _gone(pid: int) -> bool:
+    """Whether process ``pid`` has ended (absent, or a zombie waiting to be reaped)."""
+    try:
+        return Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[0] == "Z"
+    except OSError:
+        return True
+
+
+#: The runs with worker processes: the race of two solver orders, the resilience pool's
+#: workers (--jobs 2), and explain's.
+WORKER_RUNS = {
+    "check-race": lambda spec: ["check", str(spec)],
+    "resilience-jobs": lambda spec: ["resilience", "--jobs", "2",
+                                     str(ROOT / "specs" / "thesis_robot_a.gait")],
+    "explain": lambda spec: ["explain", str(spec)],
+}
+
+
+@pytest.mark.skipif(not Path("/proc/self/task").exists() or os.cpu_count() == 1,
+                    reason="needs /proc and two cores (the workers)")
+@pytest.mark.parametrize("ending", ["SIGINT", "SIGINT-twice", "SIGTERM", "SIGKILL"])
+@pytest.mark.parametrize("run", list(WORKER_RUNS))
+def test_a_signal_to_the_main_process_alone_ends_every_worker(
+        tmp_path: Path, run: str, ending: str) -> None:
+    """A signal sent to gaitc's own process only (``timeout -s INT``, a supervisor, a
+    notebook kernel: not to its process group, as a terminal's Ctrl-C is) ends the run with
+    its one line and exit code, a second SIGINT included, and every worker process is gone
+    within a second, after SIGKILL too (issue 38)."""
+    argv = [sys.executable, "-m", "gaitc", *WORKER_RUNS[run](_long_spec(tmp_path))]
+    proc = subprocess.Popen(argv, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True,
+                            start_new_session=True,
+                            preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
+    workers: list[int] = []
+    deadline = time.monotonic() + 60
+    while proc.poll() is None and time.monotonic() < deadline and len(workers) < 2:
+        workers = _children(proc.pid)
+        time.sleep(0.01)
+    if len(workers) < 2:
+        proc.kill()
+        pytest.skip("the run ended before its workers started")
+    time.sleep(0.3)  # into the work
+    signum = getattr(signal, ending.split("-")[0])
+    proc.send_signal(signum)
+    if ending.endswith("twice"):
+        time.sleep(0.05)
+        proc.send_signal(signum)
+    _, err = proc.communicate(timeout=30)
+    code, line = ENDINGS[signum]
+    assert proc.returncode == code, err
+    if line:
+        assert err.strip().splitlines()[-1] == line and "Traceback" not in err, err
+    deadline = time.monotonic() + 1.0
+    while not all(_gone(w) for w in workers) and time.monotonic() < deadline:
+        time.sleep(0.02)
+    assert [w for w in workers if not _gone(w)] == []

@@ -8,14 +8,13 @@ from __future__ import annotations
 
 import multiprocessing
 import os
-import signal
 import time
 from dataclasses import dataclass, field
 from multiprocessing.connection import Connection
 from typing import Any, Final
 
 from gaitc.diagnostics import SolverError
-from gaitc.diagnostics.processes import can_fork, die_with_parent, mask_held, signals_held
+from gaitc.diagnostics.processes import as_worker, can_fork, signals_held
 from gaitc.ir.controller import Controller
 from gaitc.ir.spec import GR1Spec, Semantics
 from gaitc.solver import synthesis
@@ -32,10 +31,7 @@ def _worker(share: list[GR1Spec], semantics: Semantics, options: Options,
     """A worker process: decide its share of the variants (it has them from the fork, so
     nothing is pickled on the way in) and send the answers, or the solver's error, back.
     Ctrl-C is the parent's to handle; SIGTERM (the parent stopping it) ends it quietly."""
-    die_with_parent()  # a parent killed by SIGKILL takes its workers with it
-    signal.signal(signal.SIGINT, signal.SIG_IGN)
-    signal.signal(signal.SIGTERM, signal.SIG_DFL)
-    mask_held(False)
+    as_worker()
     try:
         out.send([synthesis.check(spec, semantics, timeout, options=options).realizable
                   for spec in share])

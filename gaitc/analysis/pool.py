@@ -18,6 +18,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from gaitc.diagnostics import SolverError, UsageError
+from gaitc.diagnostics.processes import as_worker
 from gaitc.ir.spec import GR1Spec, Semantics
 from ltlcompiler.encoding import EncodingName
 from ltlcompiler.lowering import lower
@@ -72,7 +73,8 @@ class Pool:
                 raise UsageError(f"cannot reach the Dask scheduler at {self.dask}: {err}"
                                  ) from None
         elif self.jobs > 1:
-            self._executor = ProcessPoolExecutor(self.jobs)
+            # workers die with the run, even one killed by SIGKILL (issue 38)
+            self._executor = ProcessPoolExecutor(self.jobs, initializer=as_worker)
 
     def close(self) -> None:
         if self._executor is not None:

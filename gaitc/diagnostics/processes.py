@@ -178,10 +178,7 @@ def claim() -> None:
 def _child(work: Callable[[], Any], setup: Callable[[], None] | None,
            sender: Connection) -> None:
     global _parent
-    signal.signal(signal.SIGINT, signal.SIG_IGN)  # the parent handles Ctrl-C and kills us
-    signal.signal(signal.SIGTERM, signal.SIG_DFL)
-    mask_held(False)  # forked while the parent held them back
-    die_with_parent()
+    as_worker()
     _parent = sender
     try:
         if setup is not None:
@@ -224,6 +221,17 @@ def signals_held() -> Iterator[None]:
         yield
     finally:
         signal.pthread_sigmask(signal.SIG_SETMASK, before)
+
+
+def as_worker() -> None:
+    """Set up a worker process of this run (a racer, a limited child, a pool's worker): it
+    dies with its parent, even one killed by SIGKILL; Ctrl-C is the parent's to handle (it
+    stops the workers); SIGTERM, the parent stopping it, ends it quietly; and the signals
+    the parent held back around the fork are unblocked."""
+    die_with_parent()
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    mask_held(False)
 
 
 def die_with_parent() -> None:
