@@ -4,12 +4,20 @@ Every YAML reader goes through :func:`compose`: PyYAML's safe loader only, any Y
 problem (bad syntax, a NUL or other character YAML forbids, nesting deeper than
 :data:`MAX_DEPTH`) becomes the caller's error class with the file, line and column.
 PyYAML also ends lines at \r, \x85 and U+2028/9; every position it reports (and every
-node's marks) is recounted from its character offset by the rule of ``source_lines``.
+node's marks) is recounted from its character offset by the rule of ``source_lines`` (a text
+without those characters has PyYAML's positions already).
+
+libyaml (PyYAML's C composer) is about five times faster, but it is a different parser: on
+10,000 printable-ASCII mutants of the project's YAML seeds it accepted 7 texts that PyYAML
+refuses (a tab inside a flow mapping, among others), refused 10 that PyYAML accepts, and
+made 23 other trees differ (empty values one column apart, tags read differently).  The
+Python composer is kept, linear at about 3.5 s per MB (docs/reliability.md).
 """
 
 from __future__ import annotations
 
 import math
+import re
 from pathlib import Path
 
 import yaml
@@ -19,6 +27,10 @@ from gaitc.diagnostics import GaitcError, LineTable, Span, span_at
 MAX_DEPTH = 200  # nested lists and mappings; the robot and scenario formats need five
 MAX_NODES = 200_000  # values that aliases add to the document (each use of an alias expands
 # its anchor's values again): a few lines can otherwise stand for billions of values
+
+
+#: The line breaks of PyYAML that ``source_lines`` does not count.
+_OTHER_BREAKS = re.compile("[\r\x85\u2028\u2029]")
 
 
 def compose(text: str, file: str, error: type[GaitcError], what: str) -> yaml.Node | None:
@@ -51,7 +63,7 @@ def _check_depth(root: yaml.Node, text: str, file: str, error: type[GaitcError],
                  what: str) -> None:
     """Bound the nesting, and recount every node's marks (see the module docstring)."""
     stack: list[tuple[yaml.Node, int]] = [(root, 1)]
-    lines = LineTable(text, file)
+    lines = LineTable(text, file) if _OTHER_BREAKS.search(text) else None
     seen: set[int] = set()
     expanded = 0
     while stack:
@@ -63,8 +75,9 @@ def _check_depth(root: yaml.Node, text: str, file: str, error: type[GaitcError],
                             "expanded", Span(file, 1, 1))
         else:  # recount each node once
             seen.add(id(node))
-            node.start_mark = _recount(node.start_mark, lines)
-            node.end_mark = _recount(node.end_mark, lines)
+            if lines is not None:
+                node.start_mark = _recount(node.start_mark, lines)
+                node.end_mark = _recount(node.end_mark, lines)
         if depth > MAX_DEPTH:
             mark = node.start_mark
             raise error(f"{what} nests deeper than {MAX_DEPTH} levels",
