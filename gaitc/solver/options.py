@@ -86,6 +86,8 @@ class Options:
     # many seconds of fixpoint (the race's static racer: RACE_SIFT_AFTER)
     partitioned: bool = False  # ρs as clusters with early quantification (slow: see bench)
     recycle: bool = False  # start inner X fixpoints from the previous round's values (slower here)
+    attractor: bool = True  # start each goal's μY from the system's attractor of the goal
+    # (its rings need one CPre each, not an X fixpoint per assumption: Game._attractor)
     cluster_limit: int = 2500  # node limit when merging ρs parts into clusters
     memory_mb: int | None = None  # CUDD's hard memory limit (its own tables and caches)
     first: tuple[str, ...] = ()  # variables pinned to the top of the order (rigid parameters)
