@@ -7,6 +7,7 @@ from __future__ import annotations
 from pathlib import Path
 
 import gaitc
+from gaitc.solver.symbolic import Options
 from gaitc.sim.adversary import harm_table
 from gaitc.sim.environments import AdversarialEnvironment
 from gaitc.sim.run import Run
@@ -23,7 +24,12 @@ def _lost(run: Run) -> int:
 
 
 def test_planning_forces_more_health_loss_than_one_step() -> None:
-    bound = gaitc.session(gaitc.load(HAZARD_PATROL), prefer="none")
+    """Against a controller that waits in its cache while the hazard is on (the strategy
+    of the classic fixpoint, which may wait as long as the environment owes its liveness),
+    the planner keeps the hazard on where it costs most."""
+    spec = gaitc.load(HAZARD_PATROL)
+    waiting = gaitc.synthesize(spec, options=Options(attractor=False), prefer="none")
+    bound = gaitc.session(spec, waiting)
     assert bound is not None
     greedy = AdversarialEnvironment(plan=False)
     one_step = gaitc.simulate(bound, env=greedy, steps=400)
