@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import warnings
 from collections.abc import Callable, Iterable, Sequence
-from typing import Any
+from typing import Any, Final
 
 from gaitc.diagnostics import FormulaError
 from gaitc.ir.bits import spec_bits
@@ -47,6 +47,10 @@ from gaitc.solver.ordering import AtomCache, invariant_clauses, variable_order
 
 __all__ = ["MEMORY_STOP", "SIFT_TRIGGER", "BDDNode", "Options", "SymbolicSpec"]
 BDDNode = Any  # a dd.cudd.Function; dd ships no type stubs
+
+
+#: Nodes of the clause products made so far past which they are joined (_conj_under).
+PENDING_NODES: Final = 50_000
 
 
 class _OrderTooLarge(Exception):
@@ -254,26 +258,35 @@ class SymbolicSpec:
 
         With the invariants as ``base`` every partial product stays inside the mutexes, so
         it stays small; a left fold over the 900 move clauses of a 30 x 30 grid took 34 s.
-        The tree is merged as the products come (a binary counter: two subtrees of the
-        same height are joined at once), so that at most one subtree per height is alive:
-        on the 1024 x 1024 gridworld each of the 2,049 products ``base ∧ item`` has the
-        size of ``base`` (the 64 obstacle cells), and holding them all at once took 900,000
-        live nodes for a relation of 2,000 (issue 37).
+        The products are made first, then joined; but once the products made so far hold
+        more than :data:`PENDING_NODES` nodes (each counted alone), they are joined into one
+        part before more are made.  On the 1024 x 1024 gridworld each of the 2,049 products has
+        the size of ``base`` (the obstacle's 64 cells), and all of them alive took 900,000
+        live nodes for a relation of 2,000 (179 MB; issue 37).  Only in a fixed order: while
+        CUDD sifts, joining as the products come changes when it sifts and so the order it
+        ends in (GenBuf with 16 senders, whose build restarts sifting: a relation of 2,406
+        nodes instead of 1,731, and a fixpoint three times slower).
         """
-        stack: list[tuple[int, BDDNode]] = []  # (height, subtree), heights decreasing
+        parts: list[BDDNode] = []
+        pending: list[BDDNode] = []
+        held = 0  # the nodes of the pending products, each counted alone
+        fixed = not (self.sifted_build or self.options.reordering)  # the order stays put
         for item in items:
             self._checkpoint()
-            height, product = 0, self._watch(base & item)
-            while stack and stack[-1][0] == height:
-                self._checkpoint()
-                product = self._watch(stack.pop()[1] & product)
-                height += 1
-            stack.append((height, product))
-        out = stack.pop()[1] if stack else base
-        while stack:  # the subtrees left, smallest first (the last items)
+            pending.append(self._watch(base & item))
+            held += pending[-1].dag_size if fixed else 0
+            if held > PENDING_NODES:
+                parts.append(self._balanced(pending))
+                pending, held = [], 0
+        return self._balanced([*parts, self._balanced(pending)] if pending else parts or [base])
+
+    def _balanced(self, level: list[BDDNode]) -> BDDNode:
+        """The conjunction of ``level``, joined pairwise level by level."""
+        while len(level) > 1:
             self._checkpoint()
-            out = self._watch(stack.pop()[1] & out)
-        return out
+            paired = [self._watch(a & b) for a, b in zip(level[::2], level[1::2], strict=False)]
+            level = paired + ([level[-1]] if len(level) % 2 else [])
+        return level[0]
 
     def _watch(self, product: BDDNode) -> BDDNode:
         """``product``, unless it is too large for the static order (``Options.sift_above``,
