@@ -96,6 +96,22 @@ def test_timeout_stops_synthesis_and_writes_nothing(
     assert list(tmp_path.iterdir()) == []
 
 
+def test_timeout_stops_resilience_and_its_workers(tmp_path: Path) -> None:
+    """resilience --timeout (issue 38): robot A with 100 health levels a leg takes minutes;
+    the analysis and its two workers stop a second past the limit, with one JSON record."""
+    spec = tmp_path / "robot_a_h100.gait"
+    spec.write_text(ROBOT_A.read_text(encoding="utf-8").replace("health 3", "health 100"),
+                    encoding="utf-8")
+    code, out, err, wall = gaitc_run("resilience", str(spec), "--jobs", "2", "--timeout",
+                                     "1", "--json")
+    assert code == 4, err
+    record = json.loads(out)
+    assert record["error"]["message"] == (
+        "the resilience analysis stopped after the time limit of 1 s")
+    assert wall <= 2.0 + STARTUP
+    assert err.count("error:") == 1
+
+
 @pytest.mark.parametrize("kind", ["onehot", "binary"])
 def test_memory_limit_is_exit_4_below_the_bound(kind: str, grid_slugsin: Path) -> None:
     before = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss
@@ -154,7 +170,7 @@ def test_no_limit_runs_in_process() -> None:
     ("0", "must be a positive, finite number of seconds, not 0"),
     ("soon", "'soon' is not a number of seconds"),
 ])
-@pytest.mark.parametrize("command", ["check", "synth", "explain"])
+@pytest.mark.parametrize("command", ["check", "synth", "explain", "resilience"])
 def test_bad_timeouts_are_usage_errors(value: str, message: str, command: str,
                                        capsys: pytest.CaptureFixture[str]) -> None:
     """Reproducer 9 of issue 9: ``--timeout nan`` was ignored, ``--timeout -1`` accepted."""

@@ -13,6 +13,7 @@ from gaitc.analysis.explanation import explain as explain_spec
 from gaitc.analysis.pool import Pool, Progress
 from gaitc.analysis.resilience import Resilience, cache_sites
 from gaitc.analysis.resilience import resilience as analyse
+from gaitc.api.isolation import HardLimits, run_limited
 from gaitc.api.loading import Spec, load
 from gaitc.diagnostics import UsageError
 from gaitc.ir.spec import GR1Spec, Semantics
@@ -43,14 +44,17 @@ def explain(spec: Spec | GR1Spec | str | Path, semantics: Semantics | str = Sema
 def resilience(spec: Spec | str | Path, method: str = "parametric",
                health_bound: int | None = None, place_caches: int | None = None,
                *, semantics: Semantics | str = Semantics.DEFAULT, jobs: int = 1,
-               dask: str | None = None, progress: Progress | None = None) -> Resilience:
+               dask: str | None = None, progress: Progress | None = None,
+               timeout: float | None = None) -> Resilience:
     """The :class:`~gaitc.analysis.resilience.Resilience` report of a ``.gait`` spec.
 
     ``method``: ``parametric`` (one game with rigid per-leg caps answers every failure set
     and health vector) or ``lattice`` (one solver call per variant, pruned by
     monotonicity); ``jobs``/``dask`` run variant checks in local processes or on a Dask
     cluster. ``health_bound`` limits the health front (default: the spec's largest health,
-    at most 3); ``place_caches`` K searches the K-sets of regions for caches.
+    at most 3); ``place_caches`` K searches the K-sets of regions for caches.  With
+    ``timeout`` (seconds) the analysis runs in a child process that is stopped a tenth of a
+    second past it, its workers with it: a :class:`SolverError` (exit 4).
 
     >>> import gaitc
     >>> report = gaitc.resilience("specs/thesis_robot_b.gait")
@@ -72,14 +76,12 @@ def resilience(spec: Spec | str | Path, method: str = "parametric",
         raise UsageError(f"--place-caches {place_caches}: the map has only {sites} regions "
                          "no hazard covers")
     bound = health_bound or min(3, max(leg.health for leg in spec.model.legs))
-    with Pool(spec.encoding, chosen, jobs, dask, progress) as pool:
-        return analyse(
-            model=spec.model,
-            encoding=spec.encoding,
-            file=spec.path,
-            semantics=chosen,
-            method=method,
-            health_bound=bound,
-            place_caches=place_caches,
-            pool=pool,
-        )
+    model, encoding, path = spec.model, spec.encoding, spec.path
+
+    def analysed() -> Resilience:
+        with Pool(encoding, chosen, jobs, dask, progress) as pool:
+            return analyse(model=model, encoding=encoding, file=path, semantics=chosen,
+                           method=method, health_bound=bound, place_caches=place_caches,
+                           pool=pool)
+
+    return run_limited(analysed, HardLimits(seconds=timeout), "the resilience analysis")

@@ -77,9 +77,10 @@ def cudd_budget_mb(memory_mb: int) -> int:
     return max(1, int(room * CUDD_SHARE))
 
 
-def run_limited(work: Callable[[], T], limits: HardLimits) -> T:
+def run_limited(work: Callable[[], T], limits: HardLimits, what: str = "synthesis") -> T:
     """``work()``, in a child process bounded by ``limits`` when there are any (and the
-    platform can fork); its exceptions are raised here as they were raised there."""
+    platform can fork); its exceptions are raised here as they were raised there, and a
+    time limit passed is ":data:`what` stopped after the time limit"."""
     if not limits.any or not can_fork():
         return work()
     deadline = None if limits.seconds is None else time.monotonic() + limits.seconds + GRACE
@@ -93,11 +94,11 @@ def run_limited(work: Callable[[], T], limits: HardLimits) -> T:
             resource.setrlimit(resource.RLIMIT_AS, (limit, hard))
 
     _, outcome = first_success([work], deadline, setup)
-    answer: T = _unpack(outcome, limits)
+    answer: T = _unpack(outcome, limits, what)
     return answer
 
 
-def _unpack(outcome: Outcome, limits: HardLimits) -> Any:
+def _unpack(outcome: Outcome, limits: HardLimits, what: str) -> Any:
     kind = outcome[0]
     if kind == "ok":
         return outcome[1]
@@ -109,7 +110,7 @@ def _unpack(outcome: Outcome, limits: HardLimits) -> Any:
             print(text, file=sys.stderr, end="")
         raise err
     if kind == "timeout":
-        raise time_limit_error(limits.seconds or 0.0)
+        raise time_limit_error(limits.seconds or 0.0, what)
     code = outcome[1]
     if code in (1, -signal.SIGKILL):  # CUDD's exit(1) on a failed malloc; the OOM killer
         raise out_of_memory()

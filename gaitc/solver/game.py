@@ -33,10 +33,11 @@ __all__ = ["ControllerTooLarge", "Game", "GameResult", "GameStats", "Limits", "O
            "Progress", "Stage", "out_of_memory", "too_large"]
 
 
-def time_limit_error(seconds: float) -> SolverError:
-    """The error of a solver run stopped by its time limit (here, or killed by a parent)."""
+def time_limit_error(seconds: float, what: str = "synthesis") -> SolverError:
+    """The error of a solver run (``what``) stopped by its time limit (here, or killed by a
+    parent)."""
     return SolverError(
-        f"synthesis stopped after the time limit of {seconds:g} s",
+        f"{what} stopped after the time limit of {seconds:g} s",
         hint="raise --timeout, or simplify the specification (fewer grid cells or health "
         "levels, the binary encoding)",
     )

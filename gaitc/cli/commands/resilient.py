@@ -13,7 +13,7 @@ from typing import Any
 import gaitc
 from gaitc.analysis.pool import terminal_progress
 from gaitc.analysis.resilience import METHODS
-from gaitc.cli.commands.arguments import output_file, positive_count
+from gaitc.cli.commands.arguments import output_file, positive_count, positive_seconds
 from gaitc.cli.exitcodes import ExitCode, exit_code_help
 from gaitc.cli.reporting import document, print_json
 from gaitc.diagnostics import UsageError
@@ -56,6 +56,9 @@ def register(sub: Any) -> None:
     p.add_argument("-o", "--output", metavar="PICTURE", type=output_file,
                    help="draw the legs coloured by criticality (.svg, .png, .pdf, .dot)")
     p.add_argument("--robotics-semantics", action="store_true")
+    p.add_argument("--timeout", type=positive_seconds, metavar="SECONDS",
+                   help="stop the analysis (its workers too) this many seconds after it "
+                   "starts, with exit 4")
     p.set_defaults(run=run_resilience)
 
 
@@ -67,7 +70,7 @@ def run_resilience(args: argparse.Namespace) -> int:
     report = gaitc.resilience(spec, method=args.method, health_bound=args.health_bound,
                               place_caches=args.place_caches, semantics=semantics,
                               jobs=args.jobs, dask=args.dask,
-                              progress=terminal_progress("resilience"))
+                              progress=terminal_progress("resilience"), timeout=args.timeout)
     if args.output:
         fmt = report.picture().save(args.output)
         print(f"wrote {args.output} ({fmt})", file=sys.stderr)
