@@ -7,11 +7,11 @@ from __future__ import annotations
 from pathlib import Path
 
 import gaitc
-from gaitc.solver.symbolic import Options
 from gaitc.sim.adversary import harm_table
 from gaitc.sim.environments import AdversarialEnvironment
 from gaitc.sim.run import Run
 from gaitc.sim.strategy import Strategy
+from gaitc.solver.symbolic import Options
 
 ROOT = Path(__file__).resolve().parent.parent
 HAZARD_PATROL = ROOT / "tests" / "data" / "hazard_patrol.gait"

@@ -178,6 +178,25 @@ def _children(pid: int) -> list[int]:
     return [int(p) for p in text.split()]
 
 
+def _with_workers(argv: list[str], ctrl_c: bool = False
+                  ) -> tuple[subprocess.Popen[str], list[int]]:
+    """``argv`` started in its own session, once it runs two worker processes (skipped if it
+    ends first); with ``ctrl_c``, SIGINT is handled as a terminal's Ctrl-C would be."""
+    proc = subprocess.Popen(
+        argv, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True,
+        start_new_session=True,
+        preexec_fn=(lambda: signal.signal(signal.SIGINT, signal.SIG_DFL)) if ctrl_c else None)
+    workers: list[int] = []
+    deadline = time.monotonic() + 60
+    while proc.poll() is None and time.monotonic() < deadline and len(workers) < 2:
+        workers = _children(proc.pid)
+        time.sleep(0.01)
+    if len(workers) < 2:
+        proc.kill()
+        pytest.skip("the run ended before its workers started")
+    return proc, workers
+
+
 @pytest.mark.skipif(not Path("/proc/self/task").exists() or os.cpu_count() == 1,
                     reason="needs /proc and two cores (the repair workers)")
 @pytest.mark.parametrize("signum", [signal.SIGTERM, signal.SIGINT])
@@ -190,17 +209,7 @@ def test_a_signal_during_the_repair_workers_stops_them_all(tmp_path: Path,
         encoding="utf-8").replace("health 2", "health 5").replace(
         "grid 1 x 4 cells a, b, c, d", "grid 1 x 8 cells a, b, c, d, e, f, g, h"),
         encoding="utf-8")
-    proc = subprocess.Popen([sys.executable, "-m", "gaitc", "explain", str(spec)],
-                            stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True,
-                            start_new_session=True)
-    workers: list[int] = []
-    deadline = time.monotonic() + 60
-    while proc.poll() is None and time.monotonic() < deadline and len(workers) < 2:
-        workers = _children(proc.pid)
-        time.sleep(0.01)
-    if len(workers) < 2:
-        proc.kill()
-        pytest.skip("the run ended before its repair workers started")
+    proc, workers = _with_workers([sys.executable, "-m", "gaitc", "explain", str(spec)])
     os.kill(proc.pid, signum)
     _, err = proc.communicate(timeout=30)
     code, line = ENDINGS[signum]
@@ -248,17 +257,7 @@ def test_a_signal_to_the_main_process_alone_ends_every_worker(
     its one line and exit code, a second SIGINT included, and every worker process is gone
     within a second, after SIGKILL too (issue 38)."""
     argv = [sys.executable, "-m", "gaitc", *WORKER_RUNS[run](_long_spec(tmp_path))]
-    proc = subprocess.Popen(argv, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True,
-                            start_new_session=True,
-                            preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
-    workers: list[int] = []
-    deadline = time.monotonic() + 60
-    while proc.poll() is None and time.monotonic() < deadline and len(workers) < 2:
-        workers = _children(proc.pid)
-        time.sleep(0.01)
-    if len(workers) < 2:
-        proc.kill()
-        pytest.skip("the run ended before its workers started")
+    proc, workers = _with_workers(argv, ctrl_c=True)
     time.sleep(0.3)  # into the work
     signum = getattr(signal, ending.split("-")[0])
     proc.send_signal(signum)

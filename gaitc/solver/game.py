@@ -5,7 +5,9 @@ Implements the three-nested fixpoint of Bloem, Jobstmann, Piterman, Pnueli, Sa'a
 (Ehlers & Raman, CAV 2016): νZ. ∧_j μY. ∨_i νX. CPre((J^s_j ∧ Z') ∨ Y' ∨ (¬J^e_i ∧ X')) with
 CPre(T) = ∀x'. ρe → ∃y'. ρs ∧ T, liveness goals evaluated on the transition, inner X
 fixpoints recycled across Z rounds (Browne, Clarke, Jha, Long, Marrero 1997) when asked for;
-Z narrowed goal by goal, each goal solved again only while Z shrinks (see Game.solve).
+Z narrowed goal by goal, each goal solved again only while Z shrinks (see Game.solve); each
+goal's μY started from the goal's attractor, which decides the goal without an X fixpoint
+when it holds Z (Game._attractor).
 """
 
 from __future__ import annotations
