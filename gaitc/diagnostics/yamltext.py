@@ -11,7 +11,7 @@ libyaml (PyYAML's C composer) is about five times faster, but it is a different 
 10,000 printable-ASCII mutants of the project's YAML seeds it accepted 7 texts that PyYAML
 refuses (a tab inside a flow mapping, among others), refused 10 that PyYAML accepts, and
 made 23 other trees differ (empty values one column apart, tags read differently).  The
-Python composer is kept, linear at about 3.5 s per MB (docs/reliability.md).
+Python composer is kept, linear at about 4-5 s per MB (bench/bench_readers.py).
 """
 
 from __future__ import annotations

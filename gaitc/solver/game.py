@@ -255,7 +255,7 @@ class Game:
         rings: list[BDDNode] = []
         y, y_post, ring = sym.bdd.false, sym.bdd.false, 0
         if sym.options.attractor and self._assumed:
-            y, y_post, ring = self._attractor(live, zs, bound, (words, j / n_goals),
+            y, y_post, ring = self._attractor(live, z, bound, (words, j / n_goals),
                                               layers if keep_layers else None, rings, n_assm)
             if z <= y:
                 self._track(words, f"|Y| = {y.dag_size}, {ring} rings (attractor)",
@@ -332,10 +332,10 @@ class Game:
             self.resume_sifting()
         return new
 
-    def _attractor(self, live: BDDNode, zs: tuple[BDDNode, BDDNode], bound: BDDNode,
+    def _attractor(self, live: BDDNode, z: BDDNode, bound: BDDNode,
                    progress: tuple[str, float], layers: list[BDDNode] | None,
                    rings: list[BDDNode], n_assm: int) -> tuple[BDDNode, BDDNode, int]:
-        """μY. CPre(``live`` ∨ Y') ∧ ``bound``, stopped once it holds Z (``zs``): the states
+        """μY. CPre(``live`` ∨ Y') ∧ ``bound``, stopped once it holds ``z``: the states
         from which the system forces the goal whatever the environment does, its liveness
         assumptions aside.  With Y and Y' and the number of rings.
 
@@ -350,7 +350,6 @@ class Game:
         goal is decided without an X fixpoint.  Each ring's strategy layer is its target
         (the system moves one ring down), once per assumption, as the rings of μY have."""
         sym, st, lim = self.sym, self.stats, self.limits
-        z = zs[0]
         words, fraction = progress
         y, y_post, ring = sym.bdd.false, sym.bdd.false, 0
         while True:
