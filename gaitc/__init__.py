@@ -16,6 +16,8 @@ notebook (see ``docs/api.md``):
 - :func:`resilience`: which leg failures, health levels, caches and hazards a task
   tolerates or needs;
 - :func:`simulate`: a run of a controller against an environment, checked against the spec;
+- :func:`player` and :func:`player_widget`: a play stepped by hand, as the environment
+  against a controller or as the robot against a counter-strategy (``gaitc play``);
 - :func:`copy_examples`: the example robots and specs shipped in the package, copied out.
 
 The robot half:
@@ -63,6 +65,7 @@ if TYPE_CHECKING:
     )
     from gaitc.api.learning import LearningBackend, LearnOptions, learn
     from gaitc.api.loading import Spec, load, parse
+    from gaitc.api.playing import Autopilot, Player, Role, player, player_widget
     from gaitc.api.simulation import Session, session, simulate
     from gaitc.api.solving import (
         SOLVERS,
@@ -99,6 +102,7 @@ _MODULES: dict[str, tuple[str, ...]] = {
     ),
     "gaitc.api.answers": ("explain", "resilience"),
     "gaitc.api.simulation": ("Session", "session", "simulate"),
+    "gaitc.api.playing": ("Autopilot", "Player", "Role", "player", "player_widget"),
     "gaitc.api.examples": ("copy_examples",),
     "gaitc.api.drawing": ("controller_policy", "draw_automaton", "draw_map", "draw_spec"),
     "gaitc.api.gaits": ("GaitMethod", "GaitOptions", "GlobalSearch", "gaits"),
@@ -134,6 +138,7 @@ __version__ = "0.1.0"
 __all__ = [
     "FORMATS",
     "SOLVERS",
+    "Autopilot",
     "ControllerError",
     "DriveOptions",
     "FileAccessError",
@@ -147,7 +152,9 @@ __all__ = [
     "MissingFileError",
     "OutputFormat",
     "PhysicsBoard",
+    "Player",
     "Recordings",
+    "Role",
     "ScenarioError",
     "SerialBoard",
     "Session",
@@ -182,6 +189,8 @@ __all__ = [
     "lint",
     "load",
     "parse",
+    "player",
+    "player_widget",
     "resilience",
     "session",
     "simulate",

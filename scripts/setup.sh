@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Set up gaitc on a fresh machine: Graphviz (for rendering), the AVR toolchain and simavr (for
 # the valve-board firmware), a virtual environment in .venv,
-# and gaitc installed into it with its test tools and Dask ('gaitc resilience --dask').
+# and gaitc installed into it with its test tools, Dask ('gaitc resilience --dask') and
+# ipywidgets (the notebook player).
 # Safe to run again.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -36,4 +37,4 @@ PYTHON="${PYTHON:-python3}"
 if [ ! -x .venv/bin/python ]; then
     "$PYTHON" -m venv .venv
 fi
-.venv/bin/python -m pip install -q --disable-pip-version-check -e '.[test,cluster]'
+.venv/bin/python -m pip install -q --disable-pip-version-check -e '.[test,cluster,notebook]'

@@ -39,7 +39,8 @@ def test_docs_api_examples_run() -> None:
 
 
 @pytest.mark.usefixtures("at_root")
-@pytest.mark.parametrize("module", ["gaitc.api.compiling", "gaitc.api.simulation"])
+@pytest.mark.parametrize("module", ["gaitc.api.compiling", "gaitc.api.simulation",
+                                    "gaitc.play.player"])
 def test_module_examples_run(module: str) -> None:
     import importlib
 

@@ -22,7 +22,7 @@ LAYERS: list[tuple[str, ...]] = [
     ("gaitc.compact",),
     ("gaitc.gaitgraph",),
     ("gaitc.models", "gaitc.sim"),
-    ("gaitc.analysis", "gaitc.hw"),
+    ("gaitc.analysis", "gaitc.hw", "gaitc.play"),
     ("gaitc.search", "gaitc.codegen"),
     ("gaitc.api",),
     ("gaitc",),

@@ -281,7 +281,8 @@ def test_cli_simulate_synthesizes_prints_and_saves(tmp_path: Path,
 
 
 @pytest.mark.parametrize(("argv", "message"), [
-    (["--env", "scripted"], "--env scripted needs one scenario file: --env scripted FILE.yaml"),
+    (["--env", "scripted"], "--env scripted needs one scenario or run file: --env scripted "
+     "FILE.yaml or --env scripted RUN.jsonl"),
     (["--env", "chaotic"], "unknown environment 'chaotic'; use one of scripted, random, "
                            "adversarial"),
     (["--env", "random", "x.yaml"], "--env random takes no file (got 'x.yaml')"),

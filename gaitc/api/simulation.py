@@ -124,25 +124,47 @@ def environment(kind: str | Scenario | Environment, bound: Session, seed: int = 
     if kind == "adversarial":
         return AdversarialEnvironment()
     if kind.startswith("scripted:"):
-        scenario = load_scenario(kind.removeprefix("scripted:"), bound.model)
+        file = kind.removeprefix("scripted:")
+        if is_run_file(file):
+            from gaitc.sim.replay import RunEnvironment
+            from gaitc.sim.run import read_jsonl
+
+            return RunEnvironment(read_jsonl(file), bound.strategy.inputs, bound.domain.legs)
+        scenario = load_scenario(file, bound.model)
         return ScriptedEnvironment(scenario, bound.strategy.inputs)
     raise UsageError(f"unknown environment '{kind}'; use random, adversarial, a scenario or "
                      "'scripted:FILE.yaml'")
 
 
+def is_run_file(path: str | Path) -> bool:
+    """Whether a scripted environment's file is a run file (``.jsonl``, ``.json``) rather
+    than a scenario (``.yaml``)."""
+    return Path(path).suffix.lower() in (".jsonl", ".json")
+
+
 def _counter_play(bound: Session, env: object, steps: int | None, seed: int) -> Run:
     """A counter-strategy plays the environment; ``env`` says how the robot answers:
-    ``random`` (with ``seed``) or ``adversarial`` (it avoids forced deadlocks)."""
+    ``random`` (with ``seed``), ``adversarial`` (it avoids forced deadlocks) or
+    ``scripted:RUN.jsonl`` (as the run file did)."""
     from gaitc.sim.counterplay import careful_chooser, play, random_chooser
 
     counter = explicit(bound.strategy, "a counter-play")
-    if env == "random":
+    if isinstance(env, str) and env.startswith("scripted:") and is_run_file(env[9:]):
+        from gaitc.sim.replay import run_chooser
+        from gaitc.sim.run import read_jsonl
+
+        run = read_jsonl(env[9:])
+        choose = run_chooser(run, counter, bound.domain.legs)
+        name = f"counter-strategy, robot scripted {env[9:]}"
+        steps = max(0, len(run.steps) - 1) if steps is None else steps
+    elif env == "random":
         choose, name = random_chooser(seed), f"counter-strategy, robot random --seed {seed}"
     elif env == "adversarial":
         choose, name = careful_chooser(counter), "counter-strategy, robot careful"
     else:
         raise UsageError("a counter-strategy is the environment: choose how the robot answers "
-                         "with 'random' or 'adversarial' (it avoids forced deadlocks)")
+                         "with 'random', 'adversarial' (it avoids forced deadlocks) or "
+                         "'scripted RUN.jsonl' (as a run file did)")
     count = DEFAULT_STEPS if steps is None else steps
     if count < 0:
         raise UsageError("the number of steps must not be negative")
@@ -166,6 +188,7 @@ def simulate(spec: Spec | Session | str | Path,
     >>> run.summary.guarantees_held, len(run.steps)
     (True, 7)
     """
+    from gaitc.sim.replay import RunEnvironment
     from gaitc.sim.scenario import ScriptedEnvironment
     from gaitc.sim.simulator import simulate as run_simulation
 
@@ -181,7 +204,7 @@ def simulate(spec: Spec | Session | str | Path,
     chosen = environment(env, bound, seed)
     if steps is None:
         steps = (len(chosen.scenario.steps) if isinstance(chosen, ScriptedEnvironment)
-                 else DEFAULT_STEPS)
+                 else chosen.length if isinstance(chosen, RunEnvironment) else DEFAULT_STEPS)
     if steps < 0:
         raise UsageError("the number of steps must not be negative")
     return run_simulation(bound.strategy, bound.domain, bound.monitor, chosen, steps,

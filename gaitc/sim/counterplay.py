@@ -9,13 +9,13 @@ through it, checked step by step by the run monitor like any simulated run.
 from __future__ import annotations
 
 import random
-from collections import Counter, deque
+from collections import deque
 from collections.abc import Callable, Sequence
 
 from gaitc.diagnostics import ControllerError
 from gaitc.sim.domain import Domain
-from gaitc.sim.monitor import Monitor, Violation
-from gaitc.sim.run import Run, Step
+from gaitc.sim.monitor import Monitor
+from gaitc.sim.run import Run
 from gaitc.sim.simulator import Simulator
 from gaitc.sim.strategy import Strategy
 
@@ -71,34 +71,7 @@ def path_run(strategy: Strategy, domain: Domain, monitor: Monitor, path: Sequenc
     """The run that visits the counter-strategy nodes ``path``, checked by ``monitor``."""
     if strategy.kind != "counterstrategy":
         raise ControllerError("a counter-strategy play needs a counter-strategy", None)
-    sim = Simulator(strategy, domain, monitor)
-    run = Run(legs=domain.legs, environment=environment, spec_file=spec_file,
-              model=domain.model)
-    violations: list[Violation] = []
-    env_live: Counter[int] = Counter()
-    sys_live: Counter[int] = Counter()
-    previous: Step | None = None
-    for index, node in enumerate(path):
-        values = strategy.values[node]
-        before = None if previous is None else strategy.values[previous.node]
-        if before is None:
-            violations.extend(monitor.check_initial(values))
-        else:
-            check = monitor.check_step(before, values)
-            violations.extend(monitor.violation(index, "env_trans", i) for i in check.env_failed)
-            violations.extend(monitor.violation(index, "sys_trans", i) for i in check.sys_failed)
-        held_env, held_sys = monitor.liveness_at(before, values)
-        env_live.update(held_env)
-        sys_live.update(held_sys)
-        previous = sim.step(index, node, previous)
-        run.add(previous)
-    summary = sim.summarize(run, violations, env_live, sys_live)
-    if stopped is not None:
-        from dataclasses import replace
-
-        summary = replace(summary, stopped=stopped)
-    run.summary = summary
-    return run
+    return Simulator(strategy, domain, monitor).replay(path, spec_file, environment, stopped)
 
 
 def play(strategy: Strategy, domain: Domain, monitor: Monitor, steps: int,

@@ -110,6 +110,8 @@ class Run:
     environment: str = ""
     spec_file: str = ""
     model: Model | None = field(default=None, repr=False)
+    file: str = ""  # the run file it was read from
+    lines: list[int] = field(default_factory=list, repr=False)  # the file's line of each step
 
     def __repr__(self) -> str:
         if self.summary is None:
@@ -200,8 +202,8 @@ def read_jsonl(path: str | Path) -> Run:
                          "back; save the run with --out FILE.jsonl to draw or replay it")
     raw = read_input(path, "run file")  # bytes: universal newlines would split at a lone \r
     text = decode_text(raw, file, ScenarioError)
-    run = Run(legs=())
-    numbers: list[int] = []  # the line of each step
+    run = Run(legs=(), file=file)
+    numbers = run.lines  # the line of each step
     for number, line in enumerate(source_lines(text), 1):
         if not line.strip():
             continue

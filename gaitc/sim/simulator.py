@@ -9,8 +9,8 @@ the assumption it breaks (the clause's origin rule) and the step.
 from __future__ import annotations
 
 from collections import Counter
-from collections.abc import Mapping
-from dataclasses import fields
+from collections.abc import Mapping, Sequence
+from dataclasses import fields, replace
 from typing import Any
 
 from gaitc.diagnostics import ControllerError, GaitcError, ScenarioError, Span
@@ -86,6 +86,40 @@ class Simulator:
                   sys_live: Mapping[int, int]) -> Summary:
         """The summary of ``run`` from the monitor's findings along it."""
         return self._summary(run, violations, env_live, sys_live)
+
+    def replay(self, path: Sequence[int], spec_file: str = "", environment: str = "",
+               stopped: str | None = None) -> Run:
+        """The run that visits the controller nodes ``path`` in order, every step checked by
+        the monitor (a counter-strategy's play, or a play chosen by hand); ``stopped`` says
+        why it ended early."""
+        run = Run(legs=self.domain.legs, environment=environment, spec_file=spec_file,
+                  model=self.domain.model)
+        violations: list[Violation] = []
+        env_live: Counter[int] = Counter()
+        sys_live: Counter[int] = Counter()
+        previous: Step | None = None
+        for index, node in enumerate(path):
+            values = self.strategy.values[node]
+            before = None if previous is None else self.strategy.values[previous.node]
+            violations.extend(self.check(index, before, values))
+            held_env, held_sys = self.monitor.liveness_at(before, values)
+            env_live.update(held_env)
+            sys_live.update(held_sys)
+            previous = self._step(index, node, previous)
+            run.add(previous)
+        summary = self._summary(run, violations, env_live, sys_live)
+        run.summary = summary if stopped is None else replace(summary, stopped=stopped)
+        return run
+
+    def check(self, index: int, before: tuple[int, ...] | None,
+              values: tuple[int, ...]) -> list[Violation]:
+        """The clauses broken by the move into ``values`` at step ``index`` (the initial
+        clauses when there is no ``before``)."""
+        if before is None:
+            return self.monitor.check_initial(values)
+        found = self.monitor.check_step(before, values)
+        return ([self.monitor.violation(index, "env_trans", i) for i in found.env_failed]
+                + [self.monitor.violation(index, "sys_trans", i) for i in found.sys_failed])
 
     def _step(self, index: int, node: int, previous: Step | None) -> Step:
         key = (node, -1 if previous is None else previous.node)
@@ -187,14 +221,7 @@ class Simulator:
                 break
             values = self.strategy.values[chosen.node]
             before = None if node is None else self.strategy.values[node]
-            if before is None:
-                violations.extend(self.monitor.check_initial(values))
-            else:
-                check = self.monitor.check_step(before, values)
-                for i in check.env_failed:
-                    violations.append(self.monitor.violation(index, "env_trans", i))
-                for i in check.sys_failed:
-                    violations.append(self.monitor.violation(index, "sys_trans", i))
+            violations.extend(self.check(index, before, values))
             held_env, held_sys = self.monitor.liveness_at(before, values)
             env_live.update(held_env)
             sys_live.update(held_sys)

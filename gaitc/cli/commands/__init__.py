@@ -27,6 +27,7 @@ COMMANDS: Final = {
     "explain": "explaining",
     "resilience": "resilient",
     "simulate": "simulating",
+    "play": "playing",
     "render": "rendering",
     "gaits": "gaits",
     "learn": "learning",

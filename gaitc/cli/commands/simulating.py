@@ -12,7 +12,13 @@ from collections.abc import Mapping
 from typing import Any
 
 import gaitc
-from gaitc.api.simulation import ENVIRONMENTS, Session, environment, run_document
+from gaitc.api.simulation import (
+    ENVIRONMENTS,
+    Session,
+    environment,
+    is_run_file,
+    run_document,
+)
 from gaitc.cli.commands.arguments import add_prefer, run_file
 from gaitc.cli.exitcodes import ExitCode, exit_code_help
 from gaitc.cli.reporting import document, exit_code_of, print_json
@@ -28,8 +34,10 @@ EPILOG = """environments:
                             farthest from the next goal (docs/simulation.md); for an
                             unrealizable spec without CONTROLLER, plays its counter-strategy
   --env scripted FILE.yaml  a scenario: per step the hazard and the legs that degrade/fail
-A counter-strategy (from 'gaitc counter') is the environment itself; --env random or
-adversarial then says how the robot answers (adversarial: it avoids forced deadlocks).
+  --env scripted RUN.jsonl  the inputs of a run file (gaitc play, simulate --out), again
+A counter-strategy (from 'gaitc counter') is the environment itself; --env random,
+adversarial or scripted RUN.jsonl then says how the robot answers (adversarial: it avoids
+forced deadlocks; a run file: as the run did).
 
 """
 EPILOG += exit_code_help({
@@ -53,7 +61,8 @@ def register(sub: Any) -> None:
     p.add_argument("spec", metavar="SPEC")
     p.add_argument("controller", metavar="CONTROLLER", nargs="?")
     p.add_argument("--env", nargs="+", metavar="KIND", default=["random"],
-                   help="scripted FILE.yaml | random | adversarial (default random)")
+                   help="scripted FILE.yaml | scripted RUN.jsonl | random | adversarial "
+                   "(default random)")
     p.add_argument("--seed", type=int, help="seed of the random environment (default 0)")
     p.add_argument("--steps", type=int, metavar="N",
                    help="number of steps (default 50; a scenario's length when scripted)")
@@ -83,7 +92,8 @@ def settle_environment(args: argparse.Namespace, real_sensors: bool = False) -> 
     kind, *rest = args.env or ["random"]
     wanted = 1 if kind == "scripted" else 0
     taken = rest[-1] if len(rest) == wanted + 1 else ""
-    if args.controller is None and taken and not taken.endswith((".yaml", ".yml")):
+    if args.controller is None and taken and not taken.endswith(
+            (".yaml", ".yml", ".jsonl")):
         args.controller = rest[-1]
         args.env = args.env[:-1]
     if args.seed is not None and real_sensors:
@@ -102,7 +112,8 @@ def env_text(args: argparse.Namespace) -> str:
         raise UsageError(f"unknown environment '{kind}'; use one of {', '.join(ENVIRONMENTS)}")
     if kind == "scripted":
         if len(rest) != 1:
-            raise UsageError("--env scripted needs one scenario file: --env scripted FILE.yaml")
+            raise UsageError("--env scripted needs one scenario or run file: --env scripted "
+                             "FILE.yaml or --env scripted RUN.jsonl")
         return f"scripted:{rest[0]}"
     if rest:
         raise UsageError(f"--env {kind} takes no file (got '{rest[0]}')")
@@ -114,6 +125,18 @@ def environment_of(args: argparse.Namespace, bound: Session) -> Environment:
     return environment(env_text(args), bound, args.seed or 0)
 
 
+def _counter_environment(args: argparse.Namespace) -> str | None:
+    """How the robot answers when a counter-strategy plays the environment of an
+    unrealizable spec: ``adversarial`` (the careful robot) or a run file's answers
+    (``scripted RUN.jsonl``); None for the environments that need a controller."""
+    kind, *rest = args.env or ["random"]
+    if kind == "adversarial":
+        return "adversarial"
+    if kind == "scripted" and len(rest) == 1 and is_run_file(rest[0]):
+        return f"scripted:{rest[0]}"
+    return None
+
+
 def run_simulate(args: argparse.Namespace) -> int:
     semantics = "robotics" if args.robotics_semantics else "default"
     if args.steps is not None and args.steps < 0:
@@ -122,14 +145,15 @@ def run_simulate(args: argparse.Namespace) -> int:
     with progress_display() as progress:
         bound = gaitc.session(args.spec, args.controller, args.encoding, semantics,
                               args.prefer, progress)
-    if bound is None and (args.env or ["random"])[0] == "adversarial":
+    counter_env = _counter_environment(args)
+    if bound is None and counter_env is not None:
         from gaitc.api.simulation import counter_session
 
         with progress_display() as progress:
             bound = counter_session(gaitc.load(args.spec, args.encoding or EncodingName.ONEHOT),
                                     semantics, progress)
         if bound is not None:  # the environment plays its winning strategy
-            run = gaitc.simulate(bound, env="adversarial", steps=args.steps)
+            run = gaitc.simulate(bound, env=counter_env, steps=args.steps)
             return report_run(run, bound.full_health, run.environment, args.quiet, out=args.out,
                               as_json=args.json, realizable=False)
     if bound is None:
@@ -138,7 +162,7 @@ def run_simulate(args: argparse.Namespace) -> int:
             print_json(document("simulate", run_document(args.spec, None, None, None, False)))
         return ExitCode.UNREALIZABLE
     if bound.strategy.kind == "counterstrategy":
-        kind = (args.env or ["random"])[0]
+        kind = _counter_environment(args) or (args.env or ["random"])[0]
         run = gaitc.simulate(bound, env=kind, steps=args.steps, seed=args.seed or 0)
         return report_run(run, bound.full_health, run.environment, args.quiet, out=args.out,
                           as_json=args.json, realizable=False)

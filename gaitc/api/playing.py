@@ -1,0 +1,75 @@
+"""Playing by hand: a :class:`gaitc.play.player.Player` bound to a ``.gait`` spec.
+
+:func:`player` is what ``gaitc play`` and the notebook widget start from: the spec's
+controller (read from a file or synthesized) with the user as the environment, or, for an
+unrealizable spec, the environment's counter-strategy with the user as the robot.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from gaitc.api.loading import Spec, load
+from gaitc.api.simulation import counter_session, session
+from gaitc.api.solving import Synthesis, recorded_encoding
+from gaitc.diagnostics import UsageError
+from gaitc.ir.bddfile import SymbolicController
+from gaitc.ir.controller import Controller
+from gaitc.ir.spec import Semantics
+from gaitc.play.player import Autopilot, Choice, Player, Role
+from gaitc.sim.run import Run, read_jsonl
+from ltlcompiler.encoding import EncodingName
+
+if TYPE_CHECKING:
+    from gaitc.play.widget import PlayerWidget
+    from gaitc.solver.progress import Progress
+
+__all__ = ["Autopilot", "Choice", "Player", "Role", "player", "player_widget"]
+
+
+def player(spec: Spec | str | Path,
+           controller: Controller | SymbolicController | Synthesis | str | Path | None = None,
+           *, against: bool | None = None, start: Run | str | Path | None = None,
+           at: int | None = None, encoding: EncodingName | str | None = None,
+           semantics: Semantics | str = Semantics.DEFAULT,
+           progress: Progress | None = None) -> Player:
+    """A play of ``spec`` to step by hand.
+
+    With ``against`` unset, the user plays the environment against ``controller`` (a file,
+    an automaton, or synthesized here) when the spec is realizable, and the robot against
+    the environment's counter-strategy when it is not; ``against=True`` asks for the
+    counter-strategy and is an error for a realizable spec. ``start`` (a run or a run file:
+    a saved play, ``simulate --out`` or ``explain --out``) replays its steps up to ``at``
+    (default: all) before the play goes on.
+    """
+    if against and controller is not None:
+        raise UsageError("--against plays the robot against the environment's counter-"
+                         "strategy; a CONTROLLER is for playing the environment")
+    if not isinstance(spec, Spec):
+        if encoding is None and isinstance(controller, (str, Path)):
+            encoding = recorded_encoding(controller)
+        spec = load(spec, encoding or EncodingName.ONEHOT)
+    bound = None if against else session(spec, controller, None, semantics, progress=progress)
+    if bound is None:
+        bound = counter_session(spec, semantics, progress)
+        if bound is None:
+            raise UsageError(f"'{spec.path}' is realizable: the environment has no winning "
+                             "strategy to play against; play the environment against the "
+                             "controller (leave out --against)")
+    played = Player(bound)
+    if start is not None:
+        run = start if isinstance(start, Run) else read_jsonl(start)
+        played.resume(run, at)
+    elif at is not None:
+        raise UsageError("--at picks a step of the run given with --from")
+    return played
+
+
+def player_widget(spec: Spec | str | Path | Player, **options: object) -> PlayerWidget:
+    """The player as a notebook widget (ipywidgets): the map as SVG, the moves as buttons,
+    undo, redo and the autopilots; ``options`` are those of :func:`player`."""
+    from gaitc.play.widget import PlayerWidget
+
+    bound = spec if isinstance(spec, Player) else player(spec, **options)  # type: ignore[arg-type]
+    return PlayerWidget(bound)

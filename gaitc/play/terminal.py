@@ -1,0 +1,281 @@
+"""The player in a terminal (``gaitc play``): a Textual app over :class:`Player`.
+
+The screen fits 80 x 24: the map (:mod:`gaitc.play.mapgrid`) and the robot's state side by
+side, the legal moves below with the other side's answer to the highlighted one, and a
+line for questions (how many steps, which file). Keyboard only; ``?`` lists the keys. Every
+mark reads without colour (``NO_COLOR`` or ``--no-color``).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import ClassVar
+
+from rich.text import Text
+from textual.app import App, ComposeResult
+from textual.binding import Binding, BindingType
+from textual.containers import Horizontal, VerticalScroll
+from textual.screen import ModalScreen
+from textual.widgets import Footer, Input, OptionList, Static
+from textual.widgets.option_list import Option
+
+from gaitc.diagnostics import GaitcError
+from gaitc.play.mapgrid import LEGEND, MapGrid
+from gaitc.play.player import Autopilot, Player, Role
+
+#: Rich styles of the text map's style names and the health levels.
+COLOURS = {"robot": "bold reverse", "hazard_on": "bold white on red", "hazard": "yellow",
+           "cache": "green", "goal": "magenta", "next_goal": "bold magenta underline",
+           "visited": "cyan", "legend": "dim", "healthy": "blue", "degraded": "yellow",
+           "failed": "bold red", "loses": "red", "holds": "yellow"}
+DEFAULT_AUTO = 20
+MAP_WIDTH = 50  # columns of an 80-column screen the map may take
+DEFAULT_RUN_FILE = "play.run.jsonl"
+
+KEYS = """\
+ 1-9   play move 1-9             enter   play the highlighted move
+ ↑ ↓   highlight a move          u  r    undo, redo
+ g     go to a step              s       save the play as a run file
+ a     the strongest pilot plays N steps (you are asked for N)
+ n     a random pilot plays N steps
+ ?     this help                 q       quit (saving to --out first)
+
+Playing the environment, the strongest pilot is the adversarial
+environment of 'gaitc simulate'; playing the robot, it is the robot
+that holds out longest. 'gaitc render map SPEC --run FILE' draws a
+saved play; 'gaitc simulate SPEC --env scripted FILE' replays it."""
+
+
+class HelpScreen(ModalScreen[None]):
+    """The keys, over the play; any key closes it."""
+
+    def compose(self) -> ComposeResult:
+        yield Static(Text(KEYS), id="help")
+
+    def on_key(self) -> None:
+        self.dismiss()
+
+
+class PlayApp(App[int]):
+    """The terminal player; :attr:`saved` is the file the play was last saved to."""
+
+    CSS = """
+    #top { height: auto; max-height: 14; }
+    #map { width: 40; height: auto; max-height: 14; }
+    #state { width: 1fr; height: auto; padding: 0 1; }
+    #turn { height: 1; }
+    #moves { height: 1fr; min-height: 3; }
+    #answer { height: 1; }
+    #ask { dock: bottom; display: none; }
+    #help { width: 80; height: auto; border: round $accent; padding: 0 1; }
+    HelpScreen { align: center middle; }
+    """
+    BINDINGS: ClassVar[list[BindingType]] = [
+        Binding("question_mark", "help", "help", key_display="?"),
+        Binding("u", "undo", "undo"),
+        Binding("r", "redo", "redo"),
+        Binding("g", "ask('go')", "go to"),
+        Binding("a", "ask('strongest')", "pilot"),
+        Binding("n", "ask('random')", "random"),
+        Binding("s", "ask('save')", "save"),
+        Binding("q", "quit_play", "quit"),
+        *[Binding(str(k), f"play({k})", show=False) for k in range(1, 10)],
+    ]
+
+    def __init__(self, player: Player, out: str | Path | None = None, seed: int = 0) -> None:
+        super().__init__()
+        self.player = player
+        self.out = str(out) if out is not None else None
+        self.saved: str | None = None
+        self.seed = seed
+        self.mapgrid = MapGrid(player.session.model)
+        self._asking: str | None = None
+        self.message = ""
+
+    # ------------------------------------------------------------------ layout
+    def compose(self) -> ComposeResult:
+        with Horizontal(id="top"):
+            with VerticalScroll(id="map"):
+                yield Static(id="mapview")
+            yield Static(id="state")
+        yield Static(id="turn")
+        yield OptionList(id="moves")
+        yield Static(id="answer")
+        yield Input(id="ask")
+        yield Footer()
+
+    def on_mount(self) -> None:
+        self.title = f"gaitc play {self.player.session.spec.path}"
+        width = max(len(LEGEND) // 2, self.mapgrid.cols * self.mapgrid.width) + 1
+        self.query_one("#map").styles.width = min(width, MAP_WIDTH)
+        self.refresh_play()
+        self.query_one("#moves", OptionList).focus()
+
+    # ------------------------------------------------------------------ drawing
+    def refresh_play(self) -> None:
+        player = self.player
+        here = player.state
+        goal = player.goal
+        goal_regions = next((g.regions for g in player.domain.goals if g.label == goal), ())
+        visited = {s.region for s in player.steps}
+        lines = self.mapgrid.lines(here.region if here else None, here.hazard if here else None,
+                                   goal_regions, visited)
+        picture = Text()
+        for line in lines:
+            for text, style in line:
+                picture.append(text, COLOURS.get(style, ""))
+            picture.append("\n")
+        picture.append(LEGEND, COLOURS["legend"])
+        self.query_one("#mapview", Static).update(picture)
+        self.query_one("#state", Static).update(self._state_text())
+        self._fill_moves()
+
+    def _state_text(self) -> Text:
+        player = self.player
+        here = player.state
+        out = Text()
+        out.append(f"step {player.step}" if player.step >= 0 else "start", "bold")
+        if player.length > player.step + 1:
+            out.append(f" of {player.length - 1}")
+        out.append(f" · you play the {player.role}\n")
+        if here is None:
+            out.append("no state yet: choose how the play starts\n")
+        else:
+            gait = f"{here.gait} ({', '.join(here.legs_used)})" if here.legs_used else here.gait
+            out.append(f"in {here.region}, gait {gait}\n")
+            out.append(f"hazard: {here.hazard or 'none'}\n")
+        if player.goal is not None:
+            out.append(f"next goal: {player.goal}\n", COLOURS["goal"])
+        full = player.session.full_health
+        for i, (leg, level) in enumerate(here.health if here else
+                                         tuple((leg, full[leg]) for leg in player.domain.legs)):
+            kind = "healthy" if level >= full[leg] else ("failed" if level == 1 else "degraded")
+            used = here is not None and leg in here.legs_used
+            out.append(f"{leg} {level}{'*' if used else ' '}", COLOURS[kind])
+            out.append("\n" if i % 4 == 3 else "  ")
+        if self.message:
+            out.append(f"\n{self.message}", "italic")
+        return out
+
+    def _fill_moves(self) -> None:
+        player = self.player
+        moves = self.query_one("#moves", OptionList)
+        moves.clear_options()
+        choices = player.choices()
+        turn = self.query_one("#turn", Static)
+        over = player.over
+        if over is not None:
+            turn.update(Text(over, COLOURS["failed"]))
+        elif player.role is Role.ROBOT:
+            turn.update(Text(f"the environment: {player.pending()}; your move as the robot:"))
+        else:
+            turn.update(Text("your move as the environment:"))
+        for choice in choices:
+            label = Text(f"{choice.number:>2} {choice.words}")
+            if player.role is Role.ROBOT:
+                mark = "x" if choice.loses_in is not None else "~"
+                label.append(f"  {mark} {choice.why}",
+                             COLOURS["loses" if choice.loses_in is not None else "holds"])
+            moves.add_option(Option(label, id=str(choice.number)))
+        if choices:
+            moves.highlighted = 0
+        self._show_answer()
+
+    def _show_answer(self) -> None:
+        moves = self.query_one("#moves", OptionList)
+        choices = self.player.choices()
+        answer = self.query_one("#answer", Static)
+        index = moves.highlighted
+        if index is None or not 0 <= index < len(choices):
+            answer.update("")
+        elif self.player.role is Role.ENVIRONMENT:
+            answer.update(Text(f"→ the controller answers: {choices[index].answer}", "dim"))
+        else:
+            answer.update(Text(f"→ {choices[index].why}", "dim"))
+
+    def on_option_list_option_highlighted(self, _event: OptionList.OptionHighlighted) -> None:
+        self._show_answer()
+
+    def on_option_list_option_selected(self, event: OptionList.OptionSelected) -> None:
+        self.action_play(int(event.option.id or "0"))
+
+    # ------------------------------------------------------------------ actions
+    def _say(self, message: str) -> None:
+        self.message = message
+        self.refresh_play()
+
+    def action_play(self, number: int) -> None:
+        if not 1 <= number <= len(self.player.choices()):
+            self.bell()
+            return
+        step = self.player.choose(number)
+        self._say(f"played move {number}; now in {step.region}")
+
+    def action_undo(self) -> None:
+        self._say("undone" if self.player.undo() else "nothing to undo")
+
+    def action_redo(self) -> None:
+        self._say("redone" if self.player.redo() else "nothing to redo")
+
+    def action_help(self) -> None:
+        self.push_screen(HelpScreen())
+
+    def action_ask(self, what: str) -> None:
+        questions = {
+            "go": f"go to step (-1..{self.player.length - 1}):",
+            "strongest": f"steps for the strongest pilot [{DEFAULT_AUTO}]:",
+            "random": f"steps for a random pilot [{DEFAULT_AUTO}]:",
+            "save": f"save the play to [{self.out or DEFAULT_RUN_FILE}]:",
+        }
+        self._asking = what
+        ask = self.query_one("#ask", Input)
+        ask.placeholder = questions[what]
+        ask.value = ""
+        ask.display = True
+        ask.focus()
+
+    def on_input_submitted(self, event: Input.Submitted) -> None:
+        what, self._asking = self._asking, None
+        ask = self.query_one("#ask", Input)
+        ask.display = False
+        self.query_one("#moves", OptionList).focus()
+        answer = event.value.strip()
+        try:
+            if what == "go":
+                self.player.jump(int(answer))
+                self._say(f"at step {self.player.step}")
+            elif what in ("strongest", "random"):
+                count = int(answer) if answer else DEFAULT_AUTO
+                played = self.player.autoplay(count, Autopilot(what), self.seed)
+                self._say(f"the {what} pilot played {played} steps")
+            elif what == "save":
+                self._save(answer or self.out or DEFAULT_RUN_FILE)
+        except ValueError as err:
+            message = err.message if isinstance(err, GaitcError) else f"not a number: {answer}"
+            self._say(message)
+        except GaitcError as err:
+            self._say(err.message)
+
+    def on_key(self, event: object) -> None:
+        key = getattr(event, "key", "")
+        if key == "escape" and self._asking is not None:
+            self._asking = None
+            self.query_one("#ask", Input).display = False
+            self.query_one("#moves", OptionList).focus()
+
+    def _save(self, path: str) -> None:
+        self.player.save(path)
+        self.saved = path
+        self._say(f"saved {self.player.step + 1} steps to {path}")
+
+    def action_quit_play(self) -> None:
+        if self.player.step >= 0 and self.saved is None and self.out is not None:
+            self._save(self.out)
+        self.exit(0)
+
+
+def play_in_terminal(player: Player, out: str | Path | None = None, seed: int = 0) -> str | None:
+    """Run the terminal player until the user quits; the file the play was saved to."""
+    app = PlayApp(player, out, seed)
+    app.run()
+    return app.saved
