@@ -33,6 +33,18 @@ if ! command -v avr-gcc >/dev/null 2>&1 || [ ! -e /usr/include/simavr/sim_avr.h 
     fi
 fi
 
+# The VS Code extension (scripts/build-vscode.sh, tests/test_editor_extension.py): Node.js and npm.
+if ! command -v npm >/dev/null 2>&1; then
+    if command -v apt-get >/dev/null 2>&1 && [ "$(id -u)" = 0 ]; then
+        echo "setup: installing Node.js and npm with apt-get" >&2
+        apt-get install -y -qq nodejs npm >/dev/null 2>&1 \
+            || { apt-get update -qq >/dev/null 2>&1 && apt-get install -y -qq nodejs npm >/dev/null 2>&1; } \
+            || echo "setup: could not install npm; the editor extension's test will be skipped" >&2
+    else
+        echo "setup: npm not found; building the VS Code extension needs it" >&2
+    fi
+fi
+
 PYTHON="${PYTHON:-python3}"
 if [ ! -x .venv/bin/python ]; then
     "$PYTHON" -m venv .venv

@@ -26,6 +26,7 @@ LAYERS: list[tuple[str, ...]] = [
     ("gaitc.search", "gaitc.codegen"),
     ("gaitc.api",),
     ("gaitc",),
+    ("gaitc.lsp",),
     ("gaitc.cli",),
     ("gaitc.__main__",),
 ]

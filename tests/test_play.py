@@ -393,3 +393,45 @@ def test_a_run_file_without_an_input_is_an_error_at_its_line(
            "another spec" in err
     with pytest.raises(ScenarioError, match="step 2 gives no value for 'L1_h2'"):
         gaitc.player(SPECS / "patrol_2x2.gait", start=out)
+
+
+def test_the_words_of_each_kind_of_move() -> None:
+    from gaitc.play.words import distinguished, environment_words, robot_words
+    from gaitc.sim.domain import State
+
+    full = {"L1": 3, "L2": 3, "L3": 3}
+    here = State("r1", "north", (("L1", 3), ("L2", 2), ("L3", 1)), None)
+    moved = State("r2", "east", (("L1", 2), ("L2", 1), ("L3", 3)), "spill")
+    assert environment_words(here, moved, full) == \
+        "switch spill on, degrade L1, fail L2, repair L3"
+    assert environment_words(moved, here, full) == \
+        "switch spill off, repair L1, L2 up to level 2, fail L3"
+    assert environment_words(State("r1", "x", (("L4", 5),), None),
+                             State("r1", "x", (("L4", 3),), None), {"L4": 5}) == \
+        "L4 down to level 3"
+    assert environment_words(here, here, full) == "nothing"
+    assert environment_words(None, here, full) == "start with L2 at level 2, L3 at level 1"
+    assert environment_words(None, State("r1", "noGait", (("L1", 3),), "a"), full) == \
+        "start with a on"
+    other = State("r1", "north", here.health, "acid")
+    assert environment_words(moved, other, full).startswith("switch spill off and acid on")
+    assert robot_words(here, moved) == "east to r2"
+    assert robot_words(here, State("r1", "noGait", here.health, None)) == "stay in r1"
+    assert robot_words(None, State("r1", "noGait", here.health, None)) == "start in r1"
+    assert distinguished(["nothing", "nothing", "fail L1"],
+                         [{"x": 0, "y": 1}, {"x": 1, "y": 1}, {"x": 0, "y": 0}]) == \
+        ["nothing (x=0)", "nothing (x=1)", "fail L1"]
+
+
+@pytest.mark.graphviz
+def test_render_map_draws_a_saved_play(robot_a: Player, tmp_path: Path) -> None:
+    player = _fresh(robot_a)
+    player.choose(1)
+    player.autoplay(6)
+    run = tmp_path / "p.run.jsonl"
+    player.save(run)
+    picture = tmp_path / "p.svg"
+    assert main(["render", "map", str(ROBOT_A), "--run", str(run), "-o", str(picture)]) == 0
+    svg = picture.read_text()
+    assert svg.startswith("<?xml") or "<svg" in svg
+    assert all(s.region in svg for s in player.steps)

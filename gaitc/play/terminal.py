@@ -90,6 +90,7 @@ class PlayApp(App[int]):
         self.seed = seed
         self.mapgrid = MapGrid(player.session.model)
         self._asking: str | None = None
+        self._saved_path: tuple[int, ...] | None = None
         self.message = ""
 
     # ------------------------------------------------------------------ layout
@@ -266,13 +267,19 @@ class PlayApp(App[int]):
     def _save(self, path: str) -> None:
         self.player.save(path)
         self.saved = path
+        self._saved_path = self.player.path
         self._say(f"saved {self.player.step + 1} steps to {path}")
 
     def action_quit_play(self) -> None:
-        if self.player.step >= 0 and self.saved is None and self.out is not None:
-            self._save(self.out)
+        """Quit; a play with unsaved moves is saved to ``out`` first (every play is kept)."""
+        if self.player.step >= 0 and self.out is not None and self._saved_path != self.player.path:
+            try:
+                self._save(self.out)
+            except GaitcError as err:
+                self._say(f"{err.message}; save elsewhere with s, or quit again to drop it")
+                self.out = None
+                return
         self.exit(0)
-
 
 def play_in_terminal(player: Player, out: str | Path | None = None, seed: int = 0) -> str | None:
     """Run the terminal player until the user quits; the file the play was saved to."""

@@ -37,6 +37,7 @@ COMMANDS: Final = {
     "calibrate": "calibrating",
     "characterize": "characterizing",
     "examples": "examples",
+    "lsp": "editing",
 }
 
 

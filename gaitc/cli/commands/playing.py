@@ -9,6 +9,7 @@ from __future__ import annotations
 import argparse
 import os
 import sys
+from pathlib import Path
 from typing import Any
 
 from gaitc.cli.commands.arguments import run_file
@@ -19,7 +20,7 @@ from ltlcompiler.encoding import ENCODINGS
 
 EPILOG = """keys (? in the player lists them):
   1-9 or enter  play a move           u / r  undo / redo       g  go to a step
-  a / n         the strongest / a random pilot plays N steps   s  save   q  quit
+  a / n         the strongest / a random pilot plays N steps   s  save   q  quit (saves)
 For a realizable spec you play the environment (which legs degrade or fail, which hazard
 is on) and the controller answers; for an unrealizable one, or with --against, you play
 the robot against the environment's counter-strategy, and each move says why it loses.
@@ -54,7 +55,8 @@ def register(sub: Any) -> None:
     p.add_argument("--at", type=int, metavar="STEP",
                    help="the step of the --from run to start from (default: its last)")
     p.add_argument("--out", metavar="FILE", type=run_file,
-                   help="save the play here (s in the player, and on quitting)")
+                   help="where the play is saved on quitting (default SPEC-NAME.play.jsonl "
+                   "here); s in the player saves anywhere")
     p.add_argument("--seed", type=int, default=0, help="seed of the random pilot (default 0)")
     p.add_argument("--no-color", action="store_true", help="draw without colour (as NO_COLOR)")
     p.add_argument("--encoding", choices=ENCODINGS)
@@ -81,7 +83,8 @@ def run_play(args: argparse.Namespace) -> int:
         os.environ["NO_COLOR"] = "1"
     from gaitc.play.terminal import play_in_terminal
 
-    saved = play_in_terminal(player, args.out, args.seed)
+    out = args.out or f"{Path(args.spec).stem}.play.jsonl"
+    saved = play_in_terminal(player, out, args.seed)
     if saved is not None:
         print(f"{args.spec}: play of {player.step + 1} steps saved to {saved}")
     return ExitCode.OK

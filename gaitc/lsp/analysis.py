@@ -1,0 +1,125 @@
+"""One analysis of a ``.gait`` document: its syntax tree, model, index and diagnostics.
+
+The stages are the compiler's (:func:`gaitc.parse`: parse, check, lower to GR(1)) and
+``gaitc lint``'s warnings, so the editor shows the messages and spans of the command line.
+:func:`analyse` is the fast part, run at every edit: a file that stops parsing keeps the
+index of its last good tree, so hover and completion keep working while a statement is
+half written. :func:`primitive_findings` is the slow part (the gait search behind valve
+primitives), run after it in the background.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from gaitc.diagnostics import Diagnostic, GaitcError, Span
+from gaitc.lsp.index import Index
+from ltlcompiler import syntax as s
+from ltlcompiler.model import Model
+
+
+@dataclass(frozen=True)
+class Finding:
+    """A diagnostic in the document: an error (the first the compiler meets) or a warning."""
+
+    message: str
+    span: Span | None
+    severity: str  # "error" or "warning"
+    hint: str | None = None
+
+
+@dataclass
+class Analysis:
+    """What one version of a document says."""
+
+    text: str
+    path: str
+    tree: s.SpecFile | None = None  # the last syntax tree that parsed
+    model: Model | None = None  # None while the file has an error
+    index: Index | None = None
+    findings: list[Finding] = field(default_factory=list)
+    stale_tree: bool = False  # the tree and index are of an earlier version
+
+    @property
+    def errors(self) -> list[Finding]:
+        return [f for f in self.findings if f.severity == "error"]
+
+
+def _finding(err: GaitcError | Diagnostic, severity: str) -> Finding:
+    return Finding(err.message, err.span, severity, err.hint)
+
+
+def analyse(text: str, path: str, previous: Analysis | None = None) -> Analysis:
+    """Parse, check and lower ``text`` (spans name ``path``); keep ``previous``'s tree and
+    index when ``text`` does not parse."""
+    from gaitc.api.loading import parse
+    from ltlcompiler.frontend import parse_text
+
+    found = Analysis(text, path)
+    try:
+        found.tree = parse_text(text, path)
+    except GaitcError as err:
+        found.findings.append(_finding(err, "error"))
+    except RecursionError:
+        found.findings.append(Finding("the file nests too deeply to read", Span(path, 1, 1),
+                                      "error"))
+    if found.tree is not None:
+        found.index = Index(found.tree)
+        try:
+            spec = parse(text, path)
+        except GaitcError as err:
+            found.findings.append(_finding(err, "error"))
+        except RecursionError:
+            found.findings.append(Finding("the file nests too deeply to read",
+                                          Span(path, 1, 1), "error"))
+        else:
+            found.model = spec.model
+            found.findings.extend(_finding(d, d.severity) for d in spec.diagnostics)
+    elif previous is not None and previous.tree is not None:
+        found.tree, found.index, found.stale_tree = previous.tree, previous.index, True
+    return found
+
+
+#: Primitive findings by what they depend on (the gaits, their moves, the legs, the robot
+#: files' modification times): an edit elsewhere in the file does not search again.
+_PRIMITIVES: dict[object, list[Finding]] = {}
+_KEPT = 16
+
+
+def primitive_findings(analysis: Analysis) -> list[Finding]:
+    """The warnings and errors of the valve primitives (``gaitc lint``'s primitive check),
+    for a document whose model checked; slow for gaits bound to a robot file, so the
+    result is kept for the next analysis of an unchanged set of gaits."""
+    model = analysis.model
+    if model is None or not any(g.primitive is not None for g in model.gaits):
+        return []
+    from pathlib import Path
+
+    from gaitc.gaitgraph.pairing import check_gaits
+
+    moves: dict[str, frozenset[tuple[str, str]]] = {}
+    for move in model.transitions:
+        for name in move.gaits:
+            moves[name] = moves.get(name, frozenset()) | {(move.source, move.target)}
+    folder = Path(analysis.path).resolve().parent
+    legs = [leg.name for leg in model.legs]
+    robots = sorted({g.primitive.robot for g in model.gaits
+                     if g.primitive is not None and g.primitive.robot})
+    stamps = []
+    for robot in robots:
+        try:
+            stamps.append((robot, (folder / robot).stat().st_mtime_ns))
+        except OSError:
+            stamps.append((robot, -1))
+    key = (str(folder), model.gaits, tuple(sorted(moves.items())), tuple(legs), tuple(stamps))
+    found = _PRIMITIVES.get(key)
+    if found is None:
+        try:
+            found = [_finding(d, d.severity)
+                     for d in check_gaits(model.gaits, str(folder), legs=legs, moves=moves)]
+        except GaitcError as err:
+            found = [_finding(err, "error")]
+        if len(_PRIMITIVES) >= _KEPT:
+            _PRIMITIVES.pop(next(iter(_PRIMITIVES)))
+        _PRIMITIVES[key] = found
+    return list(found)
