@@ -5,7 +5,7 @@ direction, caches on a lattice of corridors, hazards off them, goals in two far 
 every task is realizable.
 Times are CPU seconds (``time.process_time``, best of ``--repeat``), lowering included; the
 table also shows the verdict and CUDD's peak of live nodes, and SLUGS's time when $SLUGS is
-set.  ``--ablation`` compares solver options on a few tasks (docs/performance.md).
+set.  ``--ablation`` compares solver options on a few tasks (docs/design-notes.md).
 Run: .venv/bin/python bench/bench_solver.py [--quick] [--ablation] [--repeat N]
 """
 

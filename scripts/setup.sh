@@ -2,7 +2,7 @@
 # Set up gaitc on a fresh machine: Graphviz (for rendering), the AVR toolchain and simavr (for
 # the valve-board firmware), a virtual environment in .venv,
 # and gaitc installed into it with its test tools, Dask ('gaitc resilience --dask') and
-# ipywidgets (the notebook player).
+# ipywidgets (the notebook player) and MkDocs (the documentation site).
 # Safe to run again.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -49,4 +49,4 @@ PYTHON="${PYTHON:-python3}"
 if [ ! -x .venv/bin/python ]; then
     "$PYTHON" -m venv .venv
 fi
-.venv/bin/python -m pip install -q --disable-pip-version-check -e '.[test,cluster,notebook]'
+.venv/bin/python -m pip install -q --disable-pip-version-check -e '.[test,cluster,notebook,docs]'

@@ -73,7 +73,7 @@ def test_bad_parameters_are_refused() -> None:
 
 
 def test_a_static_order_that_misfits_the_obstacle_game_turns_sifting_on() -> None:
-    """Its ∃y' images outgrow the sets (docs/performance.md); the thesis robot's never do."""
+    """Its ∃y' images outgrow the sets (docs/design-notes.md); the thesis robot's never do."""
     obstacle = SymbolicSpec(_gr1(obstacle_text(Obstacle(16, 3))), engine_options(STATIC))
     assert not obstacle.restarted
     Game(obstacle).solve()

@@ -388,10 +388,10 @@ def gaits(robot: str | Path, options: GaitOptions | None = None) -> GaitSearch:
     The robot file decides the gait graph: its chapter 4 model when it declares one, else
     the kinematic graph of chapter 2; ``options.model`` overrides it.
 
-    >>> import gaitc
-    >>> found = gaitc.gaits("specs/robots/symmetric6.yaml", gaitc.GaitOptions("+x"))
-    >>> found.found, found.to_json()["gaits"][0]["rank"]
-    (True, 1)
+        >>> import gaitc
+        >>> found = gaitc.gaits("specs/robots/symmetric6.yaml", gaitc.GaitOptions("+x"))
+        >>> found.found, found.to_json()["gaits"][0]["rank"]
+        (True, 1)
     """
     from gaitc.gaitgraph.robot import load_robot
     from gaitc.models.catalogue import chosen_model

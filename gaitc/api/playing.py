@@ -13,7 +13,7 @@ from typing import TYPE_CHECKING
 from gaitc.api.loading import Spec, load
 from gaitc.api.simulation import counter_session, session
 from gaitc.api.solving import Synthesis, recorded_encoding
-from gaitc.diagnostics import UsageError
+from gaitc.diagnostics import ScenarioError, UsageError
 from gaitc.ir.bddfile import SymbolicController
 from gaitc.ir.controller import Controller
 from gaitc.ir.spec import Semantics
@@ -60,9 +60,34 @@ def player(spec: Spec | str | Path,
     played = Player(bound)
     if start is not None:
         run = start if isinstance(start, Run) else read_jsonl(start)
-        played.resume(run, at)
+        try:
+            played.resume(run, at)
+        except ScenarioError:
+            if played.role is not Role.ROBOT:
+                raise
+            played = _explains_player(spec, semantics, run, at)
     elif at is not None:
         raise UsageError("--at picks a step of the run given with --from")
+    return played
+
+
+def _explains_player(spec: Spec, semantics: Semantics | str, run: Run,
+                     at: int | None) -> Player:
+    """The robot's play against ``explain``'s counter-strategy, resumed from ``run``.
+
+    ``explain`` plays the environment restricted to the freedoms it needs, so its play may
+    leave the counter-strategy of the whole spec; the play is then resumed against the one
+    it came from. When that cannot follow the run either, its error stands."""
+    from gaitc.api.answers import explain
+
+    counter = explain(spec, semantics, repairs=False).counter
+    if counter is None:
+        raise ScenarioError("the run cannot be played against this spec's counter-strategy",
+                            None)
+    bound = session(spec, counter, None, semantics)
+    assert bound is not None
+    played = Player(bound, Role.ROBOT)
+    played.resume(run, at)
     return played
 
 

@@ -142,29 +142,41 @@ def is_run_file(path: str | Path) -> bool:
     return Path(path).suffix.lower() in (".jsonl", ".json")
 
 
+def _recorded(spec: Spec | str | Path, file: str, steps: int | None) -> Run:
+    """A run file of an unrealizable spec played again as recorded, checked step by step
+    (no controller exists to answer it; see :func:`gaitc.sim.replay.recorded_play`)."""
+    from gaitc.sim.replay import recorded_play
+    from gaitc.sim.run import read_jsonl
+
+    loaded = spec if isinstance(spec, Spec) else load(spec, EncodingName.ONEHOT)
+    if loaded.model is None:
+        raise UsageError(f"'{loaded.path}': replaying a run needs a .gait spec")
+    recorded = read_jsonl(file)
+    if steps is not None:
+        recorded.steps = recorded.steps[:steps + 1]
+    domain = Domain(loaded.model, loaded.encoding or EncodingName.ONEHOT)
+    return recorded_play(recorded, domain, Monitor(loaded.gr1), loaded.path)
+
+
 def _counter_play(bound: Session, env: object, steps: int | None, seed: int) -> Run:
     """A counter-strategy plays the environment; ``env`` says how the robot answers:
-    ``random`` (with ``seed``), ``adversarial`` (it avoids forced deadlocks) or
-    ``scripted:RUN.jsonl`` (as the run file did)."""
+    ``random`` (with ``seed``) or ``adversarial`` (it avoids forced deadlocks); with
+    ``scripted:RUN.jsonl`` both sides play as the run file did (a play of an unrealizable
+    spec: ``gaitc play``'s, or ``explain``'s, whose environment may come from a
+    counter-strategy of fewer freedoms), every step checked against the spec."""
     from gaitc.sim.counterplay import careful_chooser, play, random_chooser
 
-    counter = explicit(bound.strategy, "a counter-play")
     if isinstance(env, str) and env.startswith("scripted:") and is_run_file(env[9:]):
-        from gaitc.sim.replay import run_chooser
-        from gaitc.sim.run import read_jsonl
-
-        run = read_jsonl(env[9:])
-        choose = run_chooser(run, counter, bound.domain.legs)
-        name = f"counter-strategy, robot scripted {env[9:]}"
-        steps = max(0, len(run.steps) - 1) if steps is None else steps
-    elif env == "random":
+        return _recorded(bound.spec, env[9:], steps)
+    counter = explicit(bound.strategy, "a counter-play")
+    if env == "random":
         choose, name = random_chooser(seed), f"counter-strategy, robot random --seed {seed}"
     elif env == "adversarial":
         choose, name = careful_chooser(counter), "counter-strategy, robot careful"
     else:
         raise UsageError("a counter-strategy is the environment: choose how the robot answers "
-                         "with 'random', 'adversarial' (it avoids forced deadlocks) or "
-                         "'scripted RUN.jsonl' (as a run file did)")
+                         "with 'random', 'adversarial' (it avoids forced deadlocks), or "
+                         "replay a play with 'scripted RUN.jsonl'")
     count = DEFAULT_STEPS if steps is None else steps
     if count < 0:
         raise UsageError("the number of steps must not be negative")
@@ -194,6 +206,9 @@ def simulate(spec: Spec | Session | str | Path,
 
     bound = spec if isinstance(spec, Session) else session(spec, controller, None, semantics,
                                                            prefer)
+    if bound is None and isinstance(env, str) and env.startswith("scripted:") and \
+            is_run_file(env[9:]) and not isinstance(spec, Session):
+        return _recorded(spec, env[9:], steps)
     if bound is None and env == "adversarial" and not isinstance(spec, Session):
         bound = counter_session(spec, semantics)
     if bound is None:

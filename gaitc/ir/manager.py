@@ -8,7 +8,7 @@ spec, whose whole solve takes 2-3 ms (a lift with two floors: 9.6 ms against 2.9
 random corpus alike).  CUDD doubles the table by itself while its hit rate is high (Somenzi,
 CUDD 3.0 user's manual, "The computed table"), so larger games lose nothing: thesis robot A
 and the 10 x 10 health 3 grid, AMBA with 5 and 8 masters and the 64-client arbiter solve in
-the same time within noise (docs/performance.md, section 9).
+the same time within noise (docs/design-notes.md, section 9).
 """
 
 from __future__ import annotations

@@ -75,6 +75,7 @@ def analyse(text: str, path: str, previous: Analysis | None = None) -> Analysis:
         else:
             found.model = spec.model
             found.findings.extend(_finding(d, d.severity) for d in spec.diagnostics)
+            found.findings.extend(_other_encodings(found.model, spec.encoding))
     elif previous is not None and previous.tree is not None:
         found.tree, found.index, found.stale_tree = previous.tree, previous.index, True
     return found
@@ -84,6 +85,22 @@ def analyse(text: str, path: str, previous: Analysis | None = None) -> Analysis:
 #: files' modification times): an edit elsewhere in the file does not search again.
 _PRIMITIVES: dict[object, list[Finding]] = {}
 _KEPT = 16
+
+
+def _other_encodings(model: Model | None, done: object) -> list[Finding]:
+    """The errors of lowering with the encodings ``gaitc lint`` also tries."""
+    from ltlcompiler.encoding import ENCODINGS
+    from ltlcompiler.lowering import lower
+
+    if model is None:
+        return []
+    for encoding in ENCODINGS:
+        if encoding != done:
+            try:
+                lower(model, encoding)
+            except GaitcError as err:
+                return [_finding(err, "error")]
+    return []
 
 
 def primitive_findings(analysis: Analysis) -> list[Finding]:

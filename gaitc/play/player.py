@@ -148,14 +148,16 @@ class _Losses:
 class Player:
     """A play of ``session``'s controller (or counter-strategy) stepped by hand.
 
-    >>> import gaitc
-    >>> player = gaitc.player("specs/patrol_2x2.gait")
-    >>> player.choose("start at full health").region
-    'nw'
-    >>> player.choose("nothing").gait
-    'south'
-    >>> [(c.words, c.answer) for c in player.choices()]
-    [('fail L2', 'stay in sw'), ('nothing', 'stay in sw')]
+    Moves are chosen by number or by their words; each returns the new state:
+
+        >>> import gaitc
+        >>> player = gaitc.player("specs/patrol_2x2.gait")
+        >>> player.choose("start at full health").region
+        'nw'
+        >>> player.choose("nothing").gait
+        'south'
+        >>> [(c.words, c.answer) for c in player.choices()]
+        [('fail L2', 'stay in sw'), ('nothing', 'stay in sw')]
     """
 
     def __init__(self, session: Session, role: Role | str | None = None) -> None:

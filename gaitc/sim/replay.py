@@ -2,9 +2,11 @@
 
 A run file (``simulate --out``, ``explain --out``, a play saved by ``gaitc play``) records
 every variable's value at every step. Against a controller, :class:`RunEnvironment` asks
-for the recorded inputs of each step (``simulate --env scripted RUN.jsonl``); against a
-counter-strategy, :func:`run_chooser` picks the recorded answer of the robot. A run of
-another robot, or a step the controller cannot follow, is an error at the run file's line.
+for the recorded inputs of each step (``simulate --env scripted RUN.jsonl``);
+:func:`recorded_play` replays both sides as recorded, every step checked against the spec
+(a play of an unrealizable spec, such as ``explain``'s, which its environment plays from a
+counter-strategy of the assumptions it needs). A run of another robot, or a step the
+controller cannot follow, is an error at the run file's line.
 """
 
 from __future__ import annotations
@@ -12,10 +14,10 @@ from __future__ import annotations
 from collections.abc import Sequence
 
 from gaitc.diagnostics import ScenarioError, Span
-from gaitc.sim.counterplay import Chooser
+from gaitc.sim.domain import Domain
 from gaitc.sim.environments import Environment, Request, Situation
+from gaitc.sim.monitor import Monitor
 from gaitc.sim.run import Run
-from gaitc.sim.view import StrategyView
 
 HINT = ("replay a run of this spec: one saved by 'gaitc play', 'gaitc simulate --out' or "
         "'gaitc explain --out'")
@@ -67,18 +69,19 @@ class RunEnvironment(Environment):
                        step_span(self.run, index))
 
 
-def run_chooser(run: Run, strategy: StrategyView, legs: Sequence[str]) -> Chooser:
-    """A robot that answers a counter-strategy as ``run`` did, step by step."""
-    check_robot(run, legs)
+def recorded_play(run: Run, domain: Domain, monitor: Monitor, spec_file: str = "") -> Run:
+    """``run``'s steps played again as recorded (both sides), decoded and checked by
+    ``monitor`` step by step, as a simulated run is."""
+    from gaitc.sim.simulator import Simulator
+    from gaitc.sim.strategy import Strategy
 
-    def choose(path: Sequence[int], options: Sequence[int]) -> int:
-        index = len(path)
-        wanted = recorded(run, index, strategy.variables)
-        for k, node in enumerate(options):
-            if strategy.values[node] == wanted:
-                return k
-        raise ScenarioError(f"step {index} of the run cannot be played here: the "
-                            "counter-strategy has no such move", step_span(run, index),
-                            "the run was played against another counter-strategy or spec")
-
-    return choose
+    check_robot(run, domain.legs)
+    inputs = monitor.inputs
+    variables = inputs + tuple(v for v in monitor.variables if v not in inputs)
+    values = tuple(recorded(run, i, variables) for i in range(len(run.steps)))
+    count = len(values)
+    path = Strategy(variables=variables, n_inputs=len(inputs), values=values,
+                    successors=tuple((i + 1,) if i + 1 < count else () for i in range(count)),
+                    ranks=(0,) * count, initial=(0,) if count else (), file=run.file)
+    return Simulator(path, domain, monitor).replay(range(count), spec_file,
+                                                    f"recorded {run.file or 'run'}")

@@ -5,7 +5,7 @@ into clusters of at most ``Options.cluster_limit`` nodes; each cluster is paired
 primed outputs that no later cluster mentions, which CPre may quantify right after it (early
 quantification in the style of Burch, Clarke and Long, "Symbolic model checking with
 partitioned transition relations", VLSI 1991).  Measured slower than the monolithic ρs on
-every bench family (docs/performance.md), so no configuration the engine chooses uses it.
+every bench family (docs/design-notes.md), so no configuration the engine chooses uses it.
 """
 
 from __future__ import annotations

@@ -228,7 +228,7 @@ class Game:
         Y is kept over pre and over post variables, each ring's Y' the union of the
         X' that its X fixpoints renamed anyway: renaming Y anew each ring cost as much as
         all the X steps (thesis grid 30 x 30 at health 5, binary: the solve went from
-        129 s to 81 s CPU without it; docs/performance.md, section 6).  Z' comes the same
+        129 s to 81 s CPU without it; docs/design-notes.md, section 6).  Z' comes the same
         way, from the Y' that narrowed it.
 
         A ring whose target (J^s_j ∧ Z') ∨ Y' is the last ring's has the last ring's X

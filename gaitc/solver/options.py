@@ -1,6 +1,6 @@
 """The embedded solver's tuning switches and the thresholds they use.
 
-Each switch is measured in docs/performance.md; :mod:`gaitc.solver.portfolio` chooses between
+Each switch is measured in docs/design-notes.md; :mod:`gaitc.solver.portfolio` chooses between
 them per problem, so a normal run sets none of them.
 """
 
@@ -72,7 +72,7 @@ RESIFT_NODES: Final = 10_000
 
 @dataclass
 class Options:
-    """Tuning switches of the symbolic solver (each measured in docs/performance.md)."""
+    """Tuning switches of the symbolic solver (each measured in docs/design-notes.md)."""
 
     order: str = "guards"  # see solver.ordering.ORDERS
     care: bool = True  # solve modulo the invariants of ρe/ρs (see SymbolicSpec.care)

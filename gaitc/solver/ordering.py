@@ -7,7 +7,7 @@ down), so that a relation decides its case before it constrains the effect, the 
 small transition BDDs (Bryant 1986; Aziz, Tasiran, Brayton, "BDD variable ordering for
 interacting finite state machines", DAC 1994).  Last, when the system's goals are over
 integers, the integer inputs of the environment's liveness go on top (a map's obstacle above
-the robot's position, :func:`_movers_first`).  Measured in docs/performance.md.
+the robot's position, :func:`_movers_first`).  Measured in docs/design-notes.md.
 """
 
 from __future__ import annotations
@@ -111,7 +111,7 @@ def _movers_first(spec: GR1Spec, order: list[Variable], found: AtomCache) -> lis
     conjunctions) is 5-6 times cheaper than with the position on top, which the guard
     scores choose because every move clause is guarded by the position.  Gridworld
     256 x 256 with an obstacle in an 8 x 8 box: 3.3 s against 17.7 s for the guards order
-    alone; evasion 24 x 24: 3.1 s against 8.2 s (docs/performance.md, issue 37).  Boolean
+    alone; evasion 24 x 24: 3.1 s against 8.2 s (docs/design-notes.md, issue 37).  Boolean
     obstacles (one variable per cell) stay where the guards put them: 64 of them on top
     make every set enumerate the obstacle's cells first (over 300 s)."""
 
@@ -137,7 +137,7 @@ def _per_member(spec: GR1Spec, blocks: list[list[str]], found: AtomCache) -> dic
     between a group and per-member variables kept apart needs a node for every combination
     of the group's values above them (the lift's rule ``b_i & f_i -> !b_i'``, every floor
     above every button); interleaved, each pair is decided in one place.  Lift with 64
-    floors: 3.6 s to check instead of 0.7 s (docs/performance.md).  A member that many
+    floors: 3.6 s to check instead of 0.7 s (docs/design-notes.md).  A member that many
     variables lean on (AMBA's ``start``) is a hub, not a pairing, and moves nothing."""
     grouped = {name for b in blocks if len(b) > 1 for name in b}
     lean: dict[str, list[str]] = {}

@@ -1,7 +1,7 @@
 """The engine chooses its configuration per problem: a race of two variable orders (issue 12).
 
 The solver's defaults (the guards-first static order, CUDD's dynamic reordering off) were
-tuned on the thesis family, where sifting costs 2-8x (docs/performance.md, section 4); on
+tuned on the thesis family, where sifting costs 2-8x (docs/design-notes.md, section 4); on
 other families, such as the AMBA AHB arbiters, building the transition relation in that
 order blows up (AMBA with 4 masters: 160 s to build what takes 0.1 s in a sifted order).
 No cheap test tells the two apart before solving, so two forked processes race:

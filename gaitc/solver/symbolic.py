@@ -214,7 +214,7 @@ class SymbolicSpec:
         every state after the first step.  Because ∀x'. ρe → ∃y'. ρs ∧ T only looks at T inside
         Ie' ∧ Is', CPre(T) = CPre(T ∧ C') for C = I ∨ (θe ∧ θs) ⊇ I: the game's sets matter only
         on C, the fixpoints of the masked operators S ↦ G(S) ∧ C are the exact fixpoints ∧ C
-        (docs/performance.md has the proof), and so they are exact on every state that the
+        (docs/design-notes.md has the proof), and so they are exact on every state that the
         initial condition or a strategy ever looks at.  ρ itself is needed only for pre-states
         in C (and ρs only for next inputs in Ie'), so both are simplified with Coudert and
         Madre's restrict (ICCAD 1990); ``game_*`` hold the simplified copies.

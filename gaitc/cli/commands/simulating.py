@@ -146,6 +146,12 @@ def run_simulate(args: argparse.Namespace) -> int:
         bound = gaitc.session(args.spec, args.controller, args.encoding, semantics,
                               args.prefer, progress)
     counter_env = _counter_environment(args)
+    if bound is None and counter_env is not None and counter_env.startswith("scripted:"):
+        loaded = gaitc.load(args.spec, args.encoding or EncodingName.ONEHOT)
+        run = gaitc.simulate(loaded, env=counter_env, steps=args.steps)
+        return report_run(run, {leg.name: leg.health for leg in loaded.model.legs}
+                          if loaded.model else {}, run.environment, args.quiet, out=args.out,
+                          as_json=args.json, realizable=False)
     if bound is None and counter_env is not None:
         from gaitc.api.simulation import counter_session
 
