@@ -119,3 +119,18 @@ def test_the_python_blocks_run(page: Path) -> None:
     finally:
         os.chdir(old)
     assert result.attempted > 0 and result.failed == 0
+
+
+def test_the_tutorials_gait_blocks_are_its_robots_file() -> None:
+    """Every ``gait`` block the tutorial shows is a part of the file it runs (the draft or
+    the repaired robot), line for line."""
+    page = (DOCS / "tutorial" / "index.md").read_text(encoding="utf-8")
+    files = ((DOCS / "tutorial" / "lab8.gait").read_text(encoding="utf-8")
+             + (DOCS / "tutorial" / "out" / "draft.gait").read_text(encoding="utf-8"))
+    known = {" ".join(line.split()) for line in files.splitlines()}
+    blocks = re.findall(r"```gait\n(.*?)```", page, re.S)
+    assert len(blocks) >= 5
+    for block in blocks:
+        for line in block.splitlines():
+            if line.strip() and not line.startswith("--8<--"):
+                assert " ".join(line.split()) in known, line
