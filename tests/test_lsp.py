@@ -144,6 +144,12 @@ async def test_definition_references_and_rename(client: LanguageClient) -> None:
     with pytest.raises(Exception, match="already the name of a gait"):
         await client.text_document_rename_async(types.RenameParams(
             text_document=doc, position=use, new_name="north_a"))
+    with pytest.raises(Exception, match=r"'L4' is one name of a range \(line 14\)"):
+        await client.text_document_rename_async(types.RenameParams(
+            text_document=doc, position=_find(text, "L4,"), new_name="front"))
+    ready = await client.text_document_prepare_rename_async(types.PrepareRenameParams(
+        text_document=doc, position=use))
+    assert ready is not None
 
 
 def _apply(text: str, edits: list[types.TextEdit]) -> str:

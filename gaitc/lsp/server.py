@@ -262,8 +262,9 @@ def prepare_rename(ls: GaitServer, params: types.PrepareRenameParams) -> types.R
 def _renamable(symbol: Symbol) -> None:
     ranged = next((m for m in symbol.mentions if m.ranged), None)
     if ranged is not None:
-        raise RequestFailed(f"'{symbol.name}' is one name of a range (line {ranged.span.line}); "
-                         "rename the range, or list the names one by one")
+        raise RequestFailed(f"'{symbol.name}' is one name of a range (line "
+                            f"{ranged.span.line}); rename the range, or list the names one "
+                            "by one")
 
 
 @_feature(types.TEXT_DOCUMENT_RENAME)
