@@ -442,3 +442,31 @@ def test_render_map_draws_a_saved_play(robot_a: Player, tmp_path: Path) -> None:
     svg = picture.read_text()
     assert svg.startswith("<?xml") or "<svg" in svg
     assert all(s.region in svg for s in player.steps)
+
+
+def test_the_robot_role_offers_exactly_the_answers_the_guarantees_allow() -> None:
+    """Each robot move offered is an answer to the environment's fixed input that every
+    safety guarantee allows, and every such answer is offered (brute force over the
+    outputs, each clause evaluated on its own)."""
+    player = gaitc.player(UNREALIZABLE)
+    spec = player.session.spec.gr1
+    outputs = [v.name for v in spec.outputs]
+    checked = 0
+    for _ in range(8):
+        if player.over is not None:
+            break
+        offered = {player.strategy.values[c.node] for c in player.choices()}
+        if player.path:
+            current = player.strategy.valuation(player.path[-1])
+            fixed = player.strategy.input_key(player.choices()[0].node)
+            allowed = set()
+            for values in itertools.product((0, 1), repeat=len(outputs)):
+                nxt = dict(zip(player.strategy.inputs, fixed, strict=True))
+                nxt |= dict(zip(outputs, values, strict=True))
+                valuation = dict(current) | {f"{n}'": v for n, v in nxt.items()}
+                if all(evaluate(c.formula, valuation) for c in spec.sys_trans):
+                    allowed.add(tuple(nxt[n] for n in player.strategy.variables))
+            assert offered == allowed
+            checked += 1
+        player.choose(1 + len(player.path) % len(player.choices()))
+    assert checked >= 3
