@@ -24,7 +24,7 @@ from gaitc.ir.spec import Semantics
 from gaitc.solver.steps import Steps, given, run_through
 from gaitc.solver.symbolic import BDDNode, SymbolicSpec
 
-#: An extraction with a node limit that has run this many seconds starts its census; a
+#: An extraction with a node limit that has run this many CPU seconds starts its census; a
 #: shorter one never pays for it (thesis robot A extracts in 0.3-1 s; its census, whose
 #: preference relations carry the robot model's costs, takes 10-40 s).
 CENSUS_AFTER: Final = 2.0
@@ -124,14 +124,14 @@ class Census:
 
     def advance(self) -> int | None:
         """Run one slice; the count once the census is done, else None."""
-        started = time.monotonic()
+        started = time.thread_time()
         try:
             next(self._slices)
         except StopIteration as done:
             self.count = done.value
             self.done = True
         finally:
-            self.seconds += time.monotonic() - started
+            self.seconds += time.thread_time() - started
         return self.count
 
     def _census(self, sym: SymbolicSpec, relation: Callable[[int], Steps[BDDNode]], n: int,

@@ -96,7 +96,9 @@ def extract_strategy(
                                    semantics, max_nodes, counting=max_nodes is not None)
     expected: int | None = None  # the census's count, once it has one
     functions: list[BDDNode] | None = None  # the census's move functions, once it has them
-    started = time.monotonic()
+    # CPU time of this thread, not the wall clock: the census's share of the work must not
+    # depend on what else the machine runs.
+    started = time.thread_time()
     initial = [node_of(s, 0) for s in initial_states(sym, result.winning, semantics)]
     bdd = sym.bdd
     # The same few choices recur at state after state (one region and gait next, say):
@@ -108,7 +110,7 @@ def extract_strategy(
         k = queue.popleft()
         limits.check()
         if census is not None:
-            spent = time.monotonic() - started
+            spent = time.thread_time() - started
             if spent > CENSUS_AFTER and spent - CENSUS_AFTER > 3 * census.seconds:
                 expected = census.advance()
                 functions = census.moves
