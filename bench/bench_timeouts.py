@@ -1,11 +1,13 @@
 """How late ``--timeout`` returns, per command (issue 38): whole processes, worst of N runs.
 
 Every command that can run long takes ``--timeout``: ``check``, ``synth``, ``counter``,
-``explain`` and ``resilience`` (this one with two worker processes, ``--jobs 2``).  Each
-runs here on an input that takes far longer than the limit: thesis robot A with 100 health
-levels a leg (realizable; for ``counter`` its unrealizable twin without caches, where
-legs that wear out are never restored), and a formula nested 100,001 deep (the parser's
-work counts too).  The table gives the limit, the exit code, and the wall seconds past the
+``explain``, ``lint`` (the search behind a valve primitive) and ``resilience`` (this one
+with two worker processes, ``--jobs 2``).  Each runs here on an input that takes far longer
+than the limit: thesis robot A with 100 health levels a leg (realizable; for ``counter``
+its unrealizable twin without caches, where legs that wear out are never restored), a
+formula nested 100,001 deep (the parser's work counts too), and a robot file (a fuzz
+mutant, tests/data/limits/slow_primitive_robot.yaml) whose primitive search takes 20 s.
+The table gives the limit, the exit code, and the wall seconds past the
 limit, median and worst of the runs; the promise is a second.
 Run: .venv/bin/python bench/bench_timeouts.py [--quick] [--limit S] [--runs N]
 """
@@ -37,7 +39,11 @@ def inputs(folder: Path) -> dict[str, Path]:
     depth = 100_001
     deep.write_text("[INPUT]\na\n[OUTPUT]\nb\n[SYS_TRANS]\n" + "(" * depth + "b"
                     + ")" * depth + "\n", encoding="utf-8")
-    return {"long": long, "lost": lost, "deep": deep}
+    slow = folder / "slow_primitive.gait"
+    robot = ROOT / "tests" / "data" / "limits" / "slow_primitive_robot.yaml"
+    slow.write_text(f'legs L1..L8 health 2\ngait north_a uses L6, L8 moves north primitive '
+                    f'"{robot}" direction +y\ngrid 2 x 1\nstart r0\n', encoding="utf-8")
+    return {"long": long, "lost": lost, "deep": deep, "slow": slow}
 
 
 def runs(files: dict[str, Path]) -> list[tuple[str, list[str]]]:
@@ -49,6 +55,7 @@ def runs(files: dict[str, Path]) -> list[tuple[str, list[str]]]:
         ("explain", ["explain", str(files["long"])]),
         ("resilience --jobs 2", ["resilience", "--jobs", "2", str(files["long"])]),
         ("check (nested 100,001)", ["check", str(files["deep"])]),
+        ("lint (primitive search)", ["lint", str(files["slow"])]),
     ]
 
 

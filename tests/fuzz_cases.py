@@ -145,7 +145,9 @@ def _robot_commands(path: Path, _seed: str, fx: Fixtures) -> list[tuple[str, lis
                        "--max-states", "30", "--budget", "3000"]),
         ("gaits mcts", ["gaits", str(path), "--method", "mcts", "--goal", "20,0",
                         "--max-states", "30", "--iterations", "100"]),
-        ("lint", ["lint", str(spec)]),
+        # a mutated robot file can make the primitive search take 20 s: bounded, as a user
+        # bounds it, well inside the kind's limit (exit 4 is an answer, not a hang)
+        ("lint", ["lint", str(spec), "--timeout", "10"]),
     ]
 
 

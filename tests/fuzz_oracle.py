@@ -83,17 +83,21 @@ def _excerpt_of(shown: str, full: str, column: int) -> bool:
     was cut) that holds the character at ``column``."""
     from gaitc.diagnostics import EXCERPT
 
-    head = shown.startswith("...")
-    inner = shown[3 if head else 0:]
-    if inner.endswith("...") and len(full) > EXCERPT:
-        inner = inner[:-3]
-    if len(full) <= EXCERPT or len(shown) > EXCERPT or not inner:
+    if len(full) <= EXCERPT or len(shown) > EXCERPT:
         return False
-    start = 0 if not head else 1
-    while (start := full.find(inner, start)) >= 0:  # a repetitive line may hold it twice
-        if start < column <= start + len(inner) + 1:
-            return True
-        start += 1
+    # A line that itself starts with "..." shows them uncut: try the shown text both ways.
+    heads = (True, False) if shown.startswith("...") else (False,)
+    for head in heads:
+        inner = shown[3 if head else 0:]
+        if inner.endswith("...") and len(full) > EXCERPT:
+            inner = inner[:-3]
+        if not inner:
+            continue
+        start = 0 if not head else 1
+        while (start := full.find(inner, start)) >= 0:  # a repetitive line may hold it twice
+            if start < column <= start + len(inner) + 1:
+                return True
+            start += 1
     return False
 
 

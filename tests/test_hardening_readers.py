@@ -180,3 +180,47 @@ def test_a_bad_byte_after_a_byte_order_mark_is_counted_as_the_readers_count(
     with pytest.raises(HardwareError) as caught:
         RegionMap.from_file(path, REGIONS)
     assert caught.value.span == Span(str(path), 1, 7)
+
+
+@pytest.mark.parametrize(("rows", "message", "line"), [
+    ("0,0.008\n0.05,0.009\n0.10,0.010\n0.05,0.011\n0.20,0.012\n",
+     "the times must increase from row to row, but row 4 (0.05 s after the first) is not "
+     "later than the row before", 5),
+    ("0,0.008\n0,0.009\n0.10,0.010\n0.15,0.011\n", "but row 2 (0 s after the first)", 3),
+])
+def test_a_step_response_whose_times_go_back_is_refused_at_the_row(
+        tmp_path: Path, rows: str, message: str, line: int) -> None:
+    """Fuzz campaign of issue 38 (100,000 inputs): a time column that went back made the
+    curvature fit start outside its bounds (scipy's ValueError, exit 70)."""
+    from gaitc.models.characterization import CharacterizationError, fit_curvature
+
+    path = tmp_path / "step.csv"
+    path.write_text("time,curvature\n" + rows, encoding="utf-8")
+    with pytest.raises(CharacterizationError) as caught:
+        fit_curvature(path)
+    assert message in caught.value.message
+    assert caught.value.span == Span(str(path), line, 1)
+
+
+def test_a_step_response_of_a_huge_time_span_fits(tmp_path: Path) -> None:
+    """The frequency's first guess, 4 / duration, stays inside its bound however long the
+    recording (a last time of 1e19 s gave 4e-19 rad/s, below the bound of 1e-6)."""
+    from gaitc.models.characterization import fit_curvature
+
+    path = tmp_path / "step.csv"
+    path.write_text("time,curvature\n0,0.008\n0.05,0.009\n0.1,0.01\n0.15,0.011\n1e19,0.02\n",
+                    encoding="utf-8")
+    fit = fit_curvature(path)
+    assert fit.frequency > 0 and abs(fit.curvature - 0.02) < 1e-3
+
+
+def test_the_fuzz_oracle_reads_an_uncut_line_that_starts_with_dots() -> None:
+    """The campaign's one "wrong line" was the oracle's: a CSV line that itself starts
+    with "......" is shown uncut at its head, which the oracle took for a cut."""
+    from fuzz_oracle import _excerpt_of
+
+    from gaitc.diagnostics import _excerpt
+
+    line = "......time," + "curvature, " * 200
+    shown, _, _ = _excerpt(line, 1, 1)
+    assert shown.startswith("......time") and _excerpt_of(shown, line, 1)

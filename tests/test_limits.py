@@ -203,3 +203,18 @@ def test_a_solved_game_is_freed_without_the_garbage_collector() -> None:
         assert alive() is None
     finally:
         gc.enable()
+
+
+def test_timeout_stops_the_search_behind_a_primitive(tmp_path: Path) -> None:
+    """lint --timeout (issue 38's campaign of 100,000 inputs): a mutated robot file whose
+    primitive search takes 20 s (tests/data/limits/slow_primitive_robot.yaml) stops a
+    second past the limit, with the hint that names the slow part."""
+    robot = ROOT / "tests" / "data" / "limits" / "slow_primitive_robot.yaml"
+    spec = tmp_path / "uses_it.gait"
+    spec.write_text(f'legs L1..L8 health 2\ngait north_a uses L6, L8 moves north primitive '
+                    f'"{robot}" direction +y\ngrid 2 x 1\nstart r0\n', encoding="utf-8")
+    code, out, err, wall = gaitc_run("lint", str(spec), "--timeout", "1", "--json")
+    assert code == 4, err
+    assert json.loads(out)["error"]["message"] == "the lint stopped after the time limit of 1 s"
+    assert "the search behind a gait's primitive" in err
+    assert wall <= 2.0 + STARTUP

@@ -35,13 +35,28 @@ class OutputFormat(Choice):
 FORMATS: Final = tuple(OutputFormat)
 
 
-def lint(spec: Spec | str | Path, primitives: bool = False) -> tuple[Diagnostic, ...]:
+def lint(spec: Spec | str | Path, primitives: bool = False,
+         timeout: float | None = None) -> tuple[Diagnostic, ...]:
     """The warnings (and primitive errors) of a spec; a path is read as ``.gait`` unless its
     suffix names another format (:func:`gaitc.api.loading.reader_of`).
 
     Gaits without a valve primitive are reported when ``primitives`` is set or once any
     gait of the spec binds one. Errors in the spec itself raise, as :func:`gaitc.load` does.
+    The search behind a primitive bound to a robot file can take seconds; with ``timeout``
+    the whole lint runs in a child process stopped that many seconds in (a SolverError).
     """
+    if timeout is not None:
+        from gaitc.api.isolation import HardLimits, run_limited
+        from gaitc.diagnostics import SolverError
+
+        try:
+            return run_limited(lambda: lint(spec, primitives), HardLimits(seconds=timeout),
+                               "the lint")
+        except SolverError as err:
+            raise SolverError(err.message, err.span, hint=(
+                "raise --timeout: the slow part is the search behind a gait's primitive "
+                "from a robot file, which explicit valves ('valves 0100, 1000') skip"
+            )) from None
     from ltlcompiler.lowering import lower
 
     if not isinstance(spec, Spec):

@@ -107,10 +107,10 @@ def fit_curvature(path: str | Path) -> CurvatureFit:
     t = np.array([float(x) for x in labels])
     kappa = values[:, 0]
     t = t - t[0]
-    if t[-1] <= 0:
-        raise CharacterizationError(f"{name}: the times must increase", Span(name, 2, 1))
+    _increasing(t, name)
     start, final = float(kappa[0]), float(np.mean(kappa[-max(2, len(kappa) // 10) :]))
-    guess = [start, final, 4.0 / max(float(t[-1]), 1e-9), 0.7]
+    # ω_n's first guess settles the step within the recording, kept inside its bound
+    guess = [start, final, max(4.0 / float(t[-1]), 2e-6), 0.7]
 
     def residual(p: Array) -> Array:
         out: Array = step_response(t, p[0], p[1], p[2], p[3]) - kappa
@@ -119,6 +119,20 @@ def fit_curvature(path: str | Path) -> CurvatureFit:
     fit = least_squares(residual, guess, bounds=([-np.inf, -np.inf, 1e-6, 1e-3], np.inf))
     k0, kf, w, z = (float(v) for v in fit.x)
     return CurvatureFit(k0, kf, w, z, float(np.sqrt(np.mean(fit.fun**2))))
+
+
+def _increasing(t: Array, name: str) -> None:
+    """A recording's times (from 0) must increase from row to row; the first row that does
+    not is an error at its line."""
+    if len(t) < 2:
+        raise CharacterizationError(f"{name}: a step response needs at least two rows",
+                                    Span(name, 2, 1))
+    for row in range(1, len(t)):
+        if not t[row] > t[row - 1]:
+            raise CharacterizationError(
+                f"{name}: the times must increase from row to row, but row {row + 1} "
+                f"({t[row] + 0:.6g} s after the first) is not later than the row before",
+                Span(name, row + 2, 1))
 
 
 def _numeric(labels: list[str], name: str) -> None:
@@ -184,6 +198,7 @@ def fit_damping(path: str | Path, mass_g: float, stiffness: float) -> DampingFit
     _numeric(labels, name)
     t = np.array([float(x) for x in labels])
     t = t - t[0]
+    _increasing(t, name)
     x = values[:, 0]
     if mass_g <= 0 or stiffness <= 0:
         raise CharacterizationError("the mass and the stiffness must be positive")

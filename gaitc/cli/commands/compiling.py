@@ -13,7 +13,7 @@ from typing import TYPE_CHECKING, Any
 import gaitc
 from gaitc.api.compiling import FORMATS, emit, output_format
 from gaitc.api.loading import Spec, load, reader_of
-from gaitc.cli.commands.arguments import output_file
+from gaitc.cli.commands.arguments import output_file, positive_seconds
 from gaitc.cli.exitcodes import ExitCode
 from gaitc.cli.reporting import compilation_json, document, lint_json, print_json
 from gaitc.diagnostics import Diagnostic, UsageError, render_diagnostic
@@ -39,6 +39,9 @@ def register(subparsers: Any) -> None:
                       "(exit 3 if unrealizable, 5 on a sanity warning)")
     lint.add_argument("--json", action="store_true",
                       help="print one JSON object (docs/json.md); warnings stay on stderr too")
+    lint.add_argument("--timeout", type=positive_seconds, metavar="SECONDS",
+                      help="stop after this long (exit 4): the search behind a valve primitive "
+                      "bound to a robot file, and the solving of --deep")
     lint.set_defaults(run=run_lint)
 
     comp = subparsers.add_parser(
@@ -68,7 +71,7 @@ def _warn(diagnostics: list[Diagnostic]) -> None:
 
 
 def run_lint(args: argparse.Namespace) -> int:
-    diagnostics = list(gaitc.lint(args.spec, args.primitives))
+    diagnostics = list(gaitc.lint(args.spec, args.primitives, args.timeout))
     _warn(diagnostics)
     code, why = _lint_verdict(args, diagnostics)
     if args.json:
@@ -83,7 +86,8 @@ def _lint_verdict(args: argparse.Namespace, diagnostics: list[Diagnostic]
         return ExitCode.USER, None
     if not args.deep:
         return ExitCode.OK, None
-    why = gaitc.explain(gaitc.load(args.spec, kind=reader_of(args.spec)), repairs=False)
+    why = gaitc.explain(gaitc.load(args.spec, kind=reader_of(args.spec)), repairs=False,
+                        timeout=args.timeout)
     if not why.realizable:
         print(f"{args.spec}: unrealizable ({why.kind} failure); 'gaitc explain' says why",
               file=sys.stderr)
