@@ -14,6 +14,7 @@ go to ``--reproducers``. The table goes to stdout; docs/reliability.md shows a r
 from __future__ import annotations
 
 import argparse
+import contextlib
 import multiprocessing
 import multiprocessing.connection
 import random
@@ -87,7 +88,9 @@ class Pool:
     def _start(self, slot: int) -> tuple[multiprocessing.Process,
                                          multiprocessing.connection.Connection]:
         parent, child = multiprocessing.Pipe()
-        proc = multiprocessing.Process(target=_worker, daemon=True,
+        # Not daemonic: a daemonic process may not fork, so a command's --timeout would run
+        # unlimited in it; with a child of its own it is bounded as a user's command is.
+        proc = multiprocessing.Process(target=_worker, daemon=False,
                                        args=(child, str(self.root / f"w{slot}"), self.limit))
         proc.start()
         return proc, parent
@@ -130,9 +133,14 @@ class Pool:
         return (kind, index, "?", data, [("(worker)", -1, seconds, [f"past limit: {why}"])])
 
     def close(self) -> None:
+        """End every worker: asked to stop, killed when it does not within 5 s."""
         for proc, conn in self.workers:
-            conn.send(None)
+            with contextlib.suppress(OSError):  # a worker that died closed its pipe
+                conn.send(None)
             proc.join(timeout=5)
+            if proc.is_alive():
+                proc.kill()
+                proc.join()
 
 
 def table(tallies: dict[str, Tally]) -> str:
@@ -178,29 +186,37 @@ def main(argv: list[str] | None = None) -> int:
     deadline = None if args.hours is None else time.monotonic() + args.hours * 3600
     with tempfile.TemporaryDirectory(prefix="gaitc-fuzz-") as tmp:
         pool = Pool(args.jobs, Path(tmp), args.limit)
-        for number, kind in enumerate(chosen):
-            start, sent, done = time.monotonic(), 0, 0
-            # an equal share of the time left, so a kind that finishes early gives time back
-            share = None if deadline is None else (deadline - start) / (len(chosen) - number)
-            while done < sent or sent < args.per_kind:
-                out_of_time = share is not None and time.monotonic() - start > share
-                for slot in pool.idle():
-                    if sent < args.per_kind and not out_of_time:
-                        pool.send(slot, (kind, args.seed, sent))
-                        sent += 1
-                if out_of_time and done == sent:
-                    break
-                for result in pool.collect():
-                    done += 1
-                    _record(tallies, args.reproducers, result)
-            tallies[kind].seconds = time.monotonic() - start
-            print(f"{kind}: {tallies[kind].inputs} inputs in {tallies[kind].seconds:.0f} s",
-                  file=sys.stderr, flush=True)
-        pool.close()
+        try:
+            run_kinds(pool, chosen, tallies, args, deadline)
+        finally:
+            pool.close()
     print(f"seed {args.seed}, per-run limit {args.limit:g} s, {args.jobs} job(s)")
     print(table(tallies))
     bad = sum(t.outcomes[o] for t in tallies.values() for o in OUTCOMES[3:])
     return 1 if bad else 0
+
+
+def run_kinds(pool: Pool, chosen: list[str], tallies: dict[str, Tally],
+              args: argparse.Namespace, deadline: float | None) -> None:
+    """Every chosen kind in turn, each with an equal share of the time left."""
+    for number, kind in enumerate(chosen):
+        start, sent, done = time.monotonic(), 0, 0
+        # an equal share of the time left, so a kind that finishes early gives time back
+        share = None if deadline is None else (deadline - start) / (len(chosen) - number)
+        while done < sent or sent < args.per_kind:
+            out_of_time = share is not None and time.monotonic() - start > share
+            for slot in pool.idle():
+                if sent < args.per_kind and not out_of_time:
+                    pool.send(slot, (kind, args.seed, sent))
+                    sent += 1
+            if out_of_time and done == sent:
+                break
+            for result in pool.collect():
+                done += 1
+                _record(tallies, args.reproducers, result)
+        tallies[kind].seconds = time.monotonic() - start
+        print(f"{kind}: {tallies[kind].inputs} inputs in {tallies[kind].seconds:.0f} s",
+              file=sys.stderr, flush=True)
 
 
 def _record(tallies: dict[str, Tally], folder: Path, result: tuple[object, ...]) -> None:

@@ -224,3 +224,31 @@ def test_the_fuzz_oracle_reads_an_uncut_line_that_starts_with_dots() -> None:
     line = "......time," + "curvature, " * 200
     shown, _, _ = _excerpt(line, 1, 1)
     assert shown.startswith("......time") and _excerpt_of(shown, line, 1)
+
+
+def test_a_recorded_value_too_large_to_fit_is_refused_at_its_row(tmp_path: Path) -> None:
+    """Second campaign of issue 38: a curvature of 1e162 overflowed the fit's squares
+    (scipy's "array must not contain infs or NaNs", exit 70)."""
+    from gaitc.models.characterization import CharacterizationError, fit_curvature
+
+    path = tmp_path / "step.csv"
+    path.write_text("time,curvature\n0,0.008\n0.05,0.009\n0.1,0.01\n0.15," + "1" * 163
+                    + "\n0.2,0.012\n", encoding="utf-8")
+    with pytest.raises(CharacterizationError) as caught:
+        fit_curvature(path)
+    assert caught.value.message == (
+        f"{path}: row 4 gives a curvature of 1.11e+162 1/mm; recorded values are at most "
+        "1e+06 1/mm in size")
+    assert caught.value.span == Span(str(path), 5, 1)
+
+
+def test_a_stiffness_recording_too_large_to_fit_is_refused_at_its_row(tmp_path: Path) -> None:
+    from gaitc.models.characterization import CharacterizationError, fit_stiffness
+
+    path = tmp_path / "stiffness.csv"
+    path.write_text("state,dx,dy,dz,fx,fy,fz\n1000,1,0,0,1,0,0\n1000,0,1,0,0,1,0\n"
+                    "1000,0,0,1e300,0,0,1\n1000,1,1,0,1,1,0\n", encoding="utf-8")
+    with pytest.raises(CharacterizationError) as caught:
+        fit_stiffness(path)
+    assert "row 3 gives a deflection of 1e+300 mm" in caught.value.message
+    assert caught.value.span == Span(str(path), 4, 1)

@@ -16,8 +16,10 @@ Errors in the files are :class:`CharacterizationError` with the file, line and c
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -108,6 +110,7 @@ def fit_curvature(path: str | Path) -> CurvatureFit:
     kappa = values[:, 0]
     t = t - t[0]
     _increasing(t, name)
+    _plausible(kappa, name, "curvature", "1/mm")
     start, final = float(kappa[0]), float(np.mean(kappa[-max(2, len(kappa) // 10) :]))
     # ω_n's first guess settles the step within the recording, kept inside its bound
     guess = [start, final, max(4.0 / float(t[-1]), 2e-6), 0.7]
@@ -116,9 +119,35 @@ def fit_curvature(path: str | Path) -> CurvatureFit:
         out: Array = step_response(t, p[0], p[1], p[2], p[3]) - kappa
         return out
 
-    fit = least_squares(residual, guess, bounds=([-np.inf, -np.inf, 1e-6, 1e-3], np.inf))
+    fit = _least_squares(residual, guess, ([-np.inf, -np.inf, 1e-6, 1e-3], np.inf), name)
     k0, kf, w, z = (float(v) for v in fit.x)
     return CurvatureFit(k0, kf, w, z, float(np.sqrt(np.mean(fit.fun**2))))
+
+
+#: The largest magnitude a recorded value may have: far beyond any limb's curvature (1/mm)
+#: or displacement (mm), and small enough that the fit's squares stay finite.
+MAX_RECORDED = 1e6
+
+
+def _plausible(values: Array, name: str, what: str, unit: str) -> None:
+    """Every recorded value within :data:`MAX_RECORDED`; the first that is not is an error
+    at its line."""
+    for row, value in enumerate(values):
+        if abs(float(value)) > MAX_RECORDED:
+            raise CharacterizationError(
+                f"{name}: row {row + 1} gives a {what} of {float(value):.3g} {unit}; recorded "
+                f"values are at most {MAX_RECORDED:g} {unit} in size", Span(name, row + 2, 1))
+
+
+def _least_squares(residual: Callable[[Array], Array], guess: list[float],
+                   bounds: tuple[list[float], float], name: str) -> Any:
+    """scipy's bounded least squares; a recording it cannot fit (its numbers overflow the
+    solver) is an error of the file, not of gaitc."""
+    try:
+        return least_squares(residual, guess, bounds=bounds)
+    except (ValueError, FloatingPointError, OverflowError) as err:
+        raise CharacterizationError(f"{name}: the recording cannot be fitted ({err})",
+                                    Span(name, 1, 1)) from None
 
 
 def _increasing(t: Array, name: str) -> None:
@@ -157,6 +186,8 @@ class StiffnessFit:
 def fit_stiffness(path: str | Path) -> StiffnessFit:
     """Linear least-squares F = K d per steady state, symmetrised (thesis figure 4.7)."""
     states, values, name = read_columns(path, ("state", "dx", "dy", "dz", "fx", "fy", "fz"))
+    for column, what, unit in ((0, "deflection", "mm"), (3, "force", "N")):
+        _plausible(np.abs(values[:, column:column + 3]).max(axis=1), name, what, unit)
     matrices: dict[str, tuple[tuple[float, ...], ...]] = {}
     residual: dict[str, float] = {}
     for state in sorted(set(states)):
@@ -200,6 +231,7 @@ def fit_damping(path: str | Path, mass_g: float, stiffness: float) -> DampingFit
     t = t - t[0]
     _increasing(t, name)
     x = values[:, 0]
+    _plausible(x, name, "displacement", "mm")
     if mass_g <= 0 or stiffness <= 0:
         raise CharacterizationError("the mass and the stiffness must be positive")
     m, k = mass_g / 1000.0, stiffness * 1000.0  # kg, N/m
@@ -211,6 +243,6 @@ def fit_damping(path: str | Path, mass_g: float, stiffness: float) -> DampingFit
         return out
 
     guess = [float(np.mean(x[-max(2, len(x) // 10) :])), 2.0 * math.sqrt(k * m) * 0.3]
-    fit = least_squares(residual, guess, bounds=([-np.inf, 1e-9], np.inf))
+    fit = _least_squares(residual, guess, ([-np.inf, 1e-9], np.inf), name)
     b = float(fit.x[1])
     return DampingFit(b / 1000.0, b / (2.0 * math.sqrt(k * m)), float(np.sqrt(np.mean(fit.fun**2))))
