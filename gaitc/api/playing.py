@@ -91,10 +91,17 @@ def _explains_player(spec: Spec, semantics: Semantics | str, run: Run,
     return played
 
 
-def player_widget(spec: Spec | str | Path | Player, **options: object) -> PlayerWidget:
+def player_widget(spec: Spec | str | Path | Player,
+                  controller: Controller | SymbolicController | Synthesis | str | Path | None
+                  = None, *, against: bool | None = None, start: Run | str | Path | None = None,
+                  at: int | None = None, encoding: EncodingName | str | None = None,
+                  semantics: Semantics | str = Semantics.DEFAULT) -> PlayerWidget:
     """The player as a notebook widget (ipywidgets): the map as SVG, the moves as buttons,
-    undo, redo and the autopilots; ``options`` are those of :func:`player`."""
+    undo, redo and the autopilots; the options are those of :func:`player`, or give a
+    :class:`Player` itself."""
     from gaitc.play.widget import PlayerWidget
 
-    bound = spec if isinstance(spec, Player) else player(spec, **options)  # type: ignore[arg-type]
+    bound = spec if isinstance(spec, Player) else player(
+        spec, controller, against=against, start=start, at=at, encoding=encoding,
+        semantics=semantics)
     return PlayerWidget(bound)
