@@ -158,6 +158,9 @@ def test_a_census_over_the_limit_stops_the_extraction_early(
     without, too_large = _limited(spec, full - 1)  # stops at the full-th node found
     assert too_large
     monkeypatch.setattr(strategy, "CENSUS_AFTER", 0.0)
+    # A census slice at every expansion, so the race is counted in steps, not in seconds
+    # that a loaded machine would change.
+    monkeypatch.setattr(strategy, "CENSUS_SHARE", 0.0)
     taken: list[Census] = []
 
     class Spy(Census):
@@ -167,8 +170,8 @@ def test_a_census_over_the_limit_stops_the_extraction_early(
 
     monkeypatch.setattr(strategy, "Census", Spy)
     checks, too_large = _limited(spec, full - 1)
-    # The census, given a third of the time, ends before the extraction would have found
-    # the node too many (at about 85 % of the expansions here).
+    # The census, a slice per expansion, ends before the extraction would have found the
+    # node too many.
     assert too_large and taken[0].count == full and checks < without
     checks, too_large = _limited(spec, full)  # exactly at the limit: it still fits
     assert not too_large and checks == full

@@ -250,3 +250,29 @@ def test_firmware_build_says_which_packages_are_missing(
     assert "cannot build the firmware: missing gcc-avr" in err
     assert "apt-get install gcc-avr avr-libc simavr" in err
 
+
+
+def test_a_pty_that_vanishes_during_a_flush_is_a_lost_link(board_factory: type[FakeBoard],
+                                                            monkeypatch: pytest.MonkeyPatch
+                                                            ) -> None:
+    """A full test run under load (issue 38): the firmware board's pseudo-terminal went away
+    while the host flushed a command, and termios.tcdrain's error, which is no OSError,
+    escaped as an internal error (exit 70). It is the lost link it is."""
+    import termios
+
+    board = board_factory(valves=2)
+    hw = SerialValveBoard(board.url, 2, ["L1"], timeout=0.3)
+    hw.open()
+    hw.apply("10")
+    port = hw._port
+    assert port is not None
+
+    def vanished() -> None:
+        raise termios.error(5, "Input/output error")
+
+    monkeypatch.setattr(port, "flush", vanished)
+    with pytest.raises(HardwareError) as caught:
+        hw.apply("01")
+    assert caught.value.message.startswith(f"lost the valve board at {board.url}: ")
+    assert caught.value.message.endswith("link lost; the board's watchdog vents within 500 ms")
+    hw.close()

@@ -36,6 +36,20 @@ DEFAULT_WATCHDOG_MS = 500
 T = TypeVar("T")
 
 
+def link_errors() -> tuple[type[BaseException], ...]:
+    """What the port raises when the board goes away: pyserial's error, the OS's, and on
+    POSIX termios's, which is no OSError (``flush`` drains with ``tcdrain``, and a
+    vanished pseudo-terminal makes that fail with EIO)."""
+    import serial
+
+    found: tuple[type[BaseException], ...] = (serial.SerialException, OSError)
+    with contextlib.suppress(ImportError):
+        import termios
+
+        found += (termios.error,)
+    return found
+
+
 def _count(text: str) -> int | None:
     """A reply's number: ASCII digits only (``str.isdigit`` takes ``²`` and ``٣``), short."""
     if not (text.isascii() and text.isdigit()) or len(text) > MAX_DIGITS:
@@ -345,7 +359,6 @@ class SerialValveBoard(Backend):
 
     def _ask(self, command: str, parse: Callable[[str], T]) -> T:
         """Send ``command`` and parse the reply; retry garbled or missing replies."""
-        import serial
 
         problem = ""
         verb = command.split()[0]
@@ -355,7 +368,7 @@ class SerialValveBoard(Backend):
                 self._port.write(f"{command}\n".encode("ascii"))
                 self._port.flush()
                 raw = self._read_line(time.monotonic() + self.timeout)  # bounded both ways
-            except (serial.SerialException, OSError) as err:
+            except link_errors() as err:
                 raise HardwareError(f"lost the valve board at {self.url}: {err}",
                                     where(self.name)) from None
             if len(raw) >= MAX_REPLY and not raw.endswith(b"\n"):

@@ -28,6 +28,9 @@ from gaitc.solver.symbolic import BDDNode, SymbolicSpec
 #: shorter one never pays for it (thesis robot A extracts in 0.3-1 s; its census, whose
 #: preference relations carry the robot model's costs, takes 10-40 s).
 CENSUS_AFTER: Final = 2.0
+#: From then on the extraction spends this many CPU seconds for each second of the census
+#: (the census gets a quarter of the time).
+CENSUS_SHARE: Final = 3.0
 
 
 def smallest_moves(sym: SymbolicSpec, moves: BDDNode, bits: Sequence[str],

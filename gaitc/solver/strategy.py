@@ -28,7 +28,7 @@ from gaitc.solver.canonical import (
     smallest,
     spec_integers,
 )
-from gaitc.solver.census import CENSUS_AFTER, Census
+from gaitc.solver.census import CENSUS_AFTER, CENSUS_SHARE, Census
 from gaitc.solver.game import GameResult, Limits, goal_strategies, too_large
 from gaitc.solver.steps import Steps, given
 from gaitc.solver.symbolic import BDDNode, SymbolicSpec
@@ -111,7 +111,7 @@ def extract_strategy(
         limits.check()
         if census is not None:
             spent = time.thread_time() - started
-            if spent > CENSUS_AFTER and spent - CENSUS_AFTER > 3 * census.seconds:
+            if spent > CENSUS_AFTER and spent - CENSUS_AFTER > CENSUS_SHARE * census.seconds:
                 expected = census.advance()
                 functions = census.moves
                 if expected is not None and max_nodes is not None and expected > max_nodes:
