@@ -251,31 +251,33 @@ def completion(ls: GaitServer, params: types.CompletionParams) -> types.Completi
 
 @_feature(types.TEXT_DOCUMENT_PREPARE_RENAME)
 def prepare_rename(ls: GaitServer, params: types.PrepareRenameParams) -> types.Range | None:
-    hit = ls.symbol_at(params.text_document.uri, params.position)
+    hit = _renamable(ls, params.text_document.uri, params.position)
+    return None if hit is None else hit[0].lines.span_range(hit[2].span)
+
+
+def _renamable(ls: GaitServer, uri: str, position: types.Position
+               ) -> tuple[Document, Symbol, Mention] | None:
+    """The name at ``position`` when it can be renamed; a name from a range cannot."""
+    hit = ls.symbol_at(uri, position)
     if hit is None:
         return None
-    doc, symbol, mention = hit
-    _renamable(symbol)
-    return doc.lines.span_range(mention.span)
-
-
-def _renamable(symbol: Symbol) -> None:
+    symbol = hit[1]
     ranged = next((m for m in symbol.mentions if m.ranged), None)
     if ranged is not None:
         raise RequestFailed(f"'{symbol.name}' is one name of a range (line "
                             f"{ranged.span.line}); rename the range, or list the names one "
                             "by one")
+    return hit
 
 
 @_feature(types.TEXT_DOCUMENT_RENAME)
 def rename(ls: GaitServer, params: types.RenameParams) -> types.WorkspaceEdit | None:
     import re
 
-    hit = ls.symbol_at(params.text_document.uri, params.position)
+    hit = _renamable(ls, params.text_document.uri, params.position)
     if hit is None:
         return None
     doc, symbol, _ = hit
-    _renamable(symbol)
     new = params.new_name
     if not re.fullmatch(r"[A-Za-z_][A-Za-z0-9_]*", new):
         raise RequestFailed(f"'{new}' is not a name: use letters, digits and _, not first a digit")
