@@ -16,12 +16,15 @@ module only picks it.  slugsin bit-blasts integer variables first.
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Final, NoReturn
+from typing import TYPE_CHECKING, Final, NoReturn
 
 from gaitc.api.loading import Spec, SpecLike, as_gr1, load, reader_of
 from gaitc.diagnostics import Diagnostic
 from gaitc.diagnostics.choices import Choice
 from ltlcompiler.encoding import ENCODINGS
+
+if TYPE_CHECKING:
+    from ltlcompiler.model import Model
 
 
 class OutputFormat(Choice):
@@ -72,13 +75,18 @@ def lint(spec: Spec | str | Path, primitives: bool = False,
         from gaitc.gaitgraph.pairing import check_gaits
 
         folder = str(Path(spec.path).resolve().parent)
-        moves: dict[str, frozenset[tuple[str, str]]] = {}
-        for move in model.transitions:
-            for name in move.gaits:
-                moves[name] = moves.get(name, frozenset()) | {(move.source, move.target)}
         diagnostics += check_gaits(model.gaits, folder, legs=[leg.name for leg in model.legs],
-                                   moves=moves)
+                                   moves=gait_moves(model))
     return tuple(diagnostics)
+
+
+def gait_moves(model: Model) -> dict[str, frozenset[tuple[str, str]]]:
+    """Each gait's moves on the map, (source, target) pairs: what its primitive must drive."""
+    moves: dict[str, frozenset[tuple[str, str]]] = {}
+    for move in model.transitions:
+        for name in move.gaits:
+            moves[name] = moves.get(name, frozenset()) | {(move.source, move.target)}
+    return moves
 
 
 def emit(spec: SpecLike, fmt: OutputFormat | str = OutputFormat.STRUCTUREDSLUGS) -> str:

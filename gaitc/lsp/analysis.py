@@ -112,12 +112,10 @@ def primitive_findings(analysis: Analysis) -> list[Finding]:
         return []
     from pathlib import Path
 
+    from gaitc.api.compiling import gait_moves
     from gaitc.gaitgraph.pairing import check_gaits
 
-    moves: dict[str, frozenset[tuple[str, str]]] = {}
-    for move in model.transitions:
-        for name in move.gaits:
-            moves[name] = moves.get(name, frozenset()) | {(move.source, move.target)}
+    moves = gait_moves(model)
     folder = Path(analysis.path).resolve().parent
     legs = [leg.name for leg in model.legs]
     robots = sorted({g.primitive.robot for g in model.gaits
