@@ -11,10 +11,14 @@ deeper than :data:`~ltlcompiler.parse_tree.MAX_NESTING`.
 from __future__ import annotations
 
 import difflib
+import hashlib
+import json
 import re
+import sys
 from dataclasses import replace
 from functools import cache
 from importlib import resources
+from typing import Any, Final
 
 from lark import Lark, Token
 from lark.exceptions import (
@@ -31,6 +35,7 @@ from gaitc.diagnostics import (
     Span,
     SpecSyntaxError,
     source_lines,
+    usercache,
     without_bom,
 )
 from ltlcompiler import syntax as s
@@ -71,39 +76,67 @@ _LOOKALIKES = {
 }
 
 
+#: How gait.lark is analysed: the options that are data, part of the grammar cache's key.
+_GRAMMAR_OPTIONS: Final = {"parser": "lalr", "lexer": "contextual", "maybe_placeholders": True}
+#: The grammar cache's file name in the user's cache folder (gaitc.diagnostics.usercache).
+GRAMMAR_CACHE: Final = "gait-grammar.json"
+
+
 @cache
 def _lark() -> Lark:
     """The parser of gait.lark.  Lark's analysis of the grammar takes about 50 ms, a quarter
-    of a ``gaitc lint``, so its result is cached in the user's cache folder (Lark's own
-    cache: the file holds a hash of the grammar, the options and Lark's version, and a file
-    that does not match, or cannot be read, is built again and rewritten)."""
+    of a ``gaitc lint``, so its result is kept in the user's cache as plain data (never
+    Lark's own cache, a pickle), under a key made of the grammar, the options and the
+    versions of Lark and Python; a cache that is missing, foreign, corrupt or made from
+    anything else is built again and rewritten."""
     text = resources.files("ltlcompiler").joinpath("gait.lark").read_text(encoding="utf-8")
-    return Lark(
-        text,
-        parser="lalr",
-        lexer="contextual",
-        propagate_positions=True,
-        maybe_placeholders=True,
-        lexer_callbacks={"NAME": _reserved},
-        cache=_cache_file() or False,
-    )
+    key = _grammar_key(text)
+    cached = usercache.load(GRAMMAR_CACHE, key)
+    if isinstance(cached, dict):
+        loaded = _from_cache(cached)
+        if loaded is not None:
+            return loaded
+    built = Lark(text, **_GRAMMAR_OPTIONS, **_load_options())
+    usercache.store(GRAMMAR_CACHE, key, _to_cache(built))
+    return built
 
 
-def _cache_file() -> str | None:
-    """Where the analysed grammar is cached: ``$XDG_CACHE_HOME/gaitc`` (``~/.cache/gaitc``),
-    a folder only its user may read; None when it cannot be made."""
-    import os
-    from pathlib import Path
+def _load_options() -> dict[str, Any]:
+    """The options that are code or that Lark does not keep, given again on each load."""
+    return {"propagate_positions": True, "lexer_callbacks": {"NAME": _reserved}}
 
-    base = os.environ.get("XDG_CACHE_HOME") or str(Path.home() / ".cache")
-    folder = Path(base) / "gaitc"
-    try:
-        folder.mkdir(mode=0o700, parents=True, exist_ok=True)
-        if not os.access(folder, os.W_OK) or folder.stat().st_uid != os.getuid():
-            return None
-    except (OSError, RuntimeError):  # no home, a read-only file system, ...
+
+def _grammar_key(text: str) -> str:
+    """A digest of everything the analysed grammar depends on."""
+    from lark import __version__ as lark_version
+
+    options = json.dumps(_GRAMMAR_OPTIONS, sort_keys=True)
+    python = ".".join(map(str, sys.version_info[:2]))
+    made_of = "\0".join((text, options, repr(sorted(_load_options())), lark_version,
+                         python))
+    return hashlib.sha256(made_of.encode("utf-8")).hexdigest()
+
+
+def _to_cache(parser: Lark) -> dict[str, Any]:
+    """The analysed grammar as plain data, as :meth:`Lark.save` has it before pickling: the
+    options given on each load (code among them) left out."""
+    from lark.grammar import Rule
+    from lark.lark import _LOAD_ALLOWED_OPTIONS
+    from lark.lexer import TerminalDef
+
+    data, memo = parser.memo_serialize([TerminalDef, Rule])
+    data["options"] = {name: value for name, value in data["options"].items()
+                       if name not in _LOAD_ALLOWED_OPTIONS}
+    return {"data": data, "memo": memo}
+
+
+def _from_cache(cached: dict[str, Any]) -> Lark | None:
+    """The parser rebuilt from :func:`_to_cache`'s data; None when the data is not that."""
+    try:  # Lark._load_from_dict, typed
+        return Lark.__new__(Lark)._load({"data": cached["data"], "memo": cached["memo"]},
+                                        **_load_options())
+    except Exception:  # data from a file: any failure at all means build it again
         return None
-    return str(folder / "gait-grammar.lark-cache")
 
 
 def _reserved(tok: Token) -> Token:

@@ -70,7 +70,7 @@ def _lint_with_cache_home(home: str) -> subprocess.CompletedProcess[str]:
 
 def test_the_grammar_cache_is_written_and_a_broken_one_is_rebuilt(tmp_path: Path) -> None:
     first = _lint_with_cache_home(str(tmp_path))
-    cached = tmp_path / "gaitc" / "gait-grammar.lark-cache"
+    cached = tmp_path / "gaitc" / "gait-grammar.json"
     assert first.returncode == 0 and first.stderr == "" and cached.is_file()
     assert (tmp_path / "gaitc").stat().st_mode & 0o077 == 0  # the user's alone
     cached.write_bytes(b"not a cache\n" + b"\x80" * 50)

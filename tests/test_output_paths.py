@@ -73,3 +73,60 @@ def test_a_carriage_return_inside_a_line(tmp_path: Path,
     assert _last(capsys) == (f"{curve}:3:1: error: line 3 is not a CSV row: a carriage "
                              "return (\\r) inside the line")
     assert robot.read_bytes() == ONE_LEG.read_bytes()
+
+
+# ---------------------------------------------------------------- issue 48
+@pytest.mark.skipif(not os.path.isdir("/proc/self"), reason="needs /proc")
+def test_an_output_folder_that_takes_no_file(tmp_path: Path,
+                                             capsys: pytest.CaptureFixture[str]) -> None:
+    compact = tmp_path / "patrol.compact.json"
+    assert main(["synth", PATROL, "--compact", "-o", str(compact)]) == 0
+    capsys.readouterr()
+    assert main(["codegen", PATROL, str(compact), "--target", "c", "-o", "/proc/self"]) == 2
+    assert _last(capsys) == ("gaitc: usage error: cannot write into '/proc/self': no file can "
+                             "be made in it")
+
+
+def test_an_examples_folder_name_too_long(tmp_path: Path,
+                                          capsys: pytest.CaptureFixture[str]) -> None:
+    folder = tmp_path / ("x" * 300)
+    assert main(["examples", str(folder)]) == 2
+    assert _last(capsys) == (f"gaitc: usage error: cannot copy the examples into '{folder}': "
+                             "the file name is too long for the file system")
+
+
+def test_examples_force_replaces_a_link_and_never_writes_its_target(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    folder, victim = tmp_path / "ex", tmp_path / "precious.txt"
+    folder.mkdir()
+    victim.write_text("precious\n", encoding="utf-8")
+    victim.chmod(0o640)
+    link = folder / "patrol_2x2.gait"
+    link.symlink_to(victim)
+    assert main(["examples", str(folder)]) == 2  # a link counts as a file that exists
+    assert _last(capsys) == (f"gaitc: usage error: '{link}' exists; copy the examples into a "
+                             "new folder, or replace 1 existing file(s) with --force")
+    assert main(["examples", str(folder), "--force"]) == 0
+    assert victim.read_text(encoding="utf-8") == "precious\n"
+    assert victim.stat().st_mode & 0o777 == 0o640
+    assert not link.is_symlink()
+    assert link.read_bytes() == (ROOT / "gaitc" / "examples" / "patrol_2x2.gait").read_bytes()
+    dangling = folder / "shuttle_2leg.gait"
+    dangling.unlink()
+    dangling.symlink_to(tmp_path / "made-through-the-link.gait")
+    assert main(["examples", str(folder), "--force"]) == 0
+    assert not (tmp_path / "made-through-the-link.gait").exists()
+    assert not dangling.is_symlink()
+
+
+def test_examples_refuse_a_linked_subfolder(tmp_path: Path,
+                                            capsys: pytest.CaptureFixture[str]) -> None:
+    folder, elsewhere = tmp_path / "ex", tmp_path / "elsewhere"
+    folder.mkdir()
+    elsewhere.mkdir()
+    (folder / "robots").symlink_to(elsewhere)
+    assert main(["examples", str(folder), "--force"]) == 2
+    assert _last(capsys) == (f"gaitc: usage error: cannot copy the examples into "
+                             f"'{folder / 'robots'}': it is a symbolic link or a file, not a "
+                             "folder; remove it or choose another folder")
+    assert list(elsewhere.iterdir()) == [] and list(folder.iterdir()) == [folder / "robots"]

@@ -378,6 +378,73 @@ def test_the_screen_reads_without_colour(monkeypatch: pytest.MonkeyPatch) -> Non
     assert colours and all(c[0:2] == c[2:4] == c[4:6] for c in colours), colours
 
 
+TINY_KEYS = ("pageup", "pagedown", "home", "end", "up", "down", "pageup", "enter", "2",
+             "question_mark", "escape", "u", "r", "g", "escape", "tab", "shift+tab", "ctrl+p",
+             "pagedown", "pageup")
+
+
+@pytest.mark.parametrize("size", [(20, 3), (1, 1), (80, 2), (12, 40)])
+def test_a_tiny_terminal_takes_every_key_and_the_play_is_saved(
+        small_players: dict[str, Player], tmp_path: Path, size: tuple[int, int]) -> None:
+    """Issue 48: PageUp on a 20 x 3 screen died inside Textual (KeyError) and the play was
+    lost; on any screen every key works (a page is one move when the list has no room)."""
+    from gaitc.play.terminal import PlayApp
+
+    player = _fresh(small_players["patrol_2x2"])
+    out = tmp_path / "tiny.run.jsonl"
+    app = PlayApp(player, out)
+
+    async def script(pilot: object) -> None:
+        await pilot.press("1", *TINY_KEYS)  # type: ignore[attr-defined]
+        played.append(player.step + 1)
+        await pilot.press("q")  # type: ignore[attr-defined]
+
+    played: list[int] = []
+    assert app.play(headless=True, size=size, auto_pilot=script) == str(out)
+    assert app.return_code == 0 and played[0] >= 3
+    assert len(read_jsonl(out).steps) == played[0] == player.step + 1
+
+
+def test_a_play_is_saved_when_the_app_ends_without_q(small_players: dict[str, Player],
+                                                     tmp_path: Path) -> None:
+    from gaitc.play.terminal import PlayApp
+
+    player = _fresh(small_players["patrol_2x2"])
+    out = tmp_path / "quit.run.jsonl"
+    app = PlayApp(player, out)
+
+    async def script(pilot: object) -> None:
+        await pilot.press("1", "1", "ctrl+q")  # type: ignore[attr-defined]  # Textual's quit
+
+    assert app.play(headless=True, size=(80, 24), auto_pilot=script) == str(out)
+    assert len(read_jsonl(out).steps) == 2
+
+
+def test_an_error_inside_the_app_saves_the_play_and_is_not_a_clean_exit(
+        small_players: dict[str, Player], tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
+        capsys: pytest.CaptureFixture[str]) -> None:
+    from gaitc.play.terminal import PlayApp, PlayCrash
+
+    player = _fresh(small_players["patrol_2x2"])
+    out = tmp_path / "crash.run.jsonl"
+    app = PlayApp(player, out)
+
+    def broken() -> bool:
+        raise KeyError(0)  # stands for any bug inside the app, as Textual's KeyError was
+
+    monkeypatch.setattr(player, "undo", broken)
+
+    async def script(pilot: object) -> None:
+        await pilot.press("1", "1", "1", "u")  # type: ignore[attr-defined]
+
+    with pytest.raises(PlayCrash) as crash:
+        app.play(headless=True, size=(80, 24), auto_pilot=script)
+    assert str(crash.value) == (f"the player stopped on an error of its own; the play of 3 "
+                                f"steps is saved in {out}")
+    assert app.return_code == 1 and len(read_jsonl(out).steps) == 3
+    capsys.readouterr()
+
+
 def test_play_needs_a_terminal(capsys: pytest.CaptureFixture[str]) -> None:
     assert main(["play", str(ROBOT_A)]) == 2
     assert "'gaitc play' needs a terminal" in capsys.readouterr().err

@@ -7,13 +7,14 @@ wheel, with no checkout, can start from ``gaitc examples my-robots``.
 
 from __future__ import annotations
 
+import stat
 from dataclasses import dataclass
 from importlib import resources
 from importlib.abc import Traversable
 from pathlib import Path
 
 from gaitc.diagnostics import FileAccessError
-from gaitc.diagnostics.files import check_writable, write_atomically
+from gaitc.diagnostics.files import check_writable, make_folder, reason, write_atomically
 
 #: Where the examples live inside the package.
 PACKAGE, FOLDER = "gaitc", "examples"
@@ -63,25 +64,48 @@ def example_files() -> list[tuple[str, Traversable]]:
 
 def copy_examples(folder: str | Path, overwrite: bool = False) -> Examples:
     """Copy the shipped examples into ``folder`` (made if missing). An existing file is
-    never replaced unless ``overwrite``: the copy stops before writing anything and names it."""
+    never replaced unless ``overwrite``: the copy stops before writing anything and names it.
+
+    Nothing is written through a symbolic link found inside ``folder``: a link where an
+    example goes counts as an existing file, and ``overwrite`` replaces the link itself; a
+    link where a subfolder of examples goes is refused.
+    """
     target = Path(folder)
     files = example_files()
+    if _kind(target, target) not in (None, "folder"):
+        raise FileAccessError(f"cannot copy the examples into '{target}': it is not a folder",
+                              target)
+    for sub in sorted({Path(name).parent for name, _ in files} - {Path(".")}):
+        if _kind(target / sub, target) not in (None, "folder"):
+            raise FileAccessError(
+                f"cannot copy the examples into '{target / sub}': it is a symbolic link or "
+                "a file, not a folder; remove it or choose another folder", target / sub)
     if not overwrite:
-        clashes = [name for name, _ in files if (target / name).exists()]
+        clashes = [name for name, _ in files if _kind(target / name, target) is not None]
         if clashes:
             raise FileAccessError(
                 f"'{target / clashes[0]}' exists; copy the examples into a new folder, or "
                 f"replace {len(clashes)} existing file(s) with --force", target / clashes[0])
-    if target.exists() and not target.is_dir():
-        raise FileAccessError(f"cannot copy the examples into '{target}': it is not a folder",
-                              target)
+    for sub in sorted({(target / name).parent for name, _ in files}):
+        make_folder(sub)
     for name, _ in files:
-        try:
-            (target / name).parent.mkdir(parents=True, exist_ok=True)
-        except OSError as err:
-            raise FileAccessError(f"cannot make the folder '{(target / name).parent}': "
-                                  f"{err.strerror or err}", target) from None
-        check_writable(target / name)
+        check_writable(target / name, follow_links=False)
     for name, source in files:
-        write_atomically(target / name, source.read_bytes())
+        write_atomically(target / name, source.read_bytes(), follow_links=False)
     return Examples(target, tuple(name for name, _ in files))
+
+
+def _kind(path: Path, folder: Path) -> str | None:
+    """``"folder"``, ``"link"`` or ``"other"`` for what ``path`` is (a link not followed),
+    None when there is nothing there; a name the system cannot look up (too long, a loop)
+    is a :class:`FileAccessError` naming the examples' ``folder``."""
+    try:
+        mode = path.lstat().st_mode
+    except (FileNotFoundError, NotADirectoryError):
+        return None
+    except OSError as err:
+        raise FileAccessError(f"cannot copy the examples into '{folder}': {reason(err)}",
+                              folder) from None
+    if stat.S_ISLNK(mode):
+        return "folder" if path == folder and path.is_dir() else "link"
+    return "folder" if stat.S_ISDIR(mode) else "other"

@@ -3,7 +3,8 @@
 Every stage of gaitc (the .gait front end, the SLUGS format readers, the solver,
 the simulator) raises subclasses of :class:`GaitcError`; the CLI turns them into
 ``file:line:col: message`` followed by the source line and a caret. :mod:`gaitc.diagnostics.files`
-writes result files atomically; :mod:`gaitc.diagnostics.yamltext` reads YAML inputs safely.
+writes result files atomically; :mod:`gaitc.diagnostics.yamltext` reads YAML inputs safely;
+:mod:`gaitc.diagnostics.usercache` keeps plain data in the user's private cache folder.
 Every package may import this one; it imports none of them.
 """
 

@@ -34,13 +34,15 @@ def decode_text(data: bytes, file: str, error: type[GaitcError]) -> str:
                     f"{err.start}); save the file as UTF-8", Span(file, line, column)) from None
 
 
-def _ordinary_mode(target: Path) -> int:
-    """The mode ``open(target, "w")`` would leave: the old file's, else 0o666 minus umask.
+def _ordinary_mode(target: Path | None) -> int:
+    """The mode ``open(target, "w")`` would leave: the old file's, else (or for no old file
+    to go by) 0o666 minus umask.
 
     (``mkstemp`` creates its file with mode 0600, which a plain rename would keep.)
     """
     try:
-        return stat.S_IMODE(target.stat().st_mode)
+        if target is not None:
+            return stat.S_IMODE(target.stat().st_mode)
     except OSError:
         pass
     mask = os.umask(0o022)
@@ -74,13 +76,16 @@ def read_input(path: str | Path, what: str = "") -> bytes:
         raise FileAccessError(f"cannot read {name}: {err.strerror or err}", path) from None
 
 
-def _output_target(path: str | Path) -> Path:
-    """The file an output ``path`` names (a symbolic link followed); a folder, socket or
-    other kind that is neither a regular file nor a stream is refused, and so is a name the
-    system cannot look up (a link that points to itself, a name too long)."""
+def _output_target(path: str | Path, follow_links: bool = True) -> Path:
+    """The file an output ``path`` names (a symbolic link followed, unless not
+    ``follow_links``: then the link itself is the file, to be replaced); a folder, socket
+    or other kind that is neither a regular file nor a stream is refused, and so is a name
+    the system cannot look up (a link that points to itself, a name too long)."""
     target = Path(path)
     try:
         if target.is_symlink():
+            if not follow_links:
+                return target
             target = target.resolve(strict=False)
         if target.exists() and not target.is_file() and not _stream_in_place(target):
             raise FileAccessError(f"cannot write '{path}': it is not a regular file")
@@ -90,11 +95,11 @@ def _output_target(path: str | Path) -> Path:
     except OSError as err:
         if isinstance(err, FileAccessError):
             raise
-        raise FileAccessError(f"cannot write '{path}': {_reason(err)}") from None
+        raise FileAccessError(f"cannot write '{path}': {reason(err)}") from None
     return target
 
 
-def _reason(err: OSError) -> str:
+def reason(err: OSError) -> str:
     """An operating system error in words, without Python's ``[Errno N]`` prefix."""
     if err.errno == errno.ELOOP:
         return "the symbolic link points to itself"
@@ -104,8 +109,9 @@ def _reason(err: OSError) -> str:
 
 
 def make_folder(path: str | Path) -> Path:
-    """The output folder ``path``, made with its parents if missing; a file in the way or a
-    folder that cannot be made is a :class:`FileAccessError` naming the path."""
+    """The output folder ``path``, made with its parents if missing; a file in the way, a
+    folder that cannot be made, or one that takes no new file (``/proc/self``, a read-only
+    mount) is a :class:`FileAccessError` naming the path, before anything is written."""
     folder = Path(path)
     try:
         folder.mkdir(parents=True, exist_ok=True)
@@ -113,56 +119,74 @@ def make_folder(path: str | Path) -> Path:
         raise FileAccessError(f"cannot write into '{path}': it is a file, not a folder",
                               path) from None
     except OSError as err:
-        raise FileAccessError(f"cannot make the folder '{path}': {_reason(err)}",
+        raise FileAccessError(f"cannot make the folder '{path}': {reason(err)}",
                               path) from None
+    _check_new_file(folder, path)
     return folder
 
 
-def check_writable(path: str | Path) -> None:
+def _check_new_file(folder: Path, path: str | Path) -> None:
+    """Make and remove a file in ``folder``, as :func:`write_atomically` will: a folder the
+    system lets no one add a file to is refused now, not halfway through the outputs."""
+    try:
+        fd, probe = tempfile.mkstemp(prefix=".gaitc-probe.", suffix=".tmp", dir=folder)
+    except OSError as err:
+        why = ("no file can be made in it" if err.errno in (errno.ENOENT, errno.ENOTDIR)
+               else reason(err))
+        raise FileAccessError(f"cannot write into '{path}': {why}", path) from None
+    os.close(fd)
+    with contextlib.suppress(OSError):
+        os.unlink(probe)
+
+
+def check_writable(path: str | Path, follow_links: bool = True) -> None:
     """Refuse, before any work, an output ``path`` that :func:`write_atomically` could not
     write: its folder is missing or not writable, or it is a folder or other non-file."""
     try:
-        _check_writable(path)
+        _check_writable(path, follow_links)
     except FileAccessError:
         raise
     except OSError as err:
-        raise FileAccessError(f"cannot write '{path}': {_reason(err)}") from None
+        raise FileAccessError(f"cannot write '{path}': {reason(err)}") from None
 
 
-def _check_writable(path: str | Path) -> None:
-    target = _output_target(path)
-    if _stream_in_place(target):
+def _check_writable(path: str | Path, follow_links: bool) -> None:
+    target = _output_target(path, follow_links)
+    link = target.is_symlink()  # only when not following links: replaced, never written
+    if not link and _stream_in_place(target):
         return
     folder = target.parent if str(target.parent) else Path(".")
     if not folder.is_dir():
         raise FileAccessError(f"cannot write '{path}': there is no folder '{folder}'")
     if not os.access(folder, os.W_OK | os.X_OK):
         raise FileAccessError(f"cannot write '{path}': the folder '{folder}' is not writable")
-    if target.exists() and not os.access(target, os.W_OK):
+    if not link and target.exists() and not os.access(target, os.W_OK):
         raise FileAccessError(f"cannot write '{path}': the file is read-only")
 
 
-def write_atomically(path: str | Path, data: str | bytes) -> None:
+def write_atomically(path: str | Path, data: str | bytes, follow_links: bool = True) -> None:
     """Replace ``path`` by ``data`` (text is written as UTF-8 with ``\\n`` line ends).
 
-    A symbolic link is followed (its target is replaced, the link stays); a FIFO or a
-    device is written to in place, as a user who names ``/dev/stdout`` expects; any other
+    A symbolic link is followed (its target is replaced, the link stays), or, when not
+    ``follow_links``, replaced itself by the new file (its target never opened); a FIFO or
+    a device is written to in place, as a user who names ``/dev/stdout`` expects; any other
     kind of file that is not a regular one (a directory, a socket) is refused.
     """
-    target = _output_target(path)
+    target = _output_target(path, follow_links)
+    link = target.is_symlink()  # only when not following links
     payload = data.encode("utf-8") if isinstance(data, str) else data
-    if _stream_in_place(target):
+    if not link and _stream_in_place(target):
         try:
             with open(target, "wb") as out:
                 out.write(payload)
         except OSError as err:
-            raise FileAccessError(f"cannot write '{path}': {_reason(err)}") from None
+            raise FileAccessError(f"cannot write '{path}': {reason(err)}") from None
         return
     tmp: str | None = None
     try:
         folder = target.parent if str(target.parent) else Path(".")
         fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=folder)
-        os.fchmod(fd, _ordinary_mode(target))
+        os.fchmod(fd, _ordinary_mode(None if link else target))
         with os.fdopen(fd, "wb") as out:
             out.write(payload)
             out.flush()
@@ -170,7 +194,7 @@ def write_atomically(path: str | Path, data: str | bytes) -> None:
         os.replace(tmp, target)
         tmp = None
     except OSError as err:
-        raise FileAccessError(f"cannot write '{path}': {_reason(err)}") from None
+        raise FileAccessError(f"cannot write '{path}': {reason(err)}") from None
     finally:
         if tmp is not None:
             with contextlib.suppress(OSError):

@@ -9,7 +9,7 @@ mark reads without colour (``NO_COLOR`` or ``--no-color``).
 from __future__ import annotations
 
 from pathlib import Path
-from typing import ClassVar
+from typing import Any, ClassVar
 
 from rich.text import Text
 from textual.app import App, ComposeResult
@@ -56,6 +56,28 @@ class HelpScreen(ModalScreen[None]):
         self.dismiss()
 
 
+class MoveList(OptionList):
+    """The legal moves: Textual's option list, whose page keys also work when the list has
+    no room on a tiny screen (Textual's own look up a line the list never laid out, and
+    fail with KeyError); with no room, a page is one move."""
+
+    def action_page_up(self) -> None:
+        if self.scrollable_content_region or self.highlighted is None:
+            super().action_page_up()  # type: ignore[no-untyped-call]
+        elif self.highlighted > 0:
+            self.action_cursor_up()
+
+    def action_page_down(self) -> None:
+        if self.scrollable_content_region or self.highlighted is None:
+            super().action_page_down()  # type: ignore[no-untyped-call]
+        elif self.highlighted < self.option_count - 1:
+            self.action_cursor_down()
+
+
+class PlayCrash(RuntimeError):
+    """The terminal app stopped on an error of its own (a bug, shown above by Textual)."""
+
+
 class PlayApp(App[int]):
     """The terminal player; :attr:`saved` is the file the play was last saved to."""
 
@@ -70,6 +92,9 @@ class PlayApp(App[int]):
     #help { width: 80; height: auto; border: round $accent; padding: 0 1; }
     HelpScreen { align: center middle; }
     """
+    # Textual's command palette (ctrl+p) offers nothing the keys do not, and its list has
+    # the page keys' KeyError on a tiny screen, which MoveList mends for the moves
+    ENABLE_COMMAND_PALETTE = False
     BINDINGS: ClassVar[list[BindingType]] = [
         Binding("question_mark", "help", "help", key_display="?"),
         Binding("u", "undo", "undo"),
@@ -100,7 +125,7 @@ class PlayApp(App[int]):
                 yield Static(id="mapview")
             yield Static(id="state")
         yield Static(id="turn")
-        yield OptionList(id="moves")
+        yield MoveList(id="moves")
         yield Static(id="answer")
         yield Input(id="ask")
         yield Footer()
@@ -270,19 +295,43 @@ class PlayApp(App[int]):
         self._saved_path = self.player.path
         self._say(f"saved {self.player.step + 1} steps to {path}")
 
+    def _unsaved(self) -> bool:
+        """Whether the play has moves not yet saved, and a file they are to be saved to."""
+        return (self.player.step >= 0 and self.out is not None
+                and self._saved_path != self.player.path)
+
     def action_quit_play(self) -> None:
         """Quit; a play with unsaved moves is saved to ``out`` first (every play is kept)."""
-        if self.player.step >= 0 and self.out is not None and self._saved_path != self.player.path:
+        if self._unsaved():
             try:
-                self._save(self.out)
+                self._save(self.out or DEFAULT_RUN_FILE)
             except GaitcError as err:
                 self._say(f"{err.message}; save elsewhere with s, or quit again to drop it")
                 self.out = None
                 return
         self.exit(0)
 
+    def play(self, **run: Any) -> str | None:
+        """Run the app (``run``: Textual's options of :meth:`App.run`) until it ends; the
+        file the play was last saved to.  However it ends (quitting with ``q`` or Textual's
+        ctrl+q, an interruption, an error inside the app), unsaved moves are then saved to
+        ``out``; an error inside the app is a :class:`PlayCrash` that says where the play
+        went (Textual has shown its traceback)."""
+        try:
+            self.run(**run)
+        finally:
+            if self._unsaved():
+                self.player.save(self.out or DEFAULT_RUN_FILE)
+                self.saved, self._saved_path = self.out, self.player.path
+        if self.return_code:
+            steps = self.player.step + 1
+            kept = (f"the play of {steps} steps is saved in {self.saved}" if self.saved
+                    else "no move had been played" if steps == 0
+                    else f"the play of {steps} steps is not saved (no file to save it to)")
+            raise PlayCrash(f"the player stopped on an error of its own; {kept}")
+        return self.saved
+
+
 def play_in_terminal(player: Player, out: str | Path | None = None, seed: int = 0) -> str | None:
     """Run the terminal player until the user quits; the file the play was saved to."""
-    app = PlayApp(player, out, seed)
-    app.run()
-    return app.saved
+    return PlayApp(player, out, seed).play()
