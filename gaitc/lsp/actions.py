@@ -3,14 +3,16 @@
 A fix replaces the misspelt name an error points at with the name its hint suggests. A
 repair is an edit of the whole file that :mod:`gaitc.analysis.repairs` has verified by
 solving the edited spec again (thesis chapter 3's game); finding them takes seconds, so
-the editor asks for them with a command and they are offered as edits afterwards, as the
-smallest line changes that turn the document into the repaired text.
+the editor asks for them with a command (run off the request loop by
+:mod:`gaitc.lsp.jobs`) and they are offered as edits afterwards, as the smallest line
+changes that turn the document into the repaired text.
 """
 
 from __future__ import annotations
 
 import difflib
 import re
+from collections.abc import Callable
 from dataclasses import dataclass
 
 from gaitc.lsp.analysis import Finding
@@ -52,14 +54,18 @@ def line_edits(old: str, new: str) -> tuple[LineEdit, ...]:
                  for tag, i1, i2, j1, j2 in matcher.get_opcodes() if tag != "equal")
 
 
-def find_repairs(text: str, path: str, timeout: float) -> tuple[str, list[RepairEdit]]:
+def find_repairs(text: str, path: str, timeout: float,
+                 report: Callable[[str], None] | None = None) -> tuple[str, list[RepairEdit]]:
     """Solve ``text``; for an unrealizable spec, its verified repairs as edits. Returns a
-    sentence for the user and the repairs."""
+    sentence for the user and the repairs; ``report`` is told each stage as it starts."""
     import gaitc
     from gaitc.diagnostics import GaitcError
 
+    tell = report or (lambda words: None)
     try:
+        tell("reading the spec")
         spec = gaitc.parse(text, path)
+        tell("solving the spec, then verifying each candidate repair")
         why = gaitc.explain(spec, timeout=timeout, repairs=True)
     except GaitcError as err:
         return f"gaitc could not look for repairs: {err.message}", []

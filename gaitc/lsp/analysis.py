@@ -5,7 +5,8 @@ The stages are the compiler's (:func:`gaitc.parse`: parse, check, lower to GR(1)
 :func:`analyse` is the fast part, run at every edit: a file that stops parsing keeps the
 index of its last good tree, so hover and completion keep working while a statement is
 half written. :func:`primitive_findings` is the slow part (the gait search behind valve
-primitives), run after it in the background.
+primitives), run after it in the background. Neither raises: a failure inside gaitc is a
+finding too, so a document always gets its diagnostics.
 """
 
 from __future__ import annotations
@@ -49,9 +50,30 @@ def _finding(err: GaitcError | Diagnostic, severity: str) -> Finding:
     return Finding(err.message, err.span, severity, err.hint)
 
 
+def internal_error(err: BaseException, path: str, doing: str) -> Finding:
+    """The finding of a failure inside gaitc while ``doing`` something to the file at
+    ``path``: an error at its first character, for the editor to show as it shows the
+    others."""
+    return Finding(f"gaitc failed while {doing}: internal error: {type(err).__name__}: {err}",
+                   Span(path, 1, 1), "error",
+                   "this is a bug in gaitc, not in your file; please report it")
+
+
 def analyse(text: str, path: str, previous: Analysis | None = None) -> Analysis:
     """Parse, check and lower ``text`` (spans name ``path``); keep ``previous``'s tree and
-    index when ``text`` does not parse."""
+    index when ``text`` does not parse. Any failure inside gaitc becomes an error finding
+    (:func:`internal_error`), with ``previous``'s tree and index kept as for a file that
+    does not parse."""
+    try:
+        return _analyse(text, path, previous)
+    except Exception as err:  # a bug in gaitc must not leave the document without answers
+        found = Analysis(text, path, findings=[internal_error(err, path, "analysing the file")])
+        if previous is not None and previous.tree is not None:
+            found.tree, found.index, found.stale_tree = previous.tree, previous.index, True
+        return found
+
+
+def _analyse(text: str, path: str, previous: Analysis | None) -> Analysis:
     from gaitc.api.loading import parse
     from ltlcompiler.frontend import parse_text
 
@@ -134,6 +156,8 @@ def primitive_findings(analysis: Analysis) -> list[Finding]:
                      for d in check_gaits(model.gaits, str(folder), legs=legs, moves=moves)]
         except GaitcError as err:
             found = [_finding(err, "error")]
+        except Exception as err:  # a bug in the search: said once, not searched again
+            found = [internal_error(err, analysis.path, "checking the valve primitives")]
         if len(_PRIMITIVES) >= _KEPT:
             _PRIMITIVES.pop(next(iter(_PRIMITIVES)))
         _PRIMITIVES[key] = found

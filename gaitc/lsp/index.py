@@ -12,10 +12,11 @@ from __future__ import annotations
 
 import enum
 from collections.abc import Iterator
-from dataclasses import dataclass, field, fields, is_dataclass
+from dataclasses import dataclass, field
 
 from gaitc.diagnostics import GaitcError, Span
-from gaitc.ir.formula import Expr, IntVar, Term, Var
+from gaitc.ir.formula import IntVar, Var, walk
+from gaitc.ir.traversal import Node
 from ltlcompiler import syntax as s
 from ltlcompiler.names import expand
 
@@ -175,19 +176,10 @@ def _contains(span: Span, line: int, column: int) -> bool:
     return not (line == end_line and column > end_column + 1)
 
 
-def _formula_names(node: Expr | Term | object) -> Iterator[tuple[str, Span]]:
-    """The names a formula mentions (``Var``, ``IntVar``), with their spans."""
-    if isinstance(node, (Var, IntVar)):
-        if node.span is not None:
+def _formula_names(formula: Node) -> Iterator[tuple[str, Span]]:
+    """The names a formula mentions (``Var``, ``IntVar``), with their spans, in the order
+    they are written: :func:`gaitc.ir.formula.walk` is iterative, so a formula nested as
+    deep as the parser allows (``MAX_NESTING``) needs no recursion here either."""
+    for node in walk(formula):
+        if isinstance(node, (Var, IntVar)) and node.span is not None:
             yield node.name, node.span
-        return
-    if not is_dataclass(node):
-        return
-    for f in fields(node):
-        if f.name == "span":
-            continue
-        value = getattr(node, f.name)
-        items = value if isinstance(value, tuple) else (value,)
-        for item in items:
-            if is_dataclass(item):
-                yield from _formula_names(item)

@@ -1,37 +1,46 @@
 """``gaitc lsp``: the Language Server Protocol server for ``.gait`` files, on pygls.
 
 Each open document is analysed (:mod:`gaitc.lsp.analysis`) a short debounce after its last
-edit, in a worker thread, so typing never waits for the compiler; a result for a version
-that has been edited since is dropped. Diagnostics come in two steps: the compiler's at
-once, then the valve primitives' (a gait search) when they are ready. The features are
-thin views of the index and the model: hover (:mod:`gaitc.lsp.hover`), definition and
-references, completion (:mod:`gaitc.lsp.completion`), rename, code actions and the
-repair command (:mod:`gaitc.lsp.actions`), semantic tokens and the outline.
+edit, in a worker thread, one analysis at a time and only of its latest text
+(:mod:`gaitc.lsp.scheduling`): typing never waits for the compiler, a burst of edits
+costs one analysis more, and a superseded result is dropped. Diagnostics come in two
+steps: the compiler's at once, then the valve primitives' (a gait search) when they are
+ready. The features are thin views of the index and the model: hover
+(:mod:`gaitc.lsp.hover`), definition and references, completion
+(:mod:`gaitc.lsp.completion`), rename, code actions and the repair command
+(:mod:`gaitc.lsp.actions`; it runs in a child process, :mod:`gaitc.lsp.jobs`, with
+progress, and can be cancelled), semantic tokens and the outline. Requests wait for an
+analysis without holding up the loop. :mod:`gaitc.lsp.transport` carries the messages,
+answers with an error every request it cannot handle, and ends on SIGTERM and SIGINT.
 """
 
 from __future__ import annotations
 
+import asyncio
 import threading
+import uuid
 from collections.abc import Callable
-from dataclasses import dataclass, field
 from typing import Any
 
 from lsprotocol import types
-from pygls.exceptions import JsonRpcException
+from pygls.exceptions import JsonRpcException, JsonRpcRequestCancelled
 from pygls.lsp.server import LanguageServer
-from pygls.uris import to_fs_path
 
 from gaitc.lsp.actions import RepairEdit, find_repairs, suggestion
-from gaitc.lsp.analysis import Analysis, Finding, analyse, primitive_findings
+from gaitc.lsp.analysis import Finding, analyse
 from gaitc.lsp.completion import offers
 from gaitc.lsp.hover import describe
 from gaitc.lsp.index import Kind, Mention, Symbol
+from gaitc.lsp.jobs import ChildJob, Outcome
 from gaitc.lsp.positions import Lines
+from gaitc.lsp.scheduling import Document, Scheduler
+from gaitc.lsp.transport import GaitProtocol, MsgId, work_done_token
 
 NAME = "gaitc"
-DEBOUNCE = 0.05  # seconds of quiet after an edit before the analysis starts
 REPAIR_TIMEOUT = 120.0  # seconds the repair command may solve for
+REPAIR_GRACE = 5.0  # seconds more before its child is killed (explain keeps its timeout)
 REPAIR_COMMAND = "gaitc.findRepairs"
+PROGRESS_CREATE_WAIT = 5.0  # seconds to wait for the client to accept a progress token
 
 #: Semantic token types, in the legend's order, and the kind of name each colours.
 TOKEN_TYPES = ("variable", "function", "enumMember", "event")
@@ -53,74 +62,47 @@ class RequestFailed(JsonRpcException):
     CODE = -32803
 
 
-@dataclass
-class Document:
-    """An open document: its text and version, and the latest analysis of it."""
-
-    uri: str
-    path: str
-    text: str = ""
-    version: int = 0
-    analysis: Analysis | None = None
-    lines: Lines = field(default_factory=lambda: Lines(""))
-    repairs: list[RepairEdit] = field(default_factory=list)
-    repairs_for: str | None = None  # the text the repairs were found for
-    timer: threading.Timer | None = None
-    ready: threading.Event = field(default_factory=threading.Event)
-
-
 class GaitServer(LanguageServer):
-    """The server, with the open documents it analyses."""
+    """The server: the open documents and their analyses, and the commands running."""
 
     def __init__(self) -> None:
         from gaitc import __version__
 
-        super().__init__(NAME, __version__)
-        self.documents: dict[str, Document] = {}
-        self.lock = threading.Lock()
+        super().__init__(NAME, __version__, protocol_cls=GaitProtocol)
+        self.scheduler = Scheduler(self._publish, self.trace)
+        self.jobs: dict[MsgId, ChildJob] = {}  # the commands running, by request id
+        protocol = self.protocol
+        assert isinstance(protocol, GaitProtocol)
+        protocol.on_cancel = self.request_cancelled
 
-    # ------------------------------------------------------------------ analysis
-    def changed(self, uri: str, text: str, version: int) -> None:
-        """Record an edit and schedule its analysis after the debounce."""
-        with self.lock:
-            doc = self.documents.get(uri)
-            if doc is None:
-                doc = Document(uri, to_fs_path(uri) or uri)
-                self.documents[uri] = doc
-            doc.text, doc.version = text, version
-            doc.ready.clear()
-            if doc.timer is not None:
-                doc.timer.cancel()
-            doc.timer = threading.Timer(DEBOUNCE, self._analyse, (uri, version))
-            doc.timer.daemon = True
-            doc.timer.start()
+    @property
+    def documents(self) -> dict[str, Document]:
+        return self.scheduler.documents
 
-    def _analyse(self, uri: str, version: int) -> None:
-        with self.lock:
-            doc = self.documents.get(uri)
-            if doc is None or doc.version != version:
-                return
-            text, previous = doc.text, doc.analysis
-        found = analyse(text, doc.path, previous)
-        with self.lock:
-            if doc.version != version:
-                return
-            doc.analysis, doc.lines = found, Lines(text)
-            doc.ready.set()
-        self._publish(doc, found.findings, version)
-        if found.model is not None:
-            extra = primitive_findings(found)
-            if extra:
-                with self.lock:
-                    if doc.version != version:
-                        return
-                    found.findings.extend(extra)
-                self._publish(doc, found.findings, version)
+    def trace(self, message: str) -> None:
+        """Tell a client that asked for a trace (``$/setTrace``, ``trace`` of
+        ``initialize``) what the server does: each analysis started, dropped, published."""
+        if self.protocol.trace not in (None, types.TraceValue.Off):
+            self.log_trace(types.LogTraceParams(message=message))
 
-    def _publish(self, doc: Document, findings: list[Finding], version: int) -> None:
+    def request_cancelled(self, msg_id: MsgId) -> None:
+        """``$/cancelRequest``: a command running for request ``msg_id`` is killed."""
+        job = self.jobs.get(msg_id)
+        if job is not None:
+            job.cancel()
+
+    def stop(self) -> None:
+        """Serving ends: no analysis is started or published any more, commands are
+        killed."""
+        self.scheduler.stop()
+        for job in list(self.jobs.values()):
+            job.cancel()
+
+    # ------------------------------------------------------------------ diagnostics
+    def _publish(self, doc: Document, findings: list[Finding]) -> None:
         diagnostics = [self._diagnostic(doc, f) for f in findings]
         self.text_document_publish_diagnostics(types.PublishDiagnosticsParams(
-            uri=doc.uri, diagnostics=diagnostics, version=version))
+            uri=doc.uri, diagnostics=diagnostics, version=doc.version))
 
     @staticmethod
     def _diagnostic(doc: Document, finding: Finding) -> types.Diagnostic:
@@ -136,18 +118,16 @@ class GaitServer(LanguageServer):
                       else types.DiagnosticSeverity.Warning),
             source=NAME, data=data)
 
-    def document(self, uri: str, wait: float = 2.0) -> Document | None:
+    # ------------------------------------------------------------------ queries
+    async def document(self, uri: str, wait: float = 2.0) -> Document | None:
         """The document at ``uri`` with the analysis of its latest text (waiting up to
-        ``wait`` seconds for it); None when it is not open."""
-        doc = self.documents.get(uri)
-        if doc is None:
-            return None
-        doc.ready.wait(wait)
-        return doc if doc.analysis is not None else None
+        ``wait`` seconds for it, without holding up other requests); None when it is not
+        open."""
+        return await self.scheduler.current(uri, wait)
 
-    def symbol_at(self, uri: str, position: types.Position
-                  ) -> tuple[Document, Symbol, Mention] | None:
-        doc = self.document(uri)
+    async def symbol_at(self, uri: str, position: types.Position
+                        ) -> tuple[Document, Symbol, Mention] | None:
+        doc = await self.document(uri)
         if doc is None or doc.analysis is None or doc.analysis.index is None:
             return None
         line, column, word = doc.lines.at(position)
@@ -166,6 +146,19 @@ def _feature(name: str, options: Any = None) -> Callable[[Any], Any]:
     return server.feature(name, options) if options is not None else server.feature(name)
 
 
+@_feature(types.INITIALIZE)
+def initialize(ls: GaitServer, params: types.InitializeParams) -> None:
+    """Trace as the client asks from the start (``$/setTrace`` changes it later)."""
+    ls.protocol.trace = params.trace or types.TraceValue.Off
+
+
+@_feature(types.SHUTDOWN)
+def shutdown(ls: GaitServer, params: None) -> None:
+    """No analysis or command outlives ``shutdown``."""
+    del params
+    ls.stop()
+
+
 @_feature(types.INITIALIZED)
 def initialized(ls: GaitServer, params: types.InitializedParams) -> None:
     """Load the compiler in the background, so the first document opened is fast."""
@@ -175,34 +168,32 @@ def initialized(ls: GaitServer, params: types.InitializedParams) -> None:
         analyse("legs L1..L2 health 2\ngait g uses L1 moves north\ngrid 2 x 1\nstart r0\n"
                 "visit r1 infinitely often\n", "<warm-up>.gait")
 
-    threading.Thread(target=warm, daemon=True).start()
+    threading.Thread(target=warm, name="gaitc-lsp-warm-up", daemon=True).start()
     del ls
 
 
 @_feature(types.TEXT_DOCUMENT_DID_OPEN)
 def did_open(ls: GaitServer, params: types.DidOpenTextDocumentParams) -> None:
-    ls.changed(params.text_document.uri, params.text_document.text, params.text_document.version)
+    ls.scheduler.edit(params.text_document.uri, params.text_document.text,
+                      params.text_document.version)
 
 
 @_feature(types.TEXT_DOCUMENT_DID_CHANGE)
 def did_change(ls: GaitServer, params: types.DidChangeTextDocumentParams) -> None:
     document = ls.workspace.get_text_document(params.text_document.uri)
-    ls.changed(params.text_document.uri, document.source, params.text_document.version)
+    ls.scheduler.edit(params.text_document.uri, document.source, params.text_document.version)
 
 
 @_feature(types.TEXT_DOCUMENT_DID_CLOSE)
 def did_close(ls: GaitServer, params: types.DidCloseTextDocumentParams) -> None:
-    with ls.lock:
-        doc = ls.documents.pop(params.text_document.uri, None)
-        if doc is not None and doc.timer is not None:
-            doc.timer.cancel()
+    ls.scheduler.close(params.text_document.uri)
     ls.text_document_publish_diagnostics(types.PublishDiagnosticsParams(
         uri=params.text_document.uri, diagnostics=[]))
 
 
 @_feature(types.TEXT_DOCUMENT_HOVER)
-def hover(ls: GaitServer, params: types.HoverParams) -> types.Hover | None:
-    hit = ls.symbol_at(params.text_document.uri, params.position)
+async def hover(ls: GaitServer, params: types.HoverParams) -> types.Hover | None:
+    hit = await ls.symbol_at(params.text_document.uri, params.position)
     if hit is None:
         return None
     doc, symbol, mention = hit
@@ -213,8 +204,9 @@ def hover(ls: GaitServer, params: types.HoverParams) -> types.Hover | None:
 
 
 @_feature(types.TEXT_DOCUMENT_DEFINITION)
-def definition(ls: GaitServer, params: types.DefinitionParams) -> types.Location | None:
-    hit = ls.symbol_at(params.text_document.uri, params.position)
+async def definition(ls: GaitServer, params: types.DefinitionParams
+                     ) -> types.Location | None:
+    hit = await ls.symbol_at(params.text_document.uri, params.position)
     if hit is None or hit[1].declaration is None:
         return None
     doc, symbol, _ = hit
@@ -224,8 +216,9 @@ def definition(ls: GaitServer, params: types.DefinitionParams) -> types.Location
 
 
 @_feature(types.TEXT_DOCUMENT_REFERENCES)
-def references(ls: GaitServer, params: types.ReferenceParams) -> list[types.Location]:
-    hit = ls.symbol_at(params.text_document.uri, params.position)
+async def references(ls: GaitServer, params: types.ReferenceParams
+                     ) -> list[types.Location]:
+    hit = await ls.symbol_at(params.text_document.uri, params.position)
     if hit is None:
         return []
     doc, symbol, _ = hit
@@ -235,8 +228,9 @@ def references(ls: GaitServer, params: types.ReferenceParams) -> list[types.Loca
 
 @_feature(types.TEXT_DOCUMENT_COMPLETION,
           types.CompletionOptions(trigger_characters=[",", ":", " ", "("]))
-def completion(ls: GaitServer, params: types.CompletionParams) -> types.CompletionList:
-    doc = ls.document(params.text_document.uri, wait=0.5)
+async def completion(ls: GaitServer, params: types.CompletionParams
+                     ) -> types.CompletionList:
+    doc = await ls.document(params.text_document.uri, wait=0.5)
     if doc is None:
         return types.CompletionList(is_incomplete=False, items=[])
     live = Lines(doc.text)
@@ -250,15 +244,16 @@ def completion(ls: GaitServer, params: types.CompletionParams) -> types.Completi
 
 
 @_feature(types.TEXT_DOCUMENT_PREPARE_RENAME)
-def prepare_rename(ls: GaitServer, params: types.PrepareRenameParams) -> types.Range | None:
-    hit = _renamable(ls, params.text_document.uri, params.position)
+async def prepare_rename(ls: GaitServer, params: types.PrepareRenameParams
+                         ) -> types.Range | None:
+    hit = await _renamable(ls, params.text_document.uri, params.position)
     return None if hit is None else hit[0].lines.span_range(hit[2].span)
 
 
-def _renamable(ls: GaitServer, uri: str, position: types.Position
-               ) -> tuple[Document, Symbol, Mention] | None:
+async def _renamable(ls: GaitServer, uri: str, position: types.Position
+                     ) -> tuple[Document, Symbol, Mention] | None:
     """The name at ``position`` when it can be renamed; a name from a range cannot."""
-    hit = ls.symbol_at(uri, position)
+    hit = await ls.symbol_at(uri, position)
     if hit is None:
         return None
     symbol = hit[1]
@@ -271,10 +266,10 @@ def _renamable(ls: GaitServer, uri: str, position: types.Position
 
 
 @_feature(types.TEXT_DOCUMENT_RENAME)
-def rename(ls: GaitServer, params: types.RenameParams) -> types.WorkspaceEdit | None:
+async def rename(ls: GaitServer, params: types.RenameParams) -> types.WorkspaceEdit | None:
     import re
 
-    hit = _renamable(ls, params.text_document.uri, params.position)
+    hit = await _renamable(ls, params.text_document.uri, params.position)
     if hit is None:
         return None
     doc, symbol, _ = hit
@@ -291,9 +286,9 @@ def rename(ls: GaitServer, params: types.RenameParams) -> types.WorkspaceEdit | 
 
 
 @_feature(types.TEXT_DOCUMENT_CODE_ACTION)
-def code_action(ls: GaitServer, params: types.CodeActionParams
-                ) -> list[types.CodeAction | types.Command]:
-    doc = ls.document(params.text_document.uri)
+async def code_action(ls: GaitServer, params: types.CodeActionParams
+                      ) -> list[types.CodeAction | types.Command]:
+    doc = await ls.document(params.text_document.uri)
     if doc is None:
         return []
     actions: list[types.CodeAction | types.Command] = []
@@ -323,28 +318,124 @@ def code_action(ls: GaitServer, params: types.CodeActionParams
 
 
 @server.command(REPAIR_COMMAND)
-def repair_command(ls: GaitServer, *args: Any) -> dict[str, Any]:
-    """Solve the document and keep its verified repairs for the code actions."""
+async def repair_command(ls: GaitServer, *args: Any) -> dict[str, Any]:
+    """Solve the document and keep its verified repairs for the code actions.
+
+    The search runs in a child process (:class:`gaitc.lsp.jobs.ChildJob`), so other
+    requests are answered meanwhile; its stages show as work-done progress when the client
+    supports it, and ``$/cancelRequest`` or cancelling the progress kills the child (the
+    answer is then RequestCancelled)."""
     uri = args[0] if args and isinstance(args[0], str) else None
     if uri is None and args and isinstance(args[0], list) and args[0]:
         uri = str(args[0][0])
-    doc = ls.document(uri or "")
+    doc = await ls.document(uri or "")
     if doc is None:
         return {"message": "the document is not open", "repairs": []}
-    text = doc.text
-    message, found = find_repairs(text, doc.path, REPAIR_TIMEOUT)
-    with ls.lock:
+    text, path = doc.text, doc.path
+    progress = Progress(ls, "gaitc: finding verified repairs")
+    job = ChildJob(lambda report: find_repairs(text, path, REPAIR_TIMEOUT, report),
+                   REPAIR_TIMEOUT + REPAIR_GRACE, progress.report)
+    outcome = job.start()
+    msg_id = ls.protocol.msg_id
+    if msg_id is not None:
+        ls.jobs[msg_id] = job
+    final = "cancelled"
+    try:
+        await progress.begin(work_done_token(), job.cancel)
+        message, found = _repairs_of(await outcome)
+        final = message
+    except JsonRpcException as err:
+        final = err.message
+        raise
+    finally:
+        if msg_id is not None:
+            ls.jobs.pop(msg_id, None)
+        if not outcome.done():  # this request was cancelled, or the server is ending
+            job.cancel()
+        progress.end(final)
+    if ls.documents.get(doc.uri) is doc:
         doc.repairs, doc.repairs_for = found, text
     ls.window_show_message(types.ShowMessageParams(type=types.MessageType.Info,
                                                    message=message))
     return {"message": message, "repairs": [r.title for r in found]}
 
 
+def _repairs_of(outcome: Outcome) -> tuple[str, list[RepairEdit]]:
+    """The repair search's sentence and repairs, or the error that answers the request."""
+    kind = outcome[0]
+    if kind == "ok":
+        message, found = outcome[1]
+        return str(message), list(found)
+    if kind == "cancelled":
+        raise JsonRpcRequestCancelled("the search for repairs was cancelled")
+    if kind == "timeout":
+        raise RequestFailed(f"the search for repairs took more than "
+                            f"{REPAIR_TIMEOUT + REPAIR_GRACE:.0f} s and was stopped")
+    if kind == "died":
+        raise RequestFailed(f"the search for repairs ended without an answer (exit status "
+                            f"{outcome[1]})")
+    err = outcome[1]
+    raise RequestFailed(f"the search for repairs failed: internal error: "
+                        f"{type(err).__name__}: {err} (a bug in gaitc; please report it)")
+
+
+class Progress:
+    """A work-done progress in the client, when it supports one (``window.workDoneProgress``):
+    begun with a title, told each stage, ended with the outcome; cancelling it in the
+    client calls the ``cancel`` given to :meth:`begin`."""
+
+    def __init__(self, ls: GaitServer, title: str) -> None:
+        self.ls = ls
+        self.title = title
+        self.token: types.ProgressToken | None = None
+        self.stage: str | None = None  # the latest stage, shown when the progress begins
+        self.ended = False
+
+    async def begin(self, given: types.ProgressToken | None, cancel: Callable[[], None]
+                    ) -> None:
+        """Begin, with the client's token ``given`` with the request, else with one the
+        server creates (``window/workDoneProgress/create``)."""
+        window = self.ls.client_capabilities.window
+        if window is None or not window.work_done_progress:
+            return
+        token = given
+        if token is None:
+            token = f"gaitc-{uuid.uuid4()}"
+            try:
+                await asyncio.wait_for(self.ls.work_done_progress.create_async(token),
+                                       PROGRESS_CREATE_WAIT)
+            except (asyncio.TimeoutError, JsonRpcException):
+                return  # the client refused or did not answer: no progress then
+        if self.ended:
+            return
+        self.token = token
+        self.ls.work_done_progress.begin(token, types.WorkDoneProgressBegin(
+            title=self.title, cancellable=True, message=self.stage))
+        asked = self.ls.work_done_progress.tokens.get(token)
+        if asked is not None:
+            asked.add_done_callback(lambda future: cancel() if future.cancelled() else None)
+
+    def report(self, stage: str) -> None:
+        self.stage = stage
+        if self.token is not None and not self.ended:
+            self.ls.work_done_progress.report(self.token, types.WorkDoneProgressReport(
+                message=stage, cancellable=True))
+
+    def end(self, message: str) -> None:
+        if self.ended:
+            return
+        self.ended = True
+        if self.token is not None:
+            self.ls.work_done_progress.end(self.token, types.WorkDoneProgressEnd(message=message))
+            self.ls.work_done_progress.tokens.pop(self.token, None)
+
+
 @_feature(types.TEXT_DOCUMENT_SEMANTIC_TOKENS_FULL,
           types.SemanticTokensLegend(token_types=list(TOKEN_TYPES),
                                      token_modifiers=list(TOKEN_MODIFIERS)))
-def semantic_tokens(ls: GaitServer, params: types.SemanticTokensParams) -> types.SemanticTokens:
-    doc = ls.document(params.text_document.uri)
+async def semantic_tokens(ls: GaitServer, params: types.SemanticTokensParams
+                          ) -> types.SemanticTokens:
+    doc = await ls.document(params.text_document.uri)
     if doc is None or doc.analysis is None or doc.analysis.index is None \
             or doc.analysis.stale_tree:
         return types.SemanticTokens(data=[])
@@ -369,9 +460,9 @@ def semantic_tokens(ls: GaitServer, params: types.SemanticTokensParams) -> types
 
 
 @_feature(types.TEXT_DOCUMENT_DOCUMENT_SYMBOL)
-def document_symbols(ls: GaitServer, params: types.DocumentSymbolParams
-                     ) -> list[types.DocumentSymbol]:
-    doc = ls.document(params.text_document.uri)
+async def document_symbols(ls: GaitServer, params: types.DocumentSymbolParams
+                           ) -> list[types.DocumentSymbol]:
+    doc = await ls.document(params.text_document.uri)
     if doc is None or doc.analysis is None or doc.analysis.index is None:
         return []
     groups: dict[Kind, list[types.DocumentSymbol]] = {kind: [] for kind in Kind}
@@ -404,13 +495,19 @@ def document_symbols(ls: GaitServer, params: types.DocumentSymbolParams
 
 
 def serve() -> None:
-    """Serve over standard input and output until the client says exit.
+    """Serve over standard input and output until the client says exit or closes the
+    input, or SIGTERM or SIGINT arrives (:func:`gaitc.lsp.transport.run`).
 
     Standard output is the protocol's channel: anything else the process (or a child
     process of the repair search) would print goes to standard error instead."""
     import os
     import sys
 
-    channel = os.fdopen(os.dup(sys.stdout.fileno()), "wb", buffering=0)
+    from gaitc.lsp.transport import run
+
+    channel = os.dup(sys.stdout.fileno())
     os.dup2(sys.stderr.fileno(), sys.stdout.fileno())
-    server.start_io(sys.stdin.buffer, channel)
+    try:
+        run(server, sys.stdin.fileno(), channel, server.stop)
+    finally:
+        os.close(channel)
