@@ -173,13 +173,13 @@ def test_the_file_round_trips_and_is_deterministic(
 def test_a_tampered_file_is_one_line_naming_it(
         compacts: dict[str, tuple[Spec, CompactController]], tmp_path: Path,
         change: object, message: str) -> None:
-    _, ctrl = compacts["thesis_robot_a.gait"]
+    spec, ctrl = compacts["thesis_robot_a.gait"]
     data = compact_to_dict(ctrl)
     change(data)  # type: ignore[operator]
     path = tmp_path / "bad.json"
     path.write_text(json.dumps(data), encoding="utf-8")
     with pytest.raises(ControllerError) as caught:
-        gaitc.api.solving.read_controller(path)
+        gaitc.api.solving.read_controller(path, spec)
     assert caught.value.message == message
     assert caught.value.span is not None and caught.value.span.file == str(path)
 
@@ -198,7 +198,7 @@ def test_a_truncated_file_and_another_specs_controller_are_refused(
     assert main(["codegen", str(SPECS / "thesis_robot_b.gait"), str(controller), "--target",
                  "c", "-o", str(tmp_path / "out")]) == 1
     err = capsys.readouterr().err
-    assert err.startswith(f"{controller}:1:1: error: the controller does not realize ")
+    assert err.startswith(f"{controller}:1:1: error: controller does not belong to this spec: ")
     assert not (tmp_path / "out").exists()
 
 

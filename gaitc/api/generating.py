@@ -18,7 +18,6 @@ from gaitc.codegen.board import BoardTables
 from gaitc.codegen.build import Built, Target, build
 from gaitc.codegen.tables import table_bytes
 from gaitc.compact.controller import CompactController
-from gaitc.compact.diagram import leaf
 from gaitc.compact.rules import RuleTables, rule_tables
 from gaitc.diagnostics import ControllerError, Span, UsageError
 from gaitc.ir.bddfile import SymbolicController
@@ -49,7 +48,7 @@ def compact_of(spec: SpecLike, controller: CompactController | SymbolicControlle
         return made.controller
     if isinstance(controller, (str, Path)):
         file = str(controller)
-        found = read_controller(controller)
+        found = read_controller(controller, resolved)
     else:
         found = controller
     if isinstance(found, SymbolicController):
@@ -78,7 +77,8 @@ def generate(spec: SpecLike, controller: CompactController | SymbolicController 
     """C for ``target`` (``c`` or ``avr``) in ``out_dir``, from a compact (or symbolic)
     controller proved against ``spec`` first; a controller that fails the proof, or an AVR
     build that does not fit, writes nothing.  ``monitor=False`` leaves the assumption
-    monitor out: the board then checks only that the levels it grades are in range."""
+    monitor out: the board then checks only that the levels it grades are in range, and
+    says so (``monitor=0`` in its PING answer, ``GAITC_MONITOR 0`` in the header)."""
     chosen = Target.parse(str(target), "--target")
     resolved = resolve(spec)
     file = str(controller) if isinstance(controller, (str, Path)) else ""
@@ -96,7 +96,7 @@ def generate(spec: SpecLike, controller: CompactController | SymbolicController 
         raise UsageError("the board's C command reads one base-36 digit per input: an input "
                          "field with more than 36 values needs --target c")
     if not monitor:
-        found = replace(found, assumed_root=leaf(1))
+        found = replace(found, assumed_root=None)
     return build(found, out_dir, chosen, file, _board(resolved, found, chosen))
 
 

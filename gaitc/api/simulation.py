@@ -85,7 +85,7 @@ def session(spec: Spec | str | Path,
                          "legs); for this spec 'gaitc synth' writes a controller and 'gaitc "
                          "verify' checks it")
     if isinstance(controller, (str, Path)):
-        strategy = load_strategy(controller, spec.gr1)
+        strategy = load_strategy(controller, spec.gr1, spec.model, spec.encoding)
     else:
         if controller is None:
             controller = synthesize(spec, semantics, verify=False, prefer=prefer,

@@ -16,12 +16,11 @@ from typing import TYPE_CHECKING, Any, Final, Literal, TypeGuard, get_args
 
 from gaitc.api.loading import Spec, SpecLike, as_gr1, resolve
 from gaitc.api.presentation import table
-from gaitc.diagnostics import ControllerError, SolverError, UsageError
+from gaitc.diagnostics import SolverError, UsageError
 from gaitc.diagnostics.files import write_atomically
-from gaitc.ir.bddfile import SymbolicController, is_symbolic, symbolic_from_dict, symbolic_to_json
+from gaitc.ir.bddfile import SymbolicController, symbolic_to_json
 from gaitc.ir.controller import (
     Controller,
-    controller_from_dict,
     controller_to_json,
     read_controller_json,
 )
@@ -39,6 +38,7 @@ if TYPE_CHECKING:
 
     from gaitc.compact.controller import CompactController
     from gaitc.compact.fields import Vocabulary
+    from gaitc.forms.reader import Form
     from gaitc.sim.graphics import Picture
     from gaitc.verifier.strategy import VerificationReport
 
@@ -407,22 +407,23 @@ def _compact(value: object) -> TypeGuard[CompactController]:
     return module is not None and isinstance(value, module.CompactController)
 
 
-def vocabulary_of(spec: Spec | GR1Spec, ctrl: SymbolicController) -> Vocabulary:
+def _vocabulary(spec: Spec | GR1Spec) -> Vocabulary:
     """The fields a compact controller of ``spec`` decides in: the robot's words for a
-    ``.gait`` spec, else one field per declared variable."""
-    from gaitc.compact.fields import check_covers, robot_vocabulary, spec_vocabulary
+    ``.gait`` spec, else one field per declared variable (from the spec alone)."""
+    from gaitc.compact.fields import expected_vocabulary
 
-    if isinstance(spec, Spec) and spec.model is not None:
-        robot = robot_vocabulary(spec.model, spec.encoding or EncodingName.ONEHOT,
-                                 ctrl.integers)
-        try:
-            check_covers(robot, ctrl.inputs, ctrl.outputs)
-            return robot
-        except ControllerError:
-            pass  # a model whose bits the robot's words do not cover: the spec's own
-    found = spec_vocabulary(as_gr1(spec), ctrl.integers)
-    check_covers(found, ctrl.inputs, ctrl.outputs)
-    return found
+    if isinstance(spec, Spec):
+        return expected_vocabulary(spec.gr1, spec.model, spec.encoding)
+    return expected_vocabulary(spec)
+
+
+def vocabulary_of(spec: Spec | GR1Spec, ctrl: SymbolicController) -> Vocabulary:
+    """The fields a compact controller of ``spec`` decides in (see :func:`_vocabulary`),
+    refused when the symbolic controller ``ctrl`` is of another spec."""
+    from gaitc.forms.reader import check_belongs
+
+    check_belongs(ctrl, as_gr1(spec))
+    return _vocabulary(spec)
 
 
 def compact(spec: SpecLike, controller: SymbolicController) -> CompactController:
@@ -465,26 +466,48 @@ def verify(spec: SpecLike,
     """Prove independently that ``controller`` (a strategy, explicit or symbolic) realizes
     ``spec``, or that a counter-strategy defeats it; a path is read as a controller file.
     ``semantics`` defaults to the one recorded in the controller."""
+    from gaitc.forms.reader import belongs, parse_file
+    from gaitc.verifier.strategy import VerificationReport
+
     spec = resolve(spec)
     gr1 = as_gr1(spec)
     automaton: Automaton
-    if isinstance(controller, Synthesis):
+    if isinstance(controller, (str, Path)):
+        automaton = parse_file(controller, gr1)
+    elif isinstance(controller, Synthesis):
         if controller.controller is None:
             raise UsageError(f"there is no {controller.kind} to verify")
         automaton = controller.controller
-    elif isinstance(controller, (str, Path)):
-        automaton = read_controller(controller, gr1)
     else:
         automaton = controller
     chosen = _semantics(semantics or automaton.semantics)
-    if not isinstance(automaton, (Controller, SymbolicController)):
+    why = belongs(automaton, gr1, _vocabulary(spec) if _compact(automaton) else None)
+    if why is not None:  # the proof covers the whole file: its vocabulary is the spec's
+        return VerificationReport(
+            ok=False, problems=(f"controller does not belong to this spec: {why}",),
+            kind="counterstrategy" if automaton.kind == "counterstrategy" else "strategy",
+            semantics=chosen, symbolic=not isinstance(automaton, Controller))
+    if _compact(automaton):
         from gaitc.compact.controller import to_symbolic
+        from gaitc.verifier.monitor import monitor_check
+        from gaitc.verifier.symbolic import verify_symbolic
 
-        automaton = to_symbolic(automaton)
+        if not automaton.monitored:
+            report = verify_symbolic(gr1, to_symbolic(automaton), chosen)
+            return replace(report, notes=(*report.notes, "the controller carries no "
+                                          "assumption monitor: a board running it alone "
+                                          "cannot tell when the assumptions break"))
+        report = verify_symbolic(gr1, to_symbolic(automaton), chosen,
+                                 [monitor_check(automaton)])
+        if not report.ok:
+            return report
+        return replace(report, notes=(*report.notes, "the assumption monitor equals env_trans "
+                                      "on every state a run reaches"))
     if isinstance(automaton, SymbolicController):
         from gaitc.verifier.symbolic import verify_symbolic
 
         return verify_symbolic(gr1, automaton, chosen)
+    assert isinstance(automaton, Controller)  # the compact form returned above
     if automaton.kind == "counterstrategy":
         from gaitc.verifier.counterstrategy import verify_counterstrategy
 
@@ -494,16 +517,25 @@ def verify(spec: SpecLike,
     return verify_strategy(gr1, automaton, chosen)
 
 
-def read_controller(path: str | Path, spec: GR1Spec | None = None) -> Automaton:
-    """A controller file of any form: an explicit automaton, a symbolic or a compact one."""
-    data = read_controller_json(str(path))
-    if is_symbolic(data):
-        return symbolic_from_dict(data, str(path))
-    from gaitc.compact.controller import compact_from_dict, is_compact
+def read_controller(path: str | Path, spec: SpecLike) -> Automaton:
+    """A controller file of any form (an explicit automaton, a symbolic or a compact one),
+    checked against ``spec``: a file whose bits, integers or fields differ from the spec's
+    is a :class:`~gaitc.diagnostics.ControllerError` naming the first difference
+    (:mod:`gaitc.forms.reader`, the one reader every command uses)."""
+    from gaitc.forms.reader import read_controller as read_checked
 
-    if is_compact(data):
-        return compact_from_dict(data, str(path))
-    return controller_from_dict(data, str(path), spec)
+    resolved = resolve(spec)
+    if isinstance(resolved, Spec):
+        return read_checked(path, resolved.gr1, resolved.model, resolved.encoding)
+    return read_checked(path, resolved)
+
+
+def controller_form(path: str | Path) -> Form:
+    """The form of the controller file ``path`` (explicit, symbolic or compact), read from
+    the file's header alone."""
+    from gaitc.forms.reader import form_of
+
+    return form_of(read_controller_json(str(path)))
 
 
 def recorded_encoding(path: str | Path) -> EncodingName | None:

@@ -121,8 +121,9 @@ def build(ctrl: CompactController, out_dir: str | Path, target: Target | str,
             program: Path | None = None
             if shutil.which("gcc") is not None:
                 program = work / "gaitc-run"
-                run_tool(["gcc", *HOST_FLAGS, "-DGAITC_DUMP", f"-I{work}", "-o", str(program),
-                      str(c), str(HOST / "driver.c")], "gcc gaitc_controller.c")
+                run_tool(["gcc", *HOST_FLAGS, "-DGAITC_DUMP", "-DGAITC_NAMES", f"-I{work}",
+                          "-o", str(program), str(c), str(HOST / "driver.c")],
+                         "gcc gaitc_controller.c")
             files, built = _publish(out, [h, c], program)
             return Built(chosen, files, built, tables.bytes)
         need = missing_tools(simulator=False)

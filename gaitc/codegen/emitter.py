@@ -14,16 +14,51 @@ output values (region, gait) in ``s->value``.  The walk mirrors
 
 from __future__ import annotations
 
+import re
 from collections.abc import Sequence
+from typing import Final
 
 from gaitc.codegen.tables import LEAF, Tables, flatten
 from gaitc.compact.controller import CompactController
 from gaitc.ir.spec import Semantics
 
+#: What a C identifier made here may look like (ASCII only, whatever the spec's names).
+IDENTIFIER: Final = re.compile(r"[A-Z_][A-Z0-9_]*")
+#: The characters a generated comment or string literal may hold as they are; anything
+#: else (``*``, ``/``, ``\\``, quotes, control characters, non-ASCII) is replaced or escaped,
+#: so no name from a file can close a comment, splice a line or end a string.
+SAFE: Final = frozenset("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789"
+                        " _.,:;()+-=<>#@")
 
-def _c_name(text: str) -> str:
-    out = "".join(c if c.isalnum() else "_" for c in text)
-    return out if out and not out[0].isdigit() else "_" + out
+
+def c_names(names: Sequence[str]) -> list[str]:
+    """One distinct upper-case C identifier per name: ASCII letters, digits and ``_``
+    only, a leading digit prefixed, clashes numbered."""
+    out: list[str] = []
+    for text in names:
+        base = "".join(c if c.isascii() and c.isalnum() else "_" for c in text).upper()
+        base = base if base and not base[0].isdigit() else "_" + base
+        name, k = base, 2
+        while name in out:
+            name, k = f"{base}_{k}", k + 1
+        if IDENTIFIER.fullmatch(name) is None:  # cannot happen; checked, not trusted
+            raise ValueError(f"not a C identifier: {name!r}")
+        out.append(name)
+    return out
+
+
+def _comment(text: str) -> str:
+    """``text`` for the inside of a C comment: characters outside :data:`SAFE` become ``_``."""
+    return "".join(c if c in SAFE else "_" for c in text)
+
+
+def c_string(text: str) -> str:
+    """``text`` as a C string literal: :data:`SAFE` characters as they are, every other
+    byte of its UTF-8 as an octal escape (three digits, so the next character cannot
+    extend it)."""
+    body = "".join(c if c in SAFE else "".join(f"\\{b:03o}" for b in c.encode("utf-8"))
+                   for c in text)
+    return f'"{body}"'
 
 
 def _array(ctype: str, name: str, values: Sequence[int], per_line: int = 16) -> str:
@@ -32,10 +67,6 @@ def _array(ctype: str, name: str, values: Sequence[int], per_line: int = 16) -> 
             for k in range(0, len(body), per_line)]
     inner = ",\n    ".join(rows)
     return f"static const {ctype} {name}[{len(body)}] GAITC_FLASH = {{\n    {inner}\n}};\n"
-
-
-def _comment(text: str) -> str:
-    return text.replace("*/", "* /")
 
 
 def header(ctrl: CompactController) -> str:
@@ -53,12 +84,15 @@ def header(ctrl: CompactController) -> str:
         f"#define GAITC_OUTPUTS {len(fields) - len(inputs)}",
         f"#define GAITC_GOALS {ctrl.goal_count}",
         f"#define GAITC_ROBOTICS {int(ctrl.semantics == Semantics.ROBOTICS)}",
+        "/* 1 when gaitc_assumed checks the spec's assumptions (rho_e); 0 when the controller",
+        " * was generated without its monitor and gaitc_assumed allows every input */",
+        f"#define GAITC_MONITOR {int(ctrl.monitored)}",
         "",
         "/* field indices into gaitc_state.value; inputs are passed in this order too */",
     ]
-    for k, f in enumerate(fields):
+    for k, (f, name) in enumerate(zip(fields, c_names([f.name for f in fields]), strict=True)):
         values = ", ".join(f.labels[:12]) + (", ..." if len(f.labels) > 12 else "")
-        lines.append(f"#define GAITC_FIELD_{_c_name(f.name).upper()} {k}"
+        lines.append(f"#define GAITC_FIELD_{name} {k}"
                      f"  /* {'input' if f.is_input else 'output'}: {_comment(values)} */")
     lines += [
         "",
@@ -77,6 +111,13 @@ def header(ctrl: CompactController) -> str:
         "uint8_t gaitc_assumed(const gaitc_state *s, const uint8_t in[GAITC_INPUTS]);",
         "/* 1 when every input value is in its field's range */",
         "uint8_t gaitc_valid(const uint8_t in[GAITC_INPUTS]);",
+        "/* 1 when every field value of a whole state is in its field's range */",
+        "uint8_t gaitc_valid_state(const uint8_t value[GAITC_FIELDS]);",
+        "#ifdef GAITC_NAMES",
+        "/* the spec's names of field f and of its value v (\"?\" when out of range) */",
+        "const char *gaitc_field_name(uint8_t f);",
+        "const char *gaitc_value_name(uint8_t f, uint8_t v);",
+        "#endif",
         "",
         "#endif",
         "",
@@ -163,14 +204,24 @@ void gaitc_start(gaitc_state *s, const uint8_t in[GAITC_INPUTS])
     set_inputs(s, in);
 }
 
+uint8_t gaitc_valid_state(const uint8_t value[GAITC_FIELDS])
+{
+    uint8_t f;
+    for (f = 0; f < GAITC_FIELDS; f++)
+        if (value[f] >= GAITC_U8(field_size[f])) return 0;
+    return 1;
+}
+
 uint8_t gaitc_assumed(const gaitc_state *s, const uint8_t in[GAITC_INPUTS])
 {
-    return (uint8_t)walk(GAITC_U16(roots[GAITC_ASSUMED_ROOT]), s->value, in);
+    return walk(GAITC_U16(roots[GAITC_ASSUMED_ROOT]), s->value, in) ? 1 : 0;
 }
 
 uint8_t gaitc_accepts(const gaitc_state *s)
 {
-    return (uint8_t)walk(GAITC_U16(roots[GAITC_START_ROOT]), s->value, s->value);
+    /* the start diagram of the robotics semantics reads the current state alone (the
+     * controller reader refuses one that reads inputs just chosen) */
+    return walk(GAITC_U16(roots[GAITC_START_ROOT]), s->value, s->value) ? 1 : 0;
 }
 
 uint16_t gaitc_step(gaitc_state *s, const uint8_t in[GAITC_INPUTS])
@@ -187,6 +238,7 @@ uint16_t gaitc_step(gaitc_state *s, const uint8_t in[GAITC_INPUTS])
 }
 """,
     ]
+    parts.append(_names(ctrl))
     names = ("node_slot", "node_first", "kids", "moves", "roots", "slot_field", "slot_next",
              "field_size")
     dump = ["#ifdef GAITC_DUMP", "#include <stdio.h>",
@@ -213,3 +265,35 @@ uint16_t gaitc_step(gaitc_state *s, const uint8_t in[GAITC_INPUTS])
                     f"{int(name in wide)}, {int(k == len(names) - 1)});")
     dump += ["}", "#endif", ""]
     return "\n".join(parts) + "\n".join(dump)
+
+
+def _names(ctrl: CompactController) -> str:
+    """The spec's names of the fields and their values as C strings, for a host that
+    prints them (``GAITC_NAMES``; left out of the board's flash)."""
+    fields = ctrl.vocabulary.fields
+    field_names = ", ".join(c_string(f.name) for f in fields)
+    firsts: list[int] = []
+    labels: list[str] = []
+    for f in fields:
+        firsts.append(len(labels))
+        labels.extend(c_string(label) for label in f.labels)
+    return "\n".join([
+        "#ifdef GAITC_NAMES",
+        f"static const char *const field_names[{len(fields)}] = {{{field_names}}};",
+        f"static const uint16_t label_first[{len(fields)}] = "
+        f"{{{', '.join(str(k) for k in firsts)}}};",
+        f"static const char *const labels[{max(1, len(labels))}] = {{",
+        "    " + ",\n    ".join(labels or ['"?"']),
+        "};",
+        "const char *gaitc_field_name(uint8_t f)",
+        "{",
+        "    return f < GAITC_FIELDS ? field_names[f] : \"?\";",
+        "}",
+        "const char *gaitc_value_name(uint8_t f, uint8_t v)",
+        "{",
+        "    if (f >= GAITC_FIELDS || v >= field_size[f]) return \"?\";",
+        "    return labels[label_first[f] + v];",
+        "}",
+        "#endif",
+        "",
+    ])

@@ -25,7 +25,16 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any, Final
 
-from gaitc.compact.diagram import Branch, Ref, Slot, evaluate, leaf_value, paths, reachable_nodes
+from gaitc.compact.diagram import (
+    Branch,
+    Ref,
+    Slot,
+    evaluate,
+    leaf,
+    leaf_value,
+    paths,
+    reachable_nodes,
+)
 from gaitc.compact.fields import Field, Vocabulary
 from gaitc.diagnostics import ControllerError, Span
 from gaitc.ir.bddfile import SymbolicController, node_table
@@ -47,7 +56,9 @@ class CompactController:
     move_roots: tuple[Ref, ...]
     reached_roots: tuple[Ref, ...]
     start_root: Ref
-    assumed_root: Ref
+    #: the assumption monitor's root; None when the file carries no monitor (a controller
+    #: generated with ``--no-monitor``), which verify and the board then say
+    assumed_root: Ref | None
     inputs: tuple[str, ...]  # the spec's bits, as in its other controller files
     outputs: tuple[str, ...]
     integers: Mapping[str, IntegerVar] = field(default_factory=dict)
@@ -61,8 +72,15 @@ class CompactController:
         return len(self.move_roots)
 
     @property
+    def monitored(self) -> bool:
+        """Whether the controller carries an assumption monitor."""
+        return self.assumed_root is not None
+
+    @property
     def roots(self) -> tuple[Ref, ...]:
-        return (*self.move_roots, *self.reached_roots, self.start_root, self.assumed_root)
+        """Every root in the generated tables' order; a missing monitor allows everything."""
+        assumed = leaf(1) if self.assumed_root is None else self.assumed_root
+        return (*self.move_roots, *self.reached_roots, self.start_root, assumed)
 
     @property
     def decision_nodes(self) -> int:
@@ -112,7 +130,10 @@ class CompactController:
         return bool(evaluate(self.nodes, self.start_root, self.slot_values(state, {})))
 
     def assumes(self, state: Mapping[str, int], chosen: Mapping[str, int]) -> bool:
-        """Whether ρe allows the inputs ``chosen`` from ``state``."""
+        """Whether ρe allows the inputs ``chosen`` from ``state`` (always, without a
+        monitor)."""
+        if self.assumed_root is None:
+            return True
         return bool(evaluate(self.nodes, self.assumed_root, self.slot_values(state, chosen)))
 
     def advance(self, goal: int, state: Mapping[str, int]) -> int:
@@ -168,7 +189,8 @@ class Runner:
 # -------------------------------------------------------------------- back to BDDs
 def relations(bdd: Any, ctrl: CompactController) -> dict[str, Any]:
     """The diagrams as BDDs of ``bdd`` over the spec's bits: per goal the move relation
-    (path cube and move cube), the goal functions and the start relation or set."""
+    (path cube and move cube), the goal functions, the start relation or set and the
+    assumption monitor (true without one)."""
     move_cubes = [_move_cube(bdd, ctrl, k, primed=True) for k in range(len(ctrl.moves))]
     truth = [bdd.false, bdd.true]
     # nodes shared by several roots are built once per reading of the leaves
@@ -198,7 +220,14 @@ def relations(bdd: Any, ctrl: CompactController) -> dict[str, Any]:
         "strategies": [diagram(r, move_cubes) for r in ctrl.move_roots],
         "goals": [diagram(r, truth) for r in ctrl.reached_roots],
         "start": start,
+        "assumed": bdd.true if ctrl.assumed_root is None else diagram(ctrl.assumed_root, truth),
     }
+
+
+def monitor_function(bdd: Any, ctrl: CompactController) -> Any:
+    """The assumption monitor as a BDD of ``bdd`` over current bits and the inputs' next
+    bits (true when the controller carries none)."""
+    return relations(bdd, ctrl)["assumed"]
 
 
 def _move_cube(bdd: Any, ctrl: CompactController, index: int, primed: bool) -> Any:
@@ -356,8 +385,12 @@ def compact_from_dict(data: Any, file: str = "") -> CompactController:
     raw_slots = data.get("slots")
     r.need(isinstance(raw_slots, list), "'slots' must be a list")
     for raw in raw_slots:
-        r.need(isinstance(raw, list) and len(raw) == 2 and raw[0] in by_name
-               and raw[1] in (0, 1), f"slot {raw!r} names no field")
+        r.need(isinstance(raw, list) and len(raw) == 2 and isinstance(raw[0], str)
+               and raw[0] in by_name and type(raw[1]) is int and raw[1] in (0, 1),
+               f"slot {raw!r} names no field")
+        r.need(by_name[raw[0]].is_input or not raw[1],
+               f"slot {raw!r} reads the next value of output field {raw[0]!r}; only the "
+               "environment's inputs have a value chosen before the controller moves")
         slots.append(Slot(by_name[raw[0]], bool(raw[1])))
     outs = vocabulary.outputs
     moves = []
@@ -391,12 +424,14 @@ def compact_from_dict(data: Any, file: str = "") -> CompactController:
     reached = r.ints(roots.get("reached"), "roots.reached")
     start, assumed = roots.get("start"), roots.get("assumed")
     r.need(type(start) is int, "roots.start must be an integer")
-    r.need(type(assumed) is int, "roots.assumed must be an integer")
+    r.need(type(assumed) is int or assumed is None,
+           "roots.assumed must be an integer, or null for a controller without a monitor")
     r.need(len(move_roots) == len(reached) and bool(move_roots),
            "roots.moves and roots.reached need one root per goal")
-    for ref in (*move_roots, *reached, start, assumed):
+    for ref in (*move_roots, *reached, start, *([] if assumed is None else [assumed])):
         r.need(ref < len(nodes) if ref >= 0 else leaf_value(ref) < max(len(moves), 2),
                f"root {ref} is not a node or a leaf")
+    _check_diagrams(r, nodes, slots, len(moves), move_roots, reached, start, assumed, semantics)
     integers = integers_from_json(head.get("integers", {}), bits, r.need)
     source = head.get("source")
     return CompactController(
@@ -405,3 +440,37 @@ def compact_from_dict(data: Any, file: str = "") -> CompactController:
         assumed_root=assumed, inputs=tuple(inputs), outputs=tuple(outputs), integers=integers,
         semantics=semantics, solver=str(head.get("solver", "embedded")),
         source=dict(source) if isinstance(source, dict) else None)
+
+
+def _check_diagrams(r: _Reader, nodes: Sequence[Branch], slots: Sequence[Slot], moves: int,
+                    move_roots: Sequence[Ref], reached: Sequence[Ref], start: Ref,
+                    assumed: Ref | None, semantics: Semantics) -> None:
+    """Each diagram returns only what its role allows and reads only the slots its runtime
+    gives it values for: a move diagram ends in moves, a yes/no diagram in 0 or 1; the goal
+    diagrams and the robotics start read the current state alone, the default start the
+    first inputs alone (as :class:`Runner`, :func:`relations` and the generated C do)."""
+    robotics = semantics == Semantics.ROBOTICS
+    roles: list[tuple[str, Ref, int, str]] = [
+        (f"the move diagram of goal {j + 1}", root, moves, "any")
+        for j, root in enumerate(move_roots)]
+    roles += [(f"the diagram of goal {j + 1}", root, 2, "now")
+              for j, root in enumerate(reached)]
+    roles.append(("the start diagram", start, 2 if robotics else moves,
+                  "now" if robotics else "chosen"))
+    if assumed is not None:
+        roles.append(("the assumption monitor", assumed, 2, "any"))
+    for what, root, leaves, reads in roles:
+        below = reachable_nodes(nodes, [root])
+        ends = [root] if root < 0 else [k for n in below for k in nodes[n].kids if k < 0]
+        for ref in ends:
+            value = leaf_value(ref)
+            r.need(value < leaves, f"{what} ends in {value}, where it may only return "
+                   + ("0 or 1" if leaves == 2 else f"one of the {moves} moves"))
+        for n in below:
+            slot = slots[nodes[n].field]
+            r.need(reads != "now" or not slot.next,
+                   f"{what} reads the inputs just chosen (node {n}); it may read only the "
+                   "current state")
+            r.need(reads != "chosen" or (slot.next and slot.field.is_input),
+                   f"{what} reads the current state (node {n}); it may read only the first "
+                   "inputs")

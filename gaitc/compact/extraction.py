@@ -16,7 +16,7 @@ from dataclasses import dataclass, replace
 from typing import Any, Final
 
 from gaitc.compact.controller import CompactController, relations
-from gaitc.compact.diagram import DONT_CARE, Builder, Slot, leaf
+from gaitc.compact.diagram import DONT_CARE, Builder, Ref, Slot, leaf, reachable_nodes
 from gaitc.compact.fields import Vocabulary
 from gaitc.diagnostics.choices import Choice
 from gaitc.ir.bddfile import SymbolicController, declare, materialize
@@ -140,8 +140,41 @@ def _one_order(game: Game, vocabulary: Vocabulary, slots: list[Slot], greedy: bo
     assert best is not None
     found, builder, anywhere = best
     builder.greedy = False  # in slot order, where each input's values sit side by side
-    assumed = _defined(builder.build_boolean(anywhere, env_trans), leaf(1))
-    return replace(found, nodes=tuple(builder.nodes), assumed_root=assumed)
+    # the monitor must equal ρe on every state a run reaches (the verifier proves it); the
+    # diagram of ρe on every state the fields name often is smaller, being more regular
+    candidates = [_defined(builder.build_boolean(care, env_trans), leaf(1))
+                  for care in (anywhere, field_domain(bdd, slots))]
+    sizes = [len(reachable_nodes(builder.nodes, [*found.roots[:-1], root]))
+             for root in candidates]
+    chosen = candidates[sizes.index(min(sizes))]
+    return pruned(replace(found, nodes=tuple(builder.nodes), assumed_root=chosen))
+
+
+def pruned(ctrl: CompactController) -> CompactController:
+    """``ctrl`` with only the nodes some root reaches, renumbered children first."""
+    kept = reachable_nodes(ctrl.nodes, ctrl.roots)
+    number = {old: new for new, old in enumerate(kept)}
+
+    def ref(r: Ref) -> Ref:
+        return r if r < 0 else number[r]
+
+    nodes = tuple(replace(ctrl.nodes[old], kids=tuple(ref(k) for k in ctrl.nodes[old].kids))
+                  for old in kept)
+    return replace(ctrl, nodes=nodes, move_roots=tuple(ref(r) for r in ctrl.move_roots),
+                   reached_roots=tuple(ref(r) for r in ctrl.reached_roots),
+                   start_root=ref(ctrl.start_root),
+                   assumed_root=None if ctrl.assumed_root is None else ref(ctrl.assumed_root))
+
+
+def field_domain(bdd: Any, slots: Sequence[Slot]) -> Any:
+    """The states (and chosen inputs) the slots can name: every field at one of its values."""
+    out = bdd.true
+    for slot in slots:
+        values = bdd.false
+        for k in range(len(slot.field.labels)):
+            values |= bdd.cube(slot.field.cube(k, slot.next))
+        out &= values
+    return out
 
 
 def counter_moves(bdd: Any, goals: Sequence[Any]) -> list[list[Any]]:

@@ -152,6 +152,71 @@ def robot_vocabulary(model: Model, encoding: EncodingName,
     return Vocabulary(tuple(fields), "robot")
 
 
+def expected_vocabulary(spec: GR1Spec, model: Model | None = None,
+                        encoding: EncodingName | None = None) -> Vocabulary:
+    """The fields a compact controller of ``spec`` decides in, from the spec alone: the
+    robot's words when ``spec`` was compiled from ``model`` (and they cover its bits), else
+    one field per declared variable.  A controller file must carry exactly these."""
+    from gaitc.ir.bits import spec_bits
+    from gaitc.ir.controller import spec_integers
+
+    integers = spec_integers(spec)
+    ins, outs = spec_bits(spec)
+    if model is not None:
+        robot = robot_vocabulary(model, encoding or EncodingName.ONEHOT, integers)
+        try:
+            check_covers(robot, ins, outs)
+            return robot
+        except ControllerError:
+            pass  # a model whose bits the robot's words do not cover: the spec's own
+    found = spec_vocabulary(spec, integers)
+    check_covers(found, ins, outs)
+    return found
+
+
+def _labels(labels: Sequence[str]) -> str:
+    """Labels quoted (a label read from a file may hold anything, a newline too)."""
+    return ", ".join(repr(label) for label in labels[:6]) + (", ..." if len(labels) > 6 else "")
+
+
+def _values(f: Field) -> str:
+    return f"{len(f.labels)} value(s): {_labels(f.labels)}"
+
+
+def vocabulary_difference(found: Vocabulary, expected: Vocabulary) -> str | None:
+    """The first way the fields of a controller file differ from those of its spec (field
+    order, names, owners, value order, labels, encodings), in words; None when equal."""
+    if found.domain != expected.domain:
+        return (f"its fields are the {found.domain}'s words, the spec's are the "
+                f"{expected.domain}'s")
+    names = [f.name for f in found.fields]
+    wanted = [f.name for f in expected.fields]
+    if names != wanted:
+        if sorted(names) == sorted(wanted):
+            return f"it lists its fields as {names}, the spec's order is {wanted}"
+        missing = [n for n in wanted if n not in names]
+        extra = [n for n in names if n not in wanted]
+        parts = ([f"it lacks field(s) {missing}"] if missing else []) + (
+            [f"it has field(s) {extra} the spec does not have"] if extra else [])
+        return "; ".join(parts)
+    for f, e in zip(found.fields, expected.fields, strict=True):
+        if f.is_input != e.is_input:
+            owner = "an input" if e.is_input else "an output"
+            return f"field {f.name!r} is {owner} of the spec"
+        if f.labels != e.labels:
+            if sorted(f.labels) == sorted(e.labels):
+                return (f"field {f.name!r} lists its values as {_labels(f.labels)}; the "
+                        f"spec's order is {_labels(e.labels)}")
+            return f"field {f.name!r} has {_values(f)}; the spec's has {_values(e)}"
+        for label, cube, wanted_cube in zip(f.labels, f.cubes, e.cubes, strict=True):
+            if cube != wanted_cube:
+                return (f"field {f.name!r} encodes its value {label!r} with other bits than "
+                        "the spec does")
+        if f.numeric != e.numeric:
+            return f"field {f.name!r} is {'not ' if f.numeric else ''}numeric in the spec"
+    return None
+
+
 def check_covers(vocabulary: Vocabulary, inputs: Sequence[str], outputs: Sequence[str]) -> None:
     """Raise when the fields do not split the spec's bits exactly (each bit in one field)."""
     seen: dict[str, str] = {}

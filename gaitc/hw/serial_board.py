@@ -1,9 +1,9 @@
 """A valve board on a serial line (pyserial URL: a device, ``socket://``, ``loop://``).
 
 Line protocol v2 (ASCII, one command a line, one answer line each; docs/hardware.md):
-``PING`` → ``PONG <firmware> proto=2 valves=<n> [legs= contacts= wd= reset=]``; ``V <bits>``
-→ ``OK``; ``HB`` (heartbeat) → ``OK``; ``W <ms>`` → ``OK wd=<ms>``; ``S`` → ``S a=<adc,..>
-lo=<adc,..> c=<bits>`` (graded into health levels by :mod:`gaitc.hw.sensing`) or ``S
+``PING`` → ``PONG <firmware> proto=2 valves=<n> [legs= contacts= wd= reset= monitor=]``;
+``V <bits>`` → ``OK``; ``HB`` (heartbeat) → ``OK``; ``W <ms>`` → ``OK wd=<ms>``; ``S`` →
+``S a=<adc,..> lo=<adc,..> c=<bits>`` (graded into health levels by :mod:`gaitc.hw.sensing`) or ``S
 h=<levels>`` (a board that grades legs itself), with ``hazard=`` and ``region=``; any
 refusal is ``ERR <text>``.  The board vents on its own when no valid command
 arrives for its watchdog period, so the host sends a heartbeat while valves are open.  Every
@@ -72,6 +72,9 @@ class BoardInfo:
     contacts: int | None = None
     watchdog_ms: int | None = None
     reset: str | None = None
+    #: a board running a generated controller: whether it checks the spec's assumptions
+    #: (None: no controller linked, or a firmware that does not say)
+    monitor: bool | None = None
 
 
 _PONG_NUMBERS = ("proto", "valves", "legs", "contacts", "wd")
@@ -86,17 +89,19 @@ def parse_pong(line: str) -> BoardInfo:
     fields: dict[str, str] = {}
     for word in words[2:]:
         key, sep, value = word.partition("=")
-        if not sep or not value or key in fields or key not in (*_PONG_NUMBERS, "reset"):
+        if not sep or not value or key in fields or key not in (*_PONG_NUMBERS, "reset",
+                                                                 "monitor"):
             raise Garbled(line)
         fields[key] = value
     numbers = {key: _count(fields[key]) for key in _PONG_NUMBERS if key in fields}
     if None in numbers.values() or "valves" not in numbers:
         raise Garbled(line)
     valves = numbers["valves"]
-    if valves is None or valves < 1:
+    if valves is None or valves < 1 or fields.get("monitor", "0") not in ("0", "1"):
         raise Garbled(line)
+    monitor = None if "monitor" not in fields else fields["monitor"] == "1"
     return BoardInfo(words[1], numbers.get("proto") or 1, valves, numbers.get("legs"),
-                     numbers.get("contacts"), numbers.get("wd"), fields.get("reset"))
+                     numbers.get("contacts"), numbers.get("wd"), fields.get("reset"), monitor)
 
 
 Grader = Callable[[dict[str, float], dict[str, float]], Mapping[str, int]]

@@ -230,6 +230,7 @@ def symbolic_from_dict(data: Any, filename: str = "<controller>") -> SymbolicCon
     semantics = extras.get("semantics", "default")
     _need(semantics in SEMANTICS, f"'gaitc.semantics' must be one of {', '.join(SEMANTICS)}",
           span)
+    _check_supports(nodes, roots, order, set(outputs), span)
     integers = integers_from_json(extras.get("integers", {}), bits,
                                   lambda ok, message: _need(ok, message, span))
     source = extras.get("source")
@@ -246,6 +247,32 @@ def symbolic_from_dict(data: Any, filename: str = "<controller>") -> SymbolicCon
         source={str(k): str(v) for k, v in source.items()} if isinstance(source, dict) else None,
         choice=choice,
     )
+
+
+def _check_supports(nodes: tuple[tuple[int, Ref, Ref], ...],
+                    roots: Mapping[str, Ref | tuple[Ref, ...]], order: tuple[str, ...],
+                    outputs: set[str], span: Span) -> None:
+    """Each single root reads only what a runtime gives it: the winning region and the
+    initial conditions the current state, ρe the current state and the inputs just chosen
+    (the per-goal relations and goals may read every bit, primed or not)."""
+    for name in SINGLE_ROOTS:
+        root = roots[name]
+        assert isinstance(root, int)
+        seen: set[int] = set()
+        stack = [abs(root)]
+        while stack:
+            ref = stack.pop()
+            if ref < 2 or ref in seen:
+                continue
+            seen.add(ref)
+            var, low, high = nodes[ref - 2]
+            bit = order[var]
+            primed = bit.endswith("'")
+            wrong = primed and (name != "env_trans" or bit[:-1] in outputs)
+            _need(not wrong, f"'roots.{name}' reads {bit!r}, which "
+                  + ("it may not read: it reads the current state only" if name != "env_trans"
+                     else "ρe may not read: the environment moves before the system"), span)
+            stack.extend((abs(low), abs(high)))
 
 
 def _need(cond: bool, message: str, span: Span) -> None:

@@ -16,7 +16,7 @@ from typing import Any
 from gaitc.diagnostics import ControllerError, Span, span_at
 from gaitc.diagnostics.files import decode_text, read_input
 from gaitc.diagnostics.versions import CONTROLLER
-from gaitc.ir.bits import bit_name, parse_first_bit, spec_bits
+from gaitc.ir.bits import bit_name, integer_bits, parse_first_bit, spec_bits
 from gaitc.ir.spec import SEMANTICS, GR1Spec, Semantics
 
 KINDS = ("strategy", "counterstrategy")
@@ -135,6 +135,18 @@ def integers_of(bit_names: tuple[str, ...], inputs: frozenset[str]) -> dict[str,
             k += 1
         out[name] = IntegerVar(low, high, tuple(bits), "env" if bit in inputs else "sys")
     return out
+
+
+def spec_integers(spec: GR1Spec) -> dict[str, IntegerVar]:
+    """The integer variables of ``spec`` as its controllers lay them out: each declared
+    integer on its SLUGS bits, and SLUGS-encoded bit groups among its Boolean names."""
+    ins, outs = spec_bits(spec)
+    found = integers_of(ins + outs, frozenset(ins))
+    for owner, variables in (("env", spec.inputs), ("sys", spec.outputs)):
+        for v in variables:
+            if v.low is not None and v.high is not None:
+                found[v.name] = IntegerVar(v.low, v.high, tuple(integer_bits(v)), owner)
+    return found
 
 
 # ---------------------------------------------------------------- writing

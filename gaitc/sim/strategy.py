@@ -9,19 +9,20 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import TYPE_CHECKING
 
-from gaitc.compact.controller import (
-    CompactController,
-    compact_from_dict,
-    is_compact,
-    to_symbolic,
-)
+from gaitc.compact.controller import CompactController, to_symbolic
 from gaitc.diagnostics import ControllerError, Span
-from gaitc.ir.bddfile import SymbolicController, is_symbolic, symbolic_from_dict
+from gaitc.forms.reader import read_controller
+from gaitc.ir.bddfile import SymbolicController
 from gaitc.ir.bits import bits_mismatch, spec_bits
-from gaitc.ir.controller import Controller, controller_from_dict, read_controller_json
+from gaitc.ir.controller import Controller
 from gaitc.ir.spec import GR1Spec
 from gaitc.sim.view import Indexed, InputKey, NodeReading, StrategyView
+
+if TYPE_CHECKING:
+    from ltlcompiler.encoding import EncodingName
+    from ltlcompiler.model import Model
 
 __all__ = ["Indexed", "InputKey", "NodeReading", "Strategy", "StrategyView", "explicit",
            "load_strategy", "strategy_from_controller", "view_of"]
@@ -145,15 +146,12 @@ def view_of(controller: Controller | SymbolicController | CompactController, spe
     return SymbolicStrategy(controller, spec, file)
 
 
-def load_strategy(path: str | Path, spec: GR1Spec) -> StrategyView:
-    """Read a controller file (explicit from either solver, or symbolic) and check it
-    against ``spec``."""
-    data = read_controller_json(str(path))
-    if is_symbolic(data):
-        return view_of(symbolic_from_dict(data, str(path)), spec, str(path))
-    if is_compact(data):
-        return view_of(compact_from_dict(data, str(path)), spec, str(path))
-    return strategy_from_controller(controller_from_dict(data, str(path), spec), spec, str(path))
+def load_strategy(path: str | Path, spec: GR1Spec, model: Model | None = None,
+                  encoding: EncodingName | None = None) -> StrategyView:
+    """Read a controller file of any form through the one reader
+    (:func:`gaitc.forms.reader.read_controller`), checked against ``spec`` (compiled from
+    ``model`` with ``encoding``)."""
+    return view_of(read_controller(path, spec, model, encoding), spec, str(path))
 
 
 def explicit(view: StrategyView, what: str) -> Strategy:

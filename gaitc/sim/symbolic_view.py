@@ -104,6 +104,17 @@ class SymbolicStrategy(NodeReading):
 
     def _expand(self, node: int) -> list[int]:
         """Every successor of ``node``: one per input ρe allows, in input order."""
+        try:
+            return self._expand_unchecked(node)
+        except ValueError as err:  # a relation reads bits a runtime does not choose
+            raise ControllerError(
+                f"the symbolic controller cannot be run: at node {node} {err}; it is not a "
+                "controller of this spec (gaitc verify says why)",
+                Span(self.file or "<controller>", 1, 1),
+                hint="synthesize it again from this spec with 'gaitc synth --symbolic'",
+            ) from None
+
+    def _expand_unchecked(self, node: int) -> list[int]:
         bdd = self.bdd
         state, goal = self._nodes[node]
         at = dict(zip(self.pre, map(bool, state), strict=True))

@@ -21,6 +21,7 @@ It shares no code with the solver's game (the file reader is pure data).
 
 from __future__ import annotations
 
+from collections.abc import Callable, Sequence
 from typing import Any
 
 from gaitc.ir.bddfile import SymbolicController, materialize
@@ -85,9 +86,16 @@ class _Loop:
         return cudd.and_exists(trans, primed, set(self.post))
 
 
+#: A further check on the states a run reaches: given the verifier's reading of the spec and
+#: those states (current bits), the problem found, or None.
+ReachCheck = Callable[[Logic, Any], "str | None"]
+
+
 def verify_symbolic(spec: GR1Spec, ctrl: SymbolicController,
-                    semantics: Semantics | None = None) -> VerificationReport:
-    """Prove that the symbolic controller ``ctrl`` realizes ``spec`` (see the module text)."""
+                    semantics: Semantics | None = None,
+                    reach_checks: Sequence[ReachCheck] = ()) -> VerificationReport:
+    """Prove that the symbolic controller ``ctrl`` realizes ``spec`` (see the module text),
+    and run ``reach_checks`` on the reachable states (a compact controller's monitor)."""
     chosen = semantics or ctrl.semantics
     loop = _Loop(spec, ctrl)
     expected = loop.logic.inputs + loop.logic.outputs
@@ -98,10 +106,11 @@ def verify_symbolic(spec: GR1Spec, ctrl: SymbolicController,
     if ctrl.goal_count != len(spec_goals):
         return _report([f"the controller pursues {ctrl.goal_count} goal(s), the "
                         f"specification has {len(spec_goals)}"], 0, chosen)
-    return _check(loop, materialize(loop.bdd, ctrl), chosen)
+    return _check(loop, materialize(loop.bdd, ctrl), chosen, reach_checks)
 
 
-def _check(loop: _Loop, roots: dict[str, Any], semantics: Semantics) -> VerificationReport:
+def _check(loop: _Loop, roots: dict[str, Any], semantics: Semantics,
+           reach_checks: Sequence[ReachCheck] = ()) -> VerificationReport:
     b, problems = loop.bdd, []
     outs = set(loop.logic.outputs)
     theta_e, theta_s = loop.section("env_init"), loop.section("sys_init")
@@ -141,6 +150,12 @@ def _check(loop: _Loop, roots: dict[str, Any], semantics: Semantics) -> Verifica
         if _fair_avoiding(loop, edges & ~goal, env_goals, reach) != b.false:
             problems.append(f"a reachable state starts a run that satisfies every environment "
                             f"liveness assumption infinitely often but never {rule}")
+    if reach_checks:
+        states = b.exist(set(loop.g), reach)
+        for check in reach_checks:
+            problem = check(loop.logic, states)
+            if problem is not None:
+                problems.append(problem)
     count = int(b.count(reach, nvars=len(loop.pre)))
     return _report(problems, count, semantics)
 

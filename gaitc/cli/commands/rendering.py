@@ -192,10 +192,10 @@ def run_policy(args: argparse.Namespace) -> int:
 def _is_compact_file(path: str | None) -> bool:
     if path is None:
         return False
-    from gaitc.api.solving import read_controller
-    from gaitc.compact.controller import CompactController
+    from gaitc.api.solving import controller_form
+    from gaitc.forms.reader import Form
 
-    return isinstance(read_controller(path), CompactController)
+    return controller_form(path) == Form.COMPACT
 
 
 def _write_table(text: str, fmt: str, args: argparse.Namespace) -> int:

@@ -205,6 +205,10 @@ static const char *reset_name(void)
     return "power";
 }
 
+#ifdef GAITC_CONTROLLER
+#include "gaitc_controller.h" /* GAITC_MONITOR, for the PING answer */
+#endif
+
 static void reply_pong(void)
 {
     puts_("PONG " FIRMWARE " proto=2 valves=");
@@ -217,6 +221,10 @@ static void reply_pong(void)
     put_uint(wd_period);
     puts_(" reset=");
     puts_(reset_name());
+#ifdef GAITC_CONTROLLER
+    /* whether the linked controller checks the spec's assumptions (codegen --no-monitor) */
+    puts_(GAITC_MONITOR ? " monitor=1" : " monitor=0");
+#endif
     end_line();
 }
 

@@ -1,0 +1,67 @@
+"""Independent check of a compact controller's assumption monitor against the spec's ρe.
+
+A board that runs a compact controller on its own stops when its monitor (the ``assumed``
+diagram) says the sensed inputs break the spec's environment assumptions.  That diagram is
+part of what the controller file says, so it is proved with the rest: on every state a run
+of the controller reaches (the symbolic verifier's least fixpoint,
+:mod:`gaitc.verifier.symbolic`) and every input the fields can name, the monitor must equal
+ρe, the conjunction of the spec's env_trans clauses, as translated by the verifier's own
+:class:`~gaitc.verifier.logic.Logic`.  So the board stops at the first step that breaks an
+assumption, and at no step that keeps them.  The first state where the two differ is
+reported in the fields' words.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from gaitc.compact.controller import CompactController, monitor_function
+from gaitc.compact.fields import Field, Vocabulary
+from gaitc.verifier.logic import Logic
+from gaitc.verifier.symbolic import ReachCheck
+
+
+def field_states(bdd: Any, vocabulary: Vocabulary) -> Any:
+    """Every field at one of its values, and every input at one of its next values."""
+    out = bdd.true
+    for f in vocabulary.fields:
+        for primed in (False, True) if f.is_input else (False,):
+            values = bdd.false
+            for k in range(len(f.labels)):
+                values |= bdd.cube(f.cube(k, primed))
+            out &= values
+    return out
+
+
+def monitor_check(ctrl: CompactController) -> ReachCheck:
+    """The check that the monitor of ``ctrl`` is ρe on the reachable states (see the
+    module text), for :func:`~gaitc.verifier.symbolic.verify_symbolic`."""
+
+    def check(logic: Logic, reached: Any) -> str | None:
+        bdd = logic.bdd
+        rho_e = bdd.true
+        for _, u in logic.clauses("env_trans"):
+            rho_e &= u
+        monitor = monitor_function(bdd, ctrl)
+        here = reached & field_states(bdd, ctrl.vocabulary)
+        differ = here & ((monitor & ~rho_e) | (rho_e & ~monitor))
+        if differ == bdd.false:
+            return None
+        fields = ctrl.vocabulary.fields
+        care = {b for f in fields for b in f.bits}
+        care |= {b + "'" for f in ctrl.vocabulary.inputs for b in f.bits}
+        witness = next(bdd.pick_iter(differ, care_vars=care))
+        now = ", ".join(f"{f.name}={_label(f, witness, False)}" for f in fields)
+        chosen = ", ".join(f"{f.name}={_label(f, witness, True)}"
+                           for f in ctrl.vocabulary.inputs)
+        allowed = bdd.let(witness, monitor) == bdd.true
+        return (f"the assumption monitor {'allows' if allowed else 'forbids'} what the "
+                f"spec's assumptions (env_trans) {'forbid' if allowed else 'allow'}: from the "
+                f"reachable state {now}, the environment choosing {chosen or 'nothing'}")
+
+    return check
+
+
+def _label(f: Field, witness: dict[str, bool], primed: bool) -> str:
+    value = f.value_of(witness, primed)
+    return "?" if value is None else f.labels[value]
