@@ -20,6 +20,7 @@ LAYERS: list[tuple[str, ...]] = [
     ("gaitc.solver", "gaitc.verifier", "slugs_bridge"),
     ("ltlcompiler",),
     ("gaitc.compact",),
+    ("gaitc.forms",),
     ("gaitc.gaitgraph",),
     ("gaitc.models", "gaitc.sim"),
     ("gaitc.analysis", "gaitc.hw", "gaitc.play"),

@@ -497,8 +497,11 @@ def verify(spec: SpecLike,
             return replace(report, notes=(*report.notes, "the controller carries no "
                                           "assumption monitor: a board running it alone "
                                           "cannot tell when the assumptions break"))
-        report = verify_symbolic(gr1, to_symbolic(automaton), chosen,
-                                 [monitor_check(automaton)])
+        from gaitc.compact.controller import monitor_function
+
+        ctrl = automaton
+        check = monitor_check(lambda bdd: monitor_function(bdd, ctrl), ctrl.vocabulary.fields)
+        report = verify_symbolic(gr1, to_symbolic(automaton), chosen, [check])
         if not report.ok:
             return report
         return replace(report, notes=(*report.notes, "the assumption monitor equals env_trans "

@@ -431,25 +431,27 @@ def compact_from_dict(data: Any, file: str = "") -> CompactController:
     for ref in (*move_roots, *reached, start, *([] if assumed is None else [assumed])):
         r.need(ref < len(nodes) if ref >= 0 else leaf_value(ref) < max(len(moves), 2),
                f"root {ref} is not a node or a leaf")
-    _check_diagrams(r, nodes, slots, len(moves), move_roots, reached, start, assumed, semantics)
     integers = integers_from_json(head.get("integers", {}), bits, r.need)
     source = head.get("source")
-    return CompactController(
+    found = CompactController(
         vocabulary=vocabulary, slots=tuple(slots), nodes=tuple(nodes), moves=tuple(moves),
         move_roots=tuple(move_roots), reached_roots=tuple(reached), start_root=start,
         assumed_root=assumed, inputs=tuple(inputs), outputs=tuple(outputs), integers=integers,
         semantics=semantics, solver=str(head.get("solver", "embedded")),
         source=dict(source) if isinstance(source, dict) else None)
+    _check_diagrams(r, found)
+    return found
 
 
-def _check_diagrams(r: _Reader, nodes: Sequence[Branch], slots: Sequence[Slot], moves: int,
-                    move_roots: Sequence[Ref], reached: Sequence[Ref], start: Ref,
-                    assumed: Ref | None, semantics: Semantics) -> None:
+def _check_diagrams(r: _Reader, ctrl: CompactController) -> None:
     """Each diagram returns only what its role allows and reads only the slots its runtime
     gives it values for: a move diagram ends in moves, a yes/no diagram in 0 or 1; the goal
     diagrams and the robotics start read the current state alone, the default start the
     first inputs alone (as :class:`Runner`, :func:`relations` and the generated C do)."""
-    robotics = semantics == Semantics.ROBOTICS
+    nodes, slots, moves = ctrl.nodes, ctrl.slots, len(ctrl.moves)
+    move_roots, reached, start = ctrl.move_roots, ctrl.reached_roots, ctrl.start_root
+    assumed = ctrl.assumed_root
+    robotics = ctrl.semantics == Semantics.ROBOTICS
     roles: list[tuple[str, Ref, int, str]] = [
         (f"the move diagram of goal {j + 1}", root, moves, "any")
         for j, root in enumerate(move_roots)]

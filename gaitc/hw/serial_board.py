@@ -101,7 +101,8 @@ def parse_pong(line: str) -> BoardInfo:
         raise Garbled(line)
     monitor = None if "monitor" not in fields else fields["monitor"] == "1"
     return BoardInfo(words[1], numbers.get("proto") or 1, valves, numbers.get("legs"),
-                     numbers.get("contacts"), numbers.get("wd"), fields.get("reset"), monitor)
+                     numbers.get("contacts"), numbers.get("wd"), fields.get("reset"),
+                     monitor=monitor)
 
 
 Grader = Callable[[dict[str, float], dict[str, float]], Mapping[str, int]]

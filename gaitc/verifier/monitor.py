@@ -13,18 +13,32 @@ reported in the fields' words.
 
 from __future__ import annotations
 
-from typing import Any
+from collections.abc import Callable, Mapping, Sequence
+from typing import Any, Protocol
 
-from gaitc.compact.controller import CompactController, monitor_function
-from gaitc.compact.fields import Field, Vocabulary
 from gaitc.verifier.logic import Logic
 from gaitc.verifier.symbolic import ReachCheck
 
 
-def field_states(bdd: Any, vocabulary: Vocabulary) -> Any:
+class FieldLike(Protocol):
+    """What the check needs of a field (:class:`gaitc.compact.fields.Field` is one)."""
+
+    @property
+    def name(self) -> str: ...
+    @property
+    def is_input(self) -> bool: ...
+    @property
+    def labels(self) -> tuple[str, ...]: ...
+    @property
+    def bits(self) -> frozenset[str]: ...
+    def cube(self, value: int, primed: bool = False) -> dict[str, bool]: ...
+    def value_of(self, bits: Mapping[str, object], primed: bool = False) -> int | None: ...
+
+
+def field_states(bdd: Any, fields: Sequence[FieldLike]) -> Any:
     """Every field at one of its values, and every input at one of its next values."""
     out = bdd.true
-    for f in vocabulary.fields:
+    for f in fields:
         for primed in (False, True) if f.is_input else (False,):
             values = bdd.false
             for k in range(len(f.labels)):
@@ -33,27 +47,28 @@ def field_states(bdd: Any, vocabulary: Vocabulary) -> Any:
     return out
 
 
-def monitor_check(ctrl: CompactController) -> ReachCheck:
-    """The check that the monitor of ``ctrl`` is ρe on the reachable states (see the
-    module text), for :func:`~gaitc.verifier.symbolic.verify_symbolic`."""
+def monitor_check(monitor_of: Callable[[Any], Any], fields: Sequence[FieldLike]
+                  ) -> ReachCheck:
+    """The check that a monitor (``monitor_of(bdd)``, a BDD over current bits and the
+    inputs' next bits) is ρe on the reachable states and every value of ``fields`` (see
+    the module text), for :func:`~gaitc.verifier.symbolic.verify_symbolic`."""
+    inputs = [f for f in fields if f.is_input]
 
     def check(logic: Logic, reached: Any) -> str | None:
         bdd = logic.bdd
         rho_e = bdd.true
         for _, u in logic.clauses("env_trans"):
             rho_e &= u
-        monitor = monitor_function(bdd, ctrl)
-        here = reached & field_states(bdd, ctrl.vocabulary)
+        monitor = monitor_of(bdd)
+        here = reached & field_states(bdd, fields)
         differ = here & ((monitor & ~rho_e) | (rho_e & ~monitor))
         if differ == bdd.false:
             return None
-        fields = ctrl.vocabulary.fields
         care = {b for f in fields for b in f.bits}
-        care |= {b + "'" for f in ctrl.vocabulary.inputs for b in f.bits}
+        care |= {b + "'" for f in inputs for b in f.bits}
         witness = next(bdd.pick_iter(differ, care_vars=care))
         now = ", ".join(f"{f.name}={_label(f, witness, False)}" for f in fields)
-        chosen = ", ".join(f"{f.name}={_label(f, witness, True)}"
-                           for f in ctrl.vocabulary.inputs)
+        chosen = ", ".join(f"{f.name}={_label(f, witness, True)}" for f in inputs)
         allowed = bdd.let(witness, monitor) == bdd.true
         return (f"the assumption monitor {'allows' if allowed else 'forbids'} what the "
                 f"spec's assumptions (env_trans) {'forbid' if allowed else 'allow'}: from the "
@@ -62,6 +77,6 @@ def monitor_check(ctrl: CompactController) -> ReachCheck:
     return check
 
 
-def _label(f: Field, witness: dict[str, bool], primed: bool) -> str:
+def _label(f: FieldLike, witness: dict[str, bool], primed: bool) -> str:
     value = f.value_of(witness, primed)
     return "?" if value is None else f.labels[value]
