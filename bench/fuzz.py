@@ -3,6 +3,11 @@
 Usage: python bench/fuzz.py --per-kind N [--hours H] [--kinds a,b] [--jobs J] [--seed S]
        [--limit SECONDS] [--reproducers DIR]
 
+Besides the file kinds of ``tests/fuzz_cases.py``: ``serial`` (the board's replies),
+``runner`` (scripts for a compiled ``gaitc-run``, skipped without gcc), ``target`` (odd
+output paths; its first inputs are the fixed special targets) and ``codegen`` (codegen's
+option words), from ``tests/fuzz_serial.py``, ``fuzz_runner.py`` and ``fuzz_targets.py``.
+
 Each worker process runs commands in-process (``gaitc.cli.main``) on mutants made from
 ``(seed, kind, index)`` alone, so a run is deterministic given ``--seed``. A run past its
 wall-clock limit is counted, and a worker stuck at three times the limit is killed and
@@ -18,6 +23,7 @@ import contextlib
 import multiprocessing
 import multiprocessing.connection
 import random
+import shutil
 import sys
 import tempfile
 import time
@@ -30,9 +36,14 @@ sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
 from fuzz_cases import KIND_NAMES, Fixtures, kinds, run_case
 from fuzz_mutate import mutate
 from fuzz_oracle import OUTCOMES, Verdict
+from fuzz_runner import SCRIPTS, build_program
+from fuzz_runner import exchange as run_script
 from fuzz_serial import EXCHANGES, exchange
+from fuzz_targets import NAMES, OPTIONS, SPECIAL, SPECIALS, run_codegen, run_target
 
-ALL_KINDS = (*KIND_NAMES, "serial")  # the file kinds, and the board's serial replies
+# the file kinds, the board's serial replies, gaitc-run's scripts, output targets and
+# codegen's options
+ALL_KINDS = (*KIND_NAMES, "serial", "runner", "target", "codegen")
 SERIAL_COMMANDS = ("board",)
 
 
@@ -44,9 +55,18 @@ def mutant_of(seeds: tuple[tuple[str, bytes], ...], seed: int, kind: str,
     return name, mutate(data, rng, [d for _, d in seeds])
 
 
+def target_of(seed: int, index: int) -> tuple[str, bytes]:
+    """The ``index``-th input of the ``target`` kind: the special targets first (their
+    name, no bytes), then mutants of the names."""
+    if index < len(SPECIALS):
+        return SPECIAL + SPECIALS[index][0], b""
+    return mutant_of(NAMES, seed, "target", index)
+
+
 def _worker(conn: multiprocessing.connection.Connection, folder: str, limit: float) -> None:
     fx = Fixtures(Path(folder))
     table = kinds(fx)
+    program: Path | None = None  # gaitc-run, built for the first runner job
     while True:
         job = conn.recv()
         if job is None:
@@ -57,6 +77,21 @@ def _worker(conn: multiprocessing.connection.Connection, folder: str, limit: flo
             name, data = mutant_of(EXCHANGES, seed, kind, index)
             current.write_bytes(data)
             verdicts = [exchange(data, limit)]
+        elif kind == "runner":
+            if program is None:
+                program = build_program(fx.hazard_compact, Path(folder) / "runner")
+                assert program is not None, "main drops the runner kind without gcc"
+            name, data = mutant_of(SCRIPTS, seed, kind, index)
+            current.write_bytes(data)
+            verdicts = run_script(data, limit, program)
+        elif kind == "target":
+            name, data = target_of(seed, index)
+            current.write_bytes(data)
+            verdicts = run_target(name, data, fx, limit)
+        elif kind == "codegen":
+            name, data = mutant_of(OPTIONS, seed, kind, index)
+            current.write_bytes(data)
+            verdicts = run_codegen(data, fx, limit)
         else:
             name, data = mutant_of(table[kind].seeds, seed, kind, index)
             current.write_bytes(data)
@@ -182,6 +217,9 @@ def main(argv: list[str] | None = None) -> int:
     unknown = sorted(set(chosen) - set(ALL_KINDS))
     if unknown or args.per_kind < 1 or args.jobs < 1:
         parser.error(f"unknown kinds {unknown}" if unknown else "--per-kind/--jobs must be ≥ 1")
+    if "runner" in chosen and shutil.which("gcc") is None:
+        print("runner: skipped, gcc is missing (gaitc-run cannot be built)", file=sys.stderr)
+        chosen.remove("runner")
     tallies = {kind: Tally() for kind in chosen}
     deadline = None if args.hours is None else time.monotonic() + args.hours * 3600
     with tempfile.TemporaryDirectory(prefix="gaitc-fuzz-") as tmp:

@@ -68,7 +68,8 @@ def _quiet(argv: list[str]) -> int:
     from gaitc.cli import main
 
     with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(io.StringIO()):
-        return main(argv)
+        code: int = main(argv)
+    return code
 
 
 class Fixtures:
@@ -81,14 +82,20 @@ class Fixtures:
         self.hazard_controller = folder / "hazard.json"
         self.run_file = folder / "patrol.run.jsonl"
         self.shuttle_controller = folder / "shuttle.json"
+        # compact controllers (synth --compact), the seeds of the 'compact' kind; the
+        # hazard one is also what gaitc-run is built from (fuzz_runner)
+        self.patrol_compact = folder / "patrol.compact.json"
+        self.hazard_compact = folder / "hazard.compact.json"
         made = [
             _quiet(["synth", str(SHUTTLE), "-o", str(self.shuttle_controller)]),
             _quiet(["synth", str(PATROL), "-o", str(self.patrol_controller)]),
             _quiet(["synth", str(HAZARD_SPEC), "-o", str(self.hazard_controller)]),
             _quiet(["simulate", str(PATROL), str(self.patrol_controller), "--env", "random",
                     "--seed", "3", "--steps", "12", "--out", str(self.run_file), "--quiet"]),
+            _quiet(["synth", str(PATROL), "--compact", "-o", str(self.patrol_compact)]),
+            _quiet(["synth", str(HAZARD_SPEC), "--compact", "-o", str(self.hazard_compact)]),
         ]
-        if made != [0, 0, 0, 0]:
+        if made != [0] * len(made):
             raise RuntimeError(f"could not prepare the fuzz fixtures in {folder}: {made}")
         self.ltl: list[Path] = []  # the readable LTL text 'compile --format ltl' writes
         for spec in LTL_SOURCES:
@@ -167,6 +174,21 @@ def _controller_commands(path: Path, seed: str, fx: Fixtures) -> list[tuple[str,
     ]
 
 
+def _compact_commands(path: Path, seed: str, fx: Fixtures) -> list[tuple[str, list[str]]]:
+    """The commands that take a compact controller (the 'controller' kind's, with the
+    policy tables in place of the automaton's drawing, and codegen)."""
+    spec = str(fx.spec_of_controller(seed))
+    return [
+        ("verify", ["verify", spec, str(path)]),
+        ("simulate", ["simulate", spec, str(path), "--env", "random", "--seed", "1",
+                      "--steps", "10", "--quiet"]),
+        ("render policy", ["render", "policy", spec, str(path),
+                           "-o", str(fx.out / "policy.txt")]),
+        ("codegen c", ["codegen", spec, str(path), "--target", "c",
+                       "-o", str(fx.out / "gen")]),
+    ]
+
+
 def _run_commands(path: Path, _seed: str, fx: Fixtures) -> list[tuple[str, list[str]]]:
     return [("render map", ["render", "map", str(PATROL), "--run", str(path),
                             "-o", str(fx.out / "map.dot")])]
@@ -200,9 +222,14 @@ def controller_seeds(fx: Fixtures) -> tuple[tuple[str, bytes], ...]:
             ("hazard.json", fx.hazard_controller.read_bytes()))
 
 
+def compact_seeds(fx: Fixtures) -> tuple[tuple[str, bytes], ...]:
+    return (("patrol.compact.json", fx.patrol_compact.read_bytes()),
+            ("hazard.compact.json", fx.hazard_compact.read_bytes()))
+
+
 #: Every fuzzed kind by name, in the order of :func:`kinds` (``bench/fuzz.py --kinds``).
 KIND_NAMES = ("gait", "slugsin", "structuredslugs", "ltl", "robot", "scenario", "controller",
-              "run", "map", "sensing", "calibration", "curvature")
+              "compact", "run", "map", "sensing", "calibration", "curvature")
 
 
 def kinds(fx: Fixtures) -> dict[str, Kind]:
@@ -219,6 +246,7 @@ def kinds(fx: Fixtures) -> dict[str, Kind]:
         Kind("scenario", ".yaml", tuple((n, t.encode()) for n, t in SCENARIOS),
              _scenario_commands),
         Kind("controller", ".json", controller_seeds(fx), _controller_commands),
+        Kind("compact", ".json", compact_seeds(fx), _compact_commands),
         Kind("run", ".jsonl", (("patrol.run.jsonl", fx.run_file.read_bytes()),), _run_commands),
         Kind("map", ".yaml", tuple((n, t.encode()) for n, t in MAPS), _map_commands, 3.0),
         Kind("sensing", ".yaml", tuple((n, t.encode()) for n, t in SENSING), _sensing_commands),

@@ -3,7 +3,8 @@
 (a) no internal error: exit 70, a traceback, or an exception escaping ``main`` other than
 gaitc's own error family; (b) every ``file:line:col`` naming an input file points at a
 line that exists, and the line echoed under it is that line as ``source_lines`` counts
-(tabs shown as spaces, as the printer does); (c) the run ends within its limit.
+(tabs shown as spaces, as the printer does); (c) the run ends within its limit.  Kinds that
+write files add (d): nothing outside the fuzz folder changes (``escaped``, :mod:`fuzz_targets`).
 """
 
 from __future__ import annotations
@@ -18,7 +19,8 @@ from pathlib import Path
 from gaitc.diagnostics import GaitcError, source_lines, without_bom
 
 LOCATION = re.compile(r"(\d+):(\d+): ")
-OUTCOMES = ("accepted", "user error", "other exit", "internal", "past limit", "wrong line")
+OUTCOMES = ("accepted", "user error", "other exit", "internal", "past limit", "wrong line",
+            "escaped")
 
 
 @dataclass
@@ -33,7 +35,7 @@ class Verdict:
     @property
     def outcome(self) -> str:
         """The worst of :data:`OUTCOMES` that applies."""
-        for kind in ("internal", "past limit", "wrong line"):
+        for kind in ("internal", "escaped", "past limit", "wrong line"):
             if any(p.startswith(kind) for p in self.problems):
                 return kind
         if self.code in (0, 3, 5):
