@@ -130,3 +130,29 @@ def test_examples_refuse_a_linked_subfolder(tmp_path: Path,
                              f"'{folder / 'robots'}': it is a symbolic link or a file, not a "
                              "folder; remove it or choose another folder")
     assert list(elsewhere.iterdir()) == [] and list(folder.iterdir()) == [folder / "robots"]
+
+
+def test_a_nul_in_an_output_folder_is_a_usage_error(tmp_path: Path,
+                                                    capsys: pytest.CaptureFixture[str]) -> None:
+    """Only a caller in Python can pass a NUL (fuzz campaign of issue 48)."""
+    bad = str(tmp_path / "a\0b")
+    assert main(["examples", bad]) == 2
+    assert "a file name cannot hold a NUL byte" in capsys.readouterr().err
+    controller = tmp_path / "c.json"
+    spec = str(Path(__file__).resolve().parent.parent / "specs" / "patrol_2x2.gait")
+    assert main(["synth", spec, "--compact", "-o", str(controller)]) == 0
+    capsys.readouterr()
+    assert main(["codegen", spec, str(controller), "--target", "c", "-o", bad]) == 2
+    assert "a file name cannot hold a NUL byte" in capsys.readouterr().err
+
+
+def test_json_output_stays_utf8_for_a_path_of_other_bytes(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    import json
+
+    spec = str(Path(__file__).resolve().parent.parent / "specs" / "patrol_2x2.gait")
+    out = os.fsdecode(os.fsencode(str(tmp_path)) + b"/\xff.structuredslugs")
+    assert main(["compile", spec, "-o", out, "--json"]) == 0
+    line = capsys.readouterr().out
+    line.encode("utf-8")  # no lone surrogate left to print
+    assert json.loads(line)["output"] == out

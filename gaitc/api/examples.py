@@ -106,6 +106,9 @@ def _kind(path: Path, folder: Path) -> str | None:
     except OSError as err:
         raise FileAccessError(f"cannot copy the examples into '{folder}': {reason(err)}",
                               folder) from None
+    except ValueError:  # a NUL in the name (only a caller in Python can pass one)
+        raise FileAccessError(f"cannot copy the examples into {str(folder)!r}: a file name "
+                              "cannot hold a NUL byte", folder) from None
     if stat.S_ISLNK(mode):
         return "folder" if path == folder and path.is_dir() else "link"
     return "folder" if stat.S_ISDIR(mode) else "other"

@@ -64,7 +64,10 @@ def error_document(command: str | None, err: GaitcError) -> dict[str, Any]:
 def print_json(obj: Mapping[str, Any], stream: TextIO | None = None) -> None:
     """One object on one line, keys sorted (the same result prints the same bytes)."""
     out = sys.stdout if stream is None else stream
-    out.write(json.dumps(obj, sort_keys=True, ensure_ascii=False) + "\n")
+    text = json.dumps(obj, sort_keys=True, ensure_ascii=False)
+    if any("\ud800" <= c <= "\udfff" for c in text):  # a path of bytes that are no UTF-8
+        text = json.dumps(obj, sort_keys=True)  # escaped, so the line stays UTF-8 JSON
+    out.write(text + "\n")
     out.flush()
 
 

@@ -121,6 +121,9 @@ def make_folder(path: str | Path) -> Path:
     except OSError as err:
         raise FileAccessError(f"cannot make the folder '{path}': {reason(err)}",
                               path) from None
+    except ValueError:  # a NUL in the name (only a caller in Python can pass one)
+        raise FileAccessError(f"cannot make the folder {str(path)!r}: a file name cannot "
+                              "hold a NUL byte", path) from None
     _check_new_file(folder, path)
     return folder
 
