@@ -19,6 +19,7 @@ LAYERS: list[tuple[str, ...]] = [
     ("gaitc.ir",),
     ("gaitc.solver", "gaitc.verifier", "slugs_bridge"),
     ("ltlcompiler",),
+    ("gaitc.core",),
     ("gaitc.compact",),
     ("gaitc.forms",),
     ("gaitc.gaitgraph",),

@@ -1,0 +1,59 @@
+"""The modes as types: every choice a command makes, defined once.
+
+Each mode is a :class:`~gaitc.diagnostics.choices.Choice` (a ``str`` enumeration), so a
+notebook may pass the member or its value and every layer compares members, never text.
+Two of them are defined where the lower layers need them and re-exported here:
+:class:`Semantics` (the initial-state semantics, :mod:`gaitc.ir.spec`) and
+:class:`EncodingName` (the leg-health encoding, :mod:`ltlcompiler.encoding`).
+"""
+
+from __future__ import annotations
+
+from gaitc.diagnostics.choices import Choice
+from gaitc.ir.spec import Semantics
+from ltlcompiler.encoding import EncodingName
+
+__all__ = ["EncodingName", "EnvironmentKind", "Form", "Role", "SearchMethod", "Semantics"]
+
+
+class Form(Choice):
+    """The form of a controller (one entry each in :mod:`gaitc.forms.registry`)."""
+
+    EXPLICIT = "explicit"  # every node listed (docs/controller-format.md)
+    SYMBOLIC = "symbolic"  # BDDs of the winning region and the strategy's relations
+    COMPACT = "compact"  # decision diagrams over the spec's fields, for the valve board
+
+
+class EnvironmentKind(Choice):
+    """Who plays the environment in a simulation or a drive."""
+
+    SCRIPTED = "scripted"  # a scenario file (or a run file) says each input
+    RANDOM = "random"  # uniform among the inputs the assumptions allow (seeded)
+    ADVERSARIAL = "adversarial"  # the inputs that keep the robot from its goals longest
+
+
+class Role(Choice):
+    """The side a user plays in the interactive player."""
+
+    ENVIRONMENT = "environment"  # against a controller: the user picks the inputs
+    ROBOT = "robot"  # against a counter-strategy: the user picks the robot's answers
+
+
+class SearchMethod(Choice):
+    """How a gait search explores (thesis chapters 2 and 5); one planner each in
+    :mod:`gaitc.search.registry`."""
+
+    CHAPTER2 = "chapter2"  # full for a small robot, else random (thesis 2.5)
+    FULL = "full"
+    RANDOM = "random"
+    RESET = "reset"
+    ASTAR = "astar"  # thesis chapter 5, toward a goal
+    LPA = "lpa"
+    DSTAR = "dstar"
+    MCTS = "mcts"
+
+    @property
+    def is_global(self) -> bool:
+        """A chapter 5 search in the global frame, toward a goal displacement."""
+        return self in (SearchMethod.ASTAR, SearchMethod.LPA, SearchMethod.DSTAR,
+                        SearchMethod.MCTS)
