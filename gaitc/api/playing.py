@@ -13,11 +13,12 @@ from typing import TYPE_CHECKING
 from gaitc.api.loading import Spec, load
 from gaitc.api.simulation import counter_session, session
 from gaitc.api.solving import Synthesis, recorded_encoding
+from gaitc.core.modes import Role
 from gaitc.diagnostics import ScenarioError, UsageError
 from gaitc.ir.bddfile import SymbolicController
 from gaitc.ir.controller import Controller
 from gaitc.ir.spec import Semantics
-from gaitc.play.player import Autopilot, Choice, Player, Role
+from gaitc.play.player import Autopilot, Choice, Player
 from gaitc.sim.run import Run, read_jsonl
 from ltlcompiler.encoding import EncodingName
 

@@ -10,18 +10,18 @@ a name cannot be renamed on its own.
 
 from __future__ import annotations
 
-import enum
 from collections.abc import Iterator
 from dataclasses import dataclass, field
 
 from gaitc.diagnostics import GaitcError, Span
+from gaitc.diagnostics.choices import Choice
 from gaitc.ir.formula import IntVar, Var, walk
 from gaitc.ir.traversal import Node
 from ltlcompiler import syntax as s
 from ltlcompiler.names import expand
 
 
-class Kind(enum.StrEnum):
+class Kind(Choice):
     """What a name stands for (legs, gaits, regions and hazards share one namespace)."""
 
     LEG = "leg"

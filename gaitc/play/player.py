@@ -22,13 +22,14 @@ and ``simulate --env scripted RUN.jsonl`` replays.
 
 from __future__ import annotations
 
-import enum
 import random
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from gaitc.core.modes import Role
 from gaitc.diagnostics import ScenarioError, UsageError
+from gaitc.diagnostics.choices import Choice as Named
 from gaitc.play.words import distinguished, environment_words, robot_words
 from gaitc.sim.counterplay import careful_chooser, deadlock_levels
 from gaitc.sim.domain import Domain, State
@@ -42,14 +43,7 @@ if TYPE_CHECKING:
     from gaitc.api.simulation import Session
 
 
-class Role(enum.StrEnum):
-    """The side the user plays."""
-
-    ENVIRONMENT = "environment"  # against a controller: the user picks the inputs
-    ROBOT = "robot"  # against a counter-strategy: the user picks the robot's answers
-
-
-class Autopilot(enum.StrEnum):
+class Autopilot(Named):
     """Who plays the user's side for a few steps."""
 
     STRONGEST = "strongest"  # the adversarial environment, or the robot that holds out longest

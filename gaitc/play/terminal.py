@@ -19,9 +19,10 @@ from textual.screen import ModalScreen
 from textual.widgets import Footer, Input, OptionList, Static
 from textual.widgets.option_list import Option
 
+from gaitc.core.modes import Role
 from gaitc.diagnostics import GaitcError
 from gaitc.play.mapgrid import LEGEND, MapGrid
-from gaitc.play.player import Autopilot, Player, Role
+from gaitc.play.player import Autopilot, Player
 
 #: Rich styles of the text map's style names and the health levels.
 COLOURS = {"robot": "bold reverse", "hazard_on": "bold white on red", "hazard": "yellow",

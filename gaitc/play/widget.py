@@ -11,9 +11,10 @@ from __future__ import annotations
 from html import escape
 from typing import Any
 
+from gaitc.core.modes import Role
 from gaitc.diagnostics import GaitcError, UsageError
 from gaitc.play.mapgrid import MapGrid
-from gaitc.play.player import Autopilot, Player, Role
+from gaitc.play.player import Autopilot, Player
 
 try:  # the notebook extra: pip install 'gaitc[notebook]'
     import ipywidgets as widgets
