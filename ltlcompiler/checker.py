@@ -8,7 +8,7 @@ Errors raise a :class:`GaitcError` with a span; warnings come back as diagnostic
 from __future__ import annotations
 
 from gaitc.diagnostics import Diagnostic, Span, SpecSemanticError
-from gaitc.ir.formula import Var
+from gaitc.ir.formula import Var, unreachable
 from ltlcompiler import syntax as s
 from ltlcompiler.fragment import FormulaChecker
 from ltlcompiler.model import (
@@ -42,11 +42,58 @@ def _line(span: Span | None) -> int:
 
 MAX_HEALTH = 100  # health levels per leg
 
+#: The statements that declare names, checked first and in file order (a name may be used
+#: before the statement that declares it).
+Declaration = s.LegsDecl | s.GaitDecl | s.GridDecl | s.RegionDecl | s.HazardDecl
+
+
+class _Statements:
+    """The statements of a file sorted by kind, each kind in file order.
+
+    The one dispatch over statements in the checker: a ``match`` over every kind of
+    :data:`ltlcompiler.syntax.Statement`, so mypy reports a kind added to the syntax and
+    not sorted here; the passes of :class:`_Checker` then read the lists they need."""
+
+    def __init__(self, spec: s.SpecFile) -> None:
+        self.declarations: list[Declaration] = []
+        self.robots: list[s.RobotDecl] = []
+        self.blocks: list[s.BlockDecl] = []
+        self.edges: list[s.EdgeDecl] = []
+        self.caches: list[s.CacheDecl] = []
+        self.hazards: list[s.HazardDecl] = []
+        self.starts: list[s.StartDecl] = []
+        self.visits: list[s.VisitDecl] = []
+        self.formulas: list[s.AssumeDecl | s.GuaranteeDecl] = []
+        for st in spec.statements:
+            match st:
+                case s.RobotDecl():
+                    self.robots.append(st)
+                case s.LegsDecl() | s.GaitDecl() | s.GridDecl() | s.RegionDecl():
+                    self.declarations.append(st)
+                case s.HazardDecl():
+                    self.declarations.append(st)
+                    self.hazards.append(st)
+                case s.BlockDecl():
+                    self.blocks.append(st)
+                case s.EdgeDecl():
+                    self.edges.append(st)
+                case s.CacheDecl():
+                    self.caches.append(st)
+                case s.StartDecl():
+                    self.starts.append(st)
+                case s.VisitDecl():
+                    self.visits.append(st)
+                case s.AssumeDecl() | s.GuaranteeDecl():
+                    self.formulas.append(st)
+                case _:
+                    unreachable(st)
+
 
 class _Checker:
     def __init__(self, spec: s.SpecFile) -> None:
         self.spec = spec
         self.file = spec.file
+        self.statements = _Statements(spec)
         self.ns = Namespace()
         self.rmap = RegionMap()
         self.diagnostics: list[Diagnostic] = []
@@ -62,31 +109,34 @@ class _Checker:
     # ------------------------------------------------------------ declarations
     def declare(self) -> None:
         """First pass, in file order: every name of every kind enters the namespace."""
-        for st in self.spec.statements:
-            if isinstance(st, s.LegsDecl):
-                self._legs(st)
-            elif isinstance(st, s.GaitDecl):
-                if st.name.text == NO_GAIT:
-                    raise SpecSemanticError(
-                        "noGait is built in (it keeps the robot in place); choose another name",
-                        st.name.span,
-                    )
-                self.ns.declare(st.name, "gait")
-                self.gait_decls.append(st)
-            elif isinstance(st, s.GridDecl):
-                add_grid(self.rmap, st, self.ns)
-            elif isinstance(st, s.RegionDecl):
-                add_regions(self.rmap, st, self.ns)
-            elif isinstance(st, s.HazardDecl):
-                self.ns.declare(st.name, "hazard")
+        for st in self.statements.declarations:
+            match st:
+                case s.LegsDecl():
+                    self._legs(st)
+                case s.GaitDecl():
+                    if st.name.text == NO_GAIT:
+                        raise SpecSemanticError(
+                            "noGait is built in (it keeps the robot in place); choose another "
+                            "name",
+                            st.name.span,
+                        )
+                    self.ns.declare(st.name, "gait")
+                    self.gait_decls.append(st)
+                case s.GridDecl():
+                    add_grid(self.rmap, st, self.ns)
+                case s.RegionDecl():
+                    add_regions(self.rmap, st, self.ns)
+                case s.HazardDecl():
+                    self.ns.declare(st.name, "hazard")
+                case _:
+                    unreachable(st)
         self.ns.kinds[NO_GAIT] = "gait"
         self.ns.spans[NO_GAIT] = None
         if not self.health:
             raise SpecSemanticError(
                 "no legs: declare the robot's legs, e.g. 'legs L1..L4 health 3'", self._top()
             )
-        blocks = [st for st in self.spec.statements if isinstance(st, s.BlockDecl)]
-        apply_blocks(self.rmap, blocks, self.ns, self.file)
+        apply_blocks(self.rmap, self.statements.blocks, self.ns, self.file)
 
     def _legs(self, st: s.LegsDecl) -> None:
         if st.health < 1:
@@ -105,7 +155,7 @@ class _Checker:
             self.leg_spans[name.text] = name.span
 
     def robot_name(self) -> str:
-        robots = [st for st in self.spec.statements if isinstance(st, s.RobotDecl)]
+        robots = self.statements.robots
         if len(robots) > 1:
             raise SpecSemanticError(
                 f"a second 'robot' statement (the first is at line {_line(robots[0].span)}); "
@@ -116,7 +166,7 @@ class _Checker:
 
     # ------------------------------------------------------------ legs and gaits
     def legs(self) -> tuple[Leg, ...]:
-        starts = [st for st in self.spec.statements if isinstance(st, s.StartDecl)]
+        starts = self.statements.starts
         initial = dict(self.health)
         initial_span: dict[str, Span | None] = {}
         for st in starts[:1]:
@@ -184,7 +234,7 @@ class _Checker:
         prim = st.primitive
         if prim is None:
             return None
-        if isinstance(prim, s.RobotPrimitive):
+        if isinstance(prim, s.RobotPrimitive):  # else a list of valve states
             method = prim.method
             if method is not None and method.text not in METHODS:
                 raise SpecSemanticError(
@@ -216,8 +266,8 @@ class _Checker:
 
     # ------------------------------------------------------------ map and task
     def transitions(self) -> tuple[Transition, ...]:
-        edges = [st for st in self.spec.statements if isinstance(st, s.EdgeDecl)]
-        trans = build_transitions(self.rmap, self.gait_decls, edges, self.ns, self.diagnostics)
+        trans = build_transitions(self.rmap, self.gait_decls, self.statements.edges, self.ns,
+                                  self.diagnostics)
         used = {g for t in trans for g in t.gaits}
         for st in self.gait_decls:
             if st.name.text in used:
@@ -235,21 +285,18 @@ class _Checker:
     def caches(self) -> tuple[str, ...]:
         out: list[str] = []
         self.cache_spans = []
-        for st in self.spec.statements:
-            if isinstance(st, s.CacheDecl):
-                for ref in st.regions:
-                    name = self.rmap.resolve(ref, self.ns, "in cache")
-                    if name in out:
-                        raise SpecSemanticError(f"region '{name}' is a cache twice", ref.span)
-                    out.append(name)
-                    self.cache_spans.append(ref.span)
+        for st in self.statements.caches:
+            for ref in st.regions:
+                name = self.rmap.resolve(ref, self.ns, "in cache")
+                if name in out:
+                    raise SpecSemanticError(f"region '{name}' is a cache twice", ref.span)
+                out.append(name)
+                self.cache_spans.append(ref.span)
         return tuple(out)
 
     def hazards(self, caches: tuple[str, ...]) -> tuple[Hazard, ...]:
         out: list[Hazard] = []
-        for st in self.spec.statements:
-            if not isinstance(st, s.HazardDecl):
-                continue
+        for st in self.statements.hazards:
             hazard = st.name.text
             if not st.regions:
                 raise SpecSemanticError(
@@ -275,7 +322,7 @@ class _Checker:
         return tuple(out)
 
     def start(self) -> str:
-        starts = [st for st in self.spec.statements if isinstance(st, s.StartDecl)]
+        starts = self.statements.starts
         if not starts:
             raise SpecSemanticError(
                 "no start region; add 'start REGION' (e.g. 'start "
@@ -295,9 +342,7 @@ class _Checker:
         out: list[UserFormula] = []
         seen: set[str] = set()
         reach = reachable(start, trans)
-        for st in self.spec.statements:
-            if not isinstance(st, s.VisitDecl):
-                continue
+        for st in self.statements.visits:
             for ref in st.regions:
                 name = self.rmap.resolve(ref, self.ns, "in goal")
                 if name in seen:
@@ -316,18 +361,21 @@ class _Checker:
         checker = FormulaChecker(self.ns, self.health, set(self.rmap.blocked))
         assumptions: list[UserFormula] = []
         guarantees: list[UserFormula] = []
-        for st in self.spec.statements:
-            if isinstance(st, s.AssumeDecl):
-                assumptions.append(checker.check(st.formula, st.span, assumption=True))
-            elif isinstance(st, s.GuaranteeDecl):
-                guarantees.append(checker.check(st.formula, st.span, assumption=False))
-                if checker.robot_free(st.formula):
-                    self.diagnostics.append(Diagnostic(
-                        "this guarantee names only what the environment chooses (hazards, "
-                        "leg health), so the robot cannot make it hold: the spec is "
-                        "unrealizable unless the assumptions already force it",
-                        st.span, hint="write it as 'assume', or add a region or gait the "
-                        "robot controls"))
+        for st in self.statements.formulas:
+            match st:
+                case s.AssumeDecl():
+                    assumptions.append(checker.check(st.formula, st.span, assumption=True))
+                case s.GuaranteeDecl():
+                    guarantees.append(checker.check(st.formula, st.span, assumption=False))
+                    if checker.robot_free(st.formula):
+                        self.diagnostics.append(Diagnostic(
+                            "this guarantee names only what the environment chooses (hazards, "
+                            "leg health), so the robot cannot make it hold: the spec is "
+                            "unrealizable unless the assumptions already force it",
+                            st.span, hint="write it as 'assume', or add a region or gait the "
+                            "robot controls"))
+                case _:
+                    unreachable(st)
         return tuple(assumptions), tuple(guarantees)
 
 

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from typing import get_args
+
 import pytest
 
 from gaitc.diagnostics import FormulaError, SpecSemanticError
@@ -216,3 +218,59 @@ def test_error_points_at_the_offending_name() -> None:
     assert info.value.span is not None
     assert (info.value.span.line, info.value.span.column) == (2, 17)
     assert info.value.hint == "did you mean 'L1'?"
+
+
+# ------------------------------------------------------------ statement dispatch (issue 49)
+def _statement_matches(path: str) -> list[tuple[set[str], bool]]:
+    """Each ``match`` of ``path`` whose cases name statement classes (``s.LegsDecl()``):
+    the classes it names, and whether its last case is ``case _: unreachable(...)``."""
+    import ast
+    from pathlib import Path
+
+    from ltlcompiler import syntax as s
+
+    kinds = {kind.__name__ for kind in get_args(s.Statement)}
+    tree = ast.parse((Path(__file__).resolve().parent.parent / path).read_text())
+    found = []
+    for node in ast.walk(tree):
+        if not isinstance(node, ast.Match):
+            continue
+        named = {n.cls.attr for case in node.cases for n in ast.walk(case.pattern)
+                 if isinstance(n, ast.MatchClass) and isinstance(n.cls, ast.Attribute)}
+        if not named & kinds:
+            continue
+        last = node.cases[-1]
+        closed = (isinstance(last.pattern, ast.MatchAs) and last.pattern.pattern is None
+                  and isinstance(last.body[0], ast.Expr)
+                  and isinstance(last.body[0].value, ast.Call)
+                  and isinstance(last.body[0].value.func, ast.Name)
+                  and last.body[0].value.func.id == "unreachable")
+        found.append((named, closed))
+    return found
+
+
+def test_statement_is_every_statement_class_of_the_syntax() -> None:
+    import dataclasses
+
+    from ltlcompiler import syntax as s
+
+    declared = {name for name, value in vars(s).items()
+                if dataclasses.is_dataclass(value) and name.endswith("Decl")}
+    assert {kind.__name__ for kind in get_args(s.Statement)} == declared
+
+
+@pytest.mark.parametrize("path", ["ltlcompiler/checker.py", "gaitc/lsp/index.py"])
+def test_statements_are_dispatched_by_one_exhaustive_match(path: str) -> None:
+    """The checker and the editor's index each sort statements in one ``match`` that names
+    every kind of ``Statement`` and ends in ``unreachable`` (so mypy reports a new kind),
+    and no ``isinstance`` test on a statement is left."""
+    from pathlib import Path
+
+    from ltlcompiler import syntax as s
+
+    kinds = {kind.__name__ for kind in get_args(s.Statement)}
+    matches = _statement_matches(path)
+    assert any(named == kinds and closed for named, closed in matches), matches
+    assert all(closed for _, closed in matches)
+    text = (Path(__file__).resolve().parent.parent / path).read_text()
+    assert not [k for k in kinds if f"isinstance(st, s.{k})" in text]

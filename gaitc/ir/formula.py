@@ -181,8 +181,9 @@ def node_kind(node: Node) -> TermKind | FormulaKind:
 
 
 def unreachable(node: NoReturn) -> NoReturn:
-    """The last case of a checked dispatch: mypy proves it is never reached."""
-    raise AssertionError(f"a dispatch over formula nodes forgot {type(node).__name__}")
+    """The last case of a checked dispatch (over formula nodes, or over the statements of
+    :data:`ltlcompiler.syntax.Statement`): mypy proves it is never reached."""
+    raise AssertionError(f"a checked dispatch forgot {type(node).__name__}")
 
 
 # ---------------------------------------------------------------- construction helpers

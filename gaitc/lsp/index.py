@@ -15,7 +15,7 @@ from dataclasses import dataclass, field
 
 from gaitc.diagnostics import GaitcError, Span
 from gaitc.diagnostics.choices import Choice
-from gaitc.ir.formula import IntVar, Var, walk
+from gaitc.ir.formula import IntVar, Var, unreachable, walk
 from gaitc.ir.traversal import Node
 from ltlcompiler import syntax as s
 from ltlcompiler.names import expand
@@ -100,52 +100,64 @@ class Index:
         symbol.mentions.append(mention)
 
     def _statement(self, st: s.Statement) -> None:
-        if isinstance(st, s.LegsDecl):
-            for item in st.legs:
-                self._declare(item, Kind.LEG)
-        elif isinstance(st, s.GaitDecl):
-            self._declare(st.name, Kind.GAIT, "correction" if st.correction else "")
-            for item in st.legs or ():
-                self._use(item, Kind.LEG, "uses")
-            for arrow in st.transitions:
-                self._use(arrow.source, Kind.REGION, "move")
-                self._use(arrow.target, Kind.REGION, "move")
-        elif isinstance(st, s.GridDecl):
-            if st.cells is None and st.span is not None:
-                for i in range(max(0, min(st.rows * st.cols, 10_000))):
-                    self._declare(s.Name(f"r{i}", span=st.span), Kind.REGION)
-                    self.symbols[f"r{i}"].mentions[0] = Mention(st.span, True, True)
-            for item in st.cells or ():
-                self._declare(item, Kind.REGION)
-        elif isinstance(st, s.RegionDecl):
-            for item in st.names:
-                self._declare(item, Kind.REGION)
-        elif isinstance(st, s.BlockDecl):
-            for ref in st.cells:
-                self._use(ref, Kind.REGION, "block")
-        elif isinstance(st, s.EdgeDecl):
-            self._use(st.source, Kind.REGION, "edge")
-            self._use(st.target, Kind.REGION, "edge")
-            for gait in st.gaits:
-                self._use(gait, Kind.GAIT, "edge")
-        elif isinstance(st, s.CacheDecl):
-            for ref in st.regions:
-                self._use(ref, Kind.REGION, "cache")
-        elif isinstance(st, s.HazardDecl):
-            self._declare(st.name, Kind.HAZARD)
-            for ref in st.regions:
-                self._use(ref, Kind.REGION, f"hazard {st.name.text}")
-        elif isinstance(st, s.StartDecl):
-            self._use(st.region, Kind.REGION, "start")
-            for init in st.health:
-                self._use(init.legs, Kind.LEG, "start")
-        elif isinstance(st, s.VisitDecl):
-            for ref in st.regions:
-                self._use(ref, Kind.REGION, "goal")
-        elif isinstance(st, (s.AssumeDecl, s.GuaranteeDecl)):
-            role = "assume" if isinstance(st, s.AssumeDecl) else "guarantee"
-            for name, span in _formula_names(st.formula):
-                self._pending.append((name, Mention(span, role=role), None))
+        """The declarations and mentions of one statement: a ``match`` over every statement
+        kind, so mypy reports a kind added to :data:`ltlcompiler.syntax.Statement` and not
+        handled here."""
+        match st:
+            case s.RobotDecl():
+                pass  # the robot's name is no symbol
+            case s.LegsDecl():
+                for item in st.legs:
+                    self._declare(item, Kind.LEG)
+            case s.GaitDecl():
+                self._declare(st.name, Kind.GAIT, "correction" if st.correction else "")
+                for item in st.legs or ():
+                    self._use(item, Kind.LEG, "uses")
+                for arrow in st.transitions:
+                    self._use(arrow.source, Kind.REGION, "move")
+                    self._use(arrow.target, Kind.REGION, "move")
+            case s.GridDecl():
+                if st.cells is None and st.span is not None:
+                    for i in range(max(0, min(st.rows * st.cols, 10_000))):
+                        self._declare(s.Name(f"r{i}", span=st.span), Kind.REGION)
+                        self.symbols[f"r{i}"].mentions[0] = Mention(st.span, True, True)
+                for item in st.cells or ():
+                    self._declare(item, Kind.REGION)
+            case s.RegionDecl():
+                for item in st.names:
+                    self._declare(item, Kind.REGION)
+            case s.BlockDecl():
+                for ref in st.cells:
+                    self._use(ref, Kind.REGION, "block")
+            case s.EdgeDecl():
+                self._use(st.source, Kind.REGION, "edge")
+                self._use(st.target, Kind.REGION, "edge")
+                for gait in st.gaits:
+                    self._use(gait, Kind.GAIT, "edge")
+            case s.CacheDecl():
+                for ref in st.regions:
+                    self._use(ref, Kind.REGION, "cache")
+            case s.HazardDecl():
+                self._declare(st.name, Kind.HAZARD)
+                for ref in st.regions:
+                    self._use(ref, Kind.REGION, f"hazard {st.name.text}")
+            case s.StartDecl():
+                self._use(st.region, Kind.REGION, "start")
+                for init in st.health:
+                    self._use(init.legs, Kind.LEG, "start")
+            case s.VisitDecl():
+                for ref in st.regions:
+                    self._use(ref, Kind.REGION, "goal")
+            case s.AssumeDecl():
+                self._formula(st.formula, "assume")
+            case s.GuaranteeDecl():
+                self._formula(st.formula, "guarantee")
+            case _:
+                unreachable(st)
+
+    def _formula(self, formula: Node, role: str) -> None:
+        for name, span in _formula_names(formula):
+            self._pending.append((name, Mention(span, role=role), None))
 
     # ------------------------------------------------------------------ queries
     def at(self, line: int, column: int, word: str = "") -> tuple[Symbol, Mention] | None:
