@@ -10,12 +10,15 @@ from __future__ import annotations
 import itertools
 import operator
 from collections.abc import Callable, Collection, Mapping, Sequence
-from typing import Any
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from dd.cudd import BDD, Function
 
 State = tuple[int, ...]
 
 
-def all_assignments(bdd: Any, u: Any, bits: Sequence[str]) -> list[State]:
+def all_assignments(bdd: BDD, u: Function, bits: Sequence[str]) -> list[State]:
     """Every assignment to ``bits`` (a superset of ``u``'s support), sorted."""
     if u == bdd.false:
         return []
@@ -23,7 +26,7 @@ def all_assignments(bdd: Any, u: Any, bits: Sequence[str]) -> list[State]:
     return sorted(out)
 
 
-def first_assignment(bdd: Any, u: Any, bits: Sequence[str],
+def first_assignment(bdd: BDD, u: Function, bits: Sequence[str],
                      rank: Mapping[str, int] | None = None) -> State | None:
     """The smallest assignment to ``bits`` inside ``u`` (None if empty), in ``bits`` order.
 
@@ -49,19 +52,19 @@ def first_assignment(bdd: Any, u: Any, bits: Sequence[str],
         return tuple(chosen[b] for b in bits)
     wanted = set(bits)
     found: dict[str, int] = {}
-    while u.var is not None:
-        if u.var not in wanted:
-            raise ValueError(f"smallest: {u.var!r} is not among the bits to choose")
+    while (var := u.var) is not None:
+        if var not in wanted:
+            raise ValueError(f"smallest: {var!r} is not among the bits to choose")
         low, high = (~u.low, ~u.high) if u.negated else (u.low, u.high)
         if low != false:
             u = low
         else:
-            found[u.var] = 1
+            found[var] = 1
             u = high
     return tuple(found.get(b, 0) for b in bits)
 
 
-def cofactor(bdd: Any, values: dict[str, bool], u: Any) -> Any:
+def cofactor(bdd: BDD, values: dict[str, bool], u: Function) -> Function:
     """``u`` with the variables ``values`` assigns set to their values; ``u`` itself when
     it assigns none (dd would log that call as one without effect)."""
     return bdd.let(values, u) if values else u
@@ -74,14 +77,14 @@ class Cofactors:
     cofactor costs a cube and a CUDD call (about 20-30 microseconds) where the lookup costs
     one tuple.  At most ``limit`` of them are kept (then the memory starts again)."""
 
-    def __init__(self, bdd: Any, u: Any, fixed: Collection[str], limit: int = 100_000) -> None:
+    def __init__(self, bdd: BDD, u: Function, fixed: Collection[str], limit: int = 100_000) -> None:
         self.bdd, self.u, self.limit = bdd, u, limit
         self.names = tuple(sorted(bdd.support(u) & set(fixed)))
         self.key: Callable[[Mapping[str, bool]], Any] = (
             operator.itemgetter(*self.names) if self.names else lambda _: ())
-        self.known: dict[Any, Any] = {}
+        self.known: dict[Any, Function] = {}
 
-    def at(self, values: Mapping[str, bool]) -> Any:
+    def at(self, values: Mapping[str, bool]) -> Function:
         """``u`` with the variables ``fixed`` set to their ``values`` (which has them all)."""
         key = self.key(values)
         found = self.known.get(key)
@@ -93,7 +96,7 @@ class Cofactors:
         return found
 
 
-def holds_at(u: Any, values: Mapping[str, bool]) -> bool:
+def holds_at(u: Function, values: Mapping[str, bool]) -> bool:
     """Whether ``u`` is true at ``values`` (which assigns every variable of its support)."""
     negated = False
     while u.var is not None:

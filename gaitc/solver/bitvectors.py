@@ -6,16 +6,18 @@ are the textbook ripple-carry adder and comparator circuits.
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING
 
-BDDNode = Any  # a dd.cudd.Function; dd ships no type stubs
+if TYPE_CHECKING:
+    from dd.cudd import BDD
+    from dd.cudd import Function as BDDNode
 
 
-def xor(u: BDDNode, v: BDDNode, bdd: Any) -> BDDNode:
+def xor(u: BDDNode, v: BDDNode, bdd: BDD) -> BDDNode:
     return bdd.ite(u, ~v, v)
 
 
-def add(a: list[BDDNode], b: list[BDDNode], bdd: Any) -> list[BDDNode]:
+def add(a: list[BDDNode], b: list[BDDNode], bdd: BDD) -> list[BDDNode]:
     """Ripple-carry sum of two unsigned bit vectors; one bit wider than the longer one."""
     n = max(len(a), len(b))
     a = a + [bdd.false] * (n - len(a))
@@ -30,7 +32,7 @@ def add(a: list[BDDNode], b: list[BDDNode], bdd: Any) -> list[BDDNode]:
     return out
 
 
-def less(a: list[BDDNode], b: list[BDDNode], bdd: Any) -> BDDNode:
+def less(a: list[BDDNode], b: list[BDDNode], bdd: BDD) -> BDDNode:
     """Unsigned ``a < b`` for bit vectors of equal length (little-endian)."""
     n = max(len(a), len(b))
     a = a + [bdd.false] * (n - len(a))

@@ -11,12 +11,14 @@ every bench family (docs/design-notes.md), so no configuration the engine choose
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import Any
+from typing import TYPE_CHECKING
 
-BDDNode = Any  # a dd.cudd.Function
+if TYPE_CHECKING:
+    from dd.cudd import BDD
+    from dd.cudd import Function as BDDNode
 
 
-def clusters(bdd: Any, parts: Sequence[BDDNode], post_outputs: set[str],
+def clusters(bdd: BDD, parts: Sequence[BDDNode], post_outputs: set[str],
              limit: int) -> list[tuple[BDDNode, set[str]]]:
     """``parts`` merged into clusters of at most ``limit`` nodes (a part larger than that is
     a cluster alone), each with the primed outputs it may quantify."""

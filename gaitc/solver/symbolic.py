@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import warnings
 from collections.abc import Callable, Iterable, Sequence
-from typing import Any, Final
+from typing import Final, TypeAlias
 
 from gaitc.diagnostics import FormulaError
 from gaitc.ir.bits import spec_bits
@@ -46,7 +46,7 @@ from gaitc.solver.options import MEMORY_STOP, SIFT_TRIGGER, Options
 from gaitc.solver.ordering import AtomCache, invariant_clauses, variable_order
 
 __all__ = ["MEMORY_STOP", "SIFT_TRIGGER", "BDDNode", "Options", "SymbolicSpec"]
-BDDNode = Any  # a dd.cudd.Function; dd ships no type stubs
+BDDNode: TypeAlias = cudd.Function  # a node of the game's manager (typings/dd/cudd.pyi)
 
 
 #: Nodes of the clause products made so far past which they are joined (_conj_under).
