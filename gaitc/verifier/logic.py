@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import functools
 from collections.abc import Mapping, Sequence
-from typing import Any
+from typing import TYPE_CHECKING
 
 from gaitc.diagnostics import FormulaError
 from gaitc.ir.formula import (
@@ -33,6 +33,9 @@ from gaitc.ir.formula import (
 from gaitc.ir.manager import manager
 from gaitc.ir.spec import Clause, GR1Spec
 from gaitc.ir.traversal import Memo, Node, fold
+
+if TYPE_CHECKING:
+    from dd.cudd import Function
 
 Bits = tuple[int, ...]
 
@@ -67,12 +70,12 @@ class Logic:
                 known.add(partner)
         for name in self.inputs + self.outputs:
             self.bdd.declare(name, name + "'")
-        self._memo: Memo[Any] = {}
-        self._lets: dict[tuple[int, Bits], Any] = {}
-        self._support: dict[int, tuple[Any, tuple[str, ...]]] = {}
-        self._clauses: dict[str, list[tuple[str, Any]]] = {}
+        self._memo: Memo[Function] = {}
+        self._lets: dict[tuple[int, Bits], Function] = {}
+        self._support: dict[int, tuple[Function, tuple[str, ...]]] = {}
+        self._clauses: dict[str, list[tuple[str, Function]]] = {}
 
-    def clauses(self, section: str) -> list[tuple[str, Any]]:
+    def clauses(self, section: str) -> list[tuple[str, Function]]:
         """``(description, BDD)`` of every clause of ``section``."""
         if section not in self._clauses:
             items = self.spec.section(section)
@@ -81,12 +84,12 @@ class Logic:
             ]
         return self._clauses[section]
 
-    def translate(self, expr: Expr) -> Any:
+    def translate(self, expr: Expr) -> Function:
         """The BDD of a Boolean formula (memoised on node identity, so DAGs stay cheap)."""
         return fold(expr, self._translate, lambda n: n.children() if isinstance(
             n, (Not, And, Or, Xor, Iff, Implies)) else (), self._memo)  # others: rejected
 
-    def _translate(self, expr: Node, args: list[Any]) -> Any:
+    def _translate(self, expr: Node, args: list[Function]) -> Function:
         b = self.bdd
         kind = formula_kind(expr)
         match kind:
@@ -116,25 +119,25 @@ class Logic:
             case _:
                 unreachable(kind)
 
-    def support(self, u: Any) -> tuple[str, ...]:
+    def support(self, u: Function) -> tuple[str, ...]:
         key = int(u)
         if key not in self._support:  # keeps ``u`` alive: its id is a key of the other caches
             self._support[key] = (u, tuple(sorted(self.bdd.support(u))))
         return self._support[key][1]
 
-    def _let(self, u: Any, values: Mapping[str, bool], names: tuple[str, ...]) -> Any:
+    def _let(self, u: Function, values: Mapping[str, bool], names: tuple[str, ...]) -> Function:
         key = (int(u), tuple(int(values[n]) for n in names))
         found = self._lets.get(key)
         if found is None:
             found = self._lets[key] = self.bdd.let({n: values[n] for n in names}, u)
         return found
 
-    def holds(self, u: Any, valuation: Mapping[str, bool]) -> bool:
+    def holds(self, u: Function, valuation: Mapping[str, bool]) -> bool:
         """Truth of ``u`` under ``valuation`` (must cover its support); cached on the support."""
         names = self.support(u)
         return bool((self._let(u, valuation, names) if names else u) == self.bdd.true)
 
-    def restrict(self, u: Any, current: Mapping[str, bool]) -> Any:
+    def restrict(self, u: Function, current: Mapping[str, bool]) -> Function:
         """``u`` with its unprimed bits fixed to ``current`` (cached on those bits)."""
         key = -int(u)
         if key not in self._support:
@@ -142,7 +145,7 @@ class Logic:
         names = self._support[key][1]
         return self._let(u, current, names) if names else u
 
-    def pick(self, u: Any, names: Sequence[str], primed: bool) -> tuple[dict[str, bool], int]:
+    def pick(self, u: Function, names: Sequence[str], primed: bool) -> tuple[dict[str, bool], int]:
         """One assignment of ``u`` to ``names`` (unprimed keys) and how many there are."""
         suffix = "'" if primed else ""
         care = {n + suffix for n in names}
