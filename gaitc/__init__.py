@@ -64,7 +64,6 @@ if TYPE_CHECKING:
         gaits,
     )
     from gaitc.api.learning import LearningBackend, LearnOptions, learn
-    from gaitc.api.loading import Spec, load, parse
     from gaitc.api.playing import Autopilot, Player, Role, player, player_widget
     from gaitc.api.simulation import Session, session, simulate
     from gaitc.api.solving import (
@@ -76,6 +75,7 @@ if TYPE_CHECKING:
         synthesize,
         verify,
     )
+    from gaitc.core.spec import Spec, load, parse
     from gaitc.diagnostics import (
         ControllerError,
         FileAccessError,
@@ -95,7 +95,7 @@ if TYPE_CHECKING:
 #: Ctrl-C at start-up do not wait for the solver, the parser and the gait graph to import,
 #: and the packages below ``gaitc`` can import ``gaitc.diagnostics`` without a cycle.
 _MODULES: dict[str, tuple[str, ...]] = {
-    "gaitc.api.loading": ("Spec", "load", "parse"),
+    "gaitc.core.spec": ("Spec", "load", "parse"),
     "gaitc.api.compiling": ("FORMATS", "OutputFormat", "emit", "lint"),
     "gaitc.api.solving": (
         "SOLVERS", "Synthesis", "Verdict", "check", "counterstrategy", "synthesize", "verify",

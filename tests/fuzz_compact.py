@@ -22,10 +22,10 @@ from pathlib import Path
 from typing import Any
 
 import gaitc
-from gaitc.api.loading import Spec
 from gaitc.compact.controller import CompactController, Runner
+from gaitc.core.spec import Spec
 from gaitc.diagnostics import GaitcError
-from gaitc.sim.strategy import view_of
+from gaitc.forms.reader import runtime as view_of
 
 Data = dict[str, Any]
 PAYLOADS = ("none", "spill", "x*\\\n/ int evil; /*", "", "\u00e9", "r0 ", "0", "??/")

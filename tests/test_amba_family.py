@@ -18,7 +18,7 @@ sys.path.insert(0, str(ROOT))
 
 from bench.families.amba import amba_sections, amba_text  # noqa: E402
 from gaitc.api.compiling import emit  # noqa: E402
-from gaitc.api.loading import parse  # noqa: E402
+from gaitc.core.spec import parse  # noqa: E402
 from gaitc.ir.spec import GR1Spec  # noqa: E402
 from gaitc.solver.symbolic import Options  # noqa: E402
 from gaitc.solver.synthesis import check  # noqa: E402

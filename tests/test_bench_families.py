@@ -16,7 +16,7 @@ sys.path.insert(0, str(ROOT))
 from bench.families import catalogue  # noqa: E402
 from bench.families.hazard_grid import hazard_grid_text, open_cells  # noqa: E402
 from bench.families.thesis import gait_text  # noqa: E402
-from gaitc.api.loading import parse  # noqa: E402
+from gaitc.core.spec import parse  # noqa: E402
 from gaitc.solver.synthesis import check  # noqa: E402
 
 

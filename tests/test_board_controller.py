@@ -24,7 +24,7 @@ from gaitc.codegen.build import Target, build
 from gaitc.codegen.tables import table_bytes
 from gaitc.compact.controller import CompactController, Runner
 from gaitc.compact.diagram import Branch, Slot
-from gaitc.compact.fields import Field, Vocabulary
+from gaitc.core.vocabulary import Field, Vocabulary
 from gaitc.hw.firmware import FirmwareError, Image, SimulatedBoard, missing_tools, vented_after
 from gaitc.hw.firmware import build as build_firmware
 

@@ -21,7 +21,6 @@ from pathlib import Path
 import pytest
 
 import gaitc
-from gaitc.api.loading import Spec
 from gaitc.cli import main
 from gaitc.codegen.build import build, read_dump
 from gaitc.compact.controller import (
@@ -33,8 +32,9 @@ from gaitc.compact.controller import (
     to_symbolic,
 )
 from gaitc.compact.diagram import Branch
+from gaitc.core.spec import Spec
 from gaitc.diagnostics import ControllerError
-from gaitc.sim.strategy import view_of
+from gaitc.forms.reader import runtime as view_of
 
 ROOT = Path(__file__).resolve().parent.parent
 needs_gcc_early = pytest.mark.skipif(shutil.which("gcc") is None, reason="gcc is not installed")

@@ -22,7 +22,6 @@ from typing import Any
 import pytest
 
 import gaitc
-from gaitc.api.loading import Spec
 from gaitc.cli import main
 from gaitc.codegen.build import build
 from gaitc.codegen.emitter import SAFE, c_names, header, source
@@ -33,7 +32,8 @@ from gaitc.compact.controller import (
     to_symbolic,
 )
 from gaitc.compact.diagram import leaf, reachable_nodes
-from gaitc.compact.fields import Field, Vocabulary
+from gaitc.core.spec import Spec
+from gaitc.core.vocabulary import Field, Vocabulary
 from gaitc.verifier.symbolic import verify_symbolic
 
 ROOT = Path(__file__).resolve().parent.parent

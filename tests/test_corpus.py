@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pytest
 
-from gaitc.api.loading import load
+from gaitc.core.spec import load
 from gaitc.solver.game import Game
 from gaitc.solver.symbolic import SymbolicSpec
 

@@ -15,9 +15,9 @@ from pathlib import Path
 
 import pytest
 
-from gaitc.api.loading import load
 from gaitc.cli import main
 from gaitc.cli.commands.compiling import compile_text
+from gaitc.core.spec import load
 from gaitc.diagnostics import FormulaError
 from gaitc.ir.bitblast import bitblast
 from gaitc.ir.evaluation import evaluate

@@ -20,7 +20,7 @@ sys.path.insert(0, str(ROOT))
 import gaitc  # noqa: E402
 from bench.families.genbuf import genbuf_sections, genbuf_text, select_bits  # noqa: E402
 from gaitc.api.compiling import emit  # noqa: E402
-from gaitc.api.loading import parse  # noqa: E402
+from gaitc.core.spec import parse  # noqa: E402
 from gaitc.ir.spec import GR1Spec  # noqa: E402
 from gaitc.solver.synthesis import check  # noqa: E402
 

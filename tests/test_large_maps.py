@@ -21,7 +21,7 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
 from bench.families.gridworld import evasion_text, gridworld_text  # noqa: E402
-from gaitc.api.loading import parse  # noqa: E402
+from gaitc.core.spec import parse  # noqa: E402
 from gaitc.ir.spec import SEMANTICS, GR1Spec, Semantics  # noqa: E402
 from gaitc.solver import synthesis  # noqa: E402
 from gaitc.solver.game import Game, GameResult  # noqa: E402

@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pytest
 
-from gaitc.api.loading import Spec, load
+from gaitc.core.spec import Spec, load
 from gaitc.diagnostics import UsageError
 from gaitc.ir.controller import Controller
 from gaitc.sim.domain import Domain

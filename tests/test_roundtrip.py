@@ -19,7 +19,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from gaitc.api.compiling import FORMATS, emit
-from gaitc.api.loading import parse
+from gaitc.core.spec import parse
 from gaitc.ir.bitblast import bitblast
 from gaitc.ir.spec import GR1Spec
 from slugs_bridge.ltltext import parse_ltl

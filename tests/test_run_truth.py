@@ -8,7 +8,7 @@ from pathlib import Path
 
 import pytest
 
-from gaitc.api.loading import load
+from gaitc.core.spec import load
 from gaitc.sim.domain import Domain
 from gaitc.sim.environments import AdversarialEnvironment, RandomEnvironment
 from gaitc.sim.map_view import map_view

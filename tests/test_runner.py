@@ -220,7 +220,7 @@ def test_live_slugs_agrees_with_recorded_verdicts(semantics: str) -> None:
 def test_live_slugs_agrees_on_gaitcs_translation_of_every_example(semantics: str) -> None:
     """Every example, in whichever format, read by gaitc and written back as slugsin."""
     from gaitc.api.compiling import emit
-    from gaitc.api.loading import load
+    from gaitc.core.spec import load
 
     binary = _live_binary()
     verdicts = recorded_verdicts()

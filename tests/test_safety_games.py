@@ -25,7 +25,7 @@ from bench.families.safety_games import (  # noqa: E402
     obstacle_text,
 )
 from gaitc.api.compiling import emit  # noqa: E402
-from gaitc.api.loading import load, parse  # noqa: E402
+from gaitc.core.spec import load, parse  # noqa: E402
 from gaitc.ir.spec import GR1Spec  # noqa: E402
 from gaitc.solver.game import Game  # noqa: E402
 from gaitc.solver.portfolio import STATIC, engine_options  # noqa: E402

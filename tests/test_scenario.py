@@ -6,8 +6,8 @@ from pathlib import Path
 
 import pytest
 
-from gaitc.api.loading import load
 from gaitc.cli import main
+from gaitc.core.spec import load
 from gaitc.diagnostics import ScenarioError
 from gaitc.ir.controller import controller_to_json
 from gaitc.sim.domain import Domain

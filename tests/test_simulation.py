@@ -11,8 +11,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from gaitc.api.loading import load
 from gaitc.cli import main
+from gaitc.core.spec import load
 from gaitc.diagnostics import ControllerError
 from gaitc.ir.controller import Controller, controller_to_json
 from gaitc.ir.evaluation import evaluate

@@ -22,7 +22,7 @@ import gaitc  # noqa: E402
 from bench.families import catalogue  # noqa: E402
 from bench.families.vmcai import arbiter_sections, arbiter_text, lift_sections, lift_text  # noqa: E402
 from gaitc.api.compiling import emit  # noqa: E402
-from gaitc.api.loading import parse  # noqa: E402
+from gaitc.core.spec import parse  # noqa: E402
 from gaitc.ir.spec import SEMANTICS, GR1Spec  # noqa: E402
 from gaitc.solver.synthesis import check  # noqa: E402
 

@@ -14,7 +14,7 @@ from gaitc.analysis.pool import Pool, Progress
 from gaitc.analysis.resilience import Resilience, cache_sites
 from gaitc.analysis.resilience import resilience as analyse
 from gaitc.api.isolation import HardLimits, run_limited
-from gaitc.api.loading import Spec, load
+from gaitc.core.spec import Spec, load
 from gaitc.diagnostics import UsageError
 from gaitc.ir.spec import GR1Spec, Semantics
 from ltlcompiler.encoding import EncodingName

@@ -18,7 +18,7 @@ from __future__ import annotations
 from pathlib import Path
 from typing import TYPE_CHECKING, Final, NoReturn
 
-from gaitc.api.loading import Spec, SpecLike, as_gr1, load, reader_of
+from gaitc.core.spec import Spec, SpecLike, as_gr1, load, reader_of
 from gaitc.diagnostics import Diagnostic
 from gaitc.diagnostics.choices import Choice
 from ltlcompiler.encoding import ENCODINGS
@@ -41,7 +41,7 @@ FORMATS: Final = tuple(OutputFormat)
 def lint(spec: Spec | str | Path, primitives: bool = False,
          timeout: float | None = None) -> tuple[Diagnostic, ...]:
     """The warnings (and primitive errors) of a spec; a path is read as ``.gait`` unless its
-    suffix names another format (:func:`gaitc.api.loading.reader_of`).
+    suffix names another format (:func:`gaitc.core.spec.reader_of`).
 
     Gaits without a valve primitive are reported when ``primitives`` is set or once any
     gait of the spec binds one. Errors in the spec itself raise, as :func:`gaitc.load` does.
@@ -119,7 +119,7 @@ def emit(spec: SpecLike, fmt: OutputFormat | str = OutputFormat.STRUCTUREDSLUGS)
 
 def output_format(output: str, requested: str | None) -> OutputFormat:
     """``requested``, else the format the suffix of ``output`` names, as the readers take
-    it (:mod:`gaitc.api.loading`: ``.slugsin`` and ``.txt`` are slugsin, ``.ltl`` LTL text),
+    it (:mod:`gaitc.core.spec`: ``.slugsin`` and ``.txt`` are slugsin, ``.ltl`` LTL text),
     else structuredslugs."""
     if requested is not None:
         return OutputFormat.parse(requested, "format")

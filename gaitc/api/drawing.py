@@ -15,8 +15,8 @@ from __future__ import annotations
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from gaitc.api.loading import Spec, load
 from gaitc.api.simulation import Session, session
+from gaitc.core.spec import Spec, load
 from gaitc.diagnostics import ScenarioError, Span, UsageError
 
 if TYPE_CHECKING:

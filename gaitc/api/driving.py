@@ -21,9 +21,9 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from gaitc.api.loading import Spec, load
 from gaitc.api.simulation import ENVIRONMENTS, Session, environment, run_document, session
 from gaitc.api.solving import recorded_encoding
+from gaitc.core.spec import Spec, load
 from gaitc.diagnostics import UsageError
 from gaitc.ir.spec import Semantics
 from ltlcompiler.encoding import EncodingName

@@ -12,13 +12,13 @@ from __future__ import annotations
 from dataclasses import replace
 from pathlib import Path
 
-from gaitc.api.loading import Spec, SpecLike, resolve
 from gaitc.api.solving import compact, read_controller, synthesize, verify
 from gaitc.codegen.board import BoardTables
 from gaitc.codegen.build import Built, Target, build
 from gaitc.codegen.tables import table_bytes
 from gaitc.compact.controller import CompactController
 from gaitc.compact.rules import RuleTables, rule_tables
+from gaitc.core.spec import Spec, SpecLike, resolve
 from gaitc.diagnostics import ControllerError, Span, UsageError
 from gaitc.ir.bddfile import SymbolicController
 from gaitc.ir.controller import Controller
@@ -35,30 +35,18 @@ def _goal_labels(spec: Spec | object) -> list[str]:
 def compact_of(spec: SpecLike, controller: CompactController | SymbolicController | Controller
                | str | Path | None = None, *, prefer: str | None = None
                ) -> CompactController | None:
-    """The compact controller of ``spec``: ``controller`` itself, a symbolic one compacted,
-    or (None) a new one synthesized; None when the spec is unrealizable."""
+    """The compact controller of ``spec``: ``controller`` in its compact form (a controller
+    of any form is compacted, :meth:`gaitc.forms.base.ControllerForm.to_compact`), or
+    (None) a new one synthesized; None when the spec is unrealizable."""
     resolved = resolve(spec)
-    found: CompactController | SymbolicController | Controller
-    file = ""
     if controller is None:
         made = synthesize(resolved, form="compact", prefer=prefer)
         if made.controller is None:
             return None
-        assert isinstance(made.controller, CompactController)
-        return made.controller
-    if isinstance(controller, (str, Path)):
-        file = str(controller)
-        found = read_controller(controller, resolved)
-    else:
-        found = controller
-    if isinstance(found, SymbolicController):
-        return compact(resolved, found)
-    if isinstance(found, Controller):
-        raise ControllerError(
-            "an explicit controller has no compact form of its own", Span(file or
-                                                                           "<controller>", 1, 1),
-            hint="synthesize one with 'gaitc synth --compact' (or --symbolic, then compact it)")
-    return found
+        return compact(resolved, made.controller)
+    found = (read_controller(controller, resolved) if isinstance(controller, (str, Path))
+             else controller)
+    return compact(resolved, found)
 
 
 def compact_policy(spec: SpecLike, controller: CompactController | SymbolicController | str

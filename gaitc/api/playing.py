@@ -10,10 +10,10 @@ from __future__ import annotations
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from gaitc.api.loading import Spec, load
 from gaitc.api.simulation import counter_session, session
 from gaitc.api.solving import Synthesis, recorded_encoding
 from gaitc.core.modes import Role
+from gaitc.core.spec import Spec, load
 from gaitc.diagnostics import ScenarioError, UsageError
 from gaitc.ir.bddfile import SymbolicController
 from gaitc.ir.controller import Controller

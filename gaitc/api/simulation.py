@@ -13,16 +13,17 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Final
 
-from gaitc.api.loading import Spec, load
 from gaitc.api.solving import Synthesis, recorded_encoding, synthesize
+from gaitc.core.spec import Spec, load
 from gaitc.diagnostics import UsageError
+from gaitc.forms.reader import load_runtime, runtime
 from gaitc.ir.bddfile import SymbolicController
 from gaitc.ir.controller import Controller
 from gaitc.ir.spec import Semantics
 from gaitc.sim.domain import Domain
 from gaitc.sim.environments import AdversarialEnvironment, Environment, RandomEnvironment
 from gaitc.sim.monitor import Monitor
-from gaitc.sim.strategy import StrategyView, explicit, load_strategy, view_of
+from gaitc.sim.strategy import StrategyView, explicit
 from gaitc.solver.progress import Progress
 from ltlcompiler.encoding import EncodingName
 
@@ -85,7 +86,7 @@ def session(spec: Spec | str | Path,
                          "legs); for this spec 'gaitc synth' writes a controller and 'gaitc "
                          "verify' checks it")
     if isinstance(controller, (str, Path)):
-        strategy = load_strategy(controller, spec.gr1, spec.model, spec.encoding)
+        strategy = load_runtime(controller, spec)
     else:
         if controller is None:
             controller = synthesize(spec, semantics, verify=False, prefer=prefer,
@@ -93,7 +94,7 @@ def session(spec: Spec | str | Path,
         automaton = controller.controller if isinstance(controller, Synthesis) else controller
         if automaton is None:
             return None
-        strategy = view_of(automaton, spec.gr1, "<synthesized>")
+        strategy = runtime(automaton, spec, "<synthesized>")
     domain = Domain(spec.model, spec.encoding or EncodingName.ONEHOT)
     return Session(spec, spec.model, strategy, domain, Monitor(spec.gr1))
 

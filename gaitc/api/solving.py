@@ -7,21 +7,20 @@ decides and synthesizes; every automaton is then proved by the independent check
 
 from __future__ import annotations
 
-import sys
 import time
 from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, Final, Literal, TypeGuard, get_args
+from typing import TYPE_CHECKING, Any, Final, Literal, get_args
 
-from gaitc.api.loading import Spec, SpecLike, as_gr1, resolve
-from gaitc.api.presentation import table
+from gaitc.core.modes import Form
+from gaitc.core.presentation import table
+from gaitc.core.spec import Spec, SpecLike, as_gr1, as_spec, resolve
 from gaitc.diagnostics import SolverError, UsageError
 from gaitc.diagnostics.files import write_atomically
-from gaitc.ir.bddfile import SymbolicController, symbolic_to_json
+from gaitc.ir.bddfile import SymbolicController
 from gaitc.ir.controller import (
     Controller,
-    controller_to_json,
     read_controller_json,
 )
 from gaitc.ir.costs import Cost
@@ -37,8 +36,7 @@ if TYPE_CHECKING:
     from typing import TypeAlias
 
     from gaitc.compact.controller import CompactController
-    from gaitc.compact.fields import Vocabulary
-    from gaitc.forms.reader import Form
+    from gaitc.core.vocabulary import Vocabulary
     from gaitc.sim.graphics import Picture
     from gaitc.verifier.strategy import VerificationReport
 
@@ -128,55 +126,54 @@ class Synthesis:
         """The controller's size in words: explicit nodes, or a symbolic one's BDD nodes."""
         if self.controller is None:
             return "none"
-        if _compact(self.controller):
-            from gaitc.codegen.tables import table_bytes
+        from gaitc.forms.registry import entry
 
-            c = self.controller
-            return (f"compact, {c.rules} rules, {c.decision_nodes} decision nodes "
-                    f"(+{c.monitor_nodes} for the assumption monitor), {table_bytes(c)} bytes "
-                    f"of tables; the symbolic strategy it comes from has {self.symbolic_nodes} "
-                    "BDD nodes")
-        if isinstance(self.controller, SymbolicController):
-            return f"symbolic, {len(self.controller.nodes)} BDD nodes"
-        merged = "" if self.merged_from is None else f", {self.merged_from} before merging"
-        return f"{len(self.controller.nodes)} nodes{merged}"
+        size = entry(self.controller).size(self.controller)
+        if self.symbolic_nodes is not None:
+            size += (f"; the symbolic strategy it comes from has {self.symbolic_nodes} BDD "
+                     "nodes")
+        if self.merged_from is not None:
+            size += f", {self.merged_from} before merging"
+        return size
 
     def to_json(self) -> dict[str, Any]:
         """The outcome for ``gaitc synth --json`` and ``counter --json`` (docs/json.md)."""
-        symbolic = isinstance(self.controller, SymbolicController)
-        out = {
+        form = None if self.controller is None else self.form
+        out: dict[str, Any] = {
             "file": _name(self.spec), "kind": self.kind,
             "verdict": "realizable" if self.realizable else "unrealizable",
             "seconds": round(self.seconds, 3), "semantics": self.semantics,
-            "solver": self.solver, "symbolic": symbolic,
-            "nodes": None if self.controller is None else len(self.controller.nodes),
+            "solver": self.solver, "symbolic": form == Form.SYMBOLIC, "form": form,
+            "nodes": None,
             "nodes_before_merging": self.merged_from,
             "compact": None,
             "verification": None if self.report is None else self.report.to_json()}
-        if _compact(self.controller):
-            from gaitc.codegen.tables import table_bytes
+        if self.controller is not None:
+            from gaitc.forms.registry import entry
 
-            c = self.controller
-            out["nodes"] = c.decision_nodes
-            out["compact"] = {"rules": c.rules, "decision_nodes": c.decision_nodes,
-                              "monitor_nodes": c.monitor_nodes,
-                              "moves": len(c.moves), "table_bytes": table_bytes(c),
-                              "symbolic_nodes": self.symbolic_nodes}
+            out.update(entry(self.controller).size_json(self.controller))
+            if out["compact"] is not None:
+                out["compact"]["symbolic_nodes"] = self.symbolic_nodes
         return out
+
+    @property
+    def form(self) -> Form:
+        """The controller's form (a :class:`UsageError` when there is no controller)."""
+        if self.controller is None:
+            raise UsageError(f"there is no {self.kind}: the spec is "
+                             f"{'realizable' if self.realizable else 'unrealizable'}")
+        from gaitc.forms.registry import entry
+
+        return entry(self.controller).form
 
     def save(self, path: str | Path) -> None:
         """Write the controller as JSON (docs/controller-format.md), atomically."""
         if self.controller is None:
             raise UsageError(f"there is no {self.kind} to save: the spec is "
                              f"{'realizable' if self.realizable else 'unrealizable'}")
-        if isinstance(self.controller, SymbolicController):
-            write_atomically(path, symbolic_to_json(self.controller))
-        elif isinstance(self.controller, Controller):
-            write_atomically(path, controller_to_json(self.controller))
-        else:
-            from gaitc.compact.controller import compact_to_json
+        from gaitc.forms.registry import entry
 
-            write_atomically(path, compact_to_json(self.controller))
+        write_atomically(path, entry(self.controller).to_json(self.controller))
 
     def picture(self) -> Picture:
         """The automaton drawn in domain terms (needs a ``.gait`` spec and Graphviz)."""
@@ -400,38 +397,26 @@ def _solve(spec: Spec | GR1Spec, kind: Kind, semantics: Semantics, solver: str,
     )
 
 
-def _compact(value: object) -> TypeGuard[CompactController]:
-    """Whether ``value`` is a compact controller; none can exist before gaitc.compact is
-    imported, so a ``check`` need not import it to ask."""
-    module = sys.modules.get("gaitc.compact.controller")
-    return module is not None and isinstance(value, module.CompactController)
-
-
-def _vocabulary(spec: Spec | GR1Spec) -> Vocabulary:
-    """The fields a compact controller of ``spec`` decides in: the robot's words for a
-    ``.gait`` spec, else one field per declared variable (from the spec alone)."""
-    from gaitc.compact.fields import expected_vocabulary
-
-    if isinstance(spec, Spec):
-        return expected_vocabulary(spec.gr1, spec.model, spec.encoding)
-    return expected_vocabulary(spec)
-
-
-def vocabulary_of(spec: Spec | GR1Spec, ctrl: SymbolicController) -> Vocabulary:
-    """The fields a compact controller of ``spec`` decides in (see :func:`_vocabulary`),
-    refused when the symbolic controller ``ctrl`` is of another spec."""
+def vocabulary_of(spec: SpecLike, ctrl: SymbolicController) -> Vocabulary:
+    """The fields a compact controller of ``spec`` decides in
+    (:attr:`gaitc.core.spec.Spec.vocabulary`), refused when the symbolic controller ``ctrl``
+    is of another spec."""
     from gaitc.forms.reader import check_belongs
 
-    check_belongs(ctrl, as_gr1(spec))
-    return _vocabulary(spec)
+    bound = as_spec(spec)
+    check_belongs(ctrl, bound)
+    return bound.vocabulary
 
 
-def compact(spec: SpecLike, controller: SymbolicController) -> CompactController:
-    """The compact controller (:mod:`gaitc.compact`) of a symbolic controller of ``spec``."""
-    from gaitc.compact.extraction import compact_from_symbolic
+def compact(spec: SpecLike, controller: Automaton) -> CompactController:
+    """The compact controller (:mod:`gaitc.compact`) of a controller of ``spec`` in any form
+    (:meth:`gaitc.forms.base.ControllerForm.to_compact`); it is not proved here."""
+    from gaitc.forms.reader import check_belongs
+    from gaitc.forms.registry import entry
 
-    resolved = resolve(spec)
-    return compact_from_symbolic(controller, vocabulary_of(resolved, controller))
+    bound = as_spec(spec)
+    check_belongs(controller, bound)
+    return entry(controller).to_compact(bound, controller)
 
 
 def _costs(spec: Spec | GR1Spec, order: Sequence[str]) -> tuple[Cost, ...]:
@@ -463,17 +448,17 @@ def _slugs_automaton(gr1: GR1Spec, kind: Kind, semantics: Semantics, timeout: fl
 def verify(spec: SpecLike,
            controller: Automaton | Synthesis | str | Path,
            semantics: Semantics | str | None = None) -> VerificationReport:
-    """Prove independently that ``controller`` (a strategy, explicit or symbolic) realizes
-    ``spec``, or that a counter-strategy defeats it; a path is read as a controller file.
-    ``semantics`` defaults to the one recorded in the controller."""
+    """Prove independently that ``controller`` (a strategy in any form, or a
+    counter-strategy) realizes ``spec``, or defeats it; a path is read as a controller
+    file.  ``semantics`` defaults to the one recorded in the controller."""
     from gaitc.forms.reader import belongs, parse_file
+    from gaitc.forms.registry import entry
     from gaitc.verifier.strategy import VerificationReport
 
-    spec = resolve(spec)
-    gr1 = as_gr1(spec)
+    bound = as_spec(spec)
     automaton: Automaton
     if isinstance(controller, (str, Path)):
-        automaton = parse_file(controller, gr1)
+        automaton = parse_file(controller, bound)
     elif isinstance(controller, Synthesis):
         if controller.controller is None:
             raise UsageError(f"there is no {controller.kind} to verify")
@@ -481,43 +466,14 @@ def verify(spec: SpecLike,
     else:
         automaton = controller
     chosen = _semantics(semantics or automaton.semantics)
-    why = belongs(automaton, gr1, _vocabulary(spec) if _compact(automaton) else None)
+    form = entry(automaton)
+    why = belongs(automaton, bound)
     if why is not None:  # the proof covers the whole file: its vocabulary is the spec's
         return VerificationReport(
             ok=False, problems=(f"controller does not belong to this spec: {why}",),
             kind="counterstrategy" if automaton.kind == "counterstrategy" else "strategy",
-            semantics=chosen, symbolic=not isinstance(automaton, Controller))
-    if _compact(automaton):
-        from gaitc.compact.controller import to_symbolic
-        from gaitc.verifier.monitor import monitor_check
-        from gaitc.verifier.symbolic import verify_symbolic
-
-        if not automaton.monitored:
-            report = verify_symbolic(gr1, to_symbolic(automaton), chosen)
-            return replace(report, notes=(*report.notes, "the controller carries no "
-                                          "assumption monitor: a board running it alone "
-                                          "cannot tell when the assumptions break"))
-        from gaitc.compact.controller import monitor_function
-
-        ctrl = automaton
-        check = monitor_check(lambda bdd: monitor_function(bdd, ctrl), ctrl.vocabulary.fields)
-        report = verify_symbolic(gr1, to_symbolic(automaton), chosen, [check])
-        if not report.ok:
-            return report
-        return replace(report, notes=(*report.notes, "the assumption monitor equals env_trans "
-                                      "on every state a run reaches"))
-    if isinstance(automaton, SymbolicController):
-        from gaitc.verifier.symbolic import verify_symbolic
-
-        return verify_symbolic(gr1, automaton, chosen)
-    assert isinstance(automaton, Controller)  # the compact form returned above
-    if automaton.kind == "counterstrategy":
-        from gaitc.verifier.counterstrategy import verify_counterstrategy
-
-        return verify_counterstrategy(gr1, automaton, chosen)
-    from gaitc.verifier.strategy import verify as verify_strategy
-
-    return verify_strategy(gr1, automaton, chosen)
+            semantics=chosen, symbolic=form.form != Form.EXPLICIT)
+    return form.verify(bound, automaton, chosen)
 
 
 def read_controller(path: str | Path, spec: SpecLike) -> Automaton:
@@ -527,16 +483,13 @@ def read_controller(path: str | Path, spec: SpecLike) -> Automaton:
     (:mod:`gaitc.forms.reader`, the one reader every command uses)."""
     from gaitc.forms.reader import read_controller as read_checked
 
-    resolved = resolve(spec)
-    if isinstance(resolved, Spec):
-        return read_checked(path, resolved.gr1, resolved.model, resolved.encoding)
-    return read_checked(path, resolved)
+    return read_checked(path, spec)
 
 
 def controller_form(path: str | Path) -> Form:
     """The form of the controller file ``path`` (explicit, symbolic or compact), read from
     the file's header alone."""
-    from gaitc.forms.reader import form_of
+    from gaitc.forms.registry import form_of
 
     return form_of(read_controller_json(str(path)))
 

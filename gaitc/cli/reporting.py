@@ -19,7 +19,7 @@ from gaitc.diagnostics import Diagnostic, GaitcError, SolverError, Span, UsageEr
 
 if TYPE_CHECKING:
     from gaitc.analysis.explanation import Explanation
-    from gaitc.api.loading import Spec
+    from gaitc.core.spec import Spec
 
 #: The version of the JSON objects documented in docs/json.md; raised when a key changes
 #: meaning or disappears (adding a key does not change it).

@@ -23,7 +23,7 @@ from typing import Final
 
 from gaitc.compact.controller import CompactController
 from gaitc.compact.diagram import leaf_value, reachable_nodes
-from gaitc.compact.fields import Field
+from gaitc.core.vocabulary import Field
 from gaitc.diagnostics import ControllerError
 
 LEAF: Final = 0x8000  # a child reference at or above this is a leaf

@@ -35,7 +35,7 @@ from gaitc.compact.diagram import (
     paths,
     reachable_nodes,
 )
-from gaitc.compact.fields import Field, Vocabulary
+from gaitc.core.vocabulary import Field, Vocabulary
 from gaitc.diagnostics import ControllerError, Span
 from gaitc.ir.bddfile import SymbolicController, node_table
 from gaitc.ir.controller import IntegerVar, integers_from_json, integers_to_json
@@ -65,6 +65,11 @@ class CompactController:
     semantics: Semantics = Semantics.DEFAULT
     solver: str = "embedded"
     source: Mapping[str, str] | None = None
+
+    @property
+    def variables(self) -> tuple[str, ...]:
+        """The spec's bits, inputs first (as every form lists them)."""
+        return self.inputs + self.outputs
 
     # ---------------------------------------------------------------- sizes
     @property

@@ -5,7 +5,7 @@ moves; any function that picks one of them wins (Bloem et al., JCSS 78(3) 2012, 
 Extracting one bit of y' at a time, as circuit synthesis does, and minimising each with the
 don't-cares of the other bits (Coudert and Madre's restrict) is the classic way to spend that
 freedom.  Here it is spent on readability instead: the diagram branches on whole fields
-(:mod:`gaitc.compact.fields`) in a fixed order and stops at the first point where one move
+(:mod:`gaitc.core.vocabulary`) in a fixed order and stops at the first point where one move
 is allowed in every state left, so a leaf says "whatever the rest, make this move".  A child
 whose states are all outside the care set (no reachable state of the game goes there) takes
 the most common sibling, and equal children collapse their parent: the result is a reduced,
@@ -24,7 +24,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
-from gaitc.compact.fields import Field
+from gaitc.core.vocabulary import Field
 
 Ref = int
 

@@ -17,7 +17,7 @@ from typing import Any, Final
 
 from gaitc.compact.controller import CompactController, relations
 from gaitc.compact.diagram import DONT_CARE, Builder, Ref, Slot, leaf, reachable_nodes
-from gaitc.compact.fields import Vocabulary
+from gaitc.core.vocabulary import Vocabulary
 from gaitc.diagnostics.choices import Choice
 from gaitc.ir.bddfile import SymbolicController, declare, materialize
 from gaitc.ir.spec import Semantics

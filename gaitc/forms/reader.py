@@ -13,90 +13,55 @@ first difference.
 from __future__ import annotations
 
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, TypeAlias
+from typing import TYPE_CHECKING, Any
 
-from gaitc.compact.controller import CompactController, compact_from_dict, is_compact
-from gaitc.compact.fields import Vocabulary, expected_vocabulary, vocabulary_difference
+from gaitc.core.spec import SpecLike, as_spec
+from gaitc.core.vocabulary import vocabulary_difference
 from gaitc.diagnostics import ControllerError, Span
-from gaitc.diagnostics.choices import Choice
-from gaitc.ir.bddfile import SymbolicController, is_symbolic, symbolic_from_dict
+from gaitc.forms.base import Automaton
+from gaitc.forms.registry import detect, entry
 from gaitc.ir.bits import bits_mismatch, spec_bits
-from gaitc.ir.controller import (
-    Controller,
-    IntegerVar,
-    controller_from_dict,
-    read_controller_json,
-    spec_integers,
-)
-from gaitc.ir.spec import GR1Spec
+from gaitc.ir.controller import IntegerVar, read_controller_json, spec_integers
 
 if TYPE_CHECKING:
     from collections.abc import Mapping
 
-    from ltlcompiler.encoding import EncodingName
-    from ltlcompiler.model import Model
+    from gaitc.sim.view import StrategyView
 
-#: A controller in any of its forms.
-Automaton: TypeAlias = "Controller | SymbolicController | CompactController"
+__all__ = ["HINT_RESYNTHESIZE", "Automaton", "belongs", "check_belongs", "load_runtime",
+           "parse_controller", "parse_file", "read_controller", "runtime"]
 
 HINT_RESYNTHESIZE = "synthesize it again from this spec with 'gaitc synth'"
 
 
-class Form(Choice):
-    """The form of a controller file."""
-
-    EXPLICIT = "explicit"
-    SYMBOLIC = "symbolic"
-    COMPACT = "compact"
-
-
-def form_of(data: Any) -> Form:
-    """The form of a parsed controller file (explicit unless it says otherwise)."""
-    if is_symbolic(data):
-        return Form.SYMBOLIC
-    if is_compact(data):
-        return Form.COMPACT
-    return Form.EXPLICIT
-
-
-def parse_controller(data: Any, file: str, spec: GR1Spec | None = None) -> Automaton:
+def parse_controller(data: Any, file: str, spec: SpecLike) -> Automaton:
     """The controller in a parsed file, its own structure checked (not yet its spec)."""
-    form = form_of(data)
-    if form == Form.SYMBOLIC:
-        return symbolic_from_dict(data, file)
-    if form == Form.COMPACT:
-        return compact_from_dict(data, file)
-    return controller_from_dict(data, file, spec)
+    return detect(data).parse(data, file, as_spec(spec))
 
 
-def parse_file(path: str | Path, spec: GR1Spec | None = None) -> Automaton:
+def parse_file(path: str | Path, spec: SpecLike) -> Automaton:
     """The controller in the file ``path``, its own structure checked (not yet its spec:
     :func:`read_controller` does both)."""
     return parse_controller(read_controller_json(str(path)), str(path), spec)
 
 
-def read_controller(path: str | Path, spec: GR1Spec, model: Model | None = None,
-                    encoding: EncodingName | None = None) -> Automaton:
-    """Read the controller file ``path`` and check that it belongs to ``spec`` (compiled
-    from ``model`` with ``encoding`` when it is a ``.gait`` spec); raises
+def read_controller(path: str | Path, spec: SpecLike) -> Automaton:
+    """Read the controller file ``path`` and check that it belongs to ``spec``; raises
     :class:`~gaitc.diagnostics.ControllerError` naming the file and the first difference."""
     file = str(path)
-    automaton = parse_file(file, spec)
-    vocabulary = (expected_vocabulary(spec, model, encoding)
-                  if isinstance(automaton, CompactController) else None)
-    check_belongs(automaton, spec, vocabulary, file)
+    bound = as_spec(spec)
+    automaton = parse_file(file, bound)
+    check_belongs(automaton, bound, file)
     return automaton
 
 
-def belongs(automaton: Automaton, spec: GR1Spec, vocabulary: Vocabulary | None = None
-            ) -> str | None:
+def belongs(automaton: Automaton, spec: SpecLike) -> str | None:
     """Why ``automaton`` does not belong to ``spec`` (its bits in order, their owners, its
-    integers, a compact controller's fields against ``vocabulary``, by default the spec's
-    own variables); None when it does."""
-    ins, outs = spec_bits(spec)
-    variables = (automaton.variables if isinstance(automaton, Controller)
-                 else (*automaton.inputs, *automaton.outputs))
-    mismatch = bits_mismatch(variables, ins + outs)
+    integers, a compact controller's fields against the spec's vocabulary); None when it
+    does."""
+    bound = as_spec(spec)
+    ins, outs = spec_bits(bound.gr1)
+    mismatch = bits_mismatch(automaton.variables, ins + outs)
     if mismatch is not None:
         return mismatch.removeprefix("controller does not belong to this spec: ")
     if tuple(automaton.inputs) != ins:
@@ -105,20 +70,17 @@ def belongs(automaton: Automaton, spec: GR1Spec, vocabulary: Vocabulary | None =
     if tuple(automaton.outputs) != outs:
         return (f"it makes {_first_moved(automaton.outputs, outs, ins)} an output, which "
                 "the spec's environment sets")
-    integers = _integers_difference(automaton.integers, spec_integers(spec))
+    integers = _integers_difference(automaton.integers, spec_integers(bound.gr1))
     if integers is not None:
         return integers
-    if isinstance(automaton, CompactController):
-        wanted = vocabulary if vocabulary is not None else expected_vocabulary(spec)
-        return vocabulary_difference(automaton.vocabulary, wanted)
-    return None
+    fields = entry(automaton).vocabulary(automaton)
+    return None if fields is None else vocabulary_difference(fields, bound.vocabulary)
 
 
-def check_belongs(automaton: Automaton, spec: GR1Spec, vocabulary: Vocabulary | None = None,
-                  file: str = "") -> None:
+def check_belongs(automaton: Automaton, spec: SpecLike, file: str = "") -> None:
     """Raise :class:`~gaitc.diagnostics.ControllerError` when :func:`belongs` finds a
     difference."""
-    why = belongs(automaton, spec, vocabulary)
+    why = belongs(automaton, spec)
     if why is not None:
         raise ControllerError(f"controller does not belong to this spec: {why}",
                               Span(file or "<controller>", 1, 1), hint=HINT_RESYNTHESIZE)
@@ -144,3 +106,14 @@ def _integers_difference(found: Mapping[str, IntegerVar], wanted: Mapping[str, I
                     f"{list(have.bits)} ({have.owner}); the spec's is {want.low}..{want.high} "
                     f"on {list(want.bits)} ({want.owner})")
     return None
+
+
+def runtime(automaton: Automaton, spec: SpecLike, file: str = "") -> StrategyView:
+    """The run view of a controller of any form (:meth:`ControllerForm.runtime`)."""
+    return entry(automaton).runtime(as_spec(spec), automaton, file)
+
+
+def load_runtime(path: str | Path, spec: SpecLike) -> StrategyView:
+    """Read a controller file through :func:`read_controller` and give its run view."""
+    bound = as_spec(spec)
+    return runtime(read_controller(path, bound), bound, str(path))

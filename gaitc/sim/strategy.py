@@ -8,24 +8,15 @@ early that a controller belongs to another spec.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from pathlib import Path
-from typing import TYPE_CHECKING
 
-from gaitc.compact.controller import CompactController, to_symbolic
 from gaitc.diagnostics import ControllerError, Span
-from gaitc.forms.reader import read_controller
-from gaitc.ir.bddfile import SymbolicController
 from gaitc.ir.bits import bits_mismatch, spec_bits
 from gaitc.ir.controller import Controller
 from gaitc.ir.spec import GR1Spec
 from gaitc.sim.view import Indexed, InputKey, NodeReading, StrategyView
 
-if TYPE_CHECKING:
-    from ltlcompiler.encoding import EncodingName
-    from ltlcompiler.model import Model
-
 __all__ = ["Indexed", "InputKey", "NodeReading", "Strategy", "StrategyView", "explicit",
-           "load_strategy", "strategy_from_controller", "view_of"]
+           "strategy_from_controller"]
 
 
 @dataclass(frozen=True)
@@ -131,27 +122,6 @@ def _check_ranges(
                     f"{value}, outside {low}..{high}",
                     _where(file), hint="synthesize it again from this spec with 'gaitc synth'",
                 )
-
-
-def view_of(controller: Controller | SymbolicController | CompactController, spec: GR1Spec,
-            file: str = "") -> StrategyView:
-    """The run view of a controller of any form, checked against ``spec``; a compact one
-    runs as the symbolic controller whose relations allow just its moves."""
-    if isinstance(controller, Controller):
-        return strategy_from_controller(controller, spec, file)
-    from gaitc.sim.symbolic_view import SymbolicStrategy
-
-    if isinstance(controller, CompactController):
-        controller = to_symbolic(controller, spec)
-    return SymbolicStrategy(controller, spec, file)
-
-
-def load_strategy(path: str | Path, spec: GR1Spec, model: Model | None = None,
-                  encoding: EncodingName | None = None) -> StrategyView:
-    """Read a controller file of any form through the one reader
-    (:func:`gaitc.forms.reader.read_controller`), checked against ``spec`` (compiled from
-    ``model`` with ``encoding``)."""
-    return view_of(read_controller(path, spec, model, encoding), spec, str(path))
 
 
 def explicit(view: StrategyView, what: str) -> Strategy:

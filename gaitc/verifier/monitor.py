@@ -21,7 +21,7 @@ from gaitc.verifier.symbolic import ReachCheck
 
 
 class FieldLike(Protocol):
-    """What the check needs of a field (:class:`gaitc.compact.fields.Field` is one)."""
+    """What the check needs of a field (:class:`gaitc.core.vocabulary.Field` is one)."""
 
     @property
     def name(self) -> str: ...

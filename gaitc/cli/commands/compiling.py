@@ -12,10 +12,10 @@ from typing import TYPE_CHECKING, Any
 
 import gaitc
 from gaitc.api.compiling import FORMATS, emit, output_format
-from gaitc.api.loading import Spec, load, reader_of
 from gaitc.cli.commands.arguments import output_file, positive_seconds
 from gaitc.cli.exitcodes import ExitCode
 from gaitc.cli.reporting import compilation_json, document, lint_json, print_json
+from gaitc.core.spec import Spec, load, reader_of
 from gaitc.diagnostics import Diagnostic, UsageError, render_diagnostic
 from gaitc.diagnostics.files import write_atomically
 from ltlcompiler.encoding import ENCODINGS

@@ -193,7 +193,7 @@ def _is_compact_file(path: str | None) -> bool:
     if path is None:
         return False
     from gaitc.api.solving import controller_form
-    from gaitc.forms.reader import Form
+    from gaitc.core.modes import Form
 
     return controller_form(path) == Form.COMPACT
 
