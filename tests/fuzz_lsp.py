@@ -6,7 +6,8 @@ that is not JSON going as one frame body), or, when the bytes start with a
 ``Content-Length`` header, the bytes themselves. :func:`session` runs one fresh server on
 them, reads its answers with a deadline and judges the run like :mod:`fuzz_oracle` does:
 every request is answered once, nothing inside the server fails (no traceback but
-pygls's decode noise), it ends at ``exit``. :data:`KNOWN` lists the faults found so far.
+pygls's decode noise), it ends at ``exit``. :data:`MENDED` lists the faults found and
+mended (each session a regression test), :data:`KNOWN` those found and not mended yet.
 """
 
 from __future__ import annotations
@@ -299,7 +300,7 @@ EXCHANGES: tuple[tuple[str, bytes], ...] = (
 )
 
 
-EXACT: set[bytes] = {data for _, data in EXCHANGES}  # sessions framed as they are (and KNOWN's)
+EXACT: set[bytes] = {data for _, data in EXCHANGES}  # sessions framed as they are (and MENDED's)
 
 
 # ---------------------------------------------------------------------- bytes to frames
@@ -889,7 +890,9 @@ class Known:
 
 
 _CONTENT_LENGTH = _wire_bytes(_start()) + b"Content-Length: %s\r\n\r\n{}" % (b"1" * 5000)
-KNOWN: tuple[Known, ...] = (
+#: The faults this fuzzer found that are mended (issue 48's follow-up): each session is now
+#: a regression test, which must show no problem at all (tests/test_fuzz_lsp_player.py).
+MENDED: tuple[Known, ...] = (
     Known("change-unopened",
           "didChange of a document that is not open: pygls's workspace raises KeyError and "
           "the server shows the user \"Error in server: KeyError: '<uri>'\"",
@@ -973,9 +976,12 @@ KNOWN: tuple[Known, ...] = (
                           _notify("window/workDoneProgress/cancel", {"token": "t"}), *_END]),
           always=False),
 )
+#: The faults found and not mended yet (none at present): a mutant's problem that one of
+#: them explains is not counted against the server.
+KNOWN: tuple[Known, ...] = ()
 
 
-EXACT.update(known.session for known in KNOWN)
+EXACT.update(known.session for known in (*MENDED, *KNOWN))
 
 
 def unknown_problems(verdict: Verdict) -> list[str]:

@@ -533,3 +533,43 @@ def test_cancelling_the_repair_search_kills_it_at_once(lsp: Server, tmp_path: Pa
     hover = lsp.call("textDocument/hover", _hover(uri, _position(SLOW_REPAIRS, "north_a")),
                      timeout=PROMPT)
     assert hover["result"] is not None
+
+
+# ---------------------------------------------------------------------- issue 48's fuzz finds
+def test_a_content_length_of_thousands_of_digits_is_skipped_not_fatal() -> None:
+    """int() refuses more than 4,300 digits: such a length is no length (the block is
+    skipped, as one without a length is), and a sane one after it is still read."""
+    from gaitc.lsp.transport import _content_length, frames
+
+    assert _content_length(b"Content-Length: " + b"1" * 5000) is None
+    assert _content_length(b"Content-Length: " + b"9" * 19) is None
+    assert _content_length(b"Content-Length: 0000000000000000000042") == 42
+    read, write = os.pipe()
+    os.write(write, b"Content-Length: " + b"7" * 5000 + b"\r\n\r\n"
+             + b"Content-Length: 2\r\n\r\n{}")
+    os.close(write)
+    try:
+        assert list(frames(read)) == [b"{}"]
+    finally:
+        os.close(read)
+
+
+def test_the_repair_child_imports_nothing_the_server_did_not() -> None:
+    """The repair command's child is forked from a server whose other threads may be
+    importing (an analysis, the warm-up): after :func:`preload_repairs`, which the job
+    runs before it forks, finding the repairs imports no module at all (else the child
+    may wait for ever on an import lock copied from the server)."""
+    probe = (
+        "import sys\n"
+        "import gaitc.lsp.server\n"
+        "from gaitc.lsp.actions import find_repairs, preload_repairs\n"
+        "preload_repairs()\n"
+        "before = set(sys.modules)\n"
+        f"find_repairs({(ROOT / 'specs' / 'unrealizable_2x2.gait').read_text()!r}, "
+        "'u.gait', 60)\n"
+        "print(sorted(set(sys.modules) - before))\n")
+    done = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True,
+                          timeout=300, cwd=ROOT)
+    assert done.returncode == 0, done.stderr[-2000:]
+    assert done.stdout.strip() == "[]", ("add these to gaitc.lsp.actions.REPAIR_IMPORTS: "
+                                         + done.stdout)

@@ -10,7 +10,9 @@ changes that turn the document into the repaired text.
 
 from __future__ import annotations
 
+import contextlib
 import difflib
+import importlib
 import re
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -18,6 +20,18 @@ from dataclasses import dataclass
 from gaitc.lsp.analysis import Finding
 
 _SUGGESTION = re.compile(r"did you mean '([^']+)'\?")
+#: The modules :func:`find_repairs` imports (with theirs), imported in the server before
+#: its child is forked (:mod:`gaitc.lsp.jobs`): a child must import nothing, for another
+#: thread of the server may hold the import lock of that very module as it forks.
+#: ``tests/test_lsp_robustness.py`` checks that the list is complete.
+REPAIR_IMPORTS = (
+    "gaitc", "gaitc.api", "gaitc.api.loading", "gaitc.api.answers", "gaitc.api.isolation",
+    "gaitc.analysis.explanation", "gaitc.analysis.repairs", "gaitc.solver.synthesis",
+    "gaitc.solver.portfolio", "gaitc.sim.counterplay", "gaitc.ir.cuddlib",
+    "ltlcompiler.frontend", "ltlcompiler.decoding", "ltlcompiler.parser",
+    "importlib.readers", "importlib.resources.readers", "zipfile",
+    "multiprocessing.popen_fork",
+)  # fmt: skip
 
 
 @dataclass(frozen=True)
@@ -52,6 +66,13 @@ def line_edits(old: str, new: str) -> tuple[LineEdit, ...]:
     matcher = difflib.SequenceMatcher(a=a, b=b, autojunk=False)
     return tuple(LineEdit(i1, i2, tuple(b[j1:j2]))
                  for tag, i1, i2, j1, j2 in matcher.get_opcodes() if tag != "equal")
+
+
+def preload_repairs() -> None:
+    """Import :data:`REPAIR_IMPORTS` (those that exist here) in this process."""
+    for name in REPAIR_IMPORTS:
+        with contextlib.suppress(ImportError):  # an optional one, or another platform's
+            importlib.import_module(name)
 
 
 def find_repairs(text: str, path: str, timeout: float,

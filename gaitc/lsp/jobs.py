@@ -6,6 +6,12 @@ way gaitc runs work in children), watched from a thread, so that the request loo
 answering; the stages the work reports come back to the loop as they happen, and
 :meth:`ChildJob.cancel` kills the child at once. Where no child can be forked the work
 runs in the watching thread, and cancelling only drops its result.
+
+A child is forked from a process with other threads (the reader, the analyses), and a
+fork copies the import locks those threads hold: a child that then imports a module
+another thread was importing waits for ever. So the watching thread first runs the job's
+``prepare``, which imports in the server what the work will need (waiting there, harmlessly,
+for an import under way), and the child imports nothing.
 """
 
 from __future__ import annotations
@@ -34,8 +40,10 @@ class ChildJob:
     """``work`` in a child process, for at most ``seconds``; ``on_stage`` is called on the
     loop with each stage the work reports."""
 
-    def __init__(self, work: Work, seconds: float, on_stage: Callable[[str], None]) -> None:
+    def __init__(self, work: Work, seconds: float, on_stage: Callable[[str], None],
+                 prepare: Callable[[], None] | None = None) -> None:
         self._work = work
+        self._prepare = prepare
         self._seconds = seconds
         self._on_stage = on_stage
         self._lock = threading.Lock()
@@ -66,7 +74,11 @@ class ChildJob:
     def _watch(self) -> None:
         outcome: Outcome
         try:
-            if can_fork():
+            if self._prepare is not None:
+                self._prepare()
+            if self.cancelled:
+                outcome = ("cancelled",)
+            elif can_fork():
                 _, outcome = first_success([self._in_child], time.monotonic() + self._seconds,
                                            setup=_announce, relay=self._relay)
             else:

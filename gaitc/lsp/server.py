@@ -19,6 +19,7 @@ from __future__ import annotations
 import asyncio
 import threading
 import uuid
+from collections import deque
 from collections.abc import Callable
 from typing import Any
 
@@ -26,7 +27,7 @@ from lsprotocol import types
 from pygls.exceptions import JsonRpcException, JsonRpcRequestCancelled
 from pygls.lsp.server import LanguageServer
 
-from gaitc.lsp.actions import RepairEdit, find_repairs, suggestion
+from gaitc.lsp.actions import RepairEdit, find_repairs, preload_repairs, suggestion
 from gaitc.lsp.analysis import Finding, analyse
 from gaitc.lsp.completion import offers
 from gaitc.lsp.hover import describe
@@ -41,6 +42,7 @@ REPAIR_TIMEOUT = 120.0  # seconds the repair command may solve for
 REPAIR_GRACE = 5.0  # seconds more before its child is killed (explain keeps its timeout)
 REPAIR_COMMAND = "gaitc.findRepairs"
 PROGRESS_CREATE_WAIT = 5.0  # seconds to wait for the client to accept a progress token
+CANCELS_KEPT = 256  # ids of $/cancelRequest remembered for commands not yet started
 
 #: Semantic token types, in the legend's order, and the kind of name each colours.
 TOKEN_TYPES = ("variable", "function", "enumMember", "event")
@@ -71,6 +73,9 @@ class GaitServer(LanguageServer):
         super().__init__(NAME, __version__, protocol_cls=GaitProtocol)
         self.scheduler = Scheduler(self._publish, self.trace)
         self.jobs: dict[MsgId, ChildJob] = {}  # the commands running, by request id
+        #: The latest ids the client cancelled: a command among them never starts its work.
+        self.cancelled: deque[MsgId] = deque(maxlen=CANCELS_KEPT)
+        self.stopped = False  # serving has ended, or the client has said shutdown
         protocol = self.protocol
         assert isinstance(protocol, GaitProtocol)
         protocol.on_cancel = self.request_cancelled
@@ -86,14 +91,22 @@ class GaitServer(LanguageServer):
             self.log_trace(types.LogTraceParams(message=message))
 
     def request_cancelled(self, msg_id: MsgId) -> None:
-        """``$/cancelRequest``: a command running for request ``msg_id`` is killed."""
+        """``$/cancelRequest``: a command running for request ``msg_id`` is killed, one
+        not started yet will not start (pygls has answered it RequestCancelled)."""
+        self.cancelled.append(msg_id)
         job = self.jobs.get(msg_id)
         if job is not None:
             job.cancel()
 
+    def abandoned(self, msg_id: MsgId | None) -> bool:
+        """Whether the request ``msg_id`` has been answered already by cancelling it (by
+        the client, or by ``shutdown``): its work is not to start, nor its end to raise."""
+        return self.stopped or (msg_id is not None and msg_id in self.cancelled)
+
     def stop(self) -> None:
         """Serving ends: no analysis is started or published any more, commands are
         killed."""
+        self.stopped = True
         self.scheduler.stop()
         for job in list(self.jobs.values()):
             job.cancel()
@@ -325,18 +338,25 @@ async def repair_command(ls: GaitServer, *args: Any) -> dict[str, Any]:
     requests are answered meanwhile; its stages show as work-done progress when the client
     supports it, and ``$/cancelRequest`` or cancelling the progress kills the child (the
     answer is then RequestCancelled)."""
+    msg_id = ls.protocol.msg_id
+    # A request cancelled before it started has been answered RequestCancelled by pygls,
+    # which drops whatever this coroutine ends with: it returns at once, and never raises
+    # (nobody would retrieve the exception).
+    if ls.abandoned(msg_id):
+        return _CANCELLED
     uri = args[0] if args and isinstance(args[0], str) else None
     if uri is None and args and isinstance(args[0], list) and args[0]:
         uri = str(args[0][0])
     doc = await ls.document(uri or "")
     if doc is None:
         return {"message": "the document is not open", "repairs": []}
+    if ls.abandoned(msg_id):
+        return _CANCELLED
     text, path = doc.text, doc.path
     progress = Progress(ls, "gaitc: finding verified repairs")
     job = ChildJob(lambda report: find_repairs(text, path, REPAIR_TIMEOUT, report),
-                   REPAIR_TIMEOUT + REPAIR_GRACE, progress.report)
+                   REPAIR_TIMEOUT + REPAIR_GRACE, progress.report, prepare=preload_repairs)
     outcome = job.start()
-    msg_id = ls.protocol.msg_id
     if msg_id is not None:
         ls.jobs[msg_id] = job
     final = "cancelled"
@@ -346,6 +366,8 @@ async def repair_command(ls: GaitServer, *args: Any) -> dict[str, Any]:
         final = message
     except JsonRpcException as err:
         final = err.message
+        if ls.abandoned(msg_id):
+            return _CANCELLED  # already answered: cancelled by the client or by shutdown
         raise
     finally:
         if msg_id is not None:
@@ -358,6 +380,9 @@ async def repair_command(ls: GaitServer, *args: Any) -> dict[str, Any]:
     ls.window_show_message(types.ShowMessageParams(type=types.MessageType.Info,
                                                    message=message))
     return {"message": message, "repairs": [r.title for r in found]}
+
+
+_CANCELLED: dict[str, Any] = {"message": "cancelled", "repairs": []}
 
 
 def _repairs_of(outcome: Outcome) -> tuple[str, list[RepairEdit]]:

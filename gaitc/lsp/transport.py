@@ -6,9 +6,11 @@ protocol (a position of -1, ``"params": null``) it only logs, so the client wait
 Here a daemon thread reads and decodes the messages (a few at a time, so a flood of large
 edits waits in the pipe, not in memory) and hands them to the request loop;
 :class:`GaitProtocol` answers every request it cannot handle with a JSON-RPC error
-(ParseError, InvalidRequest, InvalidParams); and SIGTERM or SIGINT ends the loop at once,
-then is delivered again to the handler it found, which for ``gaitc lsp`` turns it into
-exit 143 or 130.
+(ParseError, InvalidRequest, InvalidParams), drops the notifications that come before
+``initialize`` or name a document that is not open, as the LSP says, and cancels what is
+pending at ``shutdown`` without tripping over pygls's own bookkeeping; and SIGTERM or SIGINT
+ends the loop at once, then is delivered again to the handler it found, which for ``gaitc
+lsp`` turns it into exit 143 or 130.
 """
 
 from __future__ import annotations
@@ -21,11 +23,12 @@ import logging
 import os
 import signal
 import threading
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Generator, Iterator
 from dataclasses import dataclass
 from pathlib import Path
 from types import FrameType
 from typing import Any, cast
+from urllib.parse import unquote
 
 from lsprotocol import types
 from pygls.exceptions import (
@@ -34,7 +37,7 @@ from pygls.exceptions import (
     JsonRpcParseError,
 )
 from pygls.lsp.server import LanguageServer
-from pygls.protocol import LanguageServerProtocol
+from pygls.protocol import LanguageServerProtocol, lsp_method
 from pygls.protocol.json_rpc import JsonRPCResponseMessage, RPCRequest
 
 logger = logging.getLogger(__name__)
@@ -43,6 +46,11 @@ MsgId = int | str
 IN_FLIGHT = 4  # messages decoded but not yet handled, at most
 _HEADERS_LIMIT = 1 << 16  # bytes of headers before a blank line, at most
 _READ = 1 << 20  # bytes read at a time, at most
+_LENGTH_DIGITS = 18  # digits of a Content-Length, at most (10**18 bytes: no real message)
+#: Notifications about a document, which pygls's workspace must know (LSP: "the server
+#: should drop notifications before initialize"; a change of a closed document is stale).
+_DOCUMENT_NOTIFICATIONS = (types.TEXT_DOCUMENT_DID_OPEN, types.TEXT_DOCUMENT_DID_CHANGE,
+                           types.TEXT_DOCUMENT_DID_CLOSE)
 
 #: The work-done token of the request being handled (the client's progress bar), if any.
 _TOKEN: contextvars.ContextVar[types.ProgressToken | None] = contextvars.ContextVar(
@@ -80,6 +88,10 @@ class GaitProtocol(LanguageServerProtocol):
             return Refused(_message_id(data) if request else None, JsonRpcInvalidRequest.CODE,
                            f"not a JSON-RPC 2.0 message: \"jsonrpc\" is {data['jsonrpc']!r}",
                            answer=request)
+        if "jsonrpc" in data:
+            refused = _malformed(data)
+            if refused is not None:
+                return refused
         try:
             return super().structure_message(data)
         except Exception as err:
@@ -107,6 +119,13 @@ class GaitProtocol(LanguageServerProtocol):
                 logger.warning("ignored a notification: %s", refused.message)
             return
         method = getattr(message, "method", None)
+        if method in _DOCUMENT_NOTIFICATIONS and not isinstance(message, RPCRequest):
+            uri = getattr(getattr(getattr(message, "params", None), "text_document", None),
+                          "uri", None)
+            dropped = self._not_for_workspace(method, uri)
+            if dropped:
+                logger.warning("ignored %s of %s: %s", method, uri, dropped)
+                return
         if method == types.CANCEL_REQUEST:
             with contextlib.suppress(AttributeError):
                 self.on_cancel(message.params.id)
@@ -116,6 +135,31 @@ class GaitProtocol(LanguageServerProtocol):
             super().handle_message(message)
         finally:
             _TOKEN.reset(token)
+
+    def _not_for_workspace(self, method: str, uri: object) -> str:
+        """Why a notification about document ``uri`` is dropped ("" to handle it): before
+        ``initialize`` there is no workspace; a change of a document not open has nothing
+        to apply to."""
+        workspace = self._workspace  # pygls's property raises before initialize
+        if workspace is None:
+            return "the server has not been initialized"
+        if method == types.TEXT_DOCUMENT_DID_CHANGE and (
+                not isinstance(uri, str) or unquote(uri) not in workspace.text_documents):
+            return "the document is not open"
+        return ""
+
+    @lsp_method(types.SHUTDOWN)
+    def lsp_shutdown(self, *args: Any) -> Generator[Any, Any, None]:
+        """pygls's shutdown, cancelling the pending requests from a copy of its table: a
+        cancelled request's callback removes it from the table at once."""
+        if (user_handler := self.fm.features.get(types.SHUTDOWN)) is not None:
+            yield user_handler, args, None
+        current_id = self.msg_id
+        for msg_id, future in list(self._request_futures.items()):
+            if msg_id != current_id and not future.done():
+                future.cancel()
+        self._shutdown = True
+        return None
 
     def _refusal(self, message: Any) -> Refused | None:
         """Why ``message`` is refused, or None to handle it."""
@@ -137,6 +181,31 @@ class GaitProtocol(LanguageServerProtocol):
         """Answer input that is not JSON (id null, as JSON-RPC says)."""
         self.handle_message(Refused(None, JsonRpcParseError.CODE,
                                     f"the message is not JSON: {type(err).__name__}: {err}"))
+
+
+def _malformed(data: dict[str, Any]) -> Refused | None:
+    """A JSON-RPC 2.0 message whose method or id cannot be what the protocol says: a
+    method that is not a string, an id that is neither an integer nor a string (JSON-RPC:
+    InvalidRequest, with id null when the id is unusable). A notification, or a response
+    of the client, so malformed is only logged."""
+    method = data.get("method")
+    if "method" in data and not isinstance(method, str):
+        return Refused(_message_id(data), JsonRpcInvalidRequest.CODE,
+                       f"invalid request: \"method\" is {_kind(method)}, not a string",
+                       answer="id" in data)
+    if data.get("id") is not None and _message_id(data) is None:
+        what = "request" if "method" in data else "response"
+        return Refused(None, JsonRpcInvalidRequest.CODE,
+                       f"invalid {what}: \"id\" is {_kind(data['id'])}, not an integer or a "
+                       "string", answer="method" in data)
+    return None
+
+
+def _kind(value: object) -> str:
+    """What a JSON value is, in a few words (for an error message)."""
+    names = {bool: "a Boolean", int: "a number", float: "a number", str: "a string",
+             list: "a list", dict: "an object", type(None): "null"}
+    return names.get(type(value), type(value).__name__)
 
 
 def _message_id(data: dict[str, Any]) -> MsgId | None:
@@ -245,10 +314,18 @@ def frames(fd: int) -> Iterator[bytes]:
 
 
 def _content_length(headers: bytes) -> int | None:
+    """The Content-Length of a header block; None without one, or with one of more digits
+    than any message has (which ``int`` would refuse past 4,300 digits): the block is then
+    skipped like a block without a length."""
     for line in headers.split(b"\r\n"):
         name, _, value = line.partition(b":")
-        if name.strip().lower() == b"content-length" and value.strip().isdigit():
-            return int(value.strip())
+        digits = value.strip()
+        if name.strip().lower() == b"content-length" and digits.isdigit():
+            if len(digits.lstrip(b"0")) > _LENGTH_DIGITS:
+                logger.warning("ignored a header block: a Content-Length of %d digits",
+                               len(digits))
+                return None
+            return int(digits)
     return None
 
 
