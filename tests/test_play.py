@@ -542,3 +542,35 @@ def test_the_robot_role_offers_exactly_the_answers_the_guarantees_allow() -> Non
             checked += 1
         player.choose(1 + len(player.path) % len(player.choices()))
     assert checked >= 3
+
+
+@pytest.mark.parametrize("key", ["a", "n"])
+def test_a_pilot_asked_for_too_many_steps_refuses_at_once(key: str) -> None:
+    """10**7 steps kept the app busy for minutes (issue 48's fuzzing): more than MAX_AUTO
+    steps are refused with the limit, nothing is played, and a count within it plays."""
+    import time
+
+    from gaitc.play.terminal import MAX_AUTO, PlayApp
+
+    player = gaitc.player(CORRIDOR)
+    app = PlayApp(player)
+    said: list[str] = []
+
+    async def script() -> None:
+        async with app.run_test(size=(80, 24)) as pilot:
+            await pilot.press("1")
+            before = player.step
+            started = time.monotonic()
+            await pilot.press(key, *str(10**7), "enter")
+            await pilot.pause()
+            assert time.monotonic() - started < 10
+            assert player.step == before
+            said.append(app.message)
+            await pilot.press(key, *"3", "enter")
+            await pilot.pause()
+            said.append(app.message)
+            await pilot.press("q", "q")
+
+    asyncio.run(script())
+    assert f"at most {MAX_AUTO} steps" in said[0]
+    assert "pilot played" in said[1]

@@ -30,6 +30,9 @@ COLOURS = {"robot": "bold reverse", "hazard_on": "bold white on red", "hazard": 
            "visited": "cyan", "legend": "dim", "healthy": "blue", "degraded": "yellow",
            "failed": "bold red", "loses": "red", "holds": "yellow"}
 DEFAULT_AUTO = 20
+#: Steps a pilot may be asked for at once (each step is a move of the controller and of the
+#: pilot; 10**7 of them kept the app busy for minutes): more is refused with this number.
+MAX_AUTO = 10_000
 MAP_WIDTH = 50  # columns of an 80-column screen the map may take
 DEFAULT_RUN_FILE = "play.run.jsonl"
 
@@ -250,8 +253,8 @@ class PlayApp(App[int]):
     def action_ask(self, what: str) -> None:
         questions = {
             "go": f"go to step (-1..{self.player.length - 1}):",
-            "strongest": f"steps for the strongest pilot [{DEFAULT_AUTO}]:",
-            "random": f"steps for a random pilot [{DEFAULT_AUTO}]:",
+            "strongest": f"steps for the strongest pilot (up to {MAX_AUTO}) [{DEFAULT_AUTO}]:",
+            "random": f"steps for a random pilot (up to {MAX_AUTO}) [{DEFAULT_AUTO}]:",
             "save": f"save the play to [{self.out or DEFAULT_RUN_FILE}]:",
         }
         self._asking = what
@@ -273,6 +276,10 @@ class PlayApp(App[int]):
                 self._say(f"at step {self.player.step}")
             elif what in ("strongest", "random"):
                 count = int(answer) if answer else DEFAULT_AUTO
+                if count > MAX_AUTO:
+                    self._say(f"too many steps: a pilot plays at most {MAX_AUTO} steps at a "
+                              "time (ask again to play on)")
+                    return
                 played = self.player.autoplay(count, Autopilot(what), self.seed)
                 self._say(f"the {what} pilot played {played} steps")
             elif what == "save":
