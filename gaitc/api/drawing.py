@@ -15,9 +15,10 @@ from __future__ import annotations
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from gaitc.api.simulation import Session, session
+from gaitc.api.simulation import session
 from gaitc.core.spec import Spec, load
 from gaitc.diagnostics import ScenarioError, Span, UsageError
+from gaitc.sim.session import Session
 
 if TYPE_CHECKING:
     from collections.abc import Sequence

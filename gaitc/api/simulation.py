@@ -1,60 +1,48 @@
 """Simulation: a controller of a ``.gait`` spec run against an environment, step by step.
 
-A :class:`Session` binds a spec, its controller (read from a file, or synthesized), the
-domain decoding of :mod:`gaitc.sim.domain` and the run monitor of :mod:`gaitc.sim.monitor`;
-:func:`simulate` runs it against a random, adversarial or scripted environment and returns
-a :class:`gaitc.sim.run.Run` checked against every assumption and guarantee.
+A :class:`~gaitc.sim.session.Session` binds a spec, its controller (read from a file, or
+synthesized), the domain decoding of :mod:`gaitc.sim.domain` and the run monitor of
+:mod:`gaitc.sim.monitor`; :func:`simulate` runs it against a random, adversarial or
+scripted environment and returns a :class:`gaitc.sim.run.Run` checked against every
+assumption and guarantee.
 """
 
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, Final
+from typing import TYPE_CHECKING, Any, Final, TypeAlias
 
 from gaitc.api.solving import Synthesis, recorded_encoding, synthesize
+from gaitc.core.modes import EnvironmentKind, Semantics
 from gaitc.core.spec import Spec, load
 from gaitc.diagnostics import UsageError
 from gaitc.forms.reader import load_runtime, runtime
 from gaitc.ir.bddfile import SymbolicController
 from gaitc.ir.controller import Controller
-from gaitc.ir.spec import Semantics
 from gaitc.sim.domain import Domain
-from gaitc.sim.environments import AdversarialEnvironment, Environment, RandomEnvironment
+from gaitc.sim.environments import Environment
 from gaitc.sim.monitor import Monitor
-from gaitc.sim.strategy import StrategyView, explicit
+from gaitc.sim.session import Opponent, Session, is_run_file
+from gaitc.sim.session import environment as build_environment
+from gaitc.sim.strategy import explicit
 from gaitc.solver.progress import Progress
 from ltlcompiler.encoding import EncodingName
 
 if TYPE_CHECKING:
     from gaitc.sim.run import Run
     from gaitc.sim.scenario import Scenario
-    from ltlcompiler.model import Model
+
+__all__ = ["DEFAULT_STEPS", "ENVIRONMENTS", "EnvironmentLike", "Opponent", "Session",
+           "counter_session", "environment", "is_run_file", "opponent", "run_document",
+           "session", "simulate"]
 
 #: The environments :func:`simulate` and ``gaitc simulate --env`` know by name.
-ENVIRONMENTS: Final = ("scripted", "random", "adversarial")
+ENVIRONMENTS: Final = EnvironmentKind.values()
 DEFAULT_STEPS: Final = 50
-
-
-@dataclass(frozen=True)
-class Session:
-    """A ``.gait`` spec with its model, a controller adapted to it, and the run checker."""
-
-    spec: Spec
-    model: Model = field(repr=False)
-    strategy: StrategyView = field(repr=False)
-    domain: Domain = field(repr=False)
-    monitor: Monitor = field(repr=False)
-
-    @property
-    def full_health(self) -> dict[str, int]:
-        """Each leg's number of health levels (the table's reference for marks)."""
-        return {leg.name: leg.health for leg in self.model.legs}
-
-    def __repr__(self) -> str:
-        return (f"<gaitc.Session {self.spec.path!r}: controller of {len(self.strategy)} "
-                f"nodes, {len(self.model.legs)} legs>")
+#: What the facade takes as an environment: a typed :class:`Opponent`, a name of
+#: :class:`EnvironmentKind` (or ``scripted:FILE``), a scenario or an environment object.
+EnvironmentLike: TypeAlias = "Opponent | EnvironmentKind | str | Scenario | Environment"
 
 
 def session(spec: Spec | str | Path,
@@ -95,8 +83,7 @@ def session(spec: Spec | str | Path,
         if automaton is None:
             return None
         strategy = runtime(automaton, spec, "<synthesized>")
-    domain = Domain(spec.model, spec.encoding or EncodingName.ONEHOT)
-    return Session(spec, spec.model, strategy, domain, Monitor(spec.gr1))
+    return Session.bind(spec, strategy)
 
 
 def counter_session(spec: Spec | str | Path, semantics: Semantics | str = Semantics.DEFAULT,
@@ -110,37 +97,19 @@ def counter_session(spec: Spec | str | Path, semantics: Semantics | str = Semant
     return None if found.controller is None else session(loaded, found, None, semantics)
 
 
-def environment(kind: str | Scenario | Environment, bound: Session, seed: int = 0
-                ) -> Environment:
-    """The environment named ``kind`` (:data:`ENVIRONMENTS`; ``scripted`` needs a scenario
-    object or a path ``scripted:FILE.yaml``), or ``kind`` itself when it already is one."""
-    from gaitc.sim.scenario import Scenario, ScriptedEnvironment, load_scenario
+def opponent(env: EnvironmentLike) -> Opponent | Scenario | Environment:
+    """``env`` as a typed value: an object stays as it is, a name becomes an
+    :class:`Opponent` (a :class:`UsageError` names the accepted ones)."""
+    from gaitc.sim.scenario import Scenario
 
-    if isinstance(kind, Environment):
-        return kind
-    if isinstance(kind, Scenario):
-        return ScriptedEnvironment(kind, bound.strategy.inputs)
-    if kind == "random":
-        return RandomEnvironment(seed)
-    if kind == "adversarial":
-        return AdversarialEnvironment()
-    if kind.startswith("scripted:"):
-        file = kind.removeprefix("scripted:")
-        if is_run_file(file):
-            from gaitc.sim.replay import RunEnvironment
-            from gaitc.sim.run import read_jsonl
-
-            return RunEnvironment(read_jsonl(file), bound.strategy.inputs, bound.domain.legs)
-        scenario = load_scenario(file, bound.model)
-        return ScriptedEnvironment(scenario, bound.strategy.inputs)
-    raise UsageError(f"unknown environment '{kind}'; use random, adversarial, a scenario or "
-                     "'scripted:FILE.yaml'")
+    if isinstance(env, (Opponent, Scenario, Environment)):
+        return env
+    return Opponent.parse(env)
 
 
-def is_run_file(path: str | Path) -> bool:
-    """Whether a scripted environment's file is a run file (``.jsonl``, ``.json``) rather
-    than a scenario (``.yaml``)."""
-    return Path(path).suffix.lower() in (".jsonl", ".json")
+def environment(kind: EnvironmentLike, bound: Session, seed: int = 0) -> Environment:
+    """The environment ``kind`` names for ``bound`` (:func:`gaitc.sim.session.environment`)."""
+    return build_environment(opponent(kind), bound, seed)
 
 
 def _recorded(spec: Spec | str | Path, file: str, steps: int | None) -> Run:
@@ -159,7 +128,8 @@ def _recorded(spec: Spec | str | Path, file: str, steps: int | None) -> Run:
     return recorded_play(recorded, domain, Monitor(loaded.gr1), loaded.path)
 
 
-def _counter_play(bound: Session, env: object, steps: int | None, seed: int) -> Run:
+def _counter_play(bound: Session, env: Opponent | Scenario | Environment, steps: int | None,
+                  seed: int) -> Run:
     """A counter-strategy plays the environment; ``env`` says how the robot answers:
     ``random`` (with ``seed``) or ``adversarial`` (it avoids forced deadlocks); with
     ``scripted:RUN.jsonl`` both sides play as the run file did (a play of an unrealizable
@@ -167,12 +137,14 @@ def _counter_play(bound: Session, env: object, steps: int | None, seed: int) -> 
     counter-strategy of fewer freedoms), every step checked against the spec."""
     from gaitc.sim.counterplay import careful_chooser, play, random_chooser
 
-    if isinstance(env, str) and env.startswith("scripted:") and is_run_file(env[9:]):
-        return _recorded(bound.spec, env[9:], steps)
+    if isinstance(env, Opponent) and env.replays_run:
+        assert env.file is not None
+        return _recorded(bound.spec, env.file, steps)
     counter = explicit(bound.strategy, "a counter-play")
-    if env == "random":
+    kind = env.kind if isinstance(env, Opponent) else None
+    if kind == EnvironmentKind.RANDOM:
         choose, name = random_chooser(seed), f"counter-strategy, robot random --seed {seed}"
-    elif env == "adversarial":
+    elif kind == EnvironmentKind.ADVERSARIAL:
         choose, name = careful_chooser(counter), "counter-strategy, robot careful"
     else:
         raise UsageError("a counter-strategy is the environment: choose how the robot answers "
@@ -186,7 +158,7 @@ def _counter_play(bound: Session, env: object, steps: int | None, seed: int) -> 
 
 def simulate(spec: Spec | Session | str | Path,
              controller: Controller | SymbolicController | Synthesis | str | Path | None = None,
-             env: str | Scenario | Environment = "random", steps: int | None = None,
+             env: EnvironmentLike = EnvironmentKind.RANDOM, steps: int | None = None,
              seed: int = 0, semantics: Semantics | str = Semantics.DEFAULT,
              prefer: str | Sequence[str] | None = None) -> Run:
     """Run ``controller`` (synthesized when None) for ``spec`` against ``env`` for ``steps``
@@ -205,19 +177,23 @@ def simulate(spec: Spec | Session | str | Path,
     from gaitc.sim.scenario import ScriptedEnvironment
     from gaitc.sim.simulator import simulate as run_simulation
 
+    chosen_env = opponent(env)
+    replayed = (chosen_env.file if isinstance(chosen_env, Opponent) and chosen_env.replays_run
+                else None)
     bound = spec if isinstance(spec, Session) else session(spec, controller, None, semantics,
                                                            prefer)
-    if bound is None and isinstance(env, str) and env.startswith("scripted:") and \
-            is_run_file(env[9:]) and not isinstance(spec, Session):
-        return _recorded(spec, env[9:], steps)
-    if bound is None and env == "adversarial" and not isinstance(spec, Session):
+    if bound is None and replayed is not None and not isinstance(spec, Session):
+        return _recorded(spec, replayed, steps)
+    adversarial = (isinstance(chosen_env, Opponent)
+                   and chosen_env.kind == EnvironmentKind.ADVERSARIAL)
+    if bound is None and adversarial and not isinstance(spec, Session):
         bound = counter_session(spec, semantics)
     if bound is None:
         path = spec.path if isinstance(spec, Spec) else str(spec)
         raise UsageError(f"'{path}' is unrealizable: there is no controller to simulate")
     if bound.strategy.kind == "counterstrategy":
-        return _counter_play(bound, env, steps, seed)
-    chosen = environment(env, bound, seed)
+        return _counter_play(bound, chosen_env, steps, seed)
+    chosen = build_environment(chosen_env, bound, seed)
     if steps is None:
         steps = (len(chosen.scenario.steps) if isinstance(chosen, ScriptedEnvironment)
                  else chosen.length if isinstance(chosen, RunEnvironment) else DEFAULT_STEPS)
