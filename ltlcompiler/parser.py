@@ -41,10 +41,6 @@ from gaitc.diagnostics import (
 from ltlcompiler import syntax as s
 from ltlcompiler.parse_tree import build, token_span
 
-STATEMENT_KEYWORDS = (
-    "assume", "block", "cache", "caches", "correction", "edge", "gait", "grid", "guarantee",
-    "hazard", "leg", "legs", "region", "regions", "robot", "start", "visit",
-)  # fmt: skip
 _OPERATORS = ("&", "|", "^", "->", "<->", "and", "or", "xor", "until")
 _TERMINAL_WORDS = {
     "NAME": "a name",
@@ -53,11 +49,6 @@ _TERMINAL_WORDS = {
     "AXIS": "an axis such as +x or -y",
     "$END": "end of file",
 }
-_DIRECTIONS = ("north", "south", "east", "west")
-_FORMULA_WORDS = (
-    "always", "eventually", "next", "not", "health", "failed", "true", "false", "and", "or",
-    "xor", "until",
-)  # fmt: skip
 #: Operators of other languages, written doubled, and the .gait operator to use instead.
 _DOUBLED = {
     "&": "'&' (or 'and') for conjunction",
@@ -139,6 +130,56 @@ def _from_cache(cached: dict[str, Any]) -> Lark | None:
         return None
 
 
+# ---------------------------------------------------------------- the grammar's keywords
+@cache
+def keywords(rule: str = "start") -> tuple[str, ...]:
+    """The keywords of gait.lark that may occur within ``rule`` (the whole file by
+    default), in the grammar's order: its string terminals made of letters, read from the
+    analysed grammar, so that the editor's lists cannot drift from the language."""
+    parser = _lark()
+    words = {t.name: t.pattern.value for t in parser.terminals
+             if isinstance(t.pattern, PatternStr) and t.pattern.value.isalpha()}
+    expansions: dict[str, list[list[str]]] = {}
+    for r in parser.rules:
+        expansions.setdefault(r.origin.name, []).append([s.name for s in r.expansion])
+    if rule not in expansions:
+        raise KeyError(f"gait.lark has no rule {rule!r}")
+    found: dict[str, None] = {}
+    seen: set[str] = set()
+    stack = [rule]
+    while stack:  # depth first, in the order the rules write their symbols
+        name = stack.pop()
+        if name in seen:
+            continue
+        seen.add(name)
+        later: list[str] = []
+        for expansion in expansions[name]:
+            for symbol in expansion:
+                if symbol in words:
+                    found.setdefault(words[symbol])
+                elif symbol in expansions and symbol not in seen:
+                    later.append(symbol)
+        stack.extend(reversed(later))
+    return tuple(found)
+
+
+@cache
+def statement_keywords() -> dict[str, str]:
+    """Each keyword a statement can start with (``robot``, ``legs``, ``correction``, ...)
+    and the grammar rule of that statement, in the grammar's order."""
+    parser = _lark()
+    words = {t.name: t.pattern.value for t in parser.terminals
+             if isinstance(t.pattern, PatternStr) and t.pattern.value.isalpha()}
+    statements = [r.expansion[0].name for r in parser.rules
+                  if r.origin.name == "_statement" and len(r.expansion) == 1]
+    found: dict[str, str] = {}
+    for statement in statements:
+        for r in parser.rules:
+            if r.origin.name == statement and r.expansion and r.expansion[0].name in words:
+                found.setdefault(words[r.expansion[0].name], statement)
+    return found
+
+
 def _reserved(tok: Token) -> Token:
     """'always'/'eventually' lexed as a name: they sit where GR(1) forbids them."""
     if tok in ("always", "eventually"):
@@ -197,7 +238,7 @@ def _describe_terminal(name: str) -> str:
 
 def _describe_expected(expected: set[str]) -> str:
     words = sorted({_describe_terminal(name) for name in expected})
-    statements = [w for w in words if w.strip("'") in STATEMENT_KEYWORDS]
+    statements = [w for w in words if w.strip("'") in statement_keywords()]
     if len(statements) >= 5:
         words = [w for w in words if w not in statements] + ["a new statement"]
     operators = [w for w in words if w.strip("'") in _OPERATORS]
@@ -246,9 +287,9 @@ def _mistyped_word(err: UnexpectedToken, expected: set[str], file: str) -> Gaitc
     (``hazard fire:`` then ``cahce r3``)."""
     described = {_describe_terminal(name) for name in expected}
     if "'&'" in described:  # after an atom of a formula
-        words: tuple[str, ...] = _FORMULA_WORDS
+        words: tuple[str, ...] = keywords("formula")
     elif "'cache'" in described and err.token.type == "NAME":  # where a statement may start
-        words = STATEMENT_KEYWORDS
+        words = tuple(statement_keywords())
     else:
         return None
     stack = _value_stack(err)
@@ -398,7 +439,7 @@ def _dangling_name(err: UnexpectedToken, expected: set[str], file: str) -> Gaitc
             f"'{name}' after 'moves' is not a direction; expected north, south, east or west, "
             "or region transitions such as 'a -> b'",
             span,
-            _suggestion(str(name), list(_DIRECTIONS)),
+            _suggestion(str(name), list(keywords("direction"))),
         )
     return SpecSyntaxError(f"transition from '{name}' has no '->'; write '{name} -> REGION'", span)
 

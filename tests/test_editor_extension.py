@@ -37,12 +37,40 @@ def test_the_extension_builds_to_a_vsix_and_its_grammar_passes() -> None:
     assert default["default"] == ["gaitc", "lsp"]
 
 
-def test_the_grammar_knows_every_keyword_of_the_language() -> None:
-    """Each keyword of ltlcompiler/gait.lark is highlighted by some pattern of the grammar."""
+def _highlighted_words() -> dict[str, set[str]]:
+    """The words each pattern of the editor grammar highlights by name: the words of its
+    groups made of letters only (``\\b(robot|legs|...)\\b``, ``(correction)``), by the
+    scope that colours them."""
     import re
 
-    lark = (ROOT / "ltlcompiler" / "gait.lark").read_text()
-    keywords = set(re.findall(r'"([a-z]+)"', lark))
-    grammar = (ROOT / "editors" / "vscode" / "syntaxes" / "gait.tmLanguage.json").read_text()
-    missing = sorted(k for k in keywords if not re.search(rf"\b{k}\b", grammar))
-    assert missing == []
+    grammar = json.loads((ROOT / "editors" / "vscode" / "syntaxes" / "gait.tmLanguage.json")
+                         .read_text())
+    found: dict[str, set[str]] = {}
+    stack: list[object] = [grammar]
+    while stack:
+        item = stack.pop()
+        if isinstance(item, dict):
+            match = item.get("match")
+            if isinstance(match, str):
+                scope = str(item.get("name") or sorted(
+                    str(c.get("name")) for c in item.get("captures", {}).values()))
+                for group in re.findall(r"\((?:\?:)?([a-z]+(?:\|[a-z]+)*)\)", match):
+                    found.setdefault(scope, set()).update(group.split("|"))
+            stack.extend(item.values())
+        elif isinstance(item, list):
+            stack.extend(item)
+    return found
+
+
+def test_the_grammar_highlights_exactly_the_keywords_of_the_language() -> None:
+    """Each keyword of ltlcompiler/gait.lark (read from the analysed grammar, as the
+    language server's completion reads it) is highlighted by some pattern of the editor
+    grammar, and every word a pattern highlights by name is a keyword of gait.lark."""
+    from ltlcompiler.parser import keywords
+
+    highlighted = _highlighted_words()
+    words = set().union(*highlighted.values())
+    assert sorted(set(keywords()) - words) == [], "keywords the editor does not highlight"
+    assert sorted(words - set(keywords())) == [], "highlighted words that are no keyword"
+    assert all(scope.startswith(("keyword.", "storage.", "support.", "constant.language", "["))
+               for scope in highlighted), sorted(highlighted)

@@ -5,6 +5,10 @@ with its own keyword, and one continues onto the next line only after a comma or
 operator); within it, the last clause keyword says what is expected: legs after ``uses``,
 regions after ``cache``, ``visit``, ``start`` or a hazard's colon, gaits after ``by``,
 any name and the formula keywords after ``assume`` and ``guarantee``.
+
+The statement keywords, the directions and the formula keywords are read from the grammar
+(:func:`ltlcompiler.parser.keywords`); the words that may follow each clause are written
+here, and ``tests/test_lsp_keywords.py`` holds each of them to the grammar rule it is in.
 """
 
 from __future__ import annotations
@@ -13,13 +17,8 @@ import re
 from dataclasses import dataclass
 
 from gaitc.lsp.index import Index, Kind
+from ltlcompiler.parser import keywords, statement_keywords
 
-STATEMENTS = ("robot", "legs", "leg", "gait", "correction", "grid", "block", "region",
-              "regions", "edge", "cache", "caches", "hazard", "start", "visit", "assume",
-              "guarantee")
-DIRECTIONS = ("north", "south", "east", "west")
-FORMULA_WORDS = ("always", "eventually", "next", "until", "and", "or", "not", "true",
-                 "false", "health", "failed")
 _TOKEN = re.compile(r'"[^"\n]*"?|#[^\n]*|[A-Za-z_][A-Za-z0-9_]*|\.\.|<->|->|\S')
 _CONTINUES = (",", "->", "<->", "..", ":", "=", "&", "|", "^", "!", "(")
 
@@ -56,11 +55,12 @@ def offers(before: str, index: Index | None) -> list[Offer]:
         tokens = tokens[:-1]  # the word being typed
     previous = tokens[-1] if tokens else ""
     at_line_start = re.fullmatch(r"\s*[A-Za-z_0-9]*", line_start) is not None
+    statements = statement_keywords()
     if not tokens or (at_line_start and previous not in _CONTINUES):
-        return _keywords(*STATEMENTS)
-    start = max((i for i, t in enumerate(tokens) if t in STATEMENTS), default=-1)
+        return _keywords(*statements)
+    start = max((i for i, t in enumerate(tokens) if t in statements), default=-1)
     if start < 0:
-        return _keywords(*STATEMENTS)
+        return _keywords(*statements)
     statement, rest = tokens[start], tokens[start + 1:]
     if statement == "correction":
         statement = "gait"
@@ -68,6 +68,8 @@ def offers(before: str, index: Index | None) -> list[Offer]:
     return _in(statement, clause, rest, previous, index)
 
 
+#: The clause keywords of each statement that say what comes after them (contextual, so
+#: written by hand; each is a keyword of its statement's rule in gait.lark).
 CLAUSES = {
     "gait": ("uses", "moves", "valves", "primitive"),
     "legs": ("health",), "leg": ("health",),
@@ -87,7 +89,8 @@ def _in(statement: str, clause: str, rest: list[str], previous: str,
         if clause == "uses":
             return _names(index, Kind.LEG) + _keywords("moves", "valves", "primitive")
         if clause == "moves":
-            return _keywords(*DIRECTIONS) + regions + _keywords("valves", "primitive")
+            return (_keywords(*keywords("direction")) + regions
+                    + _keywords("valves", "primitive"))
         if clause == "primitive":
             return _keywords("direction", "method")
         if clause == "valves":
@@ -112,7 +115,7 @@ def _in(statement: str, clause: str, rest: list[str], previous: str,
             return _names(index, Kind.GAIT)
         arrows = [i for i, t in enumerate(rest) if t in ("->", "<->")]
         if arrows and len(rest) > arrows[0] + 1 and previous not in ("->", "<->"):
-            return _keywords("by", *DIRECTIONS)
+            return _keywords("by", *keywords("direction"))
         return regions
     if statement in ("assume", "guarantee"):
         names: list[Offer] = []
@@ -120,5 +123,5 @@ def _in(statement: str, clause: str, rest: list[str], previous: str,
             names += _names(index, kind)
         if previous == "(" and len(rest) >= 2 and rest[-2] in ("health", "failed"):
             return _names(index, Kind.LEG)
-        return names + _keywords(*FORMULA_WORDS)
+        return names + _keywords(*keywords("formula"))
     return []
