@@ -15,6 +15,7 @@ import shutil
 from pathlib import Path
 
 import pytest
+from packages import ROOT
 
 import gaitc
 from gaitc.api.generating import compact_of
@@ -22,7 +23,6 @@ from gaitc.api.solving import controller_form, read_controller
 from gaitc.core.modes import Form
 from gaitc.forms.base import ControllerForm
 from gaitc.forms.registry import FORMS, entry, register
-from packages import ROOT
 
 SPECS = {"robot_a": ROOT / "specs" / "thesis_robot_a.gait",
          "radial8": ROOT / "specs" / "radial8_patrol.gait"}
