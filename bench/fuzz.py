@@ -5,8 +5,13 @@ Usage: python bench/fuzz.py --per-kind N [--hours H] [--kinds a,b] [--jobs J] [-
 
 Besides the file kinds of ``tests/fuzz_cases.py``: ``serial`` (the board's replies),
 ``runner`` (scripts for a compiled ``gaitc-run``, skipped without gcc), ``target`` (odd
-output paths; its first inputs are the fixed special targets) and ``codegen`` (codegen's
-option words), from ``tests/fuzz_serial.py``, ``fuzz_runner.py`` and ``fuzz_targets.py``.
+output paths; its first inputs are the fixed special targets), ``codegen`` (codegen's
+option words), ``lsp`` (sessions of LSP messages for a fresh ``gaitc lsp``, skipped
+without pygls) and ``player`` (screen sizes and keys for the terminal player, skipped
+without textual), from ``tests/fuzz_serial.py``, ``fuzz_runner.py``, ``fuzz_targets.py``,
+``fuzz_lsp.py`` and ``fuzz_player.py``. A session of ``lsp`` may take ``--limit`` seconds
+(its server's start-up not counted); a key sequence of ``player`` at least
+:data:`PLAYER_LIMIT`.
 
 Each worker process runs commands in-process (``gaitc.cli.main``) on mutants made from
 ``(seed, kind, index)`` alone, so a run is deterministic given ``--seed``. A run past its
@@ -20,6 +25,7 @@ from __future__ import annotations
 
 import argparse
 import contextlib
+import importlib.util
 import multiprocessing
 import multiprocessing.connection
 import random
@@ -42,8 +48,11 @@ from fuzz_serial import EXCHANGES, exchange
 from fuzz_targets import NAMES, OPTIONS, SPECIAL, SPECIALS, run_codegen, run_target
 
 # the file kinds, the board's serial replies, gaitc-run's scripts, output targets and
-# codegen's options
-ALL_KINDS = (*KIND_NAMES, "serial", "runner", "target", "codegen")
+# codegen's options, the language server's sessions and the player's keys
+ALL_KINDS = (*KIND_NAMES, "serial", "runner", "target", "codegen", "lsp", "player")
+#: What each front-end kind needs installed (the kind is skipped without it).
+NEEDS = {"lsp": "pygls", "player": "textual"}
+PLAYER_LIMIT = 30.0  # seconds a key sequence may take, at least (Textual's pilot is slow)
 SERIAL_COMMANDS = ("board",)
 
 
@@ -53,6 +62,17 @@ def mutant_of(seeds: tuple[tuple[str, bytes], ...], seed: int, kind: str,
     rng = random.Random(f"{seed}:{kind}:{index}")
     name, data = seeds[rng.randint(0, len(seeds) - 1)]
     return name, mutate(data, rng, [d for _, d in seeds])
+
+
+def play_of(seed: int, index: int) -> tuple[str, bytes]:
+    """The ``index``-th mutant of the ``player`` kind: a key sequence, on another screen
+    one time in two (:func:`fuzz_player.mutate_play`)."""
+    from fuzz_player import EXCHANGES as PLAYS
+    from fuzz_player import mutate_play
+
+    rng = random.Random(f"{seed}:player:{index}")
+    name, data = PLAYS[rng.randint(0, len(PLAYS) - 1)]
+    return name, mutate_play(data, rng, [d for _, d in PLAYS])
 
 
 def target_of(seed: int, index: int) -> tuple[str, bytes]:
@@ -92,6 +112,19 @@ def _worker(conn: multiprocessing.connection.Connection, folder: str, limit: flo
             name, data = mutant_of(OPTIONS, seed, kind, index)
             current.write_bytes(data)
             verdicts = run_codegen(data, fx, limit)
+        elif kind == "lsp":
+            from fuzz_lsp import EXCHANGES as SESSIONS
+            from fuzz_lsp import exchange as run_session
+
+            name, data = mutant_of(SESSIONS, seed, kind, index)
+            current.write_bytes(data)
+            verdicts = [run_session(data, limit)]
+        elif kind == "player":
+            from fuzz_player import exchange as play
+
+            name, data = play_of(seed, index)
+            current.write_bytes(data)
+            verdicts = [play(data, max(limit, PLAYER_LIMIT))]
         else:
             name, data = mutant_of(table[kind].seeds, seed, kind, index)
             current.write_bytes(data)
@@ -220,6 +253,10 @@ def main(argv: list[str] | None = None) -> int:
     if "runner" in chosen and shutil.which("gcc") is None:
         print("runner: skipped, gcc is missing (gaitc-run cannot be built)", file=sys.stderr)
         chosen.remove("runner")
+    for kind, module in NEEDS.items():
+        if kind in chosen and importlib.util.find_spec(module) is None:
+            print(f"{kind}: skipped, {module} is not installed", file=sys.stderr)
+            chosen.remove(kind)
     tallies = {kind: Tally() for kind in chosen}
     deadline = None if args.hours is None else time.monotonic() + args.hours * 3600
     with tempfile.TemporaryDirectory(prefix="gaitc-fuzz-") as tmp:
