@@ -25,6 +25,7 @@ from gaitc.ir.bitblast import bitblast
 from gaitc.ir.bits import spec_bits
 from gaitc.ir.controller import (
     Controller,
+    ControllerKind,
     ControllerNode,
     controller_from_dict,
     integers_of,
@@ -253,7 +254,7 @@ def counterstrategy_from_slugs_text(text: str, spec: GR1Spec,
         initial.append(k)
     return Controller(
         variables=variables, inputs=ins, outputs=outs, nodes=nodes, initial=tuple(initial),
-        integers=integers_of(variables, frozenset(ins)), kind="counterstrategy",
+        integers=integers_of(variables, frozenset(ins)), kind=ControllerKind.COUNTERSTRATEGY,
         solver="slugs", semantics=semantics,
     )
 

@@ -19,7 +19,7 @@ from gaitc.core.spec import Spec, load
 from gaitc.diagnostics import UsageError
 from gaitc.forms.reader import load_runtime, runtime
 from gaitc.ir.bddfile import SymbolicController
-from gaitc.ir.controller import Controller
+from gaitc.ir.controller import Controller, ControllerKind
 from gaitc.sim.domain import Domain
 from gaitc.sim.environments import Environment
 from gaitc.sim.monitor import Monitor
@@ -191,7 +191,7 @@ def simulate(spec: Spec | Session | str | Path,
     if bound is None:
         path = spec.path if isinstance(spec, Spec) else str(spec)
         raise UsageError(f"'{path}' is unrealizable: there is no controller to simulate")
-    if bound.strategy.kind == "counterstrategy":
+    if bound.strategy.kind == ControllerKind.COUNTERSTRATEGY:
         return _counter_play(bound, chosen_env, steps, seed)
     chosen = build_environment(chosen_env, bound, seed)
     if steps is None:

@@ -13,7 +13,7 @@ from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Final, Literal, get_args
 
-from gaitc.core.modes import Form
+from gaitc.core.modes import ControllerKind, Form
 from gaitc.core.presentation import table
 from gaitc.core.spec import Spec, SpecLike, as_gr1, as_spec, resolve
 from gaitc.diagnostics import SolverError, UsageError
@@ -43,7 +43,7 @@ if TYPE_CHECKING:
 SolverName = Literal["embedded", "slugs"]
 #: ``embedded``: the BDD solver in :mod:`gaitc.solver`; ``slugs``: an installed SLUGS binary.
 SOLVERS: Final[tuple[SolverName, ...]] = get_args(SolverName)
-Kind = Literal["strategy", "counterstrategy"]
+Kind = ControllerKind
 #: Above this many nodes ``synthesize`` keeps the controller symbolic (form ``auto``).
 MAX_NODES: Final = 100_000
 #: The forms ``synthesize`` writes: the solver's (:data:`gaitc.solver.synthesis.FORMS`) and
@@ -114,7 +114,7 @@ class Synthesis:
     def realizable(self) -> bool:
         """Whether the spec is realizable (the verdict behind this automaton)."""
         found = self.controller is not None
-        return found if self.kind == "strategy" else not found
+        return found if self.kind == ControllerKind.STRATEGY else not found
 
     @property
     def verified(self) -> bool:
@@ -290,7 +290,7 @@ def synthesize(spec: SpecLike, semantics: Semantics | str = Semantics.DEFAULT,
                          f"slugs or --{form}")
     return _solve(
         spec=resolve(spec),
-        kind="strategy",
+        kind=ControllerKind.STRATEGY,
         semantics=_semantics(semantics),
         solver=solver,
         timeout=timeout,
@@ -312,7 +312,7 @@ def counterstrategy(spec: SpecLike, semantics: Semantics | str = Semantics.DEFAU
     ``.controller`` is None when the spec is realizable."""
     return _solve(
         spec=resolve(spec),
-        kind="counterstrategy",
+        kind=ControllerKind.COUNTERSTRATEGY,
         semantics=_semantics(semantics),
         solver=solver,
         timeout=timeout,
@@ -346,7 +346,7 @@ def _solve(spec: Spec | GR1Spec, kind: Kind, semantics: Semantics, solver: str,
                 raise UsageError("move preferences need the embedded solver; use --prefer "
                                  "none with --solver slugs")
             automaton = _slugs_automaton(gr1, kind, semantics, timeout, slugs)
-        elif kind == "strategy":
+        elif kind == ControllerKind.STRATEGY:
             from gaitc.solver import synthesis
 
             automaton = synthesis.synthesize_controller(
@@ -432,7 +432,7 @@ def _slugs_automaton(gr1: GR1Spec, kind: Kind, semantics: Semantics, timeout: fl
                      slugs: str | None) -> Controller | None:
     from slugs_bridge import runner
 
-    wanted = kind == "strategy"
+    wanted = kind == ControllerKind.STRATEGY
     run = runner.run_slugs_synth if wanted else runner.run_slugs_counter
     result = run(_slugsin(gr1), semantics=semantics, timeout=timeout, slugs=slugs)
     if result.realizable != wanted:
@@ -471,7 +471,7 @@ def verify(spec: SpecLike,
     if why is not None:  # the proof covers the whole file: its vocabulary is the spec's
         return VerificationReport(
             ok=False, problems=(f"controller does not belong to this spec: {why}",),
-            kind="counterstrategy" if automaton.kind == "counterstrategy" else "strategy",
+            kind=automaton.kind,
             semantics=chosen, symbolic=form.form != Form.EXPLICIT)
     return form.verify(bound, automaton, chosen)
 

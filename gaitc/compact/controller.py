@@ -38,7 +38,7 @@ from gaitc.compact.diagram import (
 from gaitc.core.vocabulary import Field, Vocabulary
 from gaitc.diagnostics import ControllerError, Span
 from gaitc.ir.bddfile import SymbolicController, node_table
-from gaitc.ir.controller import IntegerVar, integers_from_json, integers_to_json
+from gaitc.ir.controller import ControllerKind, IntegerVar, integers_from_json, integers_to_json
 from gaitc.ir.spec import GR1Spec, Semantics
 
 COMPACT_FORMAT: Final = "compact"
@@ -103,8 +103,8 @@ class CompactController:
         return sum(len(paths(self.nodes, root, len(self.slots))) for root in self.move_roots)
 
     @property
-    def kind(self) -> str:
-        return COMPACT_FORMAT
+    def kind(self) -> ControllerKind:
+        return ControllerKind.STRATEGY
 
     # ---------------------------------------------------------------- reading
     def slot_values(self, state: Mapping[str, int], chosen: Mapping[str, int]) -> list[int]:

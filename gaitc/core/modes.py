@@ -2,18 +2,21 @@
 
 Each mode is a :class:`~gaitc.diagnostics.choices.Choice` (a ``str`` enumeration), so a
 notebook may pass the member or its value and every layer compares members, never text.
-Two of them are defined where the lower layers need them and re-exported here:
-:class:`Semantics` (the initial-state semantics, :mod:`gaitc.ir.spec`) and
+Three of them are defined where the lower layers need them and re-exported here:
+:class:`Semantics` (the initial-state semantics, :mod:`gaitc.ir.spec`),
+:class:`ControllerKind` (a strategy or a counter-strategy, :mod:`gaitc.ir.controller`) and
 :class:`EncodingName` (the leg-health encoding, :mod:`ltlcompiler.encoding`).
 """
 
 from __future__ import annotations
 
 from gaitc.diagnostics.choices import Choice
+from gaitc.ir.controller import ControllerKind
 from gaitc.ir.spec import Semantics
 from ltlcompiler.encoding import EncodingName
 
-__all__ = ["EncodingName", "EnvironmentKind", "Form", "Role", "SearchMethod", "Semantics"]
+__all__ = ["ControllerKind", "EncodingName", "EnvironmentKind", "Form", "Role", "SearchMethod",
+           "Semantics"]
 
 
 class Form(Choice):

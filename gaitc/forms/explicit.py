@@ -15,7 +15,12 @@ from typing import TYPE_CHECKING, Any, ClassVar
 from gaitc.core.modes import Form, Semantics
 from gaitc.diagnostics import ControllerError, Span
 from gaitc.forms.base import ControllerForm
-from gaitc.ir.controller import Controller, controller_from_dict, controller_to_json
+from gaitc.ir.controller import (
+    Controller,
+    ControllerKind,
+    controller_from_dict,
+    controller_to_json,
+)
 
 if TYPE_CHECKING:
     from gaitc.compact.controller import CompactController
@@ -23,9 +28,6 @@ if TYPE_CHECKING:
     from gaitc.ir.bddfile import SymbolicController
     from gaitc.sim.view import StrategyView
     from gaitc.verifier.strategy import VerificationReport
-
-COUNTERSTRATEGY = "counterstrategy"
-
 
 class ExplicitForm(ControllerForm):
     """An explicit Mealy automaton (or an environment's counter-strategy)."""
@@ -46,7 +48,7 @@ class ExplicitForm(ControllerForm):
 
     def verify(self, spec: Spec, automaton: Controller, semantics: Semantics
                ) -> VerificationReport:
-        if automaton.kind == COUNTERSTRATEGY:
+        if automaton.kind == ControllerKind.COUNTERSTRATEGY:
             from gaitc.verifier.counterstrategy import verify_counterstrategy
 
             return verify_counterstrategy(spec.gr1, automaton, semantics)
@@ -68,7 +70,7 @@ class ExplicitForm(ControllerForm):
     def to_compact(self, spec: Spec, automaton: Controller) -> CompactController:
         from gaitc.compact.extraction import compact_from_symbolic
 
-        if automaton.kind == COUNTERSTRATEGY:
+        if automaton.kind == ControllerKind.COUNTERSTRATEGY:
             raise ControllerError(
                 "a counter-strategy has no compact form: it is the environment's plan, not "
                 "a controller a robot runs", Span("<controller>", 1, 1))

@@ -23,7 +23,13 @@ from typing import Any, Final
 
 from gaitc.diagnostics import ControllerError, Span
 from gaitc.diagnostics.versions import SYMBOLIC_CONTROLLER
-from gaitc.ir.controller import SYMBOLIC_FORMAT, IntegerVar, integers_from_json, integers_to_json
+from gaitc.ir.controller import (
+    SYMBOLIC_FORMAT,
+    ControllerKind,
+    IntegerVar,
+    integers_from_json,
+    integers_to_json,
+)
 from gaitc.ir.spec import Semantics
 
 #: The single roots every symbolic controller has, and the per-goal lists.
@@ -65,8 +71,8 @@ class SymbolicController:
         return self.inputs + self.outputs
 
     @property
-    def kind(self) -> str:
-        return SYMBOLIC_FORMAT
+    def kind(self) -> ControllerKind:
+        return ControllerKind.STRATEGY
 
     @property
     def goal_count(self) -> int:

@@ -11,15 +11,24 @@ import html
 import json
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, Final
 
 from gaitc.diagnostics import ControllerError, Span, span_at
+from gaitc.diagnostics.choices import Choice
 from gaitc.diagnostics.files import decode_text, read_input
 from gaitc.diagnostics.versions import CONTROLLER
 from gaitc.ir.bits import bit_name, integer_bits, parse_first_bit, spec_bits
 from gaitc.ir.spec import SEMANTICS, GR1Spec, Semantics
 
-KINDS = ("strategy", "counterstrategy")
+
+class ControllerKind(Choice):
+    """Whose winning strategy an automaton is."""
+
+    STRATEGY = "strategy"  # the system's: a controller the robot runs
+    COUNTERSTRATEGY = "counterstrategy"  # the environment's: how it defeats every controller
+
+
+KINDS: Final = ControllerKind.values()
 #: ``gaitc.format`` of a symbolic controller file (:mod:`gaitc.ir.bddfile`).
 SYMBOLIC_FORMAT = "symbolic-strategy"
 
@@ -53,7 +62,7 @@ class Controller:
     nodes: tuple[ControllerNode, ...]
     initial: tuple[int, ...]
     integers: Mapping[str, IntegerVar] = field(default_factory=dict)
-    kind: str = "strategy"
+    kind: ControllerKind = ControllerKind.STRATEGY
     solver: str = "embedded"
     semantics: Semantics = Semantics.DEFAULT
     source: Mapping[str, str] | None = None
@@ -261,8 +270,9 @@ def controller_from_dict(
             "'gaitc.initial' must list node ids",
             span,
         )
-        kind = extras.get("kind", "strategy")
+        kind = extras.get("kind", ControllerKind.STRATEGY.value)
         _need(kind in KINDS, f"'gaitc.kind' must be one of {', '.join(KINDS)}", span)
+        kind = ControllerKind(kind)
         semantics = extras.get("semantics", "default")
         _need(semantics in SEMANTICS,
               f"'gaitc.semantics' must be one of {', '.join(SEMANTICS)}", span)

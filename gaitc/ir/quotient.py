@@ -17,7 +17,7 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-from gaitc.ir.controller import Controller, ControllerNode
+from gaitc.ir.controller import Controller, ControllerKind, ControllerNode
 
 
 def equivalence_blocks(controller: Controller) -> list[int]:
@@ -43,7 +43,7 @@ def merge_equivalent(controller: Controller) -> Controller:
     """``controller`` with each set of equivalent nodes merged into one; the controller
     itself when no two nodes are equivalent.  Counter-strategies are returned unchanged
     (their nodes answer system moves, not inputs)."""
-    if controller.kind != "strategy":
+    if controller.kind != ControllerKind.STRATEGY:
         return controller
     blocks = equivalence_blocks(controller)
     count = max(blocks, default=-1) + 1

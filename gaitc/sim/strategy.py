@@ -11,7 +11,7 @@ from dataclasses import dataclass, field
 
 from gaitc.diagnostics import ControllerError, Span
 from gaitc.ir.bits import bits_mismatch, spec_bits
-from gaitc.ir.controller import Controller
+from gaitc.ir.controller import Controller, ControllerKind
 from gaitc.ir.spec import GR1Spec
 from gaitc.sim.view import Indexed, InputKey, NodeReading, StrategyView
 
@@ -29,7 +29,7 @@ class Strategy(NodeReading):
     successors: tuple[tuple[int, ...], ...]
     ranks: tuple[int, ...]
     initial: tuple[int, ...]
-    kind: str = "strategy"
+    kind: ControllerKind = ControllerKind.STRATEGY
     file: str = ""
     _options: dict[int, dict[InputKey, int]] = field(
         default_factory=dict, compare=False, repr=False

@@ -18,6 +18,7 @@ from gaitc.diagnostics import ControllerError, Span
 from gaitc.ir.bddfile import SymbolicController, declare, materialize
 from gaitc.ir.bddwalk import State, all_assignments, first_assignment, holds_at
 from gaitc.ir.bits import bits_mismatch, spec_bits
+from gaitc.ir.controller import ControllerKind
 from gaitc.ir.manager import manager
 from gaitc.ir.spec import GR1Spec
 from gaitc.sim.view import InputKey, NodeReading
@@ -28,7 +29,7 @@ T = TypeVar("T")
 class SymbolicStrategy(NodeReading):
     """The interface of :class:`gaitc.sim.strategy.Strategy`, over a symbolic controller."""
 
-    kind = "strategy"
+    kind = ControllerKind.STRATEGY
 
     def __init__(self, ctrl: SymbolicController, spec: GR1Spec, file: str = "") -> None:
         self.ctrl, self.file = ctrl, file

@@ -14,7 +14,7 @@ from collections import deque
 from dataclasses import dataclass
 
 from gaitc.diagnostics import SolverError
-from gaitc.ir.controller import Controller, ControllerNode
+from gaitc.ir.controller import Controller, ControllerKind, ControllerNode
 from gaitc.ir.cuddlib import cudd
 from gaitc.ir.spec import Semantics
 from gaitc.solver.canonical import REPORT_EVERY, assignments, fix, primed, smallest, spec_integers
@@ -199,6 +199,6 @@ def extract_counterstrategy(
         ),
         initial=tuple(sorted(set(initial))),
         integers=spec_integers(sym),
-        kind="counterstrategy",
+        kind=ControllerKind.COUNTERSTRATEGY,
         semantics=semantics,
     )

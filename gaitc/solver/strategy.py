@@ -17,7 +17,7 @@ from typing import TYPE_CHECKING
 
 from gaitc.diagnostics import SolverError
 from gaitc.ir.bddwalk import State, all_assignments, cofactor, holds_at
-from gaitc.ir.controller import Controller, ControllerNode
+from gaitc.ir.controller import Controller, ControllerKind, ControllerNode
 from gaitc.ir.spec import Semantics
 from gaitc.solver.canonical import (
     REPORT_EVERY,
@@ -152,7 +152,7 @@ def extract_strategy(
         ),
         initial=tuple(sorted(set(initial))),
         integers=spec_integers(sym),
-        kind="strategy",
+        kind=ControllerKind.STRATEGY,
         semantics=semantics,
     )
 

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from gaitc.ir.controller import Controller
+from gaitc.ir.controller import Controller, ControllerKind
 from gaitc.ir.spec import GR1Spec, Semantics
 from gaitc.verifier.logic import Bits
 from gaitc.verifier.strategy import Check, VerificationReport, few_nodes
@@ -25,7 +25,7 @@ def verify_counterstrategy(
     satisfy every environment liveness assumption while missing some system goal forever.
     """
     check = Check(spec, controller, semantics)
-    if controller.kind != "counterstrategy":
+    if controller.kind != ControllerKind.COUNTERSTRATEGY:
         check.problems.append(f"the controller is a {controller.kind}, not a counter-strategy")
     elif check.well_formed():
         _counter_initial(check)
@@ -40,7 +40,7 @@ def verify_counterstrategy(
         check.problems += [f"nodes {few_nodes(c)}: a cycle through them lets the system satisfy "
                            "every system goal infinitely often"
                            for c in check.fair_sccs("none", -1, "sys_liveness")]
-    return check.report("counterstrategy")
+    return check.report(ControllerKind.COUNTERSTRATEGY)
 
 
 def _counter_initial(check: Check) -> None:

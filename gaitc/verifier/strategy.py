@@ -16,7 +16,7 @@ import networkx as nx
 
 from gaitc.ir.bitblast import bitblast
 from gaitc.ir.bits import bits_mismatch
-from gaitc.ir.controller import Controller
+from gaitc.ir.controller import Controller, ControllerKind
 from gaitc.ir.spec import SEMANTICS, GR1Spec, Semantics
 from gaitc.verifier.logic import Bits, Logic
 
@@ -33,7 +33,7 @@ class VerificationReport:
     nodes: int = 0
     edges: int = 0
     sccs: int = 0
-    kind: str = "strategy"
+    kind: ControllerKind = ControllerKind.STRATEGY
     semantics: Semantics = Semantics.DEFAULT
     symbolic: bool = False  # checked by fixpoints over BDDs (gaitc.verifier.symbolic), no graph
 
@@ -208,7 +208,7 @@ class Check:
             members.setdefault(i, []).append(n)
         return sorted(members[i] for i, goals in seen.items() if len(goals) == count)
 
-    def report(self, kind: str) -> VerificationReport:
+    def report(self, kind: ControllerKind) -> VerificationReport:
         extra = len(self.problems) - MAX_PROBLEMS
         problems = self.problems[:MAX_PROBLEMS] + [f"... and {extra} more problem(s)"] * (extra > 0)
         return VerificationReport(
@@ -237,7 +237,7 @@ def verify(spec: GR1Spec, controller: Controller,
     and liveness (no fair cycle starves a system goal); see docs/solvers.md.
     """
     check = Check(spec, controller, semantics)
-    if controller.kind != "strategy":
+    if controller.kind != ControllerKind.STRATEGY:
         check.problems.append(f"the controller is a {controller.kind}, not a strategy for the "
                               "system")
     elif check.well_formed():
@@ -250,7 +250,7 @@ def verify(spec: GR1Spec, controller: Controller,
                 f"assumption infinitely often but never satisfies {rule}"
                 for c in check.fair_sccs("sys_liveness", j, "env_liveness")
             ]
-    return check.report("strategy")
+    return check.report(ControllerKind.STRATEGY)
 
 
 def _strategy_initial(check: Check) -> None:

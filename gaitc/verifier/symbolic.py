@@ -27,6 +27,7 @@ from typing import Any
 from gaitc.ir.bddfile import SymbolicController, materialize
 from gaitc.ir.bitblast import bitblast
 from gaitc.ir.bits import bits_mismatch
+from gaitc.ir.controller import ControllerKind
 from gaitc.ir.cuddlib import cudd
 from gaitc.ir.spec import GR1Spec, Semantics
 from gaitc.verifier.logic import Logic
@@ -204,7 +205,7 @@ def _report(problems: list[str], count: int, semantics: Semantics) -> Verificati
         nodes=count,
         edges=0,
         sccs=0,
-        kind="strategy",
+        kind=ControllerKind.STRATEGY,
         semantics=semantics,
         symbolic=True,
     )
