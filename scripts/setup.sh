@@ -50,3 +50,8 @@ if [ ! -x .venv/bin/python ]; then
     "$PYTHON" -m venv .venv
 fi
 .venv/bin/python -m pip install -q --disable-pip-version-check -e '.[test,cluster,notebook,docs]'
+# scripts/check.sh (the test command) runs ruff and mypy before the suite: both come with the
+# test extra, and a setup without them is a failed setup.
+for tool in ruff mypy vermin; do
+    [ -x ".venv/bin/$tool" ] || { echo "setup: $tool was not installed into .venv" >&2; exit 1; }
+done

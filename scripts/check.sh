@@ -1,0 +1,47 @@
+#!/usr/bin/env bash
+# The test command (README.md's second line, and .ci/run): a fast stage first, then the suite.
+#
+# The fast stage (about half a minute) runs ruff, mypy (at Python 3.10, pyproject.toml) and
+# the tests of the code's shape: the layering, its map in docs/background/layout.md, the
+# quality rules and the minimum Python version. It stops the run with a message naming the
+# stage that failed, so a lint or type error is reported before the 15-minute suite starts.
+# Then the whole suite runs; arguments are passed to that pytest run, e.g.
+#     scripts/check.sh -m "not slow"      # the quick run (docs/background/testing.md)
+# Set FAST_ONLY=1 to stop after the fast stage; VENV names another virtual environment.
+set -uo pipefail
+cd "$(dirname "$0")/.."
+
+VENV="${VENV:-.venv}"
+PY="$VENV/bin/python"
+FAST_TESTS=(tests/test_layout.py tests/test_layout_doc.py tests/test_quality.py
+            tests/test_python_versions.py tests/test_check_stage.py)
+
+fail() {
+    echo >&2
+    echo "check: FAILED at the fast stage: $1" >&2
+    echo "check: the test suite was not run; fix the above and run scripts/check.sh again" >&2
+    exit 1
+}
+
+for tool in ruff mypy; do
+    [ -x "$VENV/bin/$tool" ] || fail "$tool is not installed in $VENV (run scripts/setup.sh)"
+done
+
+echo "check: ruff" >&2
+"$VENV/bin/ruff" check gaitc ltlcompiler slugs_bridge tests bench tools typings \
+    || fail "ruff found problems (listed above; 'ruff check --fix' fixes the ones marked [*])"
+
+echo "check: mypy (Python 3.10, strict)" >&2
+"$VENV/bin/mypy" || fail "mypy found type errors (listed above)"
+
+echo "check: layering, layout map, quality and Python-version tests" >&2
+"$PY" -m pytest -q "${FAST_TESTS[@]}" \
+    || fail "a layering, layout-map, quality or Python-version test failed (above)"
+
+if [ "${FAST_ONLY:-0}" = 1 ]; then
+    echo "check: fast stage passed (FAST_ONLY=1: the suite is not run)" >&2
+    exit 0
+fi
+
+echo "check: fast stage passed; the whole test suite" >&2
+exec "$PY" -m pytest "$@"
