@@ -43,57 +43,74 @@ from __future__ import annotations
 import importlib
 from typing import TYPE_CHECKING, Any
 
-if TYPE_CHECKING:
-    from gaitc.api.answers import explain, resilience
-    from gaitc.api.characterizing import Recordings, calibrate, characterize
-    from gaitc.api.compiling import FORMATS, OutputFormat, emit, lint
-    from gaitc.api.drawing import controller_policy, draw_automaton, draw_map, draw_spec
-    from gaitc.api.driving import (
-        DriveOptions,
-        PhysicsBoard,
-        SerialBoard,
-        SimulatedBoard,
-        Tracker,
-        drive,
-    )
-    from gaitc.api.examples import copy_examples
-    from gaitc.api.gaits import (
-        GaitMethod,
-        GaitOptions,
-        GlobalSearch,
-        gaits,
-    )
-    from gaitc.api.learning import LearningBackend, LearnOptions, learn
-    from gaitc.api.playing import Autopilot, Player, Role, player, player_widget
-    from gaitc.api.simulation import Session, session, simulate
-    from gaitc.api.solving import (
-        SOLVERS,
-        Synthesis,
-        Verdict,
-        check,
-        counterstrategy,
-        synthesize,
-        verify,
-    )
-    from gaitc.core.spec import Spec, load, parse
-    from gaitc.diagnostics import (
-        ControllerError,
-        FileAccessError,
-        FormulaError,
-        GaitcError,
-        MissingFileError,
-        ScenarioError,
-        SlugsFormatError,
-        SolverError,
-        Span,
-        SpecSemanticError,
-        SpecSyntaxError,
-        UsageError,
-    )
+if TYPE_CHECKING:  # the names of _MODULES, for the type checker (tests/test_cli_facade.py)
+    from gaitc.api.answers import explain as explain
+    from gaitc.api.answers import resilience as resilience
+    from gaitc.api.characterizing import Recordings as Recordings
+    from gaitc.api.characterizing import calibrate as calibrate
+    from gaitc.api.characterizing import characterize as characterize
+    from gaitc.api.compiling import FORMATS as FORMATS
+    from gaitc.api.compiling import OutputFormat as OutputFormat
+    from gaitc.api.compiling import emit as emit
+    from gaitc.api.compiling import lint as lint
+    from gaitc.api.drawing import controller_policy as controller_policy
+    from gaitc.api.drawing import draw_automaton as draw_automaton
+    from gaitc.api.drawing import draw_map as draw_map
+    from gaitc.api.drawing import draw_spec as draw_spec
+    from gaitc.api.driving import DriveOptions as DriveOptions
+    from gaitc.api.driving import PhysicsBoard as PhysicsBoard
+    from gaitc.api.driving import SerialBoard as SerialBoard
+    from gaitc.api.driving import SimulatedBoard as SimulatedBoard
+    from gaitc.api.driving import Tracker as Tracker
+    from gaitc.api.driving import drive as drive
+    from gaitc.api.examples import copy_examples as copy_examples
+    from gaitc.api.gaits import GaitMethod as GaitMethod
+    from gaitc.api.gaits import GaitOptions as GaitOptions
+    from gaitc.api.gaits import GlobalSearch as GlobalSearch
+    from gaitc.api.gaits import gaits as gaits
+    from gaitc.api.generating import Target as Target
+    from gaitc.api.generating import compact_policy as compact_policy
+    from gaitc.api.generating import generate as generate
+    from gaitc.api.learning import LearningBackend as LearningBackend
+    from gaitc.api.learning import LearnOptions as LearnOptions
+    from gaitc.api.learning import learn as learn
+    from gaitc.api.playing import Autopilot as Autopilot
+    from gaitc.api.playing import Player as Player
+    from gaitc.api.playing import Role as Role
+    from gaitc.api.playing import player as player
+    from gaitc.api.playing import player_widget as player_widget
+    from gaitc.api.simulation import Session as Session
+    from gaitc.api.simulation import session as session
+    from gaitc.api.simulation import simulate as simulate
+    from gaitc.api.solving import SOLVERS as SOLVERS
+    from gaitc.api.solving import Synthesis as Synthesis
+    from gaitc.api.solving import Verdict as Verdict
+    from gaitc.api.solving import check as check
+    from gaitc.api.solving import counterstrategy as counterstrategy
+    from gaitc.api.solving import synthesize as synthesize
+    from gaitc.api.solving import verify as verify
+    from gaitc.core.spec import Spec as Spec
+    from gaitc.core.spec import load as load
+    from gaitc.core.spec import parse as parse
+    from gaitc.diagnostics import ControllerError as ControllerError
+    from gaitc.diagnostics import FileAccessError as FileAccessError
+    from gaitc.diagnostics import FormulaError as FormulaError
+    from gaitc.diagnostics import GaitcError as GaitcError
+    from gaitc.diagnostics import MissingFileError as MissingFileError
+    from gaitc.diagnostics import ScenarioError as ScenarioError
+    from gaitc.diagnostics import SlugsFormatError as SlugsFormatError
+    from gaitc.diagnostics import SolverError as SolverError
+    from gaitc.diagnostics import Span as Span
+    from gaitc.diagnostics import SpecSemanticError as SpecSemanticError
+    from gaitc.diagnostics import SpecSyntaxError as SpecSyntaxError
+    from gaitc.diagnostics import UsageError as UsageError
 
-#: Where each public name lives; modules load on first use, so ``gaitc --help`` and a
-#: Ctrl-C at start-up do not wait for the solver, the parser and the gait graph to import,
-#: and the packages below ``gaitc`` can import ``gaitc.diagnostics`` without a cycle.
+#: The one list of the public names, by the module each lives in: ``__all__`` is derived
+#: from it, the ``TYPE_CHECKING`` block above spells it out for the type checker (and
+#: tests/test_cli_facade.py holds the two equal). Modules load on first use, so ``gaitc
+#: --help`` and a Ctrl-C at start-up do not wait for the solver, the parser and the gait
+#: graph to import, and the packages below ``gaitc`` can import ``gaitc.diagnostics``
+#: without a cycle.
 _MODULES: dict[str, tuple[str, ...]] = {
     "gaitc.core.spec": ("Spec", "load", "parse"),
     "gaitc.api.compiling": ("FORMATS", "OutputFormat", "emit", "lint"),
@@ -120,6 +137,7 @@ _MODULES: dict[str, tuple[str, ...]] = {
 }
 _HOMES = {name: module for module, names in _MODULES.items() for name in names}
 
+
 def __getattr__(name: str) -> Any:
     home = _HOMES.get(name)
     if home is None:
@@ -135,65 +153,5 @@ def __dir__() -> list[str]:
 
 __version__ = "0.1.0"
 
-__all__ = [
-    "FORMATS",
-    "SOLVERS",
-    "Autopilot",
-    "ControllerError",
-    "DriveOptions",
-    "FileAccessError",
-    "FormulaError",
-    "GaitMethod",
-    "GaitOptions",
-    "GaitcError",
-    "GlobalSearch",
-    "LearnOptions",
-    "LearningBackend",
-    "MissingFileError",
-    "OutputFormat",
-    "PhysicsBoard",
-    "Player",
-    "Recordings",
-    "Role",
-    "ScenarioError",
-    "SerialBoard",
-    "Session",
-    "SimulatedBoard",
-    "SlugsFormatError",
-    "SolverError",
-    "Span",
-    "Spec",
-    "SpecSemanticError",
-    "SpecSyntaxError",
-    "Synthesis",
-    "Target",
-    "Tracker",
-    "UsageError",
-    "Verdict",
-    "calibrate",
-    "characterize",
-    "check",
-    "compact_policy",
-    "controller_policy",
-    "copy_examples",
-    "counterstrategy",
-    "draw_automaton",
-    "draw_map",
-    "draw_spec",
-    "drive",
-    "emit",
-    "explain",
-    "gaits",
-    "generate",
-    "learn",
-    "lint",
-    "load",
-    "parse",
-    "player",
-    "player_widget",
-    "resilience",
-    "session",
-    "simulate",
-    "synthesize",
-    "verify",
-]
+#: The public names, derived from :data:`_MODULES` (the one list of them).
+__all__ = sorted(_HOMES)
