@@ -75,7 +75,7 @@ def decode(model: Model, encoding: EncodingName, values: Mapping[str, int]) -> R
     gaits = [g.name for g in model.gaits]
     hazards = [h.name for h in model.hazards]
     health: list[tuple[str, int]] = []
-    if encoding == "onehot":
+    if encoding == EncodingName.ONEHOT:
         for leg in model.legs:
             levels = [health_prop(leg.name, j) for j in range(leg.health, 0, -1)]
             level = _exactly_one(values, levels, f"health levels of leg {leg.name}")
@@ -112,7 +112,7 @@ def encode(model: Model, encoding: EncodingName, state: RobotState) -> dict[str,
             raise ControllerError(f"leg {leg.name} needs a health level in 1..{leg.health} "
                                   f"in the robot state, got {levels.get(leg.name)}")
     out: dict[str, int] = {}
-    if encoding == "onehot":
+    if encoding == EncodingName.ONEHOT:
         out.update({r: int(r == state.region) for r in regions})
         out.update({g: int(g == state.gait) for g in gaits})
         out.update({h: int(h == state.hazard) for h in hazards})

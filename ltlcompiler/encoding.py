@@ -282,9 +282,9 @@ class Binary(Encoding):
 
 def make_encoding(model: Model, encoding: EncodingName) -> Encoding:
     """The :class:`Encoding` named ``encoding`` ("onehot" or "binary") for ``model``."""
-    if encoding == "onehot":
+    if encoding == EncodingName.ONEHOT:
         return OneHot(model)
-    if encoding == "binary":
+    if encoding == EncodingName.BINARY:
         return Binary(model)
     raise UsageError(f"unknown encoding '{encoding}': use one of {', '.join(ENCODINGS)}")
 

@@ -229,7 +229,7 @@ def winning_parameters(sym: SymbolicSpec, winning: BDDNode, param_bits: Sequence
     which the robot wins under ``semantics`` (SLUGS's initial condition, per parameter)."""
     bdd = sym.bdd
     others = (sym.pre_inputs | sym.pre_outputs) - set(param_bits)
-    if semantics == "robotics":
+    if semantics == Semantics.ROBOTICS:
         bad = sym.env_init & sym.sys_init & ~winning
     else:
         bad = sym.env_init & ~bdd.exist(sym.pre_outputs, sym.sys_init & winning)

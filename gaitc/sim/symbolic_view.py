@@ -20,7 +20,7 @@ from gaitc.ir.bddwalk import State, all_assignments, first_assignment, holds_at
 from gaitc.ir.bits import bits_mismatch, spec_bits
 from gaitc.ir.controller import ControllerKind
 from gaitc.ir.manager import manager
-from gaitc.ir.spec import GR1Spec
+from gaitc.ir.spec import GR1Spec, Semantics
 from gaitc.sim.view import InputKey, NodeReading
 
 T = TypeVar("T")
@@ -90,7 +90,7 @@ class SymbolicStrategy(NodeReading):
 
     def _initial_states(self) -> list[State]:
         bdd, ins, outs = self.bdd, list(self.ctrl.inputs), list(self.ctrl.outputs)
-        if self.ctrl.semantics == "robotics":
+        if self.ctrl.semantics == Semantics.ROBOTICS:
             return all_assignments(bdd, self.env_init & self.sys_init & self.winning,
                                    ins + outs)
         out = []

@@ -60,7 +60,7 @@ def spec_integers(sym: SymbolicSpec) -> dict[str, IntegerVar]:
 def initial_states(sym: SymbolicSpec, winning: BDDNode, semantics: Semantics) -> list[State]:
     """Initial states: one per θe-allowed input (default) or all of θe ∧ θs (robotics)."""
     ins, outs = list(sym.input_bits), list(sym.output_bits)
-    if semantics == "robotics":
+    if semantics == Semantics.ROBOTICS:
         return assignments(sym, sym.env_init & sym.sys_init & winning, ins + outs)
     out = []
     for x in assignments(sym, sym.bdd.exist(sym.pre_outputs, sym.env_init), ins):

@@ -73,7 +73,7 @@ def advances(sym: SymbolicSpec) -> list[list[BDDNode]]:
 
 def initial_nodes(sym: SymbolicSpec, winning: BDDNode, semantics: Semantics) -> BDDNode:
     """The states of :func:`gaitc.solver.canonical.initial_states`, as one BDD."""
-    if semantics == "robotics":
+    if semantics == Semantics.ROBOTICS:
         return sym.env_init & sym.sys_init & winning
     outs = list(sym.output_bits)
     chosen = run_through(smallest_moves(sym, sym.sys_init & winning, outs, sym.pre_outputs))

@@ -151,7 +151,7 @@ def extract_counterstrategy(
         return index[key]
 
     initial: list[int] = []
-    if semantics == "robotics":
+    if semantics == Semantics.ROBOTICS:
         start = smallest(sym, sym.env_init & sym.sys_init & losing, pre)
         if start is not None:
             initial.append(node_of(start, None))

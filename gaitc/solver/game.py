@@ -426,9 +426,9 @@ class Game:
         ∀x, y. θe ∧ θs → W.
         """
         sym = self.sym
-        if semantics == "robotics":
+        if semantics == Semantics.ROBOTICS:
             bad = sym.env_init & sym.sys_init & ~winning
-        elif semantics == "default":
+        elif semantics == Semantics.DEFAULT:
             good = sym.bdd.exist(sym.pre_outputs, sym.sys_init & winning)
             bad = sym.env_init & ~good
         else:

@@ -15,6 +15,7 @@ from dataclasses import dataclass, field, replace
 from typing import Final
 
 from gaitc.diagnostics import FormulaError
+from gaitc.diagnostics.choices import Choice
 from gaitc.diagnostics.processes import claim
 from gaitc.ir.bddfile import SymbolicController
 from gaitc.ir.bits import spec_bits
@@ -137,7 +138,16 @@ def check(
 #: The forms a controller can take: ``explicit`` (an automaton, docs/controller-format.md),
 #: ``symbolic`` (BDDs, :mod:`gaitc.ir.bddfile`), or ``auto``: explicit unless it would pass
 #: ``max_nodes``, then symbolic.
-FORMS: Final = ("explicit", "symbolic", "auto")
+class Extraction(Choice):
+    """What the solver leaves of a solved game (the controller forms of
+    :class:`gaitc.core.modes.Form` that a solver writes, and the choice between them)."""
+
+    EXPLICIT = "explicit"
+    SYMBOLIC = "symbolic"
+    AUTO = "auto"
+
+
+FORMS: Final = Extraction.values()
 
 
 def synthesize(
@@ -162,7 +172,7 @@ def synthesize(
         progress=progress,
         options=options,
         max_nodes=max_nodes,
-        form="explicit",
+        form=Extraction.EXPLICIT,
         prefer=prefer,
         costs=costs,
     )
@@ -177,7 +187,7 @@ def synthesize_controller(
     progress: Progress | None = None,
     *, options: Options | None = None,
     max_nodes: int | None = None,
-    form: str = "auto",
+    form: Extraction | str = Extraction.AUTO,
     prefer: Sequence[str] = (),
     costs: Sequence[Cost] = (),
 ) -> Controller | SymbolicController | None:
@@ -185,6 +195,7 @@ def synthesize_controller(
     either form chooses its moves by ``prefer`` and ``costs`` (see :func:`synthesize`)."""
     if form not in FORMS:
         raise ValueError(f"form must be one of {FORMS}, not {form!r}")
+    form = Extraction(form)
 
     def run(chosen: Options, lim: Limits) -> Controller | SymbolicController | None:
         sym, game = _game(spec, semantics, chosen, lim)
@@ -194,12 +205,12 @@ def synthesize_controller(
             if not game.initially_winning(result.winning, semantics):
                 return None
             moves = MovePreferences(sym, result, costs, prefer, lim) if prefer else None
-            if form != "symbolic":
+            if form != Extraction.SYMBOLIC:
                 lim.report("extracting the controller")
                 try:
                     return extract_strategy(sym, result, semantics, lim, max_nodes, moves)
                 except ControllerTooLarge:
-                    if form == "explicit":
+                    if form == Extraction.EXPLICIT:
                         raise
                     lim.report("keeping the controller symbolic", f"over {max_nodes} nodes")
             lim.report("writing the strategy as BDDs")

@@ -54,7 +54,7 @@ def _counter_initial(check: Check) -> None:
         if b.exist(set(logic.inputs), theta_e & ~b.exist(set(logic.outputs), theta_s)) == b.false:
             check.problems.append("the counter-strategy has no initial node, but the system can "
                                   "always start")
-    elif check.semantics == "robotics":  # one losing start allowed by θe ∧ θs suffices
+    elif check.semantics == Semantics.ROBOTICS:  # one losing start allowed by θe ∧ θs suffices
         if not any(logic.holds(theta_s, check.valuations[n]) for n in starts):
             check.problems.append("no initial node of the counter-strategy satisfies sys_init")
     else:  # default: for one input, every start the system may choose must be covered

@@ -265,7 +265,7 @@ def _strategy_initial(check: Check) -> None:
             rules = check.failing("env_init", node) or check.failing("sys_init", node)
             check.problems.append(f"initial node {node}: its state {check.show(node)} "
                                   f"violates {rules}")
-    if check.semantics == "default":
+    if check.semantics == Semantics.DEFAULT:
         names, what = logic.inputs, "environment input"
         required = b.exist(set(logic.outputs), check.conj("env_init", None))
         need = "default semantics: some initial node must have these inputs and satisfy sys_init"

@@ -117,7 +117,7 @@ def _check(loop: _Loop, roots: dict[str, Any], semantics: Semantics,
     theta_e, theta_s = loop.section("env_init"), loop.section("sys_init")
     rho_e, rho_s = loop.section("env_trans"), loop.section("sys_trans")
     start = roots["sys_init"] & roots["winning"]
-    if semantics == "robotics":
+    if semantics == Semantics.ROBOTICS:
         init = roots["env_init"] & start
         if theta_e & theta_s & ~init != b.false:
             problems.append("robotics semantics: a state allowed by env_init and sys_init has "
