@@ -32,11 +32,12 @@ import numpy as np
 from gaitc.gaitgraph.cycles import synthesize
 from gaitc.gaitgraph.graph import GaitGraph, random_states
 from gaitc.gaitgraph.robot import load_robot
-from gaitc.search.api import start_pose
+from gaitc.search.goal_search import start_pose
 from gaitc.search.goals import Goal
-from gaitc.search.planners import SearchLimitError, Settings, make_planner
+from gaitc.search.planners import SearchLimitError, Settings
 from gaitc.search.plans import GaitPlan
 from gaitc.search.predictions import model_transitions
+from gaitc.search.registry import goal_search
 from gaitc.search.transitions import TransitionModel
 from gaitc.search.walker import Mismatch, SimulatedWalker
 
@@ -117,7 +118,7 @@ def chapter2(graph: GaitGraph) -> str:
 def chapter5(graph: Case, method: str, updates: int) -> str:
     model = graph.model.copy()
     settings = Settings(budget=400_000)
-    planner = make_planner(method, model, graph.robot, graph.start, GOAL, settings)
+    planner = goal_search(method).planner(model, graph.robot, graph.start, GOAL, settings)
     began = time.process_time()
     try:
         plan = planner.plan(explored=False)

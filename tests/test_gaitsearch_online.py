@@ -170,8 +170,9 @@ def test_cli_gaits_lpa_and_learn(tmp_path: Path, capsys: pytest.CaptureFixture[s
             "--tolerance: must be positive, got '-1'",
         ),
         (
-            ["learn", ROBOT, "--goal", "40,0", "--method", "dijkstra"],
-            "unknown search method 'dijkstra'; use one of astar, lpa, dstar, mcts",
+            ["learn", ROBOT, "--goal", "40,0", "--method", "bfs"],
+            "argument --method: invalid choice: 'bfs' (choose from 'astar', 'lpa', 'dstar', "
+            "'mcts')",
         ),
         (
             ["learn", ROBOT, "--goal", "40,0", "--backend", "serial"],

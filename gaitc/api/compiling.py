@@ -4,7 +4,8 @@ spec written in one of the output formats exactly as ``gaitc compile`` writes it
 
 Linting a ``.gait`` spec gives the checker's warnings, lowers it in both encodings (which
 catches names that clash once encoded) and pairs gaits with their valve primitives
-(:mod:`gaitc.gaitgraph.pairing`); a ``.slugsin``, ``.structuredslugs`` or ``.ltl`` spec is
+(:mod:`gaitc.search.primitives`: a robot file's declared model is searched as ``gaitc
+gaits`` searches it); a ``.slugsin``, ``.structuredslugs`` or ``.ltl`` spec is
 read (every syntax and type error with its span) and has no further checks.
 
 ``structuredslugs`` and ``slugsin`` are SLUGS's two formats, ``ltl`` the readable LTL text;
@@ -72,7 +73,7 @@ def lint(spec: Spec | str | Path, primitives: bool = False,
             lower(model, encoding)
     diagnostics = list(spec.diagnostics)
     if primitives or any(g.primitive is not None for g in model.gaits):
-        from gaitc.gaitgraph.pairing import check_gaits
+        from gaitc.search.primitives import check_gaits
 
         folder = str(Path(spec.path).resolve().parent)
         diagnostics += check_gaits(model.gaits, folder, legs=[leg.name for leg in model.legs],

@@ -170,6 +170,7 @@ def drive(spec: Spec | str | Path,
     end, on any error and on Ctrl-C, SIGTERM and SIGHUP."""
     from gaitc.hw.backend import interrupt_on_signals
     from gaitc.hw.driver import Driver, bind_primitives
+    from gaitc.search.primitives import resolve_primitive
 
     chosen = board if board is not None else SimulatedBoard()
     opts = options or DriveOptions()
@@ -180,7 +181,8 @@ def drive(spec: Spec | str | Path,
     if checked.model is None:
         raise UsageError(f"'{checked.path}': driving needs a .gait spec, which binds gaits to "
                          "valve primitives")
-    primitives = bind_primitives(checked.model, str(Path(checked.path).parent))
+    primitives = bind_primitives(checked.model, str(Path(checked.path).parent),
+                                 resolve_primitive)
     bound = session(checked, controller, semantics=opts.semantics, prefer=opts.prefer,
                     progress=progress)
     if bound is None:

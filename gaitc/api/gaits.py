@@ -1,12 +1,14 @@
 """Gait primitives for a robot file, behind one call: :func:`gaits` (``gaitc gaits``).
 
-Three searches answer it, picked by :class:`GaitOptions`:
+Three kinds of search answer it, picked by :class:`GaitOptions` and looked up in the one
+registry of search methods (:mod:`gaitc.search.registry`, :class:`SearchMethod`):
 
 - the chapter 2 gait graph (thesis 2.3-2.5, :mod:`gaitc.gaitgraph`): stable poses of the
   kinematic model, Kabsch transitions, and gait cycles ranked by their displacement toward
   a direction (``method`` chapter2, full, random or reset);
 - the gait graph of a chapter 4 dynamic model (thesis 4.2.2, :mod:`gaitc.models`), whose
-  transitions are simulated (``model``);
+  transitions are simulated (``model``), optionally of some legs only (``legs``: the search
+  the ``.gait`` ``primitive`` clause runs, :mod:`gaitc.search.primitives`);
 - the chapter 5 global-frame searches toward a displacement per cycle (A*, LPA*, D* Lite,
   MCTS; :mod:`gaitc.search`), with ``method`` astar, lpa, dstar or mcts and a goal.
 
@@ -23,8 +25,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from gaitc.core.modes import SearchMethod
 from gaitc.diagnostics import SpecSemanticError, UsageError
-from gaitc.diagnostics.choices import Choice
 from gaitc.diagnostics.files import make_folder, write_atomically
 from gaitc.diagnostics.versions import GAITS
 
@@ -38,26 +40,11 @@ if TYPE_CHECKING:
     from gaitc.search.plans import GaitPlan
 
 
-class GaitMethod(Choice):
-    """How :func:`gaits` searches (``--method``)."""
-
-    CHAPTER2 = "chapter2"  # full for a small robot, else random (thesis 2.5)
-    FULL = "full"
-    RANDOM = "random"
-    RESET = "reset"
-    ASTAR = "astar"  # thesis chapter 5, toward a goal
-    LPA = "lpa"
-    DSTAR = "dstar"
-    MCTS = "mcts"
-
-    @property
-    def is_global(self) -> bool:
-        """A chapter 5 search in the global frame, toward a goal displacement."""
-        return self in (GaitMethod.ASTAR, GaitMethod.LPA, GaitMethod.DSTAR, GaitMethod.MCTS)
-
+#: Deprecated name of :class:`gaitc.core.modes.SearchMethod` (``gaitc.GaitMethod``).
+GaitMethod = SearchMethod
 
 #: The chapter 5 searches, by name.
-GLOBAL_METHODS = tuple(m.value for m in GaitMethod if m.is_global)
+GLOBAL_METHODS = tuple(m.value for m in SearchMethod if m.is_global)
 
 
 @dataclass(frozen=True)
@@ -87,7 +74,7 @@ class GlobalSearch:
         return Settings(cell, angle, budget=self.budget, iterations=self.iterations,
                         horizon=self.horizon, seed=seed)
 
-    def target(self, method: str) -> Goal:
+    def target(self, method: SearchMethod | str) -> Goal:
         """The goal, parsed with its tolerance."""
         from gaitc.search.goals import parse_goal
 
@@ -112,15 +99,19 @@ class GaitOptions:
     model the robot file declares, else the kinematic graph; ``"kinematic"``: the kinematic
     graph; or a model by name, :data:`gaitc.models.catalogue.MODEL_CHOICES`) with valve
     states of at most ``max_open`` open valves, the ``seed`` of the random searches, at most
-    ``max_states`` valve states, and the chapter 5 ``search``."""
+    ``max_states`` valve states, and the chapter 5 ``search``.  ``legs`` (a model's gait
+    graph only) keeps the gaits that pressurise exactly those legs, started at the first
+    one's pressurisation: the search a ``.gait`` ``primitive`` clause runs for a gait that
+    ``uses`` them, in that order."""
 
     direction: str = "+x"
-    method: GaitMethod | str | None = None
+    method: SearchMethod | str | None = None
     model: str | None = None
     max_open: int = 1
     seed: int = 0
     max_states: int = 10_000
     search: GlobalSearch = field(default_factory=GlobalSearch)
+    legs: tuple[str, ...] | None = None
 
 
 def _direction(text: str) -> tuple[float, float]:
@@ -223,6 +214,8 @@ class ModelGaits:
     model: str
     direction: str
     still: Stillness | None = None  # the graph's moving cycles, when no gait was found
+    legs: tuple[str, ...] | None = None  # the legs the search was restricted to
+    movers: tuple[str, ...] | None = None  # with legs and no gait: the legs that move so
 
     @property
     def found(self) -> bool:
@@ -234,6 +227,11 @@ class ModelGaits:
         if self.found:
             return ()
         edges = len(self.found_search.graph.motion)
+        if self.legs is not None:
+            from gaitc.search.registry import legs_sentence
+
+            return (legs_sentence(self.legs, self.direction, f"the {self.model} model",
+                                  self.movers or ()),)
         if self.still is not None and not self.still.moves:
             return (f"the {self.model} model's gait graph has no displacement: every cycle of "
                     f"its {edges} simulated transitions returns the chassis to where it "
@@ -395,31 +393,33 @@ def gaits(robot: str | Path, options: GaitOptions | None = None) -> GaitSearch:
     """
     from gaitc.gaitgraph.robot import load_robot
     from gaitc.models.catalogue import chosen_model
+    from gaitc.search.registry import direction_search, entry, goal_search
 
     opts = options or GaitOptions()
-    method = GaitMethod.parse(opts.method, "search method") if opts.method is not None else None
+    method = entry(opts.method).method if opts.method is not None else None
     if opts.max_states < 1:
         raise UsageError("--max-states must be at least 1")
     loaded = load_robot(robot)
     model = chosen_model(loaded, opts.model)
+    if opts.legs is not None and (model is None or (method is not None and method.is_global)):
+        raise UsageError("--legs restricts a chapter 4 model's gait graph (the search of a "
+                         "'.gait' primitive clause); the robot file declares no model, or "
+                         "--model kinematic or a chapter 5 --method was asked for")
     if method is not None and method.is_global:
-        return _global_gait(str(robot), loaded, opts, method, model)
+        return _global_gait(str(robot), loaded, opts, goal_search(method).method, model)
     if opts.search.goal is not None:
         raise UsageError(f"--goal is for --method astar, lpa, dstar or mcts; the chapter 2 "
-                         f"search (--method {(method or GaitMethod.CHAPTER2).value}) takes "
+                         f"search (--method {method or SearchMethod.CHAPTER2}) takes "
                          "--direction")
     if model is not None:
         return _model_gaits(str(robot), opts, method, model)
-    from gaitc.gaitgraph.search import search
-
+    search = direction_search(method)
     direction = _direction(opts.direction)
-    full = loaded.valve_count <= 12 and 1 << loaded.valve_count <= opts.max_states
-    chosen = (method.value if method not in (None, GaitMethod.CHAPTER2) and method is not None
-              else ("full" if full else "random"))
+    chosen = search.graph_method(loaded, opts.max_states)
     if chosen == "full" and opts.seed != 0:
         raise UsageError(f"--seed seeds the random and reset searches; the full search of "
                          f"robot {loaded.name} tries every valve state, without random numbers")
-    result = search(loaded, direction, chosen, opts.seed, opts.max_states)
+    result = search.kinematic(loaded, direction, opts.seed, opts.max_states)
     still = None
     if not result.gaits:
         from gaitc.search.transitions import TransitionModel
@@ -429,15 +429,15 @@ def gaits(robot: str | Path, options: GaitOptions | None = None) -> GaitSearch:
                           still)
 
 
-def _model_gaits(robot: str, opts: GaitOptions, method: GaitMethod | None,
+def _model_gaits(robot: str, opts: GaitOptions, method: SearchMethod | None,
                  model: str) -> ModelGaits:
-    from gaitc.models.catalogue import load_model, sampled_states, search_gaits
+    from gaitc.models.catalogue import load_model
+    from gaitc.search.registry import direction_search, pressurised
 
-    if method is GaitMethod.RESET:
-        raise UsageError(f"--method reset searches the kinematic graph's reset edges (thesis "
-                         f"2.5.2); the robot file's {model} model has none: add --model "
-                         "kinematic, or use --method full or random")
-    if opts.seed != 0 and method is not GaitMethod.RANDOM:
+    search = direction_search(method)
+    if search.not_on_models is not None:
+        raise UsageError(search.not_on_models)
+    if opts.seed != 0 and not search.sampled:
         raise UsageError(f"--seed seeds the random searches; the {model} model's gait graph "
                          "is searched whole, without random numbers (--method random samples "
                          "--max-states valve states)")
@@ -445,28 +445,38 @@ def _model_gaits(robot: str, opts: GaitOptions, method: GaitMethod | None,
         raise UsageError("--max-open must be at least 1")
     direction = _direction(opts.direction)
     loaded = load_model(model, robot)
-    count = len(loaded.valve_legs)
-    limit = opts.max_states if method is GaitMethod.RANDOM else 1 << count
-    states = sampled_states(count, opts.max_open, limit, opts.seed)
-    found = search_gaits(loaded, direction, opts.max_open, states)
-    still = None
-    if not found.gaits:
+    legs = opts.legs
+    if legs is not None:
+        unknown = [leg for leg in legs if leg not in loaded.valve_legs]
+        if unknown or not legs:
+            raise UsageError(f"--legs: robot {loaded.robot} has no leg "
+                             f"{', '.join(unknown) or '(none given)'} (its legs: "
+                             f"{', '.join(dict.fromkeys(loaded.valve_legs))})")
+    found = search.model(loaded, direction, max_open=opts.max_open, seed=opts.seed,
+                         max_states=opts.max_states, legs=legs)
+    still, movers = None, None
+    if not found.gaits and legs is not None:
+        anyone = search.model(loaded, direction, max_open=opts.max_open, seed=opts.seed,
+                              max_states=opts.max_states)
+        movers = pressurised(anyone.gaits[0], loaded.valve_legs) if anyone.gaits else ()
+    elif not found.gaits:
         from gaitc.search.predictions import graph_transitions
 
         still = graph_transitions(found.graph, loaded.valve_legs).stillness()
-    return ModelGaits(found, model, opts.direction, still)
+    return ModelGaits(found, model, opts.direction, still, legs, movers)
 
 
-def _global_gait(robot: str, loaded: Robot, opts: GaitOptions, method: GaitMethod,
+def _global_gait(robot: str, loaded: Robot, opts: GaitOptions, method: SearchMethod,
                  model: str | None) -> GlobalGait:
-    from gaitc.search.api import first_planner, model_planner
+    from gaitc.search.registry import goal_search
 
-    goal = opts.search.target(method.value)
+    goal = opts.search.target(method)
     settings = opts.search.settings(opts.seed)
+    search = goal_search(method)
     if model is None:
-        first = first_planner(loaded, goal, method.value, settings, opts.max_states)
+        first = search.kinematic(loaded, goal, settings, opts.max_states)
     else:
-        first = model_planner(robot, goal, method.value, settings, max_open=opts.max_open,
-                              model=model, max_states=opts.max_states)[0]
+        first = search.model(robot, goal, settings, max_open=opts.max_open, model=model,
+                             max_states=opts.max_states)[0]
     return GlobalGait(loaded.name, loaded.valve_count, method.value, goal, first.plan,
                       model or "kinematic", first.reason)

@@ -17,6 +17,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from gaitc.api.gaits import GlobalSearch
+from gaitc.core.modes import SearchMethod
 from gaitc.diagnostics import UsageError
 from gaitc.diagnostics.choices import Choice
 from gaitc.diagnostics.files import write_atomically
@@ -38,7 +39,8 @@ class LearningBackend(Choice):
 class LearnOptions:
     """How :func:`learn` searches and what it runs on.
 
-    ``method`` is a chapter 5 search (astar, lpa, dstar, mcts); ``predictions`` where the
+    ``method`` is a chapter 5 search (:class:`SearchMethod` astar, lpa, dstar or mcts, a
+    :class:`~gaitc.search.registry.GoalSearch` in the registry); ``predictions`` where the
     predicted motions come from (``model``, the default when the robot file has one, or
     ``kinematic``), with valve states of at most ``max_open`` open valves; the simulated
     robot's ``mismatch`` (relative error of its transitions), ``noise`` (mm and degrees per
@@ -48,7 +50,7 @@ class LearnOptions:
     cycles of the final gait.
     """
 
-    method: str = "lpa"
+    method: SearchMethod | str = SearchMethod.LPA
     backend: LearningBackend | str = LearningBackend.SIM
     predictions: str | None = None
     max_open: int = 1
@@ -110,12 +112,12 @@ def learn(robot: str | Path, options: LearnOptions | None = None,
           progress: Callable[[str], None] | None = None) -> Learning:
     """Learn a gait of the robot file ``robot`` toward ``options.search.goal`` (see the
     module's docstring); ``progress`` receives one line per iteration."""
-    from gaitc.search.api import check_method
     from gaitc.search.online import learn_gait
+    from gaitc.search.registry import goal_search
     from gaitc.search.walker import Mismatch
 
     opts = options or LearnOptions()
-    check_method(opts.method)
+    method = goal_search(opts.method).method
     backend = _backend(opts.backend)
     if opts.mismatch < 0 or opts.noise < 0 or not 0 <= opts.infeasible < 1:
         raise UsageError(
@@ -124,13 +126,13 @@ def learn(robot: str | Path, options: LearnOptions | None = None,
         raise UsageError("--max-iterations and --verify must be at least 1")
     if opts.max_states < 1:
         raise UsageError("--max-states must be at least 1")
-    goal, settings = opts.search.target(opts.method), opts.search.settings(opts.seed)
+    goal, settings = opts.search.target(method), opts.search.settings(opts.seed)
     mismatch = Mismatch(opts.mismatch, opts.noise, opts.infeasible, opts.seed,
                         opts.model_mismatch)
     learned = learn_gait(
         robot=str(robot),
         goal=goal,
-        method=opts.method,
+        method=method,
         mismatch=mismatch,
         settings=settings,
         max_states=opts.max_states,

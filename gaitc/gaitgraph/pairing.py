@@ -8,7 +8,7 @@ legs the spec says the gait uses, since the health reasoning (eq. 3.5) relies on
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -45,7 +45,9 @@ def _leg_order(gaits: Sequence[Gait], legs: Sequence[str] | None) -> tuple[str, 
     return tuple(order)
 
 
-def _robot(gait: Gait, spec_dir: str) -> Robot | None:
+def robot_path(gait: Gait, spec_dir: str) -> Path | None:
+    """The robot file ``gait``'s primitive names (relative to ``spec_dir``), None when it
+    names none; a missing file or a folder is a :class:`SpecSemanticError` at the clause."""
     prim = gait.primitive
     if prim is None or prim.robot is None:
         return None
@@ -66,13 +68,35 @@ def _robot(gait: Gait, spec_dir: str) -> Robot | None:
             prim.span or gait.span,
             "robot paths are relative to the .gait file",
         )
-    return load_robot(path)
+    return path
+
+
+def _robot(gait: Gait, spec_dir: str) -> Robot | None:
+    path = robot_path(gait, spec_dir)
+    return None if path is None else load_robot(path)
+
+
+def stored_gait(robot: Robot, gait: Gait, any_legs: bool = True) -> ValveSequence | None:
+    """The robot file's stored gait for ``gait``'s primitive (one without a method): the
+    first towards its direction with the gait's legs, else (``any_legs``) the first towards
+    its direction at all; None when there is none."""
+    prim = gait.primitive
+    if prim is None or prim.method is not None or prim.direction is None:
+        return None
+    stored = [g for g in robot.gaits if g.direction == prim.direction]
+    same = [g for g in stored if set(g.legs) == set(gait.legs)]
+    chosen = same or (stored if any_legs else [])
+    if not chosen:
+        return None
+    return ValveSequence(chosen[0].valves, robot.leg_of_valve, f"robot file gait {chosen[0].name}")
 
 
 def resolve_primitive(
     gait: Gait, spec_dir: str, legs: Sequence[str] | None = None, seed: int = 0
 ) -> ValveSequence:
-    """The valve sequence bound to ``gait``; synthesises one when only a direction is given.
+    """The valve sequence bound to ``gait`` over the chapter 2 kinematic graph; synthesises
+    one when only a direction is given.  (:func:`gaitc.search.primitives.resolve_primitive`
+    searches a robot file's declared chapter 4 model first, and comes here otherwise.)
 
     ``legs`` is the spec's leg declaration order (needed for inline valves without a robot
     file; by default the order in which the gait's legs appear).
@@ -95,14 +119,9 @@ def resolve_primitive(
     from gaitc.gaitgraph.search import search
 
     direction = parse_direction(prim.direction, span)
-    if prim.method is None:
-        stored = [g for g in robot.gaits if g.direction == prim.direction]
-        same = [g for g in stored if set(g.legs) == set(gait.legs)]
-        if same or stored:
-            chosen = (same or stored)[0]
-            return ValveSequence(
-                chosen.valves, robot.leg_of_valve, f"robot file gait {chosen.name}"
-            )
+    kept = stored_gait(robot, gait)
+    if kept is not None:
+        return kept
     method = prim.method or "reset"
     result = search(robot, direction, method, seed, max_states=PAIRING_STATES)
     if not result.gaits:
@@ -118,6 +137,9 @@ def resolve_primitive(
         result.gaits[0].valves, robot.leg_of_valve, f"synthesised ({method}, {prim.direction})"
     )
 
+
+#: How a primitive becomes a valve sequence: (gait, spec folder, the spec's leg order).
+Resolver = Callable[[Gait, str, Sequence[str]], ValveSequence]
 
 #: Valve states a gait search for a primitive may add (``compile``, ``lint``): the search
 #: runs on every compile, so it is bounded; ``gaitc gaits --max-states`` searches further.
@@ -144,8 +166,10 @@ def _primitive_hint(gait: Gait, order: Sequence[str]) -> str:
 def check_gaits(
     gaits: Sequence[Gait], spec_dir: str, legs: Sequence[str] | None = None,
     moves: Mapping[str, frozenset[tuple[str, str]]] | None = None,
+    resolve: Resolver | None = None,
 ) -> list[Diagnostic]:
-    """Lint the gait-primitive bindings of a spec.
+    """Lint the gait-primitive bindings of a spec, each resolved by ``resolve`` (by default
+    :func:`resolve_primitive`, the kinematic graph's).
 
     Warnings for gaits without a primitive; errors for primitives that cannot be resolved
     or whose pressurised legs differ from the legs the gait uses; and, given ``moves`` (the
@@ -171,7 +195,7 @@ def check_gaits(
             continue
         span = gait.primitive.span or gait.span
         try:
-            seq = resolve_primitive(gait, spec_dir, order)
+            seq = (resolve or resolve_primitive)(gait, spec_dir, order)
         except GaitcError as err:
             out.append(Diagnostic(err.message, err.span or span, "error", err.hint))
             continue

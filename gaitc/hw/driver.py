@@ -15,7 +15,7 @@ from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 
 from gaitc.diagnostics import SpecSemanticError
-from gaitc.gaitgraph.pairing import ValveSequence, resolve_primitive
+from gaitc.gaitgraph.pairing import Resolver, ValveSequence, resolve_primitive
 from gaitc.hw.backend import (
     WRONG_WAY,
     Backend,
@@ -43,8 +43,11 @@ class Executed:
     valves: tuple[str, ...]
 
 
-def bind_primitives(model: Model, spec_dir: str) -> dict[str, ValveSequence]:
+def bind_primitives(model: Model, spec_dir: str,
+                    resolve: Resolver | None = None) -> dict[str, ValveSequence]:
     """The valve sequence of every gait but noGait; all must exist and have one valve count.
+    ``resolve`` turns a primitive into valves (by default the kinematic graph's pairing;
+    ``gaitc drive`` passes :func:`gaitc.search.primitives.resolve_primitive`).
 
     Raises :class:`SpecSemanticError` listing the gaits without a primitive.
     """
@@ -58,7 +61,7 @@ def bind_primitives(model: Model, spec_dir: str) -> dict[str, ValveSequence]:
             missing[0].span,
             "bind one to each gait: 'gaitc lint --primitives' suggests the valves of each, "
             'or name a robot file with primitive "ROBOT.yaml" direction +x')
-    bound = {g.name: resolve_primitive(g, spec_dir, legs) for g in gaits}
+    bound = {g.name: (resolve or resolve_primitive)(g, spec_dir, legs) for g in gaits}
     counts = {len(seq.states[0]) for seq in bound.values() if seq.states}
     if len(counts) > 1:
         detail = ", ".join(f"{name}: {len(seq.states[0])}" for name, seq in sorted(bound.items())

@@ -135,7 +135,7 @@ def primitive_findings(analysis: Analysis) -> list[Finding]:
     from pathlib import Path
 
     from gaitc.api.compiling import gait_moves
-    from gaitc.gaitgraph.pairing import check_gaits
+    from gaitc.search.primitives import check_gaits
 
     moves = gait_moves(model)
     folder = Path(analysis.path).resolve().parent

@@ -12,6 +12,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from pathlib import Path
 
+from gaitc.core.modes import SearchMethod
 from gaitc.diagnostics import UsageError
 from gaitc.gaitgraph.robot import Robot
 from gaitc.search.goals import Goal
@@ -47,7 +48,7 @@ def default_predictions(robot: Robot | str | Path) -> str:
 def open_session(
     robot: Robot | str | Path,
     goal: Goal,
-    method: str,
+    method: SearchMethod | str,
     backend: str = "sim",
     *, predictions: str | None = None,
     mismatch: Mismatch | None = None,
@@ -56,9 +57,10 @@ def open_session(
     max_open: int = 1,
 ) -> Session:
     """The first plan for ``goal`` over ``predictions`` and the walker of ``backend``."""
-    from gaitc.search.api import check_method, first_planner, graph_batches, model_planner
+    from gaitc.search.goal_search import graph_batches
+    from gaitc.search.registry import goal_search
 
-    check_method(method)
+    entry = goal_search(method)
     settings = settings or Settings()
     mismatch = mismatch or Mismatch(seed=settings.seed)
     if backend not in BACKENDS:
@@ -79,7 +81,7 @@ def open_session(
                 "kinematic graph's poses (valve state and contact set) have no counterpart "
                 "in the model, so use --predictions model"
             )
-        first = first_planner(robot, goal, method, settings, max_states)
+        first = entry.kinematic(robot, goal, settings, max_states)
         planner, bot, plan = first.planner, first.robot, first.plan
         walker: Walker = SimulatedWalker(
             planner.model.copy(),
@@ -91,13 +93,12 @@ def open_session(
         order = graph_batches(bot, settings.seed, max_states)
         grower = None
         if order is not None and plan is not None:
-            grower = Grower(bot, order, plan.graph[0], 100, method, goal, settings)
+            grower = Grower(bot, order, plan.graph[0], 100, entry, goal, settings)
         return Session(planner, plan, walker, source, grower)
     if max_open < 1:
         raise UsageError("--max-open must be at least 1")
     path = robot if not isinstance(robot, Robot) else ""
-    first, found = model_planner(path, goal, method, settings, max_open=max_open,
-                                 max_states=max_states)
+    first, found = entry.model(path, goal, settings, max_open=max_open, max_states=max_states)
     planner, plan, model = first.planner, first.plan, found.model
     if backend == "physics":
         walker = PhysicsWalker(

@@ -12,13 +12,18 @@ meaning (a transition is known by its source and target pose).
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 from gaitc.gaitgraph.graph import GaitGraph
 from gaitc.gaitgraph.robot import Robot
 from gaitc.search.goals import Goal
-from gaitc.search.planners import Planner, Settings, make_planner
+from gaitc.search.planners import Planner, Settings
 from gaitc.search.plans import GaitPlan
 from gaitc.search.transitions import Step, TransitionModel
 from gaitc.search.walker import SimulatedWalker
+
+if TYPE_CHECKING:
+    from gaitc.search.registry import GoalSearch
 
 
 class Grower:
@@ -30,12 +35,12 @@ class Grower:
         order: list[int],
         added: int,
         batch: int,
-        method: str,
+        entry: GoalSearch,
         goal: Goal,
         settings: Settings,
     ) -> None:
         self.robot, self.order, self.batch = robot, order, batch
-        self.method, self.goal, self.settings = method, goal, settings
+        self.entry, self.goal, self.settings = entry, goal, settings
         self.graph = GaitGraph(robot)
         self.added = 0
         while self.added < added:  # the same batches as the first search, in its order
@@ -66,9 +71,8 @@ class Grower:
                     fresh.set_motion(k, old.step(r))
                 else:
                     fresh.remove(k)
-            nxt = make_planner(
-                self.method, fresh, planner.robot, planner.start, self.goal, self.settings
-            )
+            nxt = self.entry.planner(fresh, planner.robot, planner.start, self.goal,
+                                     self.settings)
             plan = nxt.plan()
             if plan is None:
                 continue

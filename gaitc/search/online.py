@@ -15,6 +15,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
+from gaitc.core.modes import SearchMethod
 from gaitc.diagnostics import GaitcError
 from gaitc.gaitgraph.robot import Robot
 from gaitc.search.cycles import Point, run_cycle, whole_cycle
@@ -155,7 +156,7 @@ def learn(
                 converged = True
                 break
             began = time.perf_counter()
-            if getattr(planner, "dstar", None) is not None:
+            if planner.replans_from_anywhere:
                 from gaitc.search.stepwise import replanning_cycle
 
                 cycle = replanning_cycle(planner, walker, plan.edges, measured, threshold, changed)
@@ -265,7 +266,7 @@ def _no_gait(goal: Goal) -> Exception:
 def learn_gait(
     robot: Robot | str,
     goal: Goal | str,
-    method: str = "lpa",
+    method: SearchMethod | str = SearchMethod.LPA,
     mismatch: Mismatch | None = None,
     settings: Settings | None = None,
     *, max_states: int = 10_000,
@@ -279,13 +280,13 @@ def learn_gait(
 ) -> Learned:
     """Learn a gait (``gaitc learn``): the first plan over ``predictions`` (``model``: the
     chapter 4 model's gait graph, the default where the robot file has one; ``kinematic``:
-    :func:`~gaitc.search.api.plan_gait`'s graph), then the loop of :func:`learn` on
+    :func:`~gaitc.search.registry.plan_gait`'s graph), then the loop of :func:`learn` on
     ``backend`` (``sim``: the simulated robot with ``mismatch``; ``physics``: the
     spring-damper model, with ``mismatch.noise`` on every measurement).  ``grow``: when the
     robot's removals leave no gait, add the kinematic graph's next batch of valve states
     (:mod:`gaitc.search.growth`) instead of stopping."""
-    from gaitc.search.api import goal_for
     from gaitc.search.backends import open_session
+    from gaitc.search.goal_search import goal_for
 
     session = open_session(
 

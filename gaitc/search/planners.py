@@ -1,15 +1,20 @@
-"""One interface over the three chapter 5 searches, as the online loop uses them.
+"""One interface over the chapter 5 searches, as the online loop uses them: :class:`Planner`.
 
-:class:`HybridPlanner` runs A* from scratch after every change (``astar``) or repairs with
-LPA* (``lpa``); :class:`TreePlanner` is the MCTS of 5.2.4.  Both answer :meth:`plan` with a
-:class:`~gaitc.search.plans.GaitPlan` and take what the robot did through :meth:`observe`.
+:class:`HybridPlanner` runs A* from scratch after every change (``astar``), repairs with
+LPA* (``lpa``) or with D* Lite (``dstar``), which also re-plans from wherever the robot got;
+:class:`TreePlanner` is the MCTS of 5.2.4.  Both answer :meth:`~Planner.plan` with a
+:class:`~gaitc.search.plans.GaitPlan` and take what the robot did through
+:meth:`~Planner.observe`; which method makes which planner is said once, in
+:mod:`gaitc.search.registry`.
 """
 
 from __future__ import annotations
 
 import time
 from dataclasses import dataclass, replace
+from typing import Protocol
 
+from gaitc.core.modes import SearchMethod
 from gaitc.diagnostics import SolverError
 from gaitc.search.astar import Route, SearchBudgetExceeded, astar
 from gaitc.search.cells import Lattice
@@ -19,8 +24,6 @@ from gaitc.search.lpa_arrays import lifelong
 from gaitc.search.mcts import MonteCarloPlanner, TreeNode
 from gaitc.search.plans import GaitPlan, make_plan
 from gaitc.search.transitions import Step, TransitionModel
-
-METHODS = ("astar", "lpa", "dstar", "mcts")
 
 
 class SearchLimitError(SolverError):
@@ -41,6 +44,36 @@ class Settings:
     seed: int = 0
 
 
+class Planner(Protocol):
+    """What every chapter 5 planner offers the searches and the online loop."""
+
+    method: SearchMethod
+    model: TransitionModel
+    robot: str
+    start: int
+    goal: Goal
+    settings: Settings
+    expanded: int  # expansions (MCTS: iterations) of the last search
+
+    @property
+    def replans_from_anywhere(self) -> bool:
+        """It re-plans from the pose the robot reached after each transition
+        (:meth:`HybridPlanner.replan_from`, D* Lite), not only between cycles."""
+        ...
+
+    def plan(self, explored: bool = True) -> GaitPlan | None:
+        """Search (or repair the last search) and return the gait; None: no gait."""
+        ...
+
+    def observe(self, edge: int, step: Step | None, differs: bool = True) -> None:
+        """What the robot did on transition ``edge`` (None: it could not make it)."""
+        ...
+
+    def set_budget(self, budget: int) -> None:
+        """Expansions each later search (or repair) may take."""
+        ...
+
+
 class HybridPlanner:
     """Hybrid graph search on the lattice: A* each time, LPA* repairs (``lpa``), or D* Lite
     (``dstar``), which also re-plans from wherever the robot got after each transition."""
@@ -52,7 +85,7 @@ class HybridPlanner:
         start: int,
         goal: Goal,
         settings: Settings,
-        method: str = "lpa",
+        method: SearchMethod = SearchMethod.LPA,
         aim: Goal | None = None,
     ) -> None:
         self.model, self.robot, self.start, self.goal = model, robot, start, goal
@@ -62,9 +95,14 @@ class HybridPlanner:
         self.lattice = Lattice(
             model, start, aim or goal, settings.cell, settings.cell_angle, settings.slip_cost
         )
-        self.lpa = lifelong(self.lattice, settings.budget) if method == "lpa" else None
-        self.dstar = DStarLite(self.lattice, settings.budget) if method == "dstar" else None
+        self.lpa = lifelong(self.lattice, settings.budget) if method is SearchMethod.LPA else None
+        self.dstar = (DStarLite(self.lattice, settings.budget) if method is SearchMethod.DSTAR
+                      else None)
         self.expanded = 0
+
+    @property
+    def replans_from_anywhere(self) -> bool:
+        return self.dstar is not None
 
     def set_budget(self, budget: int) -> None:
         """Expansions each later search (or repair) may take."""
@@ -159,7 +197,8 @@ class HybridPlanner:
 class TreePlanner:
     """MCTS (5.2.4): the best cycle of the tree's rollouts; pruning on observed changes."""
 
-    method = "mcts"
+    method = SearchMethod.MCTS
+    replans_from_anywhere = False
 
     def __init__(
         self, model: TransitionModel, robot: str, start: int, goal: Goal, settings: Settings
@@ -169,6 +208,11 @@ class TreePlanner:
         self.tree = MonteCarloPlanner(model, start, goal, settings.horizon, settings.seed)
         self.expanded = 0
         self._ran = False
+
+    def set_budget(self, budget: int) -> None:
+        """Kept for the interface: the tree grows by ``settings.iterations``, not by a
+        budget of expansions."""
+        self.settings = replace(self.settings, budget=budget)
 
     def plan(self, explored: bool = True) -> GaitPlan | None:
         began = time.perf_counter()
@@ -186,7 +230,7 @@ class TreePlanner:
 
             model=self.model,
             robot=self.robot,
-            method="mcts",
+            method=self.method,
             goal=self.goal,
             start=self.start,
             edges=best.edges,
@@ -208,17 +252,3 @@ def _nodes(root: TreeNode, limit: int = 20_000) -> list[TreeNode]:
         out.append(node)
         stack.extend(node.children[e] for e in sorted(node.children))
     return out
-
-
-Planner = HybridPlanner | TreePlanner
-
-
-def make_planner(
-    method: str, model: TransitionModel, robot: str, start: int, goal: Goal, settings: Settings,
-    aim: Goal | None = None,
-) -> Planner:
-    """The planner of ``method``; a lattice planner's goal cells are those of ``aim`` (by
-    default the goal itself)."""
-    if method == "mcts":
-        return TreePlanner(model, robot, start, goal, settings)
-    return HybridPlanner(model, robot, start, goal, settings, method, aim)

@@ -33,14 +33,14 @@ def register(subparsers: Any) -> None:
 
 def search_arguments(p: argparse.ArgumentParser) -> None:
     """The robot file and search options, shared by ``gaits`` and ``render gaits``."""
-    from gaitc.api.gaits import GaitMethod
     from gaitc.cli.commands.learning import goal_arguments
+    from gaitc.core.modes import SearchMethod
     from gaitc.models.catalogue import MODEL_CHOICES
 
     p.add_argument("robot", metavar="ROBOT.yaml")
     p.add_argument("--direction", default="+x", help="+x, -x, +y, -y or an angle in degrees")
     p.add_argument(
-        "--method", choices=[m.value for m in GaitMethod], default=None,
+        "--method", choices=SearchMethod.values(), default=None,
         help="chapter 2 (default): full for at most 12 chambers and --max-states valve "
         "states, else random; astar, lpa, dstar, mcts: chapter 5 searches toward --goal")
     p.add_argument("--seed", type=int, default=0,
@@ -53,18 +53,31 @@ def search_arguments(p: argparse.ArgumentParser) -> None:
         "of chapter 2; 'kinematic' asks for that one whatever the file declares")
     p.add_argument("--max-open", type=int, default=1, metavar="N",
                    help="a model's gait graph: valve states with at most N valves open (1)")
+    p.add_argument("--legs", metavar="L1,L2", type=_legs,
+                   help="a model's gait graph: only gaits that pressurise exactly these legs, "
+                   "the first one first (what a .gait primitive clause of a gait that uses "
+                   "them finds)")
     goal_arguments(p)
+
+
+def _legs(text: str) -> tuple[str, ...]:
+    legs = tuple(leg.strip() for leg in text.split(","))
+    if not all(legs):
+        raise argparse.ArgumentTypeError(f"leg names separated by commas, got {text!r}")
+    return legs
 
 
 def options_of(args: argparse.Namespace) -> Any:
     """The :class:`~gaitc.api.gaits.GaitOptions` of ``gaits`` and ``render gaits``."""
-    from gaitc.api.gaits import GaitMethod, GaitOptions
+    from gaitc.api.gaits import GaitOptions
     from gaitc.cli.commands.learning import search_of
+    from gaitc.core.modes import SearchMethod
 
     return GaitOptions(direction=args.direction,
-                       method=None if args.method is None else GaitMethod(args.method),
+                       method=None if args.method is None else SearchMethod(args.method),
                        model=args.model, max_open=args.max_open, seed=args.seed,
-                       max_states=args.max_states, search=search_of(args))
+                       max_states=args.max_states, search=search_of(args),
+                       legs=args.legs)
 
 
 def run_render(args: argparse.Namespace) -> int:

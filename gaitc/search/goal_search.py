@@ -1,5 +1,7 @@
-"""What the CLI and notebooks call to plan: :func:`plan_gait` (and :func:`first_planner`,
-which :func:`gaitc.search.online.learn_gait` starts from).
+"""The chapter 5 searches toward a goal, over a growing kinematic graph (:func:`first_planner`)
+or a chapter 4 model's gait graph (:func:`model_planner`).
+Each takes the method's registry entry (:class:`gaitc.search.registry.GoalSearch`), which
+makes its planner; :func:`gaitc.search.online.learn_gait` starts from them.
 
 The gait graph comes from :mod:`gaitc.gaitgraph` (thesis chapter 2): every valve state of a small
 robot, else batches of 100 random valve states (2.5.1) with the vented state first, and a
@@ -12,6 +14,7 @@ import dataclasses
 import math
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -19,17 +22,13 @@ from gaitc.diagnostics import UsageError
 from gaitc.gaitgraph.graph import GaitGraph, random_states
 from gaitc.gaitgraph.robot import Robot, RobotFileError, load_robot
 from gaitc.search.goals import Goal, parse_goal
-from gaitc.search.planners import (
-    METHODS,
-    HybridPlanner,
-    Planner,
-    SearchLimitError,
-    Settings,
-    make_planner,
-)
+from gaitc.search.planners import Planner, SearchLimitError, Settings
 from gaitc.search.plans import GaitPlan
 from gaitc.search.predictions import ModelPredictions, model_transitions
 from gaitc.search.transitions import TransitionModel
+
+if TYPE_CHECKING:
+    from gaitc.search.registry import GoalSearch
 
 FULL_CHAMBERS = 12  # robots with at most this many chambers get every valve state
 
@@ -71,11 +70,6 @@ def goal_for(goal: Goal | str) -> Goal:
     return value
 
 
-def check_method(method: str) -> None:
-    if method not in METHODS:
-        raise UsageError(f"unknown search method {method!r}; use one of {', '.join(METHODS)}")
-
-
 #: Re-plans of a lattice route whose continuous displacement misses the goal: the first
 #: ones aim at a tighter disc of goal cells, the last at a lattice of half the cell.
 REFINEMENTS = 3
@@ -106,7 +100,8 @@ def miss(goal: Goal, plan: GaitPlan) -> float:
 
 
 def settle(
-    model: TransitionModel, robot: str, start: int, goal: Goal, method: str, settings: Settings
+    model: TransitionModel, robot: str, start: int, goal: Goal, entry: GoalSearch,
+    settings: Settings,
 ) -> tuple[Planner, GaitPlan | None, int]:
     """Plan on one graph; when a lattice route reaches the goal's cells but its continuous
     displacement misses the goal (each transition is propagated from a cell centre, thesis
@@ -115,9 +110,9 @@ def settle(
     planner of the best plan (one that reaches the goal when any does), the plan and the
     expansions (MCTS: iterations) spent in all.  Raises
     :class:`~gaitc.search.planners.SearchLimitError` when the first search runs out."""
-    planner = make_planner(method, model, robot, start, goal, settings)
+    planner = entry.planner(model, robot, start, goal, settings)
     plan = planner.plan()
-    if method == "mcts" or plan is None or plan.reached:
+    if not entry.lattice or plan is None or plan.reached:
         return planner, plan, planner.expanded
     best: tuple[Planner, GaitPlan] = (planner, plan)
     spent, aim, finer = planner.expanded, goal, settings
@@ -135,8 +130,8 @@ def settle(
         left = settings.budget - spent
         if left <= 0:
             break
-        again = make_planner(method, model, robot, start, goal,
-                             dataclasses.replace(finer, budget=left), aim)
+        again = entry.planner(model, robot, start, goal,
+                              dataclasses.replace(finer, budget=left), aim)
         try:
             found = again.plan()
         except SearchLimitError:
@@ -150,8 +145,7 @@ def settle(
             break
         plan = found
     chosen, plan = best
-    if isinstance(chosen, HybridPlanner):
-        chosen.set_budget(settings.budget)  # the online loop's repairs get the whole budget
+    chosen.set_budget(settings.budget)  # the online loop's repairs get the whole budget
     return chosen, plan, spent
 
 
@@ -175,18 +169,17 @@ def still_reason(kind: str, transitions: int) -> str:
 def first_planner(
     robot: Robot | str | Path,
     goal: Goal | str,
-    method: str = "lpa",
+    entry: GoalSearch,
     settings: Settings | None = None,
     max_states: int = 10_000,
     batch: int = 100,
 ) -> FirstPlan:
-    """Grow the kinematic gait graph batch by batch until ``method`` finds a gait that
+    """Grow the kinematic gait graph batch by batch until ``entry`` finds a gait that
     reaches the goal (:func:`settle` on each graph); the planner of that graph (or of the
     last one) and the plan.  A complete graph (every valve state) with no moving cycle
     through the rest pose is answered at once, without a search; a batch whose search runs
     out of budget is followed by the next batch, and the error is raised only when the
     last one runs out too."""
-    check_method(method)
     if max_states < 1:
         raise UsageError("--max-states must be at least 1")
     bot, target = _robot(robot), goal_for(goal)
@@ -209,13 +202,13 @@ def first_planner(
         start = start_pose(graph)
         model = TransitionModel.from_graph(graph)
         if complete and _motionless(model, start):
-            planner = make_planner(method, model, bot.name, start, target, settings)
+            planner = entry.planner(model, bot.name, start, target, settings)
             return FirstPlan(planner, bot, None, still_reason("kinematic", len(model)))
         share = settings.budget if last else max(1, settings.budget // BATCH_SHARE)
         here_settings = dataclasses.replace(settings, budget=max(1, min(share, left)))
         last = last or left <= here_settings.budget
         try:
-            planner, plan, spent = settle(model, bot.name, start, target, method,
+            planner, plan, spent = settle(model, bot.name, start, target, entry,
                                           here_settings)
         except SearchLimitError as err:
             left -= here_settings.budget
@@ -226,11 +219,10 @@ def first_planner(
             raise SearchLimitError(
                 f"no gait for goal {target} within {settings.budget} node expansions per "
                 f"search and {TOTAL_BUDGETS * settings.budget - max(left, 0)} in all, over "
-                f"{len(graph.states)} valve states ({method})",
+                f"{len(graph.states)} valve states ({entry.method})",
                 None, "raise --budget, coarsen --cell or loosen --tolerance") from err
         left -= spent
-        if isinstance(planner, HybridPlanner):
-            planner.set_budget(settings.budget)
+        planner.set_budget(settings.budget)
         if plan is not None:
             plan = dataclasses.replace(plan, graph=(len(graph.states), len(graph), len(model)))
         here = FirstPlan(planner, bot, plan)
@@ -243,7 +235,7 @@ def first_planner(
 def model_planner(
     path: str | Path,
     goal: Goal | str,
-    method: str = "lpa",
+    entry: GoalSearch,
     settings: Settings | None = None,
     *, max_open: int = 1,
     model: str | None = None,
@@ -255,7 +247,6 @@ def model_planner(
     the predictions it planned on."""
     from gaitc.models.catalogue import chosen_model, sampled_states
 
-    check_method(method)
     if max_open < 1:
         raise UsageError("--max-open must be at least 1")
     if max_states < 1:
@@ -268,30 +259,10 @@ def model_planner(
     transitions, start, name = found.model, found.start, found.loaded.robot
     shape = (transitions.poses, transitions.poses, len(transitions))
     if _motionless(transitions, start):
-        planner = make_planner(method, transitions, name, start, target, settings)
+        planner = entry.planner(transitions, name, start, target, settings)
         kind = f"{found.graph.model} model's"
         return FirstPlan(planner, bot, None, still_reason(kind, len(transitions))), found
-    planner, plan, _ = settle(transitions, name, start, target, method, settings)
+    planner, plan, _ = settle(transitions, name, start, target, entry, settings)
     if plan is not None:
         plan = dataclasses.replace(plan, graph=shape)
     return FirstPlan(planner, bot, plan), found
-
-
-def plan_gait(
-    robot: Robot | str | Path,
-    goal: Goal | str,
-    method: str = "lpa",
-    settings: Settings | None = None,
-    max_states: int = 10_000,
-    batch: int = 100,
-) -> GaitPlan | None:
-    """A gait cycle from the rest pose whose predicted displacement per cycle is ``goal``.
-
-    ``method`` is ``astar``, ``lpa`` (hybrid graph search, thesis 5.2.2) or ``mcts``
-    (5.2.4).  The graph grows by ``batch`` random valve states (all of them for a robot of
-    at most 12 chambers) until a search finds a gait; returns it, else the last graph's
-    plan (MCTS: its best cycle, which misses the goal), else None.  ``GaitPlan.reached``
-    says whether the continuous predicted displacement is within the tolerance.  Raises
-    :class:`~gaitc.search.planners.SearchLimitError` when a search runs out of budget.
-    """
-    return first_planner(robot, goal, method, settings, max_states, batch).plan
