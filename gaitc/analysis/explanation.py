@@ -39,6 +39,7 @@ from gaitc.ir.spec import GR1Spec, Semantics
 from ltlcompiler.encoding import EncodingName
 
 if TYPE_CHECKING:
+    from gaitc.core.spec import Spec
     from gaitc.sim.run import Run
     from ltlcompiler.model import Model
 
@@ -183,28 +184,31 @@ def kind_text(kind: Kind | None, player: str = ROBOT) -> str:
     return ""
 
 
-def explain(spec: GR1Spec, file: str, source: str = "", model: Model | None = None,
-            *, encoding: EncodingName | None = None, semantics: Semantics = Semantics.DEFAULT,
+def explain(loaded: Spec, *, semantics: Semantics = Semantics.DEFAULT,
             timeout: float | None = None, with_repairs: bool = True) -> Explanation:
-    """Explain ``spec``: for a ``.gait`` spec pass its ``model``, ``encoding`` and ``source``."""
+    """Explain ``loaded``; a ``.gait`` spec's model, encoding and source add the robot's
+    words: the environment's freedoms, a play in the robot's terms and repairs."""
     started = time.monotonic()
+    spec, file, source = loaded.gr1, loaded.path, loaded.text
+    model = loaded.model
+    encoding = loaded.robot_encoding
     player = player_of(model)
     oracle = Oracle.within(semantics, timeout)
     if oracle.realizable(spec):
-        found = sanity(spec, model, encoding, oracle)
+        found = sanity(spec, model, loaded.encoding, oracle)
         return Explanation(file, True, warnings=found, solver_calls=oracle.calls,
                            seconds=time.monotonic() - started, source=source, player=player)
     failure = classify(spec, oracle)
     goals = tuple(_goal_label(spec, j) for j in failure.blocked_goals)
     core = guarantee_core(spec, oracle)
     freedoms: tuple[Freedom, ...] = ()
-    if model is not None and encoding is not None:
+    if model is not None:
         freedoms = needed_freedoms(spec, model, encoding, oracle)
     # The play comes from the environment restricted to the freedoms it needs: a smaller
     # automaton, a play that shows exactly those freedoms, and (the assumptions being only
     # stronger) a play that keeps the spec's own assumptions.
     focused = spec
-    if freedoms and model is not None and encoding is not None:
+    if freedoms and model is not None:
         taken = tuple(f for f in all_freedoms(model) if f not in freedoms)
         focused = restricted(spec, model, encoding, taken)
     counter = oracle.counterstrategy(focused)
@@ -215,7 +219,7 @@ def explain(spec: GR1Spec, file: str, source: str = "", model: Model | None = No
                  "keeps its initial guarantees (see the core)"]
     elif counter is not None:
         play = _trying_play(counter, spec, model, encoding, failure.blocked_goals)
-        if model is not None and encoding is not None:
+        if model is not None:
             run = _run(counter, spec, model, encoding, play, file)
             labels = [_goal_label(spec, j) for j in range(len(spec.sys_liveness))]
             story = [*summarise(run, play, labels), *narrate(
@@ -224,7 +228,7 @@ def explain(spec: GR1Spec, file: str, source: str = "", model: Model | None = No
             story = narrate_values(counter, play)
     fixes: tuple[Repair, ...] = ()
     tried: tuple[str, ...] = ()
-    if with_repairs and model is not None and encoding is not None and source:
+    if with_repairs and model is not None and source:
         visited = [s.region for s in run.steps] if run is not None else []
         failed = sorted({leg for s in run.steps for leg in s.failed}) if run is not None else []
         searched = repairs(model, source, file, encoding, oracle, visited, failed)

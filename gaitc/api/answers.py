@@ -14,7 +14,7 @@ from gaitc.analysis.pool import Pool, Progress
 from gaitc.analysis.resilience import Resilience, cache_sites
 from gaitc.analysis.resilience import resilience as analyse
 from gaitc.api.isolation import HardLimits, run_limited
-from gaitc.core.spec import Spec, load
+from gaitc.core.spec import Spec, as_spec, load
 from gaitc.diagnostics import UsageError
 from gaitc.ir.spec import GR1Spec, Semantics
 from ltlcompiler.encoding import EncodingName
@@ -32,13 +32,8 @@ def explain(spec: Spec | GR1Spec | str | Path, semantics: Semantics | str = Sema
     'add a cache at nw'
     """
     chosen = Semantics.parse(semantics, "semantics")
-    if isinstance(spec, (str, Path)):
-        spec = load(spec)
-    if isinstance(spec, GR1Spec):
-        return explain_spec(spec, spec.name or "<spec>", semantics=chosen, timeout=timeout,
-                            with_repairs=repairs)
-    return explain_spec(spec.gr1, spec.path, spec.text, spec.model, encoding=spec.encoding,
-                        semantics=chosen, timeout=timeout, with_repairs=repairs)
+    return explain_spec(as_spec(spec), semantics=chosen, timeout=timeout,
+                        with_repairs=repairs)
 
 
 def resilience(spec: Spec | str | Path, method: str = "parametric",

@@ -219,7 +219,7 @@ def resolve(spec: SpecLike) -> Spec | GR1Spec:
 def as_spec(spec: SpecLike) -> Spec:
     """``spec`` as a :class:`Spec`: loaded when it is a path, wrapped when it is bare IR."""
     loaded = resolve(spec)
-    return loaded if isinstance(loaded, Spec) else Spec("<spec>", loaded)
+    return loaded if isinstance(loaded, Spec) else Spec(loaded.name or "<spec>", loaded)
 
 
 def as_gr1(spec: SpecLike) -> GR1Spec:
