@@ -98,9 +98,11 @@ def _board(spec: Spec | object, ctrl: CompactController, target: Target) -> Boar
     from gaitc.codegen.board import board_tables
     from gaitc.diagnostics import SpecSemanticError
     from gaitc.hw.driver import bind_primitives
+    from gaitc.search.primitives import resolve_primitive
 
-    try:
-        primitives = bind_primitives(spec.model, str(Path(spec.path).parent))
+    try:  # the valves drive binds: a primitive clause searches the robot file's model
+        primitives = bind_primitives(spec.model, str(Path(spec.path).parent),
+                                     resolve_primitive)
     except SpecSemanticError:
         return None
     return board_tables(ctrl, primitives)
