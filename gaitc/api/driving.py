@@ -21,8 +21,16 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from gaitc.api.simulation import ENVIRONMENTS, Session, environment, run_document, session
+from gaitc.api.simulation import (
+    ENVIRONMENTS,
+    EnvironmentLike,
+    Session,
+    environment,
+    run_document,
+    session,
+)
 from gaitc.api.solving import recorded_encoding
+from gaitc.core.modes import EnvironmentKind
 from gaitc.core.spec import Spec, load
 from gaitc.diagnostics import UsageError
 from gaitc.ir.spec import Semantics
@@ -34,7 +42,6 @@ if TYPE_CHECKING:
     from gaitc.ir.controller import Controller
     from gaitc.sim.environments import Environment
     from gaitc.sim.run import Run
-    from gaitc.sim.scenario import Scenario
     from gaitc.solver.progress import Progress
 
 #: What a reading that breaks the spec's assumptions does: stop the run, hold the levels
@@ -44,10 +51,11 @@ VIOLATION_POLICIES = ("stop", "hold", "worst")
 
 @dataclass(frozen=True)
 class SimulatedBoard:
-    """The simulated robot: ``env`` is ``random`` (with ``seed``), ``adversarial``,
-    ``scripted:FILE.yaml``, a :class:`~gaitc.sim.scenario.Scenario` or an environment."""
+    """The simulated robot: ``env`` is an :class:`~gaitc.sim.session.Opponent` (random with
+    ``seed``, adversarial, or scripted with its scenario), its name (``scripted:FILE.yaml``),
+    a :class:`~gaitc.sim.scenario.Scenario` or an environment."""
 
-    env: str | Scenario | Environment = "random"
+    env: EnvironmentLike = EnvironmentKind.RANDOM
     seed: int = 0
     name = "sim"
 
@@ -61,7 +69,7 @@ class PhysicsBoard:
     robot: str | None = None
     map: str | None = None
     cell_size: float | None = None
-    env: str | Scenario | Environment = "random"
+    env: EnvironmentLike = EnvironmentKind.RANDOM
     seed: int = 0
     name = "physics"
 

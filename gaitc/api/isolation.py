@@ -33,6 +33,7 @@ from typing import Any, Final, TypeVar
 from gaitc.diagnostics import GaitcError, SolverError
 from gaitc.diagnostics.processes import GRACE, Outcome, can_fork, first_success
 from gaitc.solver.game import out_of_memory, time_limit_error
+from gaitc.solver.symbolic import Options
 
 T = TypeVar("T")
 
@@ -75,6 +76,13 @@ def cudd_budget_mb(memory_mb: int) -> int:
             f"{own:.0f} MB",
             hint=f"give --memory-limit at least {int(own) + MIN_ROOM_MB + 1} MB")
     return max(1, int(room * CUDD_SHARE))
+
+
+def solver_options(memory_mb: int | None) -> Options:
+    """The embedded solver's options for a memory limit of ``memory_mb`` (None: no limit):
+    CUDD's share of it (:func:`cudd_budget_mb`, so a limit too small fails here, before
+    any fork)."""
+    return Options(memory_mb=None if memory_mb is None else cudd_budget_mb(memory_mb))
 
 
 def run_limited(work: Callable[[], T], limits: HardLimits, what: str = "synthesis") -> T:

@@ -10,6 +10,7 @@ assumption and guarantee.
 from __future__ import annotations
 
 from collections.abc import Sequence
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Final, TypeAlias
 
@@ -34,8 +35,8 @@ if TYPE_CHECKING:
     from gaitc.sim.scenario import Scenario
 
 __all__ = ["DEFAULT_STEPS", "ENVIRONMENTS", "EnvironmentLike", "Opponent", "Session",
-           "counter_session", "environment", "is_run_file", "opponent", "run_document",
-           "session", "simulate"]
+           "Simulation", "counter_session", "environment", "is_run_file", "opponent",
+           "run_document", "session", "simulate", "simulate_spec"]
 
 #: The environments :func:`simulate` and ``gaitc simulate --env`` know by name.
 ENVIRONMENTS: Final = EnvironmentKind.values()
@@ -60,14 +61,8 @@ def session(spec: Spec | str | Path,
     onehot. Returns None when no controller was given and the spec is unrealizable.
     ``prefer`` with a given controller is a :class:`UsageError`: its moves are chosen already.
     """
-    if prefer is not None and controller is not None:
-        raise UsageError("--prefer orders the moves of a controller synthesized here, but "
-                         "CONTROLLER was synthesized already; give --prefer to the 'gaitc "
-                         "synth' that writes it, or leave out CONTROLLER")
-    if not isinstance(spec, Spec):
-        if encoding is None and isinstance(controller, (str, Path)):
-            encoding = recorded_encoding(controller)
-        spec = load(spec, encoding or EncodingName.ONEHOT)
+    _check_prefer(controller, prefer)
+    spec = _load(spec, controller, encoding)
     if spec.model is None:
         raise UsageError(f"'{spec.path}': simulating, driving and drawing a controller need "
                          "a .gait spec, which says what the variables mean (regions, gaits, "
@@ -84,6 +79,24 @@ def session(spec: Spec | str | Path,
             return None
         strategy = runtime(automaton, spec, "<synthesized>")
     return Session.bind(spec, strategy)
+
+
+def _check_prefer(controller: object, prefer: object) -> None:
+    if prefer is not None and controller is not None:
+        raise UsageError("--prefer orders the moves of a controller synthesized here, but "
+                         "CONTROLLER was synthesized already; give --prefer to the 'gaitc "
+                         "synth' that writes it, or leave out CONTROLLER")
+
+
+def _load(spec: Spec | str | Path, controller: object, encoding: EncodingName | str | None
+          ) -> Spec:
+    """``spec`` loaded with ``encoding``, else the one a controller file records, else
+    onehot."""
+    if isinstance(spec, Spec):
+        return spec
+    if encoding is None and isinstance(controller, (str, Path)):
+        encoding = recorded_encoding(controller)
+    return load(spec, encoding or EncodingName.ONEHOT)
 
 
 def counter_session(spec: Spec | str | Path, semantics: Semantics | str = Semantics.DEFAULT,
@@ -156,6 +169,79 @@ def _counter_play(bound: Session, env: Opponent | Scenario | Environment, steps:
     return play(counter, bound.domain, bound.monitor, count, choose, bound.spec.path, name)
 
 
+@dataclass(frozen=True)
+class Simulation:
+    """What :func:`simulate_spec` ran: the run (None when the spec is unrealizable and no
+    counter-strategy or recorded play stands in), whether a controller of the spec played
+    it (False: a counter-strategy, a recorded play of an unrealizable spec, or nothing),
+    and each leg's number of health levels (the step table's reference)."""
+
+    run: Run | None
+    realizable: bool
+    full_health: dict[str, int] = field(default_factory=dict)
+
+    @property
+    def environment(self) -> str | None:
+        """Who played the environment, in words (None when nothing ran)."""
+        return None if self.run is None else self.run.environment
+
+
+def simulate_spec(spec: Spec | Session | str | Path,
+                  controller: Controller | SymbolicController | Synthesis | str | Path | None
+                  = None, env: EnvironmentLike = EnvironmentKind.RANDOM,
+                  steps: int | None = None, seed: int = 0, *,
+                  encoding: EncodingName | str | None = None,
+                  semantics: Semantics | str = Semantics.DEFAULT,
+                  prefer: str | Sequence[str] | None = None,
+                  progress: Progress | None = None) -> Simulation:
+    """:func:`simulate`, deciding what plays when ``spec`` is unrealizable instead of
+    refusing: ``spec`` is loaded once (with ``encoding``, else the one ``controller``
+    records, else onehot) and bound to ``controller`` (synthesized when None, telling
+    ``progress``). Without a controller, the environment's counter-strategy plays an
+    unrealizable spec against the careful robot for ``env`` adversarial, a run file
+    (``scripted RUN.jsonl``) is played again as recorded, and otherwise nothing runs (the
+    answer's ``run`` is None)."""
+    if isinstance(spec, Session):
+        bound: Session | None = spec
+        loaded = spec.spec
+    else:
+        _check_prefer(controller, prefer)
+        loaded = _load(spec, controller, encoding)
+        bound = session(loaded, controller, None, semantics, prefer, progress)
+    chosen_env = opponent(env)
+    if bound is None:
+        if isinstance(chosen_env, Opponent) and chosen_env.replays_run:
+            assert chosen_env.file is not None
+            run = _recorded(loaded, chosen_env.file, steps)
+            return Simulation(run, False, {leg.name: leg.health for leg in loaded.robot.legs})
+        if isinstance(chosen_env, Opponent) and chosen_env.kind == EnvironmentKind.ADVERSARIAL:
+            bound = counter_session(loaded, semantics, progress)
+        if bound is None:
+            return Simulation(None, False)
+    if bound.strategy.kind == ControllerKind.COUNTERSTRATEGY:
+        return Simulation(_counter_play(bound, chosen_env, steps, seed), False,
+                          bound.full_health)
+    return Simulation(_controller_play(bound, chosen_env, steps, seed), True, bound.full_health)
+
+
+def _controller_play(bound: Session, env: Opponent | Scenario | Environment,
+                     steps: int | None, seed: int) -> Run:
+    """A controller of the spec against ``env`` for ``steps`` steps (default 50, or the
+    scenario's or run file's length)."""
+    from gaitc.sim.replay import RunEnvironment
+    from gaitc.sim.scenario import ScriptedEnvironment
+    from gaitc.sim.simulator import simulate as run_simulation
+
+    chosen = build_environment(env, bound, seed)
+    if steps is None:
+        steps = (len(chosen.scenario.steps) if isinstance(chosen, ScriptedEnvironment)
+                 else chosen.length if isinstance(chosen, RunEnvironment) else DEFAULT_STEPS)
+    if steps < 0:
+        raise UsageError("the number of steps must not be negative")
+    return run_simulation(bound.strategy, bound.domain, bound.monitor, chosen, steps,
+                          bound.spec.path)
+
+
 def simulate(spec: Spec | Session | str | Path,
              controller: Controller | SymbolicController | Synthesis | str | Path | None = None,
              env: EnvironmentLike = EnvironmentKind.RANDOM, steps: int | None = None,
@@ -166,41 +252,22 @@ def simulate(spec: Spec | Session | str | Path,
 
     A counter-strategy (``gaitc counter``) plays the environment itself; ``env`` then says
     how the robot answers (``random`` or ``adversarial``).  ``prefer``: the move
-    preferences of a controller synthesized here (:func:`gaitc.synthesize`).
+    preferences of a controller synthesized here (:func:`gaitc.synthesize`).  An
+    unrealizable spec is a :class:`UsageError`, unless :func:`simulate_spec` has something
+    else play it.
 
     >>> import gaitc
     >>> run = gaitc.simulate("specs/patrol_2x2.gait", env="adversarial", steps=6)
     >>> run.summary.guarantees_held, len(run.steps)
     (True, 7)
     """
-    from gaitc.sim.replay import RunEnvironment
-    from gaitc.sim.scenario import ScriptedEnvironment
-    from gaitc.sim.simulator import simulate as run_simulation
-
-    chosen_env = opponent(env)
-    replayed = (chosen_env.file if isinstance(chosen_env, Opponent) and chosen_env.replays_run
-                else None)
-    bound = spec if isinstance(spec, Session) else session(spec, controller, None, semantics,
-                                                           prefer)
-    if bound is None and replayed is not None and not isinstance(spec, Session):
-        return _recorded(spec, replayed, steps)
-    adversarial = (isinstance(chosen_env, Opponent)
-                   and chosen_env.kind == EnvironmentKind.ADVERSARIAL)
-    if bound is None and adversarial and not isinstance(spec, Session):
-        bound = counter_session(spec, semantics)
-    if bound is None:
-        path = spec.path if isinstance(spec, Spec) else str(spec)
+    played = simulate_spec(spec, controller, env, steps, seed, semantics=semantics,
+                           prefer=prefer)
+    if played.run is None:
+        path = spec.spec.path if isinstance(spec, Session) else (
+            spec.path if isinstance(spec, Spec) else str(spec))
         raise UsageError(f"'{path}' is unrealizable: there is no controller to simulate")
-    if bound.strategy.kind == ControllerKind.COUNTERSTRATEGY:
-        return _counter_play(bound, chosen_env, steps, seed)
-    chosen = build_environment(chosen_env, bound, seed)
-    if steps is None:
-        steps = (len(chosen.scenario.steps) if isinstance(chosen, ScriptedEnvironment)
-                 else chosen.length if isinstance(chosen, RunEnvironment) else DEFAULT_STEPS)
-    if steps < 0:
-        raise UsageError("the number of steps must not be negative")
-    return run_simulation(bound.strategy, bound.domain, bound.monitor, chosen, steps,
-                          bound.spec.path)
+    return played.run
 
 
 def run_document(file: str, run: Run | None, environment: str | None, output: str | None,

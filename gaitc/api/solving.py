@@ -27,6 +27,8 @@ from gaitc.ir.costs import Cost
 from gaitc.ir.quotient import merge_equivalent
 from gaitc.ir.spec import GR1Spec, Semantics
 from gaitc.solver.game import GameStats, out_of_memory
+from gaitc.solver.preferences import PREFERENCES as PREFERENCES
+from gaitc.solver.preferences import preference_order as preference_order
 from gaitc.solver.progress import Progress, Stage
 from gaitc.solver.symbolic import Options
 from gaitc.solver.synthesis import FORMS
@@ -38,7 +40,7 @@ if TYPE_CHECKING:
     from gaitc.compact.controller import CompactController
     from gaitc.core.vocabulary import Vocabulary
     from gaitc.sim.graphics import Picture
-    from gaitc.verifier.strategy import VerificationReport
+    from gaitc.verifier.strategy import VerificationReport as VerificationReport
 
 SolverName = Literal["embedded", "slugs"]
 #: ``embedded``: the BDD solver in :mod:`gaitc.solver`; ``slugs``: an installed SLUGS binary.

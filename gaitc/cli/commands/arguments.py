@@ -4,6 +4,10 @@ from __future__ import annotations
 
 import argparse
 import math
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from gaitc.api.modes import Semantics
 
 
 def positive_seconds(value: str) -> float:
@@ -59,8 +63,8 @@ def output_file(value: str) -> str:
 def run_file(value: str) -> str:
     """An output run file (``--out`` of simulate, drive, explain): a writable ``.jsonl`` or
     ``.csv`` file (:func:`output_file`)."""
+    from gaitc.api.runs import run_format
     from gaitc.diagnostics import UsageError
-    from gaitc.sim.run import run_format
 
     try:
         run_format(value)
@@ -82,8 +86,8 @@ def positive_whole(value: str) -> int:
 
 def preference_list(value: str) -> tuple[str, ...]:
     """``--prefer``: a comma-separated order of the move preferences, or ``none``."""
+    from gaitc.api.solving import preference_order
     from gaitc.diagnostics import UsageError
-    from gaitc.solver.preferences import preference_order
 
     try:
         return preference_order(value)
@@ -93,10 +97,18 @@ def preference_list(value: str) -> tuple[str, ...]:
 
 def add_prefer(parser: argparse.ArgumentParser, when: str = "") -> None:
     """The ``--prefer`` option (default: every preference, in the documented order)."""
-    from gaitc.solver.preferences import PREFERENCES
+    from gaitc.api.solving import PREFERENCES
 
     parser.add_argument(
         "--prefer", type=preference_list, metavar="LIST",
         help=f"{when}the order of the move preferences among winning moves, comma-separated "
         f"(default {','.join(PREFERENCES)}; 'none': the solver's first move; "
         "docs/simulation.md)")
+
+
+
+def semantics_of(args: argparse.Namespace) -> Semantics:
+    """The semantics ``--robotics-semantics`` asks for (else the default one)."""
+    from gaitc.api.modes import Semantics
+
+    return Semantics.ROBOTICS if args.robotics_semantics else Semantics.DEFAULT

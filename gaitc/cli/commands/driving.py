@@ -12,14 +12,14 @@ from typing import Any
 
 import gaitc
 from gaitc.api.driving import VIOLATION_POLICIES
+from gaitc.api.modes import ENCODINGS
 from gaitc.api.simulation import run_document
-from gaitc.cli.commands.arguments import add_prefer, positive_seconds, run_file
-from gaitc.cli.commands.simulating import add_json, env_text, report_run, settle_environment
+from gaitc.cli.commands.arguments import add_prefer, positive_seconds, run_file, semantics_of
+from gaitc.cli.commands.simulating import add_json, opponent_of, report_run, settle_environment
 from gaitc.cli.exitcodes import ExitCode, exit_code_help
 from gaitc.cli.reporting import document, print_json
 from gaitc.cli.status import progress_display
 from gaitc.diagnostics import UsageError
-from ltlcompiler.encoding import ENCODINGS
 
 EPILOG = """backends:
   --backend sim      a simulated robot (default): valves apply instantly, sensor readings come
@@ -123,7 +123,7 @@ def board_of(args: argparse.Namespace) -> Any:
     if args.backend == "serial":
         return SerialBoard(args.port or "", args.baud, args.timeout, args.channels,
                            args.sensing)
-    env, seed = env_text(args), args.seed or 0
+    env, seed = opponent_of(args), args.seed or 0
     if args.backend == "physics":
         return PhysicsBoard(args.robot, None if args.pose else args.map,
                             None if args.pose else args.cell_size, env, seed)
@@ -138,7 +138,7 @@ def options_of(args: argparse.Namespace) -> Any:
     return DriveOptions(
         steps=args.steps, step_delay=args.step_delay, cycles=args.cycles,
         on_violation=args.on_violation, tracker=tracker, encoding=args.encoding,
-        semantics="robotics" if args.robotics_semantics else "default", prefer=args.prefer)
+        semantics=semantics_of(args), prefer=args.prefer)
 
 
 def run_drive(args: argparse.Namespace) -> int:

@@ -11,22 +11,14 @@ import sys
 from collections.abc import Mapping
 from typing import Any
 
-import gaitc
-from gaitc.api.simulation import (
-    ENVIRONMENTS,
-    Session,
-    environment,
-    is_run_file,
-    run_document,
-)
-from gaitc.cli.commands.arguments import add_prefer, run_file
+from gaitc.api.modes import ENCODINGS, EnvironmentKind
+from gaitc.api.runs import Run
+from gaitc.api.simulation import ENVIRONMENTS, Opponent, run_document, simulate_spec
+from gaitc.cli.commands.arguments import add_prefer, run_file, semantics_of
 from gaitc.cli.exitcodes import ExitCode, exit_code_help
 from gaitc.cli.reporting import document, exit_code_of, print_json
 from gaitc.cli.status import progress_display
 from gaitc.diagnostics import UsageError, render_error
-from gaitc.sim.environments import Environment
-from gaitc.sim.run import Run
-from ltlcompiler.encoding import ENCODINGS, EncodingName
 
 EPILOG = """environments:
   --env random [--seed N]   uniform among the inputs the controller accepts (default, seed 0)
@@ -89,8 +81,8 @@ def settle_environment(args: argparse.Namespace, real_sensors: bool = False) -> 
     """Give CONTROLLER back from ``--env`` (whose ``nargs='+'`` also takes the positional
     after it: ``SPEC --env random CONTROLLER``; a .yaml word stays a misplaced scenario), and
     refuse a ``--seed`` nothing uses."""
-    kind, *rest = args.env or ["random"]
-    wanted = 1 if kind == "scripted" else 0
+    kind, *rest = args.env or [EnvironmentKind.RANDOM.value]
+    wanted = 1 if kind == EnvironmentKind.SCRIPTED else 0
     taken = rest[-1] if len(rest) == wanted + 1 else ""
     if args.controller is None and taken and not taken.endswith(
             (".yaml", ".yml", ".jsonl")):
@@ -99,83 +91,42 @@ def settle_environment(args: argparse.Namespace, real_sensors: bool = False) -> 
     if args.seed is not None and real_sensors:
         raise UsageError("--seed seeds the simulated random environment; the serial backend "
                          "reads real sensors")
-    if args.seed is not None and kind != "random":
+    if args.seed is not None and kind != EnvironmentKind.RANDOM:
         raise UsageError(f"--seed seeds the random environment; --env {kind} uses no random "
                          "numbers (drop --seed, or use --env random)")
 
 
-def env_text(args: argparse.Namespace) -> str:
-    """The environment ``--env`` names, as :func:`gaitc.api.simulation.environment` takes
-    it (``scripted:FILE.yaml`` for a scenario)."""
-    kind, *rest = args.env or ["random"]
+def opponent_of(args: argparse.Namespace) -> Opponent:
+    """The environment ``--env`` names (with its scenario or run file for ``scripted``)."""
+    kind, *rest = args.env or [EnvironmentKind.RANDOM.value]
     if kind not in ENVIRONMENTS:
         raise UsageError(f"unknown environment '{kind}'; use one of {', '.join(ENVIRONMENTS)}")
-    if kind == "scripted":
+    if kind == EnvironmentKind.SCRIPTED:
         if len(rest) != 1:
             raise UsageError("--env scripted needs one scenario or run file: --env scripted "
                              "FILE.yaml or --env scripted RUN.jsonl")
-        return f"scripted:{rest[0]}"
+        return Opponent(EnvironmentKind.SCRIPTED, rest[0])
     if rest:
         raise UsageError(f"--env {kind} takes no file (got '{rest[0]}')")
-    return str(kind)
-
-
-def environment_of(args: argparse.Namespace, bound: Session) -> Environment:
-    """The environment ``--env`` names (with its scenario file for ``scripted``)."""
-    return environment(env_text(args), bound, args.seed or 0)
-
-
-def _counter_environment(args: argparse.Namespace) -> str | None:
-    """How the robot answers when a counter-strategy plays the environment of an
-    unrealizable spec: ``adversarial`` (the careful robot) or a run file's answers
-    (``scripted RUN.jsonl``); None for the environments that need a controller."""
-    kind, *rest = args.env or ["random"]
-    if kind == "adversarial":
-        return "adversarial"
-    if kind == "scripted" and len(rest) == 1 and is_run_file(rest[0]):
-        return f"scripted:{rest[0]}"
-    return None
+    return Opponent(EnvironmentKind.parse(kind))
 
 
 def run_simulate(args: argparse.Namespace) -> int:
-    semantics = "robotics" if args.robotics_semantics else "default"
     if args.steps is not None and args.steps < 0:
         raise UsageError("--steps must not be negative")
     settle_environment(args)
     with progress_display() as progress:
-        bound = gaitc.session(args.spec, args.controller, args.encoding, semantics,
-                              args.prefer, progress)
-    counter_env = _counter_environment(args)
-    if bound is None and counter_env is not None and counter_env.startswith("scripted:"):
-        loaded = gaitc.load(args.spec, args.encoding or EncodingName.ONEHOT)
-        run = gaitc.simulate(loaded, env=counter_env, steps=args.steps)
-        return report_run(run, {leg.name: leg.health for leg in loaded.model.legs}
-                          if loaded.model else {}, run.environment, args.quiet, out=args.out,
-                          as_json=args.json, realizable=False)
-    if bound is None and counter_env is not None:
-        from gaitc.api.simulation import counter_session
-
-        with progress_display() as progress:
-            bound = counter_session(gaitc.load(args.spec, args.encoding or EncodingName.ONEHOT),
-                                    semantics, progress)
-        if bound is not None:  # the environment plays its winning strategy
-            run = gaitc.simulate(bound, env=counter_env, steps=args.steps)
-            return report_run(run, bound.full_health, run.environment, args.quiet, out=args.out,
-                              as_json=args.json, realizable=False)
-    if bound is None:
+        played = simulate_spec(args.spec, args.controller, opponent_of(args), args.steps,
+                               args.seed or 0, encoding=args.encoding,
+                               semantics=semantics_of(args), prefer=args.prefer,
+                               progress=progress)
+    if played.run is None:
         print(f"{args.spec}: unrealizable: no controller to simulate", file=sys.stderr)
         if args.json:
             print_json(document("simulate", run_document(args.spec, None, None, None, False)))
         return ExitCode.UNREALIZABLE
-    if bound.strategy.kind == "counterstrategy":
-        kind = _counter_environment(args) or (args.env or ["random"])[0]
-        run = gaitc.simulate(bound, env=kind, steps=args.steps, seed=args.seed or 0)
-        return report_run(run, bound.full_health, run.environment, args.quiet, out=args.out,
-                          as_json=args.json, realizable=False)
-    chosen = environment_of(args, bound)
-    run = gaitc.simulate(bound, env=chosen, steps=args.steps)
-    return report_run(run, bound.full_health, chosen.name, args.quiet, out=args.out,
-                      as_json=args.json)
+    return report_run(played.run, played.full_health, played.run.environment, args.quiet,
+                      out=args.out, as_json=args.json, realizable=played.realizable)
 
 
 def report_run(
@@ -190,8 +141,7 @@ def report_run(
     ``as_json`` one object is printed instead (with ``extra``'s keys), holding the error
     that stopped the run, and the exit code is returned rather than the error raised.
     """
-    from gaitc.sim.run import save_run
-    from gaitc.sim.terminal import step_table, summary_text, use_colour
+    from gaitc.api.runs import save_run, step_table, summary_text, use_colour
 
     if as_json:
         if out:

@@ -13,7 +13,8 @@ import time
 from typing import TYPE_CHECKING, Any
 
 import gaitc
-from gaitc.api.isolation import HardLimits, cudd_budget_mb, run_limited
+from gaitc.api.isolation import HardLimits, run_limited, solver_options
+from gaitc.api.modes import ENCODINGS, ControllerKind, EncodingName, Form
 from gaitc.api.solving import MAX_NODES, SOLVERS, recorded_encoding
 from gaitc.cli.commands.arguments import (
     add_prefer,
@@ -21,17 +22,16 @@ from gaitc.cli.commands.arguments import (
     positive_count,
     positive_megabytes,
     positive_seconds,
+    semantics_of,
 )
 from gaitc.cli.exitcodes import ExitCode, exit_code_help
 from gaitc.cli.reporting import document, error_json, exit_code_of, print_json
 from gaitc.cli.status import progress_display
 from gaitc.diagnostics import GaitcError, UsageError, render_error
-from gaitc.solver.progress import Progress
-from gaitc.solver.symbolic import Options
-from ltlcompiler.encoding import ENCODINGS
 
 if TYPE_CHECKING:
-    from gaitc.verifier.strategy import VerificationReport
+    from gaitc.api.progress import Progress
+    from gaitc.api.solving import VerificationReport
 
 EXIT_CODES = exit_code_help({
     ExitCode.OK: "every spec is realizable (check), the controller was written / verified",
@@ -51,7 +51,7 @@ def _common(p: argparse.ArgumentParser, solver: bool = True) -> None:
     p.add_argument(
         "--encoding",
         choices=ENCODINGS,
-        default="onehot" if solver else None,
+        default=EncodingName.ONEHOT.value if solver else None,
         help="encoding of .gait specs (default onehot"
         + ("" if solver else "; verify: the one recorded in the controller file") + ")",
     )
@@ -148,22 +148,16 @@ def _json(p: argparse.ArgumentParser) -> None:
                    help="print one JSON object instead of the text (docs/json.md)")
 
 
-def _semantics(args: argparse.Namespace) -> str:
-    return "robotics" if args.robotics_semantics else "default"
-
-
-
 def _limits(args: argparse.Namespace) -> HardLimits:
     return HardLimits(args.timeout, getattr(args, "memory_limit", None))
 
 
-def _options(args: argparse.Namespace) -> Options:
-    mb = getattr(args, "memory_limit", None)
-    return Options(memory_mb=None if mb is None else cudd_budget_mb(mb))
+def _options(args: argparse.Namespace) -> Any:
+    return solver_options(getattr(args, "memory_limit", None))
 
 
 def _solver_args(args: argparse.Namespace, progress: Progress | None) -> dict[str, Any]:
-    return {"semantics": _semantics(args), "solver": args.solver, "timeout": args.timeout,
+    return {"semantics": semantics_of(args), "solver": args.solver, "timeout": args.timeout,
             "slugs": args.slugs, "options": _options(args), "progress": progress}
 
 
@@ -172,7 +166,7 @@ def run_check(args: argparse.Namespace) -> int:
     worst = ExitCode.OK
     for path in args.specs:
         started = time.monotonic()
-        record: dict[str, Any] = {"file": path, "semantics": _semantics(args),
+        record: dict[str, Any] = {"file": path, "semantics": semantics_of(args),
                                   "solver": args.solver, "engine": None, "error": None}
         try:
             _options(args)  # a memory limit too small fails here, before the fork
@@ -205,18 +199,20 @@ def _check_one(path: str, args: argparse.Namespace) -> gaitc.Verdict:
 _SEVERITY = (ExitCode.OK, ExitCode.UNREALIZABLE, ExitCode.USER, ExitCode.SOLVER)
 
 
-def _solve(args: argparse.Namespace, kind: str) -> tuple[gaitc.Spec, gaitc.Synthesis]:
+def _solve(args: argparse.Namespace, kind: ControllerKind
+           ) -> tuple[gaitc.Spec, gaitc.Synthesis]:
     _options(args)  # a memory limit too small fails here, before the fork
 
     def work() -> tuple[gaitc.Spec, gaitc.Synthesis]:
         spec = gaitc.load(args.spec, args.encoding)
         with progress_display(args.verbose) as progress:
-            if kind == "counterstrategy":
+            if kind == ControllerKind.COUNTERSTRATEGY:
                 return spec, gaitc.counterstrategy(spec, **_solver_args(args, progress))
             if args.symbolic and args.compact:
                 raise UsageError("--symbolic and --compact are two forms of the controller: "
                                  "give one")
-            form = "compact" if args.compact else "symbolic" if args.symbolic else "auto"
+            form = (Form.COMPACT if args.compact else Form.SYMBOLIC if args.symbolic
+                    else "auto")
             return spec, gaitc.synthesize(spec, verify=not args.no_verify, form=form,
                                           max_nodes=args.max_nodes, prefer=args.prefer,
                                           **_solver_args(args, progress))
@@ -225,7 +221,7 @@ def _solve(args: argparse.Namespace, kind: str) -> tuple[gaitc.Spec, gaitc.Synth
 
 
 def run_synth(args: argparse.Namespace) -> int:
-    _, found = _solve(args, "strategy")
+    _, found = _solve(args, ControllerKind.STRATEGY)
     if args.json:
         return _synth_json(args, found)
     if found.controller is None:
@@ -248,7 +244,7 @@ def run_synth(args: argparse.Namespace) -> int:
 
 def _synth_json(args: argparse.Namespace, found: gaitc.Synthesis) -> int:
     """``synth --json`` and ``counter --json``: the same files written, one object printed."""
-    strategy = found.kind == "strategy"
+    strategy = found.kind == ControllerKind.STRATEGY
     # as without --json: synth writes only a verified controller, counter whatever it found
     verified = not strategy or found.report is None or found.report.ok
     written = found.controller is not None and verified
@@ -273,7 +269,7 @@ def _print_report(report: VerificationReport) -> int:
 
 
 def run_counter(args: argparse.Namespace) -> int:
-    _, found = _solve(args, "counterstrategy")
+    _, found = _solve(args, ControllerKind.COUNTERSTRATEGY)
     if args.json:
         return _synth_json(args, found)
     if found.controller is None:
@@ -288,9 +284,9 @@ def run_counter(args: argparse.Namespace) -> int:
 
 
 def run_verify(args: argparse.Namespace) -> int:
-    encoding = args.encoding or recorded_encoding(args.controller) or "onehot"
+    encoding = args.encoding or recorded_encoding(args.controller) or EncodingName.ONEHOT
     spec = gaitc.load(args.spec, encoding)
-    semantics = "robotics" if args.robotics_semantics else None
+    semantics = semantics_of(args) if args.robotics_semantics else None  # None: as recorded
     report = gaitc.verify(spec, args.controller, semantics)
     if not args.json:
         return _print_report(report)
