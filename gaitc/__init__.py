@@ -76,7 +76,6 @@ if TYPE_CHECKING:  # the names of _MODULES, for the type checker (tests/test_cli
     from gaitc.api.learning import learn as learn
     from gaitc.api.playing import Autopilot as Autopilot
     from gaitc.api.playing import Player as Player
-    from gaitc.api.playing import Role as Role
     from gaitc.api.playing import player as player
     from gaitc.api.playing import player_widget as player_widget
     from gaitc.api.simulation import Session as Session
@@ -89,6 +88,13 @@ if TYPE_CHECKING:  # the names of _MODULES, for the type checker (tests/test_cli
     from gaitc.api.solving import counterstrategy as counterstrategy
     from gaitc.api.solving import synthesize as synthesize
     from gaitc.api.solving import verify as verify
+    from gaitc.core.modes import ControllerKind as ControllerKind
+    from gaitc.core.modes import EncodingName as EncodingName
+    from gaitc.core.modes import EnvironmentKind as EnvironmentKind
+    from gaitc.core.modes import Form as Form
+    from gaitc.core.modes import Role as Role
+    from gaitc.core.modes import SearchMethod as SearchMethod
+    from gaitc.core.modes import Semantics as Semantics
     from gaitc.core.spec import Spec as Spec
     from gaitc.core.spec import load as load
     from gaitc.core.spec import parse as parse
@@ -113,13 +119,17 @@ if TYPE_CHECKING:  # the names of _MODULES, for the type checker (tests/test_cli
 #: without a cycle.
 _MODULES: dict[str, tuple[str, ...]] = {
     "gaitc.core.spec": ("Spec", "load", "parse"),
+    "gaitc.core.modes": (
+        "ControllerKind", "EncodingName", "EnvironmentKind", "Form", "Role", "SearchMethod",
+        "Semantics",
+    ),
     "gaitc.api.compiling": ("FORMATS", "OutputFormat", "emit", "lint"),
     "gaitc.api.solving": (
         "SOLVERS", "Synthesis", "Verdict", "check", "counterstrategy", "synthesize", "verify",
     ),
     "gaitc.api.answers": ("explain", "resilience"),
     "gaitc.api.simulation": ("Session", "session", "simulate"),
-    "gaitc.api.playing": ("Autopilot", "Player", "Role", "player", "player_widget"),
+    "gaitc.api.playing": ("Autopilot", "Player", "player", "player_widget"),
     "gaitc.api.examples": ("copy_examples",),
     "gaitc.api.drawing": ("controller_policy", "draw_automaton", "draw_map", "draw_spec"),
     "gaitc.api.gaits": ("GaitMethod", "GaitOptions", "GlobalSearch", "gaits"),
