@@ -8,6 +8,9 @@ notebook as SVG.
   pursuing goal g, with these legs usable: use gait x"), as text, Markdown, HTML or a picture;
 - :func:`draw_map`: the region map, with a run's path and leg timeline;
 - :func:`draw_spec`: the region graph with the gaits of each move.
+
+A picture's format is one of :data:`FORMATS`, or the one :func:`output_format` reads from a
+file name.
 """
 
 from __future__ import annotations
@@ -18,18 +21,21 @@ from typing import TYPE_CHECKING
 from gaitc.api.simulation import session
 from gaitc.core.spec import Spec, load
 from gaitc.diagnostics import ScenarioError, Span, UsageError
+from gaitc.sim.graphics import FORMATS, Picture, output_format
 from gaitc.sim.session import Session
 
 if TYPE_CHECKING:
     from collections.abc import Sequence
 
     from gaitc.ir.controller import Controller
-    from gaitc.sim.graphics import Picture
     from gaitc.sim.policy import Policy
     from gaitc.sim.run import Run
     from gaitc.solver.progress import Progress
     from ltlcompiler.encoding import EncodingName
     from ltlcompiler.model import Model
+
+__all__ = ["FORMATS", "Picture", "controller_policy", "draw_automaton", "draw_map",
+           "draw_policy", "draw_spec", "output_format"]
 
 def _check_steps(steps: int | None) -> None:
     if steps is not None and steps < 0:
@@ -75,7 +81,7 @@ def controller_policy(spec: Spec | str | Path,
                       prefer: str | Sequence[str] | None = None,
                       progress: Progress | None = None) -> tuple[Policy, Session] | None:
     """The controller's rules per region (and its session, for drawing them with
-    :func:`gaitc.sim.policy_view.policy_view`); None when the spec is unrealizable."""
+    :func:`draw_policy`); None when the spec is unrealizable."""
     from gaitc.sim.policy import controller_policy as project
 
     if max_nodes < 1:
@@ -87,6 +93,14 @@ def controller_policy(spec: Spec | str | Path,
     if bound is None:
         return None
     return project(bound.strategy, bound.domain, steps, max_nodes, max_rules), bound
+
+
+def draw_policy(policy: Policy, bound: Session) -> Picture:
+    """``policy`` (of :func:`controller_policy`) drawn: one table per region of ``bound``'s
+    spec, with arrows for its moves."""
+    from gaitc.sim.policy_view import policy_view
+
+    return policy_view(policy, bound.domain)
 
 
 def _model(spec: Spec | str | Path) -> Model:

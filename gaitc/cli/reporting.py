@@ -18,8 +18,8 @@ from gaitc.cli.exitcodes import ExitCode
 from gaitc.diagnostics import Diagnostic, GaitcError, SolverError, Span, UsageError
 
 if TYPE_CHECKING:
-    from gaitc.analysis.explanation import Explanation
-    from gaitc.core.spec import Spec
+    from gaitc.api.answers import Explanation
+    from gaitc.api.loading import Spec
 
 #: The version of the JSON objects documented in docs/json.md; raised when a key changes
 #: meaning or disappears (adding a key does not change it).

@@ -20,8 +20,8 @@ from collections.abc import Iterator
 from contextlib import contextmanager
 from typing import Final, TextIO
 
+from gaitc.api.progress import Progress, Stage
 from gaitc.diagnostics.processes import mask_held
-from gaitc.solver.progress import Progress, Stage
 
 #: Width of the bar in characters, and the redraw rates in seconds.
 BAR: Final = 10

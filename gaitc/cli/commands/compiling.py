@@ -11,17 +11,17 @@ import sys
 from typing import TYPE_CHECKING, Any
 
 import gaitc
-from gaitc.api.compiling import FORMATS, emit, output_format
+from gaitc.api.compiling import FORMATS, OutputFormat, emit, output_format
+from gaitc.api.loading import Spec, load, reader_of
+from gaitc.api.modes import ENCODINGS, EncodingName
 from gaitc.cli.commands.arguments import output_file, positive_seconds
 from gaitc.cli.exitcodes import ExitCode
 from gaitc.cli.reporting import compilation_json, document, lint_json, print_json
-from gaitc.core.spec import Spec, load, reader_of
 from gaitc.diagnostics import Diagnostic, UsageError, render_diagnostic
 from gaitc.diagnostics.files import write_atomically
-from ltlcompiler.encoding import ENCODINGS
 
 if TYPE_CHECKING:
-    from gaitc.analysis.explanation import Explanation
+    from gaitc.api.answers import Explanation
 
 
 def register(subparsers: Any) -> None:
@@ -56,7 +56,7 @@ def register(subparsers: Any) -> None:
                       help="output format (default: from the suffix of OUT: .slugsin or .txt "
                       "slugsin, .ltl LTL text, "
                       "else structuredslugs)")
-    comp.add_argument("--encoding", choices=ENCODINGS, default="onehot",
+    comp.add_argument("--encoding", choices=ENCODINGS, default=EncodingName.ONEHOT.value,
                       help="onehot: a proposition per region/gait/health level (the thesis); "
                       "binary: integer variables (default onehot)")
     comp.add_argument("--json", action="store_true",
@@ -97,8 +97,8 @@ def _lint_verdict(args: argparse.Namespace, diagnostics: list[Diagnostic]
     return (ExitCode.WARNING if why.warnings else ExitCode.OK), why
 
 
-def compile_text(path: str, fmt: str = "structuredslugs", encoding: str = "onehot"
-                 ) -> tuple[str, list[Diagnostic]]:
+def compile_text(path: str, fmt: str = OutputFormat.STRUCTUREDSLUGS,
+                 encoding: str = EncodingName.ONEHOT) -> tuple[str, list[Diagnostic]]:
     """The text of the .gait file at ``path`` compiled to ``fmt``, plus the warnings."""
     spec, text = _compiled(path, fmt, encoding)
     return text, list(spec.diagnostics)

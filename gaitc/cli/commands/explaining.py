@@ -11,11 +11,11 @@ import sys
 from typing import Any
 
 import gaitc
-from gaitc.cli.commands.arguments import positive_seconds, run_file
+from gaitc.api.modes import ENCODINGS, EncodingName
+from gaitc.cli.commands.arguments import positive_seconds, run_file, semantics_of
 from gaitc.cli.exitcodes import ExitCode, exit_code_help
 from gaitc.cli.reporting import document, print_json
 from gaitc.diagnostics import UsageError
-from ltlcompiler.encoding import ENCODINGS
 
 EPILOG = exit_code_help({
     ExitCode.OK: "the spec is realizable and passed the sanity checks",
@@ -41,7 +41,7 @@ def register(sub: Any) -> None:
                    help="stop the whole analysis after this long (exit 4)")
     p.add_argument("--out", metavar="FILE", type=run_file, help="save the play as .jsonl (draw it "
                    "with 'gaitc render map SPEC --run FILE') or .csv (a table)")
-    p.add_argument("--encoding", choices=ENCODINGS, default="onehot")
+    p.add_argument("--encoding", choices=ENCODINGS, default=EncodingName.ONEHOT.value)
     p.add_argument("--robotics-semantics", action="store_true",
                    help="SLUGS's --sysInitRoboticsSemantics")
     p.set_defaults(run=run_explain)
@@ -54,15 +54,14 @@ def exit_code(why: Any) -> ExitCode:
 
 
 def run_explain(args: argparse.Namespace) -> int:
-    semantics = "robotics" if args.robotics_semantics else "default"
     spec = gaitc.load(args.spec, args.encoding)
-    why = gaitc.explain(spec, semantics, args.timeout, not args.no_repairs)
+    why = gaitc.explain(spec, semantics_of(args), args.timeout, not args.no_repairs)
     if args.out:
         if why.run is None:
             raise UsageError("there is no play to save: "
                              + ("the spec is realizable" if why.realizable
                                 else "plays are told in robot terms for .gait specs only"))
-        from gaitc.sim.run import save_run
+        from gaitc.api.runs import save_run
 
         save_run(why.run, args.out)
     if args.json:

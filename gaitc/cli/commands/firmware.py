@@ -63,7 +63,7 @@ def _no_action(parser: argparse.ArgumentParser) -> int:
 
 
 def run_build(args: argparse.Namespace) -> int:
-    from gaitc.hw.firmware import build
+    from gaitc.api.firmware import build
 
     image = build(args.out, simulator=not args.no_simulator)
     for path in (image.elf, image.hex, image.simulator):
@@ -73,7 +73,7 @@ def run_build(args: argparse.Namespace) -> int:
 
 
 def run_simulate(args: argparse.Namespace) -> int:
-    from gaitc.hw.firmware import build, simulator_argv
+    from gaitc.api.firmware import build, simulator_argv
 
     if args.watchdog_ms is not None and not 50 <= args.watchdog_ms <= 10000:
         raise UsageError("--watchdog-ms must be within 50..10000")

@@ -12,11 +12,11 @@ import sys
 from pathlib import Path
 from typing import Any
 
-from gaitc.cli.commands.arguments import run_file
+from gaitc.api.modes import ENCODINGS
+from gaitc.cli.commands.arguments import run_file, semantics_of
 from gaitc.cli.exitcodes import ExitCode, exit_code_help
 from gaitc.cli.status import progress_display
 from gaitc.diagnostics import UsageError
-from ltlcompiler.encoding import ENCODINGS
 
 EPILOG = """keys (? in the player lists them):
   1-9 or enter  play a move           u / r  undo / redo       g  go to a step
@@ -74,11 +74,10 @@ def run_play(args: argparse.Namespace) -> int:
         raise UsageError("'gaitc play' needs a terminal; from a script or a notebook use "
                          "gaitc.player(SPEC) (or gaitc.player_widget), or replay a run with "
                          "'gaitc simulate SPEC --env scripted RUN.jsonl'")
-    semantics = "robotics" if args.robotics_semantics else "default"
     with progress_display() as progress:
         player = gaitc.player(args.spec, args.controller, against=args.against or None,
                               start=args.start, at=args.at, encoding=args.encoding,
-                              semantics=semantics, progress=progress)
+                              semantics=semantics_of(args), progress=progress)
     if args.no_color:
         os.environ["NO_COLOR"] = "1"
     from gaitc.play.terminal import play_in_terminal

@@ -10,11 +10,12 @@ import sys
 from typing import Any
 
 import gaitc
+from gaitc.api.drawing import FORMATS, Picture, draw_policy, output_format
+from gaitc.api.modes import ENCODINGS
 from gaitc.cli.commands.arguments import add_prefer, output_file, positive_count
 from gaitc.cli.exitcodes import ExitCode
 from gaitc.cli.status import progress_display
 from gaitc.diagnostics import UsageError
-from gaitc.sim.graphics import FORMATS, Picture, output_format
 
 FORMAT_HELP = (f"output format: {', '.join(FORMATS)} (default: from the -o extension); every "
                "format but dot needs Graphviz's 'dot' program")
@@ -57,7 +58,7 @@ def register(sub: Any) -> None:
     p.add_argument("--steps", type=int, metavar="K",
                    help="draw only the first K steps from the initial nodes (breadth first; "
                    "K = 3 is a good start)")
-    p.add_argument("--encoding", choices=("onehot", "binary"))
+    p.add_argument("--encoding", choices=ENCODINGS)
     add_prefer(p, "without CONTROLLER: ")
     _output(p)
     p.set_defaults(run=run_automaton)
@@ -87,7 +88,7 @@ def register(sub: Any) -> None:
                    help="the compact controller whole: one table of rules per goal, every "
                    "state covered (a compact or symbolic CONTROLLER, or one synthesized); "
                    "the default for a compact CONTROLLER")
-    p.add_argument("--encoding", choices=("onehot", "binary"))
+    p.add_argument("--encoding", choices=ENCODINGS)
     add_prefer(p, "without CONTROLLER: ")
     p.add_argument("-o", "--output", metavar="FILE", type=output_file,
                    help="write the table or picture here (default: print the table)")
@@ -161,8 +162,6 @@ def _policy_format(path: str | None, fmt: str | None) -> str:
 
 
 def run_policy(args: argparse.Namespace) -> int:
-    from gaitc.sim.policy_view import policy_view
-
     fmt = _policy_format(args.output, args.format)  # fail on a bad format before synthesizing
     if args.output is None and fmt not in TABLE_FORMATS:
         raise UsageError(f"--format {fmt} draws a picture: give -o FILE")
@@ -184,7 +183,7 @@ def run_policy(args: argparse.Namespace) -> int:
         return _unrealizable(args, "project")
     policy, bound = found
     if fmt not in TABLE_FORMATS:
-        return _save(policy_view(policy, bound.domain), args)
+        return _save(draw_policy(policy, bound), args)
     text = {"text": policy.text, "md": policy.markdown, "html": policy.html}[fmt]()
     return _write_table(text, fmt, args)
 
@@ -192,8 +191,8 @@ def run_policy(args: argparse.Namespace) -> int:
 def _is_compact_file(path: str | None) -> bool:
     if path is None:
         return False
+    from gaitc.api.modes import Form
     from gaitc.api.solving import controller_form
-    from gaitc.core.modes import Form
 
     return controller_form(path) == Form.COMPACT
 

@@ -11,13 +11,17 @@ import sys
 from typing import Any
 
 import gaitc
-from gaitc.analysis.pool import terminal_progress
-from gaitc.analysis.resilience import METHODS
-from gaitc.cli.commands.arguments import output_file, positive_count, positive_seconds
+from gaitc.api.answers import METHODS, terminal_progress
+from gaitc.api.modes import ENCODINGS, EncodingName
+from gaitc.cli.commands.arguments import (
+    output_file,
+    positive_count,
+    positive_seconds,
+    semantics_of,
+)
 from gaitc.cli.exitcodes import ExitCode, exit_code_help
 from gaitc.cli.reporting import document, print_json
 from gaitc.diagnostics import UsageError
-from ltlcompiler.encoding import ENCODINGS
 
 EPILOG = exit_code_help({
     ExitCode.OK: "the report was printed (the task is realizable with no failure)",
@@ -50,7 +54,7 @@ def register(sub: Any) -> None:
                    help="check variants in N local processes")
     p.add_argument("--dask", metavar="ADDRESS",
                    help="check variants on a Dask distributed scheduler (tcp://HOST:PORT)")
-    p.add_argument("--encoding", choices=ENCODINGS, default="binary",
+    p.add_argument("--encoding", choices=ENCODINGS, default=EncodingName.BINARY.value,
                    help="encoding of the spec (default binary: the parametric games use "
                    "integers)")
     p.add_argument("-o", "--output", metavar="PICTURE", type=output_file,
@@ -65,10 +69,9 @@ def register(sub: Any) -> None:
 def run_resilience(args: argparse.Namespace) -> int:
     if args.jobs < 1:
         raise UsageError("--jobs must be at least 1")
-    semantics = "robotics" if args.robotics_semantics else "default"
     spec = gaitc.load(args.spec, args.encoding)
     report = gaitc.resilience(spec, method=args.method, health_bound=args.health_bound,
-                              place_caches=args.place_caches, semantics=semantics,
+                              place_caches=args.place_caches, semantics=semantics_of(args),
                               jobs=args.jobs, dask=args.dask,
                               progress=terminal_progress("resilience"), timeout=args.timeout)
     if args.output:
