@@ -58,7 +58,7 @@ def _parts(spec: gaitc.Spec, oracle: Oracle) -> list[tuple[str, Callable[[], obj
         ("verdict", lambda: oracle.realizable(spec.gr1)),
         ("kind", lambda: failure.classify(spec.gr1, oracle)),
         ("core", lambda: core.guarantee_core(spec.gr1, oracle)),
-        ("freedoms", lambda: freedoms.needed_freedoms(spec.gr1, model, encoding, oracle)),
+        ("freedoms", lambda: freedoms.needed_freedoms(spec, oracle)),
         ("counter", lambda: oracle.counterstrategy(spec.gr1)),  # every freedom
         ("repairs", lambda: repairs.repairs(model, spec.text, spec.path, encoding, oracle, [])),
     ]

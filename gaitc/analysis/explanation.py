@@ -195,7 +195,7 @@ def explain(loaded: Spec, *, semantics: Semantics = Semantics.DEFAULT,
     player = player_of(model)
     oracle = Oracle.within(semantics, timeout)
     if oracle.realizable(spec):
-        found = sanity(spec, model, loaded.encoding, oracle)
+        found = sanity(loaded, oracle)
         return Explanation(file, True, warnings=found, solver_calls=oracle.calls,
                            seconds=time.monotonic() - started, source=source, player=player)
     failure = classify(spec, oracle)
@@ -203,14 +203,14 @@ def explain(loaded: Spec, *, semantics: Semantics = Semantics.DEFAULT,
     core = guarantee_core(spec, oracle)
     freedoms: tuple[Freedom, ...] = ()
     if model is not None:
-        freedoms = needed_freedoms(spec, model, encoding, oracle)
+        freedoms = needed_freedoms(loaded, oracle)
     # The play comes from the environment restricted to the freedoms it needs: a smaller
     # automaton, a play that shows exactly those freedoms, and (the assumptions being only
     # stronger) a play that keeps the spec's own assumptions.
     focused = spec
     if freedoms and model is not None:
         taken = tuple(f for f in all_freedoms(model) if f not in freedoms)
-        focused = restricted(spec, model, encoding, taken)
+        focused = restricted(loaded, taken)
     counter = oracle.counterstrategy(focused)
     play = run = None
     story: list[str] = []

@@ -14,9 +14,10 @@ from dataclasses import dataclass
 from gaitc.analysis.ddmin import ddmin
 from gaitc.analysis.oracle import Oracle
 from gaitc.analysis.units import with_clauses
+from gaitc.core.spec import Spec
 from gaitc.ir.formula import Expr, Implies, Not, conj, disj
 from gaitc.ir.spec import Clause, GR1Spec, Origin
-from ltlcompiler.encoding import Encoding, EncodingName, make_encoding
+from ltlcompiler.encoding import Encoding, make_encoding
 from ltlcompiler.model import GaitKind, Model
 
 
@@ -68,21 +69,23 @@ def _restrictions(model: Model, enc: Encoding, taken: tuple[Freedom, ...]
     return extra
 
 
-def restricted(spec: GR1Spec, model: Model, encoding: EncodingName,
-               taken: tuple[Freedom, ...]) -> GR1Spec:
-    """``spec`` with the freedoms ``taken`` away from the environment."""
-    return with_clauses(spec, _restrictions(model, make_encoding(model, encoding), taken))
+def restricted(spec: Spec, taken: tuple[Freedom, ...]) -> GR1Spec:
+    """The IR of ``spec`` (a ``.gait`` spec) with the freedoms ``taken`` away from the
+    environment."""
+    model = spec.robot
+    return with_clauses(spec.gr1, _restrictions(model, make_encoding(model, spec.robot_encoding),
+                                                taken))
 
 
-def needed_freedoms(spec: GR1Spec, model: Model, encoding: EncodingName, oracle: Oracle
-                    ) -> tuple[Freedom, ...]:
-    """A 1-minimal set of freedoms with which the environment still wins (``spec`` must be
-    unrealizable); every freedom outside it is taken away in the test."""
-    every = freedoms(model)
+def needed_freedoms(spec: Spec, oracle: Oracle) -> tuple[Freedom, ...]:
+    """A 1-minimal set of freedoms with which the environment still wins (``spec``, a
+    ``.gait`` spec, must be unrealizable); every freedom outside it is taken away in the
+    test."""
+    every = freedoms(spec.robot)
 
     def wins(kept: tuple[Freedom, ...]) -> bool:
         taken = tuple(f for f in every if f not in kept)
-        return not oracle.realizable(restricted(spec, model, encoding, taken))
+        return not oracle.realizable(restricted(spec, taken))
 
     if wins(()):
         return ()

@@ -18,6 +18,7 @@ from typing import Final
 from gaitc.analysis.ddmin import ddmin
 from gaitc.analysis.oracle import Oracle
 from gaitc.analysis.units import ASSUMPTION_SECTIONS, Unit, keep_only, units
+from gaitc.core.spec import Spec
 from gaitc.ir.cuddlib import cudd
 from gaitc.ir.formula import FALSE
 from gaitc.ir.spec import Clause, GR1Spec, Origin, Variable
@@ -135,9 +136,10 @@ def player_of(model: Model | None) -> str:
     return ROBOT if model is not None else SYSTEM
 
 
-def sanity(spec: GR1Spec, model: Model | None, encoding: EncodingName | None, oracle: Oracle
-           ) -> tuple[Warning_, ...]:
-    """Every sanity warning of a realizable ``spec``."""
+def sanity(loaded: Spec, oracle: Oracle) -> tuple[Warning_, ...]:
+    """Every sanity warning of a realizable spec (a ``.gait`` one's also in its robot's
+    words: the regions, gaits and caches no winning play uses)."""
+    spec, model = loaded.gr1, loaded.model
     found: list[Warning_] = []
     player = player_of(model)
     if assumptions_unsatisfiable(spec, oracle):
@@ -163,8 +165,8 @@ def sanity(spec: GR1Spec, model: Model | None, encoding: EncodingName | None, or
         label = rule.rule if rule is not None else f"goal {j + 1}"
         found.append(Warning_("vacuous-goal", f"'{label}' holds on every step of every play: "
                               f"it asks nothing of the {player}"))
-    if model is not None and encoding is not None:
-        for kind, names in unused_parts(sym, model, encoding).items():
+    if model is not None:
+        for kind, names in unused_parts(sym, model, loaded.robot_encoding).items():
             if names:
                 verb = {"regions": "enters region", "gaits": "uses gait",
                         "caches": "visits cache"}[kind]
