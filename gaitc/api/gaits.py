@@ -380,6 +380,14 @@ class GlobalGait:
 GaitSearch = KinematicGaits | ModelGaits | GlobalGait
 
 
+def model_choices() -> tuple[str, ...]:
+    """The gait graphs ``model`` names (``kinematic`` and each chapter 4 model;
+    :data:`gaitc.models.catalogue.MODEL_CHOICES`, imported here when asked for)."""
+    from gaitc.models.catalogue import MODEL_CHOICES
+
+    return MODEL_CHOICES
+
+
 def gaits(robot: str | Path, options: GaitOptions | None = None) -> GaitSearch:
     """Gait primitives of the robot file ``robot`` (see the module's docstring).
 

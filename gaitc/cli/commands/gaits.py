@@ -33,9 +33,9 @@ def register(subparsers: Any) -> None:
 
 def search_arguments(p: argparse.ArgumentParser) -> None:
     """The robot file and search options, shared by ``gaits`` and ``render gaits``."""
+    from gaitc.api.gaits import model_choices
+    from gaitc.api.modes import SearchMethod
     from gaitc.cli.commands.learning import goal_arguments
-    from gaitc.core.modes import SearchMethod
-    from gaitc.models.catalogue import MODEL_CHOICES
 
     p.add_argument("robot", metavar="ROBOT.yaml")
     p.add_argument("--direction", default="+x", help="+x, -x, +y, -y or an angle in degrees")
@@ -47,7 +47,7 @@ def search_arguments(p: argparse.ArgumentParser) -> None:
                    help="seed of the random and reset searches and of chapter 5's (default 0)")
     p.add_argument("--max-states", type=int, default=10_000, help="valve states to try at most")
     p.add_argument(
-        "--model", choices=MODEL_CHOICES,
+        "--model", choices=model_choices(),
         help="the gait graph to search: by default the chapter 4 model the robot file's "
         "'model:' section declares (thesis 4.2.2, docs/models.md), else the kinematic graph "
         "of chapter 2; 'kinematic' asks for that one whatever the file declares")
@@ -70,11 +70,11 @@ def _legs(text: str) -> tuple[str, ...]:
 def options_of(args: argparse.Namespace) -> Any:
     """The :class:`~gaitc.api.gaits.GaitOptions` of ``gaits`` and ``render gaits``."""
     from gaitc.api.gaits import GaitOptions
+    from gaitc.api.modes import SearchMethod
     from gaitc.cli.commands.learning import search_of
-    from gaitc.core.modes import SearchMethod
 
     return GaitOptions(direction=args.direction,
-                       method=None if args.method is None else SearchMethod(args.method),
+                       method=None if args.method is None else SearchMethod.parse(args.method),
                        model=args.model, max_open=args.max_open, seed=args.seed,
                        max_states=args.max_states, search=search_of(args),
                        legs=args.legs)

@@ -66,12 +66,12 @@ def register(sub: Any) -> None:
         ),
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
-    from gaitc.core.modes import SearchMethod
+    from gaitc.api.modes import SearchMethod
 
     p.add_argument("robot", metavar="ROBOT.yaml")
     p.add_argument(
-        "--method", default="lpa", choices=[m for m in SearchMethod.values()
-                                            if SearchMethod(m).is_global],
+        "--method", default=SearchMethod.LPA.value,
+        choices=[m.value for m in SearchMethod if m.is_global],
         help="the chapter 5 search (default lpa)")
     p.add_argument(
         "--backend",
@@ -157,10 +157,10 @@ def search_of(args: argparse.Namespace) -> Any:
 def run_learn(args: argparse.Namespace) -> int:
     import gaitc
     from gaitc.api.learning import LearnOptions
-    from gaitc.core.modes import SearchMethod
+    from gaitc.api.modes import SearchMethod
 
     options = LearnOptions(
-        method=SearchMethod(args.method), backend=args.backend, predictions=args.predictions,
+        method=SearchMethod.parse(args.method), backend=args.backend, predictions=args.predictions,
         max_open=args.max_open, seed=args.seed, max_states=args.max_states,
         mismatch=args.mismatch, noise=args.noise, model_mismatch=args.model_mismatch,
         infeasible=args.infeasible, grow=args.grow, max_iterations=args.max_iterations,
