@@ -13,7 +13,7 @@ from typing import TYPE_CHECKING, Any
 import gaitc
 from gaitc.api.compiling import FORMATS, OutputFormat, emit, output_format
 from gaitc.api.loading import Spec, load, reader_of
-from gaitc.api.modes import ENCODINGS, EncodingName
+from gaitc.api.modes import EncodingName
 from gaitc.cli.commands.arguments import output_file, positive_seconds
 from gaitc.cli.exitcodes import ExitCode
 from gaitc.cli.reporting import compilation_json, document, lint_json, print_json
@@ -56,7 +56,8 @@ def register(subparsers: Any) -> None:
                       help="output format (default: from the suffix of OUT: .slugsin or .txt "
                       "slugsin, .ltl LTL text, "
                       "else structuredslugs)")
-    comp.add_argument("--encoding", choices=ENCODINGS, default=EncodingName.ONEHOT.value,
+    comp.add_argument("--encoding", choices=EncodingName.values(),
+                      default=EncodingName.ONEHOT.value,
                       help="onehot: a proposition per region/gait/health level (the thesis); "
                       "binary: integer variables (default onehot)")
     comp.add_argument("--json", action="store_true",

@@ -12,7 +12,7 @@ from typing import Any
 
 import gaitc
 from gaitc.api.driving import VIOLATION_POLICIES
-from gaitc.api.modes import ENCODINGS
+from gaitc.api.modes import EncodingName
 from gaitc.api.simulation import run_document
 from gaitc.cli.commands.arguments import add_prefer, positive_seconds, run_file, semantics_of
 from gaitc.cli.commands.simulating import add_json, opponent_of, report_run, settle_environment
@@ -92,7 +92,7 @@ def register(sub: Any) -> None:
                    help="--pose without --map: the side of a grid cell (1)")
     p.add_argument("--sensing", metavar="FILE",
                    help="serial backend: waveguide thresholds per leg (from 'gaitc calibrate')")
-    p.add_argument("--encoding", choices=ENCODINGS,
+    p.add_argument("--encoding", choices=EncodingName.values(),
                    help="encoding of the spec (default: the one recorded in the controller)")
     p.add_argument("--robotics-semantics", action="store_true",
                    help="semantics when synthesizing on the fly")

@@ -11,7 +11,7 @@ import sys
 from typing import Any
 
 import gaitc
-from gaitc.api.modes import ENCODINGS, EncodingName
+from gaitc.api.modes import EncodingName
 from gaitc.cli.commands.arguments import positive_seconds, run_file, semantics_of
 from gaitc.cli.exitcodes import ExitCode, exit_code_help
 from gaitc.cli.reporting import document, print_json
@@ -41,7 +41,7 @@ def register(sub: Any) -> None:
                    help="stop the whole analysis after this long (exit 4)")
     p.add_argument("--out", metavar="FILE", type=run_file, help="save the play as .jsonl (draw it "
                    "with 'gaitc render map SPEC --run FILE') or .csv (a table)")
-    p.add_argument("--encoding", choices=ENCODINGS, default=EncodingName.ONEHOT.value)
+    p.add_argument("--encoding", choices=EncodingName.values(), default=EncodingName.ONEHOT.value)
     p.add_argument("--robotics-semantics", action="store_true",
                    help="SLUGS's --sysInitRoboticsSemantics")
     p.set_defaults(run=run_explain)

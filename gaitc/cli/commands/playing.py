@@ -12,7 +12,7 @@ import sys
 from pathlib import Path
 from typing import Any
 
-from gaitc.api.modes import ENCODINGS
+from gaitc.api.modes import EncodingName
 from gaitc.cli.commands.arguments import run_file, semantics_of
 from gaitc.cli.exitcodes import ExitCode, exit_code_help
 from gaitc.cli.status import progress_display
@@ -59,7 +59,7 @@ def register(sub: Any) -> None:
                    "here); s in the player saves anywhere")
     p.add_argument("--seed", type=int, default=0, help="seed of the random pilot (default 0)")
     p.add_argument("--no-color", action="store_true", help="draw without colour (as NO_COLOR)")
-    p.add_argument("--encoding", choices=ENCODINGS)
+    p.add_argument("--encoding", choices=EncodingName.values())
     p.add_argument("--robotics-semantics", action="store_true",
                    help="the initial state is chosen by the robot too (SLUGS's option)")
     p.set_defaults(run=run_play)

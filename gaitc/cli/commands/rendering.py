@@ -11,7 +11,7 @@ from typing import Any
 
 import gaitc
 from gaitc.api.drawing import FORMATS, Picture, draw_policy, output_format
-from gaitc.api.modes import ENCODINGS
+from gaitc.api.modes import EncodingName
 from gaitc.cli.commands.arguments import add_prefer, output_file, positive_count
 from gaitc.cli.exitcodes import ExitCode
 from gaitc.cli.status import progress_display
@@ -58,7 +58,7 @@ def register(sub: Any) -> None:
     p.add_argument("--steps", type=int, metavar="K",
                    help="draw only the first K steps from the initial nodes (breadth first; "
                    "K = 3 is a good start)")
-    p.add_argument("--encoding", choices=ENCODINGS)
+    p.add_argument("--encoding", choices=EncodingName.values())
     add_prefer(p, "without CONTROLLER: ")
     _output(p)
     p.set_defaults(run=run_automaton)
@@ -88,7 +88,7 @@ def register(sub: Any) -> None:
                    help="the compact controller whole: one table of rules per goal, every "
                    "state covered (a compact or symbolic CONTROLLER, or one synthesized); "
                    "the default for a compact CONTROLLER")
-    p.add_argument("--encoding", choices=ENCODINGS)
+    p.add_argument("--encoding", choices=EncodingName.values())
     add_prefer(p, "without CONTROLLER: ")
     p.add_argument("-o", "--output", metavar="FILE", type=output_file,
                    help="write the table or picture here (default: print the table)")

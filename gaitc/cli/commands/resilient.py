@@ -12,7 +12,7 @@ from typing import Any
 
 import gaitc
 from gaitc.api.answers import METHODS, terminal_progress
-from gaitc.api.modes import ENCODINGS, EncodingName
+from gaitc.api.modes import EncodingName
 from gaitc.cli.commands.arguments import (
     output_file,
     positive_count,
@@ -54,7 +54,7 @@ def register(sub: Any) -> None:
                    help="check variants in N local processes")
     p.add_argument("--dask", metavar="ADDRESS",
                    help="check variants on a Dask distributed scheduler (tcp://HOST:PORT)")
-    p.add_argument("--encoding", choices=ENCODINGS, default=EncodingName.BINARY.value,
+    p.add_argument("--encoding", choices=EncodingName.values(), default=EncodingName.BINARY.value,
                    help="encoding of the spec (default binary: the parametric games use "
                    "integers)")
     p.add_argument("-o", "--output", metavar="PICTURE", type=output_file,

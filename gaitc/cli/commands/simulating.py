@@ -11,7 +11,7 @@ import sys
 from collections.abc import Mapping
 from typing import Any
 
-from gaitc.api.modes import ENCODINGS, EnvironmentKind
+from gaitc.api.modes import EncodingName, EnvironmentKind
 from gaitc.api.runs import Run
 from gaitc.api.simulation import ENVIRONMENTS, Opponent, run_document, simulate_spec
 from gaitc.cli.commands.arguments import add_prefer, run_file, semantics_of
@@ -52,7 +52,7 @@ def register(sub: Any) -> None:
     )
     p.add_argument("spec", metavar="SPEC")
     p.add_argument("controller", metavar="CONTROLLER", nargs="?")
-    p.add_argument("--env", nargs="+", metavar="KIND", default=["random"],
+    p.add_argument("--env", nargs="+", metavar="KIND", default=[EnvironmentKind.RANDOM.value],
                    help="scripted FILE.yaml | scripted RUN.jsonl | random | adversarial "
                    "(default random)")
     p.add_argument("--seed", type=int, help="seed of the random environment (default 0)")
@@ -60,7 +60,7 @@ def register(sub: Any) -> None:
                    help="number of steps (default 50; a scenario's length when scripted)")
     p.add_argument("--out", metavar="FILE", type=run_file,
                    help="save the run as .jsonl or .csv")
-    p.add_argument("--encoding", choices=ENCODINGS,
+    p.add_argument("--encoding", choices=EncodingName.values(),
                    help="encoding of the spec (default: the one recorded in the controller)")
     p.add_argument("--robotics-semantics", action="store_true",
                    help="semantics when synthesizing on the fly")

@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING, Any
 
 import gaitc
 from gaitc.api.isolation import HardLimits, run_limited, solver_options
-from gaitc.api.modes import ENCODINGS, ControllerKind, EncodingName, Form
+from gaitc.api.modes import ControllerKind, EncodingName, Form
 from gaitc.api.solving import MAX_NODES, SOLVERS, recorded_encoding
 from gaitc.cli.commands.arguments import (
     add_prefer,
@@ -50,7 +50,7 @@ def _common(p: argparse.ArgumentParser, solver: bool = True) -> None:
     )
     p.add_argument(
         "--encoding",
-        choices=ENCODINGS,
+        choices=EncodingName.values(),
         default=EncodingName.ONEHOT.value if solver else None,
         help="encoding of .gait specs (default onehot"
         + ("" if solver else "; verify: the one recorded in the controller file") + ")",
