@@ -32,6 +32,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from test_compact import _walk
 
 pytestmark = [
+    pytest.mark.slow,  # builds firmware and runs it in simavr, about 3 minutes in all
     pytest.mark.firmware,
     pytest.mark.skipif(bool(missing_tools()), reason="the AVR toolchain or libsimavr is missing"),
 ]

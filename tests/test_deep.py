@@ -34,6 +34,10 @@ from slugs_bridge.prefixform import prefix_form, prefix_spec
 from slugs_bridge.slugsin import emit_formula, parse_prefix, parse_slugsin
 from slugs_bridge.structured import parse_structuredslugs
 
+# slow: formulas 10,000 levels deep through every reader and writer, about a minute in all
+# (docs/background/testing.md)
+pytestmark = pytest.mark.slow
+
 DEPTH = 10_000
 a, b, c = Var("a"), Var("b", True), Var("X")  # 'X' is renamed in the infix formats
 

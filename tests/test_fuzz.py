@@ -34,6 +34,9 @@ from fuzz_targets import (
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+# slow: hundreds of mutants through every command that reads them (docs/background/testing.md)
+pytestmark = pytest.mark.slow
+
 LIMIT = 10.0  # seconds per run; generous, the machine is shared
 # Mutants per kind: the whole file stays under two minutes on one core.
 PER_KIND = {"gait": 60, "slugsin": 40, "structuredslugs": 40, "ltl": 40, "robot": 6,

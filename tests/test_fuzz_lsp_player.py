@@ -57,6 +57,7 @@ def test_every_lsp_seed_is_answered_in_full() -> None:
         assert run.verdict.code == 0, name
 
 
+@pytest.mark.slow  # about 25 s
 @needs_lsp
 def test_mutant_sessions_of_the_language_server() -> None:
     """Every request answered once, no traceback but pygls's, an end at exit: in 25
@@ -177,6 +178,7 @@ def test_every_player_seed_is_played_and_saved() -> None:
         assert run.steps >= 1 and run.saved is not None, (name, run)
 
 
+@pytest.mark.slow  # about 14 s
 @needs_textual
 def test_mutant_key_sequences_of_the_player() -> None:
     """No exception escapes the app, it ends on escape, escape, q, q, and the play is

@@ -13,6 +13,7 @@ import sys
 import warnings
 from pathlib import Path
 
+import pytest
 from games import explicit_realizable, one_hot_specs, tiny_specs
 from hypothesis import given, settings
 from hypothesis import strategies as st
@@ -27,6 +28,9 @@ from gaitc.solver import synthesis  # noqa: E402
 from gaitc.solver.game import Game, GameResult  # noqa: E402
 from gaitc.solver.symbolic import PENDING_NODES, Options, SymbolicSpec  # noqa: E402
 from gaitc.verifier.strategy import verify  # noqa: E402
+
+# slow: large maps, about 20 s in all (docs/background/testing.md)
+pytestmark = pytest.mark.slow
 
 
 def _winning(spec: GR1Spec, attractor: bool) -> tuple[SymbolicSpec, Game, GameResult]:

@@ -11,6 +11,9 @@ import pytest
 
 import gaitc
 
+# slow: starts local processes and a Dask cluster (about 17 s; docs/background/testing.md)
+pytestmark = pytest.mark.slow
+
 ROOT = Path(__file__).resolve().parent.parent
 SPEC = ROOT / "tests" / "data" / "resilience" / "cross5.gait"
 TIMING = ("seconds", "notes")
