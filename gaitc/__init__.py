@@ -88,6 +88,7 @@ if TYPE_CHECKING:  # the names of _MODULES, for the type checker (tests/test_cli
     from gaitc.api.solving import counterstrategy as counterstrategy
     from gaitc.api.solving import synthesize as synthesize
     from gaitc.api.solving import verify as verify
+    from gaitc.core.modes import BackendKind as BackendKind
     from gaitc.core.modes import ControllerKind as ControllerKind
     from gaitc.core.modes import EncodingName as EncodingName
     from gaitc.core.modes import EnvironmentKind as EnvironmentKind
@@ -120,8 +121,8 @@ if TYPE_CHECKING:  # the names of _MODULES, for the type checker (tests/test_cli
 _MODULES: dict[str, tuple[str, ...]] = {
     "gaitc.core.spec": ("Spec", "load", "parse"),
     "gaitc.core.modes": (
-        "ControllerKind", "EncodingName", "EnvironmentKind", "Form", "Role", "SearchMethod",
-        "Semantics",
+        "BackendKind", "ControllerKind", "EncodingName", "EnvironmentKind", "Form", "Role",
+        "SearchMethod", "Semantics",
     ),
     "gaitc.api.compiling": ("FORMATS", "OutputFormat", "emit", "lint"),
     "gaitc.api.solving": (

@@ -30,7 +30,7 @@ from gaitc.api.simulation import (
     session,
 )
 from gaitc.api.solving import recorded_encoding
-from gaitc.core.modes import EnvironmentKind
+from gaitc.core.modes import BackendKind, EnvironmentKind
 from gaitc.core.spec import Spec, load
 from gaitc.diagnostics import UsageError
 from gaitc.ir.spec import Semantics
@@ -57,7 +57,7 @@ class SimulatedBoard:
 
     env: EnvironmentLike = EnvironmentKind.RANDOM
     seed: int = 0
-    name = "sim"
+    name = BackendKind.SIM
 
 
 @dataclass(frozen=True)
@@ -71,7 +71,7 @@ class PhysicsBoard:
     cell_size: float | None = None
     env: EnvironmentLike = EnvironmentKind.RANDOM
     seed: int = 0
-    name = "physics"
+    name = BackendKind.PHYSICS
 
 
 @dataclass(frozen=True)
@@ -85,7 +85,7 @@ class SerialBoard:
     timeout: float = 1.0
     channels: str | None = None
     sensing: str | None = None
-    name = "serial"
+    name = BackendKind.SERIAL
 
 
 Board = SimulatedBoard | PhysicsBoard | SerialBoard

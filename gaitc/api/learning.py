@@ -17,9 +17,8 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from gaitc.api.gaits import GlobalSearch
-from gaitc.core.modes import SearchMethod
+from gaitc.core.modes import BackendKind, SearchMethod
 from gaitc.diagnostics import UsageError
-from gaitc.diagnostics.choices import Choice
 from gaitc.diagnostics.files import write_atomically
 
 if TYPE_CHECKING:
@@ -27,12 +26,9 @@ if TYPE_CHECKING:
     from gaitc.search.online import Learned
 
 
-class LearningBackend(Choice):
-    """Where :func:`learn` runs its gaits."""
-
-    SIM = "sim"  # the simulated robot, with a seeded mismatch and noise
-    PHYSICS = "physics"  # the robot file's spring-damper model (thesis chapter 4)
-    SERIAL = "serial"  # a valve board: not for learning, which needs measured displacements
+#: Where :func:`learn` runs its gaits (the backends of ``drive``; the serial board cannot
+#: learn, for it measures no displacement).
+LearningBackend = BackendKind
 
 
 @dataclass(frozen=True)
@@ -139,7 +135,7 @@ def learn(robot: str | Path, options: LearnOptions | None = None,
         max_iterations=opts.max_iterations,
         verify=opts.verify,
         progress=progress,
-        backend=backend.value,
+        backend=backend,
         predictions=opts.predictions,
         max_open=opts.max_open,
         grow=opts.grow,
@@ -148,9 +144,9 @@ def learn(robot: str | Path, options: LearnOptions | None = None,
 
 
 def _backend(value: LearningBackend | str) -> LearningBackend:
-    if value not in (LearningBackend.SIM, LearningBackend.PHYSICS, LearningBackend.SERIAL):
+    if value not in BackendKind.values():
         raise UsageError(f"unknown backend {value!r}; use sim or physics")
-    backend = LearningBackend.parse(value)
+    backend = BackendKind.parse(value)
     if backend is LearningBackend.SERIAL:
         raise UsageError(
             "--backend serial is not available for learning: the valve board reports no "

@@ -8,6 +8,7 @@ encodings of a ``.gait`` spec are :mod:`ltlcompiler.encoding`'s.
 from __future__ import annotations
 
 from gaitc.core.modes import (
+    BackendKind,
     ControllerKind,
     EncodingName,
     EnvironmentKind,
@@ -18,5 +19,5 @@ from gaitc.core.modes import (
 )
 from ltlcompiler.encoding import ENCODINGS
 
-__all__ = ["ENCODINGS", "ControllerKind", "EncodingName", "EnvironmentKind", "Form", "Role",
-           "SearchMethod", "Semantics"]
+__all__ = ["ENCODINGS", "BackendKind", "ControllerKind", "EncodingName", "EnvironmentKind",
+           "Form", "Role", "SearchMethod", "Semantics"]

@@ -15,8 +15,8 @@ from gaitc.ir.controller import ControllerKind
 from gaitc.ir.spec import Semantics
 from ltlcompiler.encoding import EncodingName
 
-__all__ = ["ControllerKind", "EncodingName", "EnvironmentKind", "Form", "Role", "SearchMethod",
-           "Semantics"]
+__all__ = ["BackendKind", "ControllerKind", "EncodingName", "EnvironmentKind", "Form", "Role",
+           "SearchMethod", "Semantics"]
 
 
 class Form(Choice):
@@ -33,6 +33,14 @@ class EnvironmentKind(Choice):
     SCRIPTED = "scripted"  # a scenario file (or a run file) says each input
     RANDOM = "random"  # uniform among the inputs the assumptions allow (seeded)
     ADVERSARIAL = "adversarial"  # the inputs that keep the robot from its goals longest
+
+
+class BackendKind(Choice):
+    """What runs a controller's valve sequences, for ``drive`` and ``learn``."""
+
+    SIM = "sim"  # the simulated robot: valves apply at once, readings from an environment
+    PHYSICS = "physics"  # the robot file's spring-damper model moves the chassis (chapter 4)
+    SERIAL = "serial"  # a valve board on a serial port: real valves, real sensors
 
 
 class Role(Choice):

@@ -12,7 +12,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from pathlib import Path
 
-from gaitc.core.modes import SearchMethod
+from gaitc.core.modes import BackendKind, SearchMethod
 from gaitc.diagnostics import UsageError
 from gaitc.gaitgraph.robot import Robot
 from gaitc.search.goals import Goal
@@ -23,7 +23,8 @@ from gaitc.search.plans import GaitPlan
 from gaitc.search.predictions import PREDICTIONS, has_model
 from gaitc.search.walker import Mismatch, SimulatedWalker
 
-BACKENDS = ("sim", "physics")
+#: The backends a gait search can learn on (the serial board measures no displacement).
+BACKENDS = (BackendKind.SIM, BackendKind.PHYSICS)
 Walker = SimulatedWalker | PhysicsWalker
 
 
@@ -49,7 +50,7 @@ def open_session(
     robot: Robot | str | Path,
     goal: Goal,
     method: SearchMethod | str,
-    backend: str = "sim",
+    backend: BackendKind = BackendKind.SIM,
     *, predictions: str | None = None,
     mismatch: Mismatch | None = None,
     settings: Settings | None = None,
@@ -65,17 +66,18 @@ def open_session(
     mismatch = mismatch or Mismatch(seed=settings.seed)
     if backend not in BACKENDS:
         raise UsageError(f"unknown backend {backend!r}; use one of {', '.join(BACKENDS)}")
-    if mismatch.model and backend != "physics":
+    if mismatch.model and backend != BackendKind.PHYSICS:
         raise UsageError("a model mismatch (--model-mismatch) is the physics backend's")
     # the physics backend runs the model, so a robot file without one is reported by the
     # model's reader (with the file position)
-    source = predictions or ("model" if backend == "physics" else default_predictions(robot))
+    source = predictions or ("model" if backend == BackendKind.PHYSICS
+                             else default_predictions(robot))
     if source not in PREDICTIONS:
         raise UsageError(f"unknown predictions {source!r}; use kinematic or model")
-    if (source == "model" or backend == "physics") and isinstance(robot, Robot):
+    if (source == "model" or backend == BackendKind.PHYSICS) and isinstance(robot, Robot):
         raise UsageError("the chapter 4 model is read from a robot file: pass its path")
     if source == "kinematic":
-        if backend == "physics":
+        if backend == BackendKind.PHYSICS:
             raise UsageError(
                 "--backend physics executes the model gait graph's valve states; the chapter 2 "
                 "kinematic graph's poses (valve state and contact set) have no counterpart "
@@ -100,7 +102,7 @@ def open_session(
     path = robot if not isinstance(robot, Robot) else ""
     first, found = entry.model(path, goal, settings, max_open=max_open, max_states=max_states)
     planner, plan, model = first.planner, first.plan, found.model
-    if backend == "physics":
+    if backend == BackendKind.PHYSICS:
         walker = PhysicsWalker(
             model.copy(), found.start, found.loaded, mismatch.noise, mismatch.seed, mismatch.model
         )

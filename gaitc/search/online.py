@@ -15,7 +15,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
-from gaitc.core.modes import SearchMethod
+from gaitc.core.modes import BackendKind, SearchMethod
 from gaitc.diagnostics import GaitcError
 from gaitc.gaitgraph.robot import Robot
 from gaitc.search.cycles import Point, run_cycle, whole_cycle
@@ -273,7 +273,7 @@ def learn_gait(
     max_iterations: int = 40,
     verify: int = 5,
     progress: Callable[[str], None] | None = None,
-    backend: str = "sim",
+    backend: BackendKind = BackendKind.SIM,
     predictions: str | None = None,
     max_open: int = 1,
     grow: bool = False,

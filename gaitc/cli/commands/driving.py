@@ -12,7 +12,7 @@ from typing import Any
 
 import gaitc
 from gaitc.api.driving import VIOLATION_POLICIES
-from gaitc.api.modes import EncodingName
+from gaitc.api.modes import BackendKind, EncodingName
 from gaitc.api.simulation import run_document
 from gaitc.cli.commands.arguments import add_prefer, positive_seconds, run_file, semantics_of
 from gaitc.cli.commands.simulating import add_json, opponent_of, report_run, settle_environment
@@ -57,7 +57,7 @@ def register(sub: Any) -> None:
     )
     p.add_argument("spec", metavar="SPEC")
     p.add_argument("controller", metavar="CONTROLLER", nargs="?")
-    p.add_argument("--backend", choices=("sim", "physics", "serial"), default="sim",
+    p.add_argument("--backend", choices=BackendKind.values(), default=BackendKind.SIM.value,
                    help="sim (default), physics or serial")
     p.add_argument("--robot", metavar="ROBOT.yaml",
                    help="physics backend: the robot file with the model (default: the one "
@@ -104,15 +104,16 @@ def register(sub: Any) -> None:
 
 def _check_options(args: argparse.Namespace) -> None:
     """The checks only the command line needs: options given to a board that takes none."""
-    settle_environment(args, real_sensors=args.backend == "serial")
-    if args.backend == "serial" and args.env:
+    settle_environment(args, real_sensors=args.backend == BackendKind.SERIAL)
+    if args.backend == BackendKind.SERIAL and args.env:
         raise UsageError("--env chooses the simulated robot's environment; the serial "
                          "backend reads real sensors")
-    if (args.map or args.cell_size is not None) and not args.pose and args.backend != "physics":
+    physics = args.backend == BackendKind.PHYSICS
+    if (args.map or args.cell_size is not None) and not args.pose and not physics:
         raise UsageError("--map and --cell-size place the poses of --pose or --backend physics")
-    if args.robot and args.backend != "physics":
+    if args.robot and not physics:
         raise UsageError("--robot is for --backend physics")
-    if args.backend != "serial" and (args.port or args.channels or args.sensing):
+    if args.backend != BackendKind.SERIAL and (args.port or args.channels or args.sensing):
         raise UsageError("--port, --channels and --sensing are for --backend serial")
 
 
@@ -120,11 +121,11 @@ def board_of(args: argparse.Namespace) -> Any:
     """The board ``--backend`` names, with its options."""
     from gaitc.api.driving import PhysicsBoard, SerialBoard, SimulatedBoard
 
-    if args.backend == "serial":
+    if args.backend == BackendKind.SERIAL:
         return SerialBoard(args.port or "", args.baud, args.timeout, args.channels,
                            args.sensing)
     env, seed = opponent_of(args), args.seed or 0
-    if args.backend == "physics":
+    if args.backend == BackendKind.PHYSICS:
         return PhysicsBoard(args.robot, None if args.pose else args.map,
                             None if args.pose else args.cell_size, env, seed)
     return SimulatedBoard(env, seed)

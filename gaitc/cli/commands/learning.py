@@ -66,7 +66,7 @@ def register(sub: Any) -> None:
         ),
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
-    from gaitc.api.modes import SearchMethod
+    from gaitc.api.modes import BackendKind, SearchMethod
 
     p.add_argument("robot", metavar="ROBOT.yaml")
     p.add_argument(
@@ -75,8 +75,8 @@ def register(sub: Any) -> None:
         help="the chapter 5 search (default lpa)")
     p.add_argument(
         "--backend",
-        default="sim",
-        metavar="sim|physics|serial",
+        default=BackendKind.SIM.value,
+        metavar="|".join(BackendKind.values()),
         help="sim: the simulated robot with --mismatch and --noise; physics: the robot "
         "file's spring-damper model (chapter 4), with --noise on each measurement",
     )
