@@ -335,7 +335,7 @@ class GlobalGait:
         lines = [f"robot {self.robot}: {self.chambers} chambers, {self.model} gait graph, "
                  f"method {self.method}, {states} valve states, {poses} poses, {edges} "
                  "transitions", plan.table()]
-        if not plan.reached and self.method == "mcts":
+        if not plan.reached and self.method == SearchMethod.MCTS:
             lines.append(f"the best cycle found misses the goal's tolerance ({goal.tolerance:g}"
                          f" mm, {goal.angle_tolerance:g} deg); more --iterations or a longer "
                          "--horizon may help")
@@ -424,7 +424,7 @@ def gaits(robot: str | Path, options: GaitOptions | None = None) -> GaitSearch:
     search = direction_search(method)
     direction = _direction(opts.direction)
     chosen = search.graph_method(loaded, opts.max_states)
-    if chosen == "full" and opts.seed != 0:
+    if chosen == SearchMethod.FULL and opts.seed != 0:
         raise UsageError(f"--seed seeds the random and reset searches; the full search of "
                          f"robot {loaded.name} tries every valve state, without random numbers")
     result = search.kinematic(loaded, direction, opts.seed, opts.max_states)

@@ -11,13 +11,16 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from gaitc.core.modes import SearchMethod
 from gaitc.diagnostics import UsageError
 from gaitc.gaitgraph.cycles import GaitCycle, driving_edges, synthesize
 from gaitc.gaitgraph.graph import GaitGraph, full_graph, random_states
 from gaitc.gaitgraph.resets import reset_gaits, stance_variants
 from gaitc.gaitgraph.robot import Robot
 
-METHODS = ("full", "random", "reset")
+#: The kinematic graph's methods (thesis 2.5), the direction searches of
+#: :class:`~gaitc.core.modes.SearchMethod` that build the graph themselves.
+METHODS = (SearchMethod.FULL, SearchMethod.RANDOM, SearchMethod.RESET)
 FULL_LIMIT = 16  # chambers the full search enumerates at most (2^16 valve states)
 
 
@@ -33,7 +36,7 @@ class SearchResult:
 def search(
     robot: Robot,
     direction: tuple[float, float],
-    method: str = "reset",
+    method: SearchMethod | str = SearchMethod.RESET,
     seed: int = 0,
     max_states: int = 10_000,
     candidates: int = 8,
@@ -47,9 +50,10 @@ def search(
     more (a :class:`~gaitc.diagnostics.UsageError`), the others stop there and say so in
     :attr:`SearchResult.limit_reached`.
     """
+    method = SearchMethod.parse(method, "kinematic search method")
     rng = np.random.default_rng(seed)
     total = 1 << robot.valve_count
-    if method == "full":
+    if method == SearchMethod.FULL:
         if total > max_states and robot.valve_count <= FULL_LIMIT:  # beyond: full_graph says
             raise UsageError(
                 f"the full search enumerates all 2^{robot.valve_count} = {total} valve states "
@@ -64,7 +68,7 @@ def search(
         graph.add_states(range(total))
     tried: set[int] = set()
     while True:
-        if method == "random":
+        if method == SearchMethod.RANDOM:
             gaits = synthesize(graph, direction, candidates) if len(graph) else []
             result = SearchResult(method, graph, gaits, len(graph.states))
         else:
@@ -81,7 +85,7 @@ def search(
         start = len(graph)
         batch = min(100, max_states - len(graph.states))
         graph.add_states(random_states(robot, rng, batch, graph.states))
-        if method == "reset":
+        if method == SearchMethod.RESET:
             room = max(0, max_states - len(graph.states))
             graph.add_states([s for s in stance_variants(graph, start)
                               if s not in graph.states][:room])

@@ -80,18 +80,19 @@ class DirectionSearch(SearchEntry):
 
     #: :func:`gaitc.gaitgraph.search.search`'s method; None: ``full`` for a small robot
     #: (at most :data:`FULL_CHAMBERS` chambers and ``max_states`` valve states), else ``random``
-    kinematic_method: str | None = None
+    kinematic_method: SearchMethod | None = None
     #: a model's gait graph of a seeded sample of ``max_states`` valve states, not all of them
     sampled: bool = False
     #: why a model's gait graph cannot be searched this way (None: it can)
     not_on_models: str | None = None
 
-    def graph_method(self, robot: Robot, max_states: int) -> str:
+    def graph_method(self, robot: Robot, max_states: int) -> SearchMethod:
         """The kinematic graph's method for ``robot``: ``full``, ``random`` or ``reset``."""
         if self.kinematic_method is not None:
             return self.kinematic_method
         total = 1 << robot.valve_count
-        return "full" if robot.valve_count <= FULL_CHAMBERS and total <= max_states else "random"
+        full = robot.valve_count <= FULL_CHAMBERS and total <= max_states
+        return SearchMethod.FULL if full else SearchMethod.RANDOM
 
     def kinematic(self, robot: Robot, direction: tuple[float, float], seed: int = 0,
                   max_states: int = 10_000) -> SearchResult:
@@ -176,11 +177,12 @@ _NO_RESETS = ("--method reset searches the kinematic graph's reset edges (thesis
 ENTRIES: Final[tuple[SearchEntry, ...]] = (
     DirectionSearch(SearchMethod.CHAPTER2, "chapter 2's default: every valve state of a small "
                     "robot, else random batches (2.5); a model's whole gait graph"),
-    DirectionSearch(SearchMethod.FULL, "every valve state (2.5)", kinematic_method="full"),
+    DirectionSearch(SearchMethod.FULL, "every valve state (2.5)",
+                    kinematic_method=SearchMethod.FULL),
     DirectionSearch(SearchMethod.RANDOM, "batches of 100 random valve states, searched after "
-                    "each (2.5.1)", kinematic_method="random", sampled=True),
+                    "each (2.5.1)", kinematic_method=SearchMethod.RANDOM, sampled=True),
     DirectionSearch(SearchMethod.RESET, "zero-motion edges around a driving edge (2.5.2)",
-                    kinematic_method="reset", not_on_models=_NO_RESETS),
+                    kinematic_method=SearchMethod.RESET, not_on_models=_NO_RESETS),
     GoalSearch(SearchMethod.ASTAR, "A* on the (dx, dy, dθ) lattice, from scratch after each "
                "change (5.2.2)", make=_hybrid(SearchMethod.ASTAR)),
     GoalSearch(SearchMethod.LPA, "LPA*: A* that repairs itself after each change (5.2.3)",
