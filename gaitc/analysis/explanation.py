@@ -1,9 +1,10 @@
 """Explanations: everything :mod:`gaitc.analysis` can say about one spec, as one object.
 
 For an unrealizable spec: the kind of failure and the goals the environment can block
-(:mod:`gaitc.analysis.failure`), a minimal core (:mod:`gaitc.analysis.core`), the freedoms the
-environment needs (:mod:`gaitc.analysis.freedoms`), a play it wins (:mod:`gaitc.analysis.play`) and
-verified repairs (:mod:`gaitc.analysis.repairs`). For a realizable one: the sanity checks of
+(:mod:`gaitc.analysis.failure`), a minimal core (:mod:`gaitc.analysis.core`), the freedoms
+the environment needs (:mod:`gaitc.analysis.freedoms`), a play it wins (chosen by
+:mod:`gaitc.sim.counterplay`, told by :mod:`gaitc.analysis.story`) and verified repairs
+(:mod:`gaitc.analysis.repairs`). For a realizable one: the sanity checks of
 :mod:`gaitc.analysis.sanity`. Rendered as text for the terminal, JSON, or HTML in a notebook.
 """
 
@@ -21,21 +22,15 @@ from gaitc.analysis.failure import Kind, classify
 from gaitc.analysis.freedoms import Freedom, needed_freedoms, restricted
 from gaitc.analysis.freedoms import freedoms as all_freedoms
 from gaitc.analysis.oracle import Oracle
-from gaitc.analysis.play import (
-    Play,
-    choose_play,
-    deadlock_move,
-    last_move,
-    narrate,
-    narrate_values,
-    summarise,
-)
 from gaitc.analysis.repairs import Repair, repairs
 from gaitc.analysis.sanity import ROBOT, Warning_, player_of, sanity
+from gaitc.analysis.story import deadlock_move, last_move, narrate, narrate_values, summarise
 from gaitc.analysis.units import Unit
 from gaitc.diagnostics import render, source_lines
 from gaitc.ir.controller import Controller
 from gaitc.ir.spec import GR1Spec, Semantics
+from gaitc.sim.counterplay import choose_play
+from gaitc.sim.play import Play
 from ltlcompiler.encoding import EncodingName
 
 if TYPE_CHECKING:
@@ -351,16 +346,18 @@ def _goal_label(spec: GR1Spec, j: int) -> str:
     return rule.split(": ", 1)[1] if rule.startswith("goal") and ": " in rule else rule
 
 
-def _run(counter: Any, spec: GR1Spec, model: Model, encoding: EncodingName, play: Play,
-         file: str) -> Run:
-    from gaitc.sim.counterplay import path_run
+def _run(counter: Controller, spec: GR1Spec, model: Model, encoding: EncodingName,
+         play: Play, file: str) -> Run:
+    """The run of ``play``, every step checked against ``spec``."""
     from gaitc.sim.domain import Domain
     from gaitc.sim.monitor import Monitor
+    from gaitc.sim.replay import replay
+    from gaitc.sim.simulator import Simulator
     from gaitc.sim.strategy import strategy_from_controller
 
     strategy = strategy_from_controller(counter, spec, file)
     stopped = None
     if play.deadlock:
         stopped = f"step {len(play.path) - 1}: deadlock: the robot has no legal move"
-    return path_run(strategy, Domain(model, encoding), Monitor(spec), play.path, file,
-                    "counter-strategy", stopped)
+    return replay(Simulator(strategy, Domain(model, encoding), Monitor(spec)), play.path,
+                  file, "counter-strategy", stopped)

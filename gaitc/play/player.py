@@ -2,7 +2,7 @@
 
 The player is the model under every front end (the terminal app of
 :mod:`gaitc.play.terminal`, the notebook widget of :mod:`gaitc.play.widget`) and is usable
-on its own from Python. It binds a :class:`gaitc.api.simulation.Session` and plays one of
+on its own from Python. It binds a :class:`gaitc.sim.session.Session` and plays one of
 two roles, after the interactive modes of SLUGS (``--interactiveStrategy``) and of LTLMoP's
 counter-strategy visualiser:
 
@@ -15,32 +15,35 @@ counter-strategy visualiser:
   it loses: a dead end the environment forces within k steps, a goal it can no longer
   reach, or the goal every loop from there misses.
 
-Each step is decoded and checked by the run monitor as in ``gaitc simulate``; the play is a
-:class:`gaitc.sim.run.Run` at any time, saved in the format that ``render map --run`` draws
-and ``simulate --env scripted RUN.jsonl`` replays.
+Each step is decoded and checked by the run monitor as in ``gaitc simulate``; the play
+(:attr:`Player.play`, a :class:`gaitc.sim.play.Play` like ``explain``'s and ``simulate``'s
+counter-plays) is a :class:`gaitc.sim.run.Run` at any time (:func:`gaitc.sim.replay.replay`),
+saved in the format that ``render map --run`` draws and ``simulate --env scripted
+RUN.jsonl`` replays.
 """
 
 from __future__ import annotations
 
 import random
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING
 
 from gaitc.core.modes import Role
-from gaitc.diagnostics import ScenarioError, UsageError
+from gaitc.diagnostics import UsageError
 from gaitc.diagnostics.choices import Choice as Named
 from gaitc.play.words import distinguished, environment_words, robot_words
-from gaitc.sim.counterplay import careful_chooser, deadlock_levels
-from gaitc.sim.domain import Domain, State
-from gaitc.sim.environments import AdversarialEnvironment, Environment, RandomEnvironment, Situation
-from gaitc.sim.replay import check_robot, recorded, step_span
+from gaitc.sim.counterplay import careful_chooser, random_chooser
+from gaitc.sim.domain import State
+from gaitc.sim.environments import AdversarialEnvironment, Environment, RandomEnvironment
+from gaitc.sim.play import Losses, Play, pursued
+from gaitc.sim.replay import follow, last_step, replay
 from gaitc.sim.run import Run, Step, save_run
 from gaitc.sim.simulator import Simulator
-from gaitc.sim.strategy import Strategy, explicit
+from gaitc.sim.strategy import explicit
 
 if TYPE_CHECKING:
-    from gaitc.api.simulation import Session
+    from gaitc.sim.session import Session
 
 
 class Autopilot(Named):
@@ -68,75 +71,6 @@ class Choice:
 
     def __str__(self) -> str:
         return f"{self.number}. {self.words}"
-
-
-@dataclass
-class _Losses:
-    """Why each counter-strategy node is lost for the robot (robot role)."""
-
-    strategy: Strategy
-    states: list[State]
-    domain: Domain
-    level: list[int | None] = field(init=False)
-    _why: dict[int, str] = field(default_factory=dict)
-
-    def __post_init__(self) -> None:
-        self.level = deadlock_levels(self.strategy.successors)
-        self._meets = [set(self.domain.goals_reached(s)) for s in self.states]
-        self._loops: tuple[frozenset[int], ...] | None = None
-
-    def why(self, node: int) -> str:
-        found = self._why.get(node)
-        if found is None:
-            found = self._explain(node)
-            self._why[node] = found
-        return found
-
-    def _explain(self, node: int) -> str:
-        level = self.level[node]
-        if level == 0:
-            return "a dead end: no move of the robot keeps its guarantees after it"
-        if level is not None:
-            return f"the environment forces a dead end within {level} steps"
-        labels = [g.label for g in self.domain.goals]
-        reach = self._reachable(node)
-        met = set().union(*(self._meets[n] for n in reach))
-        lost = [g for g in labels if g not in met]
-        if lost:
-            return f"{', '.join(lost)} can never be reached again"
-        gaps: set[str] = set()
-        for loop in self._safe_loops():
-            if loop & reach:
-                covered = set().union(*(self._meets[n] for n in loop))
-                gaps.update(g for g in labels if g not in covered)
-        missed = [g for g in labels if g in gaps]
-        if missed:
-            return (f"every loop from here misses {' or '.join(missed)}: the environment "
-                    "keeps it away")
-        return "the environment wins on every play from here"
-
-    def _reachable(self, node: int) -> set[int]:
-        seen, todo = {node}, [node]
-        while todo:
-            for succ in self.strategy.successors[todo.pop()]:
-                if succ not in seen:
-                    seen.add(succ)
-                    todo.append(succ)
-        return seen
-
-    def _safe_loops(self) -> tuple[frozenset[int], ...]:
-        """The strongly connected sets of nodes without a forced dead end that hold a loop."""
-        if self._loops is None:
-            import networkx as nx
-
-            graph = nx.DiGraph()
-            safe = [n for n, lv in enumerate(self.level) if lv is None]
-            graph.add_nodes_from(safe)
-            graph.add_edges_from((n, s) for n in safe for s in self.strategy.successors[n]
-                                 if self.level[s] is None)
-            self._loops = tuple(frozenset(c) for c in nx.strongly_connected_components(graph)
-                                if len(c) > 1 or any(graph.has_edge(n, n) for n in c))
-        return self._loops
 
 
 class Player:
@@ -176,17 +110,22 @@ class Player:
         self._future: list[int] = []  # undone nodes, the next one last
         self._choices: dict[int, tuple[Choice, ...]] = {}
         self._adversary: AdversarialEnvironment | None = None
-        self._losses: _Losses | None = None
+        self._losses: Losses | None = None
         if wanted is Role.ROBOT:
             counter_strategy = explicit(session.strategy, "playing the robot")
             states = [self._sim.state(n) for n in range(len(counter_strategy))]
-            self._losses = _Losses(counter_strategy, states, session.domain)
+            self._losses = Losses(counter_strategy, states, session.domain)
 
     # ------------------------------------------------------------------ where the play is
     @property
     def path(self) -> tuple[int, ...]:
         """The controller nodes of the play so far."""
         return tuple(self._path)
+
+    @property
+    def play(self) -> Play:
+        """The play so far; a deadlock when the side to move has no move left."""
+        return Play(self.path, deadlock=self.over is not None)
 
     @property
     def steps(self) -> tuple[Step, ...]:
@@ -295,12 +234,7 @@ class Player:
     def _push(self, node: int) -> Step:
         previous = self._steps[-1] if self._steps else None
         step = self._sim.step(len(self._path), node, previous)
-        goals = self.domain.goals
-        index = self._goal[-1] if self._goal else 0
-        for _ in goals:
-            if goals[index].label not in step.goals:
-                break
-            index = (index + 1) % len(goals)
+        index = pursued(self.domain.goals, self._goal[-1] if self._goal else 0, step.goals)
         self._path.append(node)
         self._steps.append(step)
         self._goal.append(index)
@@ -354,8 +288,10 @@ class Player:
                 environment = self._adversary
             else:
                 environment = RandomEnvironment(rng.randrange(2**31))
-        careful = (careful_chooser(explicit(self.strategy, "playing the robot"))
-                   if self.role is Role.ROBOT and kind is Autopilot.STRONGEST else None)
+        robot = None
+        if self._losses is not None:
+            robot = (careful_chooser(self._losses.level) if kind is Autopilot.STRONGEST
+                     else random_chooser(rng))
         while played < steps:
             node = self._path[-1] if self._path else None
             options = self._options(node)
@@ -363,10 +299,9 @@ class Player:
                 break
             if environment is not None:
                 target = self._environment_move(environment, node)
-            elif careful is not None:
-                target = options[careful(self._path, options)]
             else:
-                target = options[rng.randrange(len(options))]
+                assert robot is not None
+                target = options[robot(self._path, options)]
             if target is None:
                 break
             self._push(target)
@@ -374,27 +309,19 @@ class Player:
         return played
 
     def _environment_move(self, environment: Environment, node: int | None) -> int | None:
-        moves = self._sim.moves(node)
         goals = self.domain.goals
-        situation = Situation(
-            step=len(self._path), node=node,
-            state=None if node is None else self._sim.state(node), moves=moves,
-            domain=self.domain,
-            next_goal=goals[self._goal[-1] if self._goal else 0] if goals else None,
-            monitor=self.session.monitor,
-            values=None if node is None else self.strategy.values[node],
-            successor_values=tuple(self.strategy.values[m.node] for m in moves),
-            strategy=self.strategy if isinstance(self.strategy, Strategy) else None)
+        situation = self._sim.situation(
+            len(self._path), node, goals[self._goal[-1] if self._goal else 0] if goals else None)
         request = environment.choose(situation)
         if request is None:
             return None
-        return next((m.node for m in moves if m.inputs == request.inputs), None)
+        return next((m.node for m in situation.moves if m.inputs == request.inputs), None)
 
     # ------------------------------------------------------------------ the play as a run
     def run(self) -> Run:
         """The play so far as a run checked against the spec (``simulate``'s format)."""
-        return self._sim.replay(self._path, self.session.spec.path, f"{BY_HAND} ({self.role})",
-                                self.over)
+        return replay(self._sim, self.play.path, self.session.spec.path,
+                      f"{BY_HAND} ({self.role})", self.over)
 
     def save(self, path: str | Path) -> Run:
         """Save the play as a run file (``.jsonl``: ``render map --run`` draws it and
@@ -406,28 +333,18 @@ class Player:
     def resume(self, run: Run, at: int | None = None) -> None:
         """Replay steps ``0..at`` of ``run`` (a run file of this spec: a saved play, a
         simulation, or explain's play) and go on from there; ``at`` defaults to its last."""
-        check_robot(run, self.domain.legs)
-        last = len(run.steps) - 1 if at is None else at
-        if not 0 <= last < len(run.steps):
-            raise UsageError(f"step {at} is not in {run.file or 'the run'}; it has steps "
-                             f"0..{len(run.steps) - 1}")
+        last = last_step(run, self.domain.legs, at)
         self.jump(-1)
         self._future.clear()
-        environment = self.role is Role.ENVIRONMENT
-        names = self.strategy.inputs if environment else self.strategy.variables
-        for index in range(last + 1):
-            key = recorded(run, index, names)
-            node = self._path[-1] if self._path else None
-            match = next((n for n in self._options(node)
-                          if (self.strategy.input_key(n) if environment
-                              else self.strategy.values[n]) == key), None)
-            if match is None:
-                side = ("the controller accepts no such input" if environment
-                        else "the counter-strategy has no such move")
-                raise ScenarioError(f"step {index} of the run cannot be played here: {side}",
-                                    step_span(run, index),
-                                    "the run was played against another controller or spec")
-            self._push(match)
+        if self.role is Role.ENVIRONMENT:
+            played = follow(run, last, self.strategy.inputs, self._options,
+                            self.strategy.input_key, "the controller accepts no such input")
+        else:
+            played = follow(run, last, self.strategy.variables, self._options,
+                            lambda n: self.strategy.values[n],
+                            "the counter-strategy has no such move")
+        for node in played:
+            self._push(node)
 
     def __repr__(self) -> str:
         return (f"<gaitc.Player of {self.session.spec.path!r}: you play the {self.role}, "

@@ -9,18 +9,28 @@ the assumption it breaks (the clause's origin rule) and the step.
 from __future__ import annotations
 
 from collections import Counter
-from collections.abc import Mapping, Sequence
-from dataclasses import fields, replace
+from dataclasses import dataclass, field, fields
 from typing import Any
 
 from gaitc.diagnostics import ControllerError, GaitcError, ScenarioError, Span
-from gaitc.sim.domain import Domain, State
+from gaitc.sim.domain import Domain, Goal, State
 from gaitc.sim.environments import Environment, Move, Request, Situation
 from gaitc.sim.monitor import Monitor, Violation
+from gaitc.sim.play import pursued
 from gaitc.sim.run import Run, Step, Summary
 from gaitc.sim.strategy import InputKey, Strategy, StrategyView
 
 MAX_REPORTED = 20
+
+
+@dataclass
+class Verdicts:
+    """The run monitor's findings along a run: the safety clauses broken, and how many
+    times each □◇ assumption and guarantee held (by index)."""
+
+    violations: list[Violation] = field(default_factory=list)
+    env_live: Counter[int] = field(default_factory=Counter)
+    sys_live: Counter[int] = field(default_factory=Counter)
 
 
 class Simulator:
@@ -82,34 +92,31 @@ class Simulator:
         """Step ``index`` of a run: ``node`` decoded, compared with ``previous``."""
         return self._step(index, node, previous)
 
-    def summarize(self, run: Run, violations: list[Violation], env_live: Mapping[int, int],
-                  sys_live: Mapping[int, int]) -> Summary:
-        """The summary of ``run`` from the monitor's findings along it."""
-        return self._summary(run, violations, env_live, sys_live)
+    def situation(self, index: int, node: int | None, goal: Goal | None) -> Situation:
+        """What an environment sees before choosing the input of step ``index`` at ``node``
+        (None before the first state), the robot pursuing ``goal``."""
+        moves = self.moves(node)
+        return Situation(
+            step=index,
+            node=node,
+            state=None if node is None else self.state(node),
+            moves=moves,
+            domain=self.domain,
+            next_goal=goal,
+            monitor=self.monitor,
+            values=None if node is None else self.strategy.values[node],
+            successor_values=self._successor_values(node, moves),
+            strategy=self.strategy if isinstance(self.strategy, Strategy) else None,
+        )
 
-    def replay(self, path: Sequence[int], spec_file: str = "", environment: str = "",
-               stopped: str | None = None) -> Run:
-        """The run that visits the controller nodes ``path`` in order, every step checked by
-        the monitor (a counter-strategy's play, or a play chosen by hand); ``stopped`` says
-        why it ended early."""
-        run = Run(legs=self.domain.legs, environment=environment, spec_file=spec_file,
-                  model=self.domain.model)
-        violations: list[Violation] = []
-        env_live: Counter[int] = Counter()
-        sys_live: Counter[int] = Counter()
-        previous: Step | None = None
-        for index, node in enumerate(path):
-            values = self.strategy.values[node]
-            before = None if previous is None else self.strategy.values[previous.node]
-            violations.extend(self.check(index, before, values))
-            held_env, held_sys = self.monitor.liveness_at(before, values)
-            env_live.update(held_env)
-            sys_live.update(held_sys)
-            previous = self._step(index, node, previous)
-            run.add(previous)
-        summary = self._summary(run, violations, env_live, sys_live)
-        run.summary = summary if stopped is None else replace(summary, stopped=stopped)
-        return run
+    def observe(self, verdicts: Verdicts, index: int, before: tuple[int, ...] | None,
+                values: tuple[int, ...]) -> None:
+        """Check the move into ``values`` at step ``index`` (the first state when there is
+        no ``before``) and add what the monitor finds to ``verdicts``."""
+        verdicts.violations.extend(self.check(index, before, values))
+        held_env, held_sys = self.monitor.liveness_at(before, values)
+        verdicts.env_live.update(held_env)
+        verdicts.sys_live.update(held_sys)
 
     def check(self, index: int, before: tuple[int, ...] | None,
               values: tuple[int, ...]) -> list[Violation]:
@@ -186,27 +193,12 @@ class Simulator:
                   model=self.domain.model)
         goals = self.domain.goals
         goal_index = 0
-        violations: list[Violation] = []
-        env_live: Counter[int] = Counter()
-        sys_live: Counter[int] = Counter()
+        verdicts = Verdicts()
         node: int | None = None
         previous: Step | None = None
         for index in range(steps + 1):
-            here = None if previous is None else self.state(previous.node)
-            moves = self.moves(node)
-            situation = Situation(
-
-                step=index,
-                node=node,
-                state=here,
-                moves=moves,
-                domain=self.domain,
-                next_goal=goals[goal_index] if goals else None,
-                monitor=self.monitor,
-                values=None if node is None else self.strategy.values[node],
-                successor_values=self._successor_values(node, moves),
-                strategy=self.strategy if isinstance(self.strategy, Strategy) else None,
-            )
+            situation = self.situation(index, node, goals[goal_index] if goals else None)
+            moves = situation.moves
             try:
                 if node is not None and not moves:
                     raise self._refuse(index, node, Request(()))
@@ -219,24 +211,18 @@ class Simulator:
             except GaitcError as err:
                 run.error = err
                 break
-            values = self.strategy.values[chosen.node]
             before = None if node is None else self.strategy.values[node]
-            violations.extend(self.check(index, before, values))
-            held_env, held_sys = self.monitor.liveness_at(before, values)
-            env_live.update(held_env)
-            sys_live.update(held_sys)
+            self.observe(verdicts, index, before, self.strategy.values[chosen.node])
             step = self._step(index, chosen.node, previous)
             run.add(step)
-            for _ in goals:
-                if goals[goal_index].label not in step.goals:
-                    break
-                goal_index = (goal_index + 1) % len(goals)
+            goal_index = pursued(goals, goal_index, step.goals)
             node, previous = chosen.node, step
-        run.summary = self._summary(run, violations, env_live, sys_live)
+        run.summary = self.summarize(run, verdicts)
         return run
 
-    def _summary(self, run: Run, violations: list[Violation], env_live: Mapping[int, int],
-                 sys_live: Mapping[int, int]) -> Summary:
+    def summarize(self, run: Run, verdicts: Verdicts) -> Summary:
+        """The summary of ``run`` from the monitor's ``verdicts`` along it."""
+        violations, env_live, sys_live = verdicts.violations, verdicts.env_live, verdicts.sys_live
         goal_counts = Counter(label for s in run.steps for label in s.goals)
         caches = Counter(s.region for s in run.steps if s.region in self.domain.model.caches)
         spec = self.monitor.spec

@@ -1,113 +1,18 @@
-"""A play the environment wins, chosen from its counter-strategy and told step by step.
+"""``explain``'s play told: the run of a play the environment wins, in the robot's terms.
 
-The play is the shortest path of the counter-strategy from an initial node to a deadlock
-(a state where the robot has no legal move) or, when the environment wins by keeping a goal
-away for ever, a path into a loop on which some goal never holds. For a ``.gait`` spec it
-becomes a :class:`gaitc.sim.run.Run`, checked by the run monitor and saved in the format of
-``gaitc simulate --out``.
+The play itself (:class:`gaitc.sim.play.Play`, chosen by
+:func:`gaitc.sim.counterplay.choose_play`) is a path of the counter-strategy to a deadlock
+or into a loop on which some goal never holds; for a ``.gait`` spec its run
+(:func:`gaitc.sim.replay.replay`) is told here a sentence a step, after a summary of the
+environment's decisive moves, and its last move at a deadlock is found by the solver.
 """
 
 from __future__ import annotations
 
-import itertools
-from collections import deque
-from collections.abc import Callable
-from dataclasses import dataclass
-
 from gaitc.ir.controller import Controller
-from gaitc.ir.evaluation import evaluate
 from gaitc.ir.spec import GR1Spec
-from gaitc.sim.counterplay import deadlock_levels
+from gaitc.sim.play import Play
 from gaitc.sim.run import Run, Step
-
-
-@dataclass(frozen=True)
-class Play:
-    """Counter-strategy nodes ``path``; ``loop_start`` is where the repeated part begins
-    (None for a deadlock at the last node); ``missed`` lists goals never met on the loop."""
-
-    path: tuple[int, ...]
-    loop_start: int | None
-    missed: tuple[int, ...] = ()
-
-    @property
-    def deadlock(self) -> bool:
-        return self.loop_start is None
-
-
-def choose_play(counter: Controller, spec: GR1Spec, goals: tuple[int, ...] = (),
-                toward: Callable[[int], int] | None = None) -> Play:
-    """The play in which the robot does its best against the counter-strategy.
-
-    Where it can, the robot avoids states from which the environment forces a deadlock and
-    heads for the goals it is kept from: each move makes the most progress ``toward`` them
-    (for a ``.gait`` spec, the region distance to the lost goal on the map), then toward the
-    nearest node of the counter-strategy where one of ``goals`` holds, new nodes before
-    nodes seen already. Where it cannot avoid a deadlock, it delays it as long as possible.
-    The play ends at a deadlock or when it closes a loop: the robot tried, and the
-    environment's answers brought it back.
-    """
-    level = deadlock_levels([node.trans for node in counter.nodes])
-    distance = _goal_distance(counter, spec, goals or tuple(range(len(spec.sys_liveness))))
-    far = len(counter.nodes) + 1
-    progress = toward if toward is not None else (lambda node: 0)
-    start = min(counter.initial, key=lambda n: (level[n] is not None, -(level[n] or 0), n))
-    path, seen = [start], {start: 0}
-    while True:
-        options = counter.nodes[path[-1]].trans
-        if not options:
-            return Play(tuple(path), None)
-        safe = [s for s in options if level[s] is None]
-        if safe:
-            nxt = min(safe, key=lambda s: (distance.get(s, far), progress(s), s in seen, s))
-        else:
-            nxt = min(options, key=lambda s: (-(level[s] or 0), s in seen, s))
-        if nxt in seen:
-            loop = [*path[seen[nxt]:], nxt]
-            return Play((*path, nxt), seen[nxt], _missed(counter, spec, loop))
-        seen[nxt] = len(path)
-        path.append(nxt)
-
-
-def _goal_distance(counter: Controller, spec: GR1Spec, goals: tuple[int, ...]
-                   ) -> dict[int, int]:
-    """Steps from each node to the nearest node where one of ``goals`` holds."""
-    nodes = counter.nodes
-    preds: list[list[int]] = [[] for _ in nodes]
-    for n, node in enumerate(nodes):
-        for s in node.trans:
-            preds[s].append(n)
-    distance: dict[int, int] = {}
-    queue: deque[int] = deque()
-    for n in range(len(nodes)):
-        values = dict(counter.values(n))
-        valuation = {**values, **{f"{k}'": v for k, v in values.items()}}
-        if any(evaluate(spec.sys_liveness[j].formula, valuation) for j in goals):
-            distance[n] = 0
-            queue.append(n)
-    while queue:
-        s = queue.popleft()
-        for n in preds[s]:
-            if n not in distance:
-                distance[n] = distance[s] + 1
-                queue.append(n)
-    return distance
-
-
-def _missed(counter: Controller, spec: GR1Spec, loop: list[int]) -> tuple[int, ...]:
-    """Goals (sys_liveness indices) that hold on no transition of ``loop``."""
-    missed = []
-    for j, clause in enumerate(spec.sys_liveness):
-        met = False
-        for a, b in itertools.pairwise(loop):
-            valuation = dict(counter.values(a))
-            valuation.update({f"{k}'": v for k, v in counter.values(b).items()})
-            if evaluate(clause.formula, valuation):
-                met = True
-                break
-        if not met:
-            missed.append(j)
-    return tuple(missed)
 
 
 def narrate(run: Run, play: Play, goal_names: list[str], final: str | None = None
