@@ -12,10 +12,10 @@ import time
 
 from gaitc.hw.backend import Backend, HardwareError, SensorReading, where
 from gaitc.sim.domain import Domain, Goal, State
-from gaitc.sim.environments import Environment, Move, Situation
+from gaitc.sim.environments import Environment, Move
 from gaitc.sim.monitor import Monitor
 from gaitc.sim.simulator import Simulator
-from gaitc.sim.strategy import Strategy, StrategyView
+from gaitc.sim.strategy import StrategyView
 
 
 class ScenarioFinished(HardwareError):
@@ -63,21 +63,8 @@ class SimulatedRobot(Backend):
         node = self._node
         here = None if node is None else self.view.state(node)
         region = self.domain.model.start if here is None else here.region
-        moves = self.view.moves(node)
-        strategy = self.view.strategy
-        situation = Situation(
-
-            step=self._step,
-            node=node,
-            state=here,
-            moves=moves,
-            domain=self.domain,
-            next_goal=self._next_goal(),
-            monitor=self.view.monitor,
-            values=None if node is None else strategy.values[node],
-            successor_values=tuple(strategy.values[m.node] for m in moves),
-            strategy=strategy if isinstance(strategy, Strategy) else None,
-        )
+        situation = self.view.situation(self._step, node, self._next_goal())
+        moves = situation.moves
         request = self.environment.choose(situation)
         if request is None:
             raise ScenarioFinished("the simulated environment has no more steps",
