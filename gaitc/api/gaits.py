@@ -355,7 +355,7 @@ class GlobalGait:
     def to_json(self) -> dict[str, Any]:
         plan = self.plan
         states, poses, edges = plan.graph if plan is not None else (None, None, None)
-        return {"robot": self.robot, "method": self.method, "model": self.model,
+        return {"robot": self.robot, "method": str(self.method), "model": self.model,
                 "reason": self.reason, "found": plan is not None,
                 "reached": plan is not None and plan.reached, "valve_states": states,
                 "poses": poses, "transitions": edges,

@@ -76,7 +76,7 @@ def gaits_document(robot: Robot, result: SearchResult, direction: str, seed: int
         "robot": robot.name,
         "valve_legs": list(robot.leg_of_valve),
         "body_length": _r(body_length(robot)),
-        "method": result.method,
+        "method": str(result.method),
         "direction": direction,
         "seed": seed,
         "valve_states_evaluated": result.states_added,

@@ -92,7 +92,7 @@ class Learned:
     def to_json(self) -> str:
         """The log: every iteration (no timings, so a seeded run gives the same bytes)."""
         doc: dict[str, Any] = {
-            "method": self.first.method,
+            "method": str(self.first.method),
             "robot": self.first.robot,
             "goal": self.first.to_dict()["goal"],
             "converged": self.converged,

@@ -107,7 +107,7 @@ class GaitPlan:
     def to_dict(self) -> dict[str, Any]:
         return {
             "robot": self.robot,
-            "method": self.method,
+            "method": str(self.method),
             "goal": {
                 "dx": _r(self.goal.dx),
                 "dy": _r(self.goal.dy),
