@@ -5,8 +5,8 @@ live where the lower layers need them); a comparison such as ``semantics == "rob
 works, since a member equals its value, but it hides the mode from mypy and from a rename.
 This test reads every module with :mod:`ast` and lists the ``==``/``!=`` comparisons and
 ``in`` tests of a name against a mode's value written as a string.  Parsers and serialisers
-(that turn text into members and back) may do so; elsewhere the target is none, and the
-count may only fall (:data:`BUDGET`, lowered as places are mended).
+(that turn text into members and back) may do so; elsewhere there is none
+(:data:`BUDGET`).
 """
 
 from __future__ import annotations
@@ -39,8 +39,8 @@ VALUES = {str(m.value) for mode in MODES for m in mode} - AMBIGUOUS
 PARSERS = ("gaitc/diagnostics/choices.py", "gaitc/ir/controller.py", "gaitc/ir/bddfile.py",
            "gaitc/compact/controller.py", "gaitc/core/spec.py", "gaitc/api/compiling.py",
            "slugs_bridge/names.py")
-#: The mode-picking string comparisons left outside parsers and serialisers.
-BUDGET = 2
+#: The mode-picking string comparisons allowed outside parsers and serialisers.
+BUDGET = 0
 
 
 def _is_mode_text(node: ast.AST) -> bool:

@@ -29,7 +29,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from gaitc.core.modes import Role
+from gaitc.core.modes import ControllerKind, Role
 from gaitc.diagnostics import UsageError
 from gaitc.diagnostics.choices import Choice as Named
 from gaitc.play.words import distinguished, environment_words, robot_words
@@ -89,7 +89,7 @@ class Player:
     """
 
     def __init__(self, session: Session, role: Role | str | None = None) -> None:
-        counter = session.strategy.kind == "counterstrategy"
+        counter = session.strategy.kind == ControllerKind.COUNTERSTRATEGY
         wanted = Role(role) if role is not None else (Role.ROBOT if counter else Role.ENVIRONMENT)
         if wanted is Role.ROBOT and not counter:
             raise UsageError("playing the robot needs the environment's counter-strategy: the "

@@ -17,7 +17,7 @@ from collections.abc import Callable, Sequence
 from dataclasses import replace
 
 from gaitc.diagnostics import ControllerError
-from gaitc.ir.controller import Controller
+from gaitc.ir.controller import Controller, ControllerKind
 from gaitc.ir.spec import GR1Spec
 from gaitc.sim.domain import Domain
 from gaitc.sim.monitor import Monitor
@@ -110,7 +110,7 @@ def play(strategy: Strategy, domain: Domain, monitor: Monitor, steps: int,
          choose: Chooser, spec_file: str = "", environment: str = "counter-strategy") -> Run:
     """The run of up to ``steps`` moves of the counter-strategy against a robot that
     ``choose``s; it stops early at a deadlock, where the robot has no legal move."""
-    if strategy.kind != "counterstrategy":
+    if strategy.kind != ControllerKind.COUNTERSTRATEGY:
         raise ControllerError("a counter-strategy play needs a counter-strategy", None)
     if not strategy.initial:
         raise ControllerError("the counter-strategy has no initial node", None)
