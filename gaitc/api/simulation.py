@@ -148,21 +148,14 @@ def _counter_play(bound: Session, env: Opponent | Scenario | Environment, steps:
     ``scripted:RUN.jsonl`` both sides play as the run file did (a play of an unrealizable
     spec: ``gaitc play``'s, or ``explain``'s, whose environment may come from a
     counter-strategy of fewer freedoms), every step checked against the spec."""
-    from gaitc.sim.counterplay import careful_chooser, play, random_chooser
+    from gaitc.sim.counterplay import play, robot_chooser
 
     if isinstance(env, Opponent) and env.replays_run:
         assert env.file is not None
         return _recorded(bound.spec, env.file, steps)
     counter = explicit(bound.strategy, "a counter-play")
-    kind = env.kind if isinstance(env, Opponent) else None
-    if kind == EnvironmentKind.RANDOM:
-        choose, name = random_chooser(seed), f"counter-strategy, robot random --seed {seed}"
-    elif kind == EnvironmentKind.ADVERSARIAL:
-        choose, name = careful_chooser(counter), "counter-strategy, robot careful"
-    else:
-        raise UsageError("a counter-strategy is the environment: choose how the robot answers "
-                         "with 'random', 'adversarial' (it avoids forced deadlocks), or "
-                         "replay a play with 'scripted RUN.jsonl'")
+    kind = env.kind if isinstance(env, Opponent) else EnvironmentKind.SCRIPTED
+    choose, name = robot_chooser(kind, counter, seed)
     count = DEFAULT_STEPS if steps is None else steps
     if count < 0:
         raise UsageError("the number of steps must not be negative")

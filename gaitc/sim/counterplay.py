@@ -16,7 +16,8 @@ import random
 from collections.abc import Callable, Sequence
 from dataclasses import replace
 
-from gaitc.diagnostics import ControllerError
+from gaitc.core.modes import EnvironmentKind
+from gaitc.diagnostics import ControllerError, UsageError
 from gaitc.ir.controller import Controller, ControllerKind
 from gaitc.ir.spec import GR1Spec
 from gaitc.sim.domain import Domain
@@ -61,6 +62,21 @@ def random_chooser(seed: int | random.Random) -> Chooser:
     from the generator ``seed``)."""
     rng = seed if isinstance(seed, random.Random) else random.Random(seed)
     return lambda _path, options: rng.randrange(len(options))
+
+
+def robot_chooser(how: EnvironmentKind, counter: Strategy, seed: int = 0
+                  ) -> tuple[Chooser, str]:
+    """How the robot answers a counter-strategy in a simulated counter-play, with the name a
+    run records: uniformly at random (``seed``), or carefully (it avoids forced
+    deadlocks, against the ``adversarial`` environment kind); a scripted play is replayed,
+    not chosen, and is a :class:`UsageError` here."""
+    if how == EnvironmentKind.RANDOM:
+        return random_chooser(seed), f"counter-strategy, robot random --seed {seed}"
+    if how == EnvironmentKind.ADVERSARIAL:
+        return careful_chooser(counter), "counter-strategy, robot careful"
+    raise UsageError("a counter-strategy is the environment: choose how the robot answers "
+                     "with 'random', 'adversarial' (it avoids forced deadlocks), or replay a "
+                     "play with 'scripted RUN.jsonl'")
 
 
 def play_out(successors: Sequence[Sequence[int]], initial: Sequence[int], choose: Chooser,
