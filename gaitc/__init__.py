@@ -43,7 +43,7 @@ from __future__ import annotations
 import importlib
 from typing import TYPE_CHECKING, Any
 
-if TYPE_CHECKING:  # the names of _MODULES, for the type checker (tests/test_cli_facade.py)
+if TYPE_CHECKING:  # the names of _MODULES, for the type checker (tests/cli/test_cli_facade.py)
     from gaitc.api.answers import explain as explain
     from gaitc.api.answers import resilience as resilience
     from gaitc.api.characterizing import Recordings as Recordings
@@ -114,7 +114,7 @@ if TYPE_CHECKING:  # the names of _MODULES, for the type checker (tests/test_cli
 
 #: The one list of the public names, by the module each lives in: ``__all__`` is derived
 #: from it, the ``TYPE_CHECKING`` block above spells it out for the type checker (and
-#: tests/test_cli_facade.py holds the two equal). Modules load on first use, so ``gaitc
+#: tests/cli/test_cli_facade.py holds the two equal). Modules load on first use, so ``gaitc
 #: --help`` and a Ctrl-C at start-up do not wait for the solver, the parser and the gait
 #: graph to import, and the packages below ``gaitc`` can import ``gaitc.diagnostics``
 #: without a cycle.

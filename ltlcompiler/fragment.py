@@ -97,7 +97,7 @@ class FormulaChecker:
     def robot_free(self, expr: f.Expr) -> bool:
         """Whether ``expr`` names nothing the robot chooses (no region, gait or noGait):
         only hazards, leg health and constants, all the environment's.  Iterative: a
-        formula may nest thousands deep (tests/test_deep_nesting.py)."""
+        formula may nest thousands deep (tests/language/test_deep_nesting.py)."""
         stack = [expr]
         while stack:
             node = stack.pop()

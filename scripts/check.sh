@@ -13,8 +13,7 @@ cd "$(dirname "$0")/.."
 
 VENV="${VENV:-.venv}"
 PY="$VENV/bin/python"
-FAST_TESTS=(tests/test_layout.py tests/test_layout_doc.py tests/test_quality.py
-            tests/test_python_versions.py tests/test_check_stage.py)
+FAST_TESTS=(tests/codebase)  # the layering, its map, quality, modes, Python versions
 
 fail() {
     echo >&2

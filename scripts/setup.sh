@@ -18,7 +18,7 @@ if ! command -v dot >/dev/null 2>&1; then
     fi
 fi
 
-# The valve-board firmware (gaitc firmware, tests/test_firmware.py): avr-gcc and simavr.
+# The valve-board firmware (gaitc firmware, tests/hardware/test_firmware.py): avr-gcc and simavr.
 AVR_PACKAGES="gcc-avr avr-libc simavr libsimavr-dev libsimavrparts1"
 if ! command -v avr-gcc >/dev/null 2>&1 || [ ! -e /usr/include/simavr/sim_avr.h ]; then
     if command -v apt-get >/dev/null 2>&1 && [ "$(id -u)" = 0 ]; then
@@ -33,7 +33,7 @@ if ! command -v avr-gcc >/dev/null 2>&1 || [ ! -e /usr/include/simavr/sim_avr.h 
     fi
 fi
 
-# The VS Code extension (scripts/build-vscode.sh, tests/test_editor_extension.py): Node.js and npm.
+# The VS Code extension (scripts/build-vscode.sh, tests/lsp/test_editor_extension.py): Node.js and npm.
 if ! command -v npm >/dev/null 2>&1; then
     if command -v apt-get >/dev/null 2>&1 && [ "$(id -u)" = 0 ]; then
         echo "setup: installing Node.js and npm with apt-get" >&2

@@ -891,7 +891,7 @@ class Known:
 
 _CONTENT_LENGTH = _wire_bytes(_start()) + b"Content-Length: %s\r\n\r\n{}" % (b"1" * 5000)
 #: The faults this fuzzer found that are mended (issue 48's follow-up): each session is now
-#: a regression test, which must show no problem at all (tests/test_fuzz_lsp_player.py).
+#: a regression test, which must show no problem at all (tests/robustness/test_fuzz_lsp_player.py).
 MENDED: tuple[Known, ...] = (
     Known("change-unopened",
           "didChange of a document that is not open: pygls's workspace raises KeyError and "

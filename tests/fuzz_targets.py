@@ -182,7 +182,7 @@ def run_target(seed: str, data: bytes, fx: Fixtures, limit: float) -> list[Verdi
     """Every writing command on one target: the special one ``seed`` names, or ``data``
     under the fuzz folder.  The link to the victim is given as the output file only to
     the commands that must not write through it (``follows`` is false); the others write
-    through a link by design (tests/test_files.py), so they get the paths through it."""
+    through a link by design (tests/cli/test_files.py), so they get the paths through it."""
     area = Area.of(fx)
     area.reset()
     special = seed.removeprefix(SPECIAL) if seed.startswith(SPECIAL) else None

@@ -3,7 +3,7 @@
 ``python tools/cli_reference.py`` walks ``gaitc.cli.build_parser()``: every command and
 subcommand, in the order ``gaitc --help`` lists them, with the help text argparse prints
 (80 columns) and the exit codes of :mod:`gaitc.cli.exitcodes`. The page cannot drift from
-the code: ``tests/test_docs.py`` regenerates it and fails on a difference. ``--check``
+the code: ``tests/cli/test_docs.py`` regenerates it and fails on a difference. ``--check``
 compares instead of writing.
 """
 

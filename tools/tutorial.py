@@ -5,7 +5,7 @@ scratch folder holding the tutorial's robot (docs/tutorial/lab8.gait) and the ra
 file, exactly as a reader types them, and writes each one's terminal output (the command
 line, then what it printed, then its exit code when not 0) and each picture it draws.
 Wall-clock times in the output are written as ``… s``, so the files change only when the
-code's answers change; ``tests/test_docs.py`` regenerates them and fails on any drift.
+code's answers change; ``tests/cli/test_docs.py`` regenerates them and fails on any drift.
 ``--check`` compares instead of writing and exits 1 on a difference.
 """
 

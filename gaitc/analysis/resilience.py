@@ -298,7 +298,7 @@ def defeat_candidates(model: Model, legs: list[str], size: int,
     when the spec has no assumptions or guarantees of its own (which could speak of a
     broken leg's health), only the sets that hold a minimal fatal set are candidates; else,
     or when there are at most ``prune_above`` sets anyway, every set is.
-    ``tests/test_resilience_methods.py`` solves the sets pruned away on the small specs.
+    ``tests/analysis/test_resilience_methods.py`` solves the sets pruned away on the small specs.
     """
     combos = list(itertools.combinations(legs, size))
     if model.assumptions or model.guarantees or len(combos) <= prune_above:

@@ -23,7 +23,7 @@ _SUGGESTION = re.compile(r"did you mean '([^']+)'\?")
 #: The modules :func:`find_repairs` imports (with theirs), imported in the server before
 #: its child is forked (:mod:`gaitc.lsp.jobs`): a child must import nothing, for another
 #: thread of the server may hold the import lock of that very module as it forks.
-#: ``tests/test_lsp_robustness.py`` checks that the list is complete.
+#: ``tests/lsp/test_lsp_robustness.py`` checks that the list is complete.
 REPAIR_IMPORTS = (
     "gaitc", "gaitc.api", "gaitc.api.loading", "gaitc.api.answers", "gaitc.api.isolation",
     "gaitc.analysis.explanation", "gaitc.analysis.repairs", "gaitc.solver.synthesis",

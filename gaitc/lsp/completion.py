@@ -8,7 +8,7 @@ any name and the formula keywords after ``assume`` and ``guarantee``.
 
 The statement keywords, the directions and the formula keywords are read from the grammar
 (:func:`ltlcompiler.parser.keywords`); the words that may follow each clause are written
-here, and ``tests/test_lsp_keywords.py`` holds each of them to the grammar rule it is in.
+here, and ``tests/lsp/test_lsp_keywords.py`` holds each of them to the grammar rule it is in.
 """
 
 from __future__ import annotations

@@ -137,7 +137,7 @@ class MovePreferences:
         input it holds exactly the moves :meth:`allowed` and :meth:`choose` leave an
         explicit extraction.  So a runtime
         that takes the smallest move of this relation makes the explicit controller's
-        moves (tests/test_symbolic_controller.py compares them step by step)."""
+        moves (tests/solver/test_symbolic_controller.py compares them step by step)."""
         return run_through(self.relation_steps(goal, strategy))
 
     def relation_steps(self, goal: int, strategy: BDDNode) -> Steps[BDDNode]:
