@@ -16,7 +16,7 @@ import pytest
 
 import gaitc
 from bench.families.genbuf import genbuf_text
-from gaitc.api.solving import _costs
+from gaitc.forms.synthesis import _costs
 from gaitc.ir.bddfile import SymbolicController
 from gaitc.ir.spec import GR1Spec
 from gaitc.solver import strategy, synthesis

@@ -1,0 +1,409 @@
+"""Solving a spec: the verdict, and a controller or counter-strategy in a chosen form with
+its proof.
+
+The embedded BDD solver (:mod:`gaitc.solver`) or the SLUGS binary (:mod:`slugs_bridge.runner`)
+decides and synthesizes; a compact controller is made from the symbolic one through the
+form registry (:mod:`gaitc.forms.registry`); every automaton is then proved by the
+independent checker of :mod:`gaitc.verifier` (:func:`prove`), which shares no code with
+either solver.  :mod:`gaitc.api.solving` converts the facade's arguments and calls here.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Sequence
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+from typing import TYPE_CHECKING, Any, Final, Literal, get_args
+
+from gaitc.core.modes import ControllerKind, Form
+from gaitc.core.presentation import table
+from gaitc.core.spec import Spec
+from gaitc.diagnostics import SolverError, UsageError
+from gaitc.diagnostics.files import write_atomically
+from gaitc.forms.base import Automaton
+from gaitc.ir.bddfile import SymbolicController
+from gaitc.ir.controller import Controller
+from gaitc.ir.costs import Cost
+from gaitc.ir.quotient import merge_equivalent
+from gaitc.ir.spec import GR1Spec, Semantics
+from gaitc.solver.game import GameStats, out_of_memory
+from gaitc.solver.progress import Progress, Stage
+from gaitc.solver.symbolic import Options
+from gaitc.solver.synthesis import FORMS as SOLVER_FORMS
+from ltlcompiler.encoding import EncodingName
+
+if TYPE_CHECKING:
+    from gaitc.sim.graphics import Picture
+    from gaitc.verifier.strategy import VerificationReport
+
+SolverName = Literal["embedded", "slugs"]
+#: ``embedded``: the BDD solver in :mod:`gaitc.solver`; ``slugs``: an installed SLUGS binary.
+SOLVERS: Final[tuple[SolverName, ...]] = get_args(SolverName)
+#: The forms a solver leaves (:data:`gaitc.solver.synthesis.FORMS`).
+FORMS: Final = SOLVER_FORMS
+#: Above this many nodes ``synthesize`` keeps the controller symbolic (form ``auto``).
+MAX_NODES: Final = 100_000
+#: The forms ``synthesize`` writes: the solver's (:data:`gaitc.solver.synthesis.FORMS`) and
+#: ``compact``, decision diagrams over the robot's words (:mod:`gaitc.compact`).
+COMPACT: Final = "compact"
+
+
+@dataclass(frozen=True)
+class Verdict:
+    """Whether a spec is realizable, how long deciding took, and the fixpoint statistics."""
+
+    file: str
+    realizable: bool
+    seconds: float
+    semantics: Semantics = Semantics.DEFAULT
+    solver: str = "embedded"
+    stats: GameStats | None = field(default=None, repr=False)
+    engine: str = ""  # embedded solver: the configuration that answered (gaitc.solver.portfolio)
+
+    def __repr__(self) -> str:
+        word = "realizable" if self.realizable else "unrealizable"
+        return (f"<gaitc.Verdict {self.file!r}: {word} in {self.seconds:.2f} s "
+                f"({self.solver} solver, {self.semantics} semantics)>")
+
+    def to_json(self) -> dict[str, Any]:
+        """The verdict for ``gaitc check --json`` (docs/json.md)."""
+        out: dict[str, Any] = {
+            "file": self.file, "verdict": "realizable" if self.realizable else "unrealizable",
+            "seconds": round(self.seconds, 3), "semantics": self.semantics,
+            "solver": self.solver, "engine": self.engine or None}
+        return out
+
+    def _repr_html_(self) -> str:
+        rows = [("verdict", "realizable" if self.realizable else "unrealizable"),
+                ("seconds", f"{self.seconds:.3f}"), ("solver", self.solver),
+                ("semantics", self.semantics)]
+        if self.engine:
+            rows.append(("engine", self.engine))
+        if self.stats is not None:
+            rows.append(("peak BDD nodes", str(self.stats.peak_nodes)))
+        return table(f"realizability of {self.file}", rows)
+
+
+@dataclass(frozen=True)
+class Synthesis:
+    """A solver's automaton for a spec, with the verifier's report on it.
+
+    ``controller`` is None when the spec has no winner of the kind asked for: no strategy
+    for an unrealizable spec, no counter-strategy for a realizable one.
+    """
+
+    spec: Spec | GR1Spec = field(repr=False)
+    kind: ControllerKind
+    controller: Automaton | None
+    report: VerificationReport | None
+    seconds: float
+    semantics: Semantics = Semantics.DEFAULT
+    solver: str = "embedded"
+    #: The automaton's nodes before equivalent ones were merged (gaitc.ir.quotient), when any were.
+    merged_from: int | None = None
+    #: A compact controller's source: the symbolic controller's BDD nodes.
+    symbolic_nodes: int | None = None
+
+    @property
+    def realizable(self) -> bool:
+        """Whether the spec is realizable (the verdict behind this automaton)."""
+        found = self.controller is not None
+        return found if self.kind == ControllerKind.STRATEGY else not found
+
+    @property
+    def verified(self) -> bool:
+        """An automaton exists and the independent verifier accepted it."""
+        return self.report is not None and self.report.ok
+
+    @property
+    def size(self) -> str:
+        """The controller's size in words: explicit nodes, or a symbolic one's BDD nodes."""
+        if self.controller is None:
+            return "none"
+        from gaitc.forms.registry import entry
+
+        size = entry(self.controller).size(self.controller)
+        if self.symbolic_nodes is not None:
+            size += (f"; the symbolic strategy it comes from has {self.symbolic_nodes} BDD "
+                     "nodes")
+        if self.merged_from is not None:
+            size += f", {self.merged_from} before merging"
+        return size
+
+    def to_json(self) -> dict[str, Any]:
+        """The outcome for ``gaitc synth --json`` and ``counter --json`` (docs/json.md)."""
+        form = None if self.controller is None else self.form
+        out: dict[str, Any] = {
+            "file": _name(self.spec), "kind": self.kind,
+            "verdict": "realizable" if self.realizable else "unrealizable",
+            "seconds": round(self.seconds, 3), "semantics": self.semantics,
+            "solver": self.solver, "symbolic": form == Form.SYMBOLIC, "form": form,
+            "nodes": None,
+            "nodes_before_merging": self.merged_from,
+            "compact": None,
+            "verification": None if self.report is None else self.report.to_json()}
+        if self.controller is not None:
+            from gaitc.forms.registry import entry
+
+            out.update(entry(self.controller).size_json(self.controller))
+            if out["compact"] is not None:
+                out["compact"]["symbolic_nodes"] = self.symbolic_nodes
+        return out
+
+    @property
+    def form(self) -> Form:
+        """The controller's form (a :class:`UsageError` when there is no controller)."""
+        if self.controller is None:
+            raise UsageError(f"there is no {self.kind}: the spec is "
+                             f"{'realizable' if self.realizable else 'unrealizable'}")
+        from gaitc.forms.registry import entry
+
+        return entry(self.controller).form
+
+    def save(self, path: str | Path) -> None:
+        """Write the controller as JSON (docs/controller-format.md), atomically."""
+        if self.controller is None:
+            raise UsageError(f"there is no {self.kind} to save: the spec is "
+                             f"{'realizable' if self.realizable else 'unrealizable'}")
+        from gaitc.forms.registry import entry
+
+        write_atomically(path, entry(self.controller).to_json(self.controller))
+
+    def picture(self) -> Picture:
+        """The automaton drawn in domain terms (needs a ``.gait`` spec and Graphviz)."""
+        from gaitc.sim.automaton_view import automaton_view
+        from gaitc.sim.domain import Domain
+        from gaitc.sim.strategy import strategy_from_controller
+
+        if self.controller is None:
+            raise UsageError(f"there is no {self.kind} to draw")
+        if not isinstance(self.controller, Controller):
+            raise UsageError("a symbolic or compact controller has no automaton to draw; "
+                             "draw a run of it (gaitc.simulate(...).picture())")
+        if not isinstance(self.spec, Spec) or self.spec.model is None:
+            raise UsageError("drawing an automaton needs a .gait spec, which says what its "
+                             "variables mean")
+        strategy = strategy_from_controller(self.controller, self.spec.gr1, self.spec.path)
+        domain = Domain(self.spec.model, self.spec.encoding or EncodingName.ONEHOT)
+        return automaton_view(strategy, domain)
+
+    def __repr__(self) -> str:
+        file = self.spec.path if isinstance(self.spec, Spec) else self.spec.name or "spec"
+        if self.controller is None:
+            word = "realizable" if self.realizable else "unrealizable"
+            return f"<gaitc.Synthesis {file!r}: {word}, no {self.kind} ({self.seconds:.2f} s)>"
+        proof = "not verified" if self.report is None else (
+            "verified" if self.report.ok else "FAILED verification")
+        return (f"<gaitc.Synthesis {file!r}: {self.kind} ({self.size}), {proof} "
+                f"({self.seconds:.2f} s, {self.solver} solver)>")
+
+    def _repr_html_(self) -> str:
+        rows = [("kind", self.kind), ("realizable", str(self.realizable)),
+                ("seconds", f"{self.seconds:.3f}"), ("solver", self.solver),
+                ("semantics", self.semantics)]
+        if self.controller is not None:
+            rows.append(("size", self.size))
+        if self.report is not None:
+            rows.append(("verification", self.report.summary()))
+        return table(repr(self)[1:-1], rows)
+
+
+def _semantics(semantics: Semantics | str) -> Semantics:
+    return Semantics.parse(semantics, "semantics")
+
+
+def _solver(solver: str) -> str:
+    if solver not in SOLVERS:
+        raise UsageError(f"unknown solver '{solver}'; use one of {', '.join(SOLVERS)}")
+    return solver
+
+
+def _name(spec: Spec | GR1Spec) -> str:
+    return spec.path if isinstance(spec, Spec) else spec.name or "<spec>"
+
+
+def _slugsin(spec: GR1Spec) -> str:
+    from gaitc.ir.bitblast import bitblast
+    from slugs_bridge.slugsin import emit_slugsin
+
+    return emit_slugsin(bitblast(spec))
+
+
+def decide(spec: Spec | GR1Spec, semantics: Semantics | str = Semantics.DEFAULT,
+           solver: str = "embedded", timeout: float | None = None, slugs: str | None = None,
+           options: Options | None = None, progress: Progress | None = None) -> Verdict:
+    """Decide whether a controller exists for ``spec``.
+
+    ``semantics`` is ``default`` or ``robotics`` (:data:`gaitc.ir.spec.SEMANTICS`), ``solver``
+    ``embedded`` or ``slugs`` (then ``slugs`` names the binary, else ``$SLUGS`` or PATH).
+    Raises :class:`~gaitc.diagnostics.SolverError` when the solver cannot finish.
+    """
+    gr1 = spec.gr1 if isinstance(spec, Spec) else spec
+    started = time.monotonic()
+    semantics = _semantics(semantics)
+    if _solver(solver) == "slugs":
+        from slugs_bridge.runner import run_slugs_check
+
+        result = run_slugs_check(_slugsin(gr1), semantics=semantics, timeout=timeout,
+                                 slugs=slugs)
+        return Verdict(_name(spec), result.realizable, result.seconds, semantics, solver)
+    from gaitc.solver import synthesis
+
+    try:
+        checked = synthesis.check(gr1, semantics, timeout, progress, options)
+    except MemoryError:
+        raise out_of_memory() from None
+    return Verdict(_name(spec), checked.realizable, time.monotonic() - started, semantics,
+                   solver, checked.stats, checked.engine)
+
+
+@dataclass(frozen=True)
+class SolveOptions:
+    """How :func:`solve` runs: the solver and its limits, whether the result is proved, the
+    form of a strategy (:data:`FORMS` or ``compact``), the node limit of ``auto`` and the
+    move preferences."""
+
+    solver: str = "embedded"
+    timeout: float | None = None
+    slugs: str | None = None
+    options: Options | None = None
+    progress: Progress | None = None
+    check_it: bool = True
+    form: str = "auto"
+    max_nodes: int | None = MAX_NODES
+    prefer: str | Sequence[str] | None = None
+
+
+def solve(spec: Spec | GR1Spec, kind: ControllerKind, semantics: Semantics,
+          opts: SolveOptions | None = None) -> Synthesis:
+    """A strategy (``kind`` STRATEGY) or a counter-strategy of ``spec`` as ``opts`` say,
+    proved unless ``opts.check_it`` is False; its ``controller`` is None when none exists."""
+    from gaitc.solver.preferences import preference_order
+
+    opts = opts or SolveOptions()
+    solver, timeout, slugs, progress = opts.solver, opts.timeout, opts.slugs, opts.progress
+    form, prefer = opts.form, opts.prefer
+    gr1 = spec.gr1 if isinstance(spec, Spec) else spec
+    started = time.monotonic()
+    symbolic_nodes: int | None = None
+    order = preference_order(prefer)
+    weighed = [name for name in order if name != "goal"]
+    if prefer is not None and weighed and not (isinstance(spec, Spec) and spec.model):
+        raise UsageError(f"--prefer {','.join(weighed)} weighs moves by the robot model of a "
+                         ".gait spec, and this spec has none (SLUGS input); use --prefer goal "
+                         "or none")
+    automaton: Automaton | None
+    try:
+        if _solver(solver) == "slugs":
+            if prefer is not None and order:
+                raise UsageError("move preferences need the embedded solver; use --prefer "
+                                 "none with --solver slugs")
+            automaton = _slugs_automaton(gr1, kind, semantics, timeout, slugs)
+        elif kind == ControllerKind.STRATEGY:
+            from gaitc.solver import synthesis
+
+            automaton = synthesis.synthesize_controller(
+                spec=gr1,
+                semantics=semantics,
+                timeout=timeout,
+                progress=progress,
+                options=opts.options,
+                max_nodes=opts.max_nodes,
+                form="symbolic" if form == COMPACT else form,
+                prefer=order,
+                costs=_costs(spec, order),
+            )
+            if form == COMPACT and isinstance(automaton, SymbolicController):
+                if progress is not None:
+                    progress(Stage("writing the strategy as decision diagrams"))
+                symbolic_nodes = len(automaton.nodes)
+                automaton = _compacted(spec, automaton)
+        else:
+            from gaitc.solver import synthesis
+
+            automaton = synthesis.counterstrategy(gr1, semantics, timeout, progress,
+                                                  opts.options)
+    except MemoryError:
+        raise out_of_memory() from None
+    seconds = time.monotonic() - started
+    report, merged_from = None, None
+    if isinstance(automaton, Controller):  # counter-strategies come back unchanged
+        merged = merge_equivalent(automaton)
+        if merged is not automaton:
+            merged_from, automaton = len(automaton.nodes), merged
+    if automaton is not None:
+        source = spec.source() if isinstance(spec, Spec) else None
+        automaton = replace(automaton, source=source, solver=solver)
+        if opts.check_it:
+            if progress is not None:
+                progress(Stage("checking the controller with the independent verifier"))
+            report = prove(spec, automaton, semantics)
+    return Synthesis(
+        spec=spec,
+        kind=kind,
+        controller=automaton,
+        report=report,
+        seconds=seconds,
+        semantics=semantics,
+        solver=solver,
+        merged_from=merged_from,
+        symbolic_nodes=symbolic_nodes,
+    )
+
+
+def _costs(spec: Spec | GR1Spec, order: Sequence[str]) -> tuple[Cost, ...]:
+    """The robot model's move costs (:mod:`ltlcompiler.costs`) when ``order`` needs them."""
+    if not isinstance(spec, Spec) or spec.model is None or set(order) <= {"goal"}:
+        return ()
+    from ltlcompiler.costs import model_costs
+
+    return model_costs(spec.model, spec.encoding or EncodingName.ONEHOT)
+
+
+def _slugs_automaton(gr1: GR1Spec, kind: ControllerKind, semantics: Semantics,
+                     timeout: float | None, slugs: str | None) -> Controller | None:
+    from slugs_bridge import runner
+
+    wanted = kind == ControllerKind.STRATEGY
+    run = runner.run_slugs_synth if wanted else runner.run_slugs_counter
+    result = run(_slugsin(gr1), semantics=semantics, timeout=timeout, slugs=slugs)
+    if result.realizable != wanted:
+        return None
+    if result.output is None:
+        verdict = "realizable" if result.realizable else "unrealizable"
+        raise SolverError(f"SLUGS reported {verdict} but wrote no {kind}")
+    if wanted:
+        return runner.controller_from_slugs_json(result.output, gr1, semantics)
+    return runner.counterstrategy_from_slugs_text(result.output, gr1, semantics)
+
+
+def _compacted(spec: Spec | GR1Spec, automaton: SymbolicController) -> Automaton:
+    """The compact form of a symbolic controller just synthesized for ``spec``."""
+    from gaitc.core.spec import as_spec
+    from gaitc.forms.registry import entry
+
+    bound = as_spec(spec)
+    return entry(automaton).to_compact(bound, automaton)
+
+
+def prove(spec: Spec | GR1Spec, automaton: Automaton, semantics: Semantics | str | None = None
+          ) -> VerificationReport:
+    """The independent proof that ``automaton`` (a strategy in any form, or a
+    counter-strategy) realizes ``spec``, or defeats it: first that it belongs to the spec
+    (its whole vocabulary), then its form's proof.  ``semantics`` defaults to the one
+    recorded in the controller."""
+    from gaitc.core.spec import as_spec
+    from gaitc.forms.reader import belongs
+    from gaitc.forms.registry import entry
+    from gaitc.verifier.strategy import VerificationReport
+
+    bound = as_spec(spec)
+    chosen = _semantics(semantics or automaton.semantics)
+    form = entry(automaton)
+    why = belongs(automaton, bound)
+    if why is not None:  # the proof covers the whole file: its vocabulary is the spec's
+        return VerificationReport(
+            ok=False, problems=(f"controller does not belong to this spec: {why}",),
+            kind=automaton.kind, semantics=chosen, symbolic=form.form != Form.EXPLICIT)
+    return form.verify(bound, automaton, chosen)
