@@ -189,11 +189,44 @@ def _child(work: Callable[[], Any], setup: Callable[[], None] | None,
     try:
         sender.send(outcome)
     except Exception as err:  # an answer that cannot be pickled
-        with contextlib.suppress(Exception):
-            sender.send(("raise", RuntimeError(
-                f"the answer could not be passed back: {type(err).__name__}: {err}"), ""))
+        _send_portable(sender, outcome, err)
     finally:
         sender.close()
+
+
+def _send_portable(sender: Connection, outcome: Outcome, err: Exception) -> None:
+    """Send an error that did not pickle as a copy that does, else say why nothing came."""
+    if outcome[0] == "raise":  # the error itself, without what cannot travel
+        try:
+            sender.send(("raise", _portable(outcome[1]), outcome[2]))
+        except Exception:  # the message below says the answer was lost
+            pass
+        else:
+            return
+    with contextlib.suppress(Exception):
+        sender.send(("raise", RuntimeError(
+            f"the answer could not be passed back: {type(err).__name__}: {err}"), ""))
+
+
+def _portable(err: BaseException) -> BaseException:
+    """A copy of ``err`` that pickles: its arguments and attributes that do not travel
+    between processes (a module, a lock, a parser's state) are left out or given as text,
+    so the parent still reports the user's error (file, line, message), not an internal
+    one."""
+    import pickle
+
+    def travels(value: object) -> bool:
+        try:
+            pickle.dumps(value)
+        except Exception:
+            return False
+        return True
+
+    clone = err.__class__.__new__(err.__class__)
+    clone.args = tuple(a if travels(a) else str(a) for a in err.args)
+    clone.__dict__.update({k: v for k, v in vars(err).items() if travels(v)})
+    pickle.dumps(clone)  # raises when even the copy cannot travel
+    return clone
 
 
 #: The signals a run turns into exceptions (gaitc.cli), held back while a child is forked.

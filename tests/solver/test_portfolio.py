@@ -16,7 +16,7 @@ from unittest import mock
 import pytest
 
 import gaitc
-from gaitc.diagnostics import SolverError
+from gaitc.diagnostics import SolverError, Span, SpecSyntaxError
 from gaitc.diagnostics.processes import claim, first_success, to_parent
 from gaitc.solver import game as game_module
 from gaitc.solver import portfolio, synthesis
@@ -369,3 +369,19 @@ def test_a_game_asked_to_restart_stops_at_a_misfit_step() -> None:
     sym = SymbolicSpec(spec, Options(reordering=False, restart_misfit=True))
     with pytest.raises(OrderMisfit):
         game_module.Game(sym).solve()
+
+
+def _raises_with_a_module() -> object:
+    import json
+
+    err = SpecSyntaxError("bad byte", Span("spec.gait", 3, 7))
+    err.__dict__["parser_state"] = json  # what cannot be pickled (a module)
+    raise err
+
+
+def test_a_child_error_that_does_not_pickle_still_reaches_the_parent_as_itself() -> None:
+    _, outcome = first_success([_raises_with_a_module])
+    assert outcome[0] == "raise"
+    err = outcome[1]
+    assert isinstance(err, SpecSyntaxError) and "bad byte" in str(err)
+    assert "parser_state" not in vars(err)
