@@ -87,13 +87,13 @@ def test_a_directory_is_not_replaced(tmp_path: Path) -> None:
 
 def test_synth_writes_only_a_verified_controller(tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
                                                  capsys: pytest.CaptureFixture[str]) -> None:
-    import gaitc.api.solving
+    import gaitc.forms.synthesis
     from gaitc.verifier.strategy import VerificationReport
 
     def failing(*_args: object, **_kwargs: object) -> VerificationReport:
         return VerificationReport(False, ("planted problem",))
 
-    monkeypatch.setattr(gaitc.api.solving, "verify", failing)
+    monkeypatch.setattr(gaitc.forms.synthesis, "prove", failing)  # the proof synth runs
     out = tmp_path / "c.json"
     assert main(["synth", "specs/patrol_2x2.gait", "-o", str(out)]) == 1
     assert not out.exists()
