@@ -25,6 +25,7 @@ from gaitc.forms.synthesis import (
     SolverName,
     Synthesis,
     Verdict,
+    compacted,
     decide,
     prove,
     solve,
@@ -118,13 +119,8 @@ def vocabulary_of(spec: SpecLike, ctrl: SymbolicController) -> Vocabulary:
 
 def compact(spec: SpecLike, controller: Automaton) -> CompactController:
     """The compact controller (:mod:`gaitc.compact`) of a controller of ``spec`` in any form
-    (:meth:`gaitc.forms.base.ControllerForm.to_compact`); it is not proved here."""
-    from gaitc.forms.reader import check_belongs
-    from gaitc.forms.registry import entry
-
-    bound = as_spec(spec)
-    check_belongs(controller, bound)
-    return entry(controller).to_compact(bound, controller)
+    (:func:`gaitc.forms.synthesis.compacted`); it is not proved here."""
+    return compacted(as_spec(spec), controller)
 
 
 def verify(spec: SpecLike,

@@ -34,6 +34,7 @@ from gaitc.solver.synthesis import FORMS as SOLVER_FORMS
 from ltlcompiler.encoding import EncodingName
 
 if TYPE_CHECKING:
+    from gaitc.compact.controller import CompactController
     from gaitc.sim.graphics import Picture
     from gaitc.verifier.strategy import VerificationReport
 
@@ -318,7 +319,7 @@ def solve(spec: Spec | GR1Spec, kind: ControllerKind, semantics: Semantics,
                 if progress is not None:
                     progress(Stage("writing the strategy as decision diagrams"))
                 symbolic_nodes = len(automaton.nodes)
-                automaton = _compacted(spec, automaton)
+                automaton = compacted(spec, automaton)
         else:
             from gaitc.solver import synthesis
 
@@ -378,12 +379,16 @@ def _slugs_automaton(gr1: GR1Spec, kind: ControllerKind, semantics: Semantics,
     return runner.counterstrategy_from_slugs_text(result.output, gr1, semantics)
 
 
-def _compacted(spec: Spec | GR1Spec, automaton: SymbolicController) -> Automaton:
-    """The compact form of a symbolic controller just synthesized for ``spec``."""
+def compacted(spec: Spec | GR1Spec, automaton: Automaton) -> CompactController:
+    """The compact controller (:mod:`gaitc.compact`) of a controller of ``spec`` in any form
+    (:meth:`gaitc.forms.base.ControllerForm.to_compact`), refused when it belongs to another
+    spec; it is not proved here."""
     from gaitc.core.spec import as_spec
+    from gaitc.forms.reader import check_belongs
     from gaitc.forms.registry import entry
 
     bound = as_spec(spec)
+    check_belongs(automaton, bound)
     return entry(automaton).to_compact(bound, automaton)
 
 
