@@ -49,7 +49,7 @@ PYTHON="${PYTHON:-python3}"
 if [ ! -x .venv/bin/python ]; then
     "$PYTHON" -m venv .venv
 fi
-.venv/bin/python -m pip install -q --disable-pip-version-check -e '.[test,cluster,notebook,docs]'
+.venv/bin/python -m pip install -q --disable-pip-version-check -e '.[test,cluster,notebook,docs,peers]'
 # scripts/check.sh (the test command) runs ruff and mypy before the suite: both come with the
 # test extra, and a setup without them is a failed setup.
 for tool in ruff mypy vermin; do

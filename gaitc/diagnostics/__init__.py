@@ -70,6 +70,11 @@ class SlugsFormatError(GaitcError, ValueError):
     """A .slugsin or .structuredslugs file is malformed."""
 
 
+class PeerFormatError(GaitcError, ValueError):
+    """A spec cannot be written for a peer GR(1) solver (gr1c's .spc, omega's automaton):
+    its liveness mixes current and next values, or a comparison has too many values."""
+
+
 class ControllerError(GaitcError, ValueError):
     """A controller file is malformed or does not belong to the given specification."""
 

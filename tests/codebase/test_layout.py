@@ -11,13 +11,14 @@ from pathlib import Path
 
 from packages import PACKAGES, ROOT, subpackages
 
-# The units of the layering: the packages below ``gaitc`` and the two top-level packages the
+# The units of the layering: the packages below ``gaitc`` and the three top-level packages the
 # design names. A unit may import the units of earlier layers and its own modules, nothing
 # else. ``gaitc`` itself is the lazy facade over ``gaitc.api`` that the command line wraps.
 LAYERS: list[tuple[str, ...]] = [
     ("gaitc.diagnostics",),
     ("gaitc.ir",),
     ("gaitc.solver", "gaitc.verifier", "slugs_bridge"),
+    ("peers",),
     ("ltlcompiler",),
     ("gaitc.core",),
     ("gaitc.compact",),
