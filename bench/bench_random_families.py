@@ -18,11 +18,9 @@ Every spec has 1-4 liveness assumptions and 1-4 liveness guarantees, and is deci
 the default semantics, or the robotics one for one seed in four.  SLUGS runs first on the
 slugsin text gaitc compiles (``slugs [--sysInitRoboticsSemantics] FILE``; this SLUGS build
 has no ``--onlyRealizability``, plain ``slugs FILE`` only decides), and specs SLUGS does not
-decide within ``--slugs-timeout`` are left out.  gaitc then runs with its default options,
-but without its two-process race (the campaign uses one core): the race's two racers run one
-after the other in forked children, each killed at the time limit, and gaitc's time is the
-race's, ``min(static, HEAD_START + sifted)``; the second racer only runs as long as it could
-still win.  Specs up to SMALL_BITS state bits run gaitc's default, which has no race there.
+decide within ``--slugs-timeout`` are left out.  gaitc then runs with its default options
+(one process, the plan of gaitc/solver/portfolio.py) in a forked child killed at the time
+limit; the table names the configuration that answered.
 
 Run: .venv/bin/python bench/bench_random_families.py [--per-shape N] [--minutes M]
      [--shapes a,b] [--findings DIR] [--log FILE]
@@ -38,7 +36,7 @@ import shutil
 import sys
 import tempfile
 import time
-from dataclasses import asdict, dataclass, field, replace
+from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
@@ -46,8 +44,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 import gaitc
 from bench.families.random_shapes import SHAPES, shape_text
 from gaitc.diagnostics import GaitcError, SolverError
-from gaitc.solver.options import RACE_SIFT_AFTER, SMALL_BITS
-from gaitc.solver.portfolio import HEAD_START, SIFTED, STATIC, engine_options
+from gaitc.solver.portfolio import STATIC
 from gaitc.solver.symbolic import Options
 from gaitc.solver.synthesis import state_bits
 from slugs_bridge.runner import run_slugs_check
@@ -109,7 +106,8 @@ def _child(conn: multiprocessing.connection.Connection, path: str, semantics: st
         spec = gaitc.load(path)
         verdict = gaitc.check(spec, semantics=semantics, options=options)
         seconds = time.perf_counter() - started
-        stats = asdict(verdict.stats) if verdict.stats is not None else {}
+        stats: dict[str, object] = asdict(verdict.stats) if verdict.stats is not None else {}
+        stats["engine"] = verdict.engine
         conn.send(("realizable" if verdict.realizable else "unrealizable", seconds, stats))
     except GaitcError as err:
         conn.send(("error", 0.0, {"message": str(err)}))
@@ -146,31 +144,12 @@ def run_config(path: Path, semantics: str, options: Options,
 
 
 def run_gaitc(row: Row, path: Path, limit: float, bits: int) -> None:
-    """gaitc's default engine, its race emulated one racer at a time (see the docstring)."""
-    base = Options()
-    if bits <= SMALL_BITS:  # no race: gaitc's own small path, in the child
-        verdict, seconds, stats = run_config(path, row.semantics, base, limit)
-        row.gaitc, row.gaitc_s, row.engine, row.static_s, row.stats = (
-            verdict, seconds, "small", seconds, stats)
-        return
-    static = replace(engine_options(STATIC, base), sift_after=RACE_SIFT_AFTER)
-    v1, t1, st1 = run_config(path, row.semantics, static, limit)
-    row.static_s = t1
-    decided = ("realizable", "unrealizable")
-    budget = (t1 if v1 in decided else limit) - HEAD_START
-    if budget <= 0.05:
-        row.gaitc, row.gaitc_s, row.engine, row.stats = v1, t1, STATIC, st1
-        return
-    v2, t2, st2 = run_config(path, row.semantics, engine_options(SIFTED, base), budget)
-    if v2 in decided:
-        row.sifted_s = t2
-    if v2 in decided and (v1 not in decided or HEAD_START + t2 < t1):
-        row.gaitc, row.gaitc_s, row.engine, row.stats = v2, HEAD_START + t2, SIFTED, st2
-        if v1 in decided and v1 != v2:
-            row.note = f"racers disagree: static {v1}, sifted {v2}"
-    else:
-        row.gaitc, row.gaitc_s, row.engine, row.stats = v1, t1, STATIC, st1
-    if row.gaitc not in decided:
+    """gaitc's default engine in a child process (``bits``: kept for the table)."""
+    verdict, seconds, stats = run_config(path, row.semantics, Options(), limit)
+    engine = str(stats.pop("engine", "-")) if stats else "-"
+    row.gaitc, row.gaitc_s, row.engine, row.static_s, row.stats = (
+        verdict, seconds, engine, seconds if engine == STATIC else None, stats)
+    if row.gaitc not in ("realizable", "unrealizable"):
         row.gaitc_s = limit
 
 

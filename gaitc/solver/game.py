@@ -21,12 +21,16 @@ from gaitc.diagnostics import SolverError
 from gaitc.ir.cuddlib import cudd
 from gaitc.ir.spec import Semantics
 from gaitc.solver.options import (
+    MISFIT_RATIO,
+    MISFIT_WORK,
     RESIFT_BLOWUP,
     RESIFT_NODES,
-    RESIFT_STEP,
+    RESIFT_WORK,
     RESTART_NODES,
     SMALL_BITS,
-    SMALL_STEP,
+    SMALL_WORK,
+    WORK_EVERY,
+    WORK_SAMPLES,
 )
 from gaitc.solver.progress import Progress, Stage, goal_titles
 from gaitc.solver.symbolic import BDDNode, SymbolicSpec
@@ -54,10 +58,65 @@ def out_of_memory() -> SolverError:
 
 
 class OrderMisfit(Exception):
-    """A game asked to (``Options.restart_misfit``) stops once its fixed order misfits, for
-    its caller to build it again in another order: sifting a manager in place can cost far
-    more than a fresh build of a small spec (a random 18-bit spec of two counters: the first
-    sifting 15 s, with a million nodes in the tables; the sifted build solves in 0.04 s)."""
+    """A game stops once its fixed order misfits, for its caller to build it again in
+    another order: a small game asked to (``Options.restart_misfit``), where sifting a
+    manager in place can cost far more than a fresh build (a random 18-bit spec of two
+    counters: the first sifting 15 s, with a million nodes in the tables; the sifted build
+    solves in 0.04 s), is built in the sifted order; a game whose steps work too hard for
+    their sets (:data:`~gaitc.solver.options.MISFIT_RATIO`, ``dynamic``) is built with
+    CUDD's sifting throughout."""
+
+    def __init__(self, dynamic: bool = False) -> None:
+        super().__init__("the variable order misfits the game's sets")
+        self.dynamic = dynamic
+
+
+@dataclass
+class WorkMeter:
+    """The work of a game's fixpoint steps, in CUDD's computed-table lookups, read at
+    sample steps (:data:`~gaitc.solver.options.WORK_SAMPLES`, then every
+    :data:`~gaitc.solver.options.WORK_EVERY`): a count of operations, so that what the
+    solver decides from it does not depend on the machine's speed or load."""
+
+    steps: int = 0
+    lookups: float = 0.0  # in the game's steps, up to the last sample
+    nodes: float = 0.0  # of the steps' targets and results (each window by its sample)
+    window: float = 0.0  # lookups a step, averaged over the last window
+    _start: float | None = None
+    _last_step: int = 0
+
+    def due(self) -> bool:
+        """Count a step; whether it is a sample step."""
+        self.steps += 1
+        n = self.steps
+        return n in WORK_SAMPLES or (n > WORK_SAMPLES[-1] and n % WORK_EVERY == 0)
+
+    def start(self, lookups: float) -> None:
+        """Start counting at the counter's value ``lookups`` (before the first step)."""
+        self._start, self._last_step = lookups, self.steps
+
+    def sample(self, lookups: float, nodes: int) -> None:
+        """Record the counter ``lookups`` and this step's ``nodes`` (target and result)."""
+        if self._start is None:
+            self.start(lookups)
+            return
+        done = lookups - self._start - self.lookups
+        width = self.steps - self._last_step
+        self.lookups += done
+        self.nodes += width * nodes
+        self.window = done / max(1, width)
+        self._last_step = self.steps
+
+    @property
+    def ratio(self) -> float:
+        """Lookups per node of the steps' sets, so far."""
+        return self.lookups / self.nodes if self.nodes else 0.0
+
+
+#: What a step shows of the order (:meth:`Game._order_misfits`): it fits; sift it (in
+#: place, or a small game's new build in the sifted order); build the game again with
+#: CUDD's sifting throughout.
+_FITS, _SIFT, _REBUILD = 0, 1, 2
 
 
 class ControllerTooLarge(SolverError):
@@ -132,14 +191,14 @@ class Game:
         # variables are pinned (Options.first: an order chosen on purpose, which sifting
         # would undo; the resilience games split each sub-game at the top).
         self._resift = not sym.options.reordering and not sym.options.first
-        # the step time that shows a misfit, the smaller of a small game's (solved without
-        # a race) and a refitted build's (restarted, or sifted once built); None: only the
-        # image's growth does
-        slow: list[float] = [limit for limit, applies in (
-            (SMALL_STEP, len(sym.input_bits) + len(sym.output_bits) <= SMALL_BITS),
-            (RESIFT_STEP, sym.refitted)) if applies]
-        self._slow_step = min(slow) if slow else None
-        self._sift_at: float | None = None  # when a refitted build's game sifts (sift_after)
+        # the work a step that shows a misfit averages, the smaller of a small game's and a
+        # refitted build's (restarted, or sifted once built); None: only the image's
+        # growth and the work's ratio to the sets do
+        slow: list[int] = [limit for limit, applies in (
+            (SMALL_WORK, len(sym.input_bits) + len(sym.output_bits) <= SMALL_BITS),
+            (RESIFT_WORK, sym.refitted)) if applies]
+        self._slow_work = min(slow) if slow else None
+        self.work = WorkMeter()
         self._care_post = sym.bdd.false  # the care set's primed copy, set by solve
         # whether the environment has a liveness assumption (else μY's rings are the
         # attractor's already, and _attractor would only compute them twice)
@@ -189,10 +248,10 @@ class Game:
         titles = goal_titles(sym.spec) or ("true",)
         z, z_post = sym.care, sym.prime(sym.care)
         self._care_post = z_post
+        if self._resift:
+            self.work.start(self._lookups())
         if within is not None:
             z, z_post = z & within, z_post & sym.prime(within)
-        if sym.refitted and sym.options.sift_after is not None:
-            self._sift_at = time.monotonic() + sym.options.sift_after
         layers: list[list[BDDNode]] = [[] for _ in range(n_goals)]
         rings: list[list[BDDNode]] = [[] for _ in range(n_goals)]
         recycled: dict[tuple[int, int], BDDNode] = {}
@@ -245,10 +304,8 @@ class Game:
         sym, lim, st = self.sym, self.limits, self.stats
         n_goals, n_assm = len(sym.sys_live), len(sym.env_live)
         z, z_post = zs
-        started = time.monotonic()
         live = sym.sys_live[j] & z_post  # in a misfit order, the largest set of the goal
-        if (self._restarts() and self._slow_step is not None
-                and time.monotonic() - started > self._slow_step):
+        if self._restarts():  # a small game whose manager holds that many nodes misfits
             raise OrderMisfit
         bound, bound_post = (z, z_post) if sym.options.recycle else (sym.care, self._care_post)
         layers: list[BDDNode] = []
@@ -321,11 +378,13 @@ class Game:
         step = time.monotonic()
         image, result = self._cpre_parts(target)
         step = time.monotonic() - step
-        st.longest_step = max(st.longest_step, step)
-        misfit = self._resift and self._order_misfits(image, target, result, step)
+        st.longest_step = max(st.longest_step, step)  # reported only: nothing depends on it
+        misfit = self._resift and self._order_misfits(image, target, result)
         del image, target  # live nodes steer sifting: hold only the sets the loop needs
         new = result & bound
         del result
+        if misfit == _REBUILD:
+            raise OrderMisfit(dynamic=True)
         if misfit and self._restarts():
             raise OrderMisfit
         if misfit:
@@ -369,26 +428,38 @@ class Game:
             if z <= y:
                 return y, y_post, ring
 
-    def _order_misfits(self, image: BDDNode, target: BDDNode, result: BDDNode,
-                       seconds: float) -> bool:
-        """Whether a CPre step from ``target`` to ``result`` through the ∃y' ``image``,
-        which took ``seconds``, shows that the fixed order does not fit the fixpoint's
-        sets: in a game of at most :data:`SMALL_BITS` state bits, a step slower than
-        :data:`SMALL_STEP`; after a refitted build (``SymbolicSpec.refitted``), one slower
-        than :data:`RESIFT_STEP`, or any step once the fixpoint has run
-        ``Options.sift_after`` seconds; in any other, an image of over
-        :data:`RESIFT_NODES` nodes and over :data:`RESIFT_BLOWUP` times the nodes of the
-        target and the result together (counted only then: counting is linear in the
-        sets)."""
-        if self._slow_step is not None and seconds > self._slow_step:
-            return True
-        if self._sift_at is not None and time.monotonic() > self._sift_at:
-            return True
+    def _order_misfits(self, image: BDDNode, target: BDDNode, result: BDDNode) -> int:
+        """Whether a CPre step from ``target`` to ``result`` through the ∃y' ``image``
+        shows that the fixed order does not fit the fixpoint's sets, by counts of nodes and
+        of CUDD's operations (:class:`WorkMeter`), never by time: in a game of at most
+        :data:`SMALL_BITS` state bits, steps averaging over :data:`SMALL_WORK` lookups
+        between two samples; after a refitted build (``SymbolicSpec.refitted``), over
+        :data:`RESIFT_WORK`; in any other, an image of over :data:`RESIFT_NODES` nodes and
+        over :data:`RESIFT_BLOWUP` times the nodes of the target and the result together
+        (counted only then: counting is linear in the sets), or, when the caller can build
+        the game again (``Options.rebuild_misfit``), past :data:`MISFIT_WORK` lookups in
+        all, over :data:`MISFIT_RATIO` lookups a node of the steps' sets, which asks for a
+        new build sifting throughout (:data:`_REBUILD`)."""
+        meter = self.work
+        if meter.due():
+            meter.sample(self._lookups(), target.dag_size + result.dag_size)
+            if self._slow_work is not None and meter.window > self._slow_work:
+                return _SIFT
+            if (self.sym.options.rebuild_misfit and not self.sym.refitted
+                    and meter.lookups > MISFIT_WORK and meter.ratio > MISFIT_RATIO):
+                return _REBUILD
         if self.sym.refitted:
-            return False
+            return _FITS
         size: int = image.dag_size
-        return size > RESIFT_NODES and size > RESIFT_BLOWUP * (target.dag_size
-                                                               + result.dag_size)
+        blown = size > RESIFT_NODES and size > RESIFT_BLOWUP * (target.dag_size
+                                                                + result.dag_size)
+        return _SIFT if blown else _FITS
+
+    def _lookups(self) -> float:
+        """CUDD's count of computed-table lookups so far (reading it scans CUDD's tables)."""
+        with warnings.catch_warnings():  # dd warns that the unrelated 'mem' changed unit
+            warnings.simplefilter("ignore")
+            return float(self.sym.bdd.statistics()["cache_lookups"])
 
     def _restarts(self) -> bool:
         """Whether a misfit now stops the game (:class:`OrderMisfit`) instead of sifting in

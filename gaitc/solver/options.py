@@ -26,35 +26,46 @@ SIFT_TRIGGER: Final = 400
 #: sifted once).
 SIFT_BLOWUP: Final = 10
 
-#: After such a restart the fixpoint runs in the sifted order, fixed, until one of its CPre
-#: steps takes this many seconds; then CUDD's sifting is turned on for the rest of the game
-#: (``Game.resume_sifting``; the step time is measured anyway, while counting live nodes
-#: scans CUDD's unique table).  Measured on the AMBA arbiters, solve only: a fixed order
-#: wins up to 6 masters (slowest step 0.035 s; 0.7 s against 1.8 s sifting throughout),
-#: sifting from 8 masters on (slowest steps 0.1-1.3 s; 9 masters: 92 s fixed, 20-30 s).
-RESIFT_STEP: Final = 0.05
+#: A fixpoint step's work is counted in CUDD's computed-table lookups (one per recursive
+#: call of an operation), a count that does not depend on the machine's speed or load; the
+#: solver reads it at sample steps only (:data:`WORK_SAMPLES`), since reading CUDD's
+#: statistics scans its tables (0.36 ms).  Measured: 110-450 ns a lookup on this machine,
+#: so 200,000 lookups are about 50 ms of work.
+#:
+#: After a restart (or a build sifted once) the fixpoint runs in the sifted order, fixed,
+#: until its steps average more than this many lookups between two samples; then CUDD's
+#: sifting is turned on for the rest of the game (``Game.resume_sifting``).  Measured on the
+#: AMBA arbiters, solve only: a fixed order wins up to 6 masters (1,600 lookups a step at 5
+#: masters, a slowest step of 60,000), sifting from 8 masters on (slowest steps 0.1-1.3 s).
+RESIFT_WORK: Final = 200_000
 
-#: In the race (gaitc.solver.portfolio) the second racer builds in a sifted order too, so a
-#: restarted static build would run the same fixed-order game twice.  The static racer's
-#: game (``Options.sift_after``) therefore sifts throughout once a refitted build's fixpoint
-#: has run this many seconds, and the second racer keeps its order fixed.  Measured, the
-#: static racer alone, solve seconds fixed against switching at 0.3 s: GenBuf 24 senders 6.4
-#: against 3.3, 16 senders 1.2 against 1.3; AMBA (bit encoding) 3 masters 1.15 against 0.96,
-#: 5 masters 3.3 against 3.3; AMBA (integer) 6 masters 0.94 against 1.19, 8 masters 3.0
-#: against 2.5.  Where the fixed order wins, the second racer answers with it.
-RACE_SIFT_AFTER: Final = 0.3
+#: The steps after which the work counter is read: 1, 2, 4, 8, 16, then every 32 steps.
+WORK_SAMPLES: Final = (1, 2, 4, 8, 16)
+WORK_EVERY: Final = 32
+
+#: A game in the static order, not refitted, whose steps have done more than MISFIT_WORK
+#: lookups in all, at over MISFIT_RATIO lookups per node of their targets and results,
+#: misfits its sets: it is built again with CUDD's sifting throughout
+#: (:class:`~gaitc.solver.game.OrderMisfit`, ``dynamic``).  Measured, the ratio at 4
+#: million lookups: SLUGS's EvasionOnGrid example 4.4 (its sets want the request bits on
+#: top and each axis's flags beside the axis: 186 s in the static order, 54 s sifting
+#: throughout, about 1 s lost to the judgement); gridworld 1024 x 1024 0.35; the thesis
+#: grids 0.3-0.9 and under 2 million lookups in all; the hazard grids 2.4 and under 0.3
+#: million.  Sifting in place from the static order's sets instead found a worse order
+#: (221 s).
+MISFIT_WORK: Final = 4_000_000
+MISFIT_RATIO: Final = 3.0
 
 #: Specs of at most this many state bits are solved in this process in the static order,
 #: without a race (gaitc.solver.portfolio): no set of states over 20 bits has more than 2^20 BDD
 #: nodes and the build restarts before a partial relation passes 8,000 (SIFT_TRIGGER a
-#: bit), while a fork costs about 0.01 s against solves of 0.01-0.03 s (the SLUGS examples,
-#: the random corpus: twice their time raced).  A step of such a game slower than
-#: SMALL_STEP seconds shows that its order misfits, and sifting 40 variables is cheap: the
-#: moving obstacle 8 x 8 (18 bits) has steps of 0.02-0.07 s in the guards order, 1.0 s to
-#: solve fixed and 0.2 s sifting; the SLUGS examples and random-corpus specs this small
-#: take at most 0.004 s a step (thesis robots A and B have 27 bits and more).
+#: bit).  Steps of such a game that average more than SMALL_WORK lookups show that its
+#: order misfits, and sifting 40 variables is cheap: the moving obstacle 8 x 8 (18 bits)
+#: has steps of 0.02-0.07 s in the guards order, 1.0 s to solve fixed and 0.2 s sifting;
+#: the SLUGS examples and random-corpus specs this small take at most 0.004 s a step
+#: (thesis robots A and B have 27 bits and more).
 SMALL_BITS: Final = 20
-SMALL_STEP: Final = 0.01
+SMALL_WORK: Final = 40_000
 #: A small game whose misfit step finds more live nodes than this is built again in the
 #: sifted order rather than sifted in place (gaitc.solver.game.OrderMisfit): a random 18-bit
 #: spec of two counters held a million nodes then, and its first sifting took 15 s.
@@ -82,8 +93,6 @@ class Options:
     sift_above: int | None = SIFT_TRIGGER  # nodes a bit past which the build sifts anew;
     # never with pinned variables (``first``), whose order was chosen on purpose
     sift_blowup: float | None = SIFT_BLOWUP  # ρs / its clauses past which it is sifted once
-    sift_after: float | None = None  # a refitted build's game sifts throughout after this
-    # many seconds of fixpoint (the race's static racer: RACE_SIFT_AFTER)
     partitioned: bool = False  # ρs as clusters with early quantification (slow: see bench)
     recycle: bool = False  # start inner X fixpoints from the previous round's values (slower here)
     attractor: bool = True  # start each goal's μY from the system's attractor of the goal
@@ -91,6 +100,8 @@ class Options:
     cluster_limit: int = 2500  # node limit when merging ρs parts into clusters
     memory_mb: int | None = None  # CUDD's hard memory limit (its own tables and caches)
     first: tuple[str, ...] = ()  # variables pinned to the top of the order (rigid parameters)
+    rebuild_misfit: bool = False  # a game working too hard for its sets raises OrderMisfit
+    # (dynamic) for its caller to build it again sifting throughout (gaitc.solver.portfolio)
     restart_misfit: bool = False  # a misfit order raises OrderMisfit instead of sifting in
     # place (gaitc.solver.portfolio's small games, which then build again in the sifted order)
 

@@ -1,41 +1,37 @@
-"""The engine chooses its configuration per problem: a race of two variable orders (issue 12).
+"""The engine's plan per problem: one process, one order at a time, every switch by a count.
 
 The solver's defaults (the guards-first static order, CUDD's dynamic reordering off) were
 tuned on the thesis family, where sifting costs 2-8x (docs/design-notes.md, section 4); on
-other families, such as the AMBA AHB arbiters, building the transition relation in that
-order blows up (AMBA with 4 masters: 160 s to build what takes 0.1 s in a sifted order).
-No cheap test tells the two apart before solving, so two forked processes race:
+other families they misfit, and the engine switches, always on a count of nodes or of
+CUDD's operations and never on the time a step took, so that a spec takes the same path,
+and about the same time, on every run and on a loaded machine:
 
-1. the static guards order builds and solves the spec; most specs are decided within
-   :data:`HEAD_START` seconds, at the cost of one fork (a few milliseconds);
-2. then a second process joins, niced: the same guards order, but CUDD sifts variable
-   groups (each bit with its primed copy) whenever the relation grows while it is built,
-   once more when it is built, and then keeps that order fixed for the fixpoint (the
-   first racer, whose build may have started again sifting too, sifts throughout its
-   fixpoint after :data:`~gaitc.solver.options.RACE_SIFT_AFTER` seconds, so the two differ). The
-   first answer wins and the other process is killed; a synthesis is won by the racer
-   that solves the game first (it claims the answer, :func:`gaitc.diagnostics.processes.claim`),
-   which then extracts the controller alone, so a long extraction does not run twice,
-   in twice the memory. The machines gaitc targets have two cores, so each racer runs at
-   full speed.
+1. the build starts in the static order and starts again with CUDD sifting when a
+   partial transition relation passes :data:`~gaitc.solver.options.SIFT_TRIGGER` nodes a
+   bit (the AMBA arbiters), or is sifted once built when ρs comes out far larger than its
+   clauses (:data:`~gaitc.solver.options.SIFT_BLOWUP`; AMBA in the bit encoding);
+2. the game then sifts in place when a step's image blows up
+   (:data:`~gaitc.solver.options.RESIFT_BLOWUP`; the moving-obstacle games) or, after a
+   refitted build, when its steps do too much work
+   (:data:`~gaitc.solver.options.RESIFT_WORK`);
+3. a game whose steps work far harder than its sets are large
+   (:data:`~gaitc.solver.options.MISFIT_RATIO`; SLUGS's EvasionOnGrid example) stops and is
+   built again with CUDD's sifting throughout, the configuration of the peers, gr1c and
+   SLUGS; a small game (at most :data:`~gaitc.solver.options.SMALL_BITS` state bits) whose
+   steps are slow is built again in the sifted order
+   (:class:`~gaitc.solver.game.OrderMisfit`).
 
-Sifting while building and then solving in a fixed order beat sifting throughout: on
-AMBA the fixpoint then takes 1.1 s at 5 masters and 11 s at 8 (dynamic sifting
-throughout: 1.6 s and over 120 s), and on the thesis grid 10 x 10 at health 4 (binary)
-5.9 s against 16 s for the static order.
+Until issue 50 two forked processes raced here, the static order against a sifted one,
+the first answer winning. The race cost a second core's CPU and twice the memory for a
+gain of at most 25 % on the families measured (AMBA in the bit encoding with 3 and 4
+masters), and it made the time of one spec vary up to 8x between runs (a 1024 x 1024
+gridworld: 19.8 s to 160 s), since which racer won, and when each switched to sifting,
+depended on the machine's load. A run under ``--timeout`` or ``--memory-limit`` still runs
+in a child process that can be killed (:mod:`gaitc.api.isolation`).
 
-The static solve runs in a child, not in this process, because one CUDD operation can
-take minutes and holds the interpreter lock: on AMBA with 5 masters, simplifying the
-transition relation in the guards order is one such call, so a head start in this
-process could not be cut off.
-
-This is the portfolio idea of Firman, Maoz and Ringert, "Performance heuristics for GR(1)
-synthesis and related algorithms" (Acta Informatica 57, 2020), reduced to the switch
-that paid here. An explicit ``Options(reordering=True/False)``, a memory budget (two
-racers would need twice the memory), a platform without ``fork``, or a spec of at most
-:data:`SMALL_BITS` state bits skips the race; such a small spec is solved in this process,
-in the static order until a step shows that order misfits, and then built again in the
-sifted order (:class:`~gaitc.solver.game.OrderMisfit`).
+References: the portfolio idea of Firman, Maoz and Ringert, "Performance heuristics for
+GR(1) synthesis and related algorithms" (Acta Informatica 57, 2020), reduced to switches
+that are decided by counts.
 """
 
 from __future__ import annotations
@@ -49,29 +45,20 @@ from typing import Final, TypeVar
 from gaitc.diagnostics import GaitcError, SolverError
 from gaitc.diagnostics.processes import GRACE, can_fork, first_success, to_parent
 from gaitc.solver.game import Limits, OrderMisfit, out_of_memory, time_limit_error
-from gaitc.solver.options import RACE_SIFT_AFTER, SMALL_BITS
+from gaitc.solver.options import SMALL_BITS
 from gaitc.solver.symbolic import Options
 
 T = TypeVar("T")
-__all__ = ["DYNAMIC", "HEAD_START", "SIFTED", "SMALL_BITS", "STATIC", "engine_options",
-           "solve_chosen"]
+__all__ = ["DYNAMIC", "SIFTED", "SMALL_BITS", "STATIC", "engine_options", "solve_chosen"]
 
-#: Seconds the static configuration runs alone.  Rows that the sifted order solves in half
-#: a second pay the head start in full (thesis 10 x 10 health 3 binary: 0.77 s raced after
-#: 0.25 s, 0.57 s after 0.1 s, 0.53 s for its best configuration alone).
-HEAD_START: Final = 0.1
-#: The second racer runs at a lower priority: on an idle two-core machine it still gets its
-#: own core, and on a busy one it does not slow the first down (thesis robot A on a loaded
-#: machine: 1.64 s raced at equal priority against 1.02 s for the static order alone).
-SECOND_NICENESS: Final = 10
 STATIC: Final = "static order"
 SIFTED: Final = "sifted order"
-DYNAMIC: Final = "dynamic reordering"  # only when asked for: Options(reordering=True)
+DYNAMIC: Final = "dynamic reordering"
 
 
 def engine_options(engine: str, base: Options | None = None) -> Options:
-    """The options of the racer named ``engine`` (to solve variants of a spec without a
-    race once the race on the spec itself has chosen)."""
+    """The options of the configuration named ``engine`` (to solve variants of a spec in
+    the configuration the plan chose for the spec itself)."""
     base = base or Options()
     if engine == SIFTED:
         return replace(base, reordering=False, sift_build=True)
@@ -82,36 +69,26 @@ def engine_options(engine: str, base: Options | None = None) -> Options:
 
 def solve_chosen(run: Callable[[Options, Limits], T], options: Options, limits: Limits,
                  bits: int | None = None) -> tuple[T, str]:
-    """``run(options, limits)`` in the configuration the engine chooses, and its name;
-    ``bits`` is the spec's number of state bits, when the caller knows it."""
-    if options.reordering is not None or options.memory_mb is not None or not can_fork():
-        return run(options, limits), DYNAMIC if options.reordering else STATIC
-    if bits is not None and bits <= SMALL_BITS:
-        try:
-            return run(replace(engine_options(STATIC, options), restart_misfit=True),
-                       limits), STATIC
-        except OrderMisfit:  # a step showed the guards order misfits: build it sifted
-            return run(engine_options(SIFTED, options), limits), SIFTED
-    # Progress comes back through the pipes: the static racer's, and once a racer has
-    # claimed the answer (gaitc.solver.synthesis: it solved the game first), that racer's.
+    """``run(options, limits)`` in the configuration the plan chooses, and its name;
+    ``bits`` is the spec's number of state bits, when the caller knows it.
+
+    Options that fix the configuration (``reordering`` set, a memory budget) are run as
+    given. Otherwise the static configuration runs first and, when its game shows that
+    its order misfits (:class:`~gaitc.solver.game.OrderMisfit`), the spec is built again
+    in the configuration the misfit names.
+
+    With a time limit the plan runs in one forked child, killed :data:`GRACE` seconds
+    past the limit: one CUDD operation can take minutes and holds the interpreter lock,
+    so the deadline checks between fixpoint steps could not stop it here."""
+    if limits.timeout is None or not can_fork():
+        return _plan(run, options, limits, bits)
     reporting = replace(limits, progress=None if limits.progress is None else to_parent)
-    # The racers differ in the game too: a restarted static build is sifted like the
-    # second racer's, so its game sifts throughout after a while and the other stays fixed.
-    static = replace(engine_options(STATIC, options), sift_after=RACE_SIFT_AFTER)
-    sifted = engine_options(SIFTED, options)
-
-    def second() -> T:
-        os.nice(SECOND_NICENESS)  # in its own process: yields the CPU it would steal
-        return run(sifted, reporting)
-
-    works = [lambda: run(static, reporting), second]
-    deadline = None if limits.timeout is None else limits.started + limits.timeout + GRACE
-    index, outcome = first_success(works, deadline, delays=(0.0, HEAD_START),
-                                   relay=limits.progress)
-    names = (STATIC, SIFTED)
+    deadline = limits.started + limits.timeout + GRACE
+    _, outcome = first_success([lambda: _plan(run, options, reporting, bits)], deadline,
+                               relay=limits.progress)
     if outcome[0] == "ok":
-        answer: T = outcome[1]
-        return answer, names[index]
+        answer: tuple[T, str] = outcome[1]
+        return answer
     if outcome[0] == "raise":
         err = outcome[1]
         if isinstance(err, MemoryError):
@@ -120,6 +97,21 @@ def solve_chosen(run: Callable[[Options, Limits], T], options: Options, limits: 
             print(outcome[2], file=sys.stderr, end="")
         raise err
     if outcome[0] == "timeout":
-        raise time_limit_error(limits.timeout or 0.0)
-    raise SolverError(f"both solver processes ended without an answer (exit status "
+        raise time_limit_error(limits.timeout)
+    raise SolverError(f"the solver process ended without an answer (exit status "
                       f"{outcome[1]}); the machine may be out of memory")
+
+
+def _plan(run: Callable[[Options, Limits], T], options: Options, limits: Limits,
+          bits: int | None) -> tuple[T, str]:
+    if options.reordering is not None or options.memory_mb is not None:
+        return run(options, limits), DYNAMIC if options.reordering else STATIC
+    small = bits is not None and bits <= SMALL_BITS
+    try:
+        return run(replace(engine_options(STATIC, options), restart_misfit=small,
+                           rebuild_misfit=True), limits), STATIC
+    except OrderMisfit as misfit:
+        engine = DYNAMIC if misfit.dynamic else SIFTED
+        limits.report("building the transition relation again",
+                      "sifting throughout" if misfit.dynamic else "in a sifted order")
+        return run(engine_options(engine, options), limits), engine

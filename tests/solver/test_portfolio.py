@@ -1,8 +1,11 @@
-"""The engine's choice of configuration (gaitc.solver.portfolio): a head start, then a race.
+"""The engine's plan (gaitc.solver.portfolio): the static order, then the configuration a
+misfit names, every switch decided by counts.
 
-The race itself is tested with stand-in solvers (one that never finishes, one that fails,
-one that answers), and for real by starting both racers at once on the shipped specs:
-verdicts and controllers must not depend on which configuration answered.
+The plan is tested with stand-in solvers (one that never finishes, one that fails, one
+that misfits), and for real on the shipped specs: verdicts and controllers must not depend
+on the configuration, and two runs of one spec take the same path. The child processes of
+:func:`gaitc.diagnostics.processes.first_success` (a time limit, isolation, the language
+server's jobs) are tested here too.
 """
 
 from __future__ import annotations
@@ -29,19 +32,20 @@ ROOT = Path(__file__).resolve().parents[2]
 SPECS = ["patrol_2x2", "unrealizable_2x2", "thesis_robot_b", "corridor_hazard"]
 
 
-def _slow_unless_sifted(options: Options, limits: Limits) -> str:
-    if not options.sift_build:
-        time.sleep(60)  # the static configuration never finishes (one long CUDD call)
-    return "answer"
+def test_a_misfit_builds_the_spec_again_in_the_configuration_it_names() -> None:
+    seen: list[Options] = []
 
+    def run(options: Options, limits: Limits) -> Options:
+        seen.append(options)
+        if options.reordering is False and not options.sift_build:
+            raise OrderMisfit(dynamic=dynamic)
+        return options
 
-def test_a_spec_the_static_order_cannot_decide_is_won_by_the_other_racer(
-        monkeypatch: pytest.MonkeyPatch) -> None:
-    monkeypatch.setattr(portfolio, "HEAD_START", 0.1)
-    started = time.monotonic()
-    answer, engine = solve_chosen(_slow_unless_sifted, Options(), Limits(timeout=30))
-    assert (answer, engine) == ("answer", SIFTED)
-    assert time.monotonic() - started < 10
+    for dynamic, engine in ((True, DYNAMIC), (False, SIFTED)):  # noqa: B007 (run reads it)
+        seen.clear()
+        answer, chosen = solve_chosen(run, Options(), Limits())
+        assert chosen == engine and answer == engine_options(engine)
+        assert [o.reordering for o in seen] == [False, engine == DYNAMIC]
 
 
 def test_a_quick_spec_is_answered_by_the_static_order_alone() -> None:
@@ -51,38 +55,39 @@ def test_a_quick_spec_is_answered_by_the_static_order_alone() -> None:
     assert solve_chosen(run, Options(), Limits()) == ((False, "guards"), STATIC)
 
 
-def test_the_other_racer_starts_at_once_when_the_first_fails(
-        monkeypatch: pytest.MonkeyPatch) -> None:
-    monkeypatch.setattr(portfolio, "HEAD_START", 30.0)
+def test_a_failure_of_the_static_configuration_is_the_answer() -> None:
+    """No second configuration runs after an error: the plan switches on counts only."""
+    seen: list[Options] = []
 
     def static_fails(options: Options, limits: Limits) -> str:
-        if not options.sift_build:
-            raise MemoryError
-        return "answer"
+        seen.append(options)
+        raise MemoryError
 
-    started = time.monotonic()
-    assert solve_chosen(static_fails, Options(), Limits()) == ("answer", SIFTED)
-    assert time.monotonic() - started < 10
+    with pytest.raises(MemoryError):
+        solve_chosen(static_fails, Options(), Limits())
+    assert len(seen) == 1
 
 
-def test_a_small_spec_is_solved_here_without_a_race(monkeypatch: pytest.MonkeyPatch) -> None:
+def test_without_a_time_limit_the_plan_runs_in_this_process(
+        monkeypatch: pytest.MonkeyPatch) -> None:
     def no_fork(*args: Any, **kwargs: Any) -> Any:
-        raise AssertionError("a spec of at most SMALL_BITS state bits was raced")
+        raise AssertionError("the solver forked")
 
     seen: list[Options] = []
 
     def run(options: Options, limits: Limits) -> str:
-        seen.append(options)  # in this process: a racer's list would not come back
+        seen.append(options)  # in this process: a child's list would not come back
         return "answer"
 
     monkeypatch.setattr(portfolio, "first_success", no_fork)
-    assert solve_chosen(run, Options(), Limits(), bits=portfolio.SMALL_BITS) == ("answer", STATIC)
-    assert [o.reordering for o in seen] == [False]
+    for bits in (portfolio.SMALL_BITS, portfolio.SMALL_BITS + 1, None):
+        assert solve_chosen(run, Options(), Limits(), bits=bits) == ("answer", STATIC)
+    assert [o.restart_misfit for o in seen] == [True, False, False]
     corpus_spec = gaitc.load(ROOT / "specs" / "patrol_2x2.gait", "binary").gr1
     assert synthesis.state_bits(corpus_spec) <= portfolio.SMALL_BITS
     assert synthesis.check(corpus_spec).engine == STATIC
-    with pytest.raises(AssertionError, match="was raced"):
-        solve_chosen(run, Options(), Limits(), bits=portfolio.SMALL_BITS + 1)
+    with pytest.raises(AssertionError, match="forked"):
+        solve_chosen(run, Options(), Limits(timeout=5))
 
 
 def test_an_explicit_choice_or_a_memory_budget_is_never_raced() -> None:
@@ -97,9 +102,7 @@ def test_an_explicit_choice_or_a_memory_budget_is_never_raced() -> None:
     assert [o.reordering for o in seen] == [True, None]
 
 
-def test_the_race_keeps_the_time_limit(monkeypatch: pytest.MonkeyPatch) -> None:
-    monkeypatch.setattr(portfolio, "HEAD_START", 0.1)
-
+def test_the_time_limit_holds_through_one_long_call() -> None:
     def never(options: Options, limits: Limits) -> None:
         time.sleep(60)  # never checks its own time limit
 
@@ -109,8 +112,7 @@ def test_the_race_keeps_the_time_limit(monkeypatch: pytest.MonkeyPatch) -> None:
     assert time.monotonic() - started < 2.5
 
 
-def test_when_both_racers_fail_the_first_error_is_raised(
-        monkeypatch: pytest.MonkeyPatch) -> None:
+def test_an_error_of_the_static_configuration_is_raised() -> None:
     def broken(options: Options, limits: Limits) -> None:
         raise SolverError(f"failed with sift_build={options.sift_build}")
 
@@ -119,14 +121,13 @@ def test_when_both_racers_fail_the_first_error_is_raised(
 
 
 @pytest.mark.parametrize("name", SPECS)
-def test_verdicts_and_controllers_do_not_depend_on_the_winner(
-        name: str, monkeypatch: pytest.MonkeyPatch) -> None:
+def test_verdicts_and_controllers_do_not_depend_on_the_configuration(name: str) -> None:
     gr1 = gaitc.load(ROOT / "specs" / f"{name}.gait", "binary").gr1
     alone = synthesis.check(gr1).realizable
-    monkeypatch.setattr(portfolio, "HEAD_START", 0.0)  # both racers from the start
-    raced = synthesis.check(gr1)
-    assert raced.realizable == alone
-    assert raced.engine in (STATIC, SIFTED)
+    for engine in (STATIC, SIFTED, DYNAMIC):
+        assert synthesis.check(gr1, options=engine_options(engine)).realizable == alone
+    limited = synthesis.check(gr1, timeout=60)  # the plan in a child process
+    assert limited.realizable == alone and limited.engine == STATIC
     controller = synthesis.synthesize(gr1)
     assert (controller is not None) == alone
     if controller is not None:
@@ -139,9 +140,9 @@ def _decide_in_a_daemon(queue: Any) -> None:
     queue.put((result.realizable, result.engine))
 
 
-def test_a_daemonic_worker_solves_without_a_race() -> None:
+def test_a_daemonic_worker_solves_in_itself() -> None:
     """Daemonic processes (bench/fuzz.py's workers) may not have children: the solver then
-    runs the static order in the worker itself instead of failing."""
+    runs the plan in the worker itself instead of failing."""
     import multiprocessing
 
     context = multiprocessing.get_context("fork")
@@ -156,9 +157,10 @@ def test_a_daemonic_worker_solves_without_a_race() -> None:
 
 @pytest.mark.parametrize("name", ["patrol_2x2", "corridor_hazard", "thesis_robot_b"])
 @pytest.mark.parametrize("semantics", ["default", "robotics"])
-def test_both_racers_write_the_same_controller_byte_for_byte(name: str, semantics: str) -> None:
+def test_every_configuration_writes_the_same_controller_byte_for_byte(
+        name: str, semantics: str) -> None:
     """Moves are chosen in the static order whatever the BDD order, so the file a user gets
-    does not depend on which configuration won the race (on a loaded machine, either)."""
+    does not depend on which configuration the plan chose."""
     from gaitc.ir.bddfile import SymbolicController
     from gaitc.ir.controller import controller_to_json
     from gaitc.sim.environments import RandomEnvironment
@@ -204,13 +206,14 @@ def test_a_static_build_too_large_for_its_order_starts_again_sifting(tmp_path: P
         game, plain = Game(sym), Game(never)
         won, plain_won = game.solve().winning, plain.solve().winning
         assert sym.restarted is sifts
-        with mock.patch.object(game_module, "RESIFT_STEP", -1.0):  # sift again at once
+        with mock.patch.object(game_module, "RESIFT_WORK", -1):  # sift again at once
             again = SymbolicSpec(gr1, Options(reordering=False))
             resifted = Game(again)
             again_won = resifted.solve().winning
         assert again.bdd.configure()["reordering"] is sifts
         forced = [mock.patch.object(game_module, name, -1.0)
-                  for name in ("RESIFT_STEP", "SMALL_STEP", "RESIFT_NODES", "RESIFT_BLOWUP")]
+                  for name in ("RESIFT_WORK", "SMALL_WORK", "RESIFT_NODES", "RESIFT_BLOWUP",
+                               "MISFIT_WORK", "MISFIT_RATIO")]
         for patch in forced:
             patch.start()
         try:
@@ -256,36 +259,45 @@ def test_a_static_build_far_larger_than_its_clauses_is_sifted_once_built(tmp_pat
                 plain_won, semantics)
 
 
-def test_the_racers_differ_in_the_game_as_well(tmp_path: Path) -> None:
-    """The static racer's game sifts throughout after RACE_SIFT_AFTER seconds, but only after
-    a refitted build (which the second racer's resembles); the second racer stays fixed."""
+def test_a_game_whose_steps_work_too_hard_for_its_sets_is_built_again_sifting(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """The rule of MISFIT_RATIO, forced by thresholds of zero: the static game stops with a
+    dynamic misfit, the plan answers sifting throughout, and the winning region is the
+    same; a refitted build (GenBuf) or an order pinned on purpose is never judged."""
     from bench.families.genbuf import genbuf_text
-    from gaitc.solver.game import Game
-    from gaitc.solver.options import RACE_SIFT_AFTER
-    from gaitc.solver.symbolic import SymbolicSpec
     from slugs_bridge.formats import load_spec_file
 
-    def run(options: Options, limits: Limits) -> float | None:
-        return options.sift_after  # the racer runs in a child: its answer tells its options
-
-    assert solve_chosen(run, Options(), Limits()) == (RACE_SIFT_AFTER, STATIC)
-    assert engine_options(SIFTED).sift_after is None and engine_options(STATIC).sift_after is None
-
-    path = tmp_path / "genbuf8.structuredslugs"
-    path.write_text(genbuf_text(8), encoding="utf-8")
+    path = tmp_path / "genbuf4.structuredslugs"
+    path.write_text(genbuf_text(4), encoding="utf-8")
     genbuf = load_spec_file(str(path))
-    robot_a = gaitc.load(ROOT / "specs" / "thesis_robot_a.gait").gr1
-    for gr1, refits in ((genbuf, True), (robot_a, False)):
-        sym = SymbolicSpec(gr1, replace(engine_options(STATIC), sift_after=0.0))
-        assert sym.refitted is refits
-        game = Game(sym)
-        won = game.solve().winning
-        assert sym.bdd.configure()["reordering"] is refits
-        plain = Game(SymbolicSpec(gr1, engine_options(STATIC)))
-        plain_won = plain.solve().winning
-        for semantics in ("default", "robotics"):
-            assert game.initially_winning(won, semantics) == plain.initially_winning(
-                plain_won, semantics)
+    robot_b = gaitc.load(ROOT / "specs" / "thesis_robot_b.gait", "binary").gr1
+    monkeypatch.setattr(game_module, "MISFIT_WORK", 0)
+    monkeypatch.setattr(game_module, "MISFIT_RATIO", 0.0)
+    static = SymbolicSpec(robot_b, replace(engine_options(STATIC), rebuild_misfit=True))
+    assert not static.refitted
+    with pytest.raises(OrderMisfit) as raised:
+        game_module.Game(static).solve()
+    assert raised.value.dynamic
+    verdict = synthesis.check(robot_b)
+    assert verdict.realizable and verdict.engine == DYNAMIC
+    game_module.Game(SymbolicSpec(robot_b, engine_options(STATIC))).solve()  # not asked to
+    pinned = SymbolicSpec(robot_b, Options(reordering=False, rebuild_misfit=True,
+                                           first=(robot_b.inputs[0].name,)))
+    game_module.Game(pinned).solve()  # no misfit: the order was chosen on purpose
+    refitted = SymbolicSpec(genbuf, replace(engine_options(STATIC), rebuild_misfit=True))
+    assert refitted.refitted
+    assert game_module.Game(refitted).solve().winning is not None
+
+
+@pytest.mark.parametrize("name", ["thesis_robot_a", "corridor_hazard"])
+def test_the_plan_takes_the_same_path_on_every_run(name: str) -> None:
+    """No decision depends on time: two runs, here and in a child, count the same steps."""
+    gr1 = gaitc.load(ROOT / "specs" / f"{name}.gait").gr1
+    first, second = synthesis.check(gr1), synthesis.check(gr1, timeout=120)
+    assert first.engine == second.engine
+    assert ((first.stats.z_iterations, first.stats.y_iterations, first.stats.x_iterations)
+            == (second.stats.z_iterations, second.stats.y_iterations,
+                second.stats.x_iterations))
 
 
 def _claims_then(answer: str, seconds: float, fail: bool = False) -> Any:

@@ -70,10 +70,9 @@ def _holds(sym: SymbolicSpec, u: object, point: dict[str, bool]) -> bool:
         Options(sift_build=True, care=False, order="occurrence"),
         Options(sift_above=0),  # every build starts again, sifting
         Options(sift_above=None, sift_blowup=0),  # every static build is sifted once built
-        Options(sift_above=0, sift_after=0.0),  # restarted, and sifting from the first step
     ],
     ids=["plain", "clustered", "reordering", "reorder-once", "no-care", "race-second",
-         "sift-build", "sift-restart", "sift-settle", "sift-after"],
+         "sift-build", "sift-restart", "sift-settle"],
 )
 @settings(max_examples=25, deadline=None)
 @given(spec=st.one_of(tiny_specs(), one_hot_specs()))
@@ -91,7 +90,7 @@ def test_a_restarted_build_that_sifts_again_in_the_game_gives_the_same_winning_r
     """The restart's second sifting (Game.resume_sifting), forced at the first step."""
     base = SymbolicSpec(spec)
     other = SymbolicSpec(spec, Options(sift_above=0))  # restarts if it has ρ clauses
-    with mock.patch.object(game_module, "RESIFT_STEP", -1.0):
+    with mock.patch.object(game_module, "RESIFT_WORK", -1):
         game = Game(other)
         w2 = game.solve().winning
     if other.restarted and game.stats.x_iterations:
