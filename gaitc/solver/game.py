@@ -25,6 +25,7 @@ from gaitc.solver.options import (
     MISFIT_WORK,
     RESIFT_BLOWUP,
     RESIFT_NODES,
+    REFIT_SIFT_WORK,
     RESIFT_WORK,
     RESTART_NODES,
     SMALL_BITS,
@@ -444,6 +445,8 @@ class Game:
         if meter.due():
             meter.sample(self._lookups(), target.dag_size + result.dag_size)
             if self._slow_work is not None and meter.window > self._slow_work:
+                return _SIFT
+            if self.sym.refitted and meter.lookups > REFIT_SIFT_WORK:
                 return _SIFT
             if (self.sym.options.rebuild_misfit and not self.sym.refitted
                     and meter.lookups > MISFIT_WORK and meter.ratio > MISFIT_RATIO):

@@ -39,6 +39,14 @@ SIFT_BLOWUP: Final = 10
 #: masters, a slowest step of 60,000), sifting from 8 masters on (slowest steps 0.1-1.3 s).
 RESIFT_WORK: Final = 200_000
 
+#: After a refitted build, the game sifts throughout once its steps have done this many
+#: lookups in all (about 0.3 s of work), whether or not one step was slow: the order was
+#: sifted for ρ, and the fixpoint's sets outgrow it (the race's static racer did this
+#: after 0.3 s of fixpoint until issue 50; measured there: GenBuf with 24 senders 3.3 s
+#: against 6.4 s fixed, AMBA bit-encoded with 3 masters 0.96 s against 1.15 s, AMBA with
+#: 6 masters 1.19 s against 0.94 s).
+REFIT_SIFT_WORK: Final = 1_200_000
+
 #: The steps after which the work counter is read: 1, 2, 4, 8, 16, then every 32 steps.
 WORK_SAMPLES: Final = (1, 2, 4, 8, 16)
 WORK_EVERY: Final = 32
