@@ -23,9 +23,9 @@ from gaitc.ir.spec import Semantics
 from gaitc.solver.options import (
     MISFIT_RATIO,
     MISFIT_WORK,
+    REFIT_SIFT_WORK,
     RESIFT_BLOWUP,
     RESIFT_NODES,
-    REFIT_SIFT_WORK,
     RESIFT_WORK,
     RESTART_NODES,
     SMALL_BITS,
