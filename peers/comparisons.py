@@ -5,7 +5,9 @@ comparison has sums on both sides, so ``left - right`` is ``Σ cᵢ·vᵢ + k`` 
 ``Σ cᵢ·vᵢ + k op 0``.  :func:`expand_comparison` lists the values that satisfy it, one
 variable at a time: fixing the first variable at a value leaves an atom of the same kind over
 the others with a new constant, so the answers are memoized by constant, and the values of
-the first variable that lead to the same answer are grouped.  Each group of values, and the
+the first variable that lead to the same answer are grouped.  The last variable's values are
+found without listing them (:func:`solutions`: a point, or one run by bisection, since
+``c·v + k`` is monotone).  Each group of values, and the
 satisfying values of the last variable, are written as runs of consecutive values (``v = c``,
 ``v <= b``, ``v >= a``, ``v >= a & v <= b``), or as the negation of the complement's runs
 when that is shorter; a comparison of one variable with a number comes out as itself.
@@ -106,47 +108,86 @@ def expand_comparison(node: Compare, domains: Domains, limit: int = LIMIT) -> Ex
             hint="gr1c compares a variable with a number only, so a comparison of several "
             "variables is written as the values that satisfy it; narrow the ranges",
         )
-    test = _TESTS[node.op]
+    op = node.op
+    last = len(keys) - 1
     memo: dict[tuple[int, int], Expr] = {}
 
     def solve(index: int, constant: int) -> Expr:
+        """The atom over ``keys[index:]`` with the others fixed (their sum: ``constant``)."""
         found = memo.get((index, constant))
         if found is not None:
             return found
-        if index == len(keys):
-            result: Expr = TRUE if test(constant) else FALSE
+        key = keys[index]
+        low, high = domains[key[0]]
+        c = coefficients[key]
+        if index == last:
+            result = membership(key, solutions(c, constant, op, low, high), low, high)
         else:
-            key = keys[index]
-            low, high = domains[key[0]]
-            c = coefficients[key]
             groups: dict[Expr, list[int]] = {}
             for value in range(low, high + 1):
                 groups.setdefault(solve(index + 1, constant + c * value), []).append(value)
-            result = disj(conj(part for part in (membership(key, values, low, high), rest)
-                               if part != TRUE)
+            result = disj(conj(part for part in (membership(key, _runs(values), low, high),
+                                                 rest) if part != TRUE)
                           for rest, values in groups.items() if rest != FALSE)
         memo[(index, constant)] = result
         return result
 
+    if not keys:
+        return TRUE if _TESTS[op](k) else FALSE
     return solve(0, k)
 
 
-def membership(key: Key, values: list[int], low: int, high: int) -> Expr:
-    """``v ∈ values`` for ``v`` ranging over ``low..high`` (``values`` ascending, in range):
-    its runs of consecutive values, or the negation of the complement's when fewer."""
-    if not values:
+def solutions(c: int, k: int, op: str, low: int, high: int) -> list[tuple[int, int]]:
+    """The runs of ``v`` in ``low..high`` with ``c·v + k op 0`` (``c`` not 0): one point or
+    its complement for ``=``/``!=``; otherwise ``c·v + k`` is monotone in ``v``, so the
+    values form one run, found by bisection."""
+    if op in ("=", "!="):
+        point = -k // c
+        hit = c * point + k == 0 and low <= point <= high
+        if op == "=":
+            return [(point, point)] if hit else []
+        if not hit:
+            return [(low, high)]
+        return [r for r in ((low, point - 1), (point + 1, high)) if r[0] <= r[1]]
+    test = _TESTS[op]
+    holds_low, holds_high = test(c * low + k), test(c * high + k)
+    if holds_low == holds_high:
+        return [(low, high)] if holds_low else []
+    a, b = low, high  # test differs at a and b: find the last value like a
+    while b - a > 1:
+        middle = (a + b) // 2
+        if test(c * middle + k) == holds_low:
+            a = middle
+        else:
+            b = middle
+    return [(low, a)] if holds_low else [(b, high)]
+
+
+def membership(key: Key, runs: list[tuple[int, int]], low: int, high: int) -> Expr:
+    """``v`` in the ``runs`` of consecutive values (ascending, disjoint, not adjacent, in
+    ``low..high``): the runs, or the negation of the complement's runs when fewer atoms."""
+    if not runs:
         return FALSE
-    if len(values) == high - low + 1:
+    if runs == [(low, high)]:
         return TRUE
-    chosen = set(values)
-    others = [v for v in range(low, high + 1) if v not in chosen]
-    inside = _runs(values)
-    outside = _runs(others)
-    if _atoms(outside, low, high) >= _atoms(inside, low, high):
-        return disj(_run(key, run, low, high) for run in inside)
-    if len(others) == 1:
-        return Compare("!=", IntVar(*key), IntConst(others[0]))
+    outside = _complement(runs, low, high)
+    if _atoms(outside, low, high) >= _atoms(runs, low, high):
+        return disj(_run(key, run, low, high) for run in runs)
+    if len(outside) == 1 and outside[0][0] == outside[0][1]:
+        return Compare("!=", IntVar(*key), IntConst(outside[0][0]))
     return Not(disj(_run(key, run, low, high) for run in outside))
+
+
+def _complement(runs: list[tuple[int, int]], low: int, high: int) -> list[tuple[int, int]]:
+    out: list[tuple[int, int]] = []
+    start = low
+    for a, b in runs:
+        if a > start:
+            out.append((start, a - 1))
+        start = b + 1
+    if start <= high:
+        out.append((start, high))
+    return out
 
 
 def _runs(values: list[int]) -> list[tuple[int, int]]:

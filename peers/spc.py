@@ -262,6 +262,7 @@ class _Writer:
                         if v.low is not None and v.high is not None}
         self.memo: Memo[_Piece] = {}
         self.native_memo: Memo[_Piece] = {}
+        self.comparisons: dict[Compare, _Piece] = {}
 
     # formulas
     def formula(self, expr: Expr, span: Span | None = None) -> Text:
@@ -303,9 +304,13 @@ class _Writer:
             case Compare():
                 if native:
                     return self._native(kind)
-                expanded = expand_comparison(kind, self.domains, self.limit)
-                return fold(expanded, lambda n, k: self._piece(n, k, native=True),
-                            children=_formula_children, memo=self.native_memo)
+                found = self.comparisons.get(kind)
+                if found is None:  # equal comparisons (not only shared ones) written once
+                    expanded = expand_comparison(kind, self.domains, self.limit)
+                    found = self.comparisons[kind] = fold(
+                        expanded, lambda n, k: self._piece(n, k, native=True),
+                        children=_formula_children, memo=self.native_memo)
+                return found
             case IntConst() | IntVar() | Add() | Next() | Always() | Eventually():
                 raise AssertionError(f"no {type(kind).__name__} in a GR(1) section's formula")
             case _:
