@@ -19,6 +19,7 @@ Run: .venv/bin/python bench/bench_gridworld.py [--quick] [--timeout S] [--repeat
 from __future__ import annotations
 
 import argparse
+import signal
 import sys
 import tempfile
 from pathlib import Path
@@ -73,6 +74,7 @@ def main(argv: list[str] | None = None) -> None:
     args.slugs_timeout = args.peer_timeout = args.timeout
     args.lag_limit = float("inf")  # no --timeout lag column worth a second run here
     found = solvers.Binaries.find(args.slugs, args.gr1c)
+    signal.signal(signal.SIGTERM, lambda *_: sys.exit(143))  # ends the solver measured too
     with tempfile.TemporaryDirectory() as folder:
         table = Table("gridworld", args)
         for name, text in rows(args.quick):

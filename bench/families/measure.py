@@ -188,23 +188,32 @@ def measure(command: Sequence[str], timeout: float | None = None, *,
         tree, peak, status, maxrss = {proc.pid}, 0, 0, 0
         next_search = began
         killed = False
-        while True:
-            now = time.perf_counter()
-            if now >= next_search:
-                parents = _parents()
-                tree = _tree(parents, {proc.pid} | (_children(parents) - before))
-                next_search = now + DISCOVER
-            peak = max(peak, _resident(tree - skip, launcher is None))
-            pid, code, usage = os.wait4(proc.pid, os.WNOHANG)
-            if pid:
-                status, maxrss = code, usage.ru_maxrss * 1024
-                break
-            if deadline is not None and now > deadline:
-                _kill(proc.pid, tree)
-                _, status, usage = os.wait4(proc.pid, 0)
-                maxrss, killed = usage.ru_maxrss * 1024, True
-                break
-            time.sleep(SAMPLE)
+        try:
+            while True:
+                now = time.perf_counter()
+                if now >= next_search:
+                    parents = _parents()
+                    tree = _tree(parents, {proc.pid} | (_children(parents) - before))
+                    next_search = now + DISCOVER
+                peak = max(peak, _resident(tree - skip, launcher is None))
+                pid, code, usage = os.wait4(proc.pid, os.WNOHANG)
+                if pid:
+                    status, maxrss = code, usage.ru_maxrss * 1024
+                    break
+                if deadline is not None and now > deadline:
+                    _kill(proc.pid, tree)
+                    _, status, usage = os.wait4(proc.pid, 0)
+                    maxrss, killed = usage.ru_maxrss * 1024, True
+                    break
+                time.sleep(SAMPLE)
+        except BaseException:  # Ctrl-C, or SIGTERM turned into SystemExit: end the tree too
+            _kill(proc.pid, tree)
+            with contextlib.suppress(ChildProcessError):
+                os.wait4(proc.pid, 0)
+            _finish(proc.pid, tree - {proc.pid}, before)
+            if adopted:
+                _subreaper(False)
+            raise
         wall = time.perf_counter() - began
         proc.returncode = os.waitstatus_to_exitcode(status)  # reaped here, not by Popen
         _finish(proc.pid, tree - {proc.pid}, before)
