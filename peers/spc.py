@@ -45,9 +45,9 @@ unsatisfiable (gr1c's equivalence then holds with both sides empty, while gaitc 
 output for every allowed input).  A fresh system bit ``s`` puts one step before the game:
 ``-n ALL_INIT`` with SYSINIT ``!s``, so that every state with ``!s`` is initial (there is
 one, so the set is not empty); ENVTRANS ``!s -> θe'`` and ``s -> ρe``; SYSTRANS
-``!s -> (s' & θs')`` and ``s -> (s' & ρs)``; the goals as they are.  Once ``s`` is set it
-stays set and the game is the original one, so a state ``(x, y, s)`` is winning exactly
-when ``(x, y)`` ∈ W.  From a state with ``!s`` the environment picks ``x'`` with θe(x') (it
+``!s -> (s' & θs')``, ``s -> s'`` and ``s -> ρs``; the goals as they are.  Once ``s`` is
+set it stays set and the game is the original one, so a state ``(x, y, s)`` is winning
+exactly when ``(x, y)`` ∈ W.  From a state with ``!s`` the environment picks ``x'`` with θe(x') (it
 has no move when θe is unsatisfiable, and the system wins, as in gaitc), then the system
 must pick ``y'`` with θs(x', y') and set ``s``; so every such state is winning exactly
 when ∀x'. θe(x') → ∃y'. θs(x', y') ∧ W(x', y'), which ALL_INIT asks of all of them: gaitc's
