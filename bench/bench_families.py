@@ -56,7 +56,7 @@ ABLATION = {
 }
 #: --quick's time limit of SLUGS, gr1c and omega (seconds): SLUGS and omega pass 60 s on
 #: several of the quick thesis grids, and the run is to stay near 20 minutes.
-QUICK_LIMIT = 20.0
+QUICK_LIMIT = 10.0
 QUICK_ROW = 5.0  # seconds: ablation rows faster than this are timed QUICK_REPEATS times
 QUICK_REPEATS = 3
 NAME = 34  # the instance column's width
@@ -162,7 +162,7 @@ class Table:
         print(" " * NAME + "".join(f" | {t.center(group)}" for t in TOOLS))
         print("instance".ljust(NAME) + "".join(
             " | " + " ".join(title.rjust(w) for title, w in self.columns) for _ in TOOLS) + lag)
-        self.notes: dict[str, list[str]] = {}
+        self.notes: dict[str, tuple[list[str], list[str]]] = {}  # reason: solvers, instances
 
     def row(self, row: Row) -> None:
         pick = _repeated if self.args.repeat > 1 else _single
@@ -173,10 +173,15 @@ class Table:
         self.note(row)
 
     def note(self, row: Row) -> None:
+        """Remember why a solver did not run or failed on ``row`` (said once per reason)."""
         for tool in TOOLS:
             for run in row.runs[tool][:1]:
                 if run.note:
-                    self.notes.setdefault(f"{tool}: {run.note}", []).append(row.instance.name)
+                    tools, names = self.notes.setdefault(run.note, ([], []))
+                    if tool not in tools:
+                        tools.append(tool)
+                    if row.instance.name not in names:
+                        names.append(row.instance.name)
 
     def totals(self, rows: list[Row]) -> None:
         """One line for many instances (the corpus): sums of seconds, the largest MB, and
@@ -206,9 +211,9 @@ class Table:
             self.note(row)
 
     def close(self) -> None:
-        for reason, names in self.notes.items():
+        for reason, (tools, names) in self.notes.items():
             shown = ", ".join(names[:4]) + (f" and {len(names) - 4} more" if len(names) > 4 else "")
-            print(f"  - {reason} ({shown})")
+            print(f"  - {', '.join(tools)}: {reason} ({shown})")
 
 
 def tables(rows: list[Instance], args: argparse.Namespace, folder: Path) -> None:
@@ -280,7 +285,7 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument("--quick", action="store_true",
                         help="thesis grids up to 10x10 at health 2-3, AMBA N = 2..5, "
                         "arbiters and lifts up to 24, hazard grids up to 8x8; the time limits "
-                        "default to 60 s for gaitc and 20 s for the others")
+                        "default to 60 s for gaitc and 10 s for the others")
     parser.add_argument("--ablation", action="store_true", help="compare solver options")
     parser.add_argument("--repeat", type=int, default=1, metavar="N",
                         help="run each solver N times per instance (min/median/max wall)")
@@ -289,9 +294,9 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument("--timeout", type=float,
                         help="gaitc's limit per instance (default 300 s, --quick 60 s)")
     parser.add_argument("--slugs-timeout", type=float,
-                        help="SLUGS's limit per instance (default 600 s, --quick 20 s)")
+                        help="SLUGS's limit per instance (default 600 s, --quick 10 s)")
     parser.add_argument("--peer-timeout", type=float,
-                        help="gr1c's and omega's limit per instance (default 600 s, --quick 20 s)")
+                        help="gr1c's and omega's limit per instance (default 600 s, --quick 10 s)")
     parser.add_argument("--lag-limit", type=float, default=10.0,
                         help="the --timeout given to 'gaitc check' on slower instances")
     parser.add_argument("--slugs", help="the SLUGS binary (else $SLUGS, PATH, /opt/slugs)")
