@@ -6,11 +6,10 @@ from __future__ import annotations
 
 import itertools
 from collections.abc import Iterator, Sequence
-from typing import Final
+from typing import TYPE_CHECKING, Final
 
 from gaitc.diagnostics import FormulaError, SpecSemanticError, UsageError
 from gaitc.diagnostics.choices import Choice
-from gaitc.ir.evaluation import evaluate
 from gaitc.ir.formula import (
     And,
     Compare,
@@ -30,7 +29,9 @@ from gaitc.ir.formula import (
 )
 from gaitc.ir.spec import Variable
 from gaitc.ir.traversal import Node, rebuild
-from ltlcompiler.model import Model
+
+if TYPE_CHECKING:  # only named in annotations: a .slugsin spec never loads the model
+    from ltlcompiler.model import Model
 
 
 class EncodingName(Choice):
@@ -219,6 +220,8 @@ class OneHot(Encoding):
                 [self.hazard(h.name, primed) for h in m.hazards])
 
     def _compare_legs(self, cmp: Compare, names: list[tuple[str, bool]]) -> Expr:
+        from gaitc.ir.evaluation import evaluate
+
         ranges = [range(self.legs[n].health, 0, -1) for n, _ in names]
         cases: list[Expr] = []
         for levels in itertools.product(*ranges):

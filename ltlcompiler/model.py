@@ -37,6 +37,8 @@ class Section(Enum):
 
 @dataclass(frozen=True)
 class Leg:
+    """A leg, its number of health levels and the level it starts at."""
+
     name: str
     health: int  # number of health levels h_i; 1 = permanently failed
     initial: int  # initial health level (default: health, i.e. full)
@@ -57,6 +59,8 @@ class Primitive:
 
 @dataclass(frozen=True)
 class Gait:
+    """A gait: its kind, the legs it uses and, when known, its valve primitive."""
+
     name: str
     kind: GaitKind
     legs: tuple[str, ...]  # L_G(g), sorted in declaration order of legs
@@ -73,6 +77,8 @@ class Gait:
 
 @dataclass(frozen=True)
 class Region:
+    """A region of the map (a grid cell when ``row`` and ``col`` are set)."""
+
     name: str
     row: int | None = None  # grid coordinates when the region is a grid cell
     col: int | None = None
@@ -93,6 +99,8 @@ class Transition:
 
 @dataclass(frozen=True)
 class Hazard:
+    """A hazard set and the regions it covers when active."""
+
     name: str
     regions: tuple[str, ...]  # F_T(t)
     span: Span | None = field(default=None, compare=False, repr=False)
@@ -109,6 +117,8 @@ class UserFormula:
 
 @dataclass(frozen=True)
 class Model:
+    """A robot, its map and its task, every name resolved (see the module's docstring)."""
+
     name: str
     legs: tuple[Leg, ...]
     gaits: tuple[Gait, ...]  # includes noGait, last

@@ -50,6 +50,8 @@ RegionRef = Name | Cell
 # ---------------------------------------------------------------- the robot
 @dataclass(frozen=True)
 class RobotDecl:
+    """``robot "name"``."""
+
     name: str
     span: Span | None = _SPAN
 
@@ -125,12 +127,16 @@ class GridDecl:
 
 @dataclass(frozen=True)
 class BlockDecl:
+    """``block r1, r2``: cells of the grid that are no region."""
+
     cells: tuple[RegionRef, ...]
     span: Span | None = _SPAN
 
 
 @dataclass(frozen=True)
 class RegionDecl:
+    """``region a, b`` / ``regions r1..r4``."""
+
     names: tuple[NameItem, ...]
     span: Span | None = _SPAN
 
@@ -150,12 +156,16 @@ class EdgeDecl:
 # ---------------------------------------------------------------- the task
 @dataclass(frozen=True)
 class CacheDecl:
+    """``cache r1, r2``: the regions that hold a cache."""
+
     regions: tuple[RegionRef, ...]
     span: Span | None = _SPAN
 
 
 @dataclass(frozen=True)
 class HazardDecl:
+    """``hazard fire: r2, r3``: a hazard set and the regions it covers."""
+
     name: Name
     regions: tuple[RegionRef, ...]
     span: Span | None = _SPAN
@@ -173,6 +183,8 @@ class HealthInit:
 
 @dataclass(frozen=True)
 class StartDecl:
+    """``start r1`` / ``start r12 with L1 = 2``."""
+
     region: RegionRef
     health: tuple[HealthInit, ...]
     span: Span | None = _SPAN
@@ -180,18 +192,24 @@ class StartDecl:
 
 @dataclass(frozen=True)
 class VisitDecl:
+    """``visit r1, r4 infinitely often``."""
+
     regions: tuple[RegionRef, ...]
     span: Span | None = _SPAN
 
 
 @dataclass(frozen=True)
 class AssumeDecl:
+    """``assume φ``: an assumption on the environment."""
+
     formula: Expr
     span: Span | None = _SPAN
 
 
 @dataclass(frozen=True)
 class GuaranteeDecl:
+    """``guarantee φ``: a guarantee of the robot."""
+
     formula: Expr
     span: Span | None = _SPAN
 

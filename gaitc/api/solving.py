@@ -30,8 +30,6 @@ from gaitc.forms.synthesis import (
     prove,
     solve,
 )
-from gaitc.ir.bddfile import SymbolicController
-from gaitc.ir.controller import read_controller_json
 from gaitc.ir.spec import Semantics
 from gaitc.solver.preferences import PREFERENCES as PREFERENCES
 from gaitc.solver.preferences import preference_order as preference_order
@@ -42,6 +40,7 @@ from ltlcompiler.encoding import EncodingName
 if TYPE_CHECKING:
     from gaitc.compact.controller import CompactController
     from gaitc.core.vocabulary import Vocabulary
+    from gaitc.ir.bddfile import SymbolicController
     from gaitc.verifier.strategy import VerificationReport as VerificationReport
 
 __all__ = ["COMPACT", "FORMS", "MAX_NODES", "PREFERENCES", "SOLVERS", "Automaton",
@@ -159,6 +158,7 @@ def controller_form(path: str | Path) -> Form:
     """The form of the controller file ``path`` (explicit, symbolic or compact), read from
     the file's header alone."""
     from gaitc.forms.registry import form_of
+    from gaitc.ir.controller import read_controller_json
 
     return form_of(read_controller_json(str(path)))
 

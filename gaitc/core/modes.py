@@ -4,15 +4,14 @@ Each mode is a :class:`~gaitc.diagnostics.choices.Choice` (a ``str`` enumeration
 notebook may pass the member or its value and every layer compares members, never text.
 Three of them are defined where the lower layers need them and re-exported here:
 :class:`Semantics` (the initial-state semantics, :mod:`gaitc.ir.spec`),
-:class:`ControllerKind` (a strategy or a counter-strategy, :mod:`gaitc.ir.controller`) and
+:class:`ControllerKind` (a strategy or a counter-strategy, :mod:`gaitc.ir.spec` too) and
 :class:`EncodingName` (the leg-health encoding, :mod:`ltlcompiler.encoding`).
 """
 
 from __future__ import annotations
 
 from gaitc.diagnostics.choices import Choice
-from gaitc.ir.controller import ControllerKind
-from gaitc.ir.spec import Semantics
+from gaitc.ir.spec import ControllerKind, Semantics
 from ltlcompiler.encoding import EncodingName
 
 __all__ = ["BackendKind", "ControllerKind", "EncodingName", "EnvironmentKind", "Form", "Role",

@@ -11,7 +11,6 @@ import contextlib
 import errno
 import os
 import stat
-import tempfile
 from pathlib import Path
 
 from gaitc.diagnostics import FileAccessError, GaitcError, MissingFileError, Span, source_lines
@@ -131,6 +130,8 @@ def make_folder(path: str | Path) -> Path:
 def _check_new_file(folder: Path, path: str | Path) -> None:
     """Make and remove a file in ``folder``, as :func:`write_atomically` will: a folder the
     system lets no one add a file to is refused now, not halfway through the outputs."""
+    import tempfile  # with random: loaded by the commands that write, not those that read
+
     try:
         fd, probe = tempfile.mkstemp(prefix=".gaitc-probe.", suffix=".tmp", dir=folder)
     except OSError as err:
@@ -185,6 +186,8 @@ def write_atomically(path: str | Path, data: str | bytes, follow_links: bool = T
         except OSError as err:
             raise FileAccessError(f"cannot write '{path}': {reason(err)}") from None
         return
+    import tempfile
+
     tmp: str | None = None
     try:
         folder = target.parent if str(target.parent) else Path(".")

@@ -14,16 +14,20 @@ kills them), and are killed once an answer is chosen.
 from __future__ import annotations
 
 import contextlib
-import ctypes
-import multiprocessing
 import os
 import signal
+import sys
 import time
 import traceback
 from collections.abc import Callable, Iterator, Sequence
-from multiprocessing import connection
-from multiprocessing.connection import Connection
-from typing import Any, Final
+from typing import TYPE_CHECKING, Any, Final
+
+if TYPE_CHECKING:
+    from multiprocessing.connection import Connection
+
+# multiprocessing (with socket and the rest) and ctypes load when a child is first started,
+# in the parent: a run that forks none (``gaitc check`` of a small spec) does not wait for
+# them, and a forked child imports nothing.
 
 #: Seconds past a time limit before a worker process (a racer, a limited child) is killed.
 #: A child checks the limit itself between BDD operations and usually stops first; the
@@ -38,8 +42,12 @@ _POLL: Final = 0.2  # the longest wait between looks at the children
 
 def can_fork() -> bool:
     """Whether this process may start children: it can fork, and it is not itself a
-    daemonic multiprocessing worker (those may not have children)."""
-    return hasattr(os, "fork") and not multiprocessing.current_process().daemon
+    daemonic multiprocessing worker (those may not have children).  Such a worker runs
+    multiprocessing's code, so a process that has not imported it is none."""
+    if not hasattr(os, "fork"):
+        return False
+    loaded = sys.modules.get("multiprocessing")
+    return loaded is None or not loaded.current_process().daemon
 
 
 def first_success(works: Sequence[Callable[[], Any]], deadline: float | None = None,
@@ -54,6 +62,10 @@ def first_success(works: Sequence[Callable[[], Any]], deadline: float | None = N
     :func:`to_parent` is handed to ``relay`` here (progress messages), as it arrives: the
     first child's until a child calls :func:`claim`, then only the claimant's, whose outcome
     (success or not) is then the answer, the others killed."""
+    import ctypes  # noqa: F401  (for die_with_parent, in the children)
+    import multiprocessing
+    from multiprocessing import connection
+
     context = multiprocessing.get_context("fork")
     started_at = time.monotonic()
     starts = [started_at + (delays[i] if i < len(delays) else 0.0) for i in range(len(works))]
@@ -269,6 +281,8 @@ def as_worker() -> None:
 
 def die_with_parent() -> None:
     """Ask the kernel to kill this process when its parent ends (Linux; elsewhere a no-op)."""
+    import ctypes  # first_success imports it before it forks; other workers load it here
+
     try:
         libc = ctypes.CDLL(None, use_errno=True)
         libc.prctl(_PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0)

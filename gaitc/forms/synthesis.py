@@ -22,10 +22,6 @@ from gaitc.core.spec import Spec
 from gaitc.diagnostics import SolverError, UsageError
 from gaitc.diagnostics.files import write_atomically
 from gaitc.forms.base import Automaton
-from gaitc.ir.bddfile import SymbolicController
-from gaitc.ir.controller import Controller
-from gaitc.ir.costs import Cost
-from gaitc.ir.quotient import merge_equivalent
 from gaitc.ir.spec import GR1Spec, Semantics
 from gaitc.solver.game import GameStats, out_of_memory
 from gaitc.solver.progress import Progress, Stage
@@ -35,6 +31,8 @@ from ltlcompiler.encoding import EncodingName
 
 if TYPE_CHECKING:
     from gaitc.compact.controller import CompactController
+    from gaitc.ir.controller import Controller
+    from gaitc.ir.costs import Cost
     from gaitc.sim.graphics import Picture
     from gaitc.verifier.strategy import VerificationReport
 
@@ -173,6 +171,7 @@ class Synthesis:
 
     def picture(self) -> Picture:
         """The automaton drawn in domain terms (needs a ``.gait`` spec and Graphviz)."""
+        from gaitc.ir.controller import Controller
         from gaitc.sim.automaton_view import automaton_view
         from gaitc.sim.domain import Domain
         from gaitc.sim.strategy import strategy_from_controller
@@ -280,6 +279,9 @@ def solve(spec: Spec | GR1Spec, kind: ControllerKind, semantics: Semantics,
           opts: SolveOptions | None = None) -> Synthesis:
     """A strategy (``kind`` STRATEGY) or a counter-strategy of ``spec`` as ``opts`` say,
     proved unless ``opts.check_it`` is False; its ``controller`` is None when none exists."""
+    from gaitc.ir.bddfile import SymbolicController
+    from gaitc.ir.controller import Controller
+    from gaitc.ir.quotient import merge_equivalent
     from gaitc.solver.preferences import preference_order
 
     opts = opts or SolveOptions()

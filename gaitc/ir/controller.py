@@ -14,19 +14,11 @@ from dataclasses import dataclass, field
 from typing import Any, Final
 
 from gaitc.diagnostics import ControllerError, Span, span_at
-from gaitc.diagnostics.choices import Choice
 from gaitc.diagnostics.files import decode_text, read_input
 from gaitc.diagnostics.versions import CONTROLLER
 from gaitc.ir.bits import bit_name, integer_bits, parse_first_bit, spec_bits
 from gaitc.ir.spec import SEMANTICS, GR1Spec, Semantics
-
-
-class ControllerKind(Choice):
-    """Whose winning strategy an automaton is."""
-
-    STRATEGY = "strategy"  # the system's: a controller the robot runs
-    COUNTERSTRATEGY = "counterstrategy"  # the environment's: how it defeats every controller
-
+from gaitc.ir.spec import ControllerKind as ControllerKind
 
 KINDS: Final = ControllerKind.values()
 #: ``gaitc.format`` of a symbolic controller file (:mod:`gaitc.ir.bddfile`).

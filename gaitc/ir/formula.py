@@ -34,12 +34,16 @@ class Term(Node):
 
 @dataclass(frozen=True, eq=False)
 class IntConst(Term):
+    """An integer literal."""
+
     value: int
     span: Span | None = _SPAN
 
 
 @dataclass(frozen=True, eq=False)
 class IntVar(Term):
+    """An integer variable, ``primed`` for its next-state copy."""
+
     name: str
     primed: bool = False
     span: Span | None = _SPAN
@@ -47,6 +51,8 @@ class IntVar(Term):
 
 @dataclass(frozen=True, eq=False)
 class Add(Term):
+    """The sum of two integer terms."""
+
     left: Term
     right: Term
     span: Span | None = _SPAN
@@ -60,12 +66,16 @@ class Expr(Node):
 
 @dataclass(frozen=True, eq=False)
 class Const(Expr):
+    """``true`` or ``false``."""
+
     value: bool
     span: Span | None = _SPAN
 
 
 @dataclass(frozen=True, eq=False)
 class Var(Expr):
+    """A Boolean variable, ``primed`` for its next-state copy."""
+
     name: str
     primed: bool = False
     span: Span | None = _SPAN
@@ -73,24 +83,32 @@ class Var(Expr):
 
 @dataclass(frozen=True, eq=False)
 class Not(Expr):
+    """Negation."""
+
     arg: Expr
     span: Span | None = _SPAN
 
 
 @dataclass(frozen=True, eq=False)
 class And(Expr):
+    """Conjunction of ``args`` (``true`` when there are none)."""
+
     args: tuple[Expr, ...]
     span: Span | None = _SPAN
 
 
 @dataclass(frozen=True, eq=False)
 class Or(Expr):
+    """Disjunction of ``args`` (``false`` when there are none)."""
+
     args: tuple[Expr, ...]
     span: Span | None = _SPAN
 
 
 @dataclass(frozen=True, eq=False)
 class Xor(Expr):
+    """Exclusive or."""
+
     left: Expr
     right: Expr
     span: Span | None = _SPAN
@@ -98,6 +116,8 @@ class Xor(Expr):
 
 @dataclass(frozen=True, eq=False)
 class Iff(Expr):
+    """Equivalence."""
+
     left: Expr
     right: Expr
     span: Span | None = _SPAN
@@ -105,6 +125,8 @@ class Iff(Expr):
 
 @dataclass(frozen=True, eq=False)
 class Implies(Expr):
+    """Implication, ``left`` → ``right``."""
+
     left: Expr
     right: Expr
     span: Span | None = _SPAN
@@ -115,6 +137,8 @@ COMPARE_OPS = ("=", "!=", "<", "<=", ">", ">=")
 
 @dataclass(frozen=True, eq=False)
 class Compare(Expr):
+    """A comparison of two integer terms; ``op`` is one of :data:`COMPARE_OPS`."""
+
     op: str
     left: Term
     right: Term

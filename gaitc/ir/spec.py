@@ -8,6 +8,8 @@ span) that does not count in equality; diagnosis and comments in the output use 
 Sections follow the GR(1) game of Bloem et al. (JCSS 2012) and SLUGS: ``env_init``
 and ``sys_init`` (unprimed), ``env_trans`` and ``sys_trans`` (may use primes), and
 ``env_liveness`` / ``sys_liveness`` (□◇ of each clause; primes allowed, as in SLUGS).
+The two modes of the game every layer shares live here too: :class:`Semantics` (how the
+initial states are read) and :class:`ControllerKind` (whose strategy an automaton is).
 """
 
 from __future__ import annotations
@@ -50,6 +52,14 @@ def semantics_named(name: str) -> Semantics:
         if name == known:
             return known
     raise ValueError(f"unknown semantics {name!r}; use one of {', '.join(SEMANTICS)}")
+
+
+class ControllerKind(Choice):
+    """Whose winning strategy an automaton is (the game of a spec has two players; the
+    automata of :mod:`gaitc.ir.controller` and :mod:`gaitc.ir.bddfile` record which)."""
+
+    STRATEGY = "strategy"  # the system's: a controller the robot runs
+    COUNTERSTRATEGY = "counterstrategy"  # the environment's: how it defeats every controller
 
 
 @dataclass(frozen=True)

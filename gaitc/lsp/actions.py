@@ -27,10 +27,11 @@ _SUGGESTION = re.compile(r"did you mean '([^']+)'\?")
 REPAIR_IMPORTS = (
     "gaitc", "gaitc.api", "gaitc.api.loading", "gaitc.api.answers", "gaitc.api.isolation",
     "gaitc.analysis.explanation", "gaitc.analysis.repairs", "gaitc.solver.synthesis",
-    "gaitc.solver.portfolio", "gaitc.sim.counterplay", "gaitc.ir.cuddlib",
+    "gaitc.solver.portfolio", "gaitc.solver.counter", "gaitc.solver.strategy",
+    "gaitc.solver.preferences", "gaitc.solver.symbolic_strategy", "gaitc.ir.bddfile",
+    "gaitc.ir.quotient", "gaitc.ir.evaluation", "gaitc.sim.counterplay", "gaitc.ir.cuddlib",
     "ltlcompiler.frontend", "ltlcompiler.decoding", "ltlcompiler.parser",
-    "importlib.readers", "importlib.resources.readers", "zipfile",
-    "multiprocessing.popen_fork",
+    "multiprocessing.popen_fork", "ctypes",
 )  # fmt: skip
 
 

@@ -12,24 +12,25 @@ import weakref
 from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass, field, replace
-from typing import Final
+from typing import TYPE_CHECKING, Final
 
 from gaitc.diagnostics import FormulaError
 from gaitc.diagnostics.choices import Choice
 from gaitc.diagnostics.processes import claim
-from gaitc.ir.bddfile import SymbolicController
 from gaitc.ir.bits import spec_bits
-from gaitc.ir.controller import Controller
-from gaitc.ir.costs import Cost
 from gaitc.ir.formula import atoms
 from gaitc.ir.spec import SEMANTICS, GR1Spec, Semantics
-from gaitc.solver.counter import extract_counterstrategy
 from gaitc.solver.game import ControllerTooLarge, Game, GameStats, Limits, Progress, out_of_memory
 from gaitc.solver.portfolio import STATIC, solve_chosen
-from gaitc.solver.preferences import MovePreferences
-from gaitc.solver.strategy import extract_strategy
 from gaitc.solver.symbolic import Options, SymbolicSpec
-from gaitc.solver.symbolic_strategy import symbolic_controller
+
+if TYPE_CHECKING:
+    from gaitc.ir.bddfile import SymbolicController
+    from gaitc.ir.controller import Controller
+    from gaitc.ir.costs import Cost
+
+# The extractions (strategy.py, counter.py, symbolic_strategy.py, preferences.py) load in
+# the calls that extract: deciding (check) needs only the game.
 
 
 @dataclass(frozen=True)
@@ -165,6 +166,8 @@ def synthesize(
     ``prefer`` orders the preferences of :mod:`gaitc.solver.preferences` (empty: the first move in
     BDD order); ``costs`` gives the terms of the cost-based ones (e.g. a robot model's).
     """
+    from gaitc.ir.bddfile import SymbolicController
+
     found = synthesize_controller(
         spec=spec,
         semantics=semantics,
@@ -193,6 +196,11 @@ def synthesize_controller(
 ) -> Controller | SymbolicController | None:
     """A controller for ``spec`` in ``form`` (:data:`FORMS`), or None when unrealizable;
     either form chooses its moves by ``prefer`` and ``costs`` (see :func:`synthesize`)."""
+    # here, not in run: run may be a forked racer's, and a forked process imports nothing
+    from gaitc.solver.preferences import MovePreferences
+    from gaitc.solver.strategy import extract_strategy
+    from gaitc.solver.symbolic_strategy import symbolic_controller
+
     if form not in FORMS:
         raise ValueError(f"form must be one of {FORMS}, not {form!r}")
     form = Extraction(form)
@@ -230,6 +238,7 @@ def counterstrategy(
     max_nodes: int | None = None,
 ) -> Controller | None:
     """The environment's winning strategy for an unrealizable ``spec``; None if realizable."""
+    from gaitc.solver.counter import extract_counterstrategy  # before run forks, as above
 
     def run(chosen: Options, lim: Limits) -> Controller | None:
         sym, game = _game(spec, semantics, chosen, lim)
