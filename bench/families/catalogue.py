@@ -1,9 +1,10 @@
 """The instances of the benchmark table: every family as a list of spec files to solve.
 
 Generated families (thesis grids, AMBA in two encodings, GenBuf, the VMCAI 2006 arbiter
-and lift, SYNTCOMP safety games, hazard grids) are written into a directory chosen by the
-caller; the SLUGS examples and the random corpus are read where the repository keeps them
-(tests/data), with the verdicts SLUGS recorded for them.
+and lift, SYNTCOMP safety games, hazard grids, and the peers' shapes: gr1c's gridworlds and
+troll games, SLUGS's evasion game) are written into a directory chosen by the caller; the
+SLUGS examples and the random corpus are read where the repository keeps them (tests/data),
+with the verdicts SLUGS recorded for them.
 Lists are in a fixed order.
 """
 
@@ -14,12 +15,16 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
+from bench.families import evasion_requests, gr1c_gridworld, trolls
 from bench.families.amba import amba_text
 from bench.families.amba_bits import amba_bits_text
+from bench.families.evasion_requests import Evasion, evasion_requests_text
 from bench.families.genbuf import genbuf_text
+from bench.families.gr1c_gridworld import Gridworld, gr1c_gridworld_text
 from bench.families.hazard_grid import SIDES, hazard_grid_text
 from bench.families.safety_games import CINDERELLA, OBSTACLES, cinderella_text, obstacle_text
 from bench.families.thesis import HEALTH, SIZES, gait_text
+from bench.families.trolls import Trolls, trolls_text
 from bench.families.vmcai import ARBITER_SIZES, LIFT_SIZES, arbiter_text, lift_text
 
 ROOT = Path(__file__).resolve().parent.parent.parent
@@ -43,6 +48,13 @@ UNFAIR_ARBITER = [4, 64]
 #: One-hot hazard grids beyond this side are left out (the one-hot hazard group makes the
 #: embedded solver time out from 6 x 6 on; the binary encoding is the family's row).
 ONEHOT_SIDE_LIMIT = 4
+#: The peers' shapes (sides, or width x height) whose realizability is known and which the
+#: embedded solver confirmed (``gaitc check``); larger ones are listed with ``recorded=None``.
+#: Gridworlds and troll games are realizable by construction (see their modules); evasion
+#: games are not argued so, and count as known where SLUGS found them realizable too.
+CONFIRMED_GRIDWORLDS = (64, 128, 256, 512, 1024)
+CONFIRMED_TROLLS = (8, 16, 32, 64, 128)
+CONFIRMED_EVASION = ((8, 8), (12, 8), (16, 8), (24, 8))
 
 
 @dataclass(frozen=True)
@@ -148,6 +160,44 @@ def safety_games(workdir: Path, quick: bool) -> list[Instance]:
     return out
 
 
+def gr1c_gridworlds(workdir: Path, quick: bool) -> list[Instance]:
+    """gr1c-shaped gridworlds at every side: two goals and one moving obstacle (the shape of
+    gr1c's 1024 x 1024 example), then four goals and two obstacles (all realizable)."""
+    out = []
+    for side in gr1c_gridworld.QUICK_SIDES if quick else gr1c_gridworld.SIDES:
+        for world in (Gridworld(side), Gridworld(side, goals=4, obstacles=2)):
+            stem = f"gr1c_grid_{side}_g{world.goals}_o{world.obstacles}"
+            out.append(Instance("gr1c-grid", world.name,
+                                _write(workdir / f"{stem}.structuredslugs",
+                                       gr1c_gridworld_text(world)),
+                                recorded=True if side in CONFIRMED_GRIDWORLDS else None))
+    return out
+
+
+def troll_games(workdir: Path, quick: bool) -> list[Instance]:
+    """Troll games at every side, with two goals and with three (all realizable)."""
+    out = []
+    for side in trolls.QUICK_SIDES if quick else trolls.SIDES:
+        for game in (Trolls(side), Trolls(side, goals=3)):
+            out.append(Instance("trolls", game.name,
+                                _write(workdir / f"trolls_{side}_g{game.goals}.structuredslugs",
+                                       trolls_text(game)),
+                                recorded=True if side in CONFIRMED_TROLLS else None))
+    return out
+
+
+def evasion_games(workdir: Path, quick: bool) -> list[Instance]:
+    """Evasion games in the shape of SLUGS's basicEvasion (24 x 8 is the example itself)."""
+    out = []
+    for width, height in evasion_requests.QUICK_SIZES if quick else evasion_requests.SIZES:
+        game = Evasion(width, height)
+        out.append(Instance("evasion", game.name,
+                            _write(workdir / f"evasion_{width}x{height}.structuredslugs",
+                                   evasion_requests_text(game)),
+                            recorded=True if (width, height) in CONFIRMED_EVASION else None))
+    return out
+
+
 def slugs_examples() -> list[Instance]:
     """The SLUGS distribution's examples with their recorded verdicts."""
     out = []
@@ -172,7 +222,7 @@ def corpus() -> list[Instance]:
 
 
 FAMILIES = ("thesis", "amba", "amba-bits", "genbuf", "arbiter", "lift", "safety", "slugs-ex",
-            "hazard", "corpus")
+            "hazard", "gr1c-grid", "trolls", "evasion", "corpus")
 
 
 def instances(workdir: Path, quick: bool, families: tuple[str, ...] = FAMILIES,
@@ -198,6 +248,12 @@ def instances(workdir: Path, quick: bool, families: tuple[str, ...] = FAMILIES,
             out += slugs_examples()
         elif family == "hazard":
             out += hazard_grids(workdir, quick)
+        elif family == "gr1c-grid":
+            out += gr1c_gridworlds(workdir, quick)
+        elif family == "trolls":
+            out += troll_games(workdir, quick)
+        elif family == "evasion":
+            out += evasion_games(workdir, quick)
         else:
             out += corpus()
     return out
