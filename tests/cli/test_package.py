@@ -59,12 +59,12 @@ def wheel(tmp_path_factory: pytest.TempPathFactory) -> Path:
     return found
 
 
-def test_the_wheel_installs_only_the_three_packages(wheel: Path) -> None:
+def test_the_wheel_installs_only_the_four_packages(wheel: Path) -> None:
     with zipfile.ZipFile(wheel) as archive:
         names = archive.namelist()
     tops = {name.split("/")[0] for name in names if not name.split("/")[0].endswith(
         (".dist-info", ".data"))}
-    assert tops == set(PACKAGES) == {"gaitc", "ltlcompiler", "slugs_bridge"}
+    assert tops == set(PACKAGES) == {"gaitc", "ltlcompiler", "slugs_bridge", "peers"}
     top_level = next((n for n in names if n.endswith(".dist-info/top_level.txt")), None)
     if top_level is not None:
         with zipfile.ZipFile(wheel) as archive:
