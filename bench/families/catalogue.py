@@ -54,7 +54,7 @@ ONEHOT_SIDE_LIMIT = 4
 #: games are not argued so, and count as known where SLUGS found them realizable too.
 CONFIRMED_GRIDWORLDS = (64, 128, 256, 512, 1024)
 CONFIRMED_TROLLS = (8, 16, 32, 64, 128)
-CONFIRMED_EVASION = ((8, 8), (12, 8), (16, 8), (24, 8))
+CONFIRMED_EVASION = ((8, 8), (12, 8), (16, 8), (24, 8), (32, 8))
 
 
 @dataclass(frozen=True)
