@@ -74,7 +74,6 @@ from typing import Final, Literal
 
 from gaitc.diagnostics import PeerFormatError, Span
 from gaitc.ir.bitblast import bitblast
-from gaitc.ir.cuddlib import cudd
 from gaitc.ir.formula import (
     Add,
     Always,
@@ -98,9 +97,9 @@ from gaitc.ir.formula import (
     prime,
     unreachable,
 )
-from gaitc.ir.manager import manager
 from gaitc.ir.spec import Clause, GR1Spec, Origin, Semantics, Variable
 from gaitc.ir.traversal import Memo, Node, Text, fold, join_text, separated
+from gaitc.verifier.logic import Logic
 from peers.comparisons import LIMIT, expand_comparison
 from peers.game import peer_game
 
@@ -156,53 +155,18 @@ def _flags(form: StartForm, semantics: Semantics) -> tuple[str, ...]:
 
 # ---------------------------------------------------------------- satisfiability
 def _satisfiable(spec: GR1Spec, with_env: bool) -> bool:
-    """Whether θs (θe ∧ θs when ``with_env``) holds in some state within the ranges."""
-    blasted = bitblast(GR1Spec(inputs=spec.inputs, outputs=spec.outputs,
-                               env_init=spec.env_init if with_env else (),
-                               sys_init=spec.sys_init))
-    clauses = blasted.sys_init + (blasted.env_init if with_env else ())
-    bdd = manager()
-    memo: Memo[cudd.Function] = {}
-    found = bdd.true
-    for clause in clauses:
-        found &= fold(clause.formula, lambda node, kids: _bdd(bdd, node, kids), memo=memo)
-        if found == bdd.false:
-            return False
+    """Whether θs (θe ∧ θs when ``with_env``) holds in some state within the ranges (the
+    clauses bit-blasted and read as BDDs by the verifiers' :class:`Logic`)."""
+    logic = Logic(bitblast(GR1Spec(inputs=spec.inputs, outputs=spec.outputs,
+                                   env_init=spec.env_init if with_env else (),
+                                   sys_init=spec.sys_init)))
+    found = logic.bdd.true
+    for section in ("sys_init", "env_init") if with_env else ("sys_init",):
+        for _, clause in logic.clauses(section):
+            found &= clause
+            if found == logic.bdd.false:
+                return False
     return True
-
-
-def _bdd(bdd: cudd.BDD, node: Node, kids: list[cudd.Function]) -> cudd.Function:
-    kind = node_kind(node)
-    match kind:
-        case Const():
-            return bdd.true if kind.value else bdd.false
-        case Var():
-            name = kind.name + ("'" if kind.primed else "")
-            if name not in bdd.vars:
-                bdd.declare(name)
-            return bdd.var(name)
-        case Not():
-            return ~kids[0]
-        case And():
-            out = bdd.true
-            for kid in kids:
-                out &= kid
-            return out
-        case Or():
-            out = bdd.false
-            for kid in kids:
-                out |= kid
-            return out
-        case Xor():
-            return ~kids[0].equiv(kids[1])
-        case Iff():
-            return kids[0].equiv(kids[1])
-        case Implies():
-            return kids[0].implies(kids[1])
-        case Compare() | IntConst() | IntVar() | Add() | Next() | Always() | Eventually():
-            raise AssertionError(f"bit-blasted initial conditions hold no {type(kind).__name__}")
-        case _:
-            unreachable(kind)
 
 
 # ---------------------------------------------------------------- names
