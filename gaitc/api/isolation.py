@@ -23,16 +23,14 @@ from __future__ import annotations
 
 import os
 import resource
-import signal
-import sys
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any, Final, TypeVar
+from typing import Final, TypeVar
 
-from gaitc.diagnostics import GaitcError, SolverError
-from gaitc.diagnostics.processes import GRACE, Outcome, can_fork, first_success
-from gaitc.solver.game import out_of_memory, time_limit_error
+from gaitc.diagnostics import SolverError
+from gaitc.diagnostics.processes import GRACE, can_fork, first_success
+from gaitc.solver.game import answer_of
 from gaitc.solver.symbolic import Options
 
 T = TypeVar("T")
@@ -102,24 +100,5 @@ def run_limited(work: Callable[[], T], limits: HardLimits, what: str = "synthesi
             resource.setrlimit(resource.RLIMIT_AS, (limit, hard))
 
     _, outcome = first_success([work], deadline, setup)
-    answer: T = _unpack(outcome, limits, what)
+    answer: T = answer_of(outcome, limits.seconds, what)
     return answer
-
-
-def _unpack(outcome: Outcome, limits: HardLimits, what: str) -> Any:
-    kind = outcome[0]
-    if kind == "ok":
-        return outcome[1]
-    if kind == "raise":
-        err, text = outcome[1], outcome[2]
-        if isinstance(err, MemoryError):
-            raise out_of_memory()
-        if not isinstance(err, GaitcError) and os.environ.get("GAITC_DEBUG"):
-            print(text, file=sys.stderr, end="")
-        raise err
-    if kind == "timeout":
-        raise time_limit_error(limits.seconds or 0.0, what)
-    code = outcome[1]
-    if code in (1, -signal.SIGKILL):  # CUDD's exit(1) on a failed malloc; the OOM killer
-        raise out_of_memory()
-    raise SolverError(f"the solver process ended without an answer (exit status {code})")

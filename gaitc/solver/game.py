@@ -12,12 +12,17 @@ when it holds Z (Game._attractor).
 
 from __future__ import annotations
 
+import os
+import signal
+import sys
 import time
 import warnings
 from collections.abc import Callable
 from dataclasses import dataclass, field
+from typing import Any
 
-from gaitc.diagnostics import SolverError
+from gaitc.diagnostics import GaitcError, SolverError
+from gaitc.diagnostics.processes import Outcome
 from gaitc.ir.cuddlib import cudd
 from gaitc.ir.spec import Semantics
 from gaitc.solver.options import (
@@ -58,6 +63,30 @@ def out_of_memory() -> SolverError:
     )
 
 
+def answer_of(outcome: Outcome, seconds: float | None, what: str = "synthesis") -> Any:
+    """The answer of a solver run in a child process (:func:`first_success`'s ``outcome``),
+    or the error it ended with, raised here: its own exception; out of memory for a
+    MemoryError, or a child that died as CUDD's C handler (``exit(1)`` when ``malloc``
+    fails) or the kernel's OOM killer (SIGKILL) ends it; the time limit of ``seconds``
+    passed (:func:`time_limit_error`, of ``what``)."""
+    kind = outcome[0]
+    if kind == "ok":
+        return outcome[1]
+    if kind == "raise":
+        err, text = outcome[1], outcome[2]
+        if isinstance(err, MemoryError):
+            raise out_of_memory()
+        if not isinstance(err, GaitcError) and os.environ.get("GAITC_DEBUG"):
+            print(text, file=sys.stderr, end="")
+        raise err
+    if kind == "timeout":
+        raise time_limit_error(seconds or 0.0, what)
+    code = outcome[1]
+    if code in (1, -signal.SIGKILL):
+        raise out_of_memory()
+    raise SolverError(f"the solver process ended without an answer (exit status {code})")
+
+
 class OrderMisfit(Exception):
     """A game stops once its fixed order misfits, for its caller to build it again in
     another order: a small game asked to (``Options.restart_misfit``), where sifting a
@@ -83,7 +112,7 @@ class WorkMeter:
     lookups: float = 0.0  # in the game's steps, up to the last sample
     nodes: float = 0.0  # of the steps' targets and results (each window by its sample)
     window: float = 0.0  # lookups a step, averaged over the last window
-    _start: float | None = None
+    _start: float = 0.0  # the counter when the count started
     _last_step: int = 0
 
     def due(self) -> bool:
@@ -93,14 +122,13 @@ class WorkMeter:
         return n in WORK_SAMPLES or (n > WORK_SAMPLES[-1] and n % WORK_EVERY == 0)
 
     def start(self, lookups: float) -> None:
-        """Start counting at the counter's value ``lookups`` (before the first step)."""
-        self._start, self._last_step = lookups, self.steps
+        """Count anew from the counter's value ``lookups`` (before a solve's first step)."""
+        self.steps = self._last_step = 0
+        self.lookups = self.nodes = self.window = 0.0
+        self._start = lookups
 
     def sample(self, lookups: float, nodes: int) -> None:
         """Record the counter ``lookups`` and this step's ``nodes`` (target and result)."""
-        if self._start is None:
-            self.start(lookups)
-            return
         done = lookups - self._start - self.lookups
         width = self.steps - self._last_step
         self.lookups += done

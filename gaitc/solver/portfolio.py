@@ -36,15 +36,12 @@ that are decided by counts.
 
 from __future__ import annotations
 
-import os
-import sys
 from collections.abc import Callable
 from dataclasses import replace
 from typing import Final, TypeVar
 
-from gaitc.diagnostics import GaitcError, SolverError
 from gaitc.diagnostics.processes import GRACE, can_fork, first_success, to_parent
-from gaitc.solver.game import Limits, OrderMisfit, out_of_memory, time_limit_error
+from gaitc.solver.game import Limits, OrderMisfit, answer_of
 from gaitc.solver.options import SMALL_BITS
 from gaitc.solver.symbolic import Options
 
@@ -86,20 +83,8 @@ def solve_chosen(run: Callable[[Options, Limits], T], options: Options, limits: 
     deadline = limits.started + limits.timeout + GRACE
     _, outcome = first_success([lambda: _plan(run, options, reporting, bits)], deadline,
                                relay=limits.progress)
-    if outcome[0] == "ok":
-        answer: tuple[T, str] = outcome[1]
-        return answer
-    if outcome[0] == "raise":
-        err = outcome[1]
-        if isinstance(err, MemoryError):
-            raise out_of_memory()
-        if not isinstance(err, GaitcError) and os.environ.get("GAITC_DEBUG"):
-            print(outcome[2], file=sys.stderr, end="")
-        raise err
-    if outcome[0] == "timeout":
-        raise time_limit_error(limits.timeout)
-    raise SolverError(f"the solver process ended without an answer (exit status "
-                      f"{outcome[1]}); the machine may be out of memory")
+    answer: tuple[T, str] = answer_of(outcome, limits.timeout)
+    return answer
 
 
 def _plan(run: Callable[[Options, Limits], T], options: Options, limits: Limits,
