@@ -474,7 +474,8 @@ class Game:
             meter.sample(self._lookups(), target.dag_size + result.dag_size)
             if self._slow_work is not None and meter.window > self._slow_work:
                 return _SIFT
-            if self.sym.refitted and meter.lookups > REFIT_SIFT_WORK:
+            if (self.sym.options.refit_sift and self.sym.refitted
+                    and meter.lookups > REFIT_SIFT_WORK):
                 return _SIFT
             if (self.sym.options.rebuild_misfit and not self.sym.refitted
                     and meter.lookups > MISFIT_WORK and meter.ratio > MISFIT_RATIO):

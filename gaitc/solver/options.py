@@ -39,8 +39,9 @@ SIFT_BLOWUP: Final = 10
 #: masters, a slowest step of 60,000), sifting from 8 masters on (slowest steps 0.1-1.3 s).
 RESIFT_WORK: Final = 200_000
 
-#: After a refitted build, the game sifts throughout once its steps have done this many
-#: lookups in all (about 0.3 s of work), whether or not one step was slow: the order was
+#: After a refitted build, the game of the plan's static run (``Options.refit_sift``) sifts
+#: throughout once its steps have done this many lookups in all (about 0.3 s of work),
+#: whether or not one step was slow: the order was
 #: sifted for ρ, and the fixpoint's sets outgrow it (the race's static racer did this
 #: after 0.3 s of fixpoint until issue 50; measured there: GenBuf with 24 senders 3.3 s
 #: against 6.4 s fixed, AMBA bit-encoded with 3 masters 0.96 s against 1.15 s, AMBA with
@@ -108,6 +109,8 @@ class Options:
     cluster_limit: int = 2500  # node limit when merging ρs parts into clusters
     memory_mb: int | None = None  # CUDD's hard memory limit (its own tables and caches)
     first: tuple[str, ...] = ()  # variables pinned to the top of the order (rigid parameters)
+    refit_sift: bool = False  # a refitted build's game sifts throughout after REFIT_SIFT_WORK
+    # lookups of fixpoint (the plan's static run, gaitc.solver.portfolio)
     rebuild_misfit: bool = False  # a game working too hard for its sets raises OrderMisfit
     # (dynamic) for its caller to build it again sifting throughout (gaitc.solver.portfolio)
     restart_misfit: bool = False  # a misfit order raises OrderMisfit instead of sifting in

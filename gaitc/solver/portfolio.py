@@ -94,7 +94,7 @@ def _plan(run: Callable[[Options, Limits], T], options: Options, limits: Limits,
     small = bits is not None and bits <= SMALL_BITS
     try:
         return run(replace(engine_options(STATIC, options), restart_misfit=small,
-                           rebuild_misfit=True), limits), STATIC
+                           refit_sift=True, rebuild_misfit=True), limits), STATIC
     except OrderMisfit as misfit:
         engine = DYNAMIC if misfit.dynamic else SIFTED
         limits.report("building the transition relation again",
