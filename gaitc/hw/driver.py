@@ -17,13 +17,13 @@ from dataclasses import dataclass
 from gaitc.diagnostics import SpecSemanticError
 from gaitc.gaitgraph.pairing import Resolver, ValveSequence, resolve_primitive
 from gaitc.hw.backend import (
-    WRONG_WAY,
     Backend,
     HardwareError,
     Interrupted,
     SensorReading,
     where,
 )
+from gaitc.hw.localisation import Miss, RegionMap, deviation
 from gaitc.hw.simulated import ScenarioFinished
 from gaitc.sim.domain import Domain, State
 from gaitc.sim.environments import Environment, Move, Request, Situation
@@ -178,46 +178,78 @@ class Driver:
         return Request(inputs, describe(reading, here))
 
     def _off_course(self, found: str, expected: str, here: State | None) -> HardwareError:
-        """The error for a reading in another region than the controller expects: a gait
-        that went the wrong way (its motion against the move, in degrees, and its
-        primitive) or one that went the right way but not far enough."""
+        """The error for a reading in another region than the controller expects, at the
+        step's gait in the spec (at the start, at its ``start``): a gait that went the wrong
+        way (its motion against the move, in degrees, and its primitive), one that went the
+        right way but fell short or too far, or one that drifted sideways into a neighbour
+        of the region expected (:func:`gaitc.hw.localisation.deviation`)."""
+        model = self.domain.model
+        step = max(self._ran_up_to, 0)
         after = "at the start" if here is None else f"after gait {here.gait}"
-        head = (f"localisation reports region {found} but the controller expects {expected} "
-                f"{after}")
+        head = (f"step {step}: localisation reports region {found} but the controller expects "
+                f"{expected} {after}")
         tail = "stopped with all valves vented"
+        gait = None if here is None else next((g for g in model.gaits if g.name == here.gait),
+                                              None)
+        span = (model.start_span if gait is None else gait.span) or where(self.backend.name)
         course = None if here is None else self.backend.course(self._left, expected)
         if course is None or here is None:
             physics = self.backend.name.startswith("physics")
             return HardwareError(
-                f"{head}: the gait did not get there; {tail}", where(self.backend.name),
+                f"{head}: the gait did not get there; {tail}", span,
                 "on the physics backend a gait moves the robot only as far as the model "
                 "predicts per cycle: repeat each gait with --cycles N or shrink the regions "
                 "with --cell-size MM (docs/models.md)" if physics
                 else "check the gait's valve sequence and the localisation map")
+        regions = getattr(self.backend, "regions", None)
+        if isinstance(regions, RegionMap) and {found, expected} <= regions.polygons.keys():
+            (fx, fy), (ex, ey) = regions.centre(found), regions.centre(expected)
+            reached = (fx - ex, fy - ey)
+        else:  # as if the gait set out from the centre of its region
+            reached = (course.moved[0] - course.wanted[0], course.moved[1] - course.wanted[1])
+        off = deviation(course, reached)
         mx, my = course.moved
         moved = (f"moved the chassis {math.hypot(mx, my):.1f} mm ({_compass(mx, 'east', 'west')}"
                  f", {_compass(my, 'north', 'south')})")
-        toward = f"toward {math.degrees(math.atan2(my, mx)):.0f} deg"
-        wanted = math.degrees(math.atan2(course.wanted[1], course.wanted[0]))
-        seq = self.primitives.get(here.gait)
-        primitive = ("" if seq is None else
-                     f"; its primitive ({seq.source}) runs {', '.join(seq.states)}")
-        if course.error >= WRONG_WAY:
+        track = f"{off.along:.1f} mm along the {off.length:.1f} mm from {self._left} to {expected}"
+        aside = (f"{abs(off.across):.1f} mm {off.side} of that line" if off.side
+                 else "not off that line")
+        into = found + (f", {off.beside} of {expected}" if off.beside else "")
+        if off.miss is Miss.WRONG_WAY:
+            toward = f"toward {math.degrees(math.atan2(my, mx)):.0f} deg"
+            wanted = math.degrees(math.atan2(course.wanted[1], course.wanted[0]))
+            seq = self.primitives.get(here.gait)
+            primitive = ("" if seq is None else
+                         f"; its primitive ({seq.source}) runs {', '.join(seq.states)}")
             return HardwareError(
                 f"{head}: gait {here.gait} went the wrong way: it {moved}, {toward}, but "
                 f"{expected} lies toward {wanted:.0f} deg from {self._left}, a direction "
-                f"error of {course.error:.0f} deg{primitive}; {tail}",
-                where(self.backend.name),
+                f"error of {off.error:.0f} deg{primitive}; {tail}", span,
                 "check the primitive: a valve wired to another leg, or legs fired in "
                 "another order, sends the robot elsewhere ('gaitc gaits ROBOT --direction D' "
                 "predicts each direction's valve sequence)")
+        if off.miss is Miss.DRIFTED:
+            return HardwareError(
+                f"{head}: gait {here.gait} drifted: it {moved}, {track}, enough to reach "
+                f"{expected}, but {aside} (a direction error of {off.error:.0f} deg), which "
+                f"put it in {into}; {tail}", span,
+                "the gait's motion has a sideways part that carried the robot out of the "
+                "region: choose a primitive closer to the move ('gaitc gaits ROBOT "
+                "--direction D' ranks each direction's valve sequences), or give the regions "
+                "room across the move (--cell-size MM, or a --map)")
+        if off.miss is Miss.SHORT:
+            return HardwareError(
+                f"{head}: gait {here.gait} went the right way (a direction error of "
+                f"{off.error:.0f} deg) but not far enough: it {moved}, {track} and {aside}, "
+                f"so it fell short and is in {into}; {tail}", span,
+                "a gait moves the robot only as far as its cycle does: repeat each gait with "
+                "--cycles N or shrink the regions with --cell-size MM (docs/models.md)")
         return HardwareError(
             f"{head}: gait {here.gait} went the right way (a direction error of "
-            f"{course.error:.0f} deg) but not far enough: it {moved}, {course.progress:.1f} "
-            f"mm along the {math.hypot(*course.wanted):.1f} mm from {self._left} to {expected}; "
-            f"{tail}", where(self.backend.name),
-            "a gait moves the robot only as far as its cycle does: repeat each gait with "
-            "--cycles N or shrink the regions with --cell-size MM (docs/models.md)")
+            f"{off.error:.0f} deg) but too far: it {moved}, {track} and {aside}, so it "
+            f"passed {expected} and is in {into}; {tail}", span,
+            "each step runs the gait's cycle --cycles times: run fewer cycles or grow the "
+            "regions with --cell-size MM (docs/models.md)")
 
 
 def _compass(value: float, positive: str, negative: str) -> str:

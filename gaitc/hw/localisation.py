@@ -9,6 +9,8 @@ wraps any backend and replaces the region of its readings, so the driver's check
 robot reached the region the controller expects (thesis section 3.3's region propositions)
 rests on the tracker.  Messages are bounded in size; malformed ones are counted and skipped;
 a pose older than ``max_age`` seconds, or none within ``timeout``, is an error.
+:func:`deviation` tells how a gait missed the region expected: the wrong way, short of it,
+past it, or drifted sideways into a neighbour.
 """
 
 from __future__ import annotations
@@ -20,11 +22,12 @@ import socket
 import time
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
+from enum import Enum
 from pathlib import Path
 
 import yaml
 
-from gaitc.hw.backend import Backend, Course, HardwareError, SensorReading, where
+from gaitc.hw.backend import WRONG_WAY, Backend, Course, HardwareError, SensorReading, where
 from gaitc.sim.environments import Move
 from ltlcompiler.model import Model
 
@@ -89,6 +92,11 @@ class RegionMap:
             out[region] = polygon
         return cls(out)
 
+    def centre(self, name: str) -> Point:
+        """The centre of a region's polygon (the mean of its corners)."""
+        points = self.polygons[name]
+        return (sum(p[0] for p in points) / len(points), sum(p[1] for p in points) / len(points))
+
     def region_at(self, x: float, y: float) -> str | None:
         """The first region (in map order) whose polygon holds (x, y); None outside all."""
         for name, polygon in self.polygons.items():
@@ -104,6 +112,61 @@ def _inside(x: float, y: float, polygon: Sequence[Point]) -> bool:
         if (y1 <= y < y2 or y2 <= y < y1) and x < x1 + (y - y1) * (x2 - x1) / (y2 - y1):
             inside = not inside
     return inside
+
+
+COMPASS = ("east", "north-east", "north", "north-west", "west", "south-west", "south",
+           "south-east")
+
+
+def compass(x: float, y: float) -> str:
+    """The compass word (of eight) nearest the direction of (x, y), x east and y north."""
+    return COMPASS[round(math.degrees(math.atan2(y, x)) / 45.0) % 8]
+
+
+class Miss(Enum):
+    """How a gait missed the region it was to reach."""
+
+    WRONG_WAY = "went the wrong way"  # its motion is WRONG_WAY degrees or more off the move
+    SHORT = "fell short"  # it stopped behind the region, toward where it set out
+    FAR = "went too far"  # it passed the region
+    DRIFTED = "drifted"  # far enough along the move, but beside the region
+
+
+@dataclass(frozen=True)
+class Deviation:
+    """A gait's motion split along and across its move, and how it missed the region."""
+
+    miss: Miss
+    along: float  # mm of motion along the move (negative: backwards)
+    across: float  # mm of motion across the move, to its left (negative: to its right)
+    side: str  # the compass word of the motion across the move ("" when there is none)
+    length: float  # mm of the move, centre to centre
+    error: float  # degrees between the motion and the move
+    beside: str  # the compass word of where the robot ended, seen from the region expected
+
+
+def deviation(course: Course, reached: Point) -> Deviation:
+    """How the motion of ``course`` missed its region; ``reached`` is where the region the
+    robot ended in lies from the region expected (their centres, mm).  A motion
+    :data:`WRONG_WAY` degrees or more off the move went the wrong way, whatever it reached;
+    else the robot ended beside the region (``reached`` more across the move than along
+    it): drifted; else behind it: fell short; else past it: went too far."""
+    (mx, my), (wx, wy) = course.moved, course.wanted
+    length = math.hypot(wx, wy)
+    ux, uy = (wx / length, wy / length) if length > 1e-9 else (1.0, 0.0)
+    along = mx * ux + my * uy
+    across = -mx * uy + my * ux  # along the move's left normal (-uy, ux)
+    side = compass(-uy * across, ux * across) if abs(across) >= 0.05 else ""
+    rx, ry = reached
+    ahead, aside = rx * ux + ry * uy, -rx * uy + ry * ux
+    if course.error >= WRONG_WAY:
+        miss = Miss.WRONG_WAY
+    elif abs(ahead) < abs(aside):
+        miss = Miss.DRIFTED
+    else:
+        miss = Miss.SHORT if ahead < 0 else Miss.FAR
+    beside = compass(rx, ry) if math.hypot(rx, ry) > 1e-9 else ""
+    return Deviation(miss, along, across, side, length, course.error, beside)
 
 
 def parse_pose(message: bytes) -> tuple[float, float] | None:
