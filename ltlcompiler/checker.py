@@ -298,6 +298,13 @@ class _Checker:
         out: list[Hazard] = []
         for st in self.statements.hazards:
             hazard = st.name.text
+            if st.wears is not None and not st.regions:
+                raise SpecSemanticError(
+                    f"hazard '{hazard}' wears the legs but lists no regions; add the regions "
+                    f"it covers before 'wears', e.g. 'hazard {hazard}: r2, r5 wears "
+                    f"{st.wears}'",
+                    st.span,
+                )
             if not st.regions:
                 raise SpecSemanticError(
                     f"hazard '{hazard}' lists no regions; add the regions it covers, e.g. "
@@ -318,8 +325,30 @@ class _Checker:
                         f"region '{name}' is listed twice in hazard '{hazard}'", ref.span
                     )
                 regions.append(name)
-            out.append(Hazard(hazard, tuple(regions), span=st.span))
+            self._wear(st)
+            out.append(Hazard(hazard, tuple(regions), span=st.span, wears=st.wears))
         return tuple(out)
+
+    def _wear(self, st: s.HazardDecl) -> None:
+        """``wears 0`` is an error; ``wears 1`` a warning: it is eq. 3.5's normal wear."""
+        hazard = st.name.text
+        if st.wears == 0:
+            raise SpecSemanticError(
+                f"hazard '{hazard}' wears 0 levels; a hazard that wears the legs takes at "
+                "least 1 level a step",
+                st.wears_span,
+                hint="write 'wears 2' or more, or drop 'wears' for a hazard that fails the "
+                "legs at once",
+            )
+        if st.wears == 1:
+            self.diagnostics.append(Diagnostic(
+                f"hazard '{hazard}' wears 1 level, which is no worse than the normal wear of "
+                "a move (eq. 3.5: a leg in use may lose one level), so the hazard changes "
+                "nothing",
+                st.wears_span,
+                hint="write 'wears 2' or more, or drop 'wears' for a hazard that fails the "
+                "legs at once",
+            ))
 
     def start(self) -> str:
         starts = self.statements.starts

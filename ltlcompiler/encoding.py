@@ -11,6 +11,7 @@ from typing import TYPE_CHECKING, Final
 from gaitc.diagnostics import FormulaError, SpecSemanticError, UsageError
 from gaitc.diagnostics.choices import Choice
 from gaitc.ir.formula import (
+    Add,
     And,
     Compare,
     Const,
@@ -121,6 +122,19 @@ class Encoding:
         ]
         parts.append(Implies(self.health(leg, 1), self.health(leg, 1, True)))
         return conj(parts)
+
+    def wear_health(self, leg: str, levels: int) -> Expr:
+        """The leg keeps its level or loses up to ``levels`` levels, never below level 1
+        (a graded hazard, eq. 3.5 generalised): health' in [max(1, health - levels), health].
+        For ``levels`` 1 this is :meth:`degrade_health` itself, clause for clause."""
+        if levels < 1:
+            raise ValueError(f"a leg wears at least 1 level a step, not {levels}")
+        if levels == 1:
+            return self.degrade_health(leg)
+        return conj(Implies(self.health(leg, j), disj(self.health(leg, i, True)
+                                                       for i in range(j, max(1, j - levels) - 1,
+                                                                      -1)))
+                    for j in range(self.legs[leg].health, 0, -1))
 
     # ------------------------------------------------------------ mutual exclusion
     def mutex(self, primed: bool) -> Iterator[tuple[str, str, Expr]]:
@@ -278,6 +292,20 @@ class Binary(Encoding):
         drops = [conj((self.health(leg, j), self.health(leg, j - 1, True)))
                  for j in range(self.legs[leg].health, 1, -1)]
         return disj([self.keep_health(leg), *drops])
+
+    def wear_health(self, leg: str, levels: int) -> Expr:
+        """health' <= health & health' + levels >= health: two comparisons whatever the
+        number of levels (the range 1..h keeps the leg above 0); for one level, eq. 3.5's
+        :meth:`degrade_health` as it is."""
+        if levels < 1:
+            raise ValueError(f"a leg wears at least 1 level a step, not {levels}")
+        if levels == 1:
+            return self.degrade_health(leg)
+        now, after = IntVar(leg), IntVar(leg, True)
+        if levels >= self.legs[leg].health - 1:  # any level from here down to failed
+            return Compare("<=", after, now)
+        return conj((Compare("<=", after, now),
+                     Compare(">=", Add(after, IntConst(levels)), now)))
 
     def _compare_legs(self, cmp: Compare, names: list[tuple[str, bool]]) -> Expr:
         return cmp

@@ -65,6 +65,10 @@ def lower(model: Model, encoding: EncodingName = EncodingName.ONEHOT) -> GR1Spec
       for ever, and a cache cannot repair it (its only level is its full level).
     * Hazards are unconstrained at the start apart from "at most one"; health starts
       at each leg's declared initial level (default full).
+    * A graded hazard (``wears k``) generalises eq. 3.9 towards eq. 3.5: in its active
+      regions each leg of the gait may lose up to k levels (health' in
+      [max(1, health - k), health], the environment choosing) instead of failing; it
+      still counts in eq. 3.5's φ_H, so eq. 3.5's one level does not also apply there.
     """
     check_names(model, encoding)
     return _Lowering(model, make_encoding(model, encoding)).run()
@@ -191,10 +195,18 @@ class _Lowering:
             for hazard in m.hazards:
                 hot = conj([*away, enc.hazard(hazard.name),
                             disj(enc.region(r) for r in hazard.regions)])
-                body = conj([*(enc.health(leg, 1, True) for leg in legs),
-                             *self.keep_others(legs)])
-                rule = f"eq. 3.9: hazard {hazard.name} active in {'|'.join(hazard.regions)} " \
-                       f"under {gait.name} fails {which}"
+                where = f"hazard {hazard.name} active in {'|'.join(hazard.regions)} " \
+                        f"under {gait.name}"
+                if hazard.wears is None:
+                    lost = [enc.health(leg, 1, True) for leg in legs]
+                    rule = f"eq. 3.9: {where} fails {which}"
+                else:  # a graded hazard: eq. 3.9 with eq. 3.5's wear of up to k levels
+                    k = hazard.wears
+                    levels = f"{k} level{'s' if k != 1 else ''}"
+                    lost = [enc.wear_health(leg, k) for leg in legs]
+                    rule = f"eq. 3.9 graded (eq. 3.5 with up to {levels}): {where}: " \
+                           f"{which} may lose up to {levels}, the other legs keep theirs"
+                body = conj([*lost, *self.keep_others(legs)])
                 self.add("env_trans", Implies(hot, body), rule, hazard.span)
 
     # ------------------------------------------------------------ eq. 3.6

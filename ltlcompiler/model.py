@@ -99,11 +99,28 @@ class Transition:
 
 @dataclass(frozen=True)
 class Hazard:
-    """A hazard set and the regions it covers when active."""
+    """A hazard set, the regions it covers when active and what it does to the legs.
+
+    ``wears`` None: a move in an active region fails every leg of the gait (eq. 3.9).
+    ``wears`` k >= 1 (a graded hazard): each leg of the gait may lose up to k levels, never
+    going below level 1, the environment choosing how many (eq. 3.5 with k for 1; so
+    ``wears 1`` is the normal wear, and ``wears`` h - 1 or more lets the environment pick
+    any level from the current one down to failed, which is not "fails": it may also
+    spare the leg).
+    """
 
     name: str
     regions: tuple[str, ...]  # F_T(t)
     span: Span | None = field(default=None, compare=False, repr=False)
+    wears: int | None = None  # None: fails the legs; k: they may lose up to k levels
+
+    @property
+    def effect(self) -> str:
+        """What an active region does to the legs of a gait, in words: "fails the legs" or
+        "wears the legs by up to 2 levels" (the words of the lowering, the map and docs)."""
+        if self.wears is None:
+            return "fails the legs"
+        return f"wears the legs by up to {self.wears} level{'s' if self.wears != 1 else ''}"
 
 
 @dataclass(frozen=True)

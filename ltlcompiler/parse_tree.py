@@ -169,9 +169,16 @@ class _Builder:
     def cache_decl(self, meta: Meta, ch: list[Any]) -> s.CacheDecl:
         return s.CacheDecl(ch[0], span=self._sp(meta))
 
+    def wears(self, meta: Meta, ch: list[Token]) -> Token:
+        return ch[0]
+
     def hazard_decl(self, meta: Meta, ch: list[Any]) -> s.HazardDecl:
-        regions = ch[1] if ch[1] is not None else ()
-        return s.HazardDecl(self._name(ch[0]), regions, span=self._sp(meta))
+        name, refs, amount = ch
+        regions = refs if refs is not None else ()
+        if amount is None:
+            return s.HazardDecl(self._name(name), regions, span=self._sp(meta))
+        return s.HazardDecl(self._name(name), regions, number(self.file, amount),
+                            wears_span=token_span(self.file, amount), span=self._sp(meta))
 
     def health_init(self, meta: Meta, ch: list[Any]) -> s.HealthInit:
         value: Token = ch[1]

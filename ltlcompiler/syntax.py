@@ -164,10 +164,13 @@ class CacheDecl:
 
 @dataclass(frozen=True)
 class HazardDecl:
-    """``hazard fire: r2, r3``: a hazard set and the regions it covers."""
+    """``hazard fire: r2, r3`` (fails the legs) / ``hazard sand: r2, r3 wears 2`` (each leg
+    in use may lose up to 2 levels): a hazard set, the regions it covers and its wear."""
 
     name: Name
     regions: tuple[RegionRef, ...]
+    wears: int | None = None  # None: no ``wears`` clause, the hazard fails the legs at once
+    wears_span: Span | None = field(default=None, compare=False, repr=False, kw_only=True)
     span: Span | None = _SPAN
 
 

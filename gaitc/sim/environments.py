@@ -104,9 +104,10 @@ class AdversarialEnvironment(Environment):
     can force from there (:func:`gaitc.sim.adversary.harm_table`: health levels lost over the
     next steps, discounted, and distance from the next goal).  Ties, and every choice when
     it cannot see the controller, go to the one-step order: (1) the most health levels
-    lost (every leg in use degrades, or fails in an active hazard); (2) the hazard set
-    nearest the robot active; (3) the controller's answer farthest (in region transitions)
-    from the goal the robot is heading for; then the smallest input valuation.
+    lost (every leg in use degrades, and in an active hazard fails or loses as many levels
+    as the hazard wears); (2) the hazard set nearest the robot active; (3) the
+    controller's answer farthest (in region transitions) from the goal the robot is
+    heading for; then the smallest input valuation.
     It stays fair: when a □◇ assumption has waited ``patience`` steps, only moves that
     satisfy it are considered (the assumptions' liveness part, in turn).
     """

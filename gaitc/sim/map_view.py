@@ -125,7 +125,7 @@ def _legend(model: Model, with_run: bool) -> str:
     for i, h in enumerate(model.hazards):
         light = HAZARD_COLOURS[i % len(HAZARD_COLOURS)][0]
         rows.append(f'<TR><TD BGCOLOR="{light}"> </TD><TD ALIGN="LEFT">hazard set '
-                    f"{html(h.name)}</TD></TR>")
+                    f"{html(h.name)}: {html(h.effect)}</TD></TR>")
     if with_run:
         rows += [f'<TR><TD BGCOLOR="{HEALTHY}"> </TD><TD ALIGN="LEFT">healthy leg</TD></TR>',
                  f'<TR><TD BGCOLOR="{DEGRADED}"> </TD><TD ALIGN="LEFT">degraded</TD></TR>',

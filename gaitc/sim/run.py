@@ -29,8 +29,10 @@ class Step:
     ``degraded``/``failed`` belong to the move into this state and its gait: the legs that
     this step's gait wears out (Mealy turn order: the environment lowers their level on the
     next step, eq. 3.5, or fails them there when this step entered an active hazard region,
-    eq. 3.9), so the mark sits on the move that caused it.  ``repaired`` lists the legs whose
-    level went up on the step into this state (a cache, eq. 3.6).
+    eq. 3.9, or lowers them by up to k levels for a hazard that ``wears k``; a leg that ends
+    above level 1 counts as degraded), so the mark sits on the move that caused it.
+    ``repaired`` lists the legs whose level went up on the step into this state (a cache,
+    eq. 3.6).
     """
 
     index: int

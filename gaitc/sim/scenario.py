@@ -1,6 +1,7 @@
 """Scripted environments: YAML scenarios saying, step by step, which hazard is active and
-which legs degrade or fail; names are checked on loading (errors point at file:line:col),
-and each step's input is checked against the spec's assumptions ρe while the run goes.
+which legs degrade (by one level, or by several under a graded hazard) or fail; names are
+checked on loading (errors point at file:line:col), and each step's input is checked
+against the spec's assumptions ρe while the run goes.
 """
 
 from __future__ import annotations
@@ -25,12 +26,15 @@ TOP_KEYS = ("start", "steps")
 
 @dataclass(frozen=True)
 class ScriptStep:
-    """One scripted step; ``keep_hazard`` when the step does not mention the hazard."""
+    """One scripted step; ``keep_hazard`` when the step does not mention the hazard.
+
+    ``degrade`` holds (leg, levels lost): ``degrade: [L1]`` loses one level (eq. 3.5),
+    ``degrade: {L1: 2}`` two, which only a graded hazard (``wears 2`` or more) allows."""
 
     span: Span
     keep_hazard: bool = True
     hazard: str | None = None
-    degrade: tuple[str, ...] = ()
+    degrade: tuple[tuple[str, int], ...] = ()
     fail: tuple[str, ...] = ()
     health: tuple[tuple[str, int], ...] = ()
 
@@ -38,7 +42,8 @@ class ScriptStep:
         parts = []
         if not self.keep_hazard:
             parts.append(f"hazard {self.hazard or 'none'}")
-        parts.extend(f"degrade {leg}" for leg in self.degrade)
+        parts.extend(f"degrade {leg}" if lost == 1 else f"degrade {leg} by {lost} levels"
+                     for leg, lost in self.degrade)
         parts.extend(f"fail {leg}" for leg in self.fail)
         parts.extend(f"{leg} at level {level}" for leg, level in self.health)
         return ", ".join(parts) or "no change"
@@ -107,6 +112,22 @@ class _Reader:
             raise self.fail(f"unknown hazard set '{value}'; use one of {known}, or none", node)
         return str(value)
 
+    def degrade(self, node: yaml.Node) -> tuple[tuple[str, int], ...]:
+        """``[L1, L3]`` or ``L1`` (one level each) or ``{L1: 2}`` (levels lost per leg)."""
+        if not isinstance(node, yaml.MappingNode):
+            return tuple((leg, 1) for leg in self.legs_of(node, "degrade"))
+        out: list[tuple[str, int]] = []
+        for key, value in node.value:
+            leg = self.leg(key)
+            if leg in (named for named, _ in out):
+                raise self.fail(f"leg '{leg}' is listed twice under 'degrade'", key)
+            text = value.value if isinstance(value, yaml.ScalarNode) else None
+            if not isinstance(text, str) or not text.isdigit() or int(text) < 1:
+                raise self.fail(f"leg '{leg}' must lose a whole number of levels, at least 1",
+                                value)
+            out.append((leg, int(text)))
+        return tuple(out)
+
     def health(self, node: yaml.Node) -> tuple[tuple[str, int], ...]:
         if not isinstance(node, yaml.MappingNode):
             raise self.fail("'health' must map legs to levels, e.g. {L1: 2}", node)
@@ -126,10 +147,10 @@ class _Reader:
         if isinstance(node, yaml.ScalarNode) and node.value.lower() in ("", "null", "~", "{}"):
             return ScriptStep(_span(self.file, node))
         fields = self.mapping(node, what, keys)
-        degrade = self.legs_of(fields["degrade"], "degrade") if "degrade" in fields else ()
+        degrade = self.degrade(fields["degrade"]) if "degrade" in fields else ()
         fail = self.legs_of(fields["fail"], "fail") if "fail" in fields else ()
         health = self.health(fields["health"]) if "health" in fields else ()
-        named = list(degrade) + list(fail) + [leg for leg, _ in health]
+        named = [leg for leg, _ in degrade] + list(fail) + [leg for leg, _ in health]
         for i, leg in enumerate(named):
             if leg in named[:i]:
                 raise self.fail(f"{what} says two things about leg '{leg}'", node)
@@ -179,11 +200,15 @@ class ScriptedEnvironment(Environment):
     def _wanted(self, step: ScriptStep, here: State) -> tuple[str | None, dict[str, int]]:
         hazard = here.hazard if step.keep_hazard else step.hazard
         levels: dict[str, int] = {}
-        for leg in step.degrade:
+        for leg, lost in step.degrade:
             if here.level(leg) == 1:
                 raise ScenarioError(f"leg '{leg}' has already failed (level 1) and cannot "
                                     "degrade further", step.span)
-            levels[leg] = here.level(leg) - 1
+            if here.level(leg) - lost < 1:
+                raise ScenarioError(f"leg '{leg}' is at level {here.level(leg)} and cannot lose "
+                                    f"{lost} levels; its lowest level is 1 (write 'fail: "
+                                    f"{leg}')", step.span)
+            levels[leg] = here.level(leg) - lost
         levels.update({leg: 1 for leg in step.fail})
         levels.update(dict(step.health))
         return hazard, levels

@@ -94,7 +94,7 @@ CATALOGUE = [
      "did you mean 'r0'?"),
     ('cache r2',
      'cahce r2',
-     "lab.gait:8:1: unexpected name 'cahce'; expected ',', end of file or a new statement",
+     "lab.gait:8:1: unexpected name 'cahce'; expected ',', 'wears', end of file or a new statement",
      "did you mean 'cache'?"),
     ('cache r2',
      'cache r22',
