@@ -11,9 +11,11 @@ through that registry, so adding a form is one registered class and one enum mem
 from __future__ import annotations
 
 from abc import ABC, abstractmethod
+from pathlib import Path
 from typing import TYPE_CHECKING, Any, ClassVar, TypeAlias
 
 from gaitc.core.modes import Form, Semantics
+from gaitc.diagnostics import UsageError
 
 if TYPE_CHECKING:
     from gaitc.compact.controller import CompactController
@@ -56,6 +58,16 @@ class ControllerForm(ABC):
     @abstractmethod
     def to_json(self, automaton: Any) -> str:
         """The controller file's text (``docs/controller-format.md``)."""
+
+    def to_file(self, automaton: Any, path: str | Path, layout: str | None = None
+                ) -> str | bytes:
+        """The controller file's contents for the file ``path``: the form's JSON text
+        (:meth:`to_json`) unless the form has other layouts (``layout``, or one the name
+        asks for)."""
+        if layout is not None:
+            raise UsageError(f"a {self.form} controller has one file layout, JSON; "
+                             f"'{layout}' is a layout of explicit controllers")
+        return self.to_json(automaton)
 
     @abstractmethod
     def verify(self, spec: Spec, automaton: Any, semantics: Semantics) -> VerificationReport:

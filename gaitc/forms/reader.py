@@ -29,7 +29,7 @@ if TYPE_CHECKING:
     from gaitc.sim.view import StrategyView
 
 __all__ = ["HINT_RESYNTHESIZE", "Automaton", "belongs", "check_belongs", "load_runtime",
-           "parse_controller", "parse_file", "read_controller", "runtime"]
+           "parse_controller", "parse_file", "read_controller", "read_document", "runtime"]
 
 HINT_RESYNTHESIZE = "synthesize it again from this spec with 'gaitc synth'"
 
@@ -39,10 +39,25 @@ def parse_controller(data: Any, file: str, spec: SpecLike) -> Automaton:
     return detect(data).parse(data, file, as_spec(spec))
 
 
+def read_document(path: str | Path) -> Any:
+    """The parsed contents of the controller file ``path``, in any form and layout: JSON
+    text, or an explicit controller's tables layout (gzip, :func:`gaitc.forms.explicit.
+    read_tables`); a file that is neither is a :class:`~gaitc.diagnostics.ControllerError`
+    saying where it goes wrong."""
+    from gaitc.diagnostics.files import read_input
+    from gaitc.forms.explicit import GZIP_MAGIC, read_tables
+
+    file = str(path)
+    raw = read_input(file, "controller file")
+    if raw.startswith(GZIP_MAGIC):
+        return read_tables(raw, file)
+    return read_controller_json(file)
+
+
 def parse_file(path: str | Path, spec: SpecLike) -> Automaton:
     """The controller in the file ``path``, its own structure checked (not yet its spec:
     :func:`read_controller` does both)."""
-    return parse_controller(read_controller_json(str(path)), str(path), spec)
+    return parse_controller(read_document(path), str(path), spec)
 
 
 def read_controller(path: str | Path, spec: SpecLike) -> Automaton:

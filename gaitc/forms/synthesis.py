@@ -160,14 +160,17 @@ class Synthesis:
 
         return entry(self.controller).form
 
-    def save(self, path: str | Path) -> None:
-        """Write the controller as JSON (docs/controller-format.md), atomically."""
+    def save(self, path: str | Path, layout: str | None = None) -> None:
+        """Write the controller file (docs/controller-format.md) atomically: through a
+        temporary file renamed over ``path``.  An explicit controller is written in the
+        tables layout, or as SLUGS's JSON when ``path`` ends in ``.json`` or ``layout`` is
+        ``slugs-json`` (:class:`gaitc.forms.explicit.Layout`)."""
         if self.controller is None:
             raise UsageError(f"there is no {self.kind} to save: the spec is "
                              f"{'realizable' if self.realizable else 'unrealizable'}")
         from gaitc.forms.registry import entry
 
-        write_atomically(path, entry(self.controller).to_json(self.controller))
+        write_atomically(path, entry(self.controller).to_file(self.controller, path, layout))
 
     def picture(self) -> Picture:
         """The automaton drawn in domain terms (needs a ``.gait`` spec and Graphviz)."""
