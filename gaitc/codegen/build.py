@@ -1,8 +1,9 @@
 """Writing, compiling and sizing generated controllers for a host (``c``) or the board (``avr``).
 
 ``c``: ``gaitc_controller.h`` and ``gaitc_controller.c`` plus ``gaitc-run``, the controller
-behind a line protocol on standard input (``host/driver.c``), for a Raspberry Pi class host
-and for the tests that compare it with the Python runner.  No size limit.
+behind a line protocol on standard input (``host/driver.c``; ``--names`` for the spec's
+names instead of value indices), for a Raspberry Pi class host and for the tests that
+compare it with the Python runner.  No size limit.
 
 ``avr``: the same two files compiled into the valve-board firmware (``gaitboard.c`` with
 ``GAITC_CONTROLLER``), so the board decides on its own.  The image's flash (text + data) and
@@ -23,7 +24,7 @@ from typing import Any, Final
 
 from gaitc.codegen.board import BoardTables, board_header
 from gaitc.codegen.emitter import header, source
-from gaitc.codegen.tables import Tables, flatten
+from gaitc.codegen.tables import NOT_INPUT, Tables, flatten
 from gaitc.compact.controller import CompactController
 from gaitc.diagnostics import Span
 from gaitc.diagnostics.choices import Choice
@@ -64,11 +65,24 @@ class Built:
     flash: int | None = None
     ram: int | None = None
 
+    @property
+    def hint(self) -> str | None:
+        """How to run a host build's ``gaitc-run`` in the spec's names; None for a board
+        image or when gcc was missing."""
+        if self.target != Target.C or self.program is None:
+            return None
+        return (f"'{self.program} --names' answers in the spec's names (region=r3 "
+                "gait=north_a L1=2 ... goal=1) and reads them (s L1=2 ..., or the names "
+                "alone); without --names it reads and prints value indices (docs/compact.md)")
+
     def summary(self) -> str:
+        """The sizes, then for a host build a ``hint:`` line on running it with names."""
         text = f"{self.table_bytes} bytes of tables"
         if self.flash is not None and self.ram is not None:
             text += (f"; firmware image {self.flash} of {FLASH_LIMIT} bytes of flash, "
                      f"{self.ram} of {RAM_LIMIT} bytes of static RAM")
+        if self.hint is not None:
+            text += f"\nhint: {self.hint}"
         return text
 
     def to_json(self) -> dict[str, Any]:
@@ -76,7 +90,8 @@ class Built:
                 "program": None if self.program is None else str(self.program),
                 "table_bytes": self.table_bytes, "flash": self.flash, "ram": self.ram,
                 "flash_limit": FLASH_LIMIT if self.target == Target.AVR else None,
-                "ram_limit": RAM_LIMIT if self.target == Target.AVR else None}
+                "ram_limit": RAM_LIMIT if self.target == Target.AVR else None,
+                "hint": self.hint}
 
 
 def _where(file: str) -> Span:
@@ -121,9 +136,14 @@ def build(ctrl: CompactController, out_dir: str | Path, target: Target | str,
             program: Path | None = None
             if shutil.which("gcc") is not None:
                 program = work / "gaitc-run"
-                run_tool(["gcc", *HOST_FLAGS, "-DGAITC_DUMP", "-DGAITC_NAMES", f"-I{work}",
-                          "-o", str(program), str(c), str(HOST / "driver.c")],
-                         "gcc gaitc_controller.c")
+                # the input fields' order, so that gaitc-run --names reads names too
+                order = [f for _, f in sorted((place, f) for f, place
+                                              in enumerate(tables.input_pos)
+                                              if place != NOT_INPUT)]
+                fields = "{" + ",".join(str(f) for f in order or [0]) + "}"
+                run_tool(["gcc", *HOST_FLAGS, "-DGAITC_DUMP", "-DGAITC_NAMES",
+                          f"-DGAITC_INPUT_FIELDS={fields}", f"-I{work}", "-o", str(program),
+                          str(c), str(HOST / "driver.c")], "gcc gaitc_controller.c")
             files, built = _publish(out, [h, c], program)
             return Built(chosen, files, built, tables.bytes)
         need = missing_tools(simulator=False)
