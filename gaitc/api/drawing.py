@@ -6,6 +6,8 @@ notebook as SVG.
   region and gait when it is large, or the nodes within some steps of the start;
 - :func:`controller_policy`: the controller projected to rules per region ("in region r,
   pursuing goal g, with these legs usable: use gait x"), as text, Markdown, HTML or a picture;
+- :func:`compact_rules`: a compact controller's rules per goal, said only of the states a run
+  reaches, and :func:`draw_rules`, the same as a picture (one table per goal);
 - :func:`draw_map`: the region map, with a run's path and leg timeline;
 - :func:`draw_spec`: the region graph with the gaits of each move.
 
@@ -19,7 +21,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from gaitc.api.simulation import session
-from gaitc.core.spec import Spec, load
+from gaitc.core.spec import Spec, SpecLike, as_gr1, load, resolve
 from gaitc.diagnostics import ScenarioError, Span, UsageError
 from gaitc.sim.graphics import FORMATS, Picture, output_format
 from gaitc.sim.session import Session
@@ -27,6 +29,9 @@ from gaitc.sim.session import Session
 if TYPE_CHECKING:
     from collections.abc import Sequence
 
+    from gaitc.compact.controller import CompactController
+    from gaitc.compact.rules import RuleTables
+    from gaitc.ir.bddfile import SymbolicController
     from gaitc.ir.controller import Controller
     from gaitc.sim.policy import Policy
     from gaitc.sim.run import Run
@@ -34,8 +39,8 @@ if TYPE_CHECKING:
     from ltlcompiler.encoding import EncodingName
     from ltlcompiler.model import Model
 
-__all__ = ["FORMATS", "Picture", "controller_policy", "draw_automaton", "draw_map",
-           "draw_policy", "draw_spec", "output_format"]
+__all__ = ["FORMATS", "Picture", "compact_rules", "controller_policy", "draw_automaton",
+           "draw_map", "draw_policy", "draw_rules", "draw_spec", "output_format"]
 
 def _check_steps(steps: int | None) -> None:
     if steps is not None and steps < 0:
@@ -101,6 +106,34 @@ def draw_policy(policy: Policy, bound: Session) -> Picture:
     from gaitc.sim.policy_view import policy_view
 
     return policy_view(policy, bound.domain)
+
+
+def compact_rules(spec: SpecLike, controller: CompactController | SymbolicController | str
+                  | Path | None = None, *, all_rules: bool = False,
+                  prefer: str | None = None) -> RuleTables | None:
+    """The compact controller of ``spec`` (``controller`` compacted, or one synthesized) as
+    one table of rules per goal, each rule checked against the states a run of it reaches
+    under the spec's assumptions (:func:`gaitc.compact.rules.reach`): the never used ones
+    are left out of the text and counted, or with ``all_rules`` listed and marked; its JSON
+    lists them all.  None when the spec is unrealizable."""
+    from gaitc.api.generating import _goal_labels, compact_of
+    from gaitc.codegen.tables import table_bytes
+    from gaitc.compact.rules import rule_tables
+
+    resolved = resolve(spec)
+    found = compact_of(resolved, controller, prefer=prefer)
+    if found is None:
+        return None
+    return rule_tables(found, _goal_labels(resolved), table_bytes(found),
+                       spec=as_gr1(resolved), all_rules=all_rules)
+
+
+def draw_rules(tables: RuleTables) -> Picture:
+    """``tables`` (of :func:`compact_rules`) drawn: one table per goal, stacked, each long
+    condition wrapped, so the picture's width stays bounded however many rules it has."""
+    from gaitc.sim.policy_view import rules_view
+
+    return rules_view(tables)
 
 
 def _model(spec: Spec | str | Path) -> Model:

@@ -162,9 +162,12 @@ class CompactController:
         return f"<CompactController{source}: {self.summary()}>"
 
     def _repr_html_(self) -> str:
-        from gaitc.compact.rules import rule_tables
+        """Its sizes: which of its rules a run uses depends on the spec, so its rules are
+        shown by ``gaitc.api.drawing.compact_rules(spec, controller)``."""
+        import html
 
-        return rule_tables(self).html()
+        return (f"<p>compact controller: {html.escape(self.summary())}; its rules, with the "
+                "spec: <code>compact_rules(spec, controller)</code></p>")
 
 
 class Runner:

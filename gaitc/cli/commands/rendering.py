@@ -10,7 +10,14 @@ import sys
 from typing import Any
 
 import gaitc
-from gaitc.api.drawing import FORMATS, Picture, draw_policy, output_format
+from gaitc.api.drawing import (
+    FORMATS,
+    Picture,
+    compact_rules,
+    draw_policy,
+    draw_rules,
+    output_format,
+)
 from gaitc.api.modes import EncodingName
 from gaitc.cli.commands.arguments import add_prefer, output_file, positive_count
 from gaitc.cli.exitcodes import ExitCode
@@ -21,9 +28,9 @@ FORMAT_HELP = (f"output format: {', '.join(FORMATS)} (default: from the -o exten
                "format but dot needs Graphviz's 'dot' program")
 
 
-TABLE_FORMATS = ("text", "md", "html")
+TABLE_FORMATS = ("text", "md", "html", "json")
 _TABLE_SUFFIXES = {".txt": "text", ".text": "text", ".md": "md", ".html": "html",
-                   ".htm": "html"}
+                   ".htm": "html", ".json": "json"}
 
 
 def _output(p: argparse.ArgumentParser) -> None:
@@ -70,9 +77,14 @@ def register(sub: Any) -> None:
                         "failed) it walks which gait into which region, with the number of "
                         "controller moves each covers. Without -o a text table is printed; "
                         "-o FILE.txt/.md/.html writes the table, .svg/.png/.pdf/.dot draws "
-                        "one table per region with arrows for its moves. A symbolic "
-                        "controller is projected from the nodes within --steps moves of the "
-                        "start (default 10), as is an explicit one when --steps is given.")
+                        "one table per region with arrows for its moves (in rows when the "
+                        "map would be too wide to read). A symbolic controller is projected "
+                        "from the nodes within --steps moves of the start (default 10), as is "
+                        "an explicit one when --steps is given. A compact controller (or "
+                        "--compact) gives one table of rules per goal, only the rules some "
+                        "state a run reaches uses (the others are counted; --all-rules lists "
+                        "them marked 'never used', as .json always does); a picture of it "
+                        "stacks one table per goal.")
     p.add_argument("spec", metavar="SPEC")
     p.add_argument("controller", metavar="CONTROLLER", nargs="?",
                    help="controller JSON (default: synthesize one)")
@@ -88,13 +100,16 @@ def register(sub: Any) -> None:
                    help="the compact controller whole: one table of rules per goal, every "
                    "state covered (a compact or symbolic CONTROLLER, or one synthesized); "
                    "the default for a compact CONTROLLER")
+    p.add_argument("--all-rules", action="store_true",
+                   help="with a compact controller: list the rules no state a run reaches "
+                   "uses too, marked 'never used' (default: leave them out and count them)")
     p.add_argument("--encoding", choices=EncodingName.values())
     add_prefer(p, "without CONTROLLER: ")
     p.add_argument("-o", "--output", metavar="FILE", type=output_file,
                    help="write the table or picture here (default: print the table)")
     p.add_argument("--format", choices=TABLE_FORMATS + FORMATS,
-                   help="text, md, html, or a picture format (default: from the -o "
-                   "extension; pictures other than dot need Graphviz)")
+                   help="text, md, html, json (compact controllers), or a picture format "
+                   "(default: from the -o extension; pictures other than dot need Graphviz)")
     p.set_defaults(run=run_policy)
 
     p = what.add_parser("map", help="the region map, optionally with a run",
@@ -166,14 +181,17 @@ def run_policy(args: argparse.Namespace) -> int:
     if args.output is None and fmt not in TABLE_FORMATS:
         raise UsageError(f"--format {fmt} draws a picture: give -o FILE")
     if args.compact or _is_compact_file(args.controller):
-        if fmt not in TABLE_FORMATS:
-            raise UsageError(f"--format {fmt}: a compact controller is drawn as tables "
-                             "(text, md or html)")
-        tables = gaitc.compact_policy(args.spec, args.controller, prefer=args.prefer)
+        tables = compact_rules(args.spec, args.controller, all_rules=args.all_rules,
+                               prefer=args.prefer)
         if tables is None:
             return _unrealizable(args, "tabulate")
-        return _write_table({"text": tables.text, "md": tables.markdown,
-                             "html": tables.html}[fmt](), fmt, args)
+        if fmt not in TABLE_FORMATS:
+            return _save(draw_rules(tables), args)
+        return _write_table({"text": tables.text, "md": tables.markdown, "html": tables.html,
+                             "json": tables.json}[fmt](), fmt, args)
+    if fmt == "json":
+        raise UsageError("--format json writes a compact controller's rules: give a compact "
+                         "CONTROLLER or --compact")
     with progress_display() as progress:
         found = gaitc.controller_policy(
             args.spec, args.controller, steps=args.steps, max_nodes=args.max_nodes,
