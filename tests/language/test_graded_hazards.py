@@ -304,6 +304,32 @@ def test_embedded_solver_verdicts(health: int, wears: int | None, expected: bool
     assert gaitc.check(spec).realizable is expected
 
 
+#: Two gaits each way, so that the leg a hazard takes in b is not needed to go on.  A
+#: failing hazard is survivable here, and so is wearing as many levels as a leg has: with
+#: no formula about health the two are equally hard (docs/language.md).
+TWO_WAYS = """\
+legs L1..L3 health 4
+gait east uses L1 moves east
+gait hop uses L2 moves east
+gait west uses L3 moves west
+gait back uses L2 moves west
+grid 1 x 3 cells a, b, c
+cache a
+hazard sand: b{wears}
+start a
+visit a, c infinitely often
+"""
+
+
+@pytest.mark.parametrize("wears", [None, 3, 9, 2])
+def test_wearing_everything_is_as_hard_as_failing_without_health_formulas(
+        wears: int | None) -> None:
+    text = TWO_WAYS.format(wears="" if wears is None else f" wears {wears}")
+    for encoding in ENCODINGS:
+        spec = gaitc.parse(text, name="two_ways.gait", encoding=encoding)
+        assert gaitc.check(spec).realizable
+
+
 @pytest.mark.slugs
 @pytest.mark.parametrize(("health", "wears", "expected"), VERDICTS,
                          ids=[f"health{h}-wears{w}" for h, w, _ in VERDICTS])
