@@ -89,7 +89,8 @@ def _stretch(cells: dict[str, float], sizes: dict[str, float]) -> dict[str, floa
 def _layout(policy: Policy, domain: Domain, drawn: list[str]
             ) -> tuple[dict[str, tuple[float, float]], bool]:
     """Each table's centre in inches, and whether the map was too wide to follow (the tables
-    are then rows in map order, each row at most :data:`MAX_WIDTH` wide)."""
+    are then rows in map order, each map row starting a new one, each at most
+    :data:`MAX_WIDTH` wide)."""
     size = _sizes(policy)
     full = {r: size.get(r, SMALL) for r in drawn}
     cells = positions(domain.model, 1.0)
@@ -108,18 +109,20 @@ def _layout(policy: Policy, domain: Domain, drawn: list[str]
     right = max(place[r][0] + full[r][0] / 2 for r in drawn)
     if right - left <= MAX_WIDTH:
         return place, False
-    return _rows([r for r in sorted(drawn, key=lambda r: (-cells[r][1], cells[r][0]))], full), True
+    order = sorted(drawn, key=lambda r: (-cells[r][1], cells[r][0]))
+    bands = {r: -cells[r][1] if on_grid else 0.0 for r in drawn}
+    return _rows(order, bands, full), True
 
 
-def _rows(order: list[str], size: dict[str, tuple[float, float]]
+def _rows(order: list[str], bands: dict[str, float], size: dict[str, tuple[float, float]]
           ) -> dict[str, tuple[float, float]]:
-    """Tables left to right in ``order``, a new row (downwards) when the next would pass
-    :data:`MAX_WIDTH`."""
+    """Tables left to right in ``order``, a new row (downwards) for each new band (a map
+    row) and whenever the next table would pass :data:`MAX_WIDTH`."""
     rows: list[list[str]] = [[]]
     width = 0.0
     for region in order:
         w = size[region][0]
-        if rows[-1] and width + GAP + w > MAX_WIDTH:
+        if rows[-1] and (width + GAP + w > MAX_WIDTH or bands[region] != bands[rows[-1][0]]):
             rows.append([])
             width = 0.0
         width += (GAP if rows[-1] else 0.0) + w
