@@ -268,6 +268,40 @@ def test_env_trans_allows_exactly_the_hand_written_successors(
     assert graded and seen_deep_loss  # the graded clause is exercised, not vacuous
 
 
+@st.composite
+def _corridors(draw: st.DrawFn) -> str:
+    """A random robot of two legs on the corridor a - b - c with one or two hazards, at
+    least one of them graded, and maybe a cache outside them."""
+    cells = ["a", "b", "c"]
+    health = [draw(st.integers(1, 4)) for _ in range(2)]
+    legs = st.lists(st.sampled_from(["L1", "L2"]), min_size=1, max_size=2, unique=True)
+    hazards = [(draw(st.lists(st.sampled_from(cells), min_size=1, max_size=3, unique=True)),
+                draw(st.integers(1, 5)))]
+    if draw(st.booleans()):
+        hazards.append((draw(st.lists(st.sampled_from(cells), min_size=1, max_size=3,
+                                      unique=True)), draw(st.sampled_from([None, 2]))))
+    free = [c for c in cells if all(c not in regions for regions, _ in hazards)]
+    cache = draw(st.sampled_from([None, *free]))
+    lines = [f"leg L1 health {health[0]}", f"leg L2 health {health[1]}",
+             f"gait east uses {', '.join(draw(legs))} moves east",
+             f"gait west uses {', '.join(draw(legs))} moves west",
+             "correction gait turn", "grid 1 x 3 cells a, b, c", "start a"]
+    lines += [] if cache is None else [f"cache {cache}"]
+    lines += [f"hazard h{i}: {', '.join(regions)}" + ("" if k is None else f" wears {k}")
+              for i, (regions, k) in enumerate(hazards)]
+    return "\n".join(lines) + "\n"
+
+
+@settings(max_examples=25, deadline=None)
+@given(text=_corridors(), binary=st.booleans())
+def test_random_corridors_allow_exactly_the_hand_written_successors(
+        text: str, binary: bool) -> None:
+    model, _ = model_from_text(text)
+    encoding = EncodingName.BINARY if binary else EncodingName.ONEHOT
+    for state, allowed in _lowered_successors(model, encoding):
+        assert allowed == _hand_successors(model, state), (text, state)
+
+
 def test_the_hand_semantics_tells_wearing_from_failing() -> None:
     """The cross-check can fail: a failing hazard's successors differ from a graded one's,
     so a lowering that ignored ``wears`` would be caught."""
