@@ -30,7 +30,7 @@ ROOT = Path(__file__).resolve().parent.parent
 SPECS = [ROOT / "specs" / "thesis_robot_a.gait", ROOT / "specs" / "thesis_robot_b.gait",
          ROOT / "specs" / "thesis_robot_a_health2.gait"]
 LARGE = [ROOT / "specs" / "radial8_patrol.gait", ROOT / "tests" / "data" / "five_arm_courier.gait"]
-LAYOUTS = (("slugs-json", ".json"), ("tables", ".ctl"))
+LAYOUTS = (("slugs-json", ".json"), ("tables", ".ctl.gz"))
 
 
 def _timed_synthesis(spec: gaitc.Spec, form: str) -> tuple[Synthesis, float]:

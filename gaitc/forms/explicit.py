@@ -1,9 +1,9 @@
 """The explicit form: an automaton whose every node is listed (``docs/controller-format.md``).
 
-Two file layouts hold it.  The tables layout (the default) is gzip-compressed JSON that
-stores each distinct state valuation once, nodes as columns of indices and successor
-lists, and a SHA-256 digest of its contents; SLUGS's JSON (``slugs --explicitStrategy
---jsonOutput``, with gaitc's additions) is written for names ending in ``.json``, for
+Two file layouts hold it.  The tables layout (names ending in ``.gz``) is gzip-compressed
+JSON that stores each distinct state valuation once, nodes as columns of indices and
+successor lists, and a SHA-256 digest of its contents; SLUGS's JSON (``slugs
+--explicitStrategy --jsonOutput``, with gaitc's additions) is written for other names, for
 interchange.  :func:`read_tables` reads the first back with messages that name the file and
 what is wrong; the second is read by :mod:`gaitc.ir.controller`.
 
@@ -78,12 +78,11 @@ _HINT: Final = "write it again with 'gaitc synth -o FILE'"
 
 
 def layout_for(path: str | Path) -> Layout:
-    """The layout a file name asks for: SLUGS's JSON for a name ending in ``.json`` (and
-    for ``-``, standard output), the tables layout for any other."""
-    name = str(path)
-    if name == "-" or name.lower().endswith(".json"):
-        return Layout.SLUGS_JSON
-    return Layout.TABLES
+    """The layout a file name asks for: the tables layout for a name ending in ``.gz``
+    (``robot.ctl.gz``), SLUGS's JSON for any other, as before the tables existed (the
+    commands that guess a spec's encoding from its controller file, and ``render policy``,
+    read only JSON text so far)."""
+    return Layout.TABLES if str(path).lower().endswith(".gz") else Layout.SLUGS_JSON
 
 
 class ExplicitForm(ControllerForm):

@@ -163,8 +163,8 @@ class Synthesis:
     def save(self, path: str | Path, layout: str | None = None) -> None:
         """Write the controller file (docs/controller-format.md) atomically: through a
         temporary file renamed over ``path``.  An explicit controller is written in the
-        tables layout, or as SLUGS's JSON when ``path`` ends in ``.json`` or ``layout`` is
-        ``slugs-json`` (:class:`gaitc.forms.explicit.Layout`)."""
+        tables layout when ``path`` ends in ``.gz`` or ``layout`` is ``tables``, else as
+        SLUGS's JSON (:class:`gaitc.forms.explicit.Layout`)."""
         if self.controller is None:
             raise UsageError(f"there is no {self.kind} to save: the spec is "
                              f"{'realizable' if self.realizable else 'unrealizable'}")

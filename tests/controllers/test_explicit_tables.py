@@ -1,10 +1,10 @@
 """The explicit controller's tables layout (issue 51): written, read back, proved, refused.
 
-A controller saved in the tables layout must read back equal to the one saved, node for
-node, and be accepted by the verifier; SLUGS's JSON stays the layout of ``.json`` names
-and of ``layout="slugs-json"``.  A file cut short, damaged, followed by other bytes, edited
-by hand or from a newer gaitc is refused with a message that names the file and says what
-is wrong (pinned word for word where the words are the point).
+A controller saved in the tables layout (a name ending in ``.gz``) must read back equal to
+the one saved, node for node, and be accepted by the verifier; SLUGS's JSON stays the
+layout of other names and of ``layout="slugs-json"``.  A file cut short, damaged, followed
+by other bytes, edited by hand or from a newer gaitc is refused with a message that names
+the file and says what is wrong (pinned word for word where the words are the point).
 """
 
 from __future__ import annotations
@@ -64,14 +64,15 @@ def _refusal(path: Path) -> str:
 
 
 def test_layout_follows_the_name() -> None:
-    assert layout_for("robot.ctl") == Layout.TABLES
-    assert layout_for("robot.controller.gz") == Layout.TABLES
-    assert layout_for("robot.JSON") == Layout.SLUGS_JSON
+    assert layout_for("robot.ctl.gz") == Layout.TABLES
+    assert layout_for("robot.controller.GZ") == Layout.TABLES
+    assert layout_for("robot.json") == Layout.SLUGS_JSON
+    assert layout_for("robot.ctl") == Layout.SLUGS_JSON
     assert layout_for("-") == Layout.SLUGS_JSON
 
 
 def test_tables_read_back_equal_and_are_proved(robot_a: Synthesis, tmp_path: Path) -> None:
-    path = tmp_path / "robot_a.ctl"
+    path = tmp_path / "robot_a.ctl.gz"
     robot_a.save(path)
     data = path.read_bytes()
     assert data.startswith(GZIP_HEADER)
@@ -79,12 +80,12 @@ def test_tables_read_back_equal_and_are_proved(robot_a: Synthesis, tmp_path: Pat
     assert back == robot_a.controller
     report = gaitc.verify(gaitc.load(ROBOT_A), path)
     assert report.ok, report.problems
-    robot_a.save(tmp_path / "again.ctl")
-    assert (tmp_path / "again.ctl").read_bytes() == data  # deterministic
+    robot_a.save(tmp_path / "again.ctl.gz")
+    assert (tmp_path / "again.ctl.gz").read_bytes() == data  # deterministic
 
 
 def test_tables_share_each_state_once(robot_a: Synthesis, tmp_path: Path) -> None:
-    path = tmp_path / "robot_a.ctl"
+    path = tmp_path / "robot_a.ctl.gz"
     robot_a.save(path)
     document = _unpacked(path)
     assert robot_a.controller is not None and isinstance(robot_a.controller, Controller)
@@ -95,13 +96,17 @@ def test_tables_share_each_state_once(robot_a: Synthesis, tmp_path: Path) -> Non
     assert "values" not in document["gaitc"]  # derived from the bits on reading
 
 
-def test_slugs_json_stays_for_json_names(robot_a: Synthesis, tmp_path: Path) -> None:
+def test_slugs_json_stays_for_other_names(robot_a: Synthesis, tmp_path: Path) -> None:
     slugs = tmp_path / "robot_a.json"
     robot_a.save(slugs)
     data = json.loads(slugs.read_text(encoding="utf-8"))
     assert set(data["nodes"]["0"]) == {"rank", "state", "trans"}
     assert read_controller(slugs, gaitc.load(ROBOT_A)) == robot_a.controller
-    forced = tmp_path / "interchange.ctl"
+    assert robot_a.controller is not None
+    plain = tmp_path / "robot_a.ctl"
+    robot_a.save(plain)
+    assert plain.read_text(encoding="utf-8") == slugs.read_text(encoding="utf-8")
+    forced = tmp_path / "interchange.gz"
     robot_a.save(forced, layout="slugs-json")
     assert forced.read_text(encoding="utf-8") == slugs.read_text(encoding="utf-8")
     packed = tmp_path / "packed.json"
@@ -114,7 +119,7 @@ def test_slugs_json_stays_for_json_names(robot_a: Synthesis, tmp_path: Path) -> 
 def test_a_counterstrategy_reads_back(tmp_path: Path) -> None:
     spec = gaitc.load(ROBOT_A_HEALTH2)
     found = gaitc.counterstrategy(spec, verify=False)
-    path = tmp_path / "counter.ctl"
+    path = tmp_path / "counter.ctl.gz"
     found.save(path)
     assert read_controller(path, spec) == found.controller
     assert gaitc.verify(spec, path).ok
@@ -130,7 +135,7 @@ def test_other_forms_have_one_layout(tmp_path: Path) -> None:
 
 
 def test_a_file_cut_short_is_refused(robot_a: Synthesis, tmp_path: Path) -> None:
-    data = tmp_path / "x.ctl"
+    data = tmp_path / "x.ctl.gz"
     robot_a.save(data)
     raw = data.read_bytes()
     path = _write(tmp_path, "cut.ctl", raw[: len(raw) // 2])
@@ -140,8 +145,8 @@ def test_a_file_cut_short_is_refused(robot_a: Synthesis, tmp_path: Path) -> None
 
 
 def test_a_changed_byte_is_refused(robot_a: Synthesis, tmp_path: Path) -> None:
-    robot_a.save(tmp_path / "x.ctl")
-    raw = bytearray((tmp_path / "x.ctl").read_bytes())
+    robot_a.save(tmp_path / "x.ctl.gz")
+    raw = bytearray((tmp_path / "x.ctl.gz").read_bytes())
     raw[len(raw) // 2] ^= 0x01
     message = _refusal(_write(tmp_path, "flipped.ctl", bytes(raw)))
     assert message.startswith(("the unpacked data does not match the checksum",
@@ -149,16 +154,16 @@ def test_a_changed_byte_is_refused(robot_a: Synthesis, tmp_path: Path) -> None:
 
 
 def test_bytes_after_the_stream_are_refused(robot_a: Synthesis, tmp_path: Path) -> None:
-    robot_a.save(tmp_path / "x.ctl")
-    raw = (tmp_path / "x.ctl").read_bytes()
+    robot_a.save(tmp_path / "x.ctl.gz")
+    raw = (tmp_path / "x.ctl.gz").read_bytes()
     path = _write(tmp_path, "tail.ctl", raw + b"junk")
     assert _refusal(path) == (f"4 bytes follow the end of the compressed data at byte "
                               f"{len(raw)}; a tables file is one gzip stream")
 
 
 def test_a_hand_edit_breaks_the_digest(robot_a: Synthesis, tmp_path: Path) -> None:
-    robot_a.save(tmp_path / "x.ctl")
-    document = _unpacked(tmp_path / "x.ctl")
+    robot_a.save(tmp_path / "x.ctl.gz")
+    document = _unpacked(tmp_path / "x.ctl.gz")
     document["nodes"]["trans"][3] = [0]
     message = _refusal(_packed(tmp_path, document, digest=False))
     assert message.startswith("the digest does not match the contents")
@@ -180,8 +185,8 @@ def test_a_hand_edit_breaks_the_digest(robot_a: Synthesis, tmp_path: Path) -> No
 ])
 def test_a_consistent_but_wrong_file_names_the_place(
         robot_a: Synthesis, tmp_path: Path, edit: Any, message: str) -> None:
-    robot_a.save(tmp_path / "x.ctl")
-    document = _unpacked(tmp_path / "x.ctl")
+    robot_a.save(tmp_path / "x.ctl.gz")
+    document = _unpacked(tmp_path / "x.ctl.gz")
     count, width = len(document["nodes"]["state"]), len(document["variables"])
     states = len(document["states"]) - 1
     edit(document)
@@ -190,8 +195,8 @@ def test_a_consistent_but_wrong_file_names_the_place(
 
 
 def test_a_newer_version_says_so(robot_a: Synthesis, tmp_path: Path) -> None:
-    robot_a.save(tmp_path / "x.ctl")
-    document = _unpacked(tmp_path / "x.ctl")
+    robot_a.save(tmp_path / "x.ctl.gz")
+    document = _unpacked(tmp_path / "x.ctl.gz")
     document["gaitc"]["version"] = 2
     assert "written by a newer gaitc" in _refusal(_packed(tmp_path, document))
 
