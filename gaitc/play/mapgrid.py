@@ -4,7 +4,10 @@ A cell is ``@name+*!``: ``@`` where the robot is, ``+`` a cache, ``*`` a goal (t
 is styled), ``~`` a hazard region and ``!`` one whose hazard is on. Regions sit on their
 grid cells, else on the cells their edges' compass directions give
 (:func:`gaitc.sim.placement.directed_cells`), else in reading order of the spring layout
-the picture uses. Lines are lists of ``(text, style)`` pieces; a front end maps the style
+the picture uses. Every cell of the text map takes the same number of characters, so each
+grid column is a column of text; a map wider than the room it has (:meth:`MapGrid.fit`)
+labels its cells with their shortest unambiguous names (:func:`short_names`), which the
+legend spells out. Lines are lists of ``(text, style)`` pieces; a front end maps the style
 names (:data:`STYLES`) to its colours or drops them. :meth:`MapGrid.svg` draws the same
 cells as SVG with the colours of ``gaitc render map`` and needs no Graphviz, so a notebook
 redraws it at every step.
@@ -13,7 +16,9 @@ redraws it at every step.
 from __future__ import annotations
 
 import math
+import re
 from collections.abc import Collection, Sequence
+from dataclasses import dataclass
 from html import escape
 
 from gaitc.sim.domain import model_goals
@@ -24,6 +29,7 @@ from ltlcompiler.model import Model
 FILLS = {"robot": "#1f3a93", "hazard_on": "#fcbba1", "hazard": "#fff3c4", "cache": "#b8e3b0",
          "goal": "#f3e5f5", "next_goal": "#e1bee7", "visited": "#e3f2fd", "": "#ffffff"}
 SVG_CELL = 64  # pixels a cell
+WORDS = re.compile(r"[^\W\d_]+|\d+|[\W_]+")  # a name's words, numbers and the rest
 
 Piece = tuple[str, str]  # (text, style name; "" for none)
 STYLES = ("robot", "hazard_on", "hazard", "cache", "goal", "next_goal", "visited", "legend")
@@ -45,6 +51,77 @@ def cells(model: Model) -> dict[str, tuple[int, int]]:
     return {name: divmod(i, width) for i, name in enumerate(order)}
 
 
+def shared_start(names: Collection[str]) -> str:
+    """The start that all ``names`` share, shorter than each of them ("" for one name)."""
+    if len(set(names)) < 2:
+        return ""
+    first, last = min(names), max(names)  # what these two share, all the names between do
+    size = next((i for i, (a, b) in enumerate(zip(first, last, strict=False)) if a != b),
+                len(first))
+    return first[:min(size, min(len(n) for n in names) - 1)]
+
+
+@dataclass(frozen=True)
+class ShortNames:
+    """Labels for the cells of a map too wide for their names, and the legend's key to them."""
+
+    labels: dict[str, str]  # name -> label
+    key: tuple[str, ...]  # what the labels stand for, a phrase each
+
+
+def _unique_starts(rests: dict[str, str]) -> dict[str, str]:
+    """Each name's rest cut to its shortest start that begins no other rest (whole when
+    the rest begins another)."""
+    out = {}
+    for name, rest in rests.items():
+        others = [other for other in rests.values() if other != rest]
+        out[name] = next((rest[:k] for k in range(1, len(rest))
+                          if not any(other.startswith(rest[:k]) for other in others)), rest)
+    return out
+
+
+def _word_cuts(rests: dict[str, str]) -> tuple[int, dict[str, str]] | None:
+    """The fewest letters each word of a rest may keep with the rests still apart (numbers
+    kept whole, the rest dropped), and the labels so cut; None when no cut keeps them apart."""
+    longest = max((len(rest) for rest in rests.values()), default=0)
+    for letters in range(1, longest):
+        cut = {name: "".join(run[:letters] if run[0].isalpha() else
+                             run if run[0].isdigit() else "" for run in WORDS.findall(rest))
+               for name, rest in rests.items()}
+        if all(cut.values()) and len(set(cut.values())) == len(cut):
+            return letters, cut
+    return None
+
+
+def _longest(labels: dict[str, str]) -> int:
+    return max((len(label) for label in labels.values()), default=0)
+
+
+def short_names(names: Collection[str]) -> ShortNames:
+    """The shortest unambiguous labels of ``names``, which first lose their
+    :func:`shared_start`: the shorter of each name cut to its shortest start that begins no
+    other name (a name that begins another stays whole), and each name's words cut to as
+    few letters as keep the labels apart (numbers kept whole, ``_`` and the like dropped:
+    ``westroom_12`` is ``w12``)."""
+    shared = shared_start(names)
+    rests = {name: name[len(shared):] for name in sorted(names)}
+    key = [f"names less {shared!r}"] if shared else []
+    labels = _unique_starts(rests)
+    cuts = _word_cuts(rests)
+    if cuts is not None and _longest(cuts[1]) < _longest(labels):
+        letters, labels = cuts
+        example = next((n for n, rest in rests.items() if len(WORDS.findall(rest)) > 1), None)
+        if example is not None:  # how the words make a label
+            key.append(f"{labels[example]}: {rests[example]}")
+        words = {run: run[:letters] for rest in rests.values() for run in WORDS.findall(rest)
+                 if run[0].isalpha() and len(run) > letters}
+        key += [f"{short}: {word}" for word, short in words.items()]
+    else:
+        key += [f"{label}: {rests[name]}" for name, label in labels.items()
+                if label != rests[name]]
+    return ShortNames(labels, tuple(key))
+
+
 class MapGrid:
     """The map of one model, drawn again for each state of a play."""
 
@@ -53,13 +130,51 @@ class MapGrid:
         self.cells = cells(model)
         self.goals = {r for g in model_goals(model) for r in g.regions}
         self.hazard_of = {r: h.name for h in model.hazards for r in h.regions}
-        self.width = max((len(name) for name in self.cells), default=1) + 4
         self.rows = 1 + max((r for r, _ in self.cells.values()), default=0)
         self.cols = 1 + max((c for _, c in self.cells.values()), default=0)
         self._at = {cell: name for name, cell in self.cells.items()}
+        self._flags = max((len(self._marks(name, None)) for name in self.cells), default=0)
+        self.short = short_names(self.cells)
+        self.labels = {name: name for name in self.cells}  # as drawn in the text map
 
-    def _cell(self, name: str, robot: str | None, hazard: str | None,
-              next_goal: Collection[str], visited: Collection[str]) -> Piece:
+    @property
+    def abbreviated(self) -> bool:
+        """Whether the text map labels its cells with their short names."""
+        return any(label != name for name, label in self.labels.items())
+
+    @property
+    def width(self) -> int:
+        """The characters each cell takes in the text map: the robot's mark, the longest
+        label and the most marks a cell has."""
+        return 1 + max((len(label) for label in self.labels.values()), default=1) + self._flags
+
+    def fit(self, room: int) -> bool:
+        """Label the cells with their names when every row fits in ``room`` characters,
+        else with their short names (which may not fit either: a front end then scrolls);
+        whether the labels are the short names."""
+        self.labels = {name: name for name in self.cells}
+        if self.cols * self.width > room:
+            self.labels = dict(self.short.labels)
+        return self.abbreviated
+
+    def legend(self) -> list[str]:
+        """The legend's lines: the marks, then what the short names stand for, as wide as
+        the map's rows (or as the marks' lines, when the map is narrower)."""
+        out = LEGEND.splitlines()
+        if not self.abbreviated:
+            return out
+        room = max(self.cols * self.width, *(len(line) for line in out))
+        line = ""
+        for phrase in self.short.key:
+            if line and len(line) + 2 + len(phrase) > room:
+                out.append(line)
+                line = phrase
+            else:
+                line = f"{line}  {phrase}" if line else phrase
+        return [*out, line] if line else out
+
+    def _marks(self, name: str, hazard: str | None) -> str:
+        """The marks of a cell after its name: cache, goal, hazard region (on or off)."""
         flags = ""
         if name in self.model.caches:
             flags += "+"
@@ -68,7 +183,12 @@ class MapGrid:
         danger = self.hazard_of.get(name)
         if danger is not None:
             flags += "!" if danger == hazard else "~"
-        text = ("@" if name == robot else " ") + name + flags
+        return flags
+
+    def _cell(self, name: str, robot: str | None, hazard: str | None,
+              next_goal: Collection[str], visited: Collection[str]) -> Piece:
+        danger = self.hazard_of.get(name)
+        text = ("@" if name == robot else " ") + self.labels[name] + self._marks(name, hazard)
         if name == robot:
             style = "robot"
         elif danger is not None and danger == hazard:
@@ -119,12 +239,12 @@ class MapGrid:
         for name, (row, col) in sorted(self.cells.items()):
             x, y = col * size + 1, row * size + 1
             centre[name] = (x + size // 2, y + size // 2)
-            text, style = self._cell(name, None, hazard, next_goal, visited)
+            _, style = self._cell(name, None, hazard, next_goal, visited)
             border = "#c0392b" if style == "hazard_on" else "#888888"
             out.append(f'<rect x="{x}" y="{y}" width="{size - 2}" height="{size - 2}" rx="4" '
                        f'fill="{FILLS[style]}" stroke="{border}"/>')
             out.append(f'<text x="{x + 5}" y="{y + 15}" font-size="12">{escape(name)}</text>')
-            marks = text.strip()[len(name):]
+            marks = self._marks(name, hazard)
             if marks:
                 out.append(f'<text x="{x + size - 6}" y="{y + size - 8}" font-size="12" '
                            f'text-anchor="end" fill="#555555">{escape(marks)}</text>')

@@ -2,8 +2,11 @@
 
 The screen fits 80 x 24: the map (:mod:`gaitc.play.mapgrid`) and the robot's state side by
 side, the legal moves below with the other side's answer to the highlighted one, and a
-line for questions (how many steps, which file). Keyboard only; ``?`` lists the keys. Every
-mark reads without colour (``NO_COLOR`` or ``--no-color``).
+line for questions (how many steps, which file). The map takes the width the state leaves
+(:data:`STATE_WIDTH`); a map wider than that labels its cells with short names, and one
+wider or taller still scrolls (tab focuses it, the arrows scroll it) and keeps the robot in
+view. A row of cells is never wrapped. Keyboard only; ``?`` lists the keys. Every mark
+reads without colour (``NO_COLOR`` or ``--no-color``).
 """
 
 from __future__ import annotations
@@ -12,16 +15,18 @@ from pathlib import Path
 from typing import Any, ClassVar
 
 from rich.text import Text
+from textual import events
 from textual.app import App, ComposeResult
 from textual.binding import Binding, BindingType
-from textual.containers import Horizontal, VerticalScroll
+from textual.containers import Horizontal, ScrollableContainer
+from textual.geometry import Region
 from textual.screen import ModalScreen
 from textual.widgets import Footer, Input, OptionList, Static
 from textual.widgets.option_list import Option
 
 from gaitc.core.modes import Role
 from gaitc.diagnostics import GaitcError
-from gaitc.play.mapgrid import LEGEND, MapGrid
+from gaitc.play.mapgrid import MapGrid
 from gaitc.play.player import Autopilot, Player
 
 #: Rich styles of the text map's style names and the health levels.
@@ -33,7 +38,7 @@ DEFAULT_AUTO = 20
 #: Steps a pilot may be asked for at once (each step is a move of the controller and of the
 #: pilot; 10**7 of them kept the app busy for minutes): more is refused with this number.
 MAX_AUTO = 10_000
-MAP_WIDTH = 50  # columns of an 80-column screen the map may take
+STATE_WIDTH = 30  # columns the robot's state keeps beside the map (50 left of 80 for it)
 DEFAULT_RUN_FILE = "play.run.jsonl"
 
 KEYS = """\
@@ -42,6 +47,7 @@ KEYS = """\
  g     go to a step              s       save the play as a run file
  a     the strongest pilot plays N steps (you are asked for N)
  n     a random pilot plays N steps
+ tab   the map: the arrows scroll it (a map too big to show whole)
  ?     this help                 q       quit (saving to --out first)
 
 Playing the environment, the strongest pilot is the adversarial
@@ -87,7 +93,8 @@ class PlayApp(App[int]):
 
     CSS = """
     #top { height: auto; max-height: 14; }
-    #map { width: 40; height: auto; max-height: 14; }
+    #map { width: 40; height: auto; max-height: 14; scrollbar-size: 1 1; }
+    #mapview { width: auto; height: auto; text-wrap: nowrap; }
     #state { width: 1fr; height: auto; padding: 0 1; }
     #turn { height: 1; }
     #moves { height: 1fr; min-height: 3; }
@@ -125,7 +132,7 @@ class PlayApp(App[int]):
     # ------------------------------------------------------------------ layout
     def compose(self) -> ComposeResult:
         with Horizontal(id="top"):
-            with VerticalScroll(id="map"):
+            with ScrollableContainer(id="map"):
                 yield Static(id="mapview")
             yield Static(id="state")
         yield Static(id="turn")
@@ -136,10 +143,22 @@ class PlayApp(App[int]):
 
     def on_mount(self) -> None:
         self.title = f"gaitc play {self.player.session.spec.path}"
-        width = max(len(LEGEND) // 2, self.mapgrid.cols * self.mapgrid.width) + 1
-        self.query_one("#map").styles.width = min(width, MAP_WIDTH)
+        self._fit_map(self.size.width)
         self.refresh_play()
         self.query_one("#moves", OptionList).focus()
+
+    def on_resize(self, event: events.Resize) -> None:
+        self._fit_map(event.size.width)  # the app's own size may not have followed yet
+        self.refresh_play()
+
+    def _fit_map(self, screen: int) -> None:
+        """Give the map the columns that the state leaves of a screen ``screen`` columns
+        wide, and its cells the labels that fit in them less one (the vertical scroll bar's)."""
+        grid = self.mapgrid
+        room = max(1, screen - STATE_WIDTH)
+        grid.fit(room - 1)
+        drawn = max(grid.cols * grid.width, *(len(line) for line in grid.legend()))
+        self.query_one("#map").styles.width = min(drawn + 1, room)
 
     # ------------------------------------------------------------------ drawing
     def refresh_play(self) -> None:
@@ -150,15 +169,26 @@ class PlayApp(App[int]):
         visited = {s.region for s in player.steps}
         lines = self.mapgrid.lines(here.region if here else None, here.hazard if here else None,
                                    goal_regions, visited)
-        picture = Text()
+        picture = Text(no_wrap=True)
         for line in lines:
             for text, style in line:
                 picture.append(text, COLOURS.get(style, ""))
             picture.append("\n")
-        picture.append(LEGEND, COLOURS["legend"])
+        picture.append("\n".join(self.mapgrid.legend()), COLOURS["legend"])
         self.query_one("#mapview", Static).update(picture)
         self.query_one("#state", Static).update(self._state_text())
         self._fill_moves()
+        self.call_after_refresh(self._show_robot)
+
+    def _show_robot(self) -> None:
+        """Scroll the map (when it scrolls) so that the robot's cell is in view."""
+        here = self.player.state
+        grid = self.mapgrid
+        if here is None or here.region not in grid.cells:
+            return
+        row, col = grid.cells[here.region]
+        self.query_one("#map", ScrollableContainer).scroll_to_region(
+            Region(col * grid.width, row, grid.width, 1), animate=False, immediate=True)
 
     def _state_text(self) -> Text:
         player = self.player
