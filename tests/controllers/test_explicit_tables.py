@@ -220,3 +220,25 @@ def test_tables_of_a_small_controller_are_exact() -> None:
     assert document["nodes"] == {"state": [0, 1, 0], "rank": [0, 1, 0],
                                  "trans": [[1], [0, 2], [1]]}
     assert document["initial"] == [0]
+
+
+def test_a_failed_write_leaves_the_old_file(robot_a: Synthesis, tmp_path: Path,
+                                            monkeypatch: pytest.MonkeyPatch) -> None:
+    """The file is written to a temporary one and renamed: a write that fails halfway
+    leaves the old controller whole, and no temporary file behind."""
+    import os
+
+    from gaitc.diagnostics import FileAccessError
+
+    path = tmp_path / "robot_a.ctl.gz"
+    robot_a.save(path)
+    before = path.read_bytes()
+
+    def broken(fd: int) -> None:
+        raise OSError(28, "No space left on device")
+
+    monkeypatch.setattr(os, "fsync", broken)
+    with pytest.raises(FileAccessError):
+        robot_a.save(path, layout="slugs-json")
+    assert path.read_bytes() == before
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["robot_a.ctl.gz"]
