@@ -115,7 +115,8 @@ class FormulaChecker:
                 var.span,
             )
         if kind is None:
-            usable = [n for n, k in self.ns.kinds.items() if k in ("region", "gait", "hazard")]
+            usable = [n for n, k in self.ns.kinds.items()
+                      if k in ("region", "gait", "hazard") and n not in self.blocked]
             raise SpecSemanticError(
                 f"unknown name '{var.name}' in formula; formulas may use regions, gaits, "
                 "hazards, noGait and health(LEG)",

@@ -119,8 +119,10 @@ class Namespace:
     def of_kind(self, kind: str) -> list[str]:
         return [n for n, k in self.kinds.items() if k == kind]
 
-    def require(self, name: s.Name, kind: str, context: str) -> str:
-        """``name`` if it is a ``kind``; otherwise an error naming what it is or could be."""
+    def require(self, name: s.Name, kind: str, context: str,
+                valid: Iterable[str] | None = None) -> str:
+        """``name`` if it is a ``kind``; otherwise an error naming what it is or could be:
+        the declared names of ``kind`` that are ``valid`` in ``context`` (all by default)."""
         found = self.kinds.get(name.text)
         if found == kind:
             return name.text
@@ -129,7 +131,7 @@ class Namespace:
             raise SpecSemanticError(
                 f"'{name.text}' {context} is a {found}, not a {kind}", name.span
             )
-        known = self.of_kind(kind)
+        known = self.of_kind(kind) if valid is None else list(valid)
         message = f"unknown {kind} '{name.text}' {context}; declared {plural} are {describe(known)}"
         close = difflib.get_close_matches(name.text, known, n=1)
         hint = f"did you mean '{close[0]}'?" if close else None

@@ -37,7 +37,8 @@ class RegionMap:
         if isinstance(ref, s.Cell):
             name = self._cell(ref, context)
         else:
-            name = ns.require(ref, "region", context)
+            # the hint lists the regions valid here: blocked cells are no place to name
+            name = ns.require(ref, "region", context, (r.name for r in self.regions))
         if name in self.blocked:
             line = self.blocked[name]
             where = f" (line {line.line})" if line is not None else ""
@@ -254,7 +255,7 @@ def _edge_gait(name: s.Name, ns: Namespace) -> str:
             "noGait keeps the robot in place and cannot label an edge; name a moving gait",
             name.span,
         )
-    return ns.require(name, "gait", "in edge")
+    return ns.require(name, "gait", "in edge", (g for g in ns.of_kind("gait") if g != NO_GAIT))
 
 
 def reachable(start: str, transitions: Sequence[Transition]) -> set[str]:

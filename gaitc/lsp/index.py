@@ -5,7 +5,9 @@ file parses, even when the checker rejects it. Every leg, gait, region and hazar
 one :class:`Symbol` with its declaration and every mention (``uses``, edges, caches,
 hazards, ``start``, ``visit`` and the bare names of formulas). A name declared by a range
 (``L1..L8``, ``cells r0..r19``) or by a grid without names is declared at the range: such
-a name cannot be renamed on its own.
+a name cannot be renamed on its own. Beside the names, the facts the checker decides
+places by: each leg's health, the grid's cells and the blocked ones (the regions that are
+free are those the checker accepts wherever a region is required).
 """
 
 from __future__ import annotations
@@ -61,10 +63,16 @@ class Index:
         self.tree = tree
         self.symbols: dict[str, Symbol] = {}
         self._pending: list[tuple[str, Mention, Kind | None]] = []
+        self.health: dict[str, int] = {}  # each leg's health levels
+        self.cells: dict[tuple[int, int], str] = {}  # the grid's cells by (row, column)
+        self._blocks: list[s.RegionRef] = []
         for statement in tree.statements:
             self._statement(statement)
         for name, mention, kind in self._pending:
             self._mention(name, mention, kind)
+        #: The blocked cells: obstacles, refused by the checker wherever a region is named.
+        self.blocked: set[str] = {name for name in map(self._cell_name, self._blocks)
+                                  if name in self.cells.values()}
 
     # ------------------------------------------------------------------ building
     def _declare(self, item: s.NameItem | s.Name, kind: Kind, role: str = "") -> None:
@@ -109,6 +117,8 @@ class Index:
             case s.LegsDecl():
                 for item in st.legs:
                     self._declare(item, Kind.LEG)
+                    for name in _names_of(item):
+                        self.health.setdefault(name, st.health)
             case s.GaitDecl():
                 self._declare(st.name, Kind.GAIT, "correction" if st.correction else "")
                 for item in st.legs or ():
@@ -123,10 +133,12 @@ class Index:
                         self.symbols[f"r{i}"].mentions[0] = Mention(st.span, True, True)
                 for item in st.cells or ():
                     self._declare(item, Kind.REGION)
+                self._grid(st)
             case s.RegionDecl():
                 for item in st.names:
                     self._declare(item, Kind.REGION)
             case s.BlockDecl():
+                self._blocks.extend(st.cells)
                 for ref in st.cells:
                     self._use(ref, Kind.REGION, "block")
             case s.EdgeDecl():
@@ -155,6 +167,21 @@ class Index:
             case _:
                 unreachable(st)
 
+    def _grid(self, st: s.GridDecl) -> None:
+        """The cells of the first grid, row-major as the checker names them."""
+        count = st.rows * st.cols
+        if self.cells or st.cols < 1 or not 0 < count <= 10_000:
+            return
+        names = ([f"r{i}" for i in range(count)] if st.cells is None else
+                 [name for item in st.cells for name in _names_of(item)])
+        if len(names) == count:
+            self.cells = {divmod(i, st.cols): name for i, name in enumerate(names)}
+
+    def _cell_name(self, ref: s.RegionRef) -> str:
+        if isinstance(ref, s.Cell):
+            return self.cells.get((ref.row, ref.col), "")
+        return ref.text
+
     def _formula(self, formula: Node, role: str) -> None:
         for name, span in _formula_names(formula):
             self._pending.append((name, Mention(span, role=role), None))
@@ -176,6 +203,25 @@ class Index:
 
     def of_kind(self, kind: Kind) -> list[str]:
         return [name for name, symbol in self.symbols.items() if symbol.kind is kind]
+
+    def free_regions(self) -> list[str]:
+        """The regions that are not blocked cells, in declaration order."""
+        return [name for name in self.of_kind(Kind.REGION) if name not in self.blocked]
+
+    def named_as(self, role: str, outside: range = range(0)) -> set[str]:
+        """The names mentioned with ``role`` (``cache``, ``goal``; ``hazard`` takes those of
+        every hazard set) on a line not in ``outside``."""
+        return {symbol.name for symbol in self.symbols.values() for m in symbol.mentions
+                if (m.role == role or m.role.startswith(role + " "))
+                and m.span.line not in outside}
+
+
+def _names_of(item: s.NameItem) -> list[str]:
+    """The names an item of a list stands for (none for a range the checker refuses)."""
+    try:
+        return [name.text for name in expand(item)]
+    except GaitcError:
+        return []
 
 
 def _contains(span: Span, line: int, column: int) -> bool:

@@ -27,7 +27,14 @@ from lsprotocol import types
 from pygls.exceptions import JsonRpcException, JsonRpcRequestCancelled
 from pygls.lsp.server import LanguageServer
 
-from gaitc.lsp.actions import RepairEdit, find_repairs, preload_repairs, suggestion
+from gaitc.lsp.actions import (
+    Fix,
+    RepairEdit,
+    find_repairs,
+    preload_repairs,
+    quick_fixes,
+    suggestion,
+)
 from gaitc.lsp.analysis import Finding, analyse
 from gaitc.lsp.completion import offers
 from gaitc.lsp.hover import describe
@@ -51,6 +58,7 @@ TOKEN_MODIFIERS = ("declaration",)
 SYMBOL_KIND = {Kind.LEG: types.SymbolKind.Variable, Kind.GAIT: types.SymbolKind.Function,
                Kind.REGION: types.SymbolKind.EnumMember, Kind.HAZARD: types.SymbolKind.Event}
 COMPLETION_KIND = {"keyword": types.CompletionItemKind.Keyword,
+                   "value": types.CompletionItemKind.Value,
                    Kind.LEG.value: types.CompletionItemKind.Variable,
                    Kind.GAIT.value: types.CompletionItemKind.Function,
                    Kind.REGION.value: types.CompletionItemKind.EnumMember,
@@ -306,9 +314,17 @@ async def code_action(ls: GaitServer, params: types.CodeActionParams
         return []
     actions: list[types.CodeAction | types.Command] = []
     for diagnostic in params.context.diagnostics:
+        fixes = _fixes(doc, diagnostic)
+        for i, fix in enumerate(fixes):
+            edits = [types.TextEdit(range=types.Range(
+                start=doc.lines.position(e.line, e.column),
+                end=doc.lines.position(e.line, e.end)), new_text=e.text) for e in fix.edits]
+            actions.append(types.CodeAction(
+                title=fix.title, kind=types.CodeActionKind.QuickFix, diagnostics=[diagnostic],
+                is_preferred=i == 0, edit=types.WorkspaceEdit(changes={doc.uri: edits})))
         data = diagnostic.data if isinstance(diagnostic.data, dict) else {}
         name = data.get("suggestion")
-        if isinstance(name, str):
+        if isinstance(name, str) and not fixes:
             edit = types.TextEdit(range=diagnostic.range, new_text=name)
             actions.append(types.CodeAction(
                 title=f"Change to '{name}'", kind=types.CodeActionKind.QuickFix,
@@ -328,6 +344,19 @@ async def code_action(ls: GaitServer, params: types.CodeActionParams
             title="Find verified repairs (solves the spec: takes seconds)",
             command=REPAIR_COMMAND, arguments=[doc.uri]))
     return actions
+
+
+def _fixes(doc: Document, diagnostic: types.Diagnostic) -> list[Fix]:
+    """The quick fixes of the finding ``diagnostic`` shows (:func:`quick_fixes`): found by
+    its range and message in the document's analysis."""
+    analysis = doc.analysis
+    if analysis is None:
+        return []
+    for finding in analysis.findings:
+        if finding.message == diagnostic.message.split("\nhint: ")[0] \
+                and doc.lines.span_range(finding.span) == diagnostic.range:
+            return quick_fixes(analysis, finding)
+    return []
 
 
 @server.command(REPAIR_COMMAND)

@@ -69,6 +69,14 @@ def test_completion_inside_a_statement_offers_only_its_rules_keywords(statement:
         assert not wrong, (text, wrong, rule)
 
 
-def test_formulas_are_offered_every_formula_keyword() -> None:
+def test_formulas_are_offered_the_formula_keywords_the_checker_accepts() -> None:
+    """Across a formula's places every formula keyword is offered but ``until`` (outside
+    GR(1): the parser refuses it); the temporal words only as the prefix."""
     for statement in ("assume", "guarantee"):
-        assert set(_offered(f"{statement} ")) == set(keywords("formula"))
+        places = ["", "always ", "always eventually ", "always x ", "always (x & "]
+        offered = {word for text in places for word in _offered(f"{statement} {text}")}
+        assert offered == set(keywords("formula")) - {"until"}
+        assert "next" not in _offered(f"{statement} ")  # an initial condition
+        assert "next" not in _offered(f"{statement} always next ")
+        for text in ("always x & ", "always (", "always eventually "):
+            assert not {"always", "eventually"} & set(_offered(f"{statement} {text}"))
