@@ -192,8 +192,12 @@ class Driver:
         gait = None if here is None else next((g for g in model.gaits if g.name == here.gait),
                                               None)
         span = (model.start_span if gait is None else gait.span) or where(self.backend.name)
-        course = None if here is None else self.backend.course(self._left, expected)
-        if course is None or here is None:
+        if here is None:
+            return HardwareError(
+                f"{head}: the robot is not in the region the spec starts it in; {tail}", span,
+                f"put the robot in {expected} before the run, or check the localisation map")
+        course = self.backend.course(self._left, expected)
+        if course is None:
             physics = self.backend.name.startswith("physics")
             return HardwareError(
                 f"{head}: the gait did not get there; {tail}", span,

@@ -11,9 +11,13 @@ from pathlib import Path
 
 import pytest
 
+from gaitc.api.simulation import session
 from gaitc.cli import main
-from gaitc.hw.backend import Course
+from gaitc.hw.backend import Course, HardwareError, SensorReading
+from gaitc.hw.driver import Driver, bind_primitives
 from gaitc.hw.localisation import Miss, RegionMap, compass, deviation
+from gaitc.hw.simulated import SimulatedRobot
+from gaitc.sim.environments import RandomEnvironment
 
 ROOT = Path(__file__).resolve().parents[2]
 RADIAL8 = str(ROOT / "specs" / "robots" / "radial8.yaml")
@@ -160,3 +164,41 @@ def test_a_gait_that_falls_short_or_goes_too_far_says_which(
         "201.8 mm along the 100.0 mm from a to b and 6.2 mm south of that line, so it " \
         "passed b and is in c, east of b; stopped with all valves vented\n" in err
     assert "run fewer cycles" in err and "repeat each gait" not in err
+
+
+class _Stuck(SimulatedRobot):
+    """The simulated robot whose localisation always reports region ``b``."""
+
+    def read_sensors(self) -> SensorReading:
+        reading = super().read_sensors()
+        return SensorReading(reading.health, reading.hazard, "b")
+
+
+def test_a_robot_off_its_region_without_a_course_is_an_error_at_the_spec(
+        tmp_path: Path) -> None:
+    """Without a measured course (a board and a tracker), the error still names the step
+    and is located at the gait, or at the spec's start for the first reading."""
+    spec = tmp_path / "shuttle.gait"
+
+    def error(start: str) -> HardwareError:
+        text = (ROOT / "specs" / "shuttle_2leg.gait").read_text(encoding="utf-8")
+        spec.write_text(text.replace("start a", f"start {start}"), encoding="utf-8")
+        again = session(str(spec), None)
+        assert again is not None
+        robot = _Stuck(again.strategy, again.domain, again.monitor, RandomEnvironment(1), 2)
+        driver = Driver(again.strategy, again.domain, again.monitor,
+                        bind_primitives(again.model, str(tmp_path)), robot)
+        run = driver.run(6)
+        assert isinstance(run.error, HardwareError)
+        return run.error
+
+    found = error("a")
+    assert (str(found.span), found.message) == (
+        f"{spec}:10:1", "step 0: localisation reports region b but the controller expects a at "
+        "the start: the robot is not in the region the spec starts it in; stopped with all "
+        "valves vented")
+    assert found.hint == "put the robot in a before the run, or check the localisation map"
+    found = error("b")  # step 1 of the run goes west from b to a; the robot is still in b
+    assert (str(found.span), found.message) == (
+        f"{spec}:7:1", "step 1: localisation reports region b but the controller expects a "
+        "after gait west: the gait did not get there; stopped with all valves vented")
