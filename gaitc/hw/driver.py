@@ -179,10 +179,11 @@ class Driver:
 
     def _off_course(self, found: str, expected: str, here: State | None) -> HardwareError:
         """The error for a reading in another region than the controller expects, at the
-        step's gait in the spec (at the start, at its ``start``): a gait that went the wrong
-        way (its motion against the move, in degrees, and its primitive), one that went the
-        right way but fell short or too far, or one that drifted sideways into a neighbour
-        of the region expected (:func:`gaitc.hw.localisation.deviation`)."""
+        step's gait in the spec (at the start, at its ``start``): a gait that did not move the
+        robot, one that went the wrong way (its motion against the move, in degrees, and its
+        primitive), one that went the right way but fell short or too far, or one that
+        drifted sideways into a neighbour of the region expected
+        (:func:`gaitc.hw.localisation.deviation`)."""
         model = self.domain.model
         step = max(self._ran_up_to, 0)
         after = "at the start" if here is None else f"after gait {here.gait}"
@@ -219,12 +220,19 @@ class Driver:
         aside = (f"{abs(off.across):.1f} mm {off.side} of that line" if off.side
                  else "not off that line")
         into = found + (f", {off.beside} of {expected}" if off.beside else "")
+        seq = self.primitives.get(here.gait)
+        primitive = ("" if seq is None else
+                     f"; its primitive ({seq.source}) runs {', '.join(seq.states)}")
+        if off.miss is Miss.STILL:
+            return HardwareError(
+                f"{head}: gait {here.gait} did not move the robot: the chassis moved "
+                f"{math.hypot(mx, my):.1f} mm of the {off.length:.1f} mm from {self._left} to "
+                f"{expected}{primitive}; {tail}", span,
+                "check that the primitive opens the valves of the gait's legs, and that the "
+                "legs still work (a leg at health level 1 does not move)")
         if off.miss is Miss.WRONG_WAY:
             toward = f"toward {math.degrees(math.atan2(my, mx)):.0f} deg"
             wanted = math.degrees(math.atan2(course.wanted[1], course.wanted[0]))
-            seq = self.primitives.get(here.gait)
-            primitive = ("" if seq is None else
-                         f"; its primitive ({seq.source}) runs {', '.join(seq.states)}")
             return HardwareError(
                 f"{head}: gait {here.gait} went the wrong way: it {moved}, {toward}, but "
                 f"{expected} lies toward {wanted:.0f} deg from {self._left}, a direction "

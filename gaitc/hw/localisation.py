@@ -123,9 +123,15 @@ def compass(x: float, y: float) -> str:
     return COMPASS[round(math.degrees(math.atan2(y, x)) / 45.0) % 8]
 
 
+#: A gait whose motion is shorter than this (mm) did not move the robot (its direction
+#: means nothing).
+STILL = 0.5
+
+
 class Miss(Enum):
     """How a gait missed the region it was to reach."""
 
+    STILL = "did not move"  # its motion is under STILL mm
     WRONG_WAY = "went the wrong way"  # its motion is WRONG_WAY degrees or more off the move
     SHORT = "fell short"  # it stopped behind the region, toward where it set out
     FAR = "went too far"  # it passed the region
@@ -147,8 +153,9 @@ class Deviation:
 
 def deviation(course: Course, reached: Point) -> Deviation:
     """How the motion of ``course`` missed its region; ``reached`` is where the region the
-    robot ended in lies from the region expected (their centres, mm).  A motion
-    :data:`WRONG_WAY` degrees or more off the move went the wrong way, whatever it reached;
+    robot ended in lies from the region expected (their centres, mm).  A motion shorter than
+    :data:`STILL` did not move the robot; one :data:`WRONG_WAY` degrees or more off the move
+    went the wrong way, whatever it reached;
     else the robot ended beside the region (``reached`` more across the move than along
     it): drifted; else behind it: fell short; else past it: went too far."""
     (mx, my), (wx, wy) = course.moved, course.wanted
@@ -159,7 +166,9 @@ def deviation(course: Course, reached: Point) -> Deviation:
     side = compass(-uy * across, ux * across) if abs(across) >= 0.05 else ""
     rx, ry = reached
     ahead, aside = rx * ux + ry * uy, -rx * uy + ry * ux
-    if course.error >= WRONG_WAY:
+    if math.hypot(mx, my) < STILL:
+        miss = Miss.STILL
+    elif course.error >= WRONG_WAY:
         miss = Miss.WRONG_WAY
     elif abs(ahead) < abs(aside):
         miss = Miss.DRIFTED

@@ -75,6 +75,8 @@ def test_compass_words() -> None:
     ((45.0, -44.0), "c", Miss.SHORT, "south", "south-west"),  # both: behind comes first
     ((0.0, -20.0), "c", Miss.WRONG_WAY, "south", "south-west"),
     ((-30.0, 5.0), "a", Miss.WRONG_WAY, "north", "west"),
+    ((0.3, -0.2), "a", Miss.STILL, "south", "west"),
+    ((0.0, 0.0), "a", Miss.STILL, "", "west"),
 ])
 def test_a_miss_splits_the_motion_along_and_across_the_move(
         moved: tuple[float, float], found: str, miss: Miss, side: str, beside: str) -> None:
@@ -164,6 +166,20 @@ def test_a_gait_that_falls_short_or_goes_too_far_says_which(
         "201.8 mm along the 100.0 mm from a to b and 6.2 mm south of that line, so it " \
         "passed b and is in c, east of b; stopped with all valves vented\n" in err
     assert "run fewer cycles" in err and "repeat each gait" not in err
+
+
+def test_a_gait_whose_valves_stay_shut_did_not_move_the_robot(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    """It was reported as going the wrong way (a direction error of 180 deg)."""
+    spec = tmp_path / "shut.gait"
+    spec.write_text(LONG.replace("valves 00000100, 00010000", "valves 00000000, 00000000"),
+                    encoding="utf-8")
+    err = _drive(spec, 1, capsys)
+    assert f"{spec}:3:1: error: step 2: localisation reports region a but the controller " \
+        "expects b after gait east: gait east did not move the robot: the chassis moved 0.0 " \
+        "mm of the 100.0 mm from a to b; its primitive (inline) runs 00000000, 00000000; " \
+        "stopped with all valves vented\n" in err
+    assert "wrong way" not in err
 
 
 class _Stuck(SimulatedRobot):
