@@ -136,6 +136,7 @@ class MapGrid:
         self._flags = max((len(self._marks(name, None)) for name in self.cells), default=0)
         self.short = short_names(self.cells)
         self.labels = {name: name for name in self.cells}  # as drawn in the text map
+        self.gap = 1  # blank columns after each cell's marks
 
     @property
     def abbreviated(self) -> bool:
@@ -145,16 +146,21 @@ class MapGrid:
     @property
     def width(self) -> int:
         """The characters each cell takes in the text map: the robot's mark, the longest
-        label and the most marks a cell has."""
-        return 1 + max((len(label) for label in self.labels.values()), default=1) + self._flags
+        label, the most marks a cell has and the gap."""
+        longest = max((len(label) for label in self.labels.values()), default=1)
+        return 1 + longest + self._flags + self.gap
 
     def fit(self, room: int) -> bool:
-        """Label the cells with their names when every row fits in ``room`` characters,
-        else with their short names (which may not fit either: a front end then scrolls);
-        whether the labels are the short names."""
-        self.labels = {name: name for name in self.cells}
-        if self.cols * self.width > room:
-            self.labels = dict(self.short.labels)
+        """Draw the rows in ``room`` characters if they fit: the cells' names with a blank
+        after each cell, else without it, else their short names with the blank, else
+        without it (which may not fit either: a front end then scrolls); whether the labels
+        are the short names."""
+        names = {name: name for name in self.cells}
+        for labels, gap in ((names, 1), (names, 0), (self.short.labels, 1),
+                            (self.short.labels, 0)):
+            self.labels, self.gap = dict(labels), gap
+            if self.cols * self.width <= room:
+                break
         return self.abbreviated
 
     def legend(self) -> list[str]:

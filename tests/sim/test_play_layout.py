@@ -223,13 +223,17 @@ def test_short_names_are_unambiguous_and_the_legend_spells_them_out(tmp_path: Pa
     spec = tmp_path / "rooms.gait"
     spec.write_text(ROOMS, encoding="utf-8")
     grid = MapGrid(load_model(str(spec))[0])
-    assert not grid.fit(6 * 13) and grid.width == 13  # "@westroom_00+"
+    assert not grid.fit(6 * 14) and grid.width == 14  # "@westroom_00+ "
+    assert grid.text().splitlines()[1] == (
+        " westroom_10   westroom_11   corridor_12   corridor_13   eastroom_14   eastroom_15")
+    assert not grid.fit(6 * 13) and grid.width == 13  # names before the blank after each
     assert grid.text().splitlines()[1] == (
         " westroom_10  westroom_11  corridor_12  corridor_13  eastroom_14  eastroom_15")
-    assert grid.fit(6 * 13 - 1) and grid.width == 5
+    assert grid.fit(6 * 13 - 1) and grid.width == 6
     assert grid.text("corridor_12").splitlines() == [
-        " w00+ w01            e04  e05",
-        " w10  w11 @c12  c13  e14  e15",
-        " w20  w21            e24  e25",
-        " w30* w31            e34  e35*"]
+        " w00+  w01               e04   e05",
+        " w10   w11  @c12   c13   e14   e15",
+        " w20   w21               e24   e25",
+        " w30*  w31               e34   e35*"]
     assert grid.legend()[2:] == ["c12: corridor_12  c: corridor", "e: eastroom  w: westroom"]
+    assert grid.fit(6 * 5) and grid.width == 5 and grid.fit(1) and grid.width == 5
