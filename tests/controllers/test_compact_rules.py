@@ -322,4 +322,7 @@ def test_compact_rules_from_the_api_match_the_cli_json(
     tables = compact_rules(spec)
     assert tables is not None
     assert json.loads(out.read_text(encoding="utf-8")) == tables.to_dict()
-    assert main(["render", "policy", spec, "--format", "json"]) == 2  # not a compact one
+    # a projected (not compact) policy has no JSON and no never used rules
+    assert main(["render", "policy", spec, "--format", "json"]) == 2
+    assert main(["render", "policy", spec, "--all-rules"]) == 2
+    assert "--all-rules lists a compact controller's rules" in capsys.readouterr().err

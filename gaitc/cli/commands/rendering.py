@@ -189,9 +189,10 @@ def run_policy(args: argparse.Namespace) -> int:
             return _save(draw_rules(tables), args)
         return _write_table({"text": tables.text, "md": tables.markdown, "html": tables.html,
                              "json": tables.json}[fmt](), fmt, args)
-    if fmt == "json":
-        raise UsageError("--format json writes a compact controller's rules: give a compact "
-                         "CONTROLLER or --compact")
+    if fmt == "json" or args.all_rules:
+        what = "--format json writes" if fmt == "json" else "--all-rules lists"
+        raise UsageError(f"{what} a compact controller's rules: give a compact CONTROLLER "
+                         "or --compact")
     with progress_display() as progress:
         found = gaitc.controller_policy(
             args.spec, args.controller, steps=args.steps, max_nodes=args.max_nodes,
