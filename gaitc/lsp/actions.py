@@ -84,6 +84,7 @@ class Fix:
 
     title: str
     edits: tuple[TextEdit, ...]
+    name: str  # the name it writes
 
 
 def apply(text: str, edits: tuple[TextEdit, ...]) -> str:
@@ -132,7 +133,7 @@ def quick_fixes(analysis: Analysis, finding: Finding) -> list[Fix]:
         close = difflib.get_close_matches(name, _candidates(analysis.index, kind, place),
                                           n=CLOSEST, cutoff=CUTOFF)
         found += [Fix(f"Change to '{other}'",
-                      (TextEdit(line, column, column + len(name), other),))
+                      (TextEdit(line, column, column + len(name), other),), other)
                   for other in close]
     if kind == "leg":
         found += _declare_leg(analysis, name)
@@ -154,18 +155,21 @@ def _declare_leg(analysis: Analysis, name: str) -> list[Fix]:
     end = (last.span.end_line or last.span.line) - 1
     at = len(analysis.text.split("\n")[end])
     return [Fix(f"Declare leg {name} health {health}",
-                (TextEdit(end, at, at, f"\nleg {name} health {health}"),))]
+                (TextEdit(end, at, at, f"\nleg {name} health {health}"),), name)]
 
 
 def _accepted(analysis: Analysis, finding: Finding, fix: Fix) -> bool:
     """Whether the checker accepts the place ``fix`` edits: the edited text checks, or its
-    first error is another one elsewhere (the rest of the file may have errors of its
-    own)."""
+    first error is another one, elsewhere, that does not name what the fix wrote (the
+    rest of the file may have errors of its own, but the fix must not make one: a leg
+    then listed twice, a second goal)."""
     from ltlcompiler.frontend import model_from_text
 
     try:
         model_from_text(apply(analysis.text, fix.edits), analysis.path)
     except GaitcError as err:
+        if re.search(rf"\b{re.escape(fix.name)}\b", err.message.split(";")[0]):
+            return False
         return err.message != finding.message and not _same_place(err.span, finding.span,
                                                                    fix)
     except RecursionError:

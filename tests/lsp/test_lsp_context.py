@@ -186,11 +186,15 @@ def test_an_unknown_leg_is_replaced_or_declared_and_each_fix_checks() -> None:
 
 def test_a_fix_that_the_checker_refuses_is_not_offered() -> None:
     """L1 is the closest leg to L11, but the gait uses L1 already: no "Change to 'L1'"."""
-    text = MAP.replace("gait up uses L1, L3", "gait up uses L1, L11")
-    _, fixes = _fixes(text)
-    titles = [title for title, _ in fixes]
-    assert "Change to 'L1'" not in titles and "Declare leg L11 health 3" in titles
-    assert all(_checks(edited) for _, edited in fixes)
+    for uses in ("L1, L11", "L11, L1"):  # the error is at the second L1 either way
+        text = MAP.replace("gait up uses L1, L3", f"gait up uses {uses}")
+        _, fixes = _fixes(text)
+        titles = [title for title, _ in fixes]
+        assert "Change to 'L1'" not in titles and "Declare leg L11 health 3" in titles
+        assert all(_checks(edited) for _, edited in fixes)
+    # a second goal is an error too: r8 is a goal already
+    _, fixes = _fixes(MAP.replace("visit r8", "visit r8, r88"))
+    assert "Change to 'r8'" not in [title for title, _ in fixes]
 
 
 def test_an_unknown_gait_and_an_unknown_region_are_replaced_by_valid_names() -> None:
