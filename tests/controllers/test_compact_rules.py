@@ -70,10 +70,15 @@ def _compact(spec: Spec) -> CompactController:
 
 @pytest.fixture(scope="module")
 def small() -> dict[str, tuple[Spec, CompactController]]:
+    """The small examples' compact controllers, under the default semantics and (keys
+    ending in ``+robotics``) the robotics one."""
     out = {}
     for name in SMALL:
         spec = gaitc.load(EXAMPLES / name)
         out[name] = (spec, _compact(spec))
+        made = gaitc.synthesize(spec, Semantics.ROBOTICS, form="compact")
+        assert isinstance(made.controller, CompactController)
+        out[f"{name}+robotics"] = (spec, made.controller)
     return out
 
 
@@ -101,17 +106,27 @@ Decision = tuple[int, dict[str, int], dict[str, int], dict[str, int]]
 
 def _decisions(spec: Spec, ctrl: CompactController
                ) -> tuple[list[dict[str, int]], list[Decision]]:
-    """Every first input θe allows, and every decision (goal, state, inputs chosen, move)
-    of every run: breadth first over (state, goal), each input ρe allows, the controller's
-    own move and counter (as :class:`gaitc.compact.controller.Runner` steps)."""
-    assert ctrl.semantics == Semantics.DEFAULT
+    """Every first input θe allows (default semantics), and every decision (goal, state,
+    inputs chosen, move) of every run: breadth first over (state, goal) from the first
+    states (the controller's first outputs, or under the robotics semantics every state
+    θe allows that it accepts), each input ρe allows, the controller's own move and
+    counter (as :class:`gaitc.compact.controller.Runner` steps)."""
     clauses = bitblast(spec.gr1)
     firsts, starts = [], []
-    for chosen in _inputs(ctrl):
-        state = chosen | ctrl.first(chosen)
-        if _holds(clauses, "env_init", _bits(ctrl, state, False)):
-            firsts.append(chosen)
-            starts.append(state)
+    if ctrl.semantics == Semantics.ROBOTICS:
+        outs = ctrl.vocabulary.outputs
+        for chosen in _inputs(ctrl):
+            for combo in itertools.product(*(range(len(f.labels)) for f in outs)):
+                state = chosen | dict(zip((f.name for f in outs), combo, strict=True))
+                if ctrl.accepts(state) and _holds(clauses, "env_init",
+                                                  _bits(ctrl, state, False)):
+                    starts.append(state)
+    else:
+        for chosen in _inputs(ctrl):
+            state = chosen | ctrl.first(chosen)
+            if _holds(clauses, "env_init", _bits(ctrl, state, False)):
+                firsts.append(chosen)
+                starts.append(state)
     seen: set[tuple[State, int]] = set()
     queue: deque[tuple[dict[str, int], int]] = deque()
     for state in starts:
@@ -166,19 +181,25 @@ def _expected(ctrl: CompactController, root: int, met: list[list[int]]
     return out
 
 
-@pytest.mark.parametrize("name", SMALL)
+BOTH = [*SMALL, *(f"{name}+robotics" for name in SMALL)]
+
+
+@pytest.mark.parametrize("name", BOTH)
 def test_the_printed_rules_are_exactly_the_ones_runs_take(
         small: dict[str, tuple[Spec, CompactController]], name: str) -> None:
     spec, ctrl = small[name]
     firsts, decisions = _decisions(spec, ctrl)
-    assert firsts and decisions
+    assert decisions and bool(firsts) == (ctrl.semantics == Semantics.DEFAULT)
     tables = rule_tables(ctrl, spec=spec.gr1)
     for j, (_, rules) in enumerate(tables.goals):
         met = [ctrl.slot_values(s, c) for g, s, c, _ in decisions if g == j]
         expected = _expected(ctrl, ctrl.move_roots[j], met)
         assert [r.conditions if r.used else None for r in rules] == expected, (name, j)
-    start = _expected(ctrl, ctrl.start_root, [ctrl.slot_values({}, c) for c in firsts])
-    assert [r.conditions if r.used else None for r in tables.start] == start
+    if ctrl.semantics == Semantics.DEFAULT:  # the robotics start is a set, not rules
+        start = _expected(ctrl, ctrl.start_root, [ctrl.slot_values({}, c) for c in firsts])
+        assert [r.conditions if r.used else None for r in tables.start] == start
+    else:
+        assert tables.start == ()
     # the text lists the used rules and counts the others
     text = tables.text()
     printed = sum(len(tables.shown(rules)) for _, rules in tables.goals)
@@ -236,7 +257,25 @@ def _leg_problems(spec: Spec, ctrl: CompactController, tables: RuleTables) -> li
     return problems
 
 
-@pytest.mark.parametrize("name", SMALL)
+@pytest.mark.parametrize("name", BOTH)
+def test_the_care_set_is_the_verifiers_reachable_set(
+        small: dict[str, tuple[Spec, CompactController]], name: str) -> None:
+    """Per goal, the states of the care set are the (state, goal) pairs the independent
+    verifier's closed loop reaches (:mod:`gaitc.verifier.symbolic`), as many as it counts,
+    and as many as the enumeration finds."""
+    spec, ctrl = small[name]
+    found = reach(ctrl, spec.gr1)
+    post_in = {b + "'" for b in ctrl.inputs}
+    bits = len(ctrl.inputs) + len(ctrl.outputs)
+    counted = sum(int(found.bdd.count(found.bdd.exist(post_in, here), nvars=bits))
+                  for here in found.moves)
+    report = gaitc.verify(spec, ctrl)
+    assert report.ok and counted == report.nodes
+    _, decisions = _decisions(spec, ctrl)
+    assert counted == len({(g, tuple(sorted(s.items()))) for g, s, _, _ in decisions})
+
+
+@pytest.mark.parametrize("name", BOTH)
 def test_no_reachable_decision_walks_on_a_failed_leg(
         small: dict[str, tuple[Spec, CompactController]], name: str) -> None:
     spec, ctrl = small[name]
