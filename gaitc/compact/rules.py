@@ -116,7 +116,7 @@ class RuleTables:
         def cell(text: str) -> str:
             return text.replace("|", "\\|")
 
-        out = [*self._head(), ""]
+        out = [line for head in self._head() for line in (head, "")]
         for label, rules in self.shown_goals():
             out += [f"**pursuing {cell(label)}**", "", "| when | move |", "|---|---|"]
             out += [f"| {cell(r.when)} | {cell(r.said)} |" for r in rules]
