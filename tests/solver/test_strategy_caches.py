@@ -1,9 +1,11 @@
-"""The explicit extraction's remembered cofactors (gaitc/solver/strategy.py) change no move.
+"""The explicit extraction's remembered answers (gaitc/solver/strategy.py, and
+``MovePreferences.choose`` in gaitc/solver/preferences.py) change no move.
 
 Each spec's controller is extracted twice, with the default move preferences: as shipped,
-and with every cofactor computed afresh from the whole state, as the extraction did before
-it kept them by the bits each BDD reads.  The two must be the same automaton, node for node.
-A cache keyed by too few bits must not pass: with every key emptied the controllers differ.
+and with every cofactor and every preferred choice computed afresh from the whole state,
+as the extraction did before it kept them by the bits each reads.  The two must be the
+same automaton, node for node.  A cache keyed by too few bits must not pass: with every
+key emptied the controllers differ.
 """
 
 from __future__ import annotations
@@ -66,6 +68,8 @@ def _extract(name: str, cofactors: type[Cofactors] | None = None) -> Controller:
     with pytest.MonkeyPatch.context() as patch:
         patch.setattr(strategy, "Cofactors", cofactors)
         patch.setattr(strategy, "remembered", lambda compute: compute)
+        if cofactors is _Afresh:
+            patch.setattr(prefer, "choose", prefer._choose)
         return strategy.extract_strategy(sym, result, Semantics.DEFAULT, prefer=prefer)
 
 
@@ -80,4 +84,12 @@ def test_remembered_cofactors_give_the_same_controller(name: str) -> None:
 def test_a_cache_keyed_by_too_few_bits_changes_the_controller() -> None:
     kept = _extract("corridor_hazard")
     blind = _extract("corridor_hazard", _Blind)
+    assert (kept.nodes, kept.initial) != (blind.nodes, blind.initial)
+
+
+def test_a_choice_remembered_without_the_state_changes_the_controller() -> None:
+    kept = _extract("thesis_robot_a")
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(MovePreferences, "_reads", lambda self, goal: lambda at: ())
+        blind = _extract("thesis_robot_a")
     assert (kept.nodes, kept.initial) != (blind.nodes, blind.initial)
