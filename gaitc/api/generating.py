@@ -1,7 +1,8 @@
 """Compact controllers for people and for boards: rule tables and generated C.
 
 - :func:`compact_policy`: a compact controller as one table of rules per goal, in the
-  robot's words (``gaitc render policy --compact``); it displays itself in a notebook;
+  robot's words, the rules a run never uses left out (``gaitc render policy --compact``);
+  it displays itself in a notebook;
 - :func:`generate`: C for a host or the valve board (``gaitc codegen``), after proving the
   controller against the spec, so a controller of another spec or a tampered file never
   reaches a robot.
@@ -15,9 +16,8 @@ from pathlib import Path
 from gaitc.api.solving import compact, read_controller, synthesize, verify
 from gaitc.codegen.board import BoardTables
 from gaitc.codegen.build import Built, Target, build
-from gaitc.codegen.tables import table_bytes
 from gaitc.compact.controller import CompactController
-from gaitc.compact.rules import RuleTables, rule_tables
+from gaitc.compact.rules import RuleTables
 from gaitc.core.spec import Spec, SpecLike, resolve
 from gaitc.diagnostics import ControllerError, Span, UsageError
 from gaitc.ir.bddfile import SymbolicController
@@ -50,14 +50,14 @@ def compact_of(spec: SpecLike, controller: CompactController | SymbolicControlle
 
 
 def compact_policy(spec: SpecLike, controller: CompactController | SymbolicController | str
-                   | Path | None = None, *, prefer: str | None = None) -> RuleTables | None:
-    """One table of rules per goal (see :mod:`gaitc.compact.rules`); None when the spec is
-    unrealizable."""
-    resolved = resolve(spec)
-    found = compact_of(resolved, controller, prefer=prefer)
-    if found is None:
-        return None
-    return rule_tables(found, _goal_labels(resolved), table_bytes(found))
+                   | Path | None = None, *, all_rules: bool = False,
+                   prefer: str | None = None) -> RuleTables | None:
+    """One table of rules per goal, the rules a run never uses left out and counted (or
+    with ``all_rules`` listed and marked): what ``gaitc render policy --compact`` prints,
+    :func:`gaitc.api.drawing.compact_rules`; None when the spec is unrealizable."""
+    from gaitc.api.drawing import compact_rules
+
+    return compact_rules(spec, controller, all_rules=all_rules, prefer=prefer)
 
 
 def generate(spec: SpecLike, controller: CompactController | SymbolicController | str | Path,
