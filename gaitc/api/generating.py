@@ -16,9 +16,10 @@ from pathlib import Path
 from gaitc.api.solving import compact, read_controller, synthesize, verify
 from gaitc.codegen.board import BoardTables
 from gaitc.codegen.build import Built, Target, build
+from gaitc.codegen.tables import table_bytes
 from gaitc.compact.controller import CompactController
-from gaitc.compact.rules import RuleTables
-from gaitc.core.spec import Spec, SpecLike, resolve
+from gaitc.compact.rules import RuleTables, rule_tables
+from gaitc.core.spec import Spec, SpecLike, as_gr1, resolve
 from gaitc.diagnostics import ControllerError, Span, UsageError
 from gaitc.ir.bddfile import SymbolicController
 from gaitc.ir.controller import Controller
@@ -52,12 +53,18 @@ def compact_of(spec: SpecLike, controller: CompactController | SymbolicControlle
 def compact_policy(spec: SpecLike, controller: CompactController | SymbolicController | str
                    | Path | None = None, *, all_rules: bool = False,
                    prefer: str | None = None) -> RuleTables | None:
-    """One table of rules per goal, the rules a run never uses left out and counted (or
-    with ``all_rules`` listed and marked): what ``gaitc render policy --compact`` prints,
-    :func:`gaitc.api.drawing.compact_rules`; None when the spec is unrealizable."""
-    from gaitc.api.drawing import compact_rules
-
-    return compact_rules(spec, controller, all_rules=all_rules, prefer=prefer)
+    """The compact controller of ``spec`` (``controller`` compacted, or one synthesized) as
+    one table of rules per goal, each rule checked against the states a run of it reaches
+    under the spec's assumptions (:func:`gaitc.compact.rules.reach`): the never used ones
+    are left out of the text and counted, or with ``all_rules`` listed and marked.  What
+    ``gaitc render policy --compact`` prints (:func:`gaitc.api.drawing.compact_rules`);
+    None when the spec is unrealizable."""
+    resolved = resolve(spec)
+    found = compact_of(resolved, controller, prefer=prefer)
+    if found is None:
+        return None
+    return rule_tables(found, _goal_labels(resolved), table_bytes(found),
+                       spec=as_gr1(resolved), all_rules=all_rules)
 
 
 def generate(spec: SpecLike, controller: CompactController | SymbolicController | str | Path,

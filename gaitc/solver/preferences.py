@@ -23,7 +23,6 @@ from gaitc.diagnostics import UsageError
 from gaitc.ir.bddwalk import Cofactors, cofactor, holds_at
 from gaitc.ir.costs import Cost
 from gaitc.ir.cuddlib import cudd
-from gaitc.solver.canonical import REMEMBERED
 from gaitc.solver.game import Game, GameResult, Limits, goal_strategies
 from gaitc.solver.steps import Steps, run_through
 from gaitc.solver.symbolic import BDDNode, SymbolicSpec
@@ -94,7 +93,10 @@ class MovePreferences:
         self._goals_at = [Cofactors(sym.bdd, g, self._fixed) for g in self.goals]
         self._post_inputs = sorted(sym.post_inputs)
         self._relations: dict[int, tuple[BDDNode, BDDNode]] = {}  # goal: (strategy, moves)
+        from gaitc.solver.canonical import REMEMBERED  # not on the path that only decides
+
         self._chosen: dict[tuple[int, BDDNode, Any], BDDNode] = {}  # see choose
+        self._chosen_limit = REMEMBERED
         self._read_by_goal: dict[int, Callable[[Mapping[str, bool]], Any]] = {}
         self.safe: BDDNode = sym.bdd.false  # where the robot can avoid hazards for ever
         self.safe_strategies: list[BDDNode] = []
@@ -135,7 +137,7 @@ class MovePreferences:
         key = (goal, choices, self._reads(goal)(at))
         found = self._chosen.get(key)
         if found is None:
-            if len(self._chosen) >= REMEMBERED:
+            if len(self._chosen) >= self._chosen_limit:
                 self._chosen.clear()
             found = self._chosen[key] = self._choose(at, goal, choices)
         return found
