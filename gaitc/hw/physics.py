@@ -45,11 +45,9 @@ def region_map(model: Model, cell: float) -> RegionMap:
 
 
 def centre(regions: RegionMap, name: str) -> Pose2D:
-    """The centre of a region's polygon (the mean of its corners), heading 0 (east)."""
-    points = regions.polygons[name]
-    return Pose2D(
-        sum(p[0] for p in points) / len(points), sum(p[1] for p in points) / len(points), 0.0
-    )
+    """The centre of a region's polygon (:meth:`RegionMap.centre`), heading 0 (east)."""
+    x, y = regions.centre(name)
+    return Pose2D(x, y, 0.0)
 
 
 @dataclass(frozen=True)
@@ -79,6 +77,7 @@ class PhysicsRobot(Backend):
         self.placed: list[Placed] = []
         self.state: State | None = None
         self.failed: frozenset[str] = frozenset()  # legs the last reading put at level 1
+        self.gait: str | None = None  # the gait the controller runs next (accepted)
         self._leg_of_valve = ["?"] * inner.valve_count
         for limb in model.robot.limbs:
             for valve in limb.valves:
@@ -110,6 +109,7 @@ class PhysicsRobot(Backend):
 
     def accepted(self, move: Move) -> None:
         self.inner.accepted(move)
+        self.gait = move.state.gait
 
     @property
     def pose(self) -> Pose2D:
@@ -134,9 +134,24 @@ class PhysicsRobot(Backend):
         region = self.regions.region_at(pose.x, pose.y)
         self.placed.append(Placed(len(self.placed), pose, region))
         if region is None:
-            raise HardwareError(
-                f"the model puts the robot at ({pose.x:.1f}, {pose.y:.1f}) mm, outside every "
-                "region of the map",
-                where(self.name),
-            )
+            raise self._off_map(pose)
         return SensorReading(reading.health, reading.hazard, region)
+
+    def _off_map(self, pose: Pose2D) -> HardwareError:
+        """The error for a pose outside the map, located as the driver locates a gait that
+        missed its region: at the gait just run in the .gait file, named with its step (the
+        driver's numbering: the gait of step k is read after it, by reading k + 1), or at the
+        spec's ``start`` before the first gait."""
+        model = self.inner.domain.model
+        at = f"({pose.x:.1f}, {pose.y:.1f}) mm, outside every region of the map"
+        gait = None if len(self.placed) < 2 else next(
+            (g for g in model.gaits if g.name == self.gait), None)
+        if gait is None:
+            return HardwareError(f"at the start, the model puts the robot at {at}",
+                                 model.start_span or where(self.name),
+                                 "check that the map holds the start region's centre")
+        return HardwareError(
+            f"step {len(self.placed) - 2}: after gait {gait.name} the model puts the robot at "
+            f"{at}; stopped with all valves vented", gait.span or where(self.name),
+            "the gait carried the robot off the map: run fewer cycles (--cycles), grow the "
+            "cells (--cell-size) or choose a primitive closer to the move")
