@@ -1,8 +1,9 @@
 """The robot's move costs: the criteria that ``--prefer`` orders, written from the model.
 
 Issue 13: among the moves a GR(1) controller may take, prefer those that do not enter a
-region of an active hazard set (eq. 3.9 would fail the gait's legs), that lose the fewest
-health levels and spare degraded legs (eqs. 3.5, 3.6), and that switch gait least.  The
+region of an active hazard set (eq. 3.9 would fail the gait's legs, a graded hazard wear
+them by up to k levels), that lose the fewest health levels and spare degraded legs
+(eqs. 3.5, 3.6), and that switch gait least.  The
 shortest way to the next goal needs no model: the solver reads it off the fixpoint's
 rings (:mod:`gaitc.solver.preferences`).  The thesis has none of these; they only choose among
 winning moves, so they never change what the controller guarantees.
@@ -10,10 +11,12 @@ winning moves, so they never change what the controller guarantees.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 from gaitc.ir.costs import Cost
 from gaitc.ir.formula import Expr, Not, conj, disj
 from ltlcompiler.encoding import Encoding, EncodingName, make_encoding
-from ltlcompiler.model import GaitKind, Model
+from ltlcompiler.model import GaitKind, Hazard, Model
 
 
 def model_costs(model: Model, encoding: EncodingName = EncodingName.ONEHOT) -> tuple[Cost, ...]:
@@ -33,12 +36,19 @@ def _moving(model: Model) -> list[tuple[str, tuple[str, ...]]]:
             for g in model.gaits if g.kind is GaitKind.MOVE]
 
 
-def _hot(model: Model, enc: Encoding) -> Expr:
-    """The next region lies in the active hazard set and is no cache (eq. 3.9's φ_H)."""
+def _hot(model: Model, enc: Encoding, hazards: Sequence[Hazard] | None = None) -> Expr:
+    """The next region lies in the active hazard set, one of ``hazards`` (default every
+    hazard of the model), and is no cache (eq. 3.9's φ_H)."""
     return conj([disj(conj((enc.hazard(h.name, True),
                             disj(enc.region(r, True) for r in h.regions)))
-                      for h in model.hazards),
+                      for h in (model.hazards if hazards is None else hazards)),
                  *(Not(enc.region(c, True)) for c in model.caches)])
+
+
+def _levels_lost(hazard: Hazard, level: int) -> int:
+    """The most levels a leg at ``level`` in use loses in a region of ``hazard`` when it
+    is active: all but one when it fails the legs, at most ``wears`` when it is graded."""
+    return level - 1 if hazard.wears is None else min(hazard.wears, level - 1)
 
 
 def _hazard(model: Model, enc: Encoding) -> Cost:
@@ -52,7 +62,9 @@ def _hazard(model: Model, enc: Encoding) -> Cost:
 
 def _health(model: Model, enc: Encoding) -> Cost:
     """Worst-case levels lost first (weight ``scale`` each), then how degraded the legs in
-    use are (one per level below full): a degraded leg is used when nothing else works."""
+    use are (one per level below full): a degraded leg is used when nothing else works.
+    A move loses one level of each leg in use (eq. 3.5), or in an active hazard's region
+    :func:`_levels_lost` (hazard sets are mutually exclusive, so at most one applies)."""
     meaning = "lose the fewest health levels; use degraded legs last"
     away = [Not(enc.region(c, True)) for c in model.caches]  # a cache restores (eq. 3.6)
     hot = _hot(model, enc) if model.hazards else None
@@ -70,7 +82,14 @@ def _health(model: Model, enc: Encoding) -> Cost:
                 terms.append((scale + spare, at))
                 continue
             terms.append((scale + spare, conj((at, Not(hot)))))
-            terms.append((scale * (level - 1) + spare, conj((at, hot))))
+            lost: dict[int, list[Hazard]] = {}
+            for hazard in model.hazards:
+                lost.setdefault(_levels_lost(hazard, level), []).append(hazard)
+            if len(lost) == 1:  # one worst case for every hazard (no graded one, say)
+                terms.append((scale * next(iter(lost)) + spare, conj((at, hot))))
+                continue
+            for levels, hazards in sorted(lost.items()):
+                terms.append((scale * levels + spare, conj((at, _hot(model, enc, hazards)))))
     return Cost("health", meaning, tuple(terms))
 
 

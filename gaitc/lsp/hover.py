@@ -3,8 +3,9 @@
 A leg: its health levels (thesis eq. 3.5: level 1 is failed) and the gaits that use it
 (G_L). A gait: its legs in firing order, where it moves, its valve sequence. A region: its
 neighbours by direction and the gaits of each move (D_τ), whether it is a cache (eq. 3.6),
-in which hazard sets (eq. 3.8), and whether it is the start or a goal. A goal of ``visit``:
-whether it can be reached from the start at all. Built from the checked model when the
+in which hazard sets (eq. 3.8), and whether it is the start or a goal. A hazard: its
+regions and what it does to the legs (``Hazard.effect``). A goal of ``visit``: whether it
+can be reached from the start at all. Built from the checked model when the
 file checks, else from the syntax tree alone.
 """
 
@@ -34,8 +35,11 @@ def describe(symbol: Symbol, index: Index, model: Model | None, role: str = "") 
     if symbol.kind is Kind.HAZARD:
         hazard = next((h for h in model.hazards if h.name == symbol.name), None)
         cells = ", ".join(hazard.regions) if hazard and hazard.regions else "(no region)"
-        return (f"{head}\n\nregions: {cells}\n\nwhile it is on, entering one of them fails "
-                "the legs of the gait in use (thesis eqs. 3.8, 3.9)")
+        effect = "fails the legs" if hazard is None else hazard.effect
+        source = ("thesis eqs. 3.8, 3.9" if hazard is None or hazard.wears is None
+                  else "a graded hazard, eq. 3.5 with k levels for 1")
+        return (f"{head}\n\nregions: {cells}\n\nwhile it is on, entering one of them "
+                f"{effect} (those of the gait in use; {source})")
     text = f"{head}\n\n{_region(symbol.name, model)}"
     if role == "goal" or "goal" in symbol.roles():
         text += "\n\n" + _reachable(symbol.name, model)
