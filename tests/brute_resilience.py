@@ -151,13 +151,18 @@ def failure_table(text: str, encoding: str) -> FailureTable:
 
 
 # ---------------------------------------------------------------- health
-def health_front(text: str, encoding: str, bound: int
+def health_front(text: str, encoding: str, bound: int | None
                  ) -> tuple[int | None, tuple[tuple[tuple[str, int], ...], ...]]:
-    """(least uniform health, the minimal good vectors over ``1..bound`` per leg)."""
-    names = [leg.name for leg in model_of(text).legs]
+    """(least uniform health, the minimal good vectors over ``1..bound`` per leg, or with no
+    bound over each leg's own declared levels)."""
+    legs = model_of(text).legs
+    names = [leg.name for leg in legs]
+    tops = [bound or leg.health for leg in legs]
     good = {v: realizable(with_health(text, dict(zip(names, v, strict=True))), encoding)
-            for v in itertools.product(range(1, bound + 1), repeat=len(names))}
-    uniform = next((h for h in range(1, bound + 1) if good[(h,) * len(names)]), None)
+            for v in itertools.product(*(range(1, t + 1) for t in tops))}
+    top = bound or max(tops)
+    uniform = next((h for h in range(1, top + 1) if realizable(
+        with_health(text, dict.fromkeys(names, h)), encoding)), None)
     goods = [v for v, ok in good.items() if ok]
     minimal = sorted(v for v in goods if not any(
         w != v and all(a <= b for a, b in zip(w, v, strict=True)) for w in goods))

@@ -21,11 +21,12 @@ from gaitc.analysis.core import guarantee_core
 from gaitc.analysis.failure import Kind, classify
 from gaitc.analysis.freedoms import Freedom, needed_freedoms, restricted
 from gaitc.analysis.freedoms import freedoms as all_freedoms
+from gaitc.analysis.mechanism import connection
 from gaitc.analysis.oracle import Oracle
 from gaitc.analysis.repairs import Repair, repairs
 from gaitc.analysis.sanity import ROBOT, Warning_, player_of, sanity
 from gaitc.analysis.story import deadlock_move, last_move, narrate, narrate_values, summarise
-from gaitc.analysis.units import Unit
+from gaitc.analysis.units import GUARANTEE_SECTIONS, Unit, keep_only, units
 from gaitc.diagnostics import render, source_lines
 from gaitc.ir.controller import Controller
 from gaitc.ir.spec import GR1Spec, Semantics
@@ -49,12 +50,14 @@ class Explanation:
     goals: tuple[str, ...] = ()
     core: tuple[Unit, ...] = ()
     freedoms: tuple[Freedom, ...] = ()
+    connection: tuple[str, ...] = ()  # how the goal, core and freedoms connect (mechanism)
     play: Play | None = None
     counter: Controller | None = field(default=None, repr=False)
     run: Run | None = field(default=None, repr=False)
     story: tuple[str, ...] = ()
     repairs: tuple[Repair, ...] = ()
     repairs_tried: tuple[str, ...] = ()  # the kinds of edit the repair search tried
+    repairs_searched: tuple[tuple[str, str], ...] = ()  # (kind, how far it searched)
     warnings: tuple[Warning_, ...] = ()
     solver_calls: int = 0
     seconds: float = 0.0
@@ -89,9 +92,12 @@ class Explanation:
         return {
             "file": self.file, "verdict": self.verdict(), "kind": self.kind,
             "goals": list(self.goals), "core": self.core_json(),
-            "environment": [f.to_json() for f in self.freedoms], "play": play,
+            "environment": [f.to_json() for f in self.freedoms],
+            "connection": list(self.connection), "play": play,
             "repairs": [r.to_json() for r in self.repairs],
             "repairs_tried": list(self.repairs_tried),
+            "repairs_searched": [{"kind": k, "searched": what}
+                                 for k, what in self.repairs_searched],
             "warnings": [w.to_json() for w in self.warnings],
             "solver_calls": self.solver_calls, "seconds": round(self.seconds, 3),
         }
@@ -114,6 +120,10 @@ class Explanation:
                        f"{', '.join(self.goals)}")
         elif self.kind == "liveness":
             out.append("  no goal is lost on its own: only the goals together")
+        if self.connection:
+            out.append("  how:" if len(self.connection) > 1 else f"  how: {self.connection[0]}")
+            if len(self.connection) > 1:
+                out.extend(f"    - {line}" for line in self.connection)
         if self.core:
             these = ("this guarantee" if len(self.core) == 1
                      else f"these {len(self.core)} guarantees")
@@ -139,7 +149,10 @@ class Explanation:
                 out.append(f"  {number}. {repair.change}")
                 out.extend(f"       {d}" for d in repair.diff)
         elif self.repairs_tried:
-            out.append("no repair found; tried: " + "; ".join(self.repairs_tried))
+            out.append("no repair found; searched:")
+            searched = dict(self.repairs_searched)
+            out.extend(f"  - {kind}: {searched[kind]}" if kind in searched else f"  - {kind}"
+                       for kind in self.repairs_tried)
         out.append(f"({self.solver_calls} solver calls, {self.seconds:.2f} s)")
         return out
 
@@ -195,13 +208,16 @@ def explain(loaded: Spec, *, semantics: Semantics = Semantics.DEFAULT,
                            seconds=time.monotonic() - started, source=source, player=player)
     failure = classify(spec, oracle)
     goals = tuple(_goal_label(spec, j) for j in failure.blocked_goals)
-    core = guarantee_core(spec, oracle)
+    # One story: the core holds the first goal the environment can keep the robot from,
+    # the freedoms are those it needs against that core, and the play heads for that goal
+    # against an environment with just those freedoms (it wins the whole spec with them,
+    # since the spec only adds guarantees to the core).
+    lost = failure.blocked_goals[:1]
+    core = guarantee_core(spec, oracle, _goal_units(spec, lost))
     freedoms: tuple[Freedom, ...] = ()
     if model is not None:
-        freedoms = needed_freedoms(loaded, oracle)
-    # The play comes from the environment restricted to the freedoms it needs: a smaller
-    # automaton, a play that shows exactly those freedoms, and (the assumptions being only
-    # stronger) a play that keeps the spec's own assumptions.
+        freedoms = needed_freedoms(loaded, oracle,
+                                   within=keep_only(spec, core, GUARANTEE_SECTIONS))
     focused = spec
     if freedoms and model is not None:
         taken = tuple(f for f in all_freedoms(model) if f not in freedoms)
@@ -213,21 +229,29 @@ def explain(loaded: Spec, *, semantics: Semantics = Semantics.DEFAULT,
         story = [f"the environment's first state leaves the {player} no initial state that "
                  "keeps its initial guarantees (see the core)"]
     elif counter is not None:
-        play = _trying_play(counter, spec, model, encoding, failure.blocked_goals)
+        play = _trying_play(counter, spec, model, encoding, lost or failure.blocked_goals)
         if model is not None:
             run = _run(counter, spec, model, encoding, play, file)
             labels = [_goal_label(spec, j) for j in range(len(spec.sys_liveness))]
-            story = [*summarise(run, play, labels), *narrate(
+            story = [*summarise(run, play, labels, lost), *narrate(
                 run, play, labels, _final_move(focused, counter, play, model, encoding, run))]
         else:
             story = narrate_values(counter, play)
+    how: tuple[str, ...] = ()
+    if model is not None:
+        target = lost[0] if lost else None
+        how = tuple(connection(model, core, freedoms,
+                               sorted(_goal_regions(spec, model, lost)) if lost else [],
+                               _goal_label(spec, target) if target is not None else None,
+                               run))
     fixes: tuple[Repair, ...] = ()
     tried: tuple[str, ...] = ()
+    searched_kinds: tuple[tuple[str, str], ...] = ()
     if with_repairs and model is not None and source:
         visited = [s.region for s in run.steps] if run is not None else []
         failed = sorted({leg for s in run.steps for leg in s.failed}) if run is not None else []
         searched = repairs(model, source, file, encoding, oracle, visited, failed)
-        fixes, tried = searched.found, searched.tried
+        fixes, tried, searched_kinds = searched.found, searched.tried, searched.searched
     return Explanation(
         file=file,
         realizable=False,
@@ -235,18 +259,26 @@ def explain(loaded: Spec, *, semantics: Semantics = Semantics.DEFAULT,
         goals=goals,
         core=core,
         freedoms=freedoms,
+        connection=how,
         play=play,
         counter=counter,
         run=run,
         story=tuple(story),
         repairs=fixes,
         repairs_tried=tried,
+        repairs_searched=searched_kinds,
         warnings=(),
         solver_calls=oracle.calls,
         seconds=time.monotonic() - started,
         source=source,
         player=player,
     )
+
+
+def _goal_units(spec: GR1Spec, goals: tuple[int, ...]) -> tuple[Unit, ...]:
+    """The guarantee units of the liveness clauses ``goals`` (indices)."""
+    return tuple(u for u in units(spec, GUARANTEE_SECTIONS)
+                 if u.section == "sys_liveness" and set(u.indices) & set(goals))
 
 
 def _final_move(spec: GR1Spec, counter: Controller, play: Play, model: Model,
@@ -276,11 +308,22 @@ def _trying_play(counter: Controller, spec: GR1Spec, model: Model | None,
         return attempt(blocked)
     plays = [(j, attempt((j,))) for j in range(len(spec.sys_liveness))]
 
-    def shows(j: int, play: Play) -> tuple[bool, bool, int]:
-        """A play worth showing: lost, with the robot moving; best where it loses the very
-        goal it heads for, then where it tries most (distinct states on its path)."""
+    inputs = set(counter.inputs)
+
+    def acts(play: Play) -> bool:
+        """Whether the environment changes its inputs somewhere on the play (wears a leg,
+        switches a hazard): a play that shows its freedoms at work."""
+        def env(node: int) -> dict[str, int]:
+            return {k: v for k, v in counter.bit_values(node).items() if k in inputs}
+        return any(env(a) != env(b) for a, b in zip(play.path, play.path[1:], strict=False))
+
+    def shows(j: int, play: Play) -> tuple[bool, bool, bool, int]:
+        """A play worth showing: lost, with the robot moving; best where the environment
+        acts (its freedoms at work), then where the robot loses the very goal it heads for,
+        then where it tries most (distinct states on its path)."""
         tried = len(set(play.path))
-        return (play.deadlock or bool(play.missed)) and tried > 1, j in play.missed, tried
+        return ((play.deadlock or bool(play.missed)) and tried > 1, acts(play),
+                j in play.missed, tried)
 
     best = max(plays, key=lambda item: (shows(*item), -item[0]), default=None)
     return best[1] if best is not None and shows(*best)[0] else attempt(())

@@ -77,15 +77,21 @@ def restricted(spec: Spec, taken: tuple[Freedom, ...]) -> GR1Spec:
                                                 taken))
 
 
-def needed_freedoms(spec: Spec, oracle: Oracle) -> tuple[Freedom, ...]:
+def needed_freedoms(spec: Spec, oracle: Oracle, within: GR1Spec | None = None
+                    ) -> tuple[Freedom, ...]:
     """A 1-minimal set of freedoms with which the environment still wins (``spec``, a
     ``.gait`` spec, must be unrealizable); every freedom outside it is taken away in the
-    test."""
+    test. ``within``: the game to win instead of ``spec``'s own (a core of its guarantees,
+    so that the freedoms are those the core needs); the environment then wins ``spec``
+    with them too, since ``spec`` only adds guarantees."""
     every = freedoms(spec.robot)
+    model = spec.robot
+    enc = make_encoding(model, spec.robot_encoding)
+    game = within if within is not None else spec.gr1
 
     def wins(kept: tuple[Freedom, ...]) -> bool:
         taken = tuple(f for f in every if f not in kept)
-        return not oracle.realizable(restricted(spec, taken))
+        return not oracle.realizable(with_clauses(game, _restrictions(model, enc, taken)))
 
     if wins(()):
         return ()

@@ -10,6 +10,7 @@ fatal sets. Health is the same upside down: more levels only help.
 from __future__ import annotations
 
 import itertools
+import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
@@ -85,9 +86,10 @@ def _below(a: tuple[int, ...], b: tuple[int, ...]) -> bool:
     return all(x <= y for x, y in zip(a, b, strict=True))
 
 
-def minimal_vectors(size: int, bound: int, good: Callable[[tuple[int, ...]], bool]
+def minimal_vectors(bounds: Sequence[int], good: Callable[[tuple[int, ...]], bool]
                     ) -> VectorFront:
-    """The minimal vectors of an upward-closed set of ``size``-vectors over ``1..bound``.
+    """The minimal vectors of an upward-closed set of vectors whose coordinate ``i`` ranges
+    over ``1..bounds[i]`` (a uniform bound, or each leg's own levels).
 
     Vectors are visited smallest sum first; one that no answer so far decides is tested,
     then pushed down greedily to a minimal good vector (if good) or up to a maximal bad one
@@ -95,8 +97,10 @@ def minimal_vectors(size: int, bound: int, good: Callable[[tuple[int, ...]], boo
     decided without a call (the dualisation of Fredman and Khachiyan's setting, solved
     greedily: the calls grow with the size of the front, not of the box).
     """
-    if bound ** size > MAX_VECTORS:
-        raise ValueError(f"{bound}^{size} vectors are too many to search; lower the bound")
+    size = len(bounds)
+    if math.prod(bounds) > MAX_VECTORS:
+        raise ValueError(f"{math.prod(bounds):,} vectors are too many to search; lower the "
+                         "bound")
     goods: list[tuple[int, ...]] = []
     bads: list[tuple[int, ...]] = []
     tested = 0
@@ -119,7 +123,7 @@ def minimal_vectors(size: int, bound: int, good: Callable[[tuple[int, ...]], boo
     def step(v: tuple[int, ...], i: int, by: int) -> tuple[int, ...]:
         return (*v[:i], v[i] + by, *v[i + 1:])
 
-    for v in sorted(itertools.product(range(1, bound + 1), repeat=size),
+    for v in sorted(itertools.product(*(range(1, b + 1) for b in bounds)),
                     key=lambda w: (sum(w), w)):
         if known(v) is not None:
             continue
@@ -130,7 +134,7 @@ def minimal_vectors(size: int, bound: int, good: Callable[[tuple[int, ...]], boo
             goods.append(v)
         else:
             for i in range(size):
-                while v[i] < bound and not ask(step(v, i, 1)):
+                while v[i] < bounds[i] and not ask(step(v, i, 1)):
                     v = step(v, i, 1)
             bads.append(v)
     return VectorFront(tuple(sorted(set(goods))), tested)

@@ -1,11 +1,13 @@
 """Resilience analysis: which failures a task survives, and what the robot needs.
 
-1. Legs failed from the start: minimal fatal and maximal survivable sets over all subsets
-   of legs, single points of failure, and the legs each compass direction depends on.
+1. Legs failed for good (what ``health 1`` declares; not ``start ... with L = 1``, which a
+   cache mends): minimal fatal and maximal survivable sets over all subsets of legs,
+   single points of failure, and the legs each compass direction depends on.
 2. Legs breaking during the run: the largest k such that the robot survives any k legs
    breaking at moments of the environment's choosing (SLUGS's k-resilience, made concrete
    for legs), and the sets of k+1 legs that defeat it.
-3. Health: the least uniform number of levels, and the Pareto front of per-leg levels.
+3. Health: the least uniform number of levels, and the Pareto front of per-leg levels,
+   by default within each leg's own declared levels.
 4. Caches and hazards: essential caches, cache placements, hazard sets survived alone.
 
 The failure sets and the health front come either from one parametric game
@@ -16,6 +18,7 @@ The failure sets and the health front come either from one parametric game
 from __future__ import annotations
 
 import itertools
+import math
 import time
 from dataclasses import dataclass, field
 from typing import Any, Final
@@ -65,7 +68,8 @@ class Resilience:
     directions: tuple[tuple[str, tuple[str, ...], tuple[str, ...], tuple[str, ...]], ...] = ()
     any_time_k: int | None = None
     defeating_sets: tuple[tuple[str, ...], ...] = ()
-    health_bound: int | None = None
+    health_bound: int | None = None  # None: each leg within its own declared levels
+    health_levels: tuple[tuple[str, int], ...] = ()  # the levels searched, leg by leg
     min_uniform_health: int | None = None
     health_front: tuple[tuple[tuple[str, int], ...], ...] | None = ()  # None: not searched
     essential_caches: tuple[str, ...] = ()
@@ -90,7 +94,9 @@ class Resilience:
                                list(every)} for d, g, some, every in self.directions},
             "any_time_k": self.any_time_k,
             "defeating_sets": [list(s) for s in self.defeating_sets],
-            "health_bound": self.health_bound, "min_uniform_health": self.min_uniform_health,
+            "health_bound": self.health_bound,
+            "health_levels": dict(self.health_levels),
+            "min_uniform_health": self.min_uniform_health,
             "health_front": (None if self.health_front is None
                              else [dict(v) for v in self.health_front]),
             "essential_caches": list(self.essential_caches),
@@ -119,7 +125,7 @@ class Resilience:
         if self.already_failed:
             out.append(f"already failed (health 1): {', '.join(self.already_failed)}")
         out.append("")
-        out.append("1. legs failed from the start")
+        out.append("1. legs failed for good (as `health 1` declares; a cache never mends them)")
         out.append(f"   minimal fatal sets:      {_sets(self.minimal_fatal_sets)}")
         out.append(f"   maximal survivable sets: {_sets(self.maximal_survivable_sets)}")
         out.append("   single points of failure: "
@@ -136,9 +142,13 @@ class Resilience:
                    + (f"; these sets of {k + 1} defeat it: {_sets(self.defeating_sets)}"
                       if self.defeating_sets else ""))
         out.append("")
-        out.append(f"3. health (levels 1..{self.health_bound})")
-        out.append("   least uniform health: " + (str(self.min_uniform_health)
-                                                  if self.min_uniform_health else "none"))
+        out.append(f"3. health ({self._levels_text()})")
+        uniform = self.min_uniform_health
+        if uniform:
+            out.append(f"   least uniform health: {uniform}")
+        else:
+            top = self.health_bound or max((h for _, h in self.legs), default=1)
+            out.append(f"   least uniform health: none within 1..{top}")
         front = self.health_front
         if front is None:
             out.append("   Pareto front: not searched (see the notes)")
@@ -159,6 +169,13 @@ class Resilience:
             out.append("   hazard sets fatal alone: " + ", ".join(self.hazards_fatal_alone))
         out.extend(f"note: {n}" for n in self.notes)
         return out
+
+    def _levels_text(self) -> str:
+        """The health levels the front was searched over, in words."""
+        if self.health_bound is not None:
+            return f"levels 1..{self.health_bound} for every leg, --health-bound"
+        return "each leg within its own declared levels: " + ", ".join(
+            f"{leg} 1..{h}" for leg, h in self.health_levels)
 
     def __repr__(self) -> str:
         return (f"<Resilience {self.file!r}: {len(self.minimal_fatal_sets)} minimal fatal "
@@ -326,38 +343,50 @@ def _defeating(model: Model, encoding: EncodingName, legs: list[str], size: int,
     return tuple(sorted(found, key=lambda s: [rank[x] for x in s]))
 
 
+def health_domains(model: Model, bound: int | None) -> dict[str, tuple[int, ...]]:
+    """The levels searched for each leg's health: ``1..bound`` for every leg, or without a
+    bound each leg's own declared levels (``1..h``), so a spec's own levels are always in
+    the search and its verdict at them is never hidden by a smaller default."""
+    return {leg.name: tuple(range(1, (bound or leg.health) + 1)) for leg in model.legs}
+
+
 def _health(report: Resilience, model: Model, encoding: EncodingName, semantics: Semantics,
             *, method: str, bound: int | None, pool: Pool, notes: list[str]) -> Resilience:
     names = [leg.name for leg in model.legs]
-    top = bound or max(leg.health for leg in model.legs)
+    largest = max(leg.health for leg in model.legs)
+    top = bound or largest
     uniform = None
     for h in range(1, top + 1):
         if pool.models([with_health(model, dict.fromkeys(names, h))])[0]:
             uniform = h
             break
+    if uniform is None and top < largest:
+        notes.append(f"no uniform health within 1..{top}; the spec uses up to {largest}: "
+                     f"try --health-bound {largest}")
+    domains = health_domains(model, bound)
+    report = _with(report, health_bound=bound, min_uniform_health=uniform,
+                   health_levels=tuple((n, len(domains[n])) for n in names))
     front: tuple[tuple[int, ...], ...] = ()
-    vectors = top ** len(names)
+    vectors = math.prod(len(d) for d in domains.values())
     if vectors > MAX_HEALTH_VECTORS:
-        notes.append(f"health front skipped: {top}^{len(names)} = {vectors:,} health vectors "
-                     f"is more than the {MAX_HEALTH_VECTORS:,} searched; a lower "
-                     "--health-bound narrows it")
-        return _with(report, health_bound=top, min_uniform_health=uniform, health_front=None)
+        notes.append(f"health front skipped: {vectors:,} health vectors is more than the "
+                     f"{MAX_HEALTH_VECTORS:,} searched; a lower --health-bound narrows it")
+        return _with(report, health_front=None)
     try:
         if method == "parametric":
-            caps = winning_caps(model, encoding, {n: tuple(range(1, top + 1)) for n in names},
-                                semantics, minimal_only=True)
+            caps = winning_caps(model, encoding, domains, semantics, minimal_only=True)
             front = tuple(sorted(caps.winning))
             pool.calls += 1
         else:
-            front = minimal_vectors(len(names), top, lambda v: pool.models(
+            front = minimal_vectors([len(domains[n]) for n in names], lambda v: pool.models(
                 [with_health(model, dict(zip(names, v, strict=True)))])[0]).minimal
     except GaitcError:  # a ValueError too, but the user's to see, not a skipped front
         raise
     except ValueError as err:
         notes.append(f"health front skipped: {err}")
-        return _with(report, health_bound=top, min_uniform_health=uniform, health_front=None)
-    return _with(report, health_bound=top, min_uniform_health=uniform,
-                 health_front=tuple(tuple(zip(names, v, strict=True)) for v in front))
+        return _with(report, health_front=None)
+    return _with(report, health_front=tuple(tuple(zip(names, v, strict=True))
+                                            for v in front))
 
 
 def cache_sites(model: Model) -> list[str]:

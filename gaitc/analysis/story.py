@@ -21,8 +21,9 @@ def narrate(run: Run, play: Play, goal_names: list[str], final: str | None = Non
     (``final``: its last move at a deadlock)."""
     lines: list[str] = []
     previous: Step | None = None
-    for step in run.steps:
-        lines.append(f"step {step.index}: {_sentence(step, previous)}")
+    for k, step in enumerate(run.steps):
+        after = run.steps[k + 1] if k + 1 < len(run.steps) else None
+        lines.append(f"step {step.index}: {_sentence(step, previous, after)}")
         previous = step
     last = run.steps[-1] if run.steps else None
     if play.deadlock and last is not None:
@@ -37,19 +38,26 @@ def narrate(run: Run, play: Play, goal_names: list[str], final: str | None = Non
     return lines
 
 
-def summarise(run: Run, play: Play, goal_names: list[str]) -> list[str]:
-    """The play in a few sentences before its steps: the goal the robot is kept from, the
+def summarise(run: Run, play: Play, goal_names: list[str], about: tuple[int, ...] = ()
+              ) -> list[str]:
+    """The play in a few sentences before its steps: the goal the robot is kept from (the
+    explanation's goal ``about`` first, the others it misses with it after), the
     environment's decisive moves (where, under which gait, what they do to the legs and
     hazards), and the pattern that repeats or the state the robot is left in."""
     if not run.steps:
         return []
-    lost = ", ".join(goal_names[j] for j in play.missed) if play.missed else None
-    lines = [f"the robot is kept from {lost}" if lost else
+    first = [j for j in about if j in play.missed]
+    rest = [j for j in play.missed if j not in first]
+    lost = ", ".join(goal_names[j] for j in first or rest) if play.missed else None
+    also = (f" (and with it {', '.join(goal_names[j] for j in rest)})"
+            if first and rest else "")
+    lines = [f"the robot is kept from {lost}{also}" if lost else
              "the robot is driven to a state with no legal move"]
     moves: list[tuple[int, str]] = []
     previous: Step | None = None
-    for step in run.steps:
-        done = _environment_move(step, previous)
+    for k, step in enumerate(run.steps):
+        after = run.steps[k + 1] if k + 1 < len(run.steps) else None
+        done = _environment_move(step, previous, after)
         if done:
             where = f"in {step.region}" + (
                 f" under gait {step.gait}" if step.gait and step.gait != "noGait" else "")
@@ -76,21 +84,32 @@ def summarise(run: Run, play: Play, goal_names: list[str]) -> list[str]:
     return lines
 
 
-def _environment_move(step: Step, previous: Step | None) -> str:
+def _lost(step: Step, after: Step | None, leg: str) -> int:
+    """The levels ``leg`` loses on the move after ``step`` (one where the run ends there; a
+    graded hazard may take several at once)."""
+    return step.level(leg) - after.level(leg) if after is not None else 1
+
+
+def _environment_move(step: Step, previous: Step | None, after: Step | None = None) -> str:
     """What the environment does on the move into ``step``: a hazard switched on, legs the
-    step's gait makes fail or lose a level."""
+    step's gait makes fail or lose levels (in a hazard's cell, naming the hazard)."""
     parts = []
     if step.hazard is not None and (previous is None or previous.hazard != step.hazard):
         parts.append(f"hazard {step.hazard} turns on")
     if step.failed:
         parts.append(f"{_legs(step.failed)} fail{'s' if len(step.failed) == 1 else ''}")
-    if step.degraded:
-        parts.append(f"{_legs(step.degraded)} lose{'s' if len(step.degraded) == 1 else ''} "
-                     "a level")
+    by: dict[int, list[str]] = {}
+    for leg in step.degraded:
+        by.setdefault(_lost(step, after, leg), []).append(leg)
+    for lost, legs in sorted(by.items()):
+        levels = "a level" if lost == 1 else f"{lost} levels"
+        cause = f" (hazard {step.hazard})" if lost > 1 and step.hazard else ""
+        parts.append(f"{_legs(tuple(legs))} lose{'s' if len(legs) == 1 else ''} {levels}"
+                     f"{cause}")
     return " and ".join(parts)
 
 
-def _sentence(step: Step, previous: Step | None) -> str:
+def _sentence(step: Step, previous: Step | None, after: Step | None = None) -> str:
     parts = [f"in {step.region}"]
     if step.gait and step.gait != "noGait":
         used = f" (uses {', '.join(step.legs_used)})" if step.legs_used else ""
@@ -104,7 +123,7 @@ def _sentence(step: Step, previous: Step | None) -> str:
     if step.failed:
         parts.append(f"{_legs(step.failed)} fail{'s' if len(step.failed) == 1 else ''}")
     for leg in step.degraded:  # marked on the move that wears it; the drop shows next step
-        parts.append(f"{leg} drops to level {step.level(leg) - 1}")
+        parts.append(f"{leg} drops to level {step.level(leg) - _lost(step, after, leg)}")
     if step.repaired:
         parts.append(f"{_legs(step.repaired)} repaired")
     if step.goals:

@@ -49,8 +49,9 @@ def resilience(spec: Spec | str | Path, method: str = "parametric",
     ``method``: ``parametric`` (one game with rigid per-leg caps answers every failure set
     and health vector) or ``lattice`` (one solver call per variant, pruned by
     monotonicity); ``jobs``/``dask`` run variant checks in local processes or on a Dask
-    cluster. ``health_bound`` limits the health front (default: the spec's largest health,
-    at most 3); ``place_caches`` K searches the K-sets of regions for caches.  With
+    cluster. ``health_bound`` B searches the health front over 1..B for every leg
+    (default: each leg within its own declared levels); ``place_caches`` K searches the
+    K-sets of regions for caches.  With
     ``timeout`` (seconds) the analysis runs in a child process that is stopped a tenth of a
     second past it, its workers with it: a :class:`SolverError` (exit 4).
 
@@ -73,7 +74,7 @@ def resilience(spec: Spec | str | Path, method: str = "parametric",
     if place_caches is not None and place_caches > sites:
         raise UsageError(f"--place-caches {place_caches}: the map has only {sites} regions "
                          "no hazard covers")
-    bound = health_bound or min(3, max(leg.health for leg in spec.model.legs))
+    bound = health_bound
     model, encoding, path = spec.model, spec.encoding, spec.path
 
     def analysed() -> Resilience:

@@ -83,6 +83,9 @@ def test_unrealizable_specs_are_explained_and_every_answer_rechecked(
         fixed = gaitc.parse(repair.text, name=str(SPECS[name]), encoding=encoding)
         assert gaitc.check(fixed).realizable, repair.change
     assert why.repairs or name == "safety.gait" or why.kind == "initial"
+    if why.kind == "liveness" and why.goals:  # one story: the core holds the header's goal
+        assert any(u.section == "sys_liveness" and u.rule.endswith(f": {why.goals[0]}")
+                   for u in why.core)
     _check_freedoms(spec, why)
     _check_play(spec, why)
 
@@ -108,15 +111,21 @@ def _restrict(spec: gaitc.Spec, taken: Sequence[Freedom]) -> GR1Spec:
 
 
 def _check_freedoms(spec: gaitc.Spec, why: Explanation) -> None:
-
+    """The freedoms are those the environment needs against the core (one story): it wins
+    the core's game with just them, and so the whole spec, and each one is needed there."""
     assert spec.model is not None
     every = list(freedoms(spec.model))
     needed = list(why.freedoms)
     assert set(needed) <= set(every)
     others = [f for f in every if f not in needed]
     assert not _realizable(_restrict(spec, others))  # it still wins with just these
-    for f in needed:  # and each one is needed
-        assert _realizable(_restrict(spec, [*others, f])), f.describe()
+    clauses = {(u.section, i) for u in why.core for i in u.indices}
+    restricted = _restrict(spec, others)
+    core_game = _core_variant(restricted, clauses)
+    assert not _realizable(core_game)
+    for f in needed:  # and each one is needed against the core
+        taken = _restrict(spec, [*others, f])
+        assert _realizable(_core_variant(taken, clauses)), f.describe()
 
 
 def _check_play(spec: gaitc.Spec, why: Explanation) -> None:
@@ -171,7 +180,10 @@ def _check_summary(spec: gaitc.Spec, why: Explanation) -> None:
     labels = [c.origin.rule.split(": ", 1)[1] for c in spec.gr1.sys_liveness
               if c.origin is not None and c.origin.rule.startswith("goal")]
     lost = [labels[j] for j in play.missed if j < len(labels)]
-    assert why.story[0] == f"the robot is kept from {', '.join(lost)}"
+    first = [g for g in why.goals[:1] if g in lost]  # the header's goal leads the story
+    rest = [g for g in lost if g not in first]
+    also = f" (and with it {', '.join(rest)})" if first and rest else ""
+    assert why.story[0] == f"the robot is kept from {', '.join(first or rest)}{also}"
     moves = why.story[1]
     if moves.startswith("the environment's decisive moves: "):
         for item in moves.removeprefix("the environment's decisive moves: ").split("; "):
@@ -271,9 +283,31 @@ def test_no_repair_says_what_was_tried(capsys: pytest.CaptureFixture[str]) -> No
     why = gaitc.explain(gaitc.parse(text, name="behind.gait"))
     assert not why.realizable and why.repairs == ()
     assert why.repairs_tried == ("raise a leg's health", "raise every leg's health",
-                                 "add a cache", "two of these edits together", "drop a goal")
-    assert "no repair found; tried: raise a leg's health; raise every leg's health; add a " \
-           "cache; two of these edits together; drop a goal" in why.lines()
+                                 "add a cache", "two of these edits together",
+                                 "another edit with the least health it needs", "drop a goal")
+    lines = why.lines()
+    at = lines.index("no repair found; searched:")
+    assert lines[at + 1:at + 7] == [
+        "  - raise a leg's health: each of the 2 legs alone, every level up to 100 (exact: "
+        "one parametric game a leg)",
+        "  - raise every leg's health: every working leg to one level, up to 100 (exact, by "
+        "bisection)",
+        "  - add a cache: each of the 3 regions with no cache or hazard; every pair of the "
+        "first 3 (3 pairs)",
+        "  - two of these edits together: 3 pairs of one kind and the 21 cheapest pairs of "
+        "two kinds",
+        "  - another edit with the least health it needs: the 3 cheapest other edits, each "
+        "with the least health it needs up to level 4 (exact)",
+        "  - drop a goal: each goal alone"]
+    assert why.to_json()["repairs_searched"][0] == {
+        "kind": "raise a leg's health",
+        "searched": "each of the 2 legs alone, every level up to 100 (exact: one parametric "
+                    "game a leg)"}
+    # checked independently: no health of either leg up to the limit helps
+    for legs in ("leg L1 health 100\nleg L2 health 2", "leg L1 health 2\nleg L2 health 100",
+                 "legs L1..L2 health 100"):
+        raised = text.replace("legs L1..L2 health 2", legs)
+        assert not gaitc.check(gaitc.parse(raised, name="raised.gait")).realizable
     # checked independently: dropping either goal still leaves the spec unrealizable
     for kept in ("a", "b"):
         alone = text.replace("visit a, b", f"visit {kept}")

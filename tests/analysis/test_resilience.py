@@ -170,10 +170,25 @@ def test_the_brute_force_variants_are_what_they_say() -> None:
 
 def test_the_cli_reports_the_same_answers_as_json(capsys: pytest.CaptureFixture[str]) -> None:
     path = str(DATA / "corridor4.gait")
-    assert main(["resilience", path, "--json", "--place-caches", "1"]) == 0
+    assert main(["resilience", path, "--json", "--place-caches", "1", "--health-bound",
+                 "3"]) == 0
     got = json.loads(capsys.readouterr().out)
     want = answers("corridor4", "binary")
     assert got["minimal_fatal_sets"] == [list(s) for s in want.table.minimal_fatal()]
     assert got["any_time_k"] == want.any_time_k
     assert got["cache_placements"] == [list(s) for s in want.cache_placements]
     assert got["health_front"] == [dict(v) for v in want.health_front]
+
+
+@pytest.mark.parametrize("name", ["detour4", "rooms3"])
+def test_the_default_health_front_is_within_each_legs_own_levels(name: str) -> None:
+    """Without --health-bound the front is searched over each leg's declared levels (so a
+    spec realizable at its own levels always has a front), re-solved by brute force."""
+    spec = gaitc.parse(text_of(name), name=f"{name}.gait", encoding="binary")
+    got = gaitc.resilience(spec)
+    assert got.health_bound is None
+    assert got.health_levels == tuple((leg.name, leg.health) for leg in spec.robot.legs)
+    uniform, front = brute.health_front(text_of(name), "binary", None)
+    assert got.min_uniform_health == uniform
+    assert got.health_front == front and front
+    assert "3. health (each leg within its own declared levels: " in "\n".join(got.lines())

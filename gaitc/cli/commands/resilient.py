@@ -34,7 +34,7 @@ def register(sub: Any) -> None:
         "resilience", help="which leg failures, health levels, caches and hazards a task "
         "survives or needs",
         description="For the .gait SPEC: minimal fatal and maximal survivable sets of legs "
-        "failed from the start, single points of failure, the legs each direction depends on; "
+        "failed for good (health 1), single points of failure, the legs each direction depends on; "
         "the largest k such that any k legs may break during the run; the least uniform "
         "health and the Pareto front of per-leg health; essential caches, cache placements "
         "and hazard sets survived alone.",
@@ -46,8 +46,8 @@ def register(sub: Any) -> None:
                    help="parametric: one game with rigid per-leg parameters; lattice: one "
                    "solver call per variant (default parametric)")
     p.add_argument("--health-bound", type=int, metavar="B",
-                   help="health levels 1..B for the front (default: the spec's largest, at "
-                   "most 3)")
+                   help="health levels 1..B for every leg in the front (default: each leg "
+                   "within its own declared levels)")
     p.add_argument("--place-caches", type=positive_count, metavar="K",
                    help="search the sets of K regions where caches make the task realizable")
     p.add_argument("--jobs", type=int, default=1, metavar="N",
