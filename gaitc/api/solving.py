@@ -156,22 +156,24 @@ def read_controller(path: str | Path, spec: SpecLike) -> Automaton:
 
 def controller_form(path: str | Path) -> Form:
     """The form of the controller file ``path`` (explicit, symbolic or compact), read from
-    the file's header alone."""
+    the file's header alone; either layout of an explicit controller
+    (:func:`gaitc.forms.reader.read_document`)."""
+    from gaitc.forms.reader import read_document
     from gaitc.forms.registry import form_of
-    from gaitc.ir.controller import read_controller_json
 
-    return form_of(read_controller_json(str(path)))
+    return form_of(read_document(path))
 
 
 def recorded_encoding(path: str | Path) -> EncodingName | None:
-    """The encoding a controller file says its spec was compiled with, if it says one."""
-    import json
-
+    """The encoding a controller file says its spec was compiled with, if it says one
+    (a file of any form and layout, :func:`gaitc.forms.reader.read_document`); None also
+    when the file cannot be read (the reader that follows names what is wrong)."""
+    from gaitc.diagnostics import ControllerError
+    from gaitc.forms.reader import read_document
     from ltlcompiler.encoding import ENCODINGS
 
     try:
-        data = json.loads(Path(path).read_text(encoding="utf-8"))
-        encoding = data["gaitc"]["source"]["encoding"]
-    except (OSError, ValueError, KeyError, TypeError, RecursionError):
+        encoding = read_document(path)["gaitc"]["source"]["encoding"]
+    except (ControllerError, OSError, KeyError, TypeError):
         return None
     return EncodingName(encoding) if encoding in ENCODINGS else None

@@ -79,9 +79,9 @@ _HINT: Final = "write it again with 'gaitc synth -o FILE'"
 
 def layout_for(path: str | Path) -> Layout:
     """The layout a file name asks for: the tables layout for a name ending in ``.gz``
-    (``robot.ctl.gz``), SLUGS's JSON for any other, as before the tables existed (the
-    commands that guess a spec's encoding from its controller file, and ``render policy``,
-    read only JSON text so far)."""
+    (``robot.ctl.gz``), SLUGS's JSON for any other, as before the tables existed: every
+    reader takes both (:func:`gaitc.forms.reader.read_document`), but a ``robot.json``
+    that is gzip would surprise its user and any tool that reads SLUGS's JSON."""
     return Layout.TABLES if str(path).lower().endswith(".gz") else Layout.SLUGS_JSON
 
 
