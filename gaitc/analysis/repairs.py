@@ -28,12 +28,13 @@ from __future__ import annotations
 
 import itertools
 import re
-from collections.abc import Iterator, Sequence
+import time
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, field
 from typing import Final
 
 from gaitc.analysis.oracle import WORKERS, Oracle
-from gaitc.diagnostics import GaitcError, source_lines
+from gaitc.diagnostics import GaitcError, SolverError, source_lines
 from gaitc.ir.formula import Var
 from gaitc.ir.spec import GR1Spec
 from ltlcompiler.checker import MAX_HEALTH
@@ -55,6 +56,8 @@ MAX_KIND_PAIRS: Final = 300
 #: Pairs of edits of two kinds: each kind contributes its :data:`PAIR_POOL` cheapest edits.
 MAX_MIXED_PAIRS: Final = 60
 PAIR_POOL: Final = 12
+#: Seconds a round of the doubling health search may take before the search stops there.
+HEALTH_ROUND_SECONDS: Final = 2.0
 #: Working pairs kept (the cheapest) once some pair works.
 KEPT_PAIRS: Final = 3
 
@@ -564,56 +567,103 @@ def _raised(model: Model, levels: dict[str, int]) -> GR1Spec:
     return lower(with_health(model, levels), EncodingName.BINARY)
 
 
-def _least_leg_levels(model: Model, oracle: Oracle, top: int = MAX_HEALTH) -> dict[str, int]:
+@dataclass
+class _Levels:
+    """Least sufficient levels found, and the highest level the search reached (``top``
+    unless a round of solves took longer than :data:`HEALTH_ROUND_SECONDS`)."""
+
+    found: dict[str, int]
+    reached: int
+    stopped: bool = False
+
+
+def _doubling(oracle: Oracle, starts: dict[str, int], top: int,
+              variant: Callable[[str, int], GR1Spec]) -> tuple[dict[str, tuple[int, int]], int,
+                                                                bool]:
+    """Brackets (last level that fails, first that works) for each key of ``starts``
+    (its known-failing level), raising by 1, 2, 4... up to ``top``: one round of solves at a
+    time, all keys at once. The search stops early when a round takes longer than
+    :data:`HEALTH_ROUND_SECONDS` (a solve that fails at a high level runs one fixpoint
+    iteration per level), or when a solve of the round passes twice that; then the level
+    reached is returned with ``stopped``."""
+    low = {k: v for k, v in starts.items() if v < top}
+    brackets: dict[str, tuple[int, int]] = {}
+    step, reached = 1, max(starts.values(), default=top)
+    while low:
+        round_ = {k: min(v + step, top) for k, v in low.items()}
+        began = time.monotonic()
+        # a round of its own deadline (within the analysis's): a solve past it stops the
+        # search at the level before, as a round that merely took long does
+        limit = began + 2 * HEALTH_ROUND_SECONDS
+        probe = Oracle(oracle.semantics, limit if oracle.deadline is None
+                       else min(limit, oracle.deadline), _options=oracle._options)
+        try:
+            answers = probe.realizable_all([variant(k, level) for k, level in round_.items()])
+        except SolverError:
+            if oracle.deadline is not None and time.monotonic() >= oracle.deadline:
+                raise
+            return brackets, reached, True
+        finally:
+            oracle.calls += probe.calls
+        reached = max(reached, *round_.values())
+        for (key, level), works in zip(round_.items(), answers, strict=True):
+            if works:
+                brackets[key] = (low.pop(key), level)
+            elif level >= top:
+                low.pop(key)
+            else:
+                low[key] = level
+        step *= 2
+        if low and time.monotonic() - began > HEALTH_ROUND_SECONDS:
+            return brackets, reached, True
+    return brackets, max(reached, top) if not brackets else reached, False
+
+
+def _least_leg_levels(model: Model, oracle: Oracle, top: int = MAX_HEALTH) -> _Levels:
     """For each leg, the least health that makes the spec realizable with every other leg
-    as declared, up to the language's :data:`MAX_HEALTH`, found exactly: the legs whose
-    raise to the limit helps at all are found by one solve each; the level is bracketed by
-    doubling the raise, and read off one parametric game over the bracket, the leg's cap a
-    rigid parameter (:func:`gaitc.analysis.parametric.winning_caps`)."""
+    as declared, up to ``top`` (the language's :data:`MAX_HEALTH`), found exactly: the level
+    is bracketed by doubling the raise (:func:`_doubling`, all legs a round) and read off
+    one parametric game over the bracket, the leg's cap a rigid parameter
+    (:func:`gaitc.analysis.parametric.winning_caps`)."""
     from gaitc.analysis.parametric import winning_caps
 
-    legs = [leg for leg in model.legs if leg.health < top]
-    helps = oracle.realizable_all([_raised(model, {leg.name: top}) for leg in legs])
+    brackets, reached, stopped = _doubling(
+        oracle, {leg.name: leg.health for leg in model.legs}, top,
+        lambda name, level: _raised(model, {name: level}))
     found: dict[str, int] = {}
     names = [x.name for x in model.legs]
-    for leg, ok in zip(legs, helps, strict=True):
-        if not ok:
-            continue
-        low, step = leg.health, 1  # low: known not to suffice
-        high = min(low + step, top)
-        while high < top and not oracle.realizable(_raised(model, {leg.name: high})):
-            low, step = high, 2 * step
-            high = min(low + step, top)
+    for name, (low, high) in brackets.items():
         if high - low == 1:
-            found[leg.name] = high
+            found[name] = high
             continue
-        domains = {x.name: ((x.health,) if x is not leg else tuple(range(low + 1, high + 1)))
+        domains = {x.name: ((x.health,) if x.name != name else tuple(range(low + 1, high + 1)))
                    for x in model.legs}
         oracle.calls += 1
         result = winning_caps(model, EncodingName.BINARY, domains, oracle.semantics)
-        levels = [v[names.index(leg.name)] for v in result.winning]
-        found[leg.name] = min(levels, default=high)
-    return found
+        levels = [v[names.index(name)] for v in result.winning]
+        found[name] = min(levels, default=high)
+    return _Levels({n: found[n] for n in names if n in found}, reached, stopped)
 
 
 def _least_uniform(model: Model, search: _Search, base: _Edit | None = None,
-                   top: int = MAX_HEALTH) -> _Edit | None:
+                   top: int = MAX_HEALTH) -> tuple[_Edit | None, int, bool]:
     """The edit raising every working leg to the least sufficient common level up to
-    ``top`` (with the edit ``base`` made too), found by bisection on the binary encoding:
-    a level that suffices stays sufficient above it."""
+    ``top`` (with the edit ``base`` made too): bracketed by doubling (:func:`_doubling`),
+    then bisected on the binary encoding, since a level that suffices stays sufficient
+    above it. Also the level the search reached, and whether it stopped early."""
     working = [leg.health for leg in model.legs if leg.health > 1]
     if len(working) < 2:
-        return None
+        return None, top, False
     target = model
     if base is not None:
         made = search.variant(base, EncodingName.BINARY)
         if made is None:
-            return None
+            return None, top, False
         target, _ = model_from_text(made[0], search.filename)
 
-    def works(level: int) -> bool:
-        raised = {leg.name: level for leg in target.legs if 1 < leg.health < level}
-        return search.oracle.realizable(_raised(target, raised))
+    def spec(level: int) -> GR1Spec:
+        return _raised(target, {leg.name: level for leg in target.legs
+                                if 1 < leg.health < level})
 
     def edit(level: int, cost: int) -> _Edit | None:
         raised = _all_health_edit(model, search.lines, level, cost)
@@ -621,18 +671,28 @@ def _least_uniform(model: Model, search: _Search, base: _Edit | None = None,
             return raised
         return _joined(base, raised)
 
-    low, high = min(working), top  # low: known not to suffice
-    if base is not None and works(low):
-        return None  # the other edit alone suffices: no raise is part of the least pair
-    if not works(high):
-        return None
+    first = min(working)
+    if base is not None and search.oracle.realizable(spec(first)):
+        return None, top, False  # the other edit alone suffices: no raise is needed
+    brackets, reached, stopped = _doubling(search.oracle, {"*": first}, top,
+                                           lambda _, level: spec(level))
+    if "*" not in brackets:
+        return None, reached, stopped
+    low, high = brackets["*"]
     while high - low > 1:
         middle = (low + high) // 2
-        if works(middle):
+        if search.oracle.realizable(spec(middle)):
             high = middle
         else:
             low = middle
-    return edit(high, high - min(working) + 1)
+    return edit(high, high - first + 1), reached, stopped
+
+
+def _limit_text(reached: int, stopped: bool) -> str:
+    if stopped:
+        return (f"up to {reached} (the search stops there: a round of solves took over "
+                f"{HEALTH_ROUND_SECONDS:.0f} s)")
+    return f"up to {reached}"
 
 
 def _health_edits(model: Model, search: _Search, plan: _Plan,
@@ -647,7 +707,8 @@ def _health_edits(model: Model, search: _Search, plan: _Plan,
         if made is None:
             return []
         target, _ = model_from_text(made[0], search.filename)
-    for name, level in _least_leg_levels(target, search.oracle, top).items():
+    levels = _least_leg_levels(target, search.oracle, top)
+    for name, level in levels.found.items():
         leg = model.leg(name)
         new = _leg_lines(model, lines, leg, level)
         if new is not None and leg.span is not None:
@@ -656,15 +717,18 @@ def _health_edits(model: Model, search: _Search, plan: _Plan,
             joined = raised if base is None else _joined(base, raised)
             if joined is not None:
                 edits.append(joined)
-    uniform = _least_uniform(model, search, base, top)
+    uniform, reached, stopped = _least_uniform(model, search, base, top)
     if uniform is not None:
         edits.append(uniform)
     if base is None:
-        plan.searched[LEG_RAISE] = (f"each of the {len(model.legs)} legs alone, every level "
-                                    f"up to {MAX_HEALTH} (exact: one parametric game a leg)")
+        plan.searched[LEG_RAISE] = (f"each of the {len(model.legs)} legs alone, "
+                                    f"every level {_limit_text(levels.reached, levels.stopped)}"
+                                    " (exact: "
+                                    "doubling, then a parametric game)")
         if len([leg for leg in model.legs if leg.health > 1]) >= 2:
-            plan.searched[ALL_RAISE] = (f"every working leg to one level, up to {MAX_HEALTH} "
-                                        "(exact, by bisection)")
+            plan.searched[ALL_RAISE] = ("every working leg to one common level "
+                                        f"{_limit_text(reached, stopped)} (exact: doubling, "
+                                        "then bisection)")
     return edits
 
 

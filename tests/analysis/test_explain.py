@@ -289,9 +289,9 @@ def test_no_repair_says_what_was_tried(capsys: pytest.CaptureFixture[str]) -> No
     at = lines.index("no repair found; searched:")
     assert lines[at + 1:at + 7] == [
         "  - raise a leg's health: each of the 2 legs alone, every level up to 100 (exact: "
-        "one parametric game a leg)",
-        "  - raise every leg's health: every working leg to one level, up to 100 (exact, by "
-        "bisection)",
+        "doubling, then a parametric game)",
+        "  - raise every leg's health: every working leg to one common level up to 100 "
+        "(exact: doubling, then bisection)",
         "  - add a cache: each of the 3 regions with no cache or hazard; every pair of the "
         "first 3 (3 pairs)",
         "  - two of these edits together: 3 pairs of one kind and the 21 cheapest pairs of "
@@ -301,8 +301,8 @@ def test_no_repair_says_what_was_tried(capsys: pytest.CaptureFixture[str]) -> No
         "  - drop a goal: each goal alone"]
     assert why.to_json()["repairs_searched"][0] == {
         "kind": "raise a leg's health",
-        "searched": "each of the 2 legs alone, every level up to 100 (exact: one parametric "
-                    "game a leg)"}
+        "searched": "each of the 2 legs alone, every level up to 100 (exact: doubling, then "
+                    "a parametric game)"}
     # checked independently: no health of either leg up to the limit helps
     for legs in ("leg L1 health 100\nleg L2 health 2", "leg L1 health 2\nleg L2 health 100",
                  "legs L1..L2 health 100"):
