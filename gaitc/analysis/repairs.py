@@ -27,6 +27,7 @@ little they change (cost, then the order above). What each kind searched is kept
 from __future__ import annotations
 
 import itertools
+import math
 import re
 import time
 from collections.abc import Callable, Iterator, Sequence
@@ -56,8 +57,13 @@ MAX_KIND_PAIRS: Final = 300
 #: Pairs of edits of two kinds: each kind contributes its :data:`PAIR_POOL` cheapest edits.
 MAX_MIXED_PAIRS: Final = 60
 PAIR_POOL: Final = 12
-#: Seconds a round of the doubling health search may take before the search stops there.
-HEALTH_ROUND_SECONDS: Final = 2.0
+#: Health vectors (the product of the legs' levels) a game of the health search may have:
+#: a refutation runs a fixpoint iteration per level, so robot A (8 legs) uniformly at 9
+#: levels took 50 s to refute; at 3^12, the bound of ``gaitc resilience``'s front, it
+#: stops at 5. Deterministic, unlike a time budget, so the answers do not depend on load.
+HEALTH_VECTORS: Final = 3 ** 12
+#: A solve of the health search past this many seconds stops it there (a guard only).
+SOLVE_GUARD_SECONDS: Final = 60.0
 #: Working pairs kept (the cheapest) once some pair works.
 KEPT_PAIRS: Final = 3
 
@@ -569,32 +575,39 @@ def _raised(model: Model, levels: dict[str, int]) -> GR1Spec:
 
 @dataclass
 class _Levels:
-    """Least sufficient levels found, and the highest level the search reached (``top``
-    unless a round of solves took longer than :data:`HEALTH_ROUND_SECONDS`)."""
+    """Least sufficient levels found, the highest level the search went to, and whether a
+    solve passed :data:`SOLVE_GUARD_SECONDS` and stopped it there."""
 
     found: dict[str, int]
     reached: int
     stopped: bool = False
 
 
-def _doubling(oracle: Oracle, starts: dict[str, int], top: int,
+def _vector_top(model: Model, raised: Sequence[str], top: int) -> int:
+    """The highest common level of the legs ``raised`` (the others as declared) with at most
+    :data:`HEALTH_VECTORS` health vectors in the game, and at most ``top``: a deterministic
+    limit on the cost of a refutation, which runs a fixpoint iteration per level."""
+    others = math.prod(leg.health for leg in model.legs if leg.name not in raised)
+    level = top
+    while level > 1 and level ** len(raised) * others > HEALTH_VECTORS:
+        level -= 1
+    return level
+
+
+def _doubling(oracle: Oracle, starts: dict[str, int], tops: dict[str, int],
               variant: Callable[[str, int], GR1Spec]) -> tuple[dict[str, tuple[int, int]], int,
                                                                 bool]:
     """Brackets (last level that fails, first that works) for each key of ``starts``
-    (its known-failing level), raising by 1, 2, 4... up to ``top``: one round of solves at a
-    time, all keys at once. The search stops early when a round takes longer than
-    :data:`HEALTH_ROUND_SECONDS` (a solve that fails at a high level runs one fixpoint
-    iteration per level), or when a solve of the round passes twice that; then the level
-    reached is returned with ``stopped``."""
-    low = {k: v for k, v in starts.items() if v < top}
+    (its known-failing level), raising by 1, 2, 4... up to its top: one round of solves at
+    a time, all keys at once. Also the highest level solved, and whether a solve passed
+    :data:`SOLVE_GUARD_SECONDS` (a guard: the tops keep games small) and stopped the search."""
+    low = {k: v for k, v in starts.items() if v < tops[k]}
     brackets: dict[str, tuple[int, int]] = {}
-    step, reached = 1, max(starts.values(), default=top)
+    step = 1
+    reached = max(tops.values(), default=0)
     while low:
-        round_ = {k: min(v + step, top) for k, v in low.items()}
-        began = time.monotonic()
-        # a round of its own deadline (within the analysis's): a solve past it stops the
-        # search at the level before, as a round that merely took long does
-        limit = began + 2 * HEALTH_ROUND_SECONDS
+        round_ = {k: min(v + step, tops[k]) for k, v in low.items()}
+        limit = time.monotonic() + SOLVE_GUARD_SECONDS
         probe = Oracle(oracle.semantics, limit if oracle.deadline is None
                        else min(limit, oracle.deadline), _options=oracle._options)
         try:
@@ -602,33 +615,32 @@ def _doubling(oracle: Oracle, starts: dict[str, int], top: int,
         except SolverError:
             if oracle.deadline is not None and time.monotonic() >= oracle.deadline:
                 raise
-            return brackets, reached, True
+            return brackets, max(low.values()), True
         finally:
             oracle.calls += probe.calls
-        reached = max(reached, *round_.values())
         for (key, level), works in zip(round_.items(), answers, strict=True):
             if works:
                 brackets[key] = (low.pop(key), level)
-            elif level >= top:
+            elif level >= tops[key]:
                 low.pop(key)
             else:
                 low[key] = level
         step *= 2
-        if low and time.monotonic() - began > HEALTH_ROUND_SECONDS:
-            return brackets, reached, True
-    return brackets, max(reached, top) if not brackets else reached, False
+    return brackets, reached, False
 
 
 def _least_leg_levels(model: Model, oracle: Oracle, top: int = MAX_HEALTH) -> _Levels:
     """For each leg, the least health that makes the spec realizable with every other leg
-    as declared, up to ``top`` (the language's :data:`MAX_HEALTH`), found exactly: the level
-    is bracketed by doubling the raise (:func:`_doubling`, all legs a round) and read off
-    one parametric game over the bracket, the leg's cap a rigid parameter
+    as declared, up to ``top`` (the language's :data:`MAX_HEALTH`, or less where the game
+    would have more than :data:`HEALTH_VECTORS` health vectors), found exactly: the level is
+    bracketed by doubling the raise (:func:`_doubling`, all legs a round) and read off one
+    parametric game over the bracket, the leg's cap a rigid parameter
     (:func:`gaitc.analysis.parametric.winning_caps`)."""
     from gaitc.analysis.parametric import winning_caps
 
+    tops = {leg.name: _vector_top(model, [leg.name], top) for leg in model.legs}
     brackets, reached, stopped = _doubling(
-        oracle, {leg.name: leg.health for leg in model.legs}, top,
+        oracle, {leg.name: leg.health for leg in model.legs}, tops,
         lambda name, level: _raised(model, {name: level}))
     found: dict[str, int] = {}
     names = [x.name for x in model.legs]
@@ -674,7 +686,8 @@ def _least_uniform(model: Model, search: _Search, base: _Edit | None = None,
     first = min(working)
     if base is not None and search.oracle.realizable(spec(first)):
         return None, top, False  # the other edit alone suffices: no raise is needed
-    brackets, reached, stopped = _doubling(search.oracle, {"*": first}, top,
+    ceiling = _vector_top(target, [leg.name for leg in target.legs if leg.health > 1], top)
+    brackets, reached, stopped = _doubling(search.oracle, {"*": first}, {"*": ceiling},
                                            lambda _, level: spec(level))
     if "*" not in brackets:
         return None, reached, stopped
@@ -690,8 +703,10 @@ def _least_uniform(model: Model, search: _Search, base: _Edit | None = None,
 
 def _limit_text(reached: int, stopped: bool) -> str:
     if stopped:
-        return (f"up to {reached} (the search stops there: a round of solves took over "
-                f"{HEALTH_ROUND_SECONDS:.0f} s)")
+        return (f"up to {reached} (the search stops there: a solve took over "
+                f"{SOLVE_GUARD_SECONDS:.0f} s)")
+    if reached < MAX_HEALTH:
+        return f"up to {reached} (games of at most {HEALTH_VECTORS:,} health vectors)"
     return f"up to {reached}"
 
 
