@@ -21,7 +21,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from gaitc.api.simulation import session
-from gaitc.core.spec import Spec, SpecLike, as_gr1, load, resolve
+from gaitc.core.spec import Spec, SpecLike, load
 from gaitc.diagnostics import ScenarioError, Span, UsageError
 from gaitc.sim.graphics import FORMATS, Picture, output_format
 from gaitc.sim.session import Session
@@ -115,17 +115,11 @@ def compact_rules(spec: SpecLike, controller: CompactController | SymbolicContro
     one table of rules per goal, each rule checked against the states a run of it reaches
     under the spec's assumptions (:func:`gaitc.compact.rules.reach`): the never used ones
     are left out of the text and counted, or with ``all_rules`` listed and marked; its JSON
-    lists them all.  None when the spec is unrealizable."""
-    from gaitc.api.generating import _goal_labels, compact_of
-    from gaitc.codegen.tables import table_bytes
-    from gaitc.compact.rules import rule_tables
+    lists them all.  None when the spec is unrealizable; the same tables as
+    :func:`gaitc.api.generating.compact_policy`."""
+    from gaitc.api.generating import compact_policy
 
-    resolved = resolve(spec)
-    found = compact_of(resolved, controller, prefer=prefer)
-    if found is None:
-        return None
-    return rule_tables(found, _goal_labels(resolved), table_bytes(found),
-                       spec=as_gr1(resolved), all_rules=all_rules)
+    return compact_policy(spec, controller, all_rules=all_rules, prefer=prefer)
 
 
 def draw_rules(tables: RuleTables) -> Picture:

@@ -275,11 +275,7 @@ def to_symbolic(ctrl: CompactController, spec: GR1Spec | None = None) -> Symboli
 
         logic = Logic(bitblast(spec), diagram_order(ctrl))
         bdd = logic.bdd
-        env_init, env_trans = bdd.true, bdd.true
-        for _, u in logic.clauses("env_init"):
-            env_init &= u
-        for _, u in logic.clauses("env_trans"):
-            env_trans &= u
+        env_init, env_trans = logic.conjunction("env_init"), logic.conjunction("env_trans")
     else:
         bdd = manager()
         bdd.declare(*diagram_order(ctrl))

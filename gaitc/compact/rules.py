@@ -234,11 +234,7 @@ def reach(ctrl: CompactController, spec: GR1Spec) -> Reach:
 
     logic = Logic(bitblast(spec), diagram_order(ctrl))
     bdd = logic.bdd
-    env_init, env_trans = bdd.true, bdd.true
-    for _, u in logic.clauses("env_init"):
-        env_init &= u
-    for _, u in logic.clauses("env_trans"):
-        env_trans &= u
+    env_init, env_trans = logic.conjunction("env_init"), logic.conjunction("env_trans")
     made = relations(bdd, ctrl)
     outputs = set(ctrl.outputs)
     if ctrl.semantics == Semantics.ROBOTICS:

@@ -84,6 +84,13 @@ class Logic:
             ]
         return self._clauses[section]
 
+    def conjunction(self, section: str) -> Function:
+        """The BDD of every clause of ``section`` at once (true for an empty section)."""
+        out: Function = self.bdd.true
+        for _, u in self.clauses(section):
+            out &= u
+        return out
+
     def translate(self, expr: Expr) -> Function:
         """The BDD of a Boolean formula (memoised on node identity, so DAGs stay cheap)."""
         return fold(expr, self._translate, lambda n: n.children() if isinstance(
