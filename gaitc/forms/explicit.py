@@ -53,7 +53,7 @@ if TYPE_CHECKING:
 class Layout(Choice):
     """How an explicit controller is laid out on disk."""
 
-    #: gzip-compressed JSON of shared tables, with a digest (the default).
+    #: gzip-compressed JSON of shared tables, with a digest (for a name ending in .gz).
     TABLES = "tables"
     #: SLUGS's explicit-strategy JSON with gaitc's additions, for interchange.
     SLUGS_JSON = "slugs-json"
