@@ -8,7 +8,8 @@
    for legs), and the sets of k+1 legs that defeat it.
 3. Health: the least uniform number of levels, and the Pareto front of per-leg levels,
    by default within each leg's own declared levels.
-4. Caches and hazards: essential caches, cache placements, hazard sets survived alone.
+4. Caches and hazards: essential caches, cache placements, hazard sets survived alone, and
+   for each graded hazard (``wears k``) the most wear survived and whether failing is.
 
 The failure sets and the health front come either from one parametric game
 (:mod:`gaitc.analysis.parametric`) or from lattice searches over variants
@@ -77,6 +78,9 @@ class Resilience:
     placed: int | None = None
     hazards_survived_alone: tuple[str, ...] = ()
     hazards_fatal_alone: tuple[str, ...] = ()
+    # per graded hazard (``wears k``): (name, declared k, most wear survived, whether the task
+    # survives the hazard failing the legs instead)
+    hazard_wear: tuple[tuple[str, int, int, bool], ...] = ()
     solver_calls: int = 0
     seconds: float = 0.0
     notes: tuple[str, ...] = ()
@@ -102,6 +106,8 @@ class Resilience:
             "essential_caches": list(self.essential_caches),
             "cache_placements": [list(s) for s in self.cache_placements],
             "hazards_survived_alone": list(self.hazards_survived_alone),
+            "hazard_wear": [{"hazard": n, "declared": k, "most_survived": m,
+                             "survives_failing": f} for n, k, m, f in self.hazard_wear],
             "solver_calls": self.solver_calls, "seconds": round(self.seconds, 3),
             "notes": list(self.notes),
         }
@@ -167,6 +173,11 @@ class Resilience:
                    + (", ".join(self.hazards_survived_alone) or "none"))
         if self.hazards_fatal_alone:
             out.append("   hazard sets fatal alone: " + ", ".join(self.hazards_fatal_alone))
+        for name, declared, most, fails in self.hazard_wear:
+            worse = (" and survives it failing the legs" if fails
+                     else "; failing the legs would be fatal")
+            out.append(f"   graded hazard {name} (wears {declared}): survives it wearing up to "
+                       f"{most} level{'s' if most > 1 else ''} a move{worse}")
         out.extend(f"note: {n}" for n in self.notes)
         return out
 
@@ -419,9 +430,35 @@ def _caches_and_hazards(report: Resilience, model: Model, place: int | None, poo
     placements = _placements(model, place, pool, notes)
     names = [h.name for h in model.hazards]
     alone = pool.models([with_hazards(model, [h]) for h in names])
+    wear = tuple(_hazard_wear(model, h.name, h.wears, pool) for h in model.hazards
+                 if h.wears is not None)
     return _with(report, essential_caches=essential, cache_placements=placements,
                  placed=place,
                  hazards_survived_alone=tuple(h for h, ok in zip(names, alone, strict=True)
                                               if ok),
                  hazards_fatal_alone=tuple(h for h, ok in zip(names, alone, strict=True)
-                                           if not ok))
+                                           if not ok),
+                 hazard_wear=wear)
+
+
+def _hazard_wear(model: Model, name: str, declared: int, pool: Pool
+                 ) -> tuple[str, int, int, bool]:
+    """How much worse the graded hazard ``name`` (``wears declared``) may be: the most wear
+    the task survives, found by bisection between the declared wear (survived: the task is
+    realizable) and h - 1 (h the most levels a leg has; more wear changes nothing, a leg
+    never drops below 1), and whether it survives the hazard failing the legs outright
+    (eq. 3.9). More wear only frees the environment, so survival is monotone."""
+    from dataclasses import replace
+
+    def variant(wears: int | None) -> Model:
+        return replace(model, hazards=tuple(replace(h, wears=wears) if h.name == name else h
+                                            for h in model.hazards))
+
+    low, high = declared, max(declared, max(leg.health for leg in model.legs) - 1)
+    while low < high:
+        middle = (low + high + 1) // 2
+        if pool.models([variant(middle)])[0]:
+            low = middle
+        else:
+            high = middle - 1
+    return name, declared, low, pool.models([variant(None)])[0]

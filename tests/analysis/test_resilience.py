@@ -192,3 +192,37 @@ def test_the_default_health_front_is_within_each_legs_own_levels(name: str) -> N
     assert got.min_uniform_health == uniform
     assert got.health_front == front and front
     assert "3. health (each leg within its own declared levels: " in "\n".join(got.lines())
+
+
+SAND = """\
+legs L1..L2 health 7
+gait east uses L1 moves east
+gait west uses L2 moves west
+grid 1 x 4 cells a, b, c, d
+cache a, d
+hazard sand: b, c wears 2
+start a
+visit a, d infinitely often
+"""
+
+
+def test_a_graded_hazard_reports_the_most_wear_survived() -> None:
+    """The sand may wear up to 2 levels a move and no more, and failing the legs is fatal:
+    each answer re-solved here from the edited text."""
+    got = gaitc.resilience(gaitc.parse(SAND, name="sand.gait"))
+    assert got.hazard_wear == (("sand", 2, 2, False),)
+    assert "graded hazard sand (wears 2): survives it wearing up to 2 levels a move; failing " \
+           "the legs would be fatal" in [line.strip() for line in got.lines()]
+
+    def realizable(text: str) -> bool:
+        return gaitc.check(gaitc.parse(text, name="variant.gait")).realizable
+
+    assert realizable(SAND)
+    assert not realizable(SAND.replace("wears 2", "wears 3"))
+    assert not realizable(SAND.replace(" wears 2", ""))
+    gentler = gaitc.resilience(gaitc.parse(SAND.replace("health 7", "health 9"),
+                                           name="sand9.gait"))
+    most = gentler.hazard_wear[0][2]
+    assert realizable(SAND.replace("health 7", "health 9").replace("wears 2", f"wears {most}"))
+    assert most == 8 or not realizable(
+        SAND.replace("health 7", "health 9").replace("wears 2", f"wears {most + 1}"))
