@@ -177,3 +177,24 @@ def recorded_encoding(path: str | Path) -> EncodingName | None:
     except (ControllerError, OSError, KeyError, TypeError):
         return None
     return EncodingName(encoding) if encoding in ENCODINGS else None
+
+
+#: A SLUGS-JSON explicit controller past this many bytes gets a hint of the tables layout.
+LARGE_JSON = 1 << 20
+
+
+def tables_hint(output: str | Path) -> str | None:
+    """For a large explicit controller written as SLUGS's JSON (``NAME.json`` past
+    :data:`LARGE_JSON` bytes), a hint that ``NAME.ctl.gz`` writes the compact tables layout
+    (about 80 times smaller; docs/controller-format.md); None otherwise."""
+    from gaitc.forms.explicit import Layout, layout_for
+
+    path = Path(output)
+    try:
+        large = layout_for(path) is Layout.SLUGS_JSON and path.stat().st_size > LARGE_JSON
+    except OSError:
+        return None
+    if not large or path.suffix.lower() != ".json":
+        return None
+    return (f"{path.stem}.ctl.gz would hold the same controller in the compact tables "
+            "layout, about 80 times smaller (docs/controller-format.md)")

@@ -10,7 +10,6 @@ import argparse
 import functools
 import sys
 import time
-from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import gaitc
@@ -244,24 +243,13 @@ def run_synth(args: argparse.Namespace) -> int:
     return _print_report(found.report)
 
 
-#: A SLUGS-JSON explicit controller past this many bytes gets a hint of the tables layout.
-LARGE_JSON = 1 << 20
-
-
 def _hint_tables(output: str) -> None:
-    """A hint, for a large explicit controller written as SLUGS's JSON, that a ``.gz`` name
-    writes the compact tables layout (about 80 times smaller; docs/controller-format.md)."""
-    from gaitc.forms.explicit import Layout, layout_for
+    """The hint of :func:`gaitc.api.solving.tables_hint`, on standard error."""
+    from gaitc.api.solving import tables_hint
 
-    path = Path(output)
-    try:
-        large = layout_for(path) is Layout.SLUGS_JSON and path.stat().st_size > LARGE_JSON
-    except OSError:
-        return
-    if large and path.suffix.lower() == ".json":
-        print(f"  hint: {path.stem}.ctl.gz would hold the same controller in the compact "
-              "tables layout, about 80 times smaller (docs/controller-format.md)",
-              file=sys.stderr)
+    hint = tables_hint(output)
+    if hint is not None:
+        print(f"  hint: {hint}", file=sys.stderr)
 
 
 def _synth_json(args: argparse.Namespace, found: gaitc.Synthesis) -> int:
