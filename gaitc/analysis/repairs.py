@@ -26,6 +26,7 @@ little they change (cost, then the order above). What each kind searched is kept
 
 from __future__ import annotations
 
+import functools
 import itertools
 import math
 import re
@@ -554,6 +555,15 @@ class _Search:
         except GaitcError:
             return None  # the edit breaks the file (a name it removed is still used)
 
+    @functools.cache  # noqa: B019 (one search a spec; edits are hashable values)
+    def edited_model(self, edit: _Edit) -> Model | None:
+        """The checked model of the source with ``edit`` made (None: the edit breaks it),
+        parsed once however many health searches start from it."""
+        try:
+            return model_from_text(_apply(self.lines, edit)[0], self.filename)[0]
+        except GaitcError:
+            return None
+
     def working(self, edits: Sequence[_Edit]) -> list[tuple[_Edit, Repair]]:
         """The edits among ``edits`` that make the spec realizable, with their repairs."""
         ready = [(edit, *made) for edit in edits if (made := self.variant(edit)) is not None]
@@ -666,12 +676,9 @@ def _least_uniform(model: Model, search: _Search, base: _Edit | None = None,
     working = [leg.health for leg in model.legs if leg.health > 1]
     if len(working) < 2:
         return None, top, False
-    target = model
-    if base is not None:
-        made = search.variant(base, EncodingName.BINARY)
-        if made is None:
-            return None, top, False
-        target, _ = model_from_text(made[0], search.filename)
+    target = model if base is None else search.edited_model(base)
+    if target is None:
+        return None, top, False
 
     def spec(level: int) -> GR1Spec:
         return _raised(target, {leg.name: level for leg in target.legs
@@ -716,12 +723,9 @@ def _health_edits(model: Model, search: _Search, plan: _Plan,
     each found exactly; with ``base``, on the spec with that edit made, and joined to it."""
     lines = search.lines
     edits: list[_Edit] = []
-    target = model
-    if base is not None:
-        made = search.variant(base, EncodingName.BINARY)
-        if made is None:
-            return []
-        target, _ = model_from_text(made[0], search.filename)
+    target = model if base is None else search.edited_model(base)
+    if target is None:
+        return []
     levels = _least_leg_levels(target, search.oracle, top)
     for name, level in levels.found.items():
         leg = model.leg(name)
