@@ -83,10 +83,12 @@ if TYPE_CHECKING:  # the names of _MODULES, for the type checker (tests/cli/test
     from gaitc.api.simulation import simulate as simulate
     from gaitc.api.solving import SOLVERS as SOLVERS
     from gaitc.api.solving import Synthesis as Synthesis
+    from gaitc.api.solving import Tolerance as Tolerance
     from gaitc.api.solving import Verdict as Verdict
     from gaitc.api.solving import check as check
     from gaitc.api.solving import counterstrategy as counterstrategy
     from gaitc.api.solving import synthesize as synthesize
+    from gaitc.api.solving import tolerate as tolerate
     from gaitc.api.solving import verify as verify
     from gaitc.core.modes import BackendKind as BackendKind
     from gaitc.core.modes import ControllerKind as ControllerKind
@@ -126,7 +128,8 @@ _MODULES: dict[str, tuple[str, ...]] = {
     ),
     "gaitc.api.compiling": ("FORMATS", "OutputFormat", "emit", "lint"),
     "gaitc.api.solving": (
-        "SOLVERS", "Synthesis", "Verdict", "check", "counterstrategy", "synthesize", "verify",
+        "SOLVERS", "Synthesis", "Tolerance", "Verdict", "check", "counterstrategy",
+        "synthesize", "tolerate", "verify",
     ),
     "gaitc.api.answers": ("explain", "resilience"),
     "gaitc.api.simulation": ("Session", "session", "simulate"),

@@ -8,12 +8,14 @@ this module converts the arguments, and reads controller files through the one r
 
 from __future__ import annotations
 
+import time
 from collections.abc import Sequence
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import TYPE_CHECKING
 
 from gaitc.core.modes import ControllerKind, Form
-from gaitc.core.spec import SpecLike, as_spec, resolve
+from gaitc.core.spec import Spec, SpecLike, as_spec, resolve
 from gaitc.diagnostics import UsageError
 from gaitc.forms.base import Automaton
 from gaitc.forms.synthesis import (
@@ -38,15 +40,16 @@ from gaitc.solver.symbolic import Options
 from ltlcompiler.encoding import EncodingName
 
 if TYPE_CHECKING:
+    from gaitc.analysis.tolerance import ToleranceReport
     from gaitc.compact.controller import CompactController
     from gaitc.core.vocabulary import Vocabulary
     from gaitc.ir.bddfile import SymbolicController
     from gaitc.verifier.strategy import VerificationReport as VerificationReport
 
 __all__ = ["COMPACT", "FORMS", "MAX_NODES", "PREFERENCES", "SOLVERS", "Automaton",
-           "SolverName", "Synthesis", "Verdict", "check", "compact", "controller_form",
+           "SolverName", "Synthesis", "Tolerance", "Verdict", "check", "compact", "controller_form",
            "counterstrategy", "preference_order", "read_controller", "recorded_encoding",
-           "synthesize", "verify", "vocabulary_of"]
+           "synthesize", "tolerate", "verify", "vocabulary_of"]
 
 
 def check(spec: SpecLike, semantics: Semantics | str = Semantics.DEFAULT, solver: str = "embedded",
@@ -90,6 +93,53 @@ def synthesize(spec: SpecLike, semantics: Semantics | str = Semantics.DEFAULT,
     return solve(resolve(spec), ControllerKind.STRATEGY, chosen, SolveOptions(
         solver=solver, timeout=timeout, slugs=slugs, options=options, progress=progress,
         check_it=verify, form=form, max_nodes=max_nodes, prefer=prefer))
+
+
+@dataclass(frozen=True)
+class Tolerance:
+    """What :func:`tolerate` found: the report (the most surprises survived, the assumption
+    that limits it) and the controller of the original spec for that many surprises."""
+
+    report: ToleranceReport
+    synthesis: Synthesis
+
+
+def tolerate(spec: SpecLike, k: int, semantics: Semantics | str = Semantics.DEFAULT, *,
+             breakable: str | None = None, form: str = "symbolic", verify: bool = True,
+             options: Options | None = None, timeout: float | None = None,
+             progress: Progress | None = None) -> Tolerance:
+    """A controller of ``spec`` that keeps every guarantee through up to ``k`` surprises
+    (broken safety assumptions; :mod:`gaitc.analysis.tolerance`, after Ehlers and Topcu,
+    HSCC 2014), or through the most it can, proved against ``spec`` itself unless ``verify``
+    is False; ``.synthesis.controller`` is None when the spec is unrealizable.
+
+    ``breakable`` names the one group of assumptions that may break (default: every one);
+    ``form`` is ``symbolic`` or ``compact`` (an explicit automaton is not extracted: the
+    strategy comes from the game with the surprise counter, projected onto the spec's bits).
+    """
+    from gaitc.analysis.tolerance import ToleranceOptions, tolerance
+
+    if form not in ("symbolic", COMPACT):
+        raise UsageError(f"a controller with --tolerate is symbolic or compact, not {form}")
+    chosen = Semantics.parse(semantics, "semantics")
+    bound = resolve(spec)
+    started = time.monotonic()
+    report = tolerance(bound, chosen, k, ToleranceOptions(
+        breakable=breakable, controller=True, options=options, timeout=timeout,
+        progress=progress))
+    symbolic = report.controller
+    automaton: Automaton | None = None
+    symbolic_nodes = None
+    if symbolic is not None:
+        source = bound.source() if isinstance(bound, Spec) else None
+        automaton = replace(symbolic, source=source)
+        if form == COMPACT:
+            symbolic_nodes = len(symbolic.nodes)
+            automaton = replace(compacted(bound, automaton), source=source)
+    proof = prove(bound, automaton, chosen) if automaton is not None and verify else None
+    return Tolerance(report, Synthesis(
+        spec=bound, kind=ControllerKind.STRATEGY, controller=automaton, report=proof,
+        seconds=time.monotonic() - started, semantics=chosen, symbolic_nodes=symbolic_nodes))
 
 
 def counterstrategy(spec: SpecLike, semantics: Semantics | str = Semantics.DEFAULT,

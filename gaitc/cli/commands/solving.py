@@ -22,6 +22,7 @@ from gaitc.cli.commands.arguments import (
     positive_count,
     positive_megabytes,
     positive_seconds,
+    positive_whole,
     semantics_of,
 )
 from gaitc.cli.exitcodes import ExitCode, exit_code_help
@@ -110,6 +111,12 @@ def register(sub: Any) -> None:
     p.add_argument("--max-nodes", type=positive_count, default=MAX_NODES, metavar="N",
                    help=f"keep the controller symbolic when the explicit automaton would pass "
                    f"N nodes (default {MAX_NODES:,})")
+    p.add_argument("--tolerate", type=positive_whole, metavar="K",
+                   help="plan for up to K surprises (steps on which the environment breaks "
+                   "its safety assumptions, e.g. a leg failing while not in use): report the "
+                   "most it survives and the assumption that limits it, and write the "
+                   "controller for that many (symbolic, or --compact; docs/background/"
+                   "tolerance.md)")
     add_prefer(p)
     _common(p)
     p.set_defaults(run=run_synth)
@@ -221,6 +228,8 @@ def _solve(args: argparse.Namespace, kind: ControllerKind
 
 
 def run_synth(args: argparse.Namespace) -> int:
+    if args.tolerate is not None:
+        return _run_tolerate(args)
     _, found = _solve(args, ControllerKind.STRATEGY)
     if args.json:
         return _synth_json(args, found)
@@ -238,6 +247,58 @@ def run_synth(args: argparse.Namespace) -> int:
         f"({found.size})"
     )
     _hint_tables(args.output)
+    if found.report is None:
+        return ExitCode.OK
+    return _print_report(found.report)
+
+
+def _tolerate(args: argparse.Namespace) -> gaitc.Tolerance:
+    """``synth --tolerate K``: the tolerance report and its controller (gaitc.tolerate)."""
+    _options(args)  # a memory limit too small fails here, before the fork
+    if args.solver != "embedded":
+        raise UsageError("--tolerate solves a game of its own with the embedded solver; drop "
+                         "--solver slugs")
+    if args.symbolic and args.compact:
+        raise UsageError("--symbolic and --compact are two forms of the controller: give one")
+    if args.prefer is not None:
+        raise UsageError("--prefer does not apply with --tolerate: the controller keeps every "
+                         "winning move of the game with surprises")
+
+    def work() -> gaitc.Tolerance:
+        spec = gaitc.load(args.spec, args.encoding)
+        with progress_display(args.verbose) as progress:
+            return gaitc.tolerate(spec, args.tolerate, semantics_of(args),
+                                  form=Form.COMPACT if args.compact else Form.SYMBOLIC,
+                                  verify=not args.no_verify, options=_options(args),
+                                  timeout=args.timeout, progress=progress)
+
+    return run_limited(work, _limits(args))
+
+
+def _run_tolerate(args: argparse.Namespace) -> int:
+    outcome = _tolerate(args)
+    report, found = outcome.report, outcome.synthesis
+    written = found.controller is not None and (found.report is None or found.report.ok)
+    if written:
+        found.save(args.output)
+    if args.json:
+        print_json(document("synth", {**found.to_json(), "tolerance": report.to_json(),
+                                      "output": args.output if written else None}))
+        if found.controller is None:
+            return ExitCode.UNREALIZABLE
+        return ExitCode.OK if written else ExitCode.USER
+    for line in report.lines():
+        print(line)
+    if found.controller is None or report.reached is None:
+        print(f"{args.spec}: unrealizable even without surprises; no controller written")
+        return ExitCode.UNREALIZABLE
+    plan = f"for up to {report.reached} surprise{'s' if report.reached != 1 else ''}"
+    if not written:
+        print(f"{args.spec}: the controller {plan} failed verification; {args.output} was "
+              "not written")
+    else:
+        print(f"{args.spec}: wrote {args.output}, the controller {plan} "
+              f"({found.size}); it is a controller of the spec itself, proved against it")
     if found.report is None:
         return ExitCode.OK
     return _print_report(found.report)
