@@ -9,7 +9,7 @@ RUN.jsonl``, drawn by ``gaitc render map --run``) or ``.csv`` (a table);
 from __future__ import annotations
 
 from gaitc.sim.run import Run, Step, Summary, read_jsonl, run_format, save_run
-from gaitc.sim.terminal import step_table, summary_text, use_colour
+from gaitc.sim.terminal import step_table, summary_text, surprises_text, use_colour
 
 __all__ = ["Run", "Step", "Summary", "read_jsonl", "run_format", "save_run", "step_table",
-           "summary_text", "use_colour"]
+           "summary_text", "surprises_text", "use_colour"]

@@ -27,16 +27,18 @@ from gaitc.sim.monitor import Monitor
 from gaitc.sim.session import Opponent, Session, is_run_file
 from gaitc.sim.session import environment as build_environment
 from gaitc.sim.strategy import explicit
+from gaitc.sim.surprise import SurprisePolicy
 from gaitc.solver.progress import Progress
 from ltlcompiler.encoding import EncodingName
 
 if TYPE_CHECKING:
     from gaitc.sim.run import Run
     from gaitc.sim.scenario import Scenario
+    from gaitc.sim.simulator import SurpriseOptions
 
 __all__ = ["DEFAULT_STEPS", "ENVIRONMENTS", "EnvironmentLike", "Opponent", "Session",
-           "Simulation", "counter_session", "environment", "is_run_file", "opponent",
-           "run_document", "session", "simulate", "simulate_spec"]
+           "Simulation", "SurprisePolicy", "counter_session", "environment", "is_run_file",
+           "opponent", "run_document", "session", "simulate", "simulate_spec"]
 
 #: The environments :func:`simulate` and ``gaitc simulate --env`` know by name.
 ENVIRONMENTS: Final = EnvironmentKind.values()
@@ -186,14 +188,22 @@ def simulate_spec(spec: Spec | Session | str | Path,
                   encoding: EncodingName | str | None = None,
                   semantics: Semantics | str = Semantics.DEFAULT,
                   prefer: str | Sequence[str] | None = None,
-                  progress: Progress | None = None) -> Simulation:
+                  progress: Progress | None = None,
+                  violate: Sequence[str] = (),
+                  on_surprise: SurprisePolicy | str = SurprisePolicy.RECOVER) -> Simulation:
     """:func:`simulate`, deciding what plays when ``spec`` is unrealizable instead of
     refusing: ``spec`` is loaded once (with ``encoding``, else the one ``controller``
     records, else onehot) and bound to ``controller`` (synthesized when None, telling
     ``progress``). Without a controller, the environment's counter-strategy plays an
     unrealizable spec against the careful robot for ``env`` adversarial, a run file
     (``scripted RUN.jsonl``) is played again as recorded, and otherwise nothing runs (the
-    answer's ``run`` is None)."""
+    answer's ``run`` is None).
+
+    ``violate`` lists events to perform whatever the assumptions say (``"12:fail L5"``,
+    in the player's move words, :mod:`gaitc.sim.surprise`); ``on_surprise`` says whether
+    a controller recovers from an input that breaks an assumption (the default, by
+    :mod:`gaitc.sim.recovery`) or stops with an error.  The run's ``surprises`` list each
+    event with what became of the run."""
     if isinstance(spec, Session):
         bound: Session | None = spec
         loaded = spec.spec
@@ -211,14 +221,26 @@ def simulate_spec(spec: Spec | Session | str | Path,
             bound = counter_session(loaded, semantics, progress)
         if bound is None:
             return Simulation(None, False)
-    if bound.strategy.kind == ControllerKind.COUNTERSTRATEGY:
+    if bound.strategy.kind == ControllerKind.COUNTERSTRATEGY and not violate:
         return Simulation(_counter_play(bound, chosen_env, steps, seed), False,
                           bound.full_health)
-    return Simulation(_controller_play(bound, chosen_env, steps, seed), True, bound.full_health)
+    if violate and bound.strategy.kind == ControllerKind.COUNTERSTRATEGY:
+        raise UsageError("--violate makes the environment break its assumptions against a "
+                         "controller; this spec is unrealizable and its counter-strategy "
+                         "plays the environment")
+    from gaitc.sim.simulator import SurpriseOptions
+    from gaitc.sim.surprise import plan
+
+    surprises = SurpriseOptions(plan(violate, bound.domain),
+                                SurprisePolicy.parse(on_surprise, "--on-surprise"),
+                                Semantics.parse(semantics))
+    return Simulation(_controller_play(bound, chosen_env, steps, seed, surprises), True,
+                      bound.full_health)
 
 
 def _controller_play(bound: Session, env: Opponent | Scenario | Environment,
-                     steps: int | None, seed: int) -> Run:
+                     steps: int | None, seed: int, surprises: SurpriseOptions | None = None
+                     ) -> Run:
     """A controller of the spec against ``env`` for ``steps`` steps (default 50, or the
     scenario's or run file's length)."""
     from gaitc.sim.replay import RunEnvironment
@@ -232,14 +254,15 @@ def _controller_play(bound: Session, env: Opponent | Scenario | Environment,
     if steps < 0:
         raise UsageError("the number of steps must not be negative")
     return run_simulation(bound.strategy, bound.domain, bound.monitor, chosen, steps,
-                          bound.spec.path)
+                          bound.spec.path, surprises)
 
 
 def simulate(spec: Spec | Session | str | Path,
              controller: Controller | SymbolicController | Synthesis | str | Path | None = None,
              env: EnvironmentLike = EnvironmentKind.RANDOM, steps: int | None = None,
              seed: int = 0, semantics: Semantics | str = Semantics.DEFAULT,
-             prefer: str | Sequence[str] | None = None) -> Run:
+             prefer: str | Sequence[str] | None = None, *, violate: Sequence[str] = (),
+             on_surprise: SurprisePolicy | str = SurprisePolicy.RECOVER) -> Run:
     """Run ``controller`` (synthesized when None) for ``spec`` against ``env`` for ``steps``
     steps (default 50, or the scenario's length) and check every step against the spec.
 
@@ -255,7 +278,7 @@ def simulate(spec: Spec | Session | str | Path,
     (True, 7)
     """
     played = simulate_spec(spec, controller, env, steps, seed, semantics=semantics,
-                           prefer=prefer)
+                           prefer=prefer, violate=violate, on_surprise=on_surprise)
     if played.run is None:
         path = spec.spec.path if isinstance(spec, Session) else (
             spec.path if isinstance(spec, Spec) else str(spec))

@@ -17,6 +17,7 @@ from typing import TYPE_CHECKING, Any
 from gaitc.diagnostics import GaitcError, ScenarioError, Span, UsageError, source_lines
 from gaitc.diagnostics.files import decode_text, read_input, write_atomically
 from gaitc.diagnostics.versions import RUN
+from gaitc.sim.surprise import Surprise
 
 if TYPE_CHECKING:
     from ltlcompiler.model import Model
@@ -114,6 +115,10 @@ class Run:
     model: Model | None = field(default=None, repr=False)
     file: str = ""  # the run file it was read from
     lines: list[int] = field(default_factory=list, repr=False)  # the file's line of each step
+    #: the events the environment performed that may break assumptions (``--violate``, or
+    #: observed inputs outside ρe), each with what became of the run
+    surprises: list[Surprise] = field(default_factory=list)
+    halted: str | None = None  # why the run ended on purpose (a stopped robot), if it did
 
     def __repr__(self) -> str:
         if self.summary is None:
@@ -144,6 +149,7 @@ class Run:
         legs, environment and spec, every step, the summary (null when not checked)."""
         return {"legs": list(self.legs), "environment": self.environment,
                 "spec": self.spec_file, "steps": [step.to_json() for step in self.steps],
+                "violations": [s.to_json() for s in self.surprises],
                 "summary": None if self.summary is None else self.summary.to_json()}
 
     def header(self) -> dict[str, Any]:
@@ -155,6 +161,8 @@ def write_jsonl(run: Run) -> str:
     """The run as JSON Lines: a ``run`` header, one ``step`` per state, a ``summary``."""
     lines = [json.dumps(run.header(), sort_keys=True)]
     lines.extend(json.dumps(step.to_json(), sort_keys=True) for step in run.steps)
+    lines.extend(json.dumps({"kind": "violation", **s.to_json()}, sort_keys=True)
+                 for s in run.surprises)
     if run.summary is not None:
         lines.append(json.dumps(run.summary.to_json(), sort_keys=True))
     return "\n".join(lines) + "\n"
@@ -236,6 +244,8 @@ def read_jsonl(path: str | Path) -> Run:
                     values=tuple((str(k), int(v)) for k, v in dict(data.get("values", {})).items()),
                 ))
                 numbers.append(number)
+            elif kind == "violation":
+                run.surprises.append(Surprise.from_json(data))
         except GaitcError:  # the format version's own message
             raise
         except (json.JSONDecodeError, KeyError, TypeError, ValueError, AttributeError,

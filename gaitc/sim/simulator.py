@@ -9,16 +9,30 @@ the assumption it breaks (the clause's origin rule) and the step.
 from __future__ import annotations
 
 from collections import Counter
-from dataclasses import dataclass, field, fields
-from typing import Any
+from collections.abc import Mapping
+from dataclasses import dataclass, field, fields, replace
+from typing import TYPE_CHECKING, Any
 
 from gaitc.diagnostics import ControllerError, GaitcError, ScenarioError, Span
+from gaitc.ir.spec import Semantics
 from gaitc.sim.domain import Domain, Goal, State
 from gaitc.sim.environments import Environment, Move, Request, Situation
 from gaitc.sim.monitor import Monitor, Violation
 from gaitc.sim.play import pursued
 from gaitc.sim.run import Run, Step, Summary
 from gaitc.sim.strategy import InputKey, Strategy, StrategyView
+from gaitc.sim.surprise import (
+    Event,
+    Outcome,
+    Surprise,
+    SurprisePolicy,
+    broken_words,
+    change_words,
+)
+from gaitc.solver.progress import goal_titles
+
+if TYPE_CHECKING:
+    from gaitc.sim.recovery import Entry, Fallback
 
 MAX_REPORTED = 20
 
@@ -31,6 +45,16 @@ class Verdicts:
     violations: list[Violation] = field(default_factory=list)
     env_live: Counter[int] = field(default_factory=Counter)
     sys_live: Counter[int] = field(default_factory=Counter)
+
+
+@dataclass(frozen=True)
+class SurpriseOptions:
+    """How a run meets surprises: the events planned by step (``--violate``), what to do
+    when an input breaks an assumption, and the semantics of the games recovery solves."""
+
+    planned: Mapping[int, Event] = field(default_factory=dict)
+    policy: SurprisePolicy = SurprisePolicy.RECOVER
+    semantics: Semantics = Semantics.DEFAULT
 
 
 class Simulator:
@@ -49,6 +73,7 @@ class Simulator:
         self._fields: dict[tuple[int, int], tuple[Any, ...]] = {}
         self._by_values: dict[tuple[int, ...], State] = {}
         self._succ_values: dict[int, tuple[tuple[int, ...], ...]] = {}
+        self._fallback: Fallback | None = None  # the games recovery solves, made when needed
 
     def state(self, node: int) -> State:
         found = self._states.get(node)
@@ -128,7 +153,12 @@ class Simulator:
         return ([self.monitor.violation(index, "env_trans", i) for i in found.env_failed]
                 + [self.monitor.violation(index, "sys_trans", i) for i in found.sys_failed])
 
-    def _step(self, index: int, node: int, previous: Step | None) -> Step:
+    def _step(self, index: int, node: int, previous: Step | None,
+              foreign: bool = False) -> Step:
+        """Step ``index`` at ``node`` after ``previous``; ``foreign`` when ``previous`` is a
+        node of another controller (the run jumped here after a surprise)."""
+        if foreign:
+            return replace(self._new_step(node, previous, foreign), index=index)
         key = (node, -1 if previous is None else previous.node)
         found = self._steps.get(key)
         if found is None:
@@ -137,13 +167,14 @@ class Simulator:
             self._fields[key] = tuple(getattr(found, f.name) for f in fields(Step))[1:]
         return Step(index, *self._fields[key])
 
-    def _new_step(self, node: int, previous: Step | None) -> Step:
+    def _new_step(self, node: int, previous: Step | None, foreign: bool = False) -> Step:
         st = self.state(node)
         repaired: list[str] = []
         if previous is not None:
             before = dict(previous.health)
             repaired = [leg for leg, level in st.health if level > before.get(leg, level)]
-        prev_state = None if previous is None else self.state(previous.node)
+        prev_state = None if previous is None else (
+            self.domain.decode(dict(previous.values)) if foreign else self.state(previous.node))
         # degraded/failed are set on this step once the next one is known (Run.add)
         return Step(
             index=0,
@@ -187,38 +218,127 @@ class Simulator:
             f"step {index}{what}: the controller has no successor for an input the "
             "assumptions allow; it is incomplete for this spec", span)
 
-    def run(self, environment: Environment, steps: int, spec_file: str = "") -> Run:
-        """Simulate up to ``steps`` transitions (``steps + 1`` states) and summarize."""
+    def run(self, environment: Environment, steps: int, spec_file: str = "",
+            surprises: SurpriseOptions | None = None) -> Run:
+        """Simulate up to ``steps`` transitions (``steps + 1`` states) and summarize.
+
+        Without ``surprises``, an input the controller has no move for ends the run with an
+        error naming the assumption it breaks.  With them, the planned events are performed
+        whatever the assumptions say, and under :attr:`SurprisePolicy.RECOVER` an input
+        that breaks ρe is recovered from (:mod:`gaitc.sim.recovery`): the run goes on, with
+        every goal or fewer, or heads for a cache and stops; each such event is recorded in
+        :attr:`Run.surprises`."""
         run = Run(legs=self.domain.legs, environment=environment.name, spec_file=spec_file,
                   model=self.domain.model)
+        opts = surprises or SurpriseOptions(policy=SurprisePolicy.STOP)
         goals = self.domain.goals
         goal_index = 0
         verdicts = Verdicts()
         node: int | None = None
         previous: Step | None = None
+        sim = previous_sim = self
+        caches: tuple[str, ...] = ()  # a stopped robot heads for these, then halts
         for index in range(steps + 1):
-            situation = self.situation(index, node, goals[goal_index] if goals else None)
+            situation = sim.situation(index, node, goals[goal_index] if goals else None)
             moves = situation.moves
+            event = opts.planned.get(index) if node is not None else None
             try:
-                if node is not None and not moves:
-                    raise self._refuse(index, node, Request(()))
-                request = environment.choose(situation)
+                if node is not None and not moves and event is None:
+                    raise sim._refuse(index, node, Request(()))
+                request = (sim._forced(node, event) if node is not None and event is not None
+                           else environment.choose(situation))
                 if request is None:
                     break
                 chosen = next((m for m in moves if m.inputs == request.inputs), None)
-                if chosen is None:
-                    raise self._refuse(index, node, request)
+                if chosen is None and (node is None or opts.policy == SurprisePolicy.STOP
+                                       or not sim.breaks(node, request)):
+                    raise sim._refuse(index, node, request)
             except GaitcError as err:
                 run.error = err
                 break
-            before = None if node is None else self.strategy.values[node]
-            self.observe(verdicts, index, before, self.strategy.values[chosen.node])
-            step = self._step(index, chosen.node, previous)
+            assert node is not None or chosen is not None
+            before = None if node is None else sim.strategy.values[node]
+            pursuing = self.domain.goals.index(goals[goal_index]) if goals else 0
+            if chosen is None:
+                assert node is not None
+                surprise, entry = sim._recover(index, node, request, pursuing, opts)
+                run.surprises.append(surprise)
+                if entry.strategy is None or entry.node is None:
+                    run.halted = surprise.note
+                    break
+                sim = Simulator(entry.strategy, self.domain, self.monitor)
+                sim._fallback = self._fallback
+                target = entry.node
+                goals = tuple(self.domain.goals[j] for j in entry.kept)
+                goal_index = entry.kept.index(pursuing) if pursuing in entry.kept else 0
+                caches = entry.cache
+            else:
+                if event is not None:
+                    run.surprises.append(Surprise(index, event.words, None, note=(
+                        "allowed: the assumptions allow this event; the controller answered "
+                        "it")))
+                target = chosen.node
+            self.observe(verdicts, index, before, sim.strategy.values[target])
+            step = sim._step(index, target, previous, foreign=sim is not previous_sim)
             run.add(step)
-            goal_index = pursued(goals, goal_index, step.goals)
-            node, previous = chosen.node, step
+            goal_index = pursued(goals, goal_index, step.goals) if goals else 0
+            node, previous, previous_sim = target, step, sim
+            if caches and step.region in caches:
+                run.halted = f"stopped in cache {step.region} (step {index})"
+                break
         run.summary = self.summarize(run, verdicts)
         return run
+
+    def breaks(self, node: int, request: Request) -> bool:
+        """Whether the request's inputs at ``node`` break an assumption (ρe)."""
+        return bool(self.monitor.failed_assumptions(self.strategy.values[node],
+                                                    self._input_names(request.inputs)))
+
+    def _forced(self, node: int, event: Event) -> Request:
+        """The inputs of ``event`` performed at ``node``: the node's state with the event's
+        changes, the other inputs as they were."""
+        after = event.apply(self.state(node), self.domain)
+        values = self.domain.encode(after)
+        here = self.strategy.valuation(node)
+        return Request(tuple(int(values.get(name, here[name])) for name in self.strategy.inputs),
+                       event.words)
+
+    def _recover(self, index: int, node: int, request: Request, pursuing: int,
+                 opts: SurpriseOptions) -> tuple[Surprise, Entry]:
+        """Where the run goes after the request at ``node`` broke an assumption, and the
+        record of it."""
+        from gaitc.sim.recovery import Fallback
+
+        if self._fallback is None:
+            self._fallback = Fallback(self.monitor.spec, self.domain, opts.semantics)
+        inputs = self._input_names(request.inputs)
+        values = self.strategy.values[node]
+        entry = self._fallback.enter(values, inputs, pursuing)
+        before = self.state(node)
+        after = self.domain.decode(self.strategy.valuation(node) | inputs)
+        broken = [self.monitor.violation(index, "env_trans", i)
+                  for i in self.monitor.failed_assumptions(values, inputs)]
+        words = broken_words(before, after, self.domain, broken)
+        first = broken[0]
+        titles = goal_titles(self.monitor.spec)
+        kept = tuple(titles[j] for j in entry.kept)
+        lost = tuple(t for j, t in enumerate(titles) if j not in entry.kept)
+        change = ", ".join(change_words(before, after, self.domain)) or "this event"
+        match entry.outcome:
+            case Outcome.RECOVERED:
+                note = "recovered: the state is still winning; every goal is pursued"
+            case Outcome.DEGRADED:
+                note = (f"degraded: still pursuing {', '.join(kept)}; {', '.join(lost)} "
+                        f"{'is' if len(lost) == 1 else 'are'} out of reach after {change}")
+            case _:
+                where = (f"heading for cache {' or '.join(entry.cache)} to stop there"
+                         if entry.node is not None else "the robot stops where it is")
+                note = f"stopped: no goal is reachable after {change}; {where}"
+        surprise = Surprise(index, request.what or "an input outside the assumptions", words,
+                            clause=first.rule,
+                            line=None if first.span is None else str(first.span),
+                            outcome=entry.outcome, kept=kept, lost=lost, note=note)
+        return surprise, entry
 
     def summarize(self, run: Run, verdicts: Verdicts) -> Summary:
         """The summary of ``run`` from the monitor's ``verdicts`` along it."""
@@ -239,11 +359,13 @@ class Simulator:
                                for i in range(len(spec.env_liveness))),
             sys_liveness=tuple((self.monitor.rule("sys_liveness", i), sys_live[i])
                                for i in range(len(spec.sys_liveness))),
-            stopped=None if run.error is None else run.error.message,
+            stopped=run.error.message if run.error is not None else run.halted,
         )
 
 
 def simulate(strategy: StrategyView, domain: Domain, monitor: Monitor, environment: Environment,
-             steps: int = 50, spec_file: str = "") -> Run:
-    """Simulate ``environment`` against ``strategy`` for up to ``steps`` steps."""
-    return Simulator(strategy, domain, monitor).run(environment, steps, spec_file)
+             steps: int = 50, spec_file: str = "", surprises: SurpriseOptions | None = None
+             ) -> Run:
+    """Simulate ``environment`` against ``strategy`` for up to ``steps`` steps (meeting
+    ``surprises`` as :meth:`Simulator.run` says)."""
+    return Simulator(strategy, domain, monitor).run(environment, steps, spec_file, surprises)

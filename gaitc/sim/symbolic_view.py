@@ -79,6 +79,12 @@ class SymbolicStrategy(NodeReading):
             self._options[node] = found
         return found
 
+    def enter(self, bits: Mapping[str, bool], goal: int) -> int:
+        """The node of the state ``bits`` (every input and output bit) pursuing ``goal``: a
+        run that jumped there (a broken assumption, :mod:`gaitc.sim.recovery`) goes on from
+        it.  The state must lie in the winning region for the node to have moves."""
+        return self._node(tuple(int(bits[b]) for b in self.pre), goal % max(1, len(self.goals)))
+
     # ------------------------------------------------------------ stepping
     def _node(self, state: State, goal: int) -> int:
         key = (state, goal)

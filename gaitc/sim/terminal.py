@@ -9,6 +9,7 @@ from collections.abc import Sequence
 from typing import TextIO
 
 from gaitc.sim.run import Run, Step, Summary
+from gaitc.sim.surprise import Surprise
 
 _RESET = "\033[0m"
 _COLOURS = {"healthy": "\033[34m", "degraded": "\033[33m", "failed": "\033[31m",
@@ -114,4 +115,14 @@ def summary_text(summary: Summary, environment: str = "", colour: bool = False) 
             lines.append(f"  □◇ {what}: {rule}: held on {count} step{'s' * (count != 1)}")
     if summary.stopped:
         lines.append(f"  stopped early: {summary.stopped}")
+    return "\n".join(lines)
+
+
+def surprises_text(surprises: Sequence[Surprise]) -> str:
+    """The events the environment performed along a run, one line each with its outcome."""
+    lines = ["surprises:"]
+    for s in surprises:
+        lines.append(f"  {s.words()}")
+        if s.line:
+            lines.append(f"    broken: {s.clause} ({s.line})")
     return "\n".join(lines)

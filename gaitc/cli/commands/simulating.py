@@ -13,7 +13,13 @@ from typing import Any
 
 from gaitc.api.modes import EncodingName, EnvironmentKind
 from gaitc.api.runs import Run
-from gaitc.api.simulation import ENVIRONMENTS, Opponent, run_document, simulate_spec
+from gaitc.api.simulation import (
+    ENVIRONMENTS,
+    Opponent,
+    SurprisePolicy,
+    run_document,
+    simulate_spec,
+)
 from gaitc.cli.commands.arguments import add_prefer, run_file, semantics_of
 from gaitc.cli.exitcodes import ExitCode, exit_code_help
 from gaitc.cli.reporting import document, exit_code_of, print_json
@@ -65,9 +71,24 @@ def register(sub: Any) -> None:
     p.add_argument("--robotics-semantics", action="store_true",
                    help="semantics when synthesizing on the fly")
     p.add_argument("--quiet", action="store_true", help="print only the summary")
+    add_surprises(p)
     add_json(p)
     add_prefer(p, "without CONTROLLER: ")
     p.set_defaults(run=run_simulate)
+
+
+def add_surprises(p: argparse.ArgumentParser) -> None:
+    """``--violate`` and ``--on-surprise``: events the environment performs whatever the
+    assumptions say, and what the controller does after an input that breaks them."""
+    p.add_argument("--violate", action="append", default=[], metavar="STEP:EVENT",
+                   help="at step STEP the environment performs EVENT whatever the assumptions "
+                   "say: 'fail L5', 'degrade L3', 'degrade L3 by 2', 'repair L2', 'switch "
+                   "spill on', 'switch spill off' (repeatable; docs/how-to/surprises.md)")
+    p.add_argument("--on-surprise", choices=SurprisePolicy.values(),
+                   default=SurprisePolicy.RECOVER.value,
+                   help="after an input that breaks an assumption: recover (go on from the "
+                   "state reached, with fewer goals or to a cache if need be; the default) or "
+                   "stop with an error")
 
 
 def add_json(p: argparse.ArgumentParser) -> None:
@@ -119,7 +140,8 @@ def run_simulate(args: argparse.Namespace) -> int:
         played = simulate_spec(args.spec, args.controller, opponent_of(args), args.steps,
                                args.seed or 0, encoding=args.encoding,
                                semantics=semantics_of(args), prefer=args.prefer,
-                               progress=progress)
+                               progress=progress, violate=args.violate,
+                               on_surprise=args.on_surprise)
     if played.run is None:
         print(f"{args.spec}: unrealizable: no controller to simulate", file=sys.stderr)
         if args.json:
@@ -141,7 +163,7 @@ def report_run(
     ``as_json`` one object is printed instead (with ``extra``'s keys), holding the error
     that stopped the run, and the exit code is returned rather than the error raised.
     """
-    from gaitc.api.runs import save_run, step_table, summary_text, use_colour
+    from gaitc.api.runs import save_run, step_table, summary_text, surprises_text, use_colour
 
     if as_json:
         if out:
@@ -158,6 +180,8 @@ def report_run(
         print()
     if run.summary is not None:
         print(summary_text(run.summary, source, colour))
+    if run.surprises:
+        print(surprises_text(run.surprises))
     if out:
         save_run(run, out)
     if run.error is not None:

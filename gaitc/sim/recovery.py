@@ -1,0 +1,203 @@
+"""Recovery: where a run goes after the environment breaks an assumption.
+
+A GR(1) controller promises its goals only while the environment keeps ρe.  When an
+observed input breaks it (a leg failing while not in use, a spill where none could be),
+the robot's next move is decided here, after the intermittent-violation view of Ehlers and
+Topcu ("Resilience to intermittent assumption violations in reactive synthesis", HSCC
+2014): the surprise is a jump of the game to another state, after which the environment
+keeps its assumptions again.  So the question is only where the jump lands:
+
+- **recovered**: some move y' that ρs allows from the state before, with the surprising
+  inputs x', lands in the winning region W of the spec's game.  The robot takes it and
+  goes on with the game's strategy from there (the per-goal relations of
+  :func:`gaitc.solver.game.goal_strategies`, run by :class:`~gaitc.sim.symbolic_view.
+  SymbolicStrategy`), which keeps every guarantee from then on.
+- **degraded**: no such move exists, but one lands in the winning region of the game with
+  only some of the goals (the same goal-dropped variants explain uses to say which goal is
+  lost first, :mod:`gaitc.analysis.units`): the largest such set of goals, ties broken by
+  the goals' order, is pursued from then on.  A goal not achievable alone from the state
+  is in no such set, so the singletons are tried first and the larger sets only among the
+  goals that pass.
+- **stopped**: no goal is achievable; the robot heads for a cache when reaching one can be
+  guaranteed (the game whose one goal is "in a cache"), and stops there, or stops at once.
+
+The games are solved without the care set (:class:`~gaitc.solver.options.Options`
+``care=False``): after a surprise the state may lie outside the invariants ρe keeps, where
+the care-set solution is not exact.  Each winning region depends on the set of goals only,
+not on the state, so each game is solved once per run (at most 2^n games for n goals; in
+practice n + 2).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
+from itertools import combinations
+from typing import Any
+
+from gaitc.diagnostics import Span
+from gaitc.ir.bddfile import SymbolicController
+from gaitc.ir.bddwalk import first_assignment
+from gaitc.ir.formula import Or
+from gaitc.ir.spec import Clause, GR1Spec, Origin, Semantics
+from gaitc.sim.domain import Domain
+from gaitc.sim.surprise import Outcome
+from gaitc.sim.symbolic_view import SymbolicStrategy
+from gaitc.solver.canonical import spec_integers
+from gaitc.solver.game import Game
+from gaitc.solver.symbolic import Options, SymbolicSpec
+from gaitc.solver.symbolic_strategy import symbolic_controller
+from ltlcompiler.encoding import make_encoding
+
+
+@dataclass(frozen=True)
+class Entry:
+    """Where a run goes on after a surprise: the outcome, the goals kept (indices into the
+    spec's □◇ guarantees), the strategy and its node to continue from (None: stop now), the
+    cache a stopped robot heads for."""
+
+    outcome: Outcome
+    kept: tuple[int, ...]
+    strategy: SymbolicStrategy | None = None
+    node: int | None = None
+    cache: tuple[str, ...] = ()
+
+
+@dataclass
+class _Solved:
+    """One game: its BDDs, winning region and controller (None: the system wins nowhere)."""
+
+    sym: SymbolicSpec
+    winning: Any
+    controller: SymbolicController
+    runtime: SymbolicStrategy | None = None
+
+
+@dataclass
+class Fallback:
+    """The games a run falls back on after surprises, each solved when first needed."""
+
+    spec: GR1Spec
+    domain: Domain
+    semantics: Semantics = Semantics.DEFAULT
+    _games: dict[tuple[str, ...], _Solved | None] = field(default_factory=dict, repr=False)
+
+    @property
+    def goals(self) -> int:
+        return len(self.spec.sys_liveness)
+
+    def enter(self, before: Sequence[int], inputs: Mapping[str, int], pursuing: int = 0,
+              caches: bool = True) -> Entry:
+        """Where the run goes when the state was ``before`` (spec-level values, in the
+        spec's variable order) and the environment gave ``inputs``: all goals if that can
+        be won, else the largest set of goals, else a cache (``caches``), else stop."""
+        every = tuple(range(self.goals))
+        for kept in self._candidates(before, inputs):
+            found = self._entry(self._liveness(kept), before, inputs, pursuing, kept)
+            if found is not None:
+                outcome = Outcome.RECOVERED if kept == every else Outcome.DEGRADED
+                strategy, node = found
+                return Entry(outcome, kept, strategy, node)
+        cached = self.domain.model.caches
+        if caches and cached:
+            goal = Clause(Or(tuple(self._region(c) for c in cached)) if len(cached) > 1
+                          else self._region(cached[0]),
+                          Origin("stopping: in a cache"))
+            found = self._entry((goal,), before, inputs, 0, ())
+            if found is not None:
+                return Entry(Outcome.STOPPED, (), found[0], found[1], tuple(cached))
+        return Entry(Outcome.STOPPED, ())
+
+    def achievable(self, before: Sequence[int], inputs: Mapping[str, int],
+                   kept: Sequence[int]) -> bool:
+        """Whether a move from ``before`` with ``inputs`` lands in the winning region of the
+        game with the goals ``kept`` only (tests and reports re-ask this)."""
+        return self._entry(self._liveness(tuple(kept)), before, inputs, 0, tuple(kept)) \
+            is not None
+
+    # ------------------------------------------------------------------ the search
+    def _candidates(self, before: Sequence[int], inputs: Mapping[str, int]
+                    ) -> list[tuple[int, ...]]:
+        """Goal sets to try, largest first (then in the goals' order): all goals, then the
+        subsets of the goals achievable alone."""
+        every = tuple(range(self.goals))
+        if not every:
+            return []
+        if self._entry(self._liveness(every), before, inputs, 0, every) is not None:
+            return [every]
+        alone = [j for j in every
+                 if self._entry(self._liveness((j,)), before, inputs, 0, (j,)) is not None]
+        return [kept for size in range(len(alone), 0, -1)
+                for kept in combinations(alone, size) if len(kept) < len(every)]
+
+    def _liveness(self, kept: tuple[int, ...]) -> tuple[Clause, ...]:
+        return tuple(self.spec.sys_liveness[j] for j in kept)
+
+    def _region(self, name: str) -> Any:
+        return make_encoding(self.domain.model, self.domain.encoding).region(name)
+
+    def _game(self, liveness: tuple[Clause, ...]) -> _Solved | None:
+        key = tuple(str(c.formula) for c in liveness)
+        if key in self._games:
+            return self._games[key]
+        variant = self.spec.with_sections(sys_liveness=liveness)
+        sym = SymbolicSpec(variant, Options(care=False))
+        result = Game(sym, purpose="solving the fallback game").solve(keep_layers=True)
+        solved = None
+        if result.winning != sym.bdd.false:
+            solved = _Solved(sym, result.winning,
+                             symbolic_controller(sym, result, self.semantics))
+        self._games[key] = solved
+        return solved
+
+    def _entry(self, liveness: tuple[Clause, ...], before: Sequence[int],
+               inputs: Mapping[str, int], pursuing: int, kept: tuple[int, ...]
+               ) -> tuple[SymbolicStrategy, int] | None:
+        """The node of the game's strategy that a move from ``before`` with ``inputs``
+        enters, in the winning region (None: no move ρs allows lands there)."""
+        solved = self._game(liveness)
+        if solved is None:
+            return None
+        sym = solved.sym
+        names = tuple(v.name for v in self.spec.variables())
+        pre = _bits(sym, dict(zip(names, before, strict=True)))
+        now = dict(zip(names, before, strict=True)) | {k: int(v) for k, v in inputs.items()}
+        post_in = {b + "'": value for b, value in _bits(sym, now).items()
+                   if b in sym.pre_inputs}
+        moves = sym.bdd.let(pre | post_in, sym.sys_trans & sym.prime(solved.winning))
+        outs = [b + "'" for b in sym.output_bits]
+        rank = {b + "'": sym.choice_rank[b] for b in sym.output_bits}
+        try:
+            y = first_assignment(sym.bdd, moves, outs, rank)
+        except ValueError:  # a relation over bits outside the state: no move to take
+            return None
+        if y is None:
+            return None
+        if solved.runtime is None:
+            solved.runtime = SymbolicStrategy(solved.controller, sym.spec, "<fallback>")
+        runtime = solved.runtime
+        state = {b.removesuffix("'"): bool(v) for b, v in post_in.items()}
+        state |= {b.removesuffix("'"): bool(v) for b, v in zip(outs, y, strict=True)}
+        goal = kept.index(pursuing) if pursuing in kept else 0
+        return runtime, runtime.enter(state, goal)
+
+
+def _bits(sym: SymbolicSpec, values: Mapping[str, int]) -> dict[str, bool]:
+    """The bits of spec-level ``values`` (integers as offsets from their lowest value)."""
+    integers = spec_integers(sym)
+    out: dict[str, bool] = {}
+    for name, bits in sym.var_bits.items():
+        value = int(values.get(name, 0))
+        iv = integers.get(name)
+        if iv is not None and len(bits) == len(iv.bits):
+            offset = value - iv.low
+            out.update({b: bool((offset >> k) & 1) for k, b in enumerate(iv.bits)})
+        else:
+            out[bits[0]] = bool(value)
+    return out
+
+
+def fallback_span(spec: GR1Spec, index: int) -> Span | None:
+    """The source of □◇ guarantee ``index`` (for reports)."""
+    origin = spec.sys_liveness[index].origin
+    return origin.span if origin is not None else None

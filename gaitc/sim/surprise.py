@@ -1,0 +1,235 @@
+"""Surprises: environment events that may break the spec's assumptions, and their words.
+
+A surprise is written in the player's move words (:mod:`gaitc.play.words`): ``fail L5``,
+``degrade L3``, ``degrade L3 by 2``, ``repair L2``, ``switch spill on``, ``switch spill off``.
+``simulate --violate STEP:EVENT`` makes the environment perform one at a step whatever the
+assumptions ρe say.  :func:`broken_words` tells a move that breaks ρe in the robot's terms
+("L5 failed while not in use (eq. 3.5, line 23)"): what changed that the clause forbids,
+with the clause's equation and source line, the detection half of issue 52; the recovery
+half is :mod:`gaitc.sim.recovery`.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any
+
+from gaitc.diagnostics import Span, UsageError
+from gaitc.diagnostics.choices import Choice
+from gaitc.sim.domain import Domain, State
+from gaitc.sim.monitor import Violation
+
+_EQUATION = re.compile(r"^(eq\. [0-9.]+|mutex|init)")
+
+
+class Outcome(Choice):
+    """What became of a run after an event the environment performed
+    (:mod:`gaitc.sim.recovery` decides it)."""
+
+    RECOVERED = "recovered"  # still winning: every goal, with the game's strategy
+    DEGRADED = "degraded"  # only some goals are still achievable; those are pursued
+    STOPPED = "stopped"  # no goal is achievable: to a cache if one is sure, then stop
+    ALLOWED = "allowed"  # the event broke no assumption; the controller answered it
+
+
+class SurprisePolicy(Choice):
+    """What a run does when an observed input breaks an assumption."""
+
+    RECOVER = "recover"  # go on from the state reached, degraded if need be (recovery.py)
+    STOP = "stop"  # end the run with an error naming the assumption
+
+
+@dataclass(frozen=True)
+class Surprise:
+    """One event of a run that the environment performed (``violations`` in run files and
+    ``--json``): the step, the event in move words, the first assumption it broke in the
+    robot's words with the clause's rule and source, and what became of the run."""
+
+    step: int
+    event: str
+    assumption: str | None  # None: the event broke no assumption
+    clause: str | None = None  # the broken clause's rule
+    line: str | None = None  # file:line:col of the clause, when it has a source
+    outcome: Outcome = Outcome.ALLOWED
+    kept: tuple[str, ...] = ()  # the goals still pursued
+    lost: tuple[str, ...] = ()  # the goals given up
+    note: str = ""  # the outcome in words
+
+    def words(self) -> str:
+        """The surprise as the run report prints it."""
+        head = f"step {self.step}: {self.event}"
+        if self.assumption:
+            head = f"step {self.step}: {self.assumption}"
+        return f"{head}; {self.note}" if self.note else head
+
+    def to_json(self) -> dict[str, Any]:
+        return {"step": self.step, "event": self.event, "assumption": self.assumption,
+                "clause": self.clause, "line": self.line, "outcome": str(self.outcome),
+                "goals_kept": list(self.kept), "goals_lost": list(self.lost),
+                "note": self.note}
+
+    @classmethod
+    def from_json(cls, data: Any) -> Surprise:
+        """A surprise read back from a run file (KeyError/TypeError/ValueError on a bad one)."""
+        def text(key: str) -> str | None:
+            return None if data.get(key) is None else str(data[key])
+
+        return cls(int(data["step"]), str(data["event"]), text("assumption"),
+                   clause=text("clause"), line=text("line"), outcome=Outcome(data["outcome"]),
+                   kept=tuple(str(g) for g in data.get("goals_kept", ())),
+                   lost=tuple(str(g) for g in data.get("goals_lost", ())),
+                   note=str(data.get("note", "")))
+
+
+@dataclass(frozen=True)
+class Event:
+    """One environment event: legs losing levels or failing, a repair, a hazard switched."""
+
+    words: str
+    degrade: tuple[tuple[str, int], ...] = ()  # (leg, levels lost)
+    fail: tuple[str, ...] = ()
+    repair: tuple[str, ...] = ()
+    hazard: str | None = None
+    switch_on: bool = False  # with ``hazard``: on (True) or off (False)
+
+    def apply(self, state: State, domain: Domain) -> State:
+        """The state after the event: the legs' levels and the hazard changed, the robot's
+        region and gait as they were (the robot has not answered yet)."""
+        levels = dict(state.health)
+        for leg, lost in self.degrade:
+            levels[leg] = max(1, levels[leg] - lost)
+        for leg in self.fail:
+            levels[leg] = 1
+        for leg in self.repair:
+            levels[leg] = domain.full[leg]
+        hazard = state.hazard
+        if self.hazard is not None:
+            hazard = self.hazard if self.switch_on else (
+                None if state.hazard == self.hazard else state.hazard)
+        return State(state.region, state.gait, tuple((leg, levels[leg]) for leg in domain.legs),
+                     hazard)
+
+
+@dataclass(frozen=True)
+class Planned:
+    """An event planned for a step (``--violate STEP:EVENT``)."""
+
+    step: int
+    event: Event
+
+
+def parse_event(text: str, domain: Domain, where: str = "--violate") -> Event:
+    """An event from the player's move words; an unknown word, leg or hazard is a
+    :class:`UsageError` naming ``where`` and what is accepted."""
+    words = text.split()
+    legs, hazards = domain.legs, tuple(domain.hazard_regions)
+
+    def leg(name: str) -> str:
+        if name not in legs:
+            raise UsageError(f"{where} '{text}': unknown leg '{name}'; the robot's legs are "
+                             f"{', '.join(legs)}")
+        return name
+
+    match words:
+        case ["fail", name]:
+            return Event(text, fail=(leg(name),))
+        case ["degrade", name]:
+            return Event(text, degrade=((leg(name), 1),))
+        case ["degrade", name, "by", count] if count.isdigit() and int(count) >= 1:
+            return Event(text, degrade=((leg(name), int(count)),))
+        case ["repair", name]:
+            return Event(text, repair=(leg(name),))
+        case ["switch", name, ("on" | "off") as how]:
+            if name not in hazards:
+                known = ", ".join(hazards) if hazards else "none (the spec declares no hazard)"
+                raise UsageError(f"{where} '{text}': unknown hazard set '{name}'; the spec's "
+                                 f"hazard sets are {known}")
+            return Event(text, hazard=name, switch_on=how == "on")
+    raise UsageError(f"{where} '{text}': not an event; write one of 'fail LEG', 'degrade LEG', "
+                     "'degrade LEG by N', 'repair LEG', 'switch HAZARD on', "
+                     "'switch HAZARD off'")
+
+
+def parse_planned(text: str, domain: Domain) -> Planned:
+    """``STEP:EVENT`` (``12:fail L5``) as a planned event; STEP counts from 1 (step 0 is the
+    first state, which the initial assumptions decide)."""
+    step, sep, rest = text.partition(":")
+    if not sep or not step.strip().isdigit() or int(step) < 1:
+        raise UsageError(f"--violate '{text}': write STEP:EVENT with STEP a step number from 1, "
+                         "e.g. --violate '12:fail L5'")
+    return Planned(int(step), parse_event(rest.strip(), domain))
+
+
+def plan(texts: Sequence[str], domain: Domain) -> dict[int, Event]:
+    """The events of several ``--violate`` options by step; two at one step are an error."""
+    out: dict[int, Event] = {}
+    for text in texts:
+        planned = parse_planned(text, domain)
+        if planned.step in out:
+            first = out[planned.step].words
+            raise UsageError(f"--violate: two events at step {planned.step} ('{first}' and "
+                             f"'{planned.event.words}'); give one per step")
+        out[planned.step] = planned.event
+    return out
+
+
+def equation(rule: str) -> str:
+    """The equation a clause's rule cites (``eq. 3.5``), or the rule itself."""
+    found = _EQUATION.match(rule)
+    return found.group(1) if found else rule
+
+
+def _where(violation: Violation) -> str:
+    span = violation.span
+    return f", line {span.line}" if isinstance(span, Span) else ""
+
+
+def change_words(before: State, after: State, domain: Domain) -> list[str]:
+    """What the environment changed from ``before`` to ``after`` that the gait of ``before``
+    does not explain, in the robot's words."""
+    used = set(domain.legs_used(before.gait))
+    in_cache = before.region in domain.model.caches
+    now = dict(after.health)
+    out: list[str] = []
+    for leg, level in before.health:
+        new = now[leg]
+        if new == level:
+            continue
+        if new > level:
+            out.append(f"{leg} was repaired outside a cache" if not in_cache
+                       else f"{leg} went up to level {new}")
+            continue
+        lost = level - new
+        what = "failed" if new == 1 else (
+            "lost a level" if lost == 1 else f"lost {lost} levels")
+        if in_cache:
+            out.append(f"{leg} {what} in cache {before.region}")
+        elif leg not in used:
+            out.append(f"{leg} {what} while not in use")
+        elif lost > 1:
+            out.append(f"{leg} dropped {lost} levels in one move"
+                       + (" and failed" if new == 1 else ""))
+        else:
+            out.append(f"{leg} {what}")
+    if before.hazard != after.hazard:
+        out.append(f"hazard {after.hazard} switched on" if after.hazard is not None
+                   else f"hazard {before.hazard} switched off")
+    return out
+
+
+def broken_words(before: State, after: State, domain: Domain,
+                 broken: Sequence[Violation]) -> str:
+    """The first broken assumption in the robot's words: what changed, then the clause's
+    equation and line (``L5 failed while not in use (eq. 3.5, line 23)``); a clause that
+    names no equation is quoted."""
+    if not broken:
+        return ""
+    first = next((v for v in broken if v.span is not None), broken[0])
+    changes = change_words(before, after, domain)
+    tag = equation(first.rule)
+    cite = f"({tag}{_where(first)})" if tag != first.rule else f"('{first.rule}'{_where(first)})"
+    if not changes:
+        return f"the environment broke an assumption {cite}"
+    return f"{', '.join(changes)} {cite}"
