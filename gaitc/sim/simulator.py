@@ -55,6 +55,9 @@ class SurpriseOptions:
     planned: Mapping[int, Event] = field(default_factory=dict)
     policy: SurprisePolicy = SurprisePolicy.RECOVER
     semantics: Semantics = Semantics.DEFAULT
+    #: the games recovery solves, shared by the runs given the same options (solved when
+    #: first needed); None: each run solves its own
+    fallback: Fallback | None = field(default=None, compare=False)
 
 
 class Simulator:
@@ -310,7 +313,8 @@ class Simulator:
         from gaitc.sim.recovery import Fallback
 
         if self._fallback is None:
-            self._fallback = Fallback(self.monitor.spec, self.domain, opts.semantics)
+            self._fallback = opts.fallback or Fallback(self.monitor.spec, self.domain,
+                                                       opts.semantics)
         inputs = self._input_names(request.inputs)
         values = self.strategy.values[node]
         entry = self._fallback.enter(values, inputs, pursuing)
