@@ -215,7 +215,8 @@ class Simulator:
             rules = "; ".join(f"'{self.monitor.rule('env_trans', i)}'" for i in failed[:3])
             more = f" (and {len(failed) - 3} more)" if len(failed) > 3 else ""
             cls = ScenarioError if span is not None else ControllerError
-            return cls(f"step {index}{what}: the environment breaks the assumption "
+            told = self._told(index, node, request, failed)
+            return cls(f"step {index}{what}: {told}: the environment breaks the assumption "
                        f"{rules}{more}; the controller has no successor for this input", span)
         return ControllerError(
             f"step {index}{what}: the controller has no successor for an input the "
@@ -306,6 +307,13 @@ class Simulator:
         return Request(tuple(int(values.get(name, here[name])) for name in self.strategy.inputs),
                        event.words)
 
+    def _told(self, index: int, node: int, request: Request, failed: list[int]) -> str:
+        """The broken assumption in the robot's words (:func:`gaitc.sim.surprise.broken_words`)."""
+        inputs = self._input_names(request.inputs)
+        after = self.domain.decode(self.strategy.valuation(node) | inputs)
+        broken = [self.monitor.violation(index, "env_trans", i) for i in failed]
+        return broken_words(self.state(node), after, self.domain, broken)
+
     def _recover(self, index: int, node: int, request: Request, pursuing: int,
                  opts: SurpriseOptions) -> tuple[Surprise, Entry]:
         """Where the run goes after the request at ``node`` broke an assumption, and the
@@ -322,8 +330,8 @@ class Simulator:
         after = self.domain.decode(self.strategy.valuation(node) | inputs)
         broken = [self.monitor.violation(index, "env_trans", i)
                   for i in self.monitor.failed_assumptions(values, inputs)]
-        words = broken_words(before, after, self.domain, broken)
-        first = broken[0]
+        words = self._told(index, node, request, [v.index for v in broken])
+        first = next((v for v in broken if v.span is not None), broken[0])
         titles = goal_titles(self.monitor.spec)
         kept = tuple(titles[j] for j in entry.kept)
         lost = tuple(t for j, t in enumerate(titles) if j not in entry.kept)

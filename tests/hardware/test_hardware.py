@@ -94,8 +94,9 @@ def test_scenario_breaking_an_assumption_stops_and_vents(tiny: Session, tmp_path
     robot = SimulatedRobot(tiny.strategy, tiny.domain, tiny.monitor, env, 2)
     run = Driver(tiny.strategy, tiny.domain, tiny.monitor, prims, robot).run(5)
     assert run.error is not None
-    assert run.error.message.startswith("step 1 (sensed L2 2→1; no hazard): the environment "
-                                        "breaks the assumption 'eq. 3.6: cache a resets")
+    assert run.error.message.startswith("step 1 (sensed L2 2→1; no hazard): L2 failed in "
+                                        "cache a (eq. 3.6, line 9): the environment breaks the "
+                                        "assumption 'eq. 3.6: cache a resets")
     assert robot.applied[-1] == "00"
 
 

@@ -123,6 +123,15 @@ def _rule(world: World, equation: str, word: str) -> str:
     return rules[0]
 
 
+def _line(world: World, equation: str, word: str) -> int:
+    """The source line of the clause :func:`_rule` finds."""
+    for c in world.monitor.spec.env_trans:
+        if c.origin is not None and c.origin.rule == _rule(world, equation, word):
+            assert c.origin.span is not None
+            return c.origin.span.line
+    raise AssertionError(word)
+
+
 def test_degrading_a_leg_not_in_use_names_the_assumption(world: World) -> None:
     gait = world.run("steps:\n  - {}\n").steps[1].gait
     idle = next(leg for leg in world.domain.legs if leg not in world.domain.legs_used(gait))
@@ -130,7 +139,8 @@ def test_degrading_a_leg_not_in_use_names_the_assumption(world: World) -> None:
     assert len(run.steps) == 2 and isinstance(run.error, ScenarioError)
     assert str(run.error.span) == f"{world.folder / 'idle.yaml'}:3:5"
     assert run.error.message == (
-        f"step 2 (degrade {idle}): the environment breaks the assumption "
+        f"step 2 (degrade {idle}): {idle} lost a level while not in use (eq. 3.5, line "
+        f"{_line(world, 'eq. 3.5', gait)}): the environment breaks the assumption "
         f"'{_rule(world, 'eq. 3.5', gait)}'; the controller has no successor for this input")
 
 
@@ -140,7 +150,8 @@ def test_skipping_a_level_names_the_assumption(world: World) -> None:
     run = world.run(f"steps:\n  - {{}}\n  - health: {{{leg}: 1}}\n")
     assert isinstance(run.error, ScenarioError)
     assert run.error.message == (
-        f"step 2 ({leg} at level 1): the environment breaks the assumption "
+        f"step 2 ({leg} at level 1): {leg} dropped 2 levels in one move and failed (eq. 3.5, "
+        f"line {_line(world, 'eq. 3.5', gait)}): the environment breaks the assumption "
         f"'{_rule(world, 'eq. 3.5', gait)}'; the controller has no successor for this input")
 
 
@@ -148,7 +159,8 @@ def test_degrading_in_a_cache_names_the_cache_assumption(world: World) -> None:
     run = world.run("steps:\n  - degrade: [L1]\n")  # step 1 leaves the cache nw
     assert isinstance(run.error, ScenarioError)
     assert run.error.message == (
-        f"step 1 (degrade L1): the environment breaks the assumption "
+        f"step 1 (degrade L1): L1 lost a level in cache nw (eq. 3.6, line "
+        f"{_line(world, 'eq. 3.6', 'nw')}): the environment breaks the assumption "
         f"'{_rule(world, 'eq. 3.6', 'nw')}'; the controller has no successor for this input")
 
 
@@ -161,9 +173,11 @@ def test_degrading_a_failed_leg_is_refused(world: World) -> None:
     assert run.error.message in (
         f"leg '{leg}' has already failed (level 1) and cannot degrade further",
         # or the controller stopped using it, so eq. 3.5 forbids the step
-        *(f"step {k} (degrade {leg}): the environment breaks the assumption "
+        *(f"step {k} (degrade {leg}): {leg} {what} (eq. 3.5, line "
+          f"{_line(world, 'eq. 3.5', g)}): the environment breaks the assumption "
           f"'{_rule(world, 'eq. 3.5', g)}'; the controller has no successor for this input"
-          for k in (3, 4) for g in world.domain.gait_legs if g != "noGait"))
+          for k in (3, 4) for g in world.domain.gait_legs if g != "noGait"
+          for what in ("lost a level while not in use", "failed while not in use")))
 
 
 def test_wrong_initial_health_is_refused(world: World) -> None:
@@ -180,8 +194,9 @@ def test_cli_scripted_error_points_into_the_scenario(world: World,
                  "--env", "scripted", str(path), "--on-surprise", "stop"])
     err = capsys.readouterr().err
     assert code == 1
-    assert err.startswith(f"{path}:2:5: error: step 1 (degrade L1): the environment breaks "
-                          f"the assumption '{_rule(world, 'eq. 3.6', 'nw')}'")
+    assert err.startswith(f"{path}:2:5: error: step 1 (degrade L1): L1 lost a level in cache "
+                          f"nw (eq. 3.6, line {_line(world, 'eq. 3.6', 'nw')}): the "
+                          f"environment breaks the assumption '{_rule(world, 'eq. 3.6', 'nw')}'")
     assert "    - degrade: [L1]\n" in err
 
 
