@@ -223,13 +223,21 @@ def broken_words(before: State, after: State, domain: Domain,
                  broken: Sequence[Violation]) -> str:
     """The first broken assumption in the robot's words: what changed, then the clause's
     equation and line (``L5 failed while not in use (eq. 3.5, line 23)``); a clause that
-    names no equation is quoted."""
+    names no equation is quoted.  A generated clause without a source line (the one of
+    "no gait") cites the line declaring the first leg that changed."""
     if not broken:
         return ""
     first = next((v for v in broken if v.span is not None), broken[0])
     changes = change_words(before, after, domain)
     tag = equation(first.rule)
-    cite = f"({tag}{_where(first)})" if tag != first.rule else f"('{first.rule}'{_where(first)})"
+    where = _where(first)
+    if not where:
+        changed = [leg for (leg, level), (_, new) in zip(before.health, after.health,
+                                                          strict=True) if level != new]
+        spans = {leg.name: leg.span for leg in domain.model.legs}
+        span = spans.get(changed[0]) if changed else None
+        where = f", {changed[0]} declared on line {span.line}" if span is not None else ""
+    cite = f"({tag}{where})" if tag != first.rule else f"('{first.rule}'{where})"
     if not changes:
         return f"the environment broke an assumption {cite}"
     return f"{', '.join(changes)} {cite}"
