@@ -241,8 +241,9 @@ def test_stop_policy_keeps_the_old_error(robot_a: Session) -> None:
     k = _unused_steps(robot_a, "L5")[0]
     run = _run(robot_a, [f"{k}:fail L5"], k + 5, policy=SurprisePolicy.STOP)
     assert run.error is not None and not run.surprises
-    assert run.error.message.startswith(f"step {k} (fail L5): the environment breaks the "
-                                        "assumption 'eq. 3.5")
+    assert run.error.message.startswith(f"step {k} (fail L5): L5 failed while not in use "
+                                        "(eq. 3.5, L5 declared on line 14): the environment "
+                                        "breaks the assumption 'eq. 3.5")
 
 
 def test_an_event_the_assumptions_allow_is_marked_allowed(robot_a: Session) -> None:
