@@ -17,7 +17,8 @@ keeps its assumptions again.  So the question is only where the jump lands:
   lost first, :mod:`gaitc.analysis.units`): the largest such set of goals, ties broken by
   the goals' order, is pursued from then on.  A goal not achievable alone from the state
   is in no such set, so the singletons are tried first and the larger sets only among the
-  goals that pass.
+  goals that pass (at most :data:`MAX_GOAL_SETS` sets of two or more goals; a spec with
+  more goals than that allows keeps a single goal past it; docs/background/recovery.md).
 - **stopped**: no goal is achievable; the robot heads for a cache when reaching one can be
   guaranteed (the game whose one goal is "in a cache"), and stops there, or stops at once.
 
@@ -33,7 +34,7 @@ from __future__ import annotations
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from itertools import combinations
-from typing import Any
+from typing import Any, Final
 
 from gaitc.diagnostics import Span
 from gaitc.ir.bddfile import SymbolicController
@@ -48,6 +49,10 @@ from gaitc.solver.game import Game
 from gaitc.solver.symbolic import Options, SymbolicSpec
 from gaitc.solver.symbolic_strategy import symbolic_controller
 from ltlcompiler.encoding import make_encoding
+
+#: The most goal sets of two or more goals a surprise tries (each a game solved once per
+#: run); past it, the larger sets are skipped and the best single goal is kept.
+MAX_GOAL_SETS: Final = 256
 
 
 @dataclass(frozen=True)
@@ -127,8 +132,13 @@ class Fallback:
             return [every]
         alone = [j for j in every
                  if self._entry(self._liveness((j,)), before, inputs, 0, (j,)) is not None]
-        return [kept for size in range(len(alone), 0, -1)
-                for kept in combinations(alone, size) if len(kept) < len(every)]
+        out: list[tuple[int, ...]] = []
+        for size in range(len(alone), 1, -1):
+            sets = [kept for kept in combinations(alone, size) if len(kept) < len(every)]
+            if len(out) + len(sets) > MAX_GOAL_SETS:
+                break  # too many sets of this size to solve: the singletons stand in
+            out.extend(sets)
+        return out + [(j,) for j in alone]
 
     def _liveness(self, kept: tuple[int, ...]) -> tuple[Clause, ...]:
         return tuple(self.spec.sys_liveness[j] for j in kept)
