@@ -24,7 +24,7 @@ from gaitc.sim.surprise import plan
 
 ROOT = Path(__file__).resolve().parent.parent
 QUICK = ("shuttle_2leg", "thesis_robot_a", "radial8_patrol")
-FULL = QUICK + ("thesis_robot_b", "radial12_patrol")
+FULL = (*QUICK, "thesis_robot_b", "radial12_patrol")
 
 
 def bench(name: str, steps: int) -> str:
