@@ -7,6 +7,8 @@ notebook (see ``docs/api.md``):
   text becomes a :class:`Spec` (the GR(1) IR, plus the robot model and source map for
   ``.gait``);
 - :func:`lint`: the warnings of a ``.gait`` spec and the check of its valve primitives;
+  :func:`separation`: whether the system can force the environment to break an
+  assumption (well-separation);
 - :func:`emit`: the spec as structuredslugs, slugsin or LTL text, exactly as
   ``gaitc compile`` writes it;
 - :func:`check`: a :class:`Verdict`; :func:`synthesize` and :func:`counterstrategy`: a
@@ -53,6 +55,7 @@ if TYPE_CHECKING:  # the names of _MODULES, for the type checker (tests/cli/test
     from gaitc.api.compiling import OutputFormat as OutputFormat
     from gaitc.api.compiling import emit as emit
     from gaitc.api.compiling import lint as lint
+    from gaitc.api.compiling import separation as separation
     from gaitc.api.drawing import controller_policy as controller_policy
     from gaitc.api.drawing import draw_automaton as draw_automaton
     from gaitc.api.drawing import draw_map as draw_map
@@ -126,7 +129,7 @@ _MODULES: dict[str, tuple[str, ...]] = {
         "BackendKind", "ControllerKind", "EncodingName", "EnvironmentKind", "Form", "Role",
         "SearchMethod", "Semantics",
     ),
-    "gaitc.api.compiling": ("FORMATS", "OutputFormat", "emit", "lint"),
+    "gaitc.api.compiling": ("FORMATS", "OutputFormat", "emit", "lint", "separation"),
     "gaitc.api.solving": (
         "SOLVERS", "Synthesis", "Tolerance", "Verdict", "check", "counterstrategy",
         "synthesize", "tolerate", "verify",

@@ -28,6 +28,8 @@ the environment's first inputs are, for each semantics.
 Outside W the system wins by the dual fixpoint ¬W = μZ. ∨_i νY. CPre((¬J^e_i ∨ Z') ∧ Y')
 (with the attractor of the environment's dead ends, μY. CPre(Y'), first); its rings give
 a memoryless forcing strategy, played here to a short play told in the robot's words.
+:func:`stay_separated` is the stricter spec synthesis tries first, whose controllers do
+not rely on a broken assumption (docs/background/well-separation.md).
 """
 
 from __future__ import annotations
@@ -37,7 +39,6 @@ from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Final
 
-from gaitc.analysis.sanity import player_of
 from gaitc.diagnostics import Diagnostic, Span
 from gaitc.diagnostics.choices import Choice
 from gaitc.ir.bddwalk import cofactor, first_assignment
@@ -52,16 +53,15 @@ if TYPE_CHECKING:
     from gaitc.core.spec import Spec
     from gaitc.sim.domain import Domain
 
-__all__ = ["Assumption", "Broken", "Finding", "ForcingPlay", "Separation", "describe",
-           "environment_winning", "separation", "separation_warnings", "stay_separated",
-           "staying_clause"]
+__all__ = ["Assumption", "Broken", "Finding", "ForcingPlay", "Separation", "chances",
+           "dead_ends", "environment_winning", "preference_note", "region_formula",
+           "separation", "separation_warnings", "stay_separated"]
 
 #: The longest forcing play told (a memoryless strategy against a memoryless environment
 #: closes a loop or reaches a dead end far sooner on every spec we know).
 MAX_PLAY: Final = 10_000
-#: The rule of the ρs clause that keeps a controller inside the environment's winning region.
-STAYING_RULE: Final = "well-separation: the robot never forces the environment to break " \
-                      "an assumption"
+#: The rule of the clauses that keep a controller from relying on a broken assumption.
+SEPARATED_RULE: Final = "well-separation"
 
 Bits = tuple[int, ...]
 
@@ -306,9 +306,9 @@ class _Player:
         x = self._first(moves, self.post_ins, state[:len(self.ins)])
         ring = self._ring(state)
         assert ring is not None, "the play left the system's winning region"
-        at_x = cofactor(sym.bdd, dict(zip(self.post_ins, (bool(b) for b in x), strict=True)),
-                        answers & self._at(ring.target, state))
-        wanted = at_x & ~self.avoid_post
+        chosen = dict(zip(self.post_ins, (bool(b) for b in x), strict=True))
+        at_x = cofactor(sym.bdd, chosen, answers & self._at(ring.target, state))
+        wanted = at_x & ~cofactor(sym.bdd, chosen, self.avoid_post)
         y = self._first(wanted if wanted != false else at_x, self.post_outs,
                         state[len(self.ins):])
         return x + y
@@ -354,7 +354,7 @@ def _analyse(spec: Spec | GR1Spec, check: Callable[[], None] | None
             sym.pre_outputs, sym.sys_init & ~winning)) == false,
         Semantics.ROBOTICS: bad != false and (initial & winning) == false,
     }
-    player = player_of(model)
+    player = "robot" if model is not None else "system"  # as gaitc.analysis.sanity says
     if bad == false:
         return (Separation(name, True, (), everywhere, time.monotonic() - started, player),
                 sym, winning)
@@ -419,8 +419,11 @@ def _dead_end_core(sym: SymbolicSpec, state: Bits) -> tuple[Assumption, ...]:
     gr1 = sym.spec
     bits = list(sym.input_bits + sym.output_bits)
     at = dict(zip(bits, (bool(b) for b in state), strict=True))
-    others = set(bits) | sym.post_outputs
-    ranged = sym.bdd.exist(others, sym.env_trans)  # the inputs' ranges, and more
+    ranged = sym.bdd.true  # the next inputs' ranges (not a clause: SLUGS's encoding)
+    for v in gr1.inputs:
+        if v.is_integer and v.high is not None:
+            ranged &= sym.translate(Compare("<=", IntVar(v.name, primed=True),
+                                            IntConst(v.high)))
     parts = [cofactor(sym.bdd, at, sym.translate(c.formula)) for c in gr1.env_trans]
 
     def blocked(kept: Sequence[int]) -> bool:
@@ -465,7 +468,8 @@ def _holds_on(sym: SymbolicSpec, u: BDDNode, bits: list[str], a: Bits, b: Bits) 
 # ---------------------------------------------------------------- the play in words
 class _Teller:
     """Turns a play of bit states into spec values and a sentence in the robot's words
-    (:mod:`gaitc.play.words`) or, without a robot model, in the variables' values."""
+    (regions, gaits, leg levels, hazards) or, without a robot model, in the variables'
+    values."""
 
     def __init__(self, sym: SymbolicSpec, domain: Domain | None) -> None:
         self.sym = sym
@@ -511,33 +515,43 @@ class _Teller:
         if self.domain is None:
             return "(" + ", ".join(f"{n}={v}" for n, v in zip(play.names, play.states[0],
                                                                 strict=True)) + ")"
-        from gaitc.play.words import environment_words
-
         first = self.domain.decode(play.valuation(0))
-        env = environment_words(None, first, self.domain.full)
-        return first.region + ("" if env == "start at full health" else f" ({env})")
+        changes = [f"{leg} at level {level}" for leg, level in first.health
+                   if level != self.domain.full.get(leg, level)]
+        if first.hazard is not None:
+            changes.append(f"{first.hazard} on")
+        return first.region + (f" ({', '.join(changes)})" if changes else "")
 
     def _move(self, play: ForcingPlay, k: int, previous: int | None = None) -> str:
-        """The move into ``play.states[k]`` from the one before it (or ``previous``)."""
+        """The move into ``play.states[k]`` from the one before it (or ``previous``), in
+        the robot's words (its gait and region; the environment's changes after it).
+        :mod:`gaitc.play.words` says the same for the player, a layer this one cannot use."""
         before = play.valuation(k - 1 if previous is None else previous)
         after = play.valuation(k)
         if self.domain is None:
             changed = [f"{n}={after[n]}" for n in play.names if after[n] != before[n]]
             return "sets " + ", ".join(changed) if changed else "keeps every value"
-        from gaitc.play.words import NOTHING, environment_words, robot_words
+        from ltlcompiler.model import NO_GAIT
 
         was, now = self.domain.decode(before), self.domain.decode(after)
-        robot = robot_words(was, now)
-        said = (robot.replace("stay in", "stays in", 1) if robot.startswith("stay in")
-                else f"goes {robot}")
-        env = environment_words(was, now, self.domain.full)
-        return said if env == NOTHING else f"{said} (the environment: {env})"
+        moved = now.gait not in ("", NO_GAIT) and now.region != was.region
+        said = f"goes {now.gait} to {now.region}" if moved else f"stays in {now.region}"
+        env = []
+        if now.hazard != was.hazard:
+            env += [f"switches {h} {word}" for h, word in ((was.hazard, "off"),
+                                                            (now.hazard, "on")) if h]
+        levels = dict(now.health)
+        for leg, level in was.health:
+            if levels[leg] != level:
+                env.append(f"takes {leg} to level {levels[leg]}")
+        return f"{said} (the environment {' and '.join(env)})" if env else said
 
 
 # ---------------------------------------------------------------- the preferred controllers
-def staying_clause(sym: SymbolicSpec, winning: BDDNode) -> Clause:
-    """A ρs clause keeping the next state inside ``winning`` (over ``sym``'s pre bits), as
-    a formula over the spec's variables: the BDD's Shannon expansion, its nodes shared."""
+def region_formula(sym: SymbolicSpec, region: BDDNode, primed: bool) -> Expr:
+    """The set of states ``region`` (over ``sym``'s pre bits) as a formula over the spec's
+    variables, of the next state when ``primed``: the BDD's Shannon expansion, its nodes
+    shared (integers' bits become comparisons of the whole variable)."""
     owner: dict[str, tuple[str, int]] = {}
     for v in sym.spec.variables():
         for k, bit in enumerate(integer_bits(v)):
@@ -549,10 +563,10 @@ def staying_clause(sym: SymbolicSpec, winning: BDDNode) -> Clause:
             name, k = owner[bit]
             v = sym.variables[name]
             if not v.is_integer or v.low is None or v.high is None:
-                atoms[bit] = Var(name, primed=True)
+                atoms[bit] = Var(name, primed=primed)
             else:
                 low = v.low
-                atoms[bit] = disj(Compare("=", IntVar(name, primed=True), IntConst(value))
+                atoms[bit] = disj(Compare("=", IntVar(name, primed=primed), IntConst(value))
                                   for value in range(low, v.high + 1)
                                   if (value - low) >> k & 1)
         return atoms[bit]
@@ -560,7 +574,7 @@ def staying_clause(sym: SymbolicSpec, winning: BDDNode) -> Clause:
     memo: dict[BDDNode, Expr] = {}
     true, false = sym.bdd.true, sym.bdd.false
     memo[true], memo[false] = TRUE, FALSE
-    stack: list[tuple[BDDNode, bool]] = [(winning, False)]
+    stack: list[tuple[BDDNode, bool]] = [(region, False)]
     while stack:  # children before parents, without recursion
         u, expanded = stack.pop()
         if u in memo:
@@ -573,8 +587,7 @@ def staying_clause(sym: SymbolicSpec, winning: BDDNode) -> Clause:
             stack.extend((kid, False) for kid in (low, high) if kid not in memo)
             continue
         memo[u] = _ite(atom(var), memo[high], memo[low])
-    formula = memo[winning]
-    return Clause(formula, Origin(STAYING_RULE))
+    return memo[region]
 
 
 def _ite(test: Expr, then: Expr, other: Expr) -> Expr:
@@ -591,21 +604,81 @@ def _ite(test: Expr, then: Expr, other: Expr) -> Expr:
     return disj(parts)
 
 
-def stay_separated(spec: Spec | GR1Spec, check: Callable[[], None] | None = None
+def dead_ends(sym: SymbolicSpec) -> BDDNode:
+    """The environment's dead ends: states where no move of its keeps ρe."""
+    return ~sym.bdd.exist(sym.post_inputs, ~sym.env_blocks)
+
+
+def chances(sym: SymbolicSpec, i: int, check: Callable[[], None] | None = None) -> BDDNode:
+    """The states from which the environment can force □◇ assumption ``i`` to hold on a
+    coming step, whatever the system does within ρs: μY. EPre(J^e_i ∨ Y')."""
+    goal = sym.translate(sym.spec.env_liveness[i].formula)
+    y = sym.bdd.false
+    while True:
+        if check is not None:
+            check()
+        grown = _epre(sym, goal | sym.prime(y)) | y
+        if grown == y:
+            return y
+        y = grown
+
+
+def stay_separated(spec: Spec | GR1Spec, semantics: Semantics = Semantics.DEFAULT,
+                   check: Callable[[], None] | None = None
                    ) -> tuple[GR1Spec, Separation] | None:
-    """When ``spec`` is not well-separated: the spec whose system must also keep every next
-    state inside the environment's winning region (ρs ∧ W', :func:`staying_clause`), with
-    the analysis; None for a well-separated spec."""
+    """When ``spec`` is not well-separated: the spec whose controllers do not rely on the
+    environment breaking an assumption, with the analysis; None for a well-separated spec.
+
+    The system must keep out of the environment's dead ends D (ρs ∧ ¬D', and θs ∧ ¬D under
+    the default semantics, where it picks the first outputs), so the environment always has
+    a move keeping ρe; and each □◇ assumption J^e_i it could starve is weakened to
+    □◇ (J^e_i ∨ ¬P_i), P_i = :func:`chances`: the environment owes J^e_i only while the
+    system leaves it a chance.  The environment can keep these assumptions from every
+    state (it forces J^e_i from P_i, and it is never stuck), so a controller of this spec
+    wins against every environment that keeps what it still can; its assumptions are
+    weaker and its ρs stronger than ``spec``'s, so it is also a controller of ``spec``."""
     from gaitc.core.spec import Spec as LoadedSpec
 
     gr1 = spec.gr1 if isinstance(spec, LoadedSpec) else spec
-    found, sym, winning = _analyse(spec, check)
+    found, sym, _ = _analyse(spec, check)
     if found.well_separated:
         return None
-    return gr1.with_sections(sys_trans=(*gr1.sys_trans, staying_clause(sym, winning))), found
+    sys_init, sys_trans = gr1.sys_init, gr1.sys_trans
+    dead = dead_ends(sym)
+    if dead != sym.bdd.false:
+        origin = Origin(f"{SEPARATED_RULE}: never leave the environment without a move")
+        sys_trans = (*sys_trans, Clause(region_formula(sym, ~dead, primed=True), origin))
+        if semantics is Semantics.DEFAULT:
+            sys_init = (*sys_init, Clause(region_formula(sym, ~dead, primed=False), origin))
+    env_liveness = list(gr1.env_liveness)
+    for i, clause in enumerate(gr1.env_liveness):
+        chance = chances(sym, i, check)
+        if chance != sym.bdd.true:
+            weakened = disj((clause.formula, region_formula(sym, ~chance, primed=False)))
+            env_liveness[i] = Clause(weakened, clause.origin)
+    return gr1.with_sections(sys_init=sys_init, sys_trans=sys_trans,
+                             env_liveness=tuple(env_liveness)), found
 
 
-def describe(found: Separation) -> str:
-    """The assumptions of ``found``'s findings, named for a synthesis note."""
-    return "; ".join(" and ".join(a.named() for a in f.assumptions) or "an assumption"
-                     for f in found.findings)
+def preference_note(found: Separation, kept: bool) -> str:
+    """What synthesis says of a spec that is not well-separated: whether its controller
+    (of :func:`stay_separated`'s spec when ``kept``, else of the spec itself) relies on
+    the environment breaking an assumption."""
+    def names(kind: Broken) -> str:
+        return " and ".join(a.named() for f in found.findings if f.kind is kind
+                            for a in f.assumptions)
+
+    safety, liveness = names(Broken.SAFETY), names(Broken.LIVENESS)
+    if not kept:
+        broken = " and ".join(n for n in (safety, liveness) if n) or "an assumption"
+        return (f"the controller may win by forcing the environment to break {broken}: no "
+                "controller of this spec reaches its goals without relying on that")
+    parts = []
+    if safety:
+        parts.append(f"never forces the environment to break {safety}: it never leaves the "
+                     "environment without a move that keeps its assumptions")
+    if liveness:
+        parts.append(f"does not rely on {liveness} failing: it reaches its goals whenever "
+                     f"the environment makes it hold at every chance the {found.player} "
+                     "leaves it")
+    return "the controller " + "; and it ".join(parts)

@@ -6,7 +6,9 @@ Linting a ``.gait`` spec gives the checker's warnings, lowers it in both encodin
 catches names that clash once encoded) and pairs gaits with their valve primitives
 (:mod:`gaitc.search.primitives`: a robot file's declared model is searched as ``gaitc
 gaits`` searches it); a ``.slugsin``, ``.structuredslugs`` or ``.ltl`` spec is
-read (every syntax and type error with its span) and has no further checks.
+read (every syntax and type error with its span).  Either kind is then checked for
+well-separation (:func:`separation`: can the system force the environment to break an
+assumption?).
 
 ``structuredslugs`` and ``slugsin`` are SLUGS's two formats, ``ltl`` the readable LTL text;
 each has one writer in :mod:`slugs_bridge` (clauses preceded by a ``#`` comment naming the
@@ -16,6 +18,7 @@ module only picks it.  slugsin bit-blasts integer variables first.
 
 from __future__ import annotations
 
+import time
 from pathlib import Path
 from typing import TYPE_CHECKING, Final, NoReturn
 
@@ -25,6 +28,7 @@ from gaitc.diagnostics.choices import Choice
 from ltlcompiler.encoding import ENCODINGS
 
 if TYPE_CHECKING:
+    from gaitc.analysis.separation import Separation
     from ltlcompiler.model import Model
 
 
@@ -67,7 +71,7 @@ def lint(spec: Spec | str | Path, primitives: bool = False,
         spec = load(spec, kind=reader_of(str(spec)))
     model = spec.model
     if model is None:
-        return tuple(spec.diagnostics)
+        return (*spec.diagnostics, *separation(spec).warnings())
     for encoding in ENCODINGS:
         if encoding != spec.encoding:
             lower(model, encoding)
@@ -78,7 +82,38 @@ def lint(spec: Spec | str | Path, primitives: bool = False,
         folder = str(Path(spec.path).resolve().parent)
         diagnostics += check_gaits(model.gaits, folder, legs=[leg.name for leg in model.legs],
                                    moves=gait_moves(model))
+    if not any(d.severity == "error" for d in diagnostics):
+        diagnostics += separation(spec).warnings()
     return tuple(diagnostics)
+
+
+def separation(spec: Spec | str | Path, timeout: float | None = None) -> Separation:
+    """Whether the system of ``spec`` can force the environment to break an assumption
+    (the spec is then not well-separated: Maoz and Ringert, FSE 2016), with each assumption
+    it can break and a play of a strategy that forces it
+    (:mod:`gaitc.analysis.separation`); a path is read as :func:`lint` reads it.
+    ``gaitc lint`` and ``gaitc check`` print its warnings (:meth:`Separation.warnings`).
+
+    >>> import gaitc
+    >>> gaitc.separation("specs/thesis_robot_a.gait").well_separated
+    True
+    """
+    from gaitc.analysis.separation import separation as analyse
+
+    if not isinstance(spec, Spec):
+        spec = load(spec, kind=reader_of(str(spec)))
+    if timeout is None:
+        return analyse(spec)
+    from gaitc.diagnostics import SolverError
+
+    started = time.monotonic()
+
+    def deadline() -> None:
+        if time.monotonic() - started > timeout:
+            raise SolverError(f"the well-separation check stopped after {timeout:g} s",
+                              hint="raise --timeout")
+
+    return analyse(spec, deadline)
 
 
 def gait_moves(model: Model) -> dict[str, frozenset[tuple[str, str]]]:

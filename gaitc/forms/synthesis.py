@@ -11,10 +11,10 @@ either solver.  :mod:`gaitc.api.solving` converts the facade's arguments and cal
 from __future__ import annotations
 
 import time
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, Final, Literal, get_args
+from typing import TYPE_CHECKING, Any, Final, Literal, Union, get_args
 
 from gaitc.core.modes import ControllerKind, Form
 from gaitc.core.presentation import table
@@ -30,7 +30,9 @@ from gaitc.solver.synthesis import FORMS as SOLVER_FORMS
 from ltlcompiler.encoding import EncodingName
 
 if TYPE_CHECKING:
+    from gaitc.analysis.separation import Separation
     from gaitc.compact.controller import CompactController
+    from gaitc.ir.bddfile import SymbolicController
     from gaitc.ir.controller import Controller
     from gaitc.ir.costs import Cost
     from gaitc.sim.graphics import Picture
@@ -39,6 +41,8 @@ if TYPE_CHECKING:
 SolverName = Literal["embedded", "slugs"]
 #: ``embedded``: the BDD solver in :mod:`gaitc.solver`; ``slugs``: an installed SLUGS binary.
 SOLVERS: Final[tuple[SolverName, ...]] = get_args(SolverName)
+#: What the embedded solver leaves of a strategy: an automaton, BDDs, or none.
+Solved = Union["Controller", "SymbolicController", None]
 #: The forms a solver leaves (:data:`gaitc.solver.synthesis.FORMS`).
 FORMS: Final = SOLVER_FORMS
 #: Above this many nodes ``synthesize`` keeps the controller symbolic (form ``auto``).
@@ -103,6 +107,9 @@ class Synthesis:
     merged_from: int | None = None
     #: A compact controller's source: the symbolic controller's BDD nodes.
     symbolic_nodes: int | None = None
+    #: For a spec that is not well-separated (:mod:`gaitc.analysis.separation`): whether the
+    #: controller keeps the environment able to keep its assumptions, in words.
+    separation: str | None = None
 
     @property
     def realizable(self) -> bool:
@@ -141,7 +148,8 @@ class Synthesis:
             "nodes": None,
             "nodes_before_merging": self.merged_from,
             "compact": None,
-            "verification": None if self.report is None else self.report.to_json()}
+            "verification": None if self.report is None else self.report.to_json(),
+            "separation": self.separation}
         if self.controller is not None:
             from gaitc.forms.registry import entry
 
@@ -276,6 +284,7 @@ class SolveOptions:
     form: str = "auto"
     max_nodes: int | None = MAX_NODES
     prefer: str | Sequence[str] | None = None
+    separate: bool = True  # prefer a controller that never forces an assumption to break
 
 
 def solve(spec: Spec | GR1Spec, kind: ControllerKind, semantics: Semantics,
@@ -300,6 +309,7 @@ def solve(spec: Spec | GR1Spec, kind: ControllerKind, semantics: Semantics,
                          ".gait spec, and this spec has none (SLUGS input); use --prefer goal "
                          "or none")
     automaton: Automaton | None
+    separation: str | None = None
     try:
         if _solver(solver) == "slugs":
             if prefer is not None and order:
@@ -309,8 +319,10 @@ def solve(spec: Spec | GR1Spec, kind: ControllerKind, semantics: Semantics,
         elif kind == ControllerKind.STRATEGY:
             from gaitc.solver import synthesis
 
+            separated = _stay_separated(spec, semantics, opts) if opts.separate else None
+            target = gr1 if separated is None else separated[0]
             automaton = synthesis.synthesize_controller(
-                spec=gr1,
+                spec=target,
                 semantics=semantics,
                 timeout=timeout,
                 progress=progress,
@@ -320,6 +332,13 @@ def solve(spec: Spec | GR1Spec, kind: ControllerKind, semantics: Semantics,
                 prefer=order,
                 costs=_costs(spec, order),
             )
+            if separated is not None:
+                automaton, separation = _separated_controller(
+                    automaton, separated[1], lambda: synthesis.synthesize_controller(
+                        spec=gr1, semantics=semantics, timeout=timeout, progress=progress,
+                        options=opts.options, max_nodes=opts.max_nodes,
+                        form="symbolic" if form == COMPACT else form, prefer=order,
+                        costs=_costs(spec, order)))
             if form == COMPACT and isinstance(automaton, SymbolicController):
                 if progress is not None:
                     progress(Stage("writing the strategy as decision diagrams"))
@@ -355,7 +374,33 @@ def solve(spec: Spec | GR1Spec, kind: ControllerKind, semantics: Semantics,
         solver=solver,
         merged_from=merged_from,
         symbolic_nodes=symbolic_nodes,
+        separation=separation,
     )
+
+
+def _stay_separated(spec: Spec | GR1Spec, semantics: Semantics, opts: SolveOptions
+                    ) -> tuple[GR1Spec, Separation] | None:
+    """The spec whose controllers never force the environment to break an assumption, when
+    ``spec`` is not well-separated (:func:`gaitc.analysis.separation.stay_separated`)."""
+    from gaitc.analysis.separation import stay_separated
+    from gaitc.solver.game import Limits
+
+    if opts.progress is not None:
+        opts.progress(Stage("checking well-separation (Maoz and Ringert)"))
+    return stay_separated(spec, semantics, Limits(opts.timeout).check)
+
+
+def _separated_controller(found: Solved, why: Separation, fallback: Callable[[], Solved]
+                          ) -> tuple[Solved, str | None]:
+    """The controller of the separated spec (``found``) with the words saying it never
+    forces an assumption to break; when there is none, the controller of the spec itself
+    (``fallback()``) with the words saying it may (no words when there is none either)."""
+    from gaitc.analysis.separation import preference_note
+
+    if found is not None:
+        return found, preference_note(why, kept=True)
+    plain = fallback()
+    return plain, None if plain is None else preference_note(why, kept=False)
 
 
 def _costs(spec: Spec | GR1Spec, order: Sequence[str]) -> tuple[Cost, ...]:

@@ -26,9 +26,21 @@ from gaitc.cli.commands.arguments import (
     semantics_of,
 )
 from gaitc.cli.exitcodes import ExitCode, exit_code_help
-from gaitc.cli.reporting import document, error_json, exit_code_of, print_json
+from gaitc.cli.reporting import (
+    diagnostic_json,
+    document,
+    error_json,
+    exit_code_of,
+    print_json,
+)
 from gaitc.cli.status import progress_display
-from gaitc.diagnostics import GaitcError, UsageError, render_error
+from gaitc.diagnostics import (
+    Diagnostic,
+    GaitcError,
+    UsageError,
+    render_diagnostic,
+    render_error,
+)
 
 if TYPE_CHECKING:
     from gaitc.api.progress import Progress
@@ -174,11 +186,16 @@ def run_check(args: argparse.Namespace) -> int:
     for path in args.specs:
         started = time.monotonic()
         record: dict[str, Any] = {"file": path, "semantics": semantics_of(args),
-                                  "solver": args.solver, "engine": None, "error": None}
+                                  "solver": args.solver, "engine": None, "error": None,
+                                  "warnings": []}
         try:
             _options(args)  # a memory limit too small fails here, before the fork
-            verdict = run_limited(functools.partial(_check_one, path, args), _limits(args))
-            record.update(verdict.to_json(), file=path)
+            verdict, warnings = run_limited(functools.partial(_check_one, path, args),
+                                            _limits(args))
+            record.update(verdict.to_json(), file=path, warnings=[
+                diagnostic_json(w) for w in warnings])
+            for warning in warnings:
+                print(render_diagnostic(warning), file=sys.stderr)
             code = ExitCode.OK if verdict.realizable else ExitCode.UNREALIZABLE
         except UsageError:
             raise
@@ -195,12 +212,15 @@ def run_check(args: argparse.Namespace) -> int:
     return worst
 
 
-def _check_one(path: str, args: argparse.Namespace) -> gaitc.Verdict:
+def _check_one(path: str, args: argparse.Namespace
+               ) -> tuple[gaitc.Verdict, tuple[Diagnostic, ...]]:
     """Load and decide one spec (in the limited child process when there are limits; CUDD's
-    share of the memory limit is what is left once the spec is loaded)."""
+    share of the memory limit is what is left once the spec is loaded), and check that it
+    is well-separated (its warnings)."""
     spec = gaitc.load(path, args.encoding)
     with progress_display(args.verbose) as progress:
-        return gaitc.check(spec, **_solver_args(args, progress))
+        verdict = gaitc.check(spec, **_solver_args(args, progress))
+    return verdict, gaitc.separation(spec).warnings()
 
 
 _SEVERITY = (ExitCode.OK, ExitCode.UNREALIZABLE, ExitCode.USER, ExitCode.SOLVER)
@@ -247,6 +267,8 @@ def run_synth(args: argparse.Namespace) -> int:
         f"({found.size})"
     )
     _hint_tables(args.output)
+    if found.separation is not None:
+        print(f"  note: {found.separation}")
     if found.report is None:
         return ExitCode.OK
     return _print_report(found.report)
@@ -322,7 +344,8 @@ def _synth_json(args: argparse.Namespace, found: gaitc.Synthesis) -> int:
     if written:
         found.save(args.output)
     print_json(document("synth" if strategy else "counter",
-                        {**found.to_json(), "output": args.output if written else None}))
+                        {**found.to_json(), "output": args.output if written else None,
+                         "tolerance": None}))
     if found.controller is None:
         if strategy:
             print("  hint: 'gaitc counter' shows how the environment wins", file=sys.stderr)
