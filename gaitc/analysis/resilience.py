@@ -10,6 +10,8 @@
    by default within each leg's own declared levels.
 4. Caches and hazards: essential caches, cache placements, hazard sets survived alone, and
    for each graded hazard (``wears k``) the most wear survived and whether failing is.
+5. Surprises: the most broken safety assumptions survived, up to a bound, and the one that
+   limits it (:mod:`gaitc.analysis.tolerance`, ``synth --tolerate``).
 
 The failure sets and the health front come either from one parametric game
 (:mod:`gaitc.analysis.parametric`) or from lattice searches over variants
@@ -27,6 +29,7 @@ from typing import Any, Final
 from gaitc.analysis.lattice import fatal_sets, minimal_vectors
 from gaitc.analysis.parametric import failure_sets, winning_caps, winning_parameters
 from gaitc.analysis.pool import Pool
+from gaitc.analysis.tolerance import DEFAULT_BOUND, ToleranceReport
 from gaitc.analysis.variants import (
     anytime_spec,
     at_most,
@@ -47,6 +50,9 @@ from ltlcompiler.model import Model
 METHODS: Final = ("parametric", "lattice")
 MAX_PLACEMENTS = 5_000
 DIRECT_DEFEATS = 64  # up to this many (k+1)-sets are checked one by one
+#: State bits up to which the tolerance of surprises is solved (robot A has 59 in the
+#: one-hot encoding, 27 in the binary one: 11 s with its groups, 13 games).
+MAX_TOLERANCE_BITS: Final = 64
 #: Health vectors (levels ** legs) up to which the health front is searched. The parametric
 #: game over 3^12 vectors (radial12) takes about a minute; over 3^24 (centipede24) it did
 #: not finish in ten, and the lattice search would need a solver call per front vector.
@@ -81,6 +87,8 @@ class Resilience:
     # per graded hazard (``wears k``): (name, declared k, most wear survived, whether the task
     # survives the hazard failing the legs instead)
     hazard_wear: tuple[tuple[str, int, int, bool], ...] = ()
+    # the surprises survived (broken safety assumptions); None: not solved
+    tolerance: ToleranceReport | None = None
     solver_calls: int = 0
     seconds: float = 0.0
     notes: tuple[str, ...] = ()
@@ -108,6 +116,7 @@ class Resilience:
             "hazards_survived_alone": list(self.hazards_survived_alone),
             "hazard_wear": [{"hazard": n, "declared": k, "most_survived": m,
                              "survives_failing": f} for n, k, m, f in self.hazard_wear],
+            "tolerance": None if self.tolerance is None else self.tolerance.to_json(),
             "solver_calls": self.solver_calls, "seconds": round(self.seconds, 3),
             "notes": list(self.notes),
         }
@@ -178,6 +187,11 @@ class Resilience:
                      else "; failing the legs would be fatal")
             out.append(f"   graded hazard {name} (wears {declared}): survives it wearing up to "
                        f"{most} level{'s' if most > 1 else ''} a move{worse}")
+        if self.tolerance is not None:
+            out.append("")
+            out.append(f"5. surprises (broken assumptions, up to {self.tolerance.requested}; "
+                       "synth --tolerate)")
+            out.extend("   " + line[2:] for line in self.tolerance.lines()[1:])
         out.extend(f"note: {n}" for n in self.notes)
         return out
 
@@ -212,8 +226,9 @@ def _sets(sets: tuple[tuple[str, ...], ...]) -> str:
 def resilience(model: Model, encoding: EncodingName, file: str = "",
                semantics: Semantics = Semantics.DEFAULT, *, method: str = "parametric",
                health_bound: int | None = None, place_caches: int | None = None,
-               pool: Pool | None = None) -> Resilience:
-    """Every answer of the module docstring for ``model``."""
+               tolerate: int | None = DEFAULT_BOUND, pool: Pool | None = None) -> Resilience:
+    """Every answer of the module docstring for ``model``; ``tolerate`` bounds the
+    surprises searched (None: not searched)."""
     if method not in METHODS:
         raise ValueError(f"unknown method {method!r}; use one of {', '.join(METHODS)}")
     started = time.monotonic()
@@ -264,10 +279,32 @@ def resilience(model: Model, encoding: EncodingName, file: str = "",
             notes=notes,
         )
         report = _caches_and_hazards(report, model, place_caches, pool, notes)
+        if tolerate is not None:
+            report = _surprises(report, model, encoding, semantics, tolerate, pool, notes)
         return _finish(report, pool, started, notes, param_seconds)
     finally:
         if owned:
             pool.close()
+
+
+def _surprises(report: Resilience, model: Model, encoding: EncodingName,
+               semantics: Semantics, bound: int, pool: Pool, notes: list[str]) -> Resilience:
+    """Section 5: the tolerance of surprises up to ``bound``, when the game is small enough
+    (:data:`MAX_TOLERANCE_BITS`)."""
+    from gaitc.analysis.tolerance import tolerance
+    from gaitc.core.spec import Spec
+    from gaitc.solver.synthesis import state_bits
+    from ltlcompiler.lowering import lower
+
+    spec = Spec(report.file, lower(model, encoding), model, encoding)
+    bits = state_bits(spec.gr1)
+    if bits > MAX_TOLERANCE_BITS:
+        notes.append(f"surprises not searched: {bits} state bits is more than the "
+                     f"{MAX_TOLERANCE_BITS} searched; 'gaitc synth --tolerate' solves them")
+        return report
+    found = tolerance(spec, semantics, bound)
+    pool.calls += found.solver_calls
+    return _with(report, tolerance=found)
 
 
 def _with(report: Resilience, **changes: Any) -> Resilience:

@@ -43,7 +43,7 @@ def resilience(spec: Spec | str | Path, method: str = "parametric",
                health_bound: int | None = None, place_caches: int | None = None,
                *, semantics: Semantics | str = Semantics.DEFAULT, jobs: int = 1,
                dask: str | None = None, progress: Progress | None = None,
-               timeout: float | None = None) -> Resilience:
+               timeout: float | None = None, tolerate: int | None = 2) -> Resilience:
     """The :class:`~gaitc.analysis.resilience.Resilience` report of a ``.gait`` spec.
 
     ``method``: ``parametric`` (one game with rigid per-leg caps answers every failure set
@@ -51,7 +51,8 @@ def resilience(spec: Spec | str | Path, method: str = "parametric",
     monotonicity); ``jobs``/``dask`` run variant checks in local processes or on a Dask
     cluster. ``health_bound`` B searches the health front over 1..B for every leg
     (default: each leg within its own declared levels); ``place_caches`` K searches the
-    K-sets of regions for caches.  With
+    K-sets of regions for caches; ``tolerate`` K the most surprises (broken safety
+    assumptions, :mod:`gaitc.analysis.tolerance`) up to K, None for none.  With
     ``timeout`` (seconds) the analysis runs in a child process that is stopped a tenth of a
     second past it, its workers with it: a :class:`SolverError` (exit 4).
 
@@ -81,6 +82,6 @@ def resilience(spec: Spec | str | Path, method: str = "parametric",
         with Pool(encoding, chosen, jobs, dask, progress) as pool:
             return analyse(model=model, encoding=encoding, file=path, semantics=chosen,
                            method=method, health_bound=bound, place_caches=place_caches,
-                           pool=pool)
+                           tolerate=tolerate, pool=pool)
 
     return run_limited(analysed, HardLimits(seconds=timeout), "the resilience analysis")

@@ -17,6 +17,7 @@ from gaitc.cli.commands.arguments import (
     output_file,
     positive_count,
     positive_seconds,
+    positive_whole,
     semantics_of,
 )
 from gaitc.cli.exitcodes import ExitCode, exit_code_help
@@ -37,7 +38,7 @@ def register(sub: Any) -> None:
         "failed for good (health 1), single points of failure, the legs each direction depends on; "
         "the largest k such that any k legs may break during the run; the least uniform "
         "health and the Pareto front of per-leg health; essential caches, cache placements "
-        "and hazard sets survived alone.",
+        "and hazard sets survived alone; the most surprises (broken assumptions) survived.",
         epilog=EPILOG, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("spec", metavar="SPEC")
     p.add_argument("--json", action="store_true",
@@ -50,6 +51,9 @@ def register(sub: Any) -> None:
                    "within its own declared levels)")
     p.add_argument("--place-caches", type=positive_count, metavar="K",
                    help="search the sets of K regions where caches make the task realizable")
+    p.add_argument("--tolerate", type=positive_whole, default=2, metavar="K",
+                   help="the most surprises (broken safety assumptions, as synth --tolerate) "
+                   "searched (default 2)")
     p.add_argument("--jobs", type=int, default=1, metavar="N",
                    help="check variants in N local processes")
     p.add_argument("--dask", metavar="ADDRESS",
@@ -72,7 +76,7 @@ def run_resilience(args: argparse.Namespace) -> int:
     spec = gaitc.load(args.spec, args.encoding)
     report = gaitc.resilience(spec, method=args.method, health_bound=args.health_bound,
                               place_caches=args.place_caches, semantics=semantics_of(args),
-                              jobs=args.jobs, dask=args.dask,
+                              jobs=args.jobs, dask=args.dask, tolerate=args.tolerate,
                               progress=terminal_progress("resilience"), timeout=args.timeout)
     if args.output:
         fmt = report.picture().save(args.output)
