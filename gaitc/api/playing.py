@@ -42,7 +42,10 @@ def player(spec: Spec | str | Path,
     the environment's counter-strategy when it is not; ``against=True`` asks for the
     counter-strategy and is an error for a realizable spec. ``start`` (a run or a run file:
     a saved play, ``simulate --out`` or ``explain --out``) replays its steps up to ``at``
-    (default: all) before the play goes on.
+    (default: all) before the play goes on, its broken assumptions too. Playing the
+    environment, :meth:`Player.breaks` lists the moves that break an assumption and
+    :meth:`Player.break_assumption` performs one: the controller recovers as in
+    ``simulate --violate`` (``semantics`` is also that of the games recovery solves).
     """
     if against and controller is not None:
         raise UsageError("--against plays the robot against the environment's counter-"
@@ -58,7 +61,7 @@ def player(spec: Spec | str | Path,
             raise UsageError(f"'{spec.path}' is realizable: the environment has no winning "
                              "strategy to play against; play the environment against the "
                              "controller (leave out --against)")
-    played = Player(bound)
+    played = Player(bound, semantics=semantics)
     if start is not None:
         run = start if isinstance(start, Run) else read_jsonl(start)
         try:
@@ -87,7 +90,7 @@ def _explains_player(spec: Spec, semantics: Semantics | str, run: Run,
                             None)
     bound = session(spec, counter, None, semantics)
     assert bound is not None
-    played = Player(bound, Role.ROBOT)
+    played = Player(bound, Role.ROBOT, semantics)
     played.resume(run, at)
     return played
 

@@ -6,7 +6,10 @@ line for questions (how many steps, which file). The map takes the width the sta
 (:data:`STATE_WIDTH`); a map wider than that labels its cells with short names, and one
 wider or taller still scrolls (tab focuses it, the arrows scroll it) and keeps the robot in
 view. A row of cells is never wrapped. Keyboard only; ``?`` lists the keys. Every mark
-reads without colour (``NO_COLOR`` or ``--no-color``).
+reads without colour (``NO_COLOR`` or ``--no-color``). Playing the environment, the moves
+that break an assumption follow the legal ones in a group of their own, each marked ``!``
+with the assumption it breaks; playing one shows the surprise (the assumption broken and
+what became of the run: recovered, degraded or stopped) in the log below the moves.
 """
 
 from __future__ import annotations
@@ -27,13 +30,18 @@ from textual.widgets.option_list import Option
 from gaitc.core.modes import Role
 from gaitc.diagnostics import GaitcError
 from gaitc.play.mapgrid import MapGrid
-from gaitc.play.player import Autopilot, Player
+from gaitc.play.player import Autopilot, Choice, Player
 
 #: Rich styles of the text map's style names and the health levels.
 COLOURS = {"robot": "bold reverse", "hazard_on": "bold white on red", "hazard": "yellow",
            "cache": "green", "goal": "magenta", "next_goal": "bold magenta underline",
            "visited": "cyan", "legend": "dim", "healthy": "blue", "degraded": "yellow",
-           "failed": "bold red", "loses": "red", "holds": "yellow"}
+           "failed": "bold red", "loses": "red", "holds": "yellow", "breaks": "bold red",
+           "heading": "bold", "log": "italic"}
+#: The heading of the group of moves that break an assumption.
+BREAKS_HEADING = "break an assumption (! the controller recovers if it can):"
+#: The surprises the log shows at most (the latest).
+LOG_LINES = 2
 DEFAULT_AUTO = 20
 #: Steps a pilot may be asked for at once (each step is a move of the controller and of the
 #: pilot; 10**7 of them kept the app busy for minutes): more is refused with this number.
@@ -43,6 +51,7 @@ DEFAULT_RUN_FILE = "play.run.jsonl"
 
 KEYS = """\
  1-9   play move 1-9             enter   play the highlighted move
+       (moves marked ! break an assumption; the controller recovers)
  ↑ ↓   highlight a move          u  r    undo, redo
  g     go to a step              s       save the play as a run file
  a     the strongest pilot plays N steps (you are asked for N)
@@ -99,6 +108,7 @@ class PlayApp(App[int]):
     #turn { height: 1; }
     #moves { height: 1fr; min-height: 3; }
     #answer { height: 1; }
+    #log { height: auto; max-height: 3; display: none; }
     #ask { dock: bottom; display: none; }
     #help { width: 80; height: auto; border: round $accent; padding: 0 1; }
     HelpScreen { align: center middle; }
@@ -138,6 +148,7 @@ class PlayApp(App[int]):
         yield Static(id="turn")
         yield MoveList(id="moves")
         yield Static(id="answer")
+        yield Static(id="log")
         yield Input(id="ask")
         yield Footer()
 
@@ -178,6 +189,7 @@ class PlayApp(App[int]):
         self.query_one("#mapview", Static).update(picture)
         self.query_one("#state", Static).update(self._state_text())
         self._fill_moves()
+        self._fill_log()
         self.call_after_refresh(self._show_robot)
 
     def _show_robot(self) -> None:
@@ -237,21 +249,51 @@ class PlayApp(App[int]):
                 label.append(f"  {mark} {choice.why}",
                              COLOURS["loses" if choice.loses_in is not None else "holds"])
             moves.add_option(Option(label, id=str(choice.number)))
-        if choices:
+        breaks = player.breaks()
+        if breaks:
+            moves.add_option(Option(Text(BREAKS_HEADING, COLOURS["heading"]), disabled=True))
+        for choice in breaks:
+            label = Text(f"{choice.number:>2} {choice.words}")
+            label.append(f"  ! {choice.breaks}", COLOURS["breaks"])
+            moves.add_option(Option(label, id=str(choice.number)))
+        if choices or breaks:
             moves.highlighted = 0
         self._show_answer()
 
-    def _show_answer(self) -> None:
+    def _fill_log(self) -> None:
+        """The latest surprises of the play, each with the assumption broken and what
+        became of the run (hidden while there is none)."""
+        log = self.query_one("#log", Static)
+        surprises = self.player.surprises[-LOG_LINES:]
+        log.display = bool(surprises)
+        log.update(Text("\n".join(f"surprise: {s.words()}" for s in surprises),
+                        COLOURS["log"]))
+
+    def _highlighted(self) -> Choice | None:
+        """The move the list highlights (a legal one or one that breaks an assumption)."""
         moves = self.query_one("#moves", OptionList)
-        choices = self.player.choices()
-        answer = self.query_one("#answer", Static)
         index = moves.highlighted
-        if index is None or not 0 <= index < len(choices):
+        if index is None or not 0 <= index < moves.option_count:
+            return None
+        number = moves.get_option_at_index(index).id
+        return self._numbered(int(number)) if number else None
+
+    def _numbered(self, number: int) -> Choice | None:
+        player = self.player
+        return next((c for c in (*player.choices(), *player.breaks()) if c.number == number),
+                    None)
+
+    def _show_answer(self) -> None:
+        answer = self.query_one("#answer", Static)
+        choice = self._highlighted()
+        if choice is None:
             answer.update("")
+        elif choice.event is not None:
+            answer.update(Text(f"→ {choice.answer}", "dim"))
         elif self.player.role is Role.ENVIRONMENT:
-            answer.update(Text(f"→ the controller answers: {choices[index].answer}", "dim"))
+            answer.update(Text(f"→ the controller answers: {choice.answer}", "dim"))
         else:
-            answer.update(Text(f"→ {choices[index].why}", "dim"))
+            answer.update(Text(f"→ {choice.why}", "dim"))
 
     def on_option_list_option_highlighted(self, _event: OptionList.OptionHighlighted) -> None:
         self._show_answer()
@@ -265,11 +307,18 @@ class PlayApp(App[int]):
         self.refresh_play()
 
     def action_play(self, number: int) -> None:
-        if not 1 <= number <= len(self.player.choices()):
+        choice = self._numbered(number)
+        if choice is None:
             self.bell()
             return
-        step = self.player.choose(number)
-        self._say(f"played move {number}; now in {step.region}")
+        if choice.event is None:
+            step = self.player.choose(number)
+            self._say(f"played move {number}; now in {step.region}")
+            return
+        step = self.player.break_assumption(number)
+        outcome = self.player.surprises[-1].outcome
+        self._say(f"broke an assumption with move {number} ({choice.words}): {outcome}; "
+                  f"now in {step.region}")
 
     def action_undo(self) -> None:
         self._say("undone" if self.player.undo() else "nothing to undo")

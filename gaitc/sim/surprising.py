@@ -1,0 +1,130 @@
+"""Performing a surprise at one controller node: the events that would break ρe there, the
+inputs an event stands for, and where the run goes after it (the player's "break an
+assumption" moves and ``drive``'s recovery; ``simulate --violate`` does the same inside
+:meth:`gaitc.sim.simulator.Simulator.run`).
+
+The recovery decision is :meth:`gaitc.sim.recovery.Fallback.enter`, after Ehlers and
+Topcu ("Resilience to intermittent assumption violations in reactive synthesis", HSCC
+2014): the surprise is a jump of the game, after which the run goes on from the winning
+region of all goals, of fewer goals, or towards a cache.  This module only packages one
+such jump so that a front end stepping a play by hand can make it one move at a time.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+from gaitc.sim.environments import Request
+from gaitc.sim.run import Step
+from gaitc.sim.surprise import Event, Outcome, Surprise, broken_words, change_words, parse_event
+from gaitc.solver.progress import goal_titles
+
+if TYPE_CHECKING:
+    from gaitc.sim.recovery import Entry, Fallback
+    from gaitc.sim.simulator import Simulator
+
+#: The section of the spec whose clauses a surprise breaks (ρe).
+ASSUMPTIONS = "env_trans"
+
+
+@dataclass(frozen=True)
+class Breaking:
+    """An event the assumptions forbid at a node: its words, its inputs, and the first
+    assumption it breaks in the robot's words (``L5 failed while not in use (eq. 3.5,
+    line 34)``)."""
+
+    event: Event
+    request: Request
+    breaks: str
+
+
+def forced(sim: Simulator, node: int, event: Event) -> Request:
+    """The inputs of ``event`` performed at ``node`` of ``sim``'s controller: the node's
+    state with the event's changes, the other inputs as they were."""
+    after = event.apply(sim.state(node), sim.domain)
+    values = sim.domain.encode(after)
+    here = sim.strategy.valuation(node)
+    return Request(tuple(int(values.get(name, here[name])) for name in sim.strategy.inputs),
+                   event.words)
+
+
+def _words(sim: Simulator) -> list[str]:
+    """The candidate events in move words: each leg failing and losing a level, each hazard
+    set switched on (or off when it is on)."""
+    domain = sim.domain
+    out = [f"{how} {leg}" for leg in domain.legs for how in ("fail", "degrade")]
+    out.extend(f"switch {name} {how}" for name in domain.hazard_regions
+               for how in ("on", "off"))
+    return out
+
+
+def breaking(sim: Simulator, node: int, index: int = 0) -> tuple[Breaking, ...]:
+    """The events that break an assumption at ``node`` (step ``index`` is the step they
+    would be performed at, for the clause's report): for each leg ``fail L`` and ``degrade
+    L``, then ``switch H on`` / ``switch H off`` for each hazard set, leaving out events
+    that change nothing, those the controller accepts, and those giving the inputs of an
+    event listed before them (``degrade L`` at level 2 is ``fail L``)."""
+    state = sim.state(node)
+    accepted = {m.inputs for m in sim.moves(node)}
+    values = sim.strategy.values[node]
+    seen: set[tuple[int, ...]] = set()
+    found: list[Breaking] = []
+    for words in _words(sim):
+        event = parse_event(words, sim.domain)
+        after = event.apply(state, sim.domain)
+        if after == state:
+            continue
+        request = forced(sim, node, event)
+        if request.inputs in accepted or request.inputs in seen:
+            continue
+        seen.add(request.inputs)
+        inputs = dict(zip(sim.strategy.inputs, request.inputs, strict=True))
+        failed = sim.monitor.failed_assumptions(values, inputs)
+        if not failed:
+            continue
+        broken = [sim.monitor.violation(index, ASSUMPTIONS, i) for i in failed]
+        found.append(Breaking(event, request, broken_words(state, after, sim.domain, broken)))
+    return tuple(found)
+
+
+def recover(sim: Simulator, fallback: Fallback, index: int, node: int, request: Request,
+            pursuing: int) -> tuple[Surprise, Entry]:
+    """Where a run goes after ``request`` at ``node`` of ``sim``'s controller broke an
+    assumption at step ``index``, the robot pursuing goal ``pursuing`` (an index into the
+    spec's □◇ guarantees), and the record of it (:class:`Surprise`, as ``simulate`` writes
+    it): the entry into the fallback strategy that :meth:`Fallback.enter` decides."""
+    names = dict(zip(sim.strategy.inputs, request.inputs, strict=True))
+    values = sim.strategy.values[node]
+    entry = fallback.enter(values, names, pursuing)
+    before = sim.state(node)
+    after = sim.domain.decode(sim.strategy.valuation(node) | names)
+    broken = [sim.monitor.violation(index, ASSUMPTIONS, i)
+              for i in sim.monitor.failed_assumptions(values, names)]
+    words = broken_words(before, after, sim.domain, broken)
+    first = broken[0] if broken else None
+    titles = goal_titles(sim.monitor.spec)
+    kept = tuple(titles[j] for j in entry.kept)
+    lost = tuple(t for j, t in enumerate(titles) if j not in entry.kept)
+    change = ", ".join(change_words(before, after, sim.domain)) or "this event"
+    match entry.outcome:
+        case Outcome.RECOVERED:
+            note = "recovered: the state is still winning; every goal is pursued"
+        case Outcome.DEGRADED:
+            note = (f"degraded: still pursuing {', '.join(kept)}; {', '.join(lost)} "
+                    f"{'is' if len(lost) == 1 else 'are'} out of reach after {change}")
+        case _:
+            where = (f"heading for cache {' or '.join(entry.cache)} to stop there"
+                     if entry.node is not None else "the robot stops where it is")
+            note = f"stopped: no goal is reachable after {change}; {where}"
+    surprise = Surprise(index, request.what or "an input outside the assumptions",
+                        words or None, clause=None if first is None else first.rule,
+                        line=None if first is None or first.span is None else str(first.span),
+                        outcome=entry.outcome, kept=kept, lost=lost, note=note)
+    return surprise, entry
+
+
+def entered(sim: Simulator, index: int, node: int, previous: Step | None) -> Step:
+    """Step ``index`` at ``node`` of ``sim``'s controller after ``previous``, a state of
+    another controller (the run jumped here after a surprise)."""
+    return sim._step(index, node, previous, foreign=True)
