@@ -1,8 +1,11 @@
 """The player in a notebook: an ipywidgets view of :class:`Player`.
 
 The map is the SVG of :meth:`gaitc.play.mapgrid.MapGrid.svg`, the state a small table, each
-legal move a button (its tooltip is the other side's answer, or why it loses), and a row of
-controls: undo, redo, go to a step, the two pilots and save. Every control calls the same
+legal move a button (its tooltip is the other side's answer, or why it loses), the moves
+that break an assumption in a group of their own (:attr:`PlayerWidget.break_buttons`, their
+tooltip the assumption broken), a log of the surprises met (each with its outcome:
+recovered, degraded or stopped), and a row of controls: undo, redo, go to a step, the two
+pilots and save. Every control calls the same
 model as the terminal app, so a notebook and ``gaitc play`` play alike.
 """
 
@@ -42,8 +45,11 @@ class PlayerWidget:
         self.status = w.HTML()
         self.turn = w.HTML()
         self.moves = w.VBox()
+        self.breaks = w.VBox()
+        self.log = w.HTML()
         self.message = w.HTML()
         self.buttons: list[Any] = []
+        self.break_buttons: list[Any] = []
         self.undo_button = w.Button(description="undo", icon="undo")
         self.redo_button = w.Button(description="redo", icon="repeat")
         self.step_box = w.BoundedIntText(value=0, min=-1, max=0, description="step",
@@ -62,7 +68,7 @@ class PlayerWidget:
         self.random_button.on_click(lambda _b: self._auto(Autopilot.RANDOM))
         self.save_button.on_click(lambda _b: self._save())
         self.box = w.VBox([
-            w.HBox([self.map, self.status]), self.turn, self.moves,
+            w.HBox([self.map, self.status]), self.turn, self.moves, self.breaks, self.log,
             w.HBox([self.undo_button, self.redo_button, self.step_box, self.go_button]),
             w.HBox([self.count, self.strongest_button, self.random_button]),
             w.HBox([self.file, self.save_button]), self.message])
@@ -70,8 +76,12 @@ class PlayerWidget:
 
     # ------------------------------------------------------------------ actions
     def play(self, number: int) -> None:
-        """Play move ``number`` (as the buttons do)."""
-        self._do(self.player.choose, number)
+        """Play move ``number`` (as the buttons do): a legal move, or one numbered after
+        them that breaks an assumption."""
+        if number > len(self.player.choices()) and self.player.breaks():
+            self._do(self.player.break_assumption, number)
+        else:
+            self._do(self.player.choose, number)
 
     def _do(self, action: Any, *args: Any) -> None:
         try:
@@ -120,6 +130,17 @@ class PlayerWidget:
             button.on_click(lambda _b, n=choice.number: self.play(n))
             self.buttons.append(button)
         self.moves.children = tuple(self.buttons)
+        self.break_buttons = []
+        for choice in player.breaks():
+            button = w.Button(description=f"{choice.number}. ! {choice.words}",
+                              tooltip=choice.answer, button_style="danger",
+                              layout=w.Layout(width="auto"))
+            button.on_click(lambda _b, n=choice.number: self.play(n))
+            self.break_buttons.append(button)
+        heading = w.HTML("<i>break an assumption (the controller recovers if it can):</i>")
+        self.breaks.children = (heading, *self.break_buttons) if self.break_buttons else ()
+        self.log.value = "<br>".join(f"surprise: {escape(s.words())}"
+                                     for s in player.surprises)
         self.step_box.max = max(0, player.length - 1)
         self.step_box.value = max(-1, player.step)
 

@@ -294,3 +294,18 @@ def test_the_terminal_breaks_an_assumption_and_the_play_goes_on(corridor: Player
     assert len(played.steps) == 9 and [s.outcome for s in played.surprises] == [
         Outcome.DEGRADED]
     assert played.surprises[0].step == 2 and played.surprises[0].event == "fail L1"
+
+
+def test_the_notebook_widget_offers_the_breaks_and_logs_the_surprise() -> None:
+    pytest.importorskip("ipywidgets")
+    widget = gaitc.player_widget(CORRIDOR)
+    widget.buttons[0].click()  # start at full health
+    widget.buttons[-1].click()  # nothing: in w, gait west
+    assert [b.description for b in widget.break_buttons] == [
+        "3. ! fail L1", "4. ! degrade L1", "5. ! fail L2"]
+    widget.break_buttons[0].click()
+    assert widget.log.value == ("surprise: step 2: L1 failed while not in use (eq. 3.5, line "
+                                "10); " + DEGRADED_NOTE)
+    widget.count.value = 4
+    widget.strongest_button.click()
+    assert widget.player.step == 6 and widget.player.goal == "w"
