@@ -70,6 +70,15 @@ class PieceKind(Choice):
     CLAUSE = "an assumption of its own"  # no robot words known: the group is the clause's rule
 
 
+#: The short names of the kinds (``synth --tolerate K --breakable NAME``).
+KIND_KEYS: Final = {
+    "unused": PieceKind.UNUSED_LEG_KEEPS,
+    "wear": PieceKind.USED_LEG_WEARS,
+    "cache": PieceKind.CACHE_RESTORES,
+    "hazard": PieceKind.HAZARD_FAILS,
+    "hazard-wear": PieceKind.HAZARD_WEARS,
+}
+
 #: The robot's words for breaking a piece of each kind, with ``{leg}`` for its leg.
 _WORDS: Final = {
     PieceKind.UNUSED_LEG_KEEPS: "{leg} changing health while not in use",
@@ -345,9 +354,10 @@ def projected_controller(spec: GR1Spec, solved: _Solved, counter: int,
 # ---------------------------------------------------------------- the report
 @dataclass(frozen=True)
 class ToleranceOptions:
-    """How :func:`tolerance` runs: ``breakable`` names the one group that may break (None:
-    every piece), ``groups`` whether each group is solved alone to find the limiting one,
-    ``controller`` whether the controller of the largest budget reached is kept."""
+    """How :func:`tolerance` runs: ``breakable`` names the one group that may break (a short
+    name of :data:`KIND_KEYS` or a group's name; None: every piece), ``groups`` whether
+    each group is solved alone to find the limiting one, ``controller`` whether the
+    controller of the largest budget reached is kept."""
 
     breakable: str | None = None
     groups: bool = True
@@ -426,6 +436,8 @@ class ToleranceReport:
             return f"{head}; the {nxt} {verb} it: {first.words} ({where})"
         if self.groups and not self.complete:
             return f"{head}; the {nxt} breaks it only when surprises of several kinds combine"
+        if self.groups and self.breakable is not None:
+            return f"{head}; a {nxt} is survived too"
         if self.groups:
             return f"{head}; a {nxt} surprise of any one kind is survived too"
         return head
@@ -482,9 +494,7 @@ def tolerance(spec: Spec | GR1Spec, semantics: Semantics = Semantics.DEFAULT, k:
     limits = Limits(opts.timeout, opts.progress)
     gr1 = spec.gr1 if isinstance(spec, Spec) else spec
     found = assumption_pieces(spec)
-    if opts.breakable is not None and opts.breakable not in found.groups:
-        raise UsageError(f"no breakable assumption group '{opts.breakable}'; the groups are: "
-                         + "; ".join(found.groups))
+    breakable = None if opts.breakable is None else group_named(found, opts.breakable)
     calls = 0
 
     def solve(bound: int, chosen: Selector | None, keep: bool = False) -> _Solved:
@@ -494,7 +504,7 @@ def tolerance(spec: Spec | GR1Spec, semantics: Semantics = Semantics.DEFAULT, k:
         return _solve(game, semantics, bound, limits, opts.options, keep)
 
     limits.report("solving the game with surprises", f"up to {_count(k)}")
-    wanted = None if opts.breakable is None else _in_group(opts.breakable)
+    wanted = None if breakable is None else _in_group(breakable)
     overall = solve(k, wanted, keep=opts.controller)
     reached = _largest(overall.tolerated)
     controller = None
@@ -502,7 +512,7 @@ def tolerance(spec: Spec | GR1Spec, semantics: Semantics = Semantics.DEFAULT, k:
         controller = projected_controller(gr1, overall, k - reached, semantics)
     groups: list[GroupTolerance] = []
     limiting: list[Limit] = []
-    names = found.groups if opts.breakable is None else (opts.breakable,)
+    names = found.groups if breakable is None else (breakable,)
     if opts.groups and reached is not None:
         bound = reached + 1
         for n, group in enumerate(names):
@@ -518,9 +528,21 @@ def tolerance(spec: Spec | GR1Spec, semantics: Semantics = Semantics.DEFAULT, k:
                 limiting.append(_limit(group, found, breaks))
     return ToleranceReport(
         file=spec.path if isinstance(spec, Spec) else gr1.name or "<spec>", requested=k,
-        reached=reached, breakable=opts.breakable, counter=counter_name(gr1),
+        reached=reached, breakable=breakable, counter=counter_name(gr1),
         groups=tuple(groups), limits=tuple(limiting), solver_calls=calls,
         seconds=time.monotonic() - started, controller=controller)
+
+
+def group_named(found: Assumptions, name: str) -> str:
+    """The group ``name`` stands for: a short name of :data:`KIND_KEYS` or a group's full
+    name; a :class:`UsageError` lists the spec's groups otherwise."""
+    group = str(KIND_KEYS[name]) if name in KIND_KEYS else name
+    if group in found.groups:
+        return group
+    keys = {str(kind): key for key, kind in KIND_KEYS.items()}
+    listed = "; ".join(f"{keys[g]} ({g})" if g in keys else f"'{g}'" for g in found.groups)
+    raise UsageError(f"no breakable assumptions '{name}' in this spec; its groups are: "
+                     f"{listed or 'none'}")
 
 
 def _in_group(group: str, subject: str | None = None) -> Selector:

@@ -458,3 +458,30 @@ def test_tolerance_is_monotone_in_k(spec: GR1Spec, k: int) -> None:
     most = tolerance(spec, Semantics.DEFAULT, 2, ToleranceOptions(groups=False)).reached
     asked = tolerance(spec, Semantics.DEFAULT, k, ToleranceOptions(groups=False)).reached
     assert asked == (None if most is None else min(k, most))
+
+
+@settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(tiny_specs(), st.sampled_from(list(Semantics)), st.integers(0, 2))
+def test_the_controller_of_random_specs_verifies(spec: GR1Spec, semantics: Semantics,
+                                                 k: int) -> None:
+    found = gaitc.tolerate(spec, k, semantics)
+    assert (found.synthesis.controller is None) == (found.report.reached is None)
+    if found.synthesis.controller is not None:
+        assert found.synthesis.verified, found.synthesis.report
+
+
+def test_one_kind_of_surprise_on_the_command_line(tmp_path: Path,
+                                                  capsys: pytest.CaptureFixture[str]) -> None:
+    out = tmp_path / "patrol.json"
+    spec = str(EXAMPLES / "patrol_2x2.gait")
+    assert main(["synth", spec, "--tolerate", "2", "--breakable", "cache", "-o", str(out)]) == 0
+    text = capsys.readouterr().out
+    assert "survives 2 surprises (all 2 asked); a third is survived too" in text
+    assert "the controller for up to 2 surprises" in text
+    assert main(["verify", spec, str(out)]) == 0
+    capsys.readouterr()
+    assert main(["synth", spec, "--tolerate", "1", "--breakable", "hazard", "-o", str(out)]) == 2
+    assert ("no breakable assumptions 'hazard' in this spec; its groups are: wear (eq. 3.5: a "
+            "leg in use loses at most one level a step); unused (") in capsys.readouterr().err
+    assert main(["synth", spec, "--breakable", "cache", "-o", str(out)]) == 2
+    assert "give --tolerate K too" in capsys.readouterr().err

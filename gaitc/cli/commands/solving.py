@@ -129,6 +129,11 @@ def register(sub: Any) -> None:
                    "most it survives and the assumption that limits it, and write the "
                    "controller for that many (symbolic, or --compact; docs/background/"
                    "tolerance.md)")
+    p.add_argument("--breakable", metavar="KIND",
+                   help="with --tolerate: only these assumptions may break: unused (a leg not "
+                   "in use keeps its health), wear (a leg in use loses at most one level a "
+                   "step), cache (a cache restores every leg), hazard, hazard-wear, or the "
+                   "rule of an assumption of the spec (default: every one)")
     add_prefer(p)
     _common(p)
     p.set_defaults(run=run_synth)
@@ -250,6 +255,9 @@ def _solve(args: argparse.Namespace, kind: ControllerKind
 def run_synth(args: argparse.Namespace) -> int:
     if args.tolerate is not None:
         return _run_tolerate(args)
+    if args.breakable is not None:
+        raise UsageError("--breakable says which assumptions --tolerate K plans for; give "
+                         "--tolerate K too")
     _, found = _solve(args, ControllerKind.STRATEGY)
     if args.json:
         return _synth_json(args, found)
@@ -290,6 +298,7 @@ def _tolerate(args: argparse.Namespace) -> gaitc.Tolerance:
         spec = gaitc.load(args.spec, args.encoding)
         with progress_display(args.verbose) as progress:
             return gaitc.tolerate(spec, args.tolerate, semantics_of(args),
+                                  breakable=args.breakable,
                                   form=Form.COMPACT if args.compact else Form.SYMBOLIC,
                                   verify=not args.no_verify, options=_options(args),
                                   timeout=args.timeout, progress=progress)
