@@ -286,21 +286,22 @@ def _solve(spec: GR1Spec, semantics: Semantics, bound: int, limits: Limits,
     read off every budget 0..bound."""
     from gaitc.solver.game import Game
     from gaitc.solver.symbolic import SymbolicSpec
+    from gaitc.solver.synthesis import memory_guard
 
     name = spec.inputs[-1].name
-    # without the care set: it is exact on the states after the first step and on the
-    # initial ones, and those with the counter past 0 are not initial (a budget below K is
-    # read off them)
-    sym = SymbolicSpec(spec, replace(options or Options(), care=False), limits.check)
-    game: Game = Game(sym, limits)
-    result = game.solve(keep_layers=keep)
-    bits = [sym.bit(b, False) for b in sym.var_bits[name]]
-    counter_bits = {str(b.var) for b in bits}
-    start = _at_counter(sym, name, 0)
     tolerated = []
-    for k in range(bound + 1):
-        left = sym.bdd.exist(counter_bits, result.winning & _at_counter(sym, name, bound - k))
-        tolerated.append(game.initially_winning(left & start, semantics))
+    with memory_guard():
+        # without the care set: it is exact on the states after the first step and on the
+        # initial ones, and those with the counter past 0 are not initial (a budget below
+        # K is read off them)
+        sym = SymbolicSpec(spec, replace(options or Options(), care=False), limits.check)
+        game: Game = Game(sym, limits)
+        result = game.solve(keep_layers=keep)
+        start = _at_counter(sym, name, 0)
+        for k in range(bound + 1):
+            left = sym.bdd.exist(set(sym.var_bits[name]),
+                                 result.winning & _at_counter(sym, name, bound - k))
+            tolerated.append(game.initially_winning(left & start, semantics))
     return _Solved(tuple(tolerated), sym if keep else None, result if keep else None)
 
 
