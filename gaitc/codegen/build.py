@@ -26,6 +26,7 @@ from gaitc.codegen.board import BoardTables, board_header
 from gaitc.codegen.emitter import header, source
 from gaitc.codegen.tables import NOT_INPUT, Tables, flatten
 from gaitc.compact.controller import CompactController
+from gaitc.compact.recovery import RecoveringController
 from gaitc.diagnostics import Span
 from gaitc.diagnostics.choices import Choice
 from gaitc.diagnostics.files import make_folder, write_atomically
@@ -98,13 +99,14 @@ def _where(file: str) -> Span:
     return Span(file or "<codegen>", 1, 1)
 
 
-def write_sources(ctrl: CompactController, folder: Path, tables: Tables | None = None
-                  ) -> tuple[Path, Path]:
-    """``gaitc_controller.h`` and ``.c`` in ``folder``, each written whole or not at all."""
+def write_sources(ctrl: CompactController, folder: Path, tables: Tables | None = None,
+                  recovery: RecoveringController | None = None) -> tuple[Path, Path]:
+    """``gaitc_controller.h`` and ``.c`` in ``folder``, each written whole or not at all
+    (with ``recovery``, whose base is ``ctrl``, its tables and surprise step too)."""
     make_folder(folder)
     h, c = folder / "gaitc_controller.h", folder / "gaitc_controller.c"
-    write_atomically(h, header(ctrl))
-    write_atomically(c, source(ctrl, tables))
+    write_atomically(h, header(ctrl, recovery))
+    write_atomically(c, source(ctrl, tables, recovery))
     return h, c
 
 

@@ -53,9 +53,12 @@ class Tables:
                 + 2 * len(self.field_sizes) + len(self.output_field))
 
 
-def flatten(ctrl: CompactController) -> Tables:
-    """The tables of ``ctrl``: only nodes some root reaches, renumbered children first."""
-    used = reachable_nodes(ctrl.nodes, ctrl.roots)
+def flatten(ctrl: CompactController, extra_roots: Sequence[int] = ()) -> Tables:
+    """The tables of ``ctrl``: only nodes some root reaches, renumbered children first;
+    ``extra_roots`` (a recovering controller's, :mod:`gaitc.compact.recovery`) follow
+    the controller's own in ``roots``."""
+    every = (*ctrl.roots, *extra_roots)
+    used = reachable_nodes(ctrl.nodes, every)
     number = {old: new for new, old in enumerate(used)}
     if len(used) >= LEAF or len(ctrl.moves) >= LEAF:
         raise ControllerError(f"the controller has {len(used)} decision nodes and "
@@ -81,7 +84,7 @@ def flatten(ctrl: CompactController) -> Tables:
     return Tables(
         node_slot=tuple(node_slot), node_first=tuple(node_first), kids=tuple(kids),
         moves=tuple(v for move in ctrl.moves for v in move),
-        roots=tuple(ref(r) for r in ctrl.roots),
+        roots=tuple(ref(r) for r in every),
         slot_field=tuple(index[s.field.name] for s in ctrl.slots),
         slot_next=tuple(int(s.next) for s in ctrl.slots),
         field_sizes=tuple(len(f.labels) for f in fields),

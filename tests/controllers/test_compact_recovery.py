@@ -1,0 +1,234 @@
+"""Recovery in the compact form and the generated C (issue 52).
+
+On shipped specs: the recovering compact controller is proved (its ordinary part by the
+compact form's verifier, its surprise handling by :mod:`gaitc.verifier.recovery`, which
+refuses a broken recovery move); the generated C (host gcc, -Wall -Wextra -Werror) and the
+Python runtime make the same moves, outcomes and goal masks on 10,000 steps with seeded
+violations injected (legs failing or losing a level, hazard switches); on every surprise
+the outcome and the goals kept agree with :meth:`gaitc.sim.recovery.Fallback.enter`, which
+re-solves the games itself, and the spec's own clauses (:class:`gaitc.sim.monitor.Monitor`)
+find ρs kept on every move.
+"""
+
+from __future__ import annotations
+
+import random
+import shutil
+import subprocess
+from dataclasses import replace
+from pathlib import Path
+
+import pytest
+
+import gaitc
+from gaitc.codegen.build import write_sources
+from gaitc.codegen.recovery import fit, recovery_sizes
+from gaitc.compact.diagram import leaf
+from gaitc.compact.recovery import (
+    Outcome,
+    RecoveringController,
+    RecoveringRunner,
+    prove_recovery,
+    recovering_controller,
+)
+from gaitc.core.vocabulary import Field
+from gaitc.sim.domain import Domain
+from gaitc.sim.monitor import Monitor
+from gaitc.sim.recovery import Fallback
+from gaitc.sim.surprise import Outcome as SimOutcome
+
+ROOT = Path(__file__).resolve().parents[2]
+EXAMPLES = ROOT / "gaitc" / "examples"
+SPECS = ("patrol_2x2.gait", "shuttle_2leg.gait", "corridor_hazard.gait")
+HARNESS = r"""
+#include <stdio.h>
+#include <stdlib.h>
+#include "gaitc_controller.h"
+int main(void)
+{
+    char line[512];
+    gaitc_state s;
+    uint8_t in[GAITC_INPUTS + 1];
+    while (fgets(line, sizeof line, stdin)) {
+        char *p = line + 2;
+        int k;
+        uint16_t move = 0;
+        uint8_t outcome = 0;
+        for (k = 0; k < GAITC_INPUTS; k++) in[k] = (uint8_t)strtol(p, &p, 10);
+        if (line[0] == 's') gaitc_start(&s, in);
+        else outcome = gaitc_step_surprise(&s, in, &move);
+        printf("%u %u %u %u", outcome, outcome == GAITC_STOPPED ? 0u : move,
+               gaitc_kept(&s), s.goal);
+        for (k = 0; k < GAITC_FIELDS; k++) printf(" %u", s.value[k]);
+        printf("\n");
+        fflush(stdout);
+    }
+    return 0;
+}
+"""
+C_OUTCOME = {0: Outcome.ALLOWED, 1: Outcome.RECOVERED, 2: Outcome.DEGRADED, 3: Outcome.STOPPED}
+
+
+@pytest.fixture(scope="module")
+def made() -> dict[str, tuple[gaitc.Spec, RecoveringController]]:
+    out = {}
+    for name in SPECS:
+        spec = gaitc.load(EXAMPLES / name) if (EXAMPLES / name).exists() \
+            else gaitc.load(ROOT / "specs" / name)
+        out[name] = spec, recovering_controller(spec.gr1, spec.vocabulary)
+    return out
+
+
+@pytest.mark.parametrize("name", SPECS)
+def test_the_recovering_controller_is_proved(
+        made: dict[str, tuple[gaitc.Spec, RecoveringController]], name: str) -> None:
+    spec, rc = made[name]
+    report = gaitc.verify(spec, rc.base)
+    assert report.ok, report.problems
+    proof = prove_recovery(spec.gr1, rc)
+    assert proof.ok, proof.problems
+    assert rc.fallbacks, "every shipped example has a surprise that only degrades"
+
+
+def test_a_recovery_move_that_breaks_the_guarantees_is_refused(
+        made: dict[str, tuple[gaitc.Spec, RecoveringController]]) -> None:
+    spec, rc = made["patrol_2x2.gait"]
+    refused = [k for k in range(len(rc.base.moves))
+               if not prove_recovery(spec.gr1, replace(rc, recover_root=leaf(k))).ok]
+    assert refused, "some constant recovery move must break sys_trans or the goals"
+    flag_everywhere = prove_recovery(spec.gr1, replace(rc, recoverable_root=leaf(1)))
+    assert not flag_everywhere.ok
+
+
+def test_sizes_and_the_budget_name_the_surprises_that_stop(
+        made: dict[str, tuple[gaitc.Spec, RecoveringController]]) -> None:
+    _, rc = made["patrol_2x2.gait"]
+    sizes = recovery_sizes(rc)
+    assert len(sizes.parts) == 2 + len(rc.fallbacks) and sizes.total > sizes.parts[0].bytes
+    full, words = fit(rc, sizes.total)
+    assert full is not None and len(full.fallbacks) == len(rc.fallbacks)
+    small, words = fit(rc, sizes.parts[0].bytes + sizes.parts[1].bytes)
+    assert small is not None and small.fallbacks == ()
+    assert any("while unused: stop (its fallback tables do not fit)" in w for w in words)
+    none, words = fit(rc, sizes.parts[0].bytes)
+    assert none is None and words
+
+
+# ------------------------------------------------------------------ the 10,000 steps
+def _spec_values(spec: gaitc.Spec, rc: RecoveringController, fields: dict[str, int]
+                 ) -> tuple[int, ...]:
+    """Spec-level values of field values (bits by the fields' cubes, integers decoded)."""
+    bits: dict[str, bool] = {}
+    for f in rc.base.vocabulary.fields:
+        bits.update({b: False for b in f.bits})
+        bits.update(f.cube(fields[f.name]))
+    out = []
+    for v in spec.gr1.variables():
+        iv = rc.base.integers.get(v.name)
+        if iv is not None:
+            out.append(iv.low + sum(int(bits[b]) << k for k, b in enumerate(iv.bits)))
+        else:
+            out.append(int(bits[v.name]))
+    return tuple(out)
+
+
+def _surprise(rng: random.Random, inputs: tuple[Field, ...], now: dict[str, int]
+              ) -> dict[str, int]:
+    """A leg fails or loses a level, or the hazard switches (one field changes)."""
+    f = rng.choice(inputs)
+    out = {g.name: now[g.name] for g in inputs}
+    if f.numeric:
+        if now[f.name] > 0:
+            out[f.name] = 0 if rng.random() < 0.5 else now[f.name] - 1
+    else:
+        out[f.name] = rng.choice([v for v in range(len(f.labels)) if v != now[f.name]] or [0])
+    return out
+
+
+@pytest.mark.skipif(shutil.which("gcc") is None, reason="no host C compiler")
+@pytest.mark.parametrize("name", [
+    "patrol_2x2.gait", "shuttle_2leg.gait",
+    pytest.param("corridor_hazard.gait", marks=pytest.mark.slow)])  # about 10 s
+def test_c_and_python_recover_alike_for_10000_steps(
+        made: dict[str, tuple[gaitc.Spec, RecoveringController]], name: str,
+        tmp_path: Path) -> None:
+    spec, rc = made[name]
+    ctrl = rc.base
+    write_sources(ctrl, tmp_path, recovery=rc)
+    (tmp_path / "harness.c").write_text(HARNESS)
+    program = tmp_path / "harness"
+    subprocess.run(["gcc", "-std=c99", "-Wall", "-Wextra", "-Werror", "-O1", "-o",
+                    str(program), str(tmp_path / "gaitc_controller.c"),
+                    str(tmp_path / "harness.c"), f"-I{tmp_path}"], check=True)
+    fallback = Fallback(spec.gr1, Domain(spec.robot, spec.robot_encoding))
+    monitor = Monitor(spec.gr1)
+    inputs = ctrl.vocabulary.inputs
+    fields = ctrl.vocabulary.fields
+    rng = random.Random(f"52:{name}")
+    seen = {o: 0 for o in Outcome}
+    proc = subprocess.Popen([str(program)], stdin=subprocess.PIPE, stdout=subprocess.PIPE,
+                            text=True)
+    assert proc.stdin is not None and proc.stdout is not None
+
+    def ask(line: str) -> list[int]:
+        assert proc.stdin is not None and proc.stdout is not None
+        proc.stdin.write(line + "\n")
+        proc.stdin.flush()
+        return [int(v) for v in proc.stdout.readline().split()]
+
+    def start() -> RecoveringRunner:
+        first = {f.name: len(f.labels) - 1 if f.numeric else 0 for f in inputs}
+        run = RecoveringRunner(rc, first)
+        answer = ask("s " + " ".join(str(first[f.name]) for f in inputs))
+        assert answer[4:] == [run.state[f.name] for f in fields]
+        return run
+
+    run = start()
+    try:
+        for _ in range(10_000):
+            before = _spec_values(spec, rc, run.state)
+            was_normal = run.mode == RecoveringRunner.NORMAL
+            allowed = [c for c in _candidates(inputs)
+                       if not monitor.check_step(before, _spec_values(
+                           spec, rc, run.state | c)).env_failed]
+            chosen = _surprise(rng, inputs, run.state) if rng.random() < 0.08 or not allowed \
+                else rng.choice(allowed)
+            step = run.step(chosen)
+            answer = ask("x " + " ".join(str(chosen[f.name]) for f in inputs))
+            assert C_OUTCOME[answer[0]] == step.outcome
+            assert answer[1] == (0 if step.move is None else step.move)
+            assert answer[2] == step.kept_mask and answer[3] == run.goal
+            assert answer[4:] == [run.state[f.name] for f in fields]
+            seen[step.outcome] += 1
+            after = _spec_values(spec, rc, run.state)
+            if step.outcome != Outcome.STOPPED:
+                assert monitor.check_step(before, after).sys_failed == ()
+            if step.outcome != Outcome.ALLOWED and was_normal:
+                entry = fallback.enter(before, _named(spec, rc, chosen))
+                assert SimOutcome(str(step.outcome)) == entry.outcome, (before, chosen)
+                if step.outcome == Outcome.DEGRADED:
+                    assert step.kept_mask == sum(1 << j for j in entry.kept)
+            if step.outcome == Outcome.STOPPED:
+                run = start()
+    finally:
+        proc.stdin.close()
+        proc.wait()
+    print(name, {str(o): n for o, n in seen.items()})
+    assert seen[Outcome.RECOVERED] > 10 and seen[Outcome.ALLOWED] > 5000, seen
+    assert seen[Outcome.DEGRADED] + seen[Outcome.STOPPED] > 0, seen
+
+
+def _candidates(inputs: tuple[Field, ...]) -> list[dict[str, int]]:
+    out: list[dict[str, int]] = [{}]
+    for f in inputs:
+        out = [c | {f.name: v} for c in out for v in range(len(f.labels))]
+    return out
+
+
+def _named(spec: gaitc.Spec, rc: RecoveringController, chosen: dict[str, int]
+           ) -> dict[str, int]:
+    """The inputs of ``chosen`` as spec-level values by name (what Fallback.enter reads)."""
+    names = [v.name for v in spec.gr1.variables()]
+    whole = {f.name: chosen.get(f.name, 0) for f in rc.base.vocabulary.fields}
+    after = dict(zip(names, _spec_values(spec, rc, whole), strict=True))
+    return {v.name: after[v.name] for v in spec.gr1.inputs}
