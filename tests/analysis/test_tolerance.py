@@ -485,3 +485,28 @@ def test_one_kind_of_surprise_on_the_command_line(tmp_path: Path,
             "leg in use loses at most one level a step); unused (") in capsys.readouterr().err
     assert main(["synth", spec, "--breakable", "cache", "-o", str(out)]) == 2
     assert "give --tolerate K too" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("name", ["shuttle_2leg", "patrol_2x2", "corridor_hazard",
+                                  "correction_edges"])
+def test_the_answers_do_not_depend_on_the_encoding(name: str) -> None:
+    path = EXAMPLES / f"{name}.gait"
+    onehot = tolerance(gaitc.load(path, "onehot"), Semantics.DEFAULT, 2)
+    binary = tolerance(gaitc.load(path, "binary"), Semantics.DEFAULT, 2)
+    assert binary.reached == onehot.reached
+    assert binary.groups == onehot.groups
+    assert binary.limits == onehot.limits
+    assert binary.summary() == onehot.summary()
+
+
+def test_resilience_has_the_surprises(capsys: pytest.CaptureFixture[str]) -> None:
+    spec = str(EXAMPLES / "patrol_2x2.gait")
+    report = gaitc.resilience(spec)
+    assert report.tolerance is not None
+    assert report.tolerance.summary() == tolerance(
+        gaitc.load(spec, "binary"), Semantics.DEFAULT, 2).summary()
+    assert report.to_json()["tolerance"]["reached"] == 0
+    assert "5. surprises (broken assumptions, up to 2; synth --tolerate)" in report.lines()
+    assert gaitc.resilience(spec, tolerate=None).tolerance is None
+    assert main(["resilience", spec, "--tolerate", "1"]) == 0
+    assert "survives 0 surprises; the first breaks it: L3" in capsys.readouterr().out
