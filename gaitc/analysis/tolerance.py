@@ -57,6 +57,8 @@ COUNTER: Final = "surprises"
 DEFAULT_BOUND: Final = 2
 #: The subjects (legs) tried one by one to name the surprise that breaks a limiting group.
 MAX_SUBJECTS: Final = 12
+#: The groups solved one by one to find the limiting one (a SLUGS file has one a clause).
+MAX_GROUPS: Final = 24
 
 
 class PieceKind(Choice):
@@ -155,8 +157,10 @@ def assumption_pieces(spec: Spec | GR1Spec) -> Assumptions:
             continue
         line = clause.origin.span.line if clause.origin and clause.origin.span else None
         split = _split(clause.formula, rule, known)
-        if split is None:
-            pieces.append(Piece(clause.formula, index, rule, "", f"breaking '{rule}'", line))
+        if split is None:  # one group per clause: a SLUGS file's share one rule
+            group = rule if line is None or f"line {line}" in rule else f"{rule}, line {line}"
+            pieces.append(Piece(clause.formula, index, group, "",
+                                f"the assumption '{rule}' broken", line))
             continue
         for formula, kind, leg in split:
             pieces.append(Piece(formula, index, str(kind), leg,
@@ -409,6 +413,7 @@ class ToleranceReport:
     limits: tuple[Limit, ...] = ()
     solver_calls: int = 0
     seconds: float = 0.0
+    notes: tuple[str, ...] = ()
     controller: SymbolicController | None = field(default=None, repr=False, compare=False)
 
     @property
@@ -431,10 +436,12 @@ class ToleranceReport:
         nxt = _ordinal(self.reached + 1)
         if self.limits:
             first = self.limits[0]
-            where = first.group.split(":")[0] + (
-                f", {line_list(first.lines)}" if first.lines else "")
+            equation = first.group.split(":")[0] if first.group.startswith("eq. ") else ""
+            where = ", ".join(w for w in (equation, line_list(first.lines) if first.lines
+                                          else "") if w)
+            where = f" ({where})" if where else ""
             verb = "would break" if self.complete else "breaks"
-            return f"{head}; the {nxt} {verb} it: {first.words} ({where})"
+            return f"{head}; the {nxt} {verb} it: {first.words}{where}"
         if self.groups and not self.complete:
             return f"{head}; the {nxt} breaks it only when surprises of several kinds combine"
         if self.groups and self.breakable is not None:
@@ -450,10 +457,12 @@ class ToleranceReport:
                f"({what} may break; {self.solver_calls} solver calls, {self.seconds:.1f} s)",
                f"  {self.summary()}"]
         for g in self.groups:
-            where = f" ({line_list(g.lines)})" if g.lines else ""
+            named = len(g.lines) == 1 and f"line {g.lines[0]}" in g.group
+            where = f" ({line_list(g.lines)})" if g.lines and not named else ""
             most = ("unrealizable" if g.largest is None else f"at least {g.largest}"
                     if g.reaches_bound else str(g.largest))
             out.append(f"    {g.group}{where}: {most}")
+        out.extend(f"  note: {n}" for n in self.notes)
         return out
 
     def to_json(self) -> dict[str, Any]:
@@ -469,6 +478,7 @@ class ToleranceReport:
             "limits": [{"group": lim.group, "leg": lim.subject or None, "words": lim.words,
                         "lines": list(lim.lines)} for lim in self.limits],
             "solver_calls": self.solver_calls, "seconds": round(self.seconds, 3),
+            "notes": list(self.notes),
         }
 
 
@@ -514,6 +524,11 @@ def tolerance(spec: Spec | GR1Spec, semantics: Semantics = Semantics.DEFAULT, k:
     groups: list[GroupTolerance] = []
     limiting: list[Limit] = []
     names = found.groups if breakable is None else (breakable,)
+    notes = []
+    if len(names) > MAX_GROUPS:
+        notes.append(f"{len(names) - MAX_GROUPS} of the {len(names)} groups were not solved "
+                     f"alone (the first {MAX_GROUPS} were); --breakable solves one")
+        names = names[:MAX_GROUPS]
     if opts.groups and reached is not None:
         bound = reached + 1
         for n, group in enumerate(names):
@@ -531,7 +546,7 @@ def tolerance(spec: Spec | GR1Spec, semantics: Semantics = Semantics.DEFAULT, k:
         file=spec.path if isinstance(spec, Spec) else gr1.name or "<spec>", requested=k,
         reached=reached, breakable=breakable, counter=counter_name(gr1),
         groups=tuple(groups), limits=tuple(limiting), solver_calls=calls,
-        seconds=time.monotonic() - started, controller=controller)
+        seconds=time.monotonic() - started, notes=tuple(notes), controller=controller)
 
 
 def group_named(found: Assumptions, name: str) -> str:

@@ -510,3 +510,16 @@ def test_resilience_has_the_surprises(capsys: pytest.CaptureFixture[str]) -> Non
     assert gaitc.resilience(spec, tolerate=None).tolerance is None
     assert main(["resilience", spec, "--tolerate", "1"]) == 0
     assert "survives 0 surprises; the first breaks it: L3" in capsys.readouterr().out
+
+
+def test_a_slugs_file_has_a_group_per_clause() -> None:
+    golden = Path(__file__).resolve().parents[1] / "golden" / "tiny.onehot.slugsin"
+    spec = gaitc.load(golden)
+    report = tolerance(spec, Semantics.DEFAULT, 1)
+    assert [g.group for g in report.groups] == [
+        f"slugsin [ENV_TRANS], line {n}" for n in (31, 33, 35)]
+    assert report.summary() == ("survives 0 surprises; the first breaks it: the assumption "
+                                "'slugsin [ENV_TRANS]' broken (line 35)")
+    alone = tolerance(spec, Semantics.DEFAULT, 1,
+                      ToleranceOptions(breakable="slugsin [ENV_TRANS], line 31"))
+    assert alone.reached == 1
