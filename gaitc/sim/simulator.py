@@ -21,15 +21,8 @@ from gaitc.sim.monitor import Monitor, Violation
 from gaitc.sim.play import pursued
 from gaitc.sim.run import Run, Step, Summary
 from gaitc.sim.strategy import InputKey, Strategy, StrategyView
-from gaitc.sim.surprise import (
-    Event,
-    Outcome,
-    Surprise,
-    SurprisePolicy,
-    broken_words,
-    change_words,
-)
-from gaitc.solver.progress import goal_titles
+from gaitc.sim.surprise import Event, Surprise, SurprisePolicy, broken_words
+from gaitc.sim.surprising import forced, recover
 
 if TYPE_CHECKING:
     from gaitc.sim.recovery import Entry, Fallback
@@ -249,7 +242,7 @@ class Simulator:
             try:
                 if node is not None and not moves and event is None:
                     raise sim._refuse(index, node, Request(()))
-                request = (sim._forced(node, event) if node is not None and event is not None
+                request = (forced(sim, node, event) if node is not None and event is not None
                            else environment.choose(situation))
                 if request is None:
                     break
@@ -298,15 +291,6 @@ class Simulator:
         return bool(self.monitor.failed_assumptions(self.strategy.values[node],
                                                     self._input_names(request.inputs)))
 
-    def _forced(self, node: int, event: Event) -> Request:
-        """The inputs of ``event`` performed at ``node``: the node's state with the event's
-        changes, the other inputs as they were."""
-        after = event.apply(self.state(node), self.domain)
-        values = self.domain.encode(after)
-        here = self.strategy.valuation(node)
-        return Request(tuple(int(values.get(name, here[name])) for name in self.strategy.inputs),
-                       event.words)
-
     def _told(self, index: int, node: int, request: Request, failed: list[int]) -> str:
         """The broken assumption in the robot's words (:func:`gaitc.sim.surprise.broken_words`)."""
         inputs = self._input_names(request.inputs)
@@ -317,40 +301,13 @@ class Simulator:
     def _recover(self, index: int, node: int, request: Request, pursuing: int,
                  opts: SurpriseOptions) -> tuple[Surprise, Entry]:
         """Where the run goes after the request at ``node`` broke an assumption, and the
-        record of it."""
+        record of it (:func:`gaitc.sim.surprising.recover`, with this run's games)."""
         from gaitc.sim.recovery import Fallback
 
         if self._fallback is None:
             self._fallback = opts.fallback or Fallback(self.monitor.spec, self.domain,
                                                        opts.semantics)
-        inputs = self._input_names(request.inputs)
-        values = self.strategy.values[node]
-        entry = self._fallback.enter(values, inputs, pursuing)
-        before = self.state(node)
-        after = self.domain.decode(self.strategy.valuation(node) | inputs)
-        broken = [self.monitor.violation(index, "env_trans", i)
-                  for i in self.monitor.failed_assumptions(values, inputs)]
-        words = self._told(index, node, request, [v.index for v in broken])
-        first = next((v for v in broken if v.span is not None), broken[0])
-        titles = goal_titles(self.monitor.spec)
-        kept = tuple(titles[j] for j in entry.kept)
-        lost = tuple(t for j, t in enumerate(titles) if j not in entry.kept)
-        change = ", ".join(change_words(before, after, self.domain)) or "this event"
-        match entry.outcome:
-            case Outcome.RECOVERED:
-                note = "recovered: the state is still winning; every goal is pursued"
-            case Outcome.DEGRADED:
-                note = (f"degraded: still pursuing {', '.join(kept)}; {', '.join(lost)} "
-                        f"{'is' if len(lost) == 1 else 'are'} out of reach after {change}")
-            case _:
-                where = (f"heading for cache {' or '.join(entry.cache)} to stop there"
-                         if entry.node is not None else "the robot stops where it is")
-                note = f"stopped: no goal is reachable after {change}; {where}"
-        surprise = Surprise(index, request.what or "an input outside the assumptions", words,
-                            clause=first.rule,
-                            line=None if first.span is None else str(first.span),
-                            outcome=entry.outcome, kept=kept, lost=lost, note=note)
-        return surprise, entry
+        return recover(self, self._fallback, index, node, request, pursuing)
 
     def summarize(self, run: Run, verdicts: Verdicts) -> Summary:
         """The summary of ``run`` from the monitor's ``verdicts`` along it."""

@@ -102,7 +102,7 @@ def recover(sim: Simulator, fallback: Fallback, index: int, node: int, request: 
     broken = [sim.monitor.violation(index, ASSUMPTIONS, i)
               for i in sim.monitor.failed_assumptions(values, names)]
     words = broken_words(before, after, sim.domain, broken)
-    first = broken[0] if broken else None
+    first = next((v for v in broken if v.span is not None), broken[0] if broken else None)
     titles = goal_titles(sim.monitor.spec)
     kept = tuple(titles[j] for j in entry.kept)
     lost = tuple(t for j, t in enumerate(titles) if j not in entry.kept)
