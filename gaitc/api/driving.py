@@ -10,13 +10,18 @@ is. The board is one of three backend objects a notebook builds:
   spring-damper model predicts (thesis 4.1.1), so the region is the one under the chassis;
 - :class:`SerialBoard`: a real valve board on a serial port (protocol v2, docs/hardware.md),
   with waveguide health sensing (thesis 3.4.2).
+
+A reading that breaks an assumption stops the drive, or is held, taken at worst, or
+recovered from as ``simulate`` recovers (:class:`~gaitc.hw.driver.ViolationPolicy`); on a
+simulated board, ``violate`` makes its environment perform events whatever the assumptions
+say (``"12:fail L5"``, as ``simulate --violate``).
 """
 
 from __future__ import annotations
 
 import html
 import math
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -33,6 +38,7 @@ from gaitc.api.solving import recorded_encoding
 from gaitc.core.modes import BackendKind, EnvironmentKind
 from gaitc.core.spec import Spec, load
 from gaitc.diagnostics import UsageError
+from gaitc.hw.driver import VIOLATION_POLICIES, ViolationPolicy
 from gaitc.ir.spec import Semantics
 from ltlcompiler.encoding import EncodingName
 
@@ -42,11 +48,12 @@ if TYPE_CHECKING:
     from gaitc.ir.controller import Controller
     from gaitc.sim.environments import Environment
     from gaitc.sim.run import Run
+    from gaitc.sim.surprise import Event, Surprise
     from gaitc.solver.progress import Progress
 
-#: What a reading that breaks the spec's assumptions does: stop the run, hold the levels
-#: the controller had, or take the worst levels the assumptions allow.
-VIOLATION_POLICIES = ("stop", "hold", "worst")
+__all__ = ["VIOLATION_POLICIES", "Board", "Drive", "DriveOptions", "PhysicsBoard",
+           "SerialBoard", "SimulatedBoard", "Tracker", "ViolationPolicy", "board_environment",
+           "drive"]
 
 
 @dataclass(frozen=True)
@@ -107,14 +114,17 @@ class Tracker:
 class DriveOptions:
     """How :func:`drive` runs: ``steps`` (20, or a scenario's length), seconds between valve
     states (0 simulated, 0.5 serial), ``cycles`` of each gait per step, what a reading that
-    breaks an assumption does (:data:`VIOLATION_POLICIES`), an optional pose ``tracker``,
-    and for a controller synthesized on the fly its ``encoding``, ``semantics`` and move
-    preferences ``prefer``."""
+    breaks an assumption does (:class:`ViolationPolicy`; by default stop, or recover when
+    there are events to ``violate``), the events a simulated board's environment performs
+    whatever the assumptions say (``"12:fail L5"``), an optional pose ``tracker``, and for
+    a controller synthesized on the fly its ``encoding``, ``semantics`` (also that of the
+    games a recovery solves) and move preferences ``prefer``."""
 
     steps: int | None = None
     step_delay: float | None = None
     cycles: int = 1
-    on_violation: str = "stop"
+    on_violation: ViolationPolicy | str | None = None
+    violate: Sequence[str] = ()
     tracker: Tracker | None = None
     encoding: EncodingName | str | None = None
     semantics: Semantics | str = Semantics.DEFAULT
@@ -124,8 +134,9 @@ class DriveOptions:
 @dataclass
 class Drive:
     """A drive: the run (None when the spec is unrealizable and no controller was given),
-    the readings that broke an assumption, the backend's name and, for the physics board,
-    the chassis pose at each reading."""
+    the readings that broke an assumption and were held or taken at worst (``violations``,
+    as notes; a recovered one is a surprise of the run, :attr:`surprises`), the backend's
+    name and, for the physics board, the chassis pose at each reading."""
 
     spec: str
     board: str
@@ -137,6 +148,12 @@ class Drive:
     @property
     def realizable(self) -> bool:
         return self.run is not None
+
+    @property
+    def surprises(self) -> tuple[Surprise, ...]:
+        """The events of the run that broke an assumption (or were performed by
+        ``violate``), each with what became of the run, as ``simulate`` lists them."""
+        return () if self.run is None else tuple(self.run.surprises)
 
     def poses_text(self, quiet: bool = False) -> str:
         """The chassis pose the physics model gave at each reading (the last one if quiet)."""
@@ -155,6 +172,10 @@ class Drive:
         parts = [step_table(self.run, self.full_health, False)]
         if self.run.summary is not None:
             parts.append(summary_text(self.run.summary, self.board, False))
+        if self.run.surprises:
+            from gaitc.sim.terminal import surprises_text
+
+            parts.append(surprises_text(self.run.surprises))
         if self.poses:
             parts.append(self.poses_text())
         return "\n\n".join(parts)
@@ -164,7 +185,7 @@ class Drive:
 
     def to_json(self) -> dict[str, Any]:
         return {**run_document(self.spec, self.run, self.board, None, self.realizable),
-                "backend": self.board, "violations": list(self.violations)}
+                "backend": self.board, "substituted": list(self.violations)}
 
 
 def drive(spec: Spec | str | Path,
@@ -195,7 +216,10 @@ def drive(spec: Spec | str | Path,
                     progress=progress)
     if bound is None:
         return Drive(checked.path, chosen.name, None)
-    backend, steps = _backend(chosen, opts, bound, checked.path, primitives)
+    planned = _planned(chosen, opts, bound)
+    policy = _policy(opts)
+    backend, steps = _backend(chosen, opts, bound, checked.path, primitives,
+                              planned if planned or policy is ViolationPolicy.RECOVER else None)
     if opts.tracker is not None:
         backend = _localised(opts.tracker, backend, bound)
     delay = opts.step_delay if opts.step_delay is not None else (
@@ -209,12 +233,49 @@ def drive(spec: Spec | str | Path,
         step_delay=delay,
         cycles=opts.cycles,
         progress=live,
-        on_violation=opts.on_violation,
+        on_violation=policy,
+        semantics=Semantics.parse(opts.semantics),
+        follower=_follower(backend),
     )
     with interrupt_on_signals():  # SIGTERM and SIGHUP vent and keep the run, as Ctrl-C does
         run = driver.run(steps, checked.path)
     return Drive(checked.path, backend.name, run, dict(bound.domain.full),
                  tuple(driver.violations), tuple(getattr(backend, "placed", None) or ()))
+
+
+def _policy(opts: DriveOptions) -> ViolationPolicy:
+    """The policy for a reading that breaks an assumption: the one given, else recover
+    when events are to be performed, else stop."""
+    if opts.on_violation is not None:
+        return ViolationPolicy.parse(opts.on_violation, "--on-violation")
+    return ViolationPolicy.RECOVER if opts.violate else ViolationPolicy.STOP
+
+
+def _planned(board: Board, opts: DriveOptions, bound: Session) -> dict[int, Event]:
+    """The events ``violate`` plans, by step; only a simulated board performs them."""
+    if not opts.violate:
+        return {}
+    if isinstance(board, SerialBoard):
+        raise UsageError("--violate makes the simulated robot's environment perform an "
+                         "event; a serial board's sensors report what happens (use --backend "
+                         "sim or physics)")
+    if opts.tracker is not None:
+        raise UsageError("--violate changes the simulated robot's readings; with --pose the "
+                         "region comes from a tracker")
+    from gaitc.sim.surprise import plan
+
+    return plan(opts.violate, bound.domain)
+
+
+def _follower(backend: Backend) -> Any:
+    """The surprising simulated robot inside ``backend`` (a physics board wraps it), or
+    None."""
+    from gaitc.hw.surprised import SurprisingRobot
+
+    inner: Any = backend
+    while inner is not None and not isinstance(inner, SurprisingRobot):
+        inner = getattr(inner, "inner", None)
+    return inner
 
 
 def _check(board: Board, opts: DriveOptions) -> None:
@@ -224,7 +285,7 @@ def _check(board: Board, opts: DriveOptions) -> None:
         raise UsageError("--cycles must be at least 1")
     if opts.step_delay is not None and opts.step_delay < 0:
         raise UsageError("--step-delay must not be negative")
-    if opts.on_violation not in VIOLATION_POLICIES:
+    if opts.on_violation is not None and opts.on_violation not in VIOLATION_POLICIES:
         raise UsageError(f"unknown --on-violation {opts.on_violation!r}; use one of "
                          f"{', '.join(VIOLATION_POLICIES)}")
     if isinstance(board, SerialBoard) and not board.port:
@@ -249,7 +310,10 @@ def board_environment(board: SimulatedBoard | PhysicsBoard, bound: Session) -> E
 
 
 def _backend(board: Board, opts: DriveOptions, bound: Session, spec_path: str,
-             primitives: dict[str, ValveSequence]) -> tuple[Backend, int]:
+             primitives: dict[str, ValveSequence],
+             planned: Mapping[int, Event] | None = None) -> tuple[Backend, int]:
+    """The backend of ``board`` and the steps to drive; with ``planned`` (None: no
+    surprise to meet), a simulated robot that follows the driver and performs them."""
     from gaitc.hw.driver import valve_count
     from gaitc.sim.scenario import ScriptedEnvironment
 
@@ -269,7 +333,13 @@ def _backend(board: Board, opts: DriveOptions, bound: Session, spec_path: str,
     chosen = board_environment(board, bound)
     if isinstance(chosen, ScriptedEnvironment) and opts.steps is None:
         steps = len(chosen.scenario.steps)
-    robot = SimulatedRobot(bound.strategy, bound.domain, bound.monitor, chosen, valves)
+    if planned is not None:
+        from gaitc.hw.surprised import SurprisingRobot
+
+        robot: SimulatedRobot = SurprisingRobot(bound.strategy, bound.domain, bound.monitor,
+                                                chosen, valves, planned)
+    else:
+        robot = SimulatedRobot(bound.strategy, bound.domain, bound.monitor, chosen, valves)
     if isinstance(board, PhysicsBoard):
         return _physics(board, bound, robot, spec_path), steps
     return robot, steps

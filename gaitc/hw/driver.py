@@ -5,6 +5,12 @@ hazard are the environment's next input; the controller's successor with that in
 the next region and the gait that gets there, whose valve sequence (chapter 2) is then run.
 The loop is gaitsim's Simulator with the sensors playing the environment, so a hardware run
 is checked by the monitor and saved like a simulated one (``gaitc render map --run``).
+
+A reading that breaks an assumption stops the run, is replaced by an allowed input
+(``hold``, ``worst``), or is recovered from as ``simulate`` recovers from a surprise
+(``recover``: :mod:`gaitc.sim.recovery`, after Ehlers and Topcu, HSCC 2014): the drive
+goes on with the fallback strategy, with every goal, fewer, or towards a cache, and the run
+lists the surprise (``violations``) as ``simulate --violate`` does.
 """
 
 from __future__ import annotations
@@ -13,8 +19,10 @@ import dataclasses
 import math
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
+from typing import Protocol
 
 from gaitc.diagnostics import SpecSemanticError
+from gaitc.diagnostics.choices import Choice
 from gaitc.gaitgraph.pairing import Resolver, ValveSequence, resolve_primitive
 from gaitc.hw.backend import (
     Backend,
@@ -25,13 +33,42 @@ from gaitc.hw.backend import (
 )
 from gaitc.hw.localisation import Miss, RegionMap, deviation
 from gaitc.hw.simulated import ScenarioFinished
+from gaitc.ir.spec import Semantics
 from gaitc.sim.domain import Domain, State
 from gaitc.sim.environments import Environment, Move, Request, Situation
 from gaitc.sim.monitor import Monitor
 from gaitc.sim.run import Run
-from gaitc.sim.simulator import Simulator
+from gaitc.sim.simulator import Simulator, SurpriseOptions
 from gaitc.sim.strategy import InputKey, StrategyView
+from gaitc.sim.surprise import Event, Surprise, SurprisePolicy
 from ltlcompiler.model import GaitKind, Model
+
+
+class ViolationPolicy(Choice):
+    """What the driver does with a reading that breaks the spec's assumptions."""
+
+    STOP = "stop"  # end the run with the broken assumption; every valve vented
+    HOLD = "hold"  # take the allowed input closest to the levels the controller had
+    WORST = "worst"  # take the allowed input with the lowest levels
+    RECOVER = "recover"  # go on from the state sensed, as simulate recovers (recovery.py)
+
+
+#: The policies, as ``--on-violation`` names them.
+VIOLATION_POLICIES = ViolationPolicy.values()
+#: The note of an event performed on the simulated robot that broke no assumption (as
+#: ``simulate --violate`` writes it).
+ALLOWED = "allowed: the assumptions allow this event; the controller answered it"
+
+
+class Follower(Protocol):
+    """A simulated robot that follows the driver's controller (after a recovery, the
+    fallback strategy) and performs planned events (``drive --violate``)."""
+
+    def situate(self, situation: Situation) -> None:
+        """The driver's situation before the next reading."""
+
+    def performed(self, step: int) -> Event | None:
+        """The planned event performed for the reading of step ``step``, if any."""
 
 
 @dataclass(frozen=True)
@@ -87,9 +124,9 @@ class Driver:
                  primitives: Mapping[str, ValveSequence], backend: Backend,
                  *, step_delay: float = 0.0, cycles: int = 1,
                  progress: Callable[[str], None] | None = None,
-                 on_violation: str = "stop") -> None:
-        if on_violation not in VIOLATION_POLICIES:
-            raise ValueError(f"on_violation must be one of {', '.join(VIOLATION_POLICIES)}")
+                 on_violation: ViolationPolicy | str = ViolationPolicy.STOP,
+                 semantics: Semantics = Semantics.DEFAULT,
+                 follower: Follower | None = None) -> None:
         self.simulator = Simulator(strategy, domain, monitor)
         self.domain = domain
         self.primitives = dict(primitives)
@@ -100,8 +137,10 @@ class Driver:
         self.executed: list[Executed] = []
         self.interrupted = False
         self.interruption = ""  # Ctrl-C, SIGTERM or SIGHUP
-        self.on_violation = on_violation
-        self.violations: list[str] = []  # readings that broke an assumption, as handled
+        self.on_violation = ViolationPolicy.parse(on_violation, "--on-violation")
+        self.semantics = semantics  # of the games a recovery solves
+        self.follower = follower
+        self.violations: list[str] = []  # readings held or taken at worst, as handled
         self.no_gait = next(g.name for g in domain.model.gaits if g.kind is GaitKind.NONE)
         self._ran_up_to = -1  # index of the last step whose gait was run
         self._left = domain.model.start  # the region the last gait set out from
@@ -112,7 +151,11 @@ class Driver:
         with self.backend:
             try:
                 self.backend.vent()
-                run = self.simulator.run(sensed, steps, spec_file)
+                surprises = (SurpriseOptions(policy=SurprisePolicy.RECOVER,
+                                             semantics=self.semantics)
+                             if self.on_violation is ViolationPolicy.RECOVER else None)
+                run = self.simulator.run(sensed, steps, spec_file, surprises)
+                self._allowed(run)
                 if run.error is None and not self.interrupted and run.steps:
                     last = run.steps[-1]
                     if last.index > self._ran_up_to:
@@ -126,6 +169,18 @@ class Driver:
                 run.summary,
                 stopped=f"interrupted ({self.interruption}); {self.backend.safety_note()}")
         return run
+
+    def _allowed(self, run: Run) -> None:
+        """Add to ``run`` the events the follower performed that broke no assumption (the
+        others are surprises the run recorded), in step order."""
+        if self.follower is None:
+            return
+        recorded = {s.step for s in run.surprises}
+        for index in range(1, len(run.steps)):
+            event = self.follower.performed(index)
+            if event is not None and index not in recorded:
+                run.surprises.append(Surprise(index, event.words, None, note=ALLOWED))
+        run.surprises.sort(key=lambda s: s.step)
 
     def execute(self, step: int, gait: str) -> None:
         """Run the valve sequence of ``gait`` (noGait: vent) and log it."""
@@ -268,11 +323,8 @@ def _compass(value: float, positive: str, negative: str) -> str:
     return f"{abs(value):.1f} mm {positive if value >= 0 else negative}"
 
 
-VIOLATION_POLICIES = ("stop", "hold", "worst")
-
-
 def substitute(moves: Sequence[Move], reading: SensorReading, here: State | None,
-               policy: str) -> Move:
+               policy: ViolationPolicy) -> Move:
     """The accepted input that stands for a reading which breaks an assumption: ``hold``
     keeps the levels the controller had (closest to them, then to the reading); ``worst``
     takes the lowest levels the assumptions allow (then closest to the reading).  The
@@ -285,7 +337,7 @@ def substitute(moves: Sequence[Move], reading: SensorReading, here: State | None
 
     def rank(move: Move) -> tuple[int, int, int, InputKey]:
         other_hazard = int(move.state.hazard != reading.hazard)
-        first = (distance(move, before) if policy == "hold"
+        first = (distance(move, before) if policy is ViolationPolicy.HOLD
                  else sum(level for _, level in move.state.health))
         return other_hazard, first, distance(move, sensed), move.inputs
 
@@ -314,6 +366,8 @@ class SensedEnvironment(Environment):
     def choose(self, situation: Situation) -> Request | None:
         driver = self.driver
         state = situation.state
+        if driver.follower is not None:
+            driver.follower.situate(situation)
         try:
             if state is not None:
                 driver.execute(situation.step - 1, state.gait)
@@ -328,9 +382,14 @@ class SensedEnvironment(Environment):
             driver.backend.vent()
             return None
         request = driver.sensed_input(reading, state)
+        event = None if driver.follower is None else driver.follower.performed(situation.step)
+        if event is not None:  # the simulated robot performed a planned event: its words
+            request = Request(request.inputs, event.words)
         moves = {m.inputs: m for m in situation.moves}
         move = moves.get(request.inputs)
-        if move is None and driver.on_violation != "stop" and situation.moves:
+        if move is None and driver.on_violation is ViolationPolicy.RECOVER:
+            return request  # the simulator recovers from it (or refuses what breaks nothing)
+        if move is None and driver.on_violation is not ViolationPolicy.STOP and situation.moves:
             move = substitute(situation.moves, reading, state, driver.on_violation)
             used = ", ".join(f"{leg} {level}" for leg, level in move.state.health)
             note = (f"step {situation.step}: {request.what} breaks an assumption; "

@@ -80,10 +80,17 @@ def register(sub: Any) -> None:
     p.add_argument("--seed", type=int, help="seed of the random environment (default 0)")
     p.add_argument("--out", metavar="FILE", type=run_file,
                    help="save the run as .jsonl or .csv")
-    p.add_argument("--on-violation", choices=VIOLATION_POLICIES, default="stop",
-                   help="a reading that breaks the spec's assumptions: stop the run (default), "
-                   "hold the levels the controller had, or take the worst levels the "
-                   "assumptions allow")
+    p.add_argument("--on-violation", choices=VIOLATION_POLICIES,
+                   help="a reading that breaks the spec's assumptions: stop the run (the "
+                   "default), hold the levels the controller had, take the worst levels the "
+                   "assumptions allow, or recover as simulate does (go on from the state "
+                   "sensed, with fewer goals or to a cache if need be; the default with "
+                   "--violate)")
+    p.add_argument("--violate", action="append", default=[], metavar="STEP:EVENT",
+                   help="sim and physics backends: at step STEP the simulated robot's "
+                   "environment performs EVENT whatever the assumptions say: 'fail L5', "
+                   "'degrade L3', 'degrade L3 by 2', 'repair L2', 'switch spill on', "
+                   "'switch spill off' (repeatable; docs/how-to/surprises.md)")
     p.add_argument("--pose", metavar="URL",
                    help="take the region from a tracker's pose stream: udp://HOST:PORT "
                    "(listen) or tcp://HOST:PORT (connect), JSON {\"x\": .., \"y\": ..}")
@@ -138,7 +145,8 @@ def options_of(args: argparse.Namespace) -> Any:
                else None)
     return DriveOptions(
         steps=args.steps, step_delay=args.step_delay, cycles=args.cycles,
-        on_violation=args.on_violation, tracker=tracker, encoding=args.encoding,
+        on_violation=args.on_violation, violate=args.violate, tracker=tracker,
+        encoding=args.encoding,
         semantics=semantics_of(args), prefer=args.prefer)
 
 
@@ -153,10 +161,11 @@ def run_drive(args: argparse.Namespace) -> int:
         print(f"{args.spec}: unrealizable: no controller to drive", file=sys.stderr)
         if args.json:
             print_json(document("drive", {**run_document(args.spec, None, None, None, False),
-                                          "backend": args.backend, "violations": []}))
+                                          "backend": args.backend, "violations": [],
+                                          "substituted": []}))
         return ExitCode.UNREALIZABLE
     if args.json:
-        extra = {"backend": args.backend, "violations": list(driven.violations)}
+        extra = {"backend": args.backend, "substituted": list(driven.violations)}
         return report_run(driven.run, driven.full_health, driven.board, args.quiet,
                           out=args.out, as_json=True, extra=extra, command="drive")
     if driven.violations and live is None:
