@@ -15,7 +15,7 @@ from pathlib import Path
 
 from gaitc.api.solving import compact, read_controller, synthesize, verify
 from gaitc.codegen.board import BoardTables
-from gaitc.codegen.build import Built, Target, build
+from gaitc.codegen.build import Built, Recovery, Target, build
 from gaitc.codegen.tables import table_bytes
 from gaitc.compact.controller import CompactController
 from gaitc.compact.rules import RuleTables, rule_tables
@@ -68,12 +68,21 @@ def compact_policy(spec: SpecLike, controller: CompactController | SymbolicContr
 
 
 def generate(spec: SpecLike, controller: CompactController | SymbolicController | str | Path,
-             target: Target | str, out_dir: str | Path, *, monitor: bool = True) -> Built:
+             target: Target | str, out_dir: str | Path, *, monitor: bool = True,
+             recover: bool = False) -> Built:
     """C for ``target`` (``c`` or ``avr``) in ``out_dir``, from a compact (or symbolic)
     controller proved against ``spec`` first; a controller that fails the proof, or an AVR
     build that does not fit, writes nothing.  ``monitor=False`` leaves the assumption
     monitor out: the board then checks only that the levels it grades are in range, and
-    says so (``monitor=0`` in its PING answer, ``GAITC_MONITOR 0`` in the header)."""
+    says so (``monitor=0`` in its PING answer, ``GAITC_MONITOR 0`` in the header).
+
+    ``recover`` adds the recovery and fallback tables of :mod:`gaitc.compact.recovery`
+    (a surprise recovers, degrades to fewer goals or stops, instead of venting): the
+    recovering controller is built from the spec's game, proved (its ordinary part and its
+    surprise handling) and written instead of ``controller`` (so it is off by default: the
+    moves written are then those of ``controller``).  On the board, fallbacks are dropped
+    until the tables fit its flash; the surprises then stopped on are listed, in words, in
+    ``Built.stops``.  Needs the monitor."""
     chosen = Target.parse(str(target), "--target")
     resolved = resolve(spec)
     file = str(controller) if isinstance(controller, (str, Path)) else ""
@@ -92,7 +101,36 @@ def generate(spec: SpecLike, controller: CompactController | SymbolicController 
                          "field with more than 36 values needs --target c")
     if not monitor:
         found = replace(found, assumed_root=None)
-    return build(found, out_dir, chosen, file, _board(resolved, found, chosen))
+    recovery = None
+    if recover:
+        if not monitor:
+            raise UsageError("recovery tables need the assumption monitor: drop --no-monitor "
+                             "or --recover")
+        recovery = _recovery(resolved, found, chosen, file)
+        if recovery.controller is not None:
+            found = recovery.controller.base
+    return build(found, out_dir, chosen, file, _board(resolved, found, chosen), recovery)
+
+
+def _recovery(spec: Spec | object, ctrl: CompactController, target: Target, file: str
+              ) -> Recovery:
+    """The recovering controller of ``spec``, proved, and trimmed to the board's flash."""
+    from gaitc.codegen.build import FLASH_LIMIT
+    from gaitc.codegen.recovery import FIRMWARE_BYTES, fit, stops
+    from gaitc.compact.recovery import prove_recovery, recovering_controller
+
+    gr1 = as_gr1(spec)  # type: ignore[arg-type]
+    vocabulary = spec.vocabulary if isinstance(spec, Spec) else ctrl.vocabulary
+    rc = recovering_controller(gr1, vocabulary, ctrl.semantics)
+    for report in (verify(spec, rc.base), prove_recovery(gr1, rc)):  # type: ignore[arg-type]
+        if not report.ok:  # cannot happen; proved, not trusted
+            raise ControllerError(f"the recovery tables failed their proof: "
+                                  f"{report.problems[0]}", Span(file or "<controller>", 1, 1),
+                                  hint="generate with --no-recover")
+    if target != Target.AVR:
+        return Recovery(rc, tuple(stops(rc)))
+    trimmed, words = fit(rc, FLASH_LIMIT - FIRMWARE_BYTES)
+    return Recovery(trimmed, tuple(words))
 
 
 def _board(spec: Spec | object, ctrl: CompactController, target: Target) -> BoardTables | None:

@@ -65,6 +65,11 @@ class Built:
     table_bytes: int
     flash: int | None = None
     ram: int | None = None
+    #: with recovery tables (codegen --recover): the bytes of each part, and the surprises
+    #: the controller can only stop on, in words
+    recovery: tuple[str, ...] = ()
+    stops: tuple[str, ...] = ()
+    recovering: bool = False
 
     @property
     def hint(self) -> str | None:
@@ -82,6 +87,10 @@ class Built:
         if self.flash is not None and self.ram is not None:
             text += (f"; firmware image {self.flash} of {FLASH_LIMIT} bytes of flash, "
                      f"{self.ram} of {RAM_LIMIT} bytes of static RAM")
+        if self.recovering:
+            text += "\nrecovery tables: " + "; ".join(self.recovery)
+        for words in self.stops:
+            text += f"\nsurprise: {words}"
         if self.hint is not None:
             text += f"\nhint: {self.hint}"
         return text
@@ -92,6 +101,8 @@ class Built:
                 "table_bytes": self.table_bytes, "flash": self.flash, "ram": self.ram,
                 "flash_limit": FLASH_LIMIT if self.target == Target.AVR else None,
                 "ram_limit": RAM_LIMIT if self.target == Target.AVR else None,
+                "recovery": {"included": self.recovering, "tables": list(self.recovery),
+                             "stops": list(self.stops)},
                 "hint": self.hint}
 
 
@@ -123,17 +134,21 @@ def sizes(elf: Path) -> tuple[int, int]:
 
 
 def build(ctrl: CompactController, out_dir: str | Path, target: Target | str,
-          file: str = "", board: BoardTables | None = None) -> Built:
+          file: str = "", board: BoardTables | None = None,
+          recovery: Recovery | None = None) -> Built:
     """Generate and compile ``ctrl`` for ``target`` into ``out_dir`` (see the module text).
     Compiled in a scratch folder first: a refused or failed build leaves ``out_dir`` as it
     was.  With ``board`` (avr), the firmware also runs the task on its own
-    (:mod:`gaitc.codegen.board`)."""
+    (:mod:`gaitc.codegen.board`); with ``recovery`` (whose controller's base is ``ctrl``),
+    the tables and step of :mod:`gaitc.codegen.recovery` are added."""
     chosen = Target.parse(str(target), "--target")
-    tables = flatten(ctrl)
+    rc = None if recovery is None else recovery.controller
+    tables = flatten(ctrl, () if rc is None else rc.extra_roots)
     out = Path(out_dir)
+    made = _made(recovery)
     with tempfile.TemporaryDirectory(prefix="gaitc-codegen-") as scratch:
         work = Path(scratch)
-        h, c = write_sources(ctrl, work, tables)
+        h, c = write_sources(ctrl, work, tables, rc)
         if chosen == Target.C:
             program: Path | None = None
             if shutil.which("gcc") is not None:
@@ -147,7 +162,7 @@ def build(ctrl: CompactController, out_dir: str | Path, target: Target | str,
                           f"-DGAITC_INPUT_FIELDS={fields}", f"-I{work}", "-o", str(program),
                           str(c), str(HOST / "driver.c")], "gcc gaitc_controller.c")
             files, built = _publish(out, [h, c], program)
-            return Built(chosen, files, built, tables.bytes)
+            return Built(chosen, files, built, tables.bytes, **made)
         need = missing_tools(simulator=False)
         if need:
             raise FirmwareError(f"cannot build the board's firmware: missing {', '.join(need)}",
@@ -188,7 +203,29 @@ def build(ctrl: CompactController, out_dir: str | Path, target: Target | str,
         run_tool(["avr-objcopy", "-O", "ihex", "-R", ".eeprom", str(elf), str(hexfile)],
              "avr-objcopy gaitboard.elf")
         files, built = _publish(out, [h, c, *extra, hexfile], elf)
-        return Built(chosen, files, built, tables.bytes, flash, ram)
+        return Built(chosen, files, built, tables.bytes, flash, ram, **made)
+
+
+@dataclass(frozen=True)
+class Recovery:
+    """What ``build`` adds for surprises: the recovering controller (None: none fits, every
+    surprise stops) and the surprises it can only stop on, in words."""
+
+    controller: RecoveringController | None
+    stops: tuple[str, ...] = ()
+
+
+def _made(recovery: Recovery | None) -> dict[str, Any]:
+    """The recovery fields of :class:`Built`."""
+    if recovery is None:
+        return {}
+    rc = recovery.controller
+    if rc is None:
+        return {"stops": recovery.stops}
+    from gaitc.codegen.recovery import recovery_sizes
+
+    return {"recovery": tuple(recovery_sizes(rc).lines()), "stops": recovery.stops,
+            "recovering": True}
 
 
 def _copy(path: Path, out: Path) -> Path:

@@ -224,11 +224,22 @@ class RecoveringRunner:
 
 
 # ------------------------------------------------------------------------ building
+class Scope(Choice):
+    """Which surprises the recovery diagrams answer: every input that breaks ρe (``all``),
+    or only those of the single-field classes (``classes``: far smaller diagrams on large
+    specs; any other surprise stops)."""
+
+    ALL = "all"
+    CLASSES = "classes"
+
+
 @dataclass(frozen=True)
 class RecoveryOptions:
-    """What to build: the surprise classes given fallbacks (None: every single-field class
-    of the vocabulary) and the diagrams' field order."""
+    """What to build: the surprises recovered from (:class:`Scope`), the surprise classes
+    given fallbacks (None: every single-field class of the vocabulary), whether to build
+    the fallbacks at all, and the diagrams' field order."""
 
+    scope: Scope = Scope.ALL
     classes: tuple[SurpriseClass, ...] | None = None
     order: FieldOrder = FieldOrder.GREEDY
     fallbacks: bool = True
@@ -318,7 +329,14 @@ def recovering_controller(spec: GR1Spec, vocabulary: Vocabulary,
         init = sym.env_init & start_ok
     else:
         init = bdd.exist(set(work.outputs), sym.env_init) & start_ok
+    classes = opts.classes if opts.classes is not None else surprise_classes(vocabulary)
+    class_sets = [_class_set(bdd, vocabulary, c) for c in classes]
+    in_class = bdd.false
+    for u in class_sets:
+        in_class |= u
     enter = _entering(work, main)
+    if opts.scope == Scope.CLASSES:
+        enter &= in_class
     reach = _closure(work, [init] + [bdd.false] * (n - 1), main.strategies, moving)
     while True:  # the states recoveries land in, and what the strategy reaches from them
         surprised = [here & ~work.env_trans & enter for here in reach]
@@ -339,12 +357,8 @@ def recovering_controller(spec: GR1Spec, vocabulary: Vocabulary,
     surprises = anywhere & ~work.env_trans & _valid(bdd, vocabulary.inputs, True)
     recoverable = surprises & enter
     # the fallbacks: class surprises that do not recover, by the largest goal set K
-    classes = opts.classes if opts.classes is not None else surprise_classes(vocabulary)
-    class_sets = [_class_set(bdd, vocabulary, c) & surprises for c in classes]
-    remaining = bdd.false
-    for u in class_sets:
-        remaining |= u
-    remaining &= ~enter
+    class_sets = [u & surprises for u in class_sets]
+    remaining = in_class & surprises & ~enter
     chosen: list[tuple[tuple[int, ...], Any, _Solved]] = []
     if opts.fallbacks:
         for size in range(n - 1, 0, -1):

@@ -5,11 +5,12 @@ Line protocol v2 (ASCII, one command a line, one answer line each; docs/hardware
 ``V <bits>`` → ``OK``; ``HB`` (heartbeat) → ``OK``; ``W <ms>`` → ``OK wd=<ms>``; ``S`` →
 ``S a=<adc,..> lo=<adc,..> c=<bits>`` (graded into health levels by :mod:`gaitc.hw.sensing`) or ``S
 h=<levels>`` (a board that grades legs itself), with ``hazard=`` and ``region=``; any
-refusal is ``ERR <text>``.  The board vents on its own when no valid command
-arrives for its watchdog period, so the host sends a heartbeat while valves are open.  Every
-read is bounded in bytes and by a deadline of ``timeout`` seconds; garbled replies are
-retried, and every valve is vented on close and on any error.  Messages say whether a vent
-was acknowledged or only the board's watchdog is left to vent.
+refusal is ``ERR <text>``.  A board whose controller carries recovery tables also sends
+``R <outcome> k=<goals kept> ...`` (:func:`parse_outcome`).  The board vents on its own
+when no valid command arrives for its watchdog period, so the host sends a heartbeat while
+valves are open.  Every read is bounded in bytes and by a deadline of ``timeout`` seconds;
+garbled replies are retried, and every valve is vented on close and on any error.  Messages
+say whether a vent was acknowledged or only the board's watchdog is left to vent.
 """
 
 from __future__ import annotations
@@ -23,6 +24,7 @@ from typing import Any, TypeVar
 from gaitc.hw.backend import Backend, HardwareError, SensorReading, where
 from gaitc.hw.sensing import HealthSensing, LegCalibration
 from gaitc.sim.environments import Move
+from gaitc.sim.surprise import Outcome
 
 PROTOCOL = 2
 FIRMWARE_PREFIX = "PONG"
@@ -404,3 +406,46 @@ class SerialValveBoard(Backend):
 def _expect_ok(line: str) -> None:
     if line != "OK":
         raise Garbled(line)
+
+
+@dataclass(frozen=True)
+class BoardOutcome:
+    """An ``R`` line of a board whose controller carries recovery tables (``codegen
+    --recover``): what a step did whatever the inputs (allowed, recovered, degraded,
+    stopped), the goals still pursued (bit j for goal j + 1), and, as the board says, the
+    step (``s=``, running alone) or the move, goal and field values (``m= g= o=``, the
+    answer to ``C r``)."""
+
+    outcome: Outcome
+    kept: int
+    step: int | None = None
+    move: int | None = None
+    goal: int | None = None
+    values: str | None = None
+
+
+_R_KEYS = ("k", "s", "m", "g", "o")
+
+
+def parse_outcome(line: str) -> BoardOutcome:
+    """``R recovered k=3 s=12`` or ``R degraded k=2 m=4 g=0 o=0a12``; anything else is
+    :class:`Garbled`.  Boards without recovery tables never send it (protocol v2 is
+    otherwise unchanged)."""
+    words = line.split()
+    if len(words) < 3 or words[0] != "R" or words[1] not in [str(o) for o in Outcome]:
+        raise Garbled(line)
+    fields: dict[str, str] = {}
+    for word in words[2:]:
+        key, sep, value = word.partition("=")
+        if not sep or not value or key in fields or key not in _R_KEYS:
+            raise Garbled(line)
+        fields[key] = value
+    numbers = {key: _count(fields[key]) for key in ("k", "s", "m", "g") if key in fields}
+    kept = numbers.get("k")
+    if kept is None or None in numbers.values():
+        raise Garbled(line)
+    values = fields.get("o")
+    if values is not None and not (values.isascii() and values.isalnum()):
+        raise Garbled(line)
+    return BoardOutcome(Outcome(words[1]), kept, numbers.get("s"), numbers.get("m"),
+                        numbers.get("g"), values)

@@ -23,6 +23,7 @@ import pytest
 import gaitc
 from gaitc.codegen.build import write_sources
 from gaitc.codegen.recovery import fit, recovery_sizes
+from gaitc.compact.controller import CompactController
 from gaitc.compact.diagram import leaf
 from gaitc.compact.recovery import (
     Outcome,
@@ -232,3 +233,74 @@ def _named(spec: gaitc.Spec, rc: RecoveringController, chosen: dict[str, int]
     whole = {f.name: chosen.get(f.name, 0) for f in rc.base.vocabulary.fields}
     after = dict(zip(names, _spec_values(spec, rc, whole), strict=True))
     return {v.name: after[v.name] for v in spec.gr1.inputs}
+
+
+# ------------------------------------------------------------------ the valve board
+DIGITS = "0123456789abcdefghijklmnopqrstuvwxyz"
+
+
+def _board_tools_missing() -> bool:
+    from gaitc.hw.firmware import missing_tools
+
+    return bool(missing_tools())
+
+
+@pytest.mark.slow  # builds two firmware images and runs one in simavr, about 30 s
+@pytest.mark.firmware
+@pytest.mark.skipif(_board_tools_missing(), reason="the AVR toolchain or libsimavr is missing")
+def test_the_board_recovers_as_the_python_runtime(tmp_path: Path) -> None:
+    """``codegen --target avr --recover`` on the shuttle: the board's ``C r`` answers (the
+    ``R`` line, parsed by :func:`gaitc.hw.serial_board.parse_outcome`) are the Python
+    runtime's outcome, goal mask, move, goal and fields on 600 steps with surprises; a
+    stop vents."""
+    import serial
+
+    from gaitc.hw.firmware import Image, SimulatedBoard
+    from gaitc.hw.firmware import build as build_firmware
+    from gaitc.hw.serial_board import parse_outcome
+
+    spec = gaitc.load(EXAMPLES / "shuttle_2leg.gait")
+    made = gaitc.synthesize(spec, form="compact")
+    assert isinstance(made.controller, CompactController)
+    built = gaitc.generate(spec, made.controller, "avr", tmp_path / "board", recover=True)
+    assert built.program is not None and built.recovering
+    assert any(line.startswith("total:") for line in built.recovery)
+    rc = recovering_controller(spec.gr1, spec.vocabulary)
+    assert (tmp_path / "board" / "gaitc_controller.c").read_text() == _source(rc, tmp_path)
+    plain = build_firmware(tmp_path / "plain")
+    image = Image(built.program, built.program.with_suffix(".hex"), plain.simulator)
+    inputs, fields = rc.base.vocabulary.inputs, rc.base.vocabulary.fields
+    rng = random.Random("52:board")
+    seen = {o: 0 for o in Outcome}
+    with SimulatedBoard(image, tmp_path / "pins.jsonl") as sim:
+        port = serial.Serial(sim.port, 115200, timeout=2.0)
+
+        def ask(line: str) -> str:
+            port.write(line.encode("ascii") + b"\n")
+            return port.readline().decode("ascii").strip()
+
+        assert ask("PING").startswith("PONG gaitboard/2.0")
+        first = {f.name: len(f.labels) - 1 for f in inputs}
+        run = RecoveringRunner(rc, first)
+        assert ask("C s " + "".join(DIGITS[first[f.name]] for f in inputs)).startswith("M 0")
+        for _ in range(600):
+            chosen = {f.name: rng.randrange(len(f.labels)) for f in inputs}
+            step = run.step(chosen)
+            answer = parse_outcome(ask("C r " + "".join(DIGITS[chosen[f.name]]
+                                                        for f in inputs)))
+            assert SimOutcome(str(step.outcome)) == answer.outcome
+            assert answer.kept == step.kept_mask and answer.goal == run.goal
+            assert answer.move == (0 if step.move is None else step.move)
+            assert answer.values == "".join(DIGITS[run.state[f.name]] for f in fields)
+            seen[step.outcome] += 1
+            if step.outcome == Outcome.STOPPED:
+                assert sim.record()[-1][1].strip("0") == ""
+                run = RecoveringRunner(rc, first)
+                ask("C s " + "".join(DIGITS[first[f.name]] for f in inputs))
+        port.close()
+    assert all(seen[o] > 0 for o in Outcome), seen
+
+
+def _source(rc: RecoveringController, folder: Path) -> str:
+    write_sources(rc.base, folder / "again", recovery=rc)
+    return str((folder / "again" / "gaitc_controller.c").read_text())

@@ -44,13 +44,19 @@ def register(sub: Any) -> None:
                    help="leave the assumption monitor out (smaller tables): a board running "
                    "alone then checks only that the levels it grades are in range, not that "
                    "they are moves the spec's assumptions allow")
+    p.add_argument("--recover", action="store_true",
+                   help="add recovery and fallback tables (issue 52): on a broken assumption "
+                   "the controller recovers, degrades to fewer goals or stops, instead of "
+                   "venting; the recovering controller is built from SPEC and proved, and "
+                   "written instead of CONTROLLER; on the board, fallbacks that do not fit "
+                   "its flash are dropped and the surprises it then stops on are listed")
     p.add_argument("--json", action="store_true", help="print the result as JSON")
     p.set_defaults(run=run_codegen)
 
 
 def run_codegen(args: argparse.Namespace) -> int:
     built = gaitc.generate(args.spec, args.controller, args.target, args.out,
-                           monitor=not args.no_monitor)
+                           monitor=not args.no_monitor, recover=args.recover)
     if args.json:
         print_json(document("codegen", {"file": args.spec, "controller": args.controller,
                                         **built.to_json()}))

@@ -249,7 +249,9 @@ static uint8_t same(const char *a, const char *b)
 #ifdef GAITC_CONTROLLER
 /* A generated controller linked in (gaitc codegen --target avr): "C s VVV" starts it from
  * the first input values, "C x VVV" makes one step; VVV holds one base-36 digit per input
- * field (0-9, a-z).  The answer: "M <move> g=<goal> o=<output values, base 36>". */
+ * field (0-9, a-z).  The answer: "M <move> g=<goal> o=<output values, base 36>".  With
+ * recovery tables (GAITC_RECOVER), "C r VVV" makes a step whatever the inputs and answers
+ * "R <allowed|recovered|degraded|stopped> k=<goals kept, a bit mask> m=<move> g= o=". */
 #include "gaitc_controller.h"
 
 static gaitc_state controller;
@@ -281,12 +283,35 @@ static void put_state(void)
     end_line();
 }
 
+#ifdef GAITC_RECOVER
+static const char *outcome_word(uint8_t outcome)
+{
+    if (outcome == GAITC_RECOVERED) return "recovered";
+    if (outcome == GAITC_DEGRADED) return "degraded";
+    if (outcome == GAITC_STOPPED) return "stopped";
+    return "allowed";
+}
+
+/* "R <outcome> k=<goal mask>": what a step whatever the inputs did (gaitc codegen
+ * --recover); the rest of the line is the caller's */
+static void put_outcome(uint8_t outcome)
+{
+    puts_("R ");
+    puts_(outcome_word(outcome));
+    puts_(" k=");
+    put_uint(gaitc_kept(&controller));
+}
+#define C_KINDS(c) ((c) == 's' || (c) == 'x' || (c) == 'r')
+#else
+#define C_KINDS(c) ((c) == 's' || (c) == 'x')
+#endif
+
 static uint8_t controller_command(void)
 {
     uint8_t in[GAITC_INPUTS + 1];
     uint16_t move = 0;
     if (line_len != 4 + GAITC_INPUTS || line[1] != ' ' || line[3] != ' '
-        || (line[2] != 's' && line[2] != 'x')) {
+        || !C_KINDS(line[2])) {
         refuse("C needs s or x and one digit per input");
         return 0;
     }
@@ -304,6 +329,21 @@ static uint8_t controller_command(void)
     } else if (!controller_started) {
         refuse("C x before C s");
         return 0;
+#ifdef GAITC_RECOVER
+    } else if (line[2] == 'r') {
+        /* a step whatever the inputs: "R <outcome> k=<mask> m=<move> g= o=" (stopped:
+         * no move, every valve vented) */
+        uint8_t outcome = gaitc_step_surprise(&controller, in, &move);
+        if (outcome == GAITC_STOPPED) {
+            vent();
+            move = 0;
+        }
+        put_outcome(outcome);
+        puts_(" m=");
+        put_uint(move);
+        put_state();
+        return 1;
+#endif
     } else {
         move = gaitc_step(&controller, in);
     }
@@ -376,11 +416,33 @@ static void auto_step(void)
         if (f != 255 && (used & (1 << ch))) in[input_of(f)] = grade(ch);
     }
     if (GAITC_BOARD_HAZARD_FIELD != 255) in[input_of(GAITC_BOARD_HAZARD_FIELD)] = auto_hazard;
+#ifdef GAITC_RECOVER
+    /* a surprise recovers or degrades (reported as "R <outcome> k=<mask> s=<step>" before
+     * the step's A line) or stops: then the board vents, as without recovery */
+    if (!gaitc_valid(in)) {
+        refuse("sensed inputs break the assumptions");
+        return;
+    }
+    {
+        uint8_t outcome = gaitc_step_surprise(&controller, in, &move);
+        if (outcome != GAITC_ALLOWED) {
+            put_outcome(outcome);
+            puts_(" s=");
+            put_uint((uint16_t)(auto_steps + 1));
+            end_line();
+        }
+        if (outcome == GAITC_STOPPED) {
+            refuse("sensed inputs break the assumptions");
+            return;
+        }
+    }
+#else
     if (!gaitc_valid(in) || !gaitc_assumed(&controller, in)) {
         refuse("sensed inputs break the assumptions");
         return;
     }
     move = gaitc_step(&controller, in);
+#endif
     auto_steps++;
     auto_report(move);
     auto_begin_gait();
