@@ -277,7 +277,7 @@ def test_the_board_recovers_as_the_python_runtime(tmp_path: Path) -> None:
 
         def ask(line: str) -> str:
             port.write(line.encode("ascii") + b"\n")
-            return port.readline().decode("ascii").strip()
+            return str(port.readline().decode("ascii")).strip()
 
         assert ask("PING").startswith("PONG gaitboard/2.0")
         first = {f.name: len(f.labels) - 1 for f in inputs}
@@ -303,4 +303,4 @@ def test_the_board_recovers_as_the_python_runtime(tmp_path: Path) -> None:
 
 def _source(rc: RecoveringController, folder: Path) -> str:
     write_sources(rc.base, folder / "again", recovery=rc)
-    return str((folder / "again" / "gaitc_controller.c").read_text())
+    return (folder / "again" / "gaitc_controller.c").read_text()
