@@ -304,3 +304,37 @@ def test_the_board_recovers_as_the_python_runtime(tmp_path: Path) -> None:
 def _source(rc: RecoveringController, folder: Path) -> str:
     write_sources(rc.base, folder / "again", recovery=rc)
     return (folder / "again" / "gaitc_controller.c").read_text()
+
+
+def test_r_lines_parse_and_garbled_ones_are_refused() -> None:
+    from gaitc.hw.serial_board import Garbled, parse_outcome
+
+    line = parse_outcome("R degraded k=2 m=4 g=0 o=0a12")
+    assert (line.outcome, line.kept, line.move, line.goal, line.values, line.step) == (
+        SimOutcome.DEGRADED, 2, 4, 0, "0a12", None)
+    assert parse_outcome("R recovered k=3 s=12").step == 12
+    for bad in ("R", "R maybe k=1", "R stopped", "R stopped k=x", "R stopped k=1 k=1",
+                "R stopped k=1 z=2", "R allowed k=1 o=a/b", "M 0 g=0 o=00"):
+        with pytest.raises(Garbled):
+            parse_outcome(bad)
+
+
+def test_codegen_recover_reports_the_tables_on_the_command_line(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    from gaitc.cli import main
+
+    spec = str(EXAMPLES / "patrol_2x2.gait")
+    controller = tmp_path / "p.compact.json"
+    assert main(["synth", spec, "--compact", "-o", str(controller)]) == 0
+    assert main(["codegen", spec, str(controller), "--target", "c", "-o",
+                 str(tmp_path / "gen"), "--recover"]) == 0
+    out = capsys.readouterr().out
+    assert "recovery tables: controller and assumption monitor: " in out
+    assert "surprise: L3 fails while unused: stop in 8 case(s) (no goal is achievable)" in out
+    header = (tmp_path / "gen" / "gaitc_controller.h").read_text()
+    assert "#define GAITC_RECOVER 1" in header and "gaitc_step_surprise" in header
+    assert main(["codegen", spec, str(controller), "--target", "c", "-o",
+                 str(tmp_path / "plain")]) == 0
+    assert "GAITC_RECOVER" not in (tmp_path / "plain" / "gaitc_controller.h").read_text()
+    assert main(["codegen", spec, str(controller), "--target", "c", "-o",
+                 str(tmp_path / "x"), "--recover", "--no-monitor"]) == 2
