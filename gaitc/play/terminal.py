@@ -136,7 +136,7 @@ class PlayApp(App[int]):
         self.seed = seed
         self.mapgrid = MapGrid(player.session.model)
         self._asking: str | None = None
-        self._saved_path: tuple[int, ...] | None = None
+        self._saved_path: tuple[object, ...] | None = None
         self.message = ""
 
     # ------------------------------------------------------------------ layout
@@ -257,7 +257,7 @@ class PlayApp(App[int]):
             label.append(f"  ! {choice.breaks}", COLOURS["breaks"])
             moves.add_option(Option(label, id=str(choice.number)))
         if choices or breaks:
-            moves.highlighted = 0
+            moves.highlighted = 0 if choices else 1  # 1: the first break, after its heading
         self._show_answer()
 
     def _fill_log(self) -> None:
@@ -379,13 +379,17 @@ class PlayApp(App[int]):
     def _save(self, path: str) -> None:
         self.player.save(path)
         self.saved = path
-        self._saved_path = self.player.path
+        self._saved_path = self._played()
         self._say(f"saved {self.player.step + 1} steps to {path}")
 
     def _unsaved(self) -> bool:
         """Whether the play has moves not yet saved, and a file they are to be saved to."""
         return (self.player.step >= 0 and self.out is not None
-                and self._saved_path != self.player.path)
+                and self._saved_path != self._played())
+
+    def _played(self) -> tuple[object, ...]:
+        """What a save keeps of the play: its states and its surprises."""
+        return (*self.player.steps, *self.player.surprises)
 
     def action_quit_play(self) -> None:
         """Quit; a play with unsaved moves is saved to ``out`` first (every play is kept)."""
@@ -409,7 +413,7 @@ class PlayApp(App[int]):
         finally:
             if self._unsaved():
                 self.player.save(self.out or DEFAULT_RUN_FILE)
-                self.saved, self._saved_path = self.out, self.player.path
+                self.saved, self._saved_path = self.out, self._played()
         if self.return_code:
             steps = self.player.step + 1
             kept = (f"the play of {steps} steps is saved in {self.saved}" if self.saved

@@ -24,6 +24,9 @@ EPILOG = """keys (? in the player lists them):
 For a realizable spec you play the environment (which legs degrade or fail, which hazard
 is on) and the controller answers; for an unrealizable one, or with --against, you play
 the robot against the environment's counter-strategy, and each move says why it loses.
+Playing the environment, the moves marked ! break an assumption (a leg failing while not
+in use, a hazard where none may be): the controller recovers as after 'simulate --violate'
+(every goal, fewer goals, or stopped at a cache) and the log below the moves says how.
 A saved play is drawn by 'gaitc render map SPEC --run FILE' and replayed by
 'gaitc simulate SPEC --env scripted FILE'.
 
