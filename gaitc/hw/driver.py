@@ -388,6 +388,12 @@ class SensedEnvironment(Environment):
         moves = {m.inputs: m for m in situation.moves}
         move = moves.get(request.inputs)
         if move is None and driver.on_violation is ViolationPolicy.RECOVER:
+            if driver.progress is not None and situation.values is not None and \
+                    driver.simulator.monitor.failed_assumptions(
+                        situation.values, dict(zip(driver.simulator.strategy.inputs,
+                                                   request.inputs, strict=True))):
+                driver.progress(f"step {situation.step}: {request.what} breaks an assumption; "
+                                "recover: the controller goes on from the state sensed")
             return request  # the simulator recovers from it (or refuses what breaks nothing)
         if move is None and driver.on_violation is not ViolationPolicy.STOP and situation.moves:
             move = substitute(situation.moves, reading, state, driver.on_violation)

@@ -114,9 +114,12 @@ def test_the_valves_follow_the_fallback_strategy(corridor: Path) -> None:
     prims = bind_primitives(bound.model, str(corridor.parent))
     robot = SurprisingRobot(bound.strategy, bound.domain, bound.monitor, RandomEnvironment(0),
                             2, plan(["2:fail L1"], bound.domain))
+    lines: list[str] = []
     driver = Driver(bound.strategy, bound.domain, bound.monitor, prims, robot,
-                    on_violation=ViolationPolicy.RECOVER, follower=robot)
+                    on_violation=ViolationPolicy.RECOVER, follower=robot, progress=lines.append)
     run = driver.run(8)
+    assert ("step 2: fail L1 breaks an assumption; recover: the controller goes on from the "
+            "state sensed") in lines  # as it happens (a serial drive prints these lines)
     assert [e.gait for e in driver.executed] == [s.gait for s in run.steps]
     for entry in driver.executed:
         want = ((robot.vented,) if entry.gait == driver.no_gait
