@@ -47,6 +47,7 @@ from gaitc.solver.symbolic import Options
 
 if TYPE_CHECKING:
     from gaitc.ir.bddfile import SymbolicController
+    from gaitc.ir.controller import Controller
     from gaitc.solver.game import Game, GameResult
     from gaitc.solver.symbolic import BDDNode, SymbolicSpec
     from ltlcompiler.encoding import Encoding
@@ -356,6 +357,40 @@ def projected_controller(spec: GR1Spec, solved: _Solved, counter: int,
         choice=tuple(sorted(inputs + tuple(sym.output_bits), key=rank.__getitem__)))
 
 
+def projected_automaton(spec: GR1Spec, solved: _Solved, counter: int, semantics: Semantics,
+                        opts: ToleranceOptions, *, limits: Limits) -> Controller | None:
+    """The same strategy as :func:`projected_controller`, as an explicit automaton: the
+    winning region and the strategy's layers, projected alike, are carried into the game
+    of ``spec`` itself and unrolled by the solver's extraction (cofactoring at a constant
+    counter commutes with every step of it); None past ``opts.max_nodes`` nodes."""
+    from dd.cudd import copy_bdd
+
+    from gaitc.solver.game import ControllerTooLarge, GameResult, GameStats
+    from gaitc.solver.strategy import extract_strategy
+    from gaitc.solver.symbolic import SymbolicSpec
+
+    sym, result = solved.sym, solved.result
+    assert sym is not None and result is not None
+    name = sym.spec.inputs[-1].name
+    own = set(sym.var_bits[name]) | {b + "'" for b in sym.var_bits[name]}
+    now = _at_counter(sym, name, counter)
+    fixed = now & sym.prime(now)
+    target = SymbolicSpec(spec, replace(opts.options or Options(), care=False),
+                          limits.check)
+
+    def carried(u: BDDNode, where: BDDNode) -> BDDNode:
+        return copy_bdd(sym.bdd.exist(own, u & where), target.bdd)
+
+    projected = GameResult(
+        winning=carried(result.winning, now),
+        layers=[[carried(layer, fixed) for layer in goal] for goal in result.layers],
+        stats=GameStats(), care=target.bdd.true)
+    try:
+        return extract_strategy(target, projected, semantics, limits, opts.max_nodes)
+    except ControllerTooLarge:
+        return None
+
+
 # ---------------------------------------------------------------- the report
 @dataclass(frozen=True)
 class ToleranceOptions:
@@ -367,6 +402,8 @@ class ToleranceOptions:
     breakable: str | None = None
     groups: bool = True
     controller: bool = False
+    explicit: bool = False  # the controller as an automaton too (None when over max_nodes)
+    max_nodes: int | None = None
     options: Options | None = None
     timeout: float | None = None
     progress: Progress | None = None
@@ -415,6 +452,7 @@ class ToleranceReport:
     seconds: float = 0.0
     notes: tuple[str, ...] = ()
     controller: SymbolicController | None = field(default=None, repr=False, compare=False)
+    automaton: Controller | None = field(default=None, repr=False, compare=False)
 
     @property
     def realizable(self) -> bool:
@@ -518,13 +556,20 @@ def tolerance(spec: Spec | GR1Spec, semantics: Semantics = Semantics.DEFAULT, k:
     wanted = None if breakable is None else _in_group(breakable)
     overall = solve(k, wanted, keep=opts.controller)
     reached = _largest(overall.tolerated)
-    controller = None
+    controller, automaton = None, None
+    notes = []
     if opts.controller and reached is not None:
         controller = projected_controller(gr1, overall, k - reached, semantics)
+        if opts.explicit:
+            limits.report("extracting the controller")
+            automaton = projected_automaton(gr1, overall, k - reached, semantics, opts,
+                                            limits=limits)
+            if automaton is None:
+                notes.append(f"the automaton would pass {opts.max_nodes} nodes: kept "
+                             "symbolic")
     groups: list[GroupTolerance] = []
     limiting: list[Limit] = []
     names = found.groups if breakable is None else (breakable,)
-    notes = []
     if len(names) > MAX_GROUPS:
         notes.append(f"{len(names) - MAX_GROUPS} of the {len(names)} groups were not solved "
                      f"alone (the first {MAX_GROUPS} were); --breakable solves one")
@@ -546,7 +591,8 @@ def tolerance(spec: Spec | GR1Spec, semantics: Semantics = Semantics.DEFAULT, k:
         file=spec.path if isinstance(spec, Spec) else gr1.name or "<spec>", requested=k,
         reached=reached, breakable=breakable, counter=counter_name(gr1),
         groups=tuple(groups), limits=tuple(limiting), solver_calls=calls,
-        seconds=time.monotonic() - started, notes=tuple(notes), controller=controller)
+        seconds=time.monotonic() - started, notes=tuple(notes), controller=controller,
+        automaton=automaton)
 
 
 def group_named(found: Assumptions, name: str) -> str:

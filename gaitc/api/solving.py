@@ -105,41 +105,50 @@ class Tolerance:
 
 
 def tolerate(spec: SpecLike, k: int, semantics: Semantics | str = Semantics.DEFAULT, *,
-             breakable: str | None = None, form: str = "symbolic", verify: bool = True,
-             options: Options | None = None, timeout: float | None = None,
-             progress: Progress | None = None) -> Tolerance:
+             breakable: str | None = None, form: str = "auto", verify: bool = True,
+             max_nodes: int | None = MAX_NODES, options: Options | None = None,
+             timeout: float | None = None, progress: Progress | None = None) -> Tolerance:
     """A controller of ``spec`` that keeps every guarantee through up to ``k`` surprises
     (broken safety assumptions; :mod:`gaitc.analysis.tolerance`, after Ehlers and Topcu,
     HSCC 2014), or through the most it can, proved against ``spec`` itself unless ``verify``
     is False; ``.synthesis.controller`` is None when the spec is unrealizable.
 
-    ``breakable`` names the one group of assumptions that may break (default: every one);
-    ``form`` is ``symbolic`` or ``compact`` (an explicit automaton is not extracted: the
-    strategy comes from the game with the surprise counter, projected onto the spec's bits).
+    ``breakable`` names the one group of assumptions that may break (default: every one).
+    ``form`` is as :func:`synthesize`'s: ``explicit``, ``symbolic``, ``compact``, or
+    ``auto`` (explicit unless the automaton would pass ``max_nodes`` nodes); each is the
+    strategy of the game with the surprise counter, projected onto the spec's own bits.
     """
     from gaitc.analysis.tolerance import ToleranceOptions, tolerance
+    from gaitc.ir.quotient import merge_equivalent
 
-    if form not in ("symbolic", COMPACT):
-        raise UsageError(f"a controller with --tolerate is symbolic or compact, not {form}")
+    if form not in (*FORMS, COMPACT):
+        raise UsageError(f"unknown controller form '{form}'; use one of "
+                         f"{', '.join((*FORMS, COMPACT))}")
     chosen = Semantics.parse(semantics, "semantics")
     bound = resolve(spec)
     started = time.monotonic()
+    explicit = form in ("explicit", "auto")
     report = tolerance(bound, chosen, k, ToleranceOptions(
-        breakable=breakable, controller=True, options=options, timeout=timeout,
+        breakable=breakable, controller=True, explicit=explicit,
+        max_nodes=max_nodes if form == "auto" else None, options=options, timeout=timeout,
         progress=progress))
-    symbolic = report.controller
-    automaton: Automaton | None = None
-    symbolic_nodes = None
-    if symbolic is not None:
-        source = bound.source() if isinstance(bound, Spec) else None
-        automaton = replace(symbolic, source=source)
-        if form == COMPACT:
-            symbolic_nodes = len(symbolic.nodes)
-            automaton = replace(compacted(bound, automaton), source=source)
+    automaton: Automaton | None = report.controller
+    symbolic_nodes, merged_from = None, None
+    if report.automaton is not None:
+        automaton = merge_equivalent(report.automaton)
+        if automaton is not report.automaton:
+            merged_from = len(report.automaton.nodes)
+    elif form == COMPACT and report.controller is not None:
+        symbolic_nodes = len(report.controller.nodes)
+        automaton = compacted(bound, report.controller)
+    if automaton is not None:
+        automaton = replace(automaton, source=bound.source() if isinstance(bound, Spec)
+                            else None)
     proof = prove(bound, automaton, chosen) if automaton is not None and verify else None
     return Tolerance(report, Synthesis(
         spec=bound, kind=ControllerKind.STRATEGY, controller=automaton, report=proof,
-        seconds=time.monotonic() - started, semantics=chosen, symbolic_nodes=symbolic_nodes))
+        seconds=time.monotonic() - started, semantics=chosen, merged_from=merged_from,
+        symbolic_nodes=symbolic_nodes))
 
 
 def counterstrategy(spec: SpecLike, semantics: Semantics | str = Semantics.DEFAULT,

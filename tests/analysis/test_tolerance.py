@@ -383,13 +383,16 @@ def gaitc_variable(name: str) -> object:
 def test_the_controller_verifies_against_the_spec_itself(tmp_path: Path, name: str,
                                                          health: int, k: int) -> None:
     spec = example(name, health)
-    found = gaitc.tolerate(spec, k)
-    assert found.synthesis.verified
-    path = tmp_path / "ctrl.json"
-    found.synthesis.save(path)
-    assert gaitc.verify(spec, path).ok
-    compact = gaitc.tolerate(spec, k, form="compact")
-    assert compact.synthesis.verified
+    for form in ("explicit", "symbolic", "compact"):
+        found = gaitc.tolerate(spec, k, form=form)
+        assert found.synthesis.verified
+        assert found.synthesis.form == form
+        path = tmp_path / f"{form}.json"
+        found.synthesis.save(path)
+        assert gaitc.verify(spec, path).ok
+    small = gaitc.tolerate(spec, k, max_nodes=2)  # auto: kept symbolic past 2 nodes
+    assert small.synthesis.form == "symbolic" and small.synthesis.verified
+    assert small.report.notes == ("the automaton would pass 2 nodes: kept symbolic",)
 
 
 def test_synth_tolerate_on_the_command_line(tmp_path: Path, capsys: pytest.CaptureFixture[str]
@@ -399,8 +402,12 @@ def test_synth_tolerate_on_the_command_line(tmp_path: Path, capsys: pytest.Captu
     assert main(["synth", spec, "--tolerate", "2", "-o", str(out)]) == 0
     text = capsys.readouterr().out
     assert "survives 0 surprises; the first breaks it: L2 changing health" in text
-    assert "the controller for up to 0 surprises (symbolic" in text
+    assert "the explicit controller for up to 0 surprises (" in text
     assert main(["verify", spec, str(out)]) == 0
+    for form in ("--symbolic", "--compact"):
+        assert main(["synth", spec, "--tolerate", "1", form, "-o", str(out)]) == 0
+        assert f"the {form[2:]} controller for up to 0 surprises (" in capsys.readouterr().out
+        assert main(["verify", spec, str(out)]) == 0
     unrealizable = str(EXAMPLES / "unrealizable_2x2.gait")
     assert main(["synth", unrealizable, "--tolerate", "1", "-o", str(out)]) == 3
     assert "unrealizable even without surprises" in capsys.readouterr().out
@@ -464,10 +471,11 @@ def test_tolerance_is_monotone_in_k(spec: GR1Spec, k: int) -> None:
 @given(tiny_specs(), st.sampled_from(list(Semantics)), st.integers(0, 2))
 def test_the_controller_of_random_specs_verifies(spec: GR1Spec, semantics: Semantics,
                                                  k: int) -> None:
-    found = gaitc.tolerate(spec, k, semantics)
-    assert (found.synthesis.controller is None) == (found.report.reached is None)
-    if found.synthesis.controller is not None:
-        assert found.synthesis.verified, found.synthesis.report
+    for form in ("explicit", "symbolic"):
+        found = gaitc.tolerate(spec, k, semantics, form=form)
+        assert (found.synthesis.controller is None) == (found.report.reached is None)
+        if found.synthesis.controller is not None:
+            assert found.synthesis.verified, found.synthesis.report
 
 
 def test_one_kind_of_surprise_on_the_command_line(tmp_path: Path,
@@ -477,7 +485,7 @@ def test_one_kind_of_surprise_on_the_command_line(tmp_path: Path,
     assert main(["synth", spec, "--tolerate", "2", "--breakable", "cache", "-o", str(out)]) == 0
     text = capsys.readouterr().out
     assert "survives 2 surprises (all 2 asked); a third is survived too" in text
-    assert "the controller for up to 2 surprises" in text
+    assert "the explicit controller for up to 2 surprises" in text
     assert main(["verify", spec, str(out)]) == 0
     capsys.readouterr()
     assert main(["synth", spec, "--tolerate", "1", "--breakable", "hazard", "-o", str(out)]) == 2

@@ -127,8 +127,7 @@ def register(sub: Any) -> None:
                    help="plan for up to K surprises (steps on which the environment breaks "
                    "its safety assumptions, e.g. a leg failing while not in use): report the "
                    "most it survives and the assumption that limits it, and write the "
-                   "controller for that many (symbolic, or --compact; docs/background/"
-                   "tolerance.md)")
+                   "controller for that many (in any form; docs/background/tolerance.md)")
     p.add_argument("--breakable", metavar="KIND",
                    help="with --tolerate: only these assumptions may break: unused (a leg not "
                    "in use keeps its health), wear (a leg in use loses at most one level a "
@@ -297,9 +296,11 @@ def _tolerate(args: argparse.Namespace) -> gaitc.Tolerance:
     def work() -> gaitc.Tolerance:
         spec = gaitc.load(args.spec, args.encoding)
         with progress_display(args.verbose) as progress:
+            form = (Form.COMPACT if args.compact else Form.SYMBOLIC if args.symbolic
+                    else "auto")
             return gaitc.tolerate(spec, args.tolerate, semantics_of(args),
-                                  breakable=args.breakable,
-                                  form=Form.COMPACT if args.compact else Form.SYMBOLIC,
+                                  breakable=args.breakable, form=form,
+                                  max_nodes=args.max_nodes,
                                   verify=not args.no_verify, options=_options(args),
                                   timeout=args.timeout, progress=progress)
 
@@ -328,8 +329,10 @@ def _run_tolerate(args: argparse.Namespace) -> int:
         print(f"{args.spec}: the controller {plan} failed verification; {args.output} was "
               "not written")
     else:
-        print(f"{args.spec}: wrote {args.output}, the controller {plan} "
-              f"({found.size}); it is a controller of the spec itself, proved against it")
+        size = found.size.removeprefix(f"{found.form}, ")
+        proof = ", proved against it" if found.report is not None else ""
+        print(f"{args.spec}: wrote {args.output}, the {found.form} controller {plan} "
+              f"({size}); it is a controller of the spec itself{proof}")
     if found.report is None:
         return ExitCode.OK
     return _print_report(found.report)
