@@ -16,6 +16,8 @@ from itertools import combinations
 from pathlib import Path
 
 import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
 
 import gaitc
 from gaitc.core.modes import Role
@@ -309,3 +311,85 @@ def test_the_notebook_widget_offers_the_breaks_and_logs_the_surprise() -> None:
     widget.count.value = 4
     widget.strongest_button.click()
     assert widget.player.step == 6 and widget.player.goal == "w"
+
+
+def test_a_hazard_the_assumptions_forbid_can_be_switched_on(small: dict[str, Player]) -> None:
+    player = _fresh(small["corridor_spill"])
+    player.choose("start at full health")  # in the cache c, where no spill may appear
+    spill = next(c for c in player.breaks() if c.words == "switch spill on")
+    assert spill.breaks == ("hazard spill switched on ('assumption (line 35): c -> "
+                            "!next(spill)', line 35)")
+    assert _forbidden(player, "switch spill on")
+    step = player.break_assumption(spill.number)
+    assert step.hazard == "spill" and player.surprises[-1].outcome == Outcome.RECOVERED
+    assert player.autoplay(6) == 6
+
+
+# ---------------------------------------------------------------------- over random plays
+SMALL = {name: ROOT / "specs" / f"{name}.gait" for name in ("patrol_2x2", "shuttle_2leg",
+                                                            "corridor_hazard")}
+SMALL["corridor_spill"] = ROOT / "tests" / "data" / "play" / "corridor_spill.gait"
+
+
+@pytest.fixture(scope="module")
+def small() -> dict[str, Player]:
+    return {name: gaitc.player(path) for name, path in SMALL.items()}
+
+
+def _expected_breaks(player: Player) -> list[str]:
+    """The candidate events in order (each leg failing, then losing a level; each hazard
+    switched on, then off) that change the state, whose inputs no legal move has and that
+    a clause of ρe forbids (evaluated on its own); the first of equal inputs only."""
+    sim = player._played[-1].sim
+    node = player.path[-1]
+    state = sim.state(node)
+    current = sim.strategy.valuation(node)
+    legal = {m.inputs for m in sim.moves(node)}
+    words = [f"{how} {leg}" for leg in player.domain.legs for how in ("fail", "degrade")]
+    words += [f"switch {h} {how}" for h in player.domain.hazard_regions for how in ("on", "off")]
+    seen: set[tuple[int, ...]] = set()
+    out = []
+    for text in words:
+        after = parse_event(text, player.domain).apply(state, player.domain)
+        if after == state:
+            continue
+        encoded = player.domain.encode(after)
+        inputs = tuple(int(encoded.get(n, current[n])) for n in sim.strategy.inputs)
+        if inputs in legal or inputs in seen:
+            continue
+        seen.add(inputs)
+        if _forbidden(player, text):
+            out.append(text)
+    return out
+
+
+@settings(max_examples=20, deadline=None,
+          suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(name=st.sampled_from(sorted(SMALL)),
+       picks=st.lists(st.integers(min_value=0, max_value=50), min_size=1, max_size=8),
+       pick=st.integers(min_value=0, max_value=50))
+def test_over_random_plays_the_breaks_are_the_forbidden_events_and_the_play_goes_on(
+        small: dict[str, Player], name: str, picks: list[int], pick: int) -> None:
+    player = _fresh(small[name])
+    for number in picks:
+        if not player.choices():
+            break
+        player.choose(1 + number % len(player.choices()))
+        assert [c.words for c in player.breaks()] == _expected_breaks(player), player.path
+    breaks = player.breaks()
+    if not breaks:
+        return
+    chosen = breaks[pick % len(breaks)]
+    start = player.step
+    player.break_assumption(chosen.number)
+    surprise = player.surprises[-1]
+    assert surprise.step == start + 1 and surprise.event == chosen.words
+    assert surprise.assumption == chosen.breaks
+    player.autoplay(8, "random", seed=pick)
+    monitor = Monitor(player.session.spec.gr1)
+    names = [v.name for v in player.session.spec.gr1.variables()]
+    values = [tuple(dict(s.values)[n] for n in names) for s in player.steps]
+    for i in range(start + 1, len(values)):  # ρs on every move from the surprise on
+        found = monitor.check_step(values[i - 1], values[i])
+        assert found.sys_failed == (), (name, i)
+        assert found.env_failed == () or i == start + 1, (name, i)
