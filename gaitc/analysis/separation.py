@@ -491,6 +491,9 @@ class _Teller:
         names = " and ".join(a.named() for a in assumptions) or "an assumption"
         moves = [self._move(play, k) for k in range(1, len(play.states))]
         start = self._start(play)
+        if play.loop_start is None and kind is Broken.LIVENESS:  # cut at MAX_PLAY steps
+            return (f"from {start}, the {self.who} " + ", then ".join(moves[:20])
+                    + f", and so on: {names} never holds again")
         if play.loop_start is None:
             done = ", then ".join(moves)
             head = f"from {start}, the {self.who} {done}" if done else f"in {start}"
@@ -500,7 +503,7 @@ class _Teller:
         prefix, cycle = moves[:play.loop_start], [*moves[play.loop_start:], back]
         head = f"from {start}, the {self.who} " + ", then ".join(prefix) if prefix else \
             f"from {start}, the {self.who}"
-        if len(cycle) == 1 and cycle[0].startswith("stays"):
+        if len(cycle) == 1 and cycle[0].startswith(("stays", "keeps")):
             tail = f"{cycle[0]} for ever"
         else:
             tail = "repeats for ever: " + ", then ".join(cycle)
