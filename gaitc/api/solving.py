@@ -82,6 +82,11 @@ def synthesize(spec: SpecLike, semantics: Semantics | str = Semantics.DEFAULT,
     comma-separated text): None is all four in that order, ``"none"`` the solver's first
     move (the behaviour before them).  They apply to the embedded solver; ``hazard``,
     ``health`` and ``switches`` need a ``.gait`` spec.
+
+    For a spec that is not well-separated (:func:`gaitc.separation`), the embedded solver
+    first looks for a controller that does not rely on the environment breaking an
+    assumption, and ``.separation`` says which kind it wrote
+    (docs/background/well-separation.md).
     """
     if form not in (*FORMS, COMPACT):
         raise UsageError(f"unknown controller form '{form}'; use one of "
