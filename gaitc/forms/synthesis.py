@@ -217,6 +217,8 @@ class Synthesis:
             rows.append(("size", self.size))
         if self.report is not None:
             rows.append(("verification", self.report.summary()))
+        if self.separation is not None:
+            rows.append(("well-separation", self.separation))
         return table(repr(self)[1:-1], rows)
 
 

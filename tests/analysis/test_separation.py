@@ -335,3 +335,8 @@ def test_check_and_synth_say_it(tmp_path: Path, capsys: pytest.CaptureFixture[st
     assert "  note: the controller does not rely on" in out
     assert main(["check", str(ROOT / "specs" / "patrol_2x2.gait")]) == 0
     assert "well-separated" not in capsys.readouterr().err
+
+
+def test_a_notebook_shows_the_note() -> None:
+    found = gaitc.synthesize(gaitc.load(DATA / "starved_region.gait"))
+    assert "well-separation" in found._repr_html_()
