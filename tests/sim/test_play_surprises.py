@@ -12,6 +12,7 @@ by a fresh run monitor.
 from __future__ import annotations
 
 from collections.abc import Sequence
+from dataclasses import replace
 from itertools import combinations
 from pathlib import Path
 
@@ -256,6 +257,12 @@ def test_a_saved_play_carries_its_violations_and_resumes(corridor: Player,
     assert resumed.goal == player.goal
     at = gaitc.player(CORRIDOR, start=out, at=1)
     assert at.step == 1 and at.surprises == ()
+    # simulate replays the saved inputs, recovers at the same step, the same way
+    replayed = gaitc.simulate(CORRIDOR, env=f"scripted:{out}")
+    assert [s.values for s in replayed.steps] == [s.values for s in player.steps]
+    (again_surprise,) = replayed.surprises
+    assert again_surprise.event == "step 2 of the run"  # the replay knows the inputs only
+    assert replace(again_surprise, event="fail L1") == player.surprises[0]
 
 
 # ---------------------------------------------------------------------- the terminal app
