@@ -125,6 +125,7 @@ def tolerate(spec: SpecLike, k: int, semantics: Semantics | str = Semantics.DEFA
     """
     from gaitc.analysis.tolerance import ToleranceOptions, tolerance
     from gaitc.ir.quotient import merge_equivalent
+    from gaitc.solver.synthesis import Extraction
 
     if form not in (*FORMS, COMPACT):
         raise UsageError(f"unknown controller form '{form}'; use one of "
@@ -132,11 +133,12 @@ def tolerate(spec: SpecLike, k: int, semantics: Semantics | str = Semantics.DEFA
     chosen = Semantics.parse(semantics, "semantics")
     bound = resolve(spec)
     started = time.monotonic()
-    explicit = form in ("explicit", "auto")
+    wanted = None if form == COMPACT else Extraction(form)
     report = tolerance(bound, chosen, k, ToleranceOptions(
-        breakable=breakable, controller=True, explicit=explicit,
-        max_nodes=max_nodes if form == "auto" else None, options=options, timeout=timeout,
-        progress=progress))
+        breakable=breakable, controller=True,
+        explicit=wanted in (Extraction.EXPLICIT, Extraction.AUTO),
+        max_nodes=max_nodes if wanted is Extraction.AUTO else None, options=options,
+        timeout=timeout, progress=progress))
     automaton: Automaton | None = report.controller
     symbolic_nodes, merged_from = None, None
     if report.automaton is not None:
