@@ -141,6 +141,7 @@ class Driver:
         self.semantics = semantics  # of the games a recovery solves
         self.follower = follower
         self.violations: list[str] = []  # readings held or taken at worst, as handled
+        self.substituted: set[int] = set()  # the steps of those readings
         self.no_gait = next(g.name for g in domain.model.gaits if g.kind is GaitKind.NONE)
         self._ran_up_to = -1  # index of the last step whose gait was run
         self._left = domain.model.start  # the region the last gait set out from
@@ -178,7 +179,7 @@ class Driver:
         recorded = {s.step for s in run.surprises}
         for index in range(1, len(run.steps)):
             event = self.follower.performed(index)
-            if event is not None and index not in recorded:
+            if event is not None and index not in recorded and index not in self.substituted:
                 run.surprises.append(Surprise(index, event.words, None, note=ALLOWED))
         run.surprises.sort(key=lambda s: s.step)
 
@@ -402,6 +403,7 @@ class SensedEnvironment(Environment):
                     f"{driver.on_violation}: taken as {used}, hazard "
                     f"{move.state.hazard or 'none'}")
             driver.violations.append(note)
+            driver.substituted.add(situation.step)
             if driver.progress is not None:
                 driver.progress(note)
             request = Request(move.inputs, f"{request.what} ({driver.on_violation}: {used})")

@@ -204,3 +204,15 @@ def test_the_python_api_lists_the_surprises(corridor: Path) -> None:
     assert driven.to_json()["substituted"] == []
     with pytest.raises(gaitc.UsageError, match="unknown --on-violation 'pray'"):
         gaitc.drive(corridor, options=DriveOptions(on_violation="pray"))
+
+
+def test_violate_with_worst_substitutes_the_event(corridor: Path,
+                                                  capsys: pytest.CaptureFixture[str]) -> None:
+    """A performed event that breaks an assumption, taken at worst, is a substitution and
+    not a surprise (nor an 'allowed' event)."""
+    assert main(["drive", str(corridor), "--steps", "4", "--violate", "2:fail L1",
+                 "--on-violation", "worst", "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["violations"] == []
+    assert data["substituted"] == [
+        "step 2: fail L1 breaks an assumption; worst: taken as L1 3, L2 2, hazard none"]
