@@ -32,12 +32,12 @@ practice n + 2).
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from itertools import combinations
 from typing import Any, Final
 
 from gaitc.diagnostics import Span
-from gaitc.ir.bddfile import SymbolicController
+from gaitc.ir.bddfile import materialize, node_table
 from gaitc.ir.bddwalk import first_assignment
 from gaitc.ir.formula import Or
 from gaitc.ir.spec import Clause, GR1Spec, Origin, Semantics
@@ -68,14 +68,16 @@ class Entry:
     cache: tuple[str, ...] = ()
 
 
-@dataclass
+@dataclass(frozen=True)
 class _Solved:
-    """One game: its BDDs, winning region and controller (None: the system wins nowhere)."""
+    """One game won somewhere: its strategy as a run steps it, and the moves that enter its
+    winning region, ρs ∧ W', in the runtime's manager (the solver's manager is dropped once
+    the controller is built, so no BDD outlives its manager)."""
 
-    sym: SymbolicSpec
-    winning: Any
-    controller: SymbolicController
-    runtime: SymbolicStrategy | None = None
+    runtime: SymbolicStrategy
+    entering: Any
+    bits: Mapping[str, tuple[str, ...]]  # each spec variable's bits, least significant first
+    lows: Mapping[str, int]  # each integer variable's lowest value
 
 
 @dataclass
@@ -155,8 +157,17 @@ class Fallback:
         result = Game(sym, purpose="solving the fallback game").solve(keep_layers=True)
         solved = None
         if result.winning != sym.bdd.false:
-            solved = _Solved(sym, result.winning,
-                             symbolic_controller(sym, result, self.semantics))
+            ctrl = symbolic_controller(sym, result, self.semantics)
+            order, nodes, refs = node_table(sym.bdd, {"entering": sym.sys_trans & sym.prime(
+                result.winning)})
+            runtime = SymbolicStrategy(ctrl, variant, "<fallback>")
+            extra = replace(ctrl, order=order, nodes=nodes, roots=refs)
+            entering = materialize(runtime.bdd, extra)["entering"]
+            integers = spec_integers(sym)
+            solved = _Solved(runtime, entering,
+                             {name: tuple(bits) for name, bits in sym.var_bits.items()},
+                             {name: iv.low for name, iv in integers.items()
+                              if len(iv.bits) == len(sym.var_bits.get(name, ()))})
         self._games[key] = solved
         return solved
 
@@ -168,40 +179,34 @@ class Fallback:
         solved = self._game(liveness)
         if solved is None:
             return None
-        sym = solved.sym
+        runtime = solved.runtime
         names = tuple(v.name for v in self.spec.variables())
-        pre = _bits(sym, dict(zip(names, before, strict=True)))
-        now = dict(zip(names, before, strict=True)) | {k: int(v) for k, v in inputs.items()}
-        post_in = {b + "'": value for b, value in _bits(sym, now).items()
-                   if b in sym.pre_inputs}
-        moves = sym.bdd.let(pre | post_in, sym.sys_trans & sym.prime(solved.winning))
-        outs = [b + "'" for b in sym.output_bits]
-        rank = {b + "'": sym.choice_rank[b] for b in sym.output_bits}
+        was = dict(zip(names, before, strict=True))
+        now = was | {k: int(v) for k, v in inputs.items()}
+        ins = {b for v in self.spec.inputs for b in solved.bits[v.name]}
+        pre = _bits(solved, was)
+        post_in = {b + "'": value for b, value in _bits(solved, now).items() if b in ins}
+        moves = runtime.bdd.let(pre | post_in, solved.entering)
+        outs = list(runtime.post_out)
         try:
-            y = first_assignment(sym.bdd, moves, outs, rank)
-        except ValueError:  # a relation over bits outside the state: no move to take
+            y = first_assignment(runtime.bdd, moves, outs, runtime.rank)
+        except ValueError:  # the relation reads bits outside the state: no move to take
             return None
         if y is None:
             return None
-        if solved.runtime is None:
-            solved.runtime = SymbolicStrategy(solved.controller, sym.spec, "<fallback>")
-        runtime = solved.runtime
         state = {b.removesuffix("'"): bool(v) for b, v in post_in.items()}
         state |= {b.removesuffix("'"): bool(v) for b, v in zip(outs, y, strict=True)}
         goal = kept.index(pursuing) if pursuing in kept else 0
         return runtime, runtime.enter(state, goal)
 
 
-def _bits(sym: SymbolicSpec, values: Mapping[str, int]) -> dict[str, bool]:
+def _bits(solved: _Solved, values: Mapping[str, int]) -> dict[str, bool]:
     """The bits of spec-level ``values`` (integers as offsets from their lowest value)."""
-    integers = spec_integers(sym)
     out: dict[str, bool] = {}
-    for name, bits in sym.var_bits.items():
-        value = int(values.get(name, 0))
-        iv = integers.get(name)
-        if iv is not None and len(bits) == len(iv.bits):
-            offset = value - iv.low
-            out.update({b: bool((offset >> k) & 1) for k, b in enumerate(iv.bits)})
+    for name, bits in solved.bits.items():
+        value = int(values.get(name, 0)) - solved.lows.get(name, 0)
+        if name in solved.lows:
+            out.update({b: bool((value >> k) & 1) for k, b in enumerate(bits)})
         else:
             out[bits[0]] = bool(value)
     return out

@@ -188,11 +188,13 @@ def _where(violation: Violation) -> str:
 
 def change_words(before: State, after: State, domain: Domain) -> list[str]:
     """What the environment changed from ``before`` to ``after`` that the gait of ``before``
-    does not explain, in the robot's words."""
+    does not explain, in the robot's words (a leg in use losing one level is told only when
+    nothing else changed)."""
     used = set(domain.legs_used(before.gait))
     in_cache = before.region in domain.model.caches
     now = dict(after.health)
     out: list[str] = []
+    usual: list[str] = []  # what eq. 3.5 allows: a leg in use losing one level
     for leg, level in before.health:
         new = now[leg]
         if new == level:
@@ -212,11 +214,11 @@ def change_words(before: State, after: State, domain: Domain) -> list[str]:
             out.append(f"{leg} dropped {lost} levels in one move"
                        + (" and failed" if new == 1 else ""))
         else:
-            out.append(f"{leg} {what}")
+            usual.append(f"{leg} {what}")
     if before.hazard != after.hazard:
         out.append(f"hazard {after.hazard} switched on" if after.hazard is not None
                    else f"hazard {before.hazard} switched off")
-    return out
+    return out or usual
 
 
 def broken_words(before: State, after: State, domain: Domain,

@@ -45,15 +45,20 @@ class SymbolicStrategy(NodeReading):
                 mismatch, Span(file or "<controller>", 1, 1),
                 hint="synthesize it again from this spec with 'gaitc synth --symbolic'")
         self._decoders = _decoders(ctrl, self.variables, file)
-        self.bdd = manager()
+        bdd = manager()
         bits = ctrl.inputs + ctrl.outputs
-        declare(self.bdd, ctrl)
-        roots = materialize(self.bdd, ctrl)
+        declare(bdd, ctrl)
+        roots = materialize(bdd, ctrl)
         self.winning, self.env_init, self.sys_init = (
             roots["winning"], roots["env_init"], roots["sys_init"])
         self.env_trans = roots["env_trans"]
         self.goals: list[Any] = roots["goals"]
         self.strategies: list[Any] = roots["strategies"]
+        # The manager after its functions: when the garbage collector clears a runtime
+        # (its lazy tables refer back to it), the attributes go in this order, and CUDD
+        # refuses to close a manager whose nodes are still referenced.
+        del roots
+        self.bdd = bdd
         self.pre = list(bits)
         self.rank = ctrl.choice_rank
         self.post_in = [b + "'" for b in ctrl.inputs]

@@ -231,8 +231,9 @@ def test_request_outside_the_assumptions_names_the_assumption(patrol: Setup) -> 
 
     run = simulate(patrol.strategy, patrol.domain, patrol.monitor, Breaker(0), 5)
     assert len(run.steps) == 2 and run.error is not None
-    assert run.error.message.startswith("step 2 (all legs fail): the environment breaks the "
-                                        "assumption 'eq. 3.")
+    message = run.error.message
+    assert message.startswith("step 2 (all legs fail): L1 failed while not in use, ")
+    assert ": the environment breaks the assumption 'eq. 3." in message
 
 
 @settings(max_examples=60, deadline=None)
