@@ -66,7 +66,7 @@ class Autopilot(Named):
 #: What the player writes as the environment of a saved run.
 BY_HAND = "played by hand"
 #: The answer shown for a move that breaks an assumption (the recovery decides it).
-RECOVERS = "the controller recovers from the broken assumption if it can"
+RECOVERS = "the controller recovers if it can: every goal, fewer goals, or it stops"
 
 
 @dataclass(frozen=True)
@@ -261,11 +261,10 @@ class Player:
         found = self._breaks.get(key)
         if found is None:
             first = len(self.choices()) + 1
-            answer = f"breaks {{}}; {RECOVERS}"
             found = tuple(
                 Choice(first + i, b.event.words, -1,
                        b.event.apply(last.sim.state(last.node), self.domain),
-                       answer.format(b.breaks), event=b.event, breaks=b.breaks)
+                       RECOVERS, event=b.event, breaks=b.breaks)
                 for i, b in enumerate(breaking(last.sim, last.node, self.step + 1)))
             self._breaks[key] = found
         return found

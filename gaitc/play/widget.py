@@ -133,7 +133,8 @@ class PlayerWidget:
         self.break_buttons = []
         for choice in player.breaks():
             button = w.Button(description=f"{choice.number}. ! {choice.words}",
-                              tooltip=choice.answer, button_style="danger",
+                              tooltip=f"breaks {choice.breaks}; {choice.answer}",
+                              button_style="danger",
                               layout=w.Layout(width="auto"))
             button.on_click(lambda _b, n=choice.number: self.play(n))
             self.break_buttons.append(button)

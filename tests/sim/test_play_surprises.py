@@ -90,8 +90,8 @@ def test_the_moves_that_break_an_assumption_are_listed_after_the_legal_ones(
         (4, "degrade L1", "L1 lost a level while not in use (eq. 3.5, line 10)"),
         (5, "fail L2", "L2 dropped 2 levels in one move and failed (eq. 3.5, line 10)"),
     ]
-    assert breaks[0].answer == ("breaks L1 failed while not in use (eq. 3.5, line 10); the "
-                                "controller recovers from the broken assumption if it can")
+    assert breaks[0].answer == ("the controller recovers if it can: every goal, fewer goals, "
+                                "or it stops")
     # every one is forbidden by the clauses themselves, every legal move allowed
     assert all(_forbidden(player, c.words) for c in breaks)
     assert not _forbidden(player, "degrade L2")  # the legal move ('nothing' is no event)
@@ -282,6 +282,8 @@ def test_the_terminal_breaks_an_assumption_and_the_play_goes_on(corridor: Player
         await pilot.press("1", "1")  # type: ignore[attr-defined]  # start, then 'nothing'
         await pilot.pause()  # type: ignore[attr-defined]
         seen["moves"] = "\n".join(str(o.prompt) for o in app.query_one("#moves")._options)  # type: ignore[attr-defined]
+        await pilot.press("down", "down")  # type: ignore[attr-defined]  # over the heading
+        seen["answer"] = str(app.query_one("#answer", Static).render())
         await pilot.press("3")  # type: ignore[attr-defined]  # fail L1: breaks eq. 3.5
         await pilot.pause()  # type: ignore[attr-defined]
         seen["log"] = str(app.query_one("#log", Static).render())
@@ -294,6 +296,8 @@ def test_the_terminal_breaks_an_assumption_and_the_play_goes_on(corridor: Player
     assert app.play(headless=True, size=(80, 24), auto_pilot=script) == str(out)
     assert "break an assumption (! the controller recovers if it can):" in seen["moves"]
     assert " 3 fail L1  ! L1 failed while not in use (eq. 3.5, line 10)" in seen["moves"]
+    assert seen["answer"] == ("→ the controller recovers if it can: every goal, fewer goals, "
+                              "or it stops")
     assert seen["log"] == ("surprise: step 2: L1 failed while not in use (eq. 3.5, line 10); "
                            + DEGRADED_NOTE)
     assert "broke an assumption with move 3 (fail L1): degraded; now in w" in seen["state"]
