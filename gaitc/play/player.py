@@ -41,7 +41,12 @@ from gaitc.ir.spec import Semantics
 from gaitc.play.words import distinguished, environment_words, robot_words
 from gaitc.sim.counterplay import careful_chooser, random_chooser
 from gaitc.sim.domain import Goal, State
-from gaitc.sim.environments import AdversarialEnvironment, Environment, RandomEnvironment
+from gaitc.sim.environments import (
+    AdversarialEnvironment,
+    Environment,
+    RandomEnvironment,
+    Request,
+)
 from gaitc.sim.play import Losses, Play, pursued
 from gaitc.sim.replay import HINT, follow, last_step, recorded, step_span
 from gaitc.sim.run import Run, Step, save_run
@@ -340,10 +345,14 @@ class Player:
             raise UsageError(self.over or "an assumption can be broken only after the first "
                              "state")
         last = self._played[-1]
+        return self._surprise(forced(last.sim, last.node, event))
+
+    def _surprise(self, request: Request) -> Step:
+        """Perform the inputs of ``request`` at the last state, through the recovery."""
+        last = self._played[-1]
         sim = last.sim
-        request = forced(sim, last.node, event)
         if not sim.breaks(last.node, request):
-            raise UsageError(f"'{event.words}' breaks no assumption here; play it among the "
+            raise UsageError(f"'{request.what}' breaks no assumption here; play it among the "
                              "legal moves")
         index = len(self._played)
         pursuing = self.domain.goals.index(last.goals[last.goal]) if last.goals else 0
@@ -519,8 +528,8 @@ class Player:
                 raise ScenarioError(f"step {index} of the run cannot be played here: the "
                                     "controller accepts no such input", step_span(run, index),
                                     "the run was played against another controller or spec")
-            try:
-                self._perform(parse_event(surprise.event, self.domain))
+            try:  # the recorded inputs, whatever words the run gives the event
+                self._surprise(Request(wanted, surprise.event))
             except UsageError as err:
                 raise ScenarioError(f"step {index} of the run cannot be played here: "
                                     f"{err.message}", step_span(run, index), HINT) from None

@@ -216,3 +216,26 @@ def test_violate_with_worst_substitutes_the_event(corridor: Path,
     assert data["violations"] == []
     assert data["substituted"] == [
         "step 2: fail L1 breaks an assumption; worst: taken as L1 3, L2 2, hazard none"]
+
+
+def test_the_player_resumes_a_drive_that_recovered(tmp_path: Path,
+                                                   capsys: pytest.CaptureFixture[str]) -> None:
+    """A drive's run file, whose surprise is a sensed reading (no move words), is played
+    again by ``gaitc play --from``: the recorded inputs are performed through the same
+    recovery, to the same steps and the same surprise."""
+    spec = tmp_path / "s.gait"
+    spec.write_text(SPEC3, encoding="utf-8")
+    controller = tmp_path / "s.json"
+    scenario = tmp_path / "jump.yaml"
+    scenario.write_text("steps:\n  - {}\n  - fail: [L1]\n  - {}\n  - {}\n", encoding="utf-8")
+    out = tmp_path / "drive.jsonl"
+    assert main(["synth", str(spec), "--prefer", "none", "-o", str(controller)]) == 0
+    assert main(["drive", str(spec), str(controller), "--env", "scripted", str(scenario),
+                 "--on-violation", "recover", "--out", str(out)]) == 0
+    capsys.readouterr()
+    driven = read_jsonl(out)
+    player = gaitc.player(spec, controller, start=out)
+    assert [s.values for s in player.steps] == [s.values for s in driven.steps]
+    (surprise,) = player.surprises
+    assert surprise == driven.surprises[0]
+    assert surprise.event == "sensed L1 3→1; no hazard" and surprise.outcome == "recovered"
