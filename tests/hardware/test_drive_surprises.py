@@ -238,4 +238,4 @@ def test_the_player_resumes_a_drive_that_recovered(tmp_path: Path,
     assert [s.values for s in player.steps] == [s.values for s in driven.steps]
     (surprise,) = player.surprises
     assert surprise == driven.surprises[0]
-    assert surprise.event == "sensed L1 3→1; no hazard" and surprise.outcome == "recovered"
+    assert surprise.event == "sensed L1 3→1; no hazard" and surprise.outcome == Outcome.RECOVERED
