@@ -82,6 +82,7 @@ if TYPE_CHECKING:  # the names of _MODULES, for the type checker (tests/cli/test
     from gaitc.api.playing import player as player
     from gaitc.api.playing import player_widget as player_widget
     from gaitc.api.simulation import Session as Session
+    from gaitc.api.simulation import SurprisePolicy as SurprisePolicy
     from gaitc.api.simulation import session as session
     from gaitc.api.simulation import simulate as simulate
     from gaitc.api.solving import SOLVERS as SOLVERS
@@ -135,7 +136,7 @@ _MODULES: dict[str, tuple[str, ...]] = {
         "synthesize", "tolerate", "verify",
     ),
     "gaitc.api.answers": ("explain", "resilience"),
-    "gaitc.api.simulation": ("Session", "session", "simulate"),
+    "gaitc.api.simulation": ("Session", "SurprisePolicy", "session", "simulate"),
     "gaitc.api.playing": ("Autopilot", "Player", "player", "player_widget"),
     "gaitc.api.examples": ("copy_examples",),
     "gaitc.api.drawing": ("controller_policy", "draw_automaton", "draw_map", "draw_spec"),

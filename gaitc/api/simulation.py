@@ -291,7 +291,7 @@ def run_document(file: str, run: Run | None, environment: str | None, output: st
     """A run as ``simulate --json`` and ``drive --json`` print it (docs/json.md): the run
     (:meth:`Run.to_json`), the environment that played it, the file it was saved to, the
     error that stopped it. ``run`` is None when an unrealizable spec left nothing to run."""
-    body: dict[str, Any] = {"legs": [], "steps": [], "summary": None}
+    body: dict[str, Any] = {"legs": [], "steps": [], "violations": [], "summary": None}
     if run is not None:
         body.update(run.to_json())
         body.pop("spec")  # the same as "file"

@@ -198,7 +198,8 @@ def test_a_run_stopped_by_a_scenario_holds_the_error(
 ) -> None:
     scenario = tmp_path / "s.yaml"
     scenario.write_text("steps:\n  - degrade: [L1]\n", encoding="utf-8")
-    argv = ["simulate", PATROL, controllers["patrol"], "--env", "scripted", str(scenario)]
+    argv = ["simulate", PATROL, controllers["patrol"], "--env", "scripted", str(scenario),
+            "--on-surprise", "stop"]
     plain = main(argv)
     capsys.readouterr()
     code, obj, err = run_json([*argv, "--json"], capsys)
@@ -207,7 +208,9 @@ def test_a_run_stopped_by_a_scenario_holds_the_error(
     error = run["error"]
     assert (error["type"], error["file"], error["line"], error["column"]) == (
         "ScenarioError", str(scenario), 2, 5)
-    assert error["message"].startswith("step 1 (degrade L1): the environment breaks")
+    assert error["message"].startswith("step 1 (degrade L1): L1 failed while not in use "
+                                       "(eq. 3.5, L1 declared on line 12): the environment "
+                                       "breaks the assumption 'eq. 3.5")
     assert f"{scenario}:2:5: error: step 1" in err  # stderr keeps the human text
     assert len(run["steps"]) == 1
 
