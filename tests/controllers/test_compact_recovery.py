@@ -214,7 +214,6 @@ def test_c_and_python_recover_alike_for_10000_steps(
     finally:
         proc.stdin.close()
         proc.wait()
-    print(name, {str(o): n for o, n in seen.items()})
     assert seen[Outcome.RECOVERED] > 10 and seen[Outcome.ALLOWED] > 5000, seen
     assert seen[Outcome.DEGRADED] + seen[Outcome.STOPPED] > 0, seen
 
@@ -338,3 +337,75 @@ def test_codegen_recover_reports_the_tables_on_the_command_line(
     assert "GAITC_RECOVER" not in (tmp_path / "plain" / "gaitc_controller.h").read_text()
     assert main(["codegen", spec, str(controller), "--target", "c", "-o",
                  str(tmp_path / "x"), "--recover", "--no-monitor"]) == 2
+
+
+SHUTTLE_3 = """robot "shuttle, three levels"
+legs L1..L2 health 3
+gait east uses L1 moves east valves 10, 00
+gait west uses L2 moves west valves 01, 00
+grid 1 x 2 cells a, b
+cache a
+start a
+visit a, b infinitely often
+"""
+
+
+@pytest.mark.slow  # builds two firmware images and runs the task in simavr, about 30 s
+@pytest.mark.firmware
+@pytest.mark.skipif(_board_tools_missing(), reason="the AVR toolchain or libsimavr is missing")
+def test_the_board_running_alone_reports_a_surprise_and_goes_on(tmp_path: Path) -> None:
+    """A leg in use reads failed at once (two levels lost in one step, which the
+    assumptions forbid): the board running alone sends an ``R`` line with the Python
+    runtime's outcome and goals kept before that step's ``A`` line, instead of venting."""
+    import serial
+
+    from gaitc.hw.firmware import Image, SimulatedBoard
+    from gaitc.hw.firmware import build as build_firmware
+    from gaitc.hw.serial_board import parse_outcome
+
+    path = tmp_path / "shuttle3.gait"
+    path.write_text(SHUTTLE_3)
+    spec = gaitc.load(path)
+    made = gaitc.synthesize(spec, form="compact")
+    assert isinstance(made.controller, CompactController)
+    built = gaitc.generate(spec, made.controller, "avr", tmp_path / "board", recover=True)
+    assert built.program is not None and built.recovering
+    rc = recovering_controller(spec.gr1, spec.vocabulary)
+    plain = build_firmware(tmp_path / "plain")
+    image = Image(built.program, built.program.with_suffix(".hex"), plain.simulator)
+    inputs, fields = rc.base.vocabulary.inputs, rc.base.vocabulary.fields
+    first = {f.name: len(f.labels) - 1 for f in inputs}
+    run = RecoveringRunner(rc, first)
+    surprises = []
+    with SimulatedBoard(image, tmp_path / "pins.jsonl") as sim:
+        port = serial.Serial(sim.port, 115200, timeout=3.0)
+        port.write(f"A 40 {''.join(DIGITS[first[f.name]] for f in inputs)}\n".encode("ascii"))
+        pending = None
+        for count in range(40):
+            line = str(port.readline().decode("ascii")).strip()
+            assert line, "the board fell silent"
+            if line.startswith("R "):
+                pending = parse_outcome(line)
+                continue
+            if line.startswith("ERR"):
+                assert pending is not None and str(pending.outcome) == "stopped"
+                break
+            assert line.startswith("A "), line
+            step, move, goal, values = line.split(" ")[1:]
+            state = {f.name: DIGITS.index(c) for f, c in zip(fields, values[2:], strict=True)}
+            if step != "0":
+                made_step = run.step({f.name: state[f.name] for f in inputs})
+                assert move == f"m={made_step.move}" and goal == f"g={run.goal}"
+                if pending is not None:
+                    assert SimOutcome(str(made_step.outcome)) == pending.outcome
+                    assert made_step.kept_mask == pending.kept
+                    assert pending.step == int(step)
+                    surprises.append(pending.outcome)
+                else:
+                    assert made_step.outcome == Outcome.ALLOWED
+            assert state == run.state
+            pending = None
+            if count == 3:
+                sim.set_depth(0, 0.02)  # L1 reads failed from its next use on
+        port.close()
+    assert surprises, "the failing leg was never reported as a surprise"
