@@ -109,9 +109,11 @@ class Simulator:
             self._values[node] = found
         return found
 
-    def step(self, index: int, node: int, previous: Step | None) -> Step:
-        """Step ``index`` of a run: ``node`` decoded, compared with ``previous``."""
-        return self._step(index, node, previous)
+    def step(self, index: int, node: int, previous: Step | None, foreign: bool = False
+             ) -> Step:
+        """Step ``index`` of a run: ``node`` decoded, compared with ``previous`` (a state of
+        another controller when ``foreign``: the run jumped here after a surprise)."""
+        return self._step(index, node, previous, foreign)
 
     def situation(self, index: int, node: int | None, goal: Goal | None) -> Situation:
         """What an environment sees before choosing the input of step ``index`` at ``node``

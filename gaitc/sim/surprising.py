@@ -127,4 +127,4 @@ def recover(sim: Simulator, fallback: Fallback, index: int, node: int, request: 
 def entered(sim: Simulator, index: int, node: int, previous: Step | None) -> Step:
     """Step ``index`` at ``node`` of ``sim``'s controller after ``previous``, a state of
     another controller (the run jumped here after a surprise)."""
-    return sim._step(index, node, previous, foreign=True)
+    return sim.step(index, node, previous, foreign=True)
