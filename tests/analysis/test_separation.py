@@ -340,3 +340,33 @@ def test_check_and_synth_say_it(tmp_path: Path, capsys: pytest.CaptureFixture[st
 def test_a_notebook_shows_the_note() -> None:
     found = gaitc.synthesize(gaitc.load(DATA / "starved_region.gait"))
     assert "well-separation" in found._repr_html_()
+
+
+@settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(tiny_specs())
+def test_the_stricter_spec_keeps_the_environment_able(spec: GR1Spec) -> None:
+    """From every state where the environment has a move at all, it can keep the stricter
+    spec's (weakened) assumptions against every robot that keeps the stricter ρs (solved
+    by enumeration); and synthesis writes a controller proved against the spec itself,
+    which, when it says so, never leaves the environment without a move."""
+    stricter = stay_separated(spec)
+    if stricter is None:
+        return
+    strict, _ = stricter
+    states, xs, ys = boolean_states(spec)
+    plain = Monitor(spec)
+    stuck = {s for s in states
+             if all(plain.check_step(s, x + ys[0]).env_failed for x in xs)}
+    able = explicit_environment_winning(Monitor(strict), states, xs, ys)
+    assert set(states) - stuck <= able
+    found = gaitc.synthesize(spec, form="explicit")
+    if found.controller is None:
+        return
+    assert found.verified and found.separation is not None
+    if found.separation.startswith("the controller may win"):
+        return
+    assert isinstance(found.controller, Controller)
+    names = [v.name for v in spec.variables()]
+    for node in range(len(found.controller.nodes)):
+        values = found.controller.values(node)
+        assert tuple(int(values[n]) for n in names) not in stuck
