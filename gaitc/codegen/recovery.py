@@ -80,12 +80,20 @@ def fit(rc: RecoveringController, budget: int) -> tuple[RecoveringController | N
     surprises the board can then only stop on."""
     keep = list(range(len(rc.fallbacks)))
     trimmed = rc
-    while recovery_sizes(trimmed).total > budget and keep:
+    while _total(trimmed) > budget and keep:
         keep.pop()
         trimmed = rc.without_fallbacks(keep)
-    if recovery_sizes(trimmed).total > budget:
+    if _total(trimmed) > budget:
         return None, ["every surprise: stop (the recovery tables do not fit)"]
     return trimmed, stops(trimmed)
+
+
+def _total(rc: RecoveringController) -> int | float:
+    """The tables' bytes; infinite when the tables cannot even address their nodes."""
+    try:
+        return recovery_sizes(rc).total
+    except ControllerError:
+        return float("inf")
 
 
 def stops(rc: RecoveringController) -> list[str]:
