@@ -99,6 +99,14 @@ def test_a_recovery_move_that_breaks_the_guarantees_is_refused(
     assert refused, "some constant recovery move must break sys_trans or the goals"
     flag_everywhere = prove_recovery(spec.gr1, replace(rc, recoverable_root=leaf(1)))
     assert not flag_everywhere.ok
+    fb = rc.fallbacks[0]
+    bad_entries = [k for k in range(len(rc.base.moves))
+                   if not prove_recovery(spec.gr1, replace(rc, fallbacks=(
+                       replace(fb, entry_root=leaf(k)), *rc.fallbacks[1:]))).ok]
+    assert bad_entries, "some constant entry move must break sys_trans or the goals kept"
+    assert any("fallback to goals" in p for k in bad_entries[:1]
+               for p in prove_recovery(spec.gr1, replace(rc, fallbacks=(
+                   replace(fb, entry_root=leaf(k)), *rc.fallbacks[1:]))).problems)
 
 
 def test_sizes_and_the_budget_name_the_surprises_that_stop(
