@@ -103,7 +103,7 @@ def header(ctrl: CompactController, recovery: RecoveringController | None = None
         "typedef struct {",
         "    uint8_t value[GAITC_FIELDS]; /* every field's current value index */",
         "    uint8_t goal;                /* the goal being pursued */",
-        *(["    uint8_t mode;                /* GAITC_NORMAL, GAITC_STOP or a fallback */"]
+        *(["    uint8_t mode;                /* GAITC_NORMAL (0), GAITC_STOP or a fallback */"]
           if recovery is not None else []),
         "} gaitc_state;",
         "",

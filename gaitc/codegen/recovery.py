@@ -78,10 +78,10 @@ def fit(rc: RecoveringController, budget: int) -> tuple[RecoveringController | N
     """``rc`` with as many fallbacks as fit in ``budget`` bytes of tables (the last ones
     dropped first), or None when not even the recovery diagrams fit; and, in words, the
     surprises the board can then only stop on."""
-    keep = list(range(len(rc.fallbacks)))
+    keep = len(rc.fallbacks)
     trimmed = rc
     while _total(trimmed) > budget and keep:
-        keep.pop()
+        keep -= 1
         trimmed = rc.without_fallbacks(keep)
     if _total(trimmed) > budget:
         return None, ["every surprise: stop (the recovery tables do not fit)"]
@@ -122,8 +122,9 @@ def header_lines(rc: RecoveringController) -> list[str]:
         "#define GAITC_RECOVERED 1 /* a surprise, and a move back into the winning region */",
         "#define GAITC_DEGRADED 2  /* a surprise; a fallback with fewer goals was entered */",
         "#define GAITC_STOPPED 3   /* a surprise with neither: no move, stop (vent) */",
-        "#define GAITC_NORMAL 255  /* s->mode: every goal; 254 stopped; else a fallback */",
-        "#define GAITC_STOP 254",
+        "/* s->mode: 0 every goal (a zeroed state too), 1 stopped, 2 + k fallback k */",
+        "#define GAITC_NORMAL 0",
+        "#define GAITC_STOP 1",
         "/* one step whatever the inputs: the outcome; *move the move made (not when stopped) */",
         "uint8_t gaitc_step_surprise(gaitc_state *s, const uint8_t in[GAITC_INPUTS], "
         "uint16_t *move);",
@@ -150,9 +151,10 @@ def source_part(rc: RecoveringController, roots: int) -> str:
         f"#define GAITC_RECOVERABLE_ROOT {roots}",
         f"#define GAITC_RECOVER_ROOT {roots + 1}",
         f"#define GAITC_EVERY_GOAL {every}u",
-        array("uint16_t", "fb_first", firsts),
-        array("uint8_t", "fb_goals", [len(fb.kept) for fb in rc.fallbacks]),
-        array("uint16_t", "fb_mask", [fb.mask for fb in rc.fallbacks]),
+        *([array("uint16_t", "fb_first", firsts),
+           array("uint8_t", "fb_goals", [len(fb.kept) for fb in rc.fallbacks]),
+           array("uint16_t", "fb_mask", [fb.mask for fb in rc.fallbacks])]
+          if rc.fallbacks else []),
         """
 /* a move of the diagrams from root move_first (+ the goal unless one), the goal counter
  * moved on by the goal diagrams from root reached_first, as gaitc_step does */
@@ -183,22 +185,26 @@ uint8_t gaitc_step_surprise(gaitc_state *s, const uint8_t in[GAITC_INPUTS], uint
             *move = play(s, in, GAITC_RECOVER_ROOT, 1, GAITC_REACHED_ROOT(0), GAITC_GOALS);
             return GAITC_RECOVERED;
         }
+#if GAITC_FALLBACKS > 0
         for (i = 0; i < GAITC_FALLBACKS; i++) {
             uint16_t r = GAITC_U16(fb_first[i]);
             if (walk(GAITC_U16(roots[r]), s->value, in)) {
                 *move = walk(GAITC_U16(roots[r + 1]), s->value, in);
                 set_inputs(s, in);
                 set_outputs(s, *move);
-                s->mode = i;
+                s->mode = (uint8_t)(i + 2);
                 s->goal = 0;
                 return GAITC_DEGRADED;
             }
         }
     } else if (gaitc_assumed(s, in)) {
-        uint16_t r = GAITC_U16(fb_first[s->mode]);
-        uint8_t goals = GAITC_U8(fb_goals[s->mode]);
+        uint16_t r = GAITC_U16(fb_first[s->mode - 2]);
+        uint8_t goals = GAITC_U8(fb_goals[s->mode - 2]);
         *move = play(s, in, (uint16_t)(r + 2), 0, (uint16_t)(r + 2 + goals), goals);
         return GAITC_ALLOWED;
+#else
+        (void)i;
+#endif
     }
     s->mode = GAITC_STOP;
     return GAITC_STOPPED;
@@ -208,7 +214,11 @@ uint16_t gaitc_kept(const gaitc_state *s)
 {
     if (s->mode == GAITC_NORMAL) return GAITC_EVERY_GOAL;
     if (s->mode == GAITC_STOP) return 0;
-    return GAITC_U16(fb_mask[s->mode]);
+#if GAITC_FALLBACKS > 0
+    return GAITC_U16(fb_mask[s->mode - 2]);
+#else
+    return 0;
+#endif
 }
 """,
     ])

@@ -133,10 +133,12 @@ class RecoveringController:
     def decisions(self, roots: Sequence[Ref]) -> int:
         return len(reachable_nodes(self.base.nodes, roots))
 
-    def without_fallbacks(self, keep: Sequence[int]) -> RecoveringController:
-        """Only the fallbacks ``keep`` (indices); the surprises of the others stop."""
-        kept = tuple(self.fallbacks[k] for k in keep)
-        classes = tuple(replace(c, included=all(k in keep for k in c.degraded))
+    def without_fallbacks(self, count: int) -> RecoveringController:
+        """Only the first ``count`` fallbacks; the surprises of the others stop.  (A prefix:
+        each fallback's flag is exact on the surprises no earlier fallback takes, and may
+        say anything on those, so an earlier one cannot be left out alone.)"""
+        kept = self.fallbacks[:count]
+        classes = tuple(replace(c, included=all(k < count for k in c.degraded))
                         for c in self.classes)
         return replace(self, fallbacks=kept, classes=classes)
 
