@@ -275,8 +275,7 @@ def _board_tools_missing() -> bool:
     return bool(missing_tools())
 
 
-@pytest.mark.slow  # builds two firmware images and runs one in simavr, about 30 s
-@pytest.mark.firmware
+@pytest.mark.firmware  # builds two firmware images and runs one in simavr, about 5 s
 @pytest.mark.skipif(_board_tools_missing(), reason="the AVR toolchain or libsimavr is missing")
 def test_the_board_recovers_as_the_python_runtime(tmp_path: Path) -> None:
     """``codegen --target avr --recover`` on the shuttle: the board's ``C r`` answers (the
@@ -381,8 +380,7 @@ visit a, b infinitely often
 """
 
 
-@pytest.mark.slow  # builds two firmware images and runs the task in simavr, about 30 s
-@pytest.mark.firmware
+@pytest.mark.firmware  # builds two firmware images and runs the task in simavr, about 5 s
 @pytest.mark.skipif(_board_tools_missing(), reason="the AVR toolchain or libsimavr is missing")
 def test_the_board_running_alone_reports_a_surprise_and_goes_on(tmp_path: Path) -> None:
     """A leg in use reads failed at once (two levels lost in one step, which the
