@@ -7,7 +7,9 @@ Python runtime make the same moves, outcomes and goal masks on 10,000 steps with
 violations injected (legs failing or losing a level, hazard switches); on every surprise
 the outcome and the goals kept agree with :meth:`gaitc.sim.recovery.Fallback.enter`, which
 re-solves the games itself, and the spec's own clauses (:class:`gaitc.sim.monitor.Monitor`)
-find ρs kept on every move.
+find ρs kept on every move.  On the valve board (simavr, marker ``firmware``): the shuttle's
+firmware built with ``codegen --recover`` answers ``C r`` as the runtime steps, and running
+alone reports a leg failing in use on an ``R`` line and goes on instead of venting.
 """
 
 from __future__ import annotations
