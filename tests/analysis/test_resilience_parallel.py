@@ -21,7 +21,10 @@ TIMING = ("seconds", "notes")
 
 def _report(**how: Any) -> dict[str, Any]:
     data = gaitc.resilience(SPEC, method="lattice", place_caches=1, **how).to_json()
-    return {k: v for k, v in data.items() if k not in TIMING}
+    out = {k: v for k, v in data.items() if k not in TIMING}
+    if isinstance(out.get("tolerance"), dict):  # section 5's own time
+        out["tolerance"] = {k: v for k, v in out["tolerance"].items() if k not in TIMING}
+    return out
 
 
 @pytest.fixture(scope="module")
