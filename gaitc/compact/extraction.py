@@ -199,11 +199,20 @@ def reachable(bdd: Any, init: Any, strategies: Sequence[Any], env_trans: Any,
     """Per goal j, the states a run can be in while it pursues goal j when the controller
     may make any move of ``strategies[j]``, from ``init`` at goal 1: the care sets.  Closed
     under every move allowed, so a function that picks any of them never leaves them."""
+    starts = [init if j == 0 else bdd.false for j in range(len(strategies))]
+    return reachable_from(bdd, starts, strategies, env_trans, moving, inputs, outputs)
+
+
+def reachable_from(bdd: Any, starts: Sequence[Any], strategies: Sequence[Any], env_trans: Any,
+                   moving: Sequence[Sequence[Any]], inputs: Sequence[str],
+                   outputs: Sequence[str]) -> list[Any]:
+    """:func:`reachable` from ``starts[j]`` pursuing goal j, for every j (a recovery lands a
+    run in the middle of a goal, :mod:`gaitc.compact.recovery`)."""
     pre = set(inputs) | set(outputs)
     unprime = {b + "'": b for b in pre}
     n = len(strategies)
     reach = [bdd.false] * n
-    frontier = [init if j == 0 else bdd.false for j in range(n)]
+    frontier = list(starts)
     while any(f != bdd.false for f in frontier):
         for j in range(n):
             reach[j] |= frontier[j]

@@ -38,6 +38,7 @@ from gaitc.compact.extraction import (
     FieldOrder,
     counter_moves,
     field_domain,
+    reachable_from,
     slot_order,
 )
 from gaitc.core.vocabulary import Field, Vocabulary
@@ -471,24 +472,9 @@ def _game(work: _Work, spec: GR1Spec, kept: tuple[int, ...]) -> _Solved | None:
 def _closure(work: _Work, starts: Sequence[Any], strategies: Sequence[Any],
              moving: Sequence[Sequence[Any]]) -> list[Any]:
     """Per goal j, the states a run pursuing goal j can be in from ``starts`` (per goal),
-    any move of ``strategies`` taken (:func:`gaitc.compact.extraction.reachable` with a
-    start set per goal)."""
-    bdd, n = work.bdd, len(strategies)
-    reach = [bdd.false] * n
-    frontier = list(starts)
-    while any(f != bdd.false for f in frontier):
-        for j in range(n):
-            reach[j] |= frontier[j]
-        found = [bdd.false] * n
-        for j in range(n):
-            if frontier[j] == bdd.false:
-                continue
-            steps = frontier[j] & work.env_trans & strategies[j]
-            for k in range(n):
-                if moving[j][k] != bdd.false:
-                    found[k] |= work.unprime(steps & moving[j][k])
-        frontier = [found[k] & ~reach[k] for k in range(n)]
-    return reach
+    any move of ``strategies`` taken (:func:`gaitc.compact.extraction.reachable_from`)."""
+    return reachable_from(work.bdd, starts, strategies, work.env_trans, moving, work.inputs,
+                          work.outputs)
 
 
 def _class_set(bdd: Any, vocabulary: Vocabulary, c: SurpriseClass) -> Any:
