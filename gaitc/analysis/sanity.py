@@ -2,10 +2,12 @@
 
 * the environment cannot satisfy its own assumptions, even choosing every variable itself
   (then any guarantee is "realizable");
-* the robot can force the environment to break an assumption while keeping its own
-  transition rules: the spec is not well-separated, and a controller may win by blocking
-  the environment (Klein and Pnueli, "Revisiting synthesis of GR(1) specifications",
-  HVC 2010); each assumption it can break alone is named;
+* the robot can force the environment to break an assumption from every start while
+  keeping its own transition rules: the spec is not well-separated, and a controller may
+  win by blocking the environment (Klein and Pnueli, "Revisiting synthesis of GR(1)
+  specifications", HVC 2010; Maoz and Ringert, FSE 2016); each assumption it can force
+  alone is named (the environment's game of :mod:`gaitc.analysis.separation`, which
+  ``lint`` and ``check`` report from any start);
 * a goal that holds on every reachable transition (vacuous);
 * regions, gaits and caches that no play staying in the winning region ever uses.
 """
@@ -17,6 +19,7 @@ from typing import Final
 
 from gaitc.analysis.ddmin import ddmin
 from gaitc.analysis.oracle import Oracle
+from gaitc.analysis.separation import separation
 from gaitc.analysis.units import ASSUMPTION_SECTIONS, Unit, keep_only, units
 from gaitc.core.spec import Spec
 from gaitc.ir.cuddlib import cudd
@@ -28,6 +31,9 @@ from ltlcompiler.encoding import EncodingName, make_encoding
 from ltlcompiler.model import NO_GAIT, Model
 
 _DUMMY = "gaitc_sanity_choice"
+#: The code of the warning that the robot can force a broken assumption from every start
+#: (``lint`` reports the same finding from the environment's game, with a forcing play).
+NOT_WELL_SEPARATED: Final = "not-well-separated"
 
 
 @dataclass(frozen=True)
@@ -66,16 +72,16 @@ def unsatisfiable_core(spec: GR1Spec, oracle: Oracle) -> tuple[Unit, ...]:
 
 
 def breakable_assumptions(spec: GR1Spec, oracle: Oracle) -> tuple[Unit, ...] | None:
-    """None when the robot cannot force a violation of the assumptions; else the assumption
-    units it can break alone (possibly none: only their combination)."""
-    if not oracle.realizable(_never_wins(spec)):
+    """None unless the robot can force a violation of the assumptions from every start
+    (under the oracle's semantics); else the assumption units it can force alone (possibly
+    none: only their combination).  Decided by the environment's game of
+    :mod:`gaitc.analysis.separation`, the one well-separation check of gaitc."""
+    found = separation(spec)
+    if not found.forced_everywhere.get(oracle.semantics, False):
         return None
-    found = []
-    for unit in units(spec, ASSUMPTION_SECTIONS):
-        alone = keep_only(spec, (unit,), ASSUMPTION_SECTIONS)
-        if oracle.realizable(_never_wins(alone)):
-            found.append(unit)
-    return tuple(found)
+    named = {(a.section, a.index) for f in found.findings if f.alone for a in f.assumptions}
+    return tuple(u for u in units(spec, ASSUMPTION_SECTIONS)
+                 if any((u.section, i) in named for i in u.indices))
 
 
 def _image(sym: SymbolicSpec, states: BDDNode, moves: BDDNode) -> BDDNode:
@@ -155,7 +161,7 @@ def sanity(loaded: Spec, oracle: Oracle) -> tuple[Warning_, ...]:
         if broken is not None:
             which = "; ".join(f"'{u.rule}' ({u.where()})" for u in broken) or \
                 "only the assumptions together"
-            found.append(Warning_("not-well-separated",
+            found.append(Warning_(NOT_WELL_SEPARATED,
                                   f"the {player} can force the environment to break an "
                                   f"assumption, so a controller may win by blocking it: {which}",
                                   broken))

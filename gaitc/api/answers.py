@@ -13,14 +13,15 @@ from gaitc.analysis.explanation import explain as explain_spec
 from gaitc.analysis.pool import Pool, Progress, terminal_progress
 from gaitc.analysis.resilience import METHODS, Resilience, cache_sites
 from gaitc.analysis.resilience import resilience as analyse
+from gaitc.analysis.sanity import NOT_WELL_SEPARATED
 from gaitc.api.isolation import HardLimits, run_limited
 from gaitc.core.spec import Spec, as_spec, load
 from gaitc.diagnostics import UsageError
 from gaitc.ir.spec import GR1Spec, Semantics
 from ltlcompiler.encoding import EncodingName
 
-__all__ = ["METHODS", "Explanation", "Resilience", "explain", "resilience",
-           "terminal_progress"]
+__all__ = ["METHODS", "NOT_WELL_SEPARATED", "Explanation", "Resilience", "explain",
+           "resilience", "terminal_progress"]
 
 
 def explain(spec: Spec | GR1Spec | str | Path, semantics: Semantics | str = Semantics.DEFAULT,

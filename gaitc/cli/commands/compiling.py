@@ -93,7 +93,11 @@ def _lint_verdict(args: argparse.Namespace, diagnostics: list[Diagnostic]
         print(f"{args.spec}: unrealizable ({why.kind} failure); 'gaitc explain' says why",
               file=sys.stderr)
         return ExitCode.UNREALIZABLE, why
+    from gaitc.api.answers import NOT_WELL_SEPARATED
+
     for warning in why.warnings:
+        if warning.code == NOT_WELL_SEPARATED:
+            continue  # lint's own well-separation warning, above, says it with a play
         print(f"{args.spec}: warning: {warning.message}", file=sys.stderr)
     return (ExitCode.WARNING if why.warnings else ExitCode.OK), why
 
