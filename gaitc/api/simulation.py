@@ -253,6 +253,12 @@ def _controller_play(bound: Session, env: Opponent | Scenario | Environment,
                  else chosen.length if isinstance(chosen, RunEnvironment) else DEFAULT_STEPS)
     if steps < 0:
         raise UsageError("the number of steps must not be negative")
+    late = sorted(k for k in (surprises.planned if surprises is not None else {}) if k > steps)
+    if late:
+        assert surprises is not None
+        raise UsageError(f"--violate '{late[0]}:{surprises.planned[late[0]].words}': the run "
+                         f"has {steps} steps, so step {late[0]} never comes; give --steps "
+                         f"{late[-1]} or more")
     return run_simulation(bound.strategy, bound.domain, bound.monitor, chosen, steps,
                           bound.spec.path, surprises)
 

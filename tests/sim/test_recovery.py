@@ -287,6 +287,8 @@ def test_cli_json_lists_the_violations(capsys: pytest.CaptureFixture[str]) -> No
                      "'switch HAZARD off'"),
     ("3:switch spill on", "--violate 'switch spill on': unknown hazard set 'spill'; the "
                           "spec's hazard sets are none (the spec declares no hazard)"),
+    ("9:fail L1", "--violate '9:fail L1': the run has 4 steps, so step 9 never comes; give "
+                  "--steps 9 or more"),
 ])
 def test_bad_violate_options_are_usage_errors(option: str, message: str,
                                               capsys: pytest.CaptureFixture[str]) -> None:
