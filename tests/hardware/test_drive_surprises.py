@@ -26,24 +26,9 @@ from gaitc.sim.surprise import Outcome, plan
 
 #: The corridor of tests/data/surprises/corridor3.gait with valves: only L1 moves east,
 #: only L2 west; L1 failing while the robot goes west puts e out of reach for good.
-CORRIDOR = """robot "corridor shuttle"
-legs L1..L2 health 3
-gait east uses L1 moves east valves 10, 00
-gait west uses L2 moves west valves 01, 00
-grid 1 x 3 cells w, c, e
-cache c
-start c
-visit w, e infinitely often
-"""
-SPEC3 = """robot "three levels"
-legs L1..L2 health 3
-gait east uses L1 moves east valves 10, 00
-gait west uses L2 moves west valves 01, 00
-grid 1 x 3 cells a, b, c
-cache a
-start a
-visit a, c infinitely often
-"""
+SURPRISES = Path(__file__).resolve().parents[1] / "data" / "surprises"
+CORRIDOR = (SURPRISES / "corridor3_valves.gait").read_text(encoding="utf-8")
+SPEC3 = (SURPRISES / "three_levels.gait").read_text(encoding="utf-8")
 DEGRADED = ("step 2: L1 failed while not in use (eq. 3.5, line 4); degraded: still pursuing "
             "visit w; visit e is out of reach after L1 failed while not in use")
 BROKEN = ("    broken: eq. 3.5: under west leg L2 may lose one level, the other legs keep "

@@ -33,15 +33,9 @@ from gaitc.hw.simulated import SimulatedRobot
 from gaitc.sim.scenario import ScriptedEnvironment, load_scenario
 
 LEGS = ("L1", "L2", "L3")
-SPEC3 = """robot "three levels"
-legs L1..L2 health 3
-gait east uses L1 moves east valves 10, 00
-gait west uses L2 moves west valves 01, 00
-grid 1 x 3 cells a, b, c
-cache a
-start a
-visit a, c infinitely often
-"""
+#: Two legs of three levels on a three-cell corridor (shared with test_drive_surprises).
+SPEC3 = (Path(__file__).resolve().parents[1] / "data" / "surprises" / "three_levels.gait"
+         ).read_text(encoding="utf-8")
 
 
 # ---------------------------------------------------------------------------- features
