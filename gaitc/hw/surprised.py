@@ -7,7 +7,8 @@ Ehlers and Topcu, HSCC 2014), which that copy does not know.  :class:`Surprising
 told the driver's situation before each reading (:class:`gaitc.hw.driver.Follower`), so its
 environment chooses among the moves of the controller the driver runs now, and at a step of
 ``planned`` it performs the event whatever the assumptions say: the legs' levels and the
-hazard change as the event says (:meth:`gaitc.sim.surprise.Event.apply`) and the robot stays
+hazard change as the event says, the rest of the reading is a move the assumptions allow
+(:func:`gaitc.sim.surprise.performed`, as ``simulate --violate`` does) and the robot stays
 where the last gait took it.
 """
 
@@ -21,7 +22,7 @@ from gaitc.sim.domain import Domain
 from gaitc.sim.environments import Environment, Situation
 from gaitc.sim.monitor import Monitor
 from gaitc.sim.strategy import StrategyView
-from gaitc.sim.surprise import Event
+from gaitc.sim.surprise import Event, performed
 
 
 class SurprisingRobot(SimulatedRobot):
@@ -51,7 +52,7 @@ class SurprisingRobot(SimulatedRobot):
         region = self.domain.model.start if here is None else here.region
         event = self.planned.get(situation.step) if here is not None else None
         if event is not None and here is not None:
-            after = event.apply(here, self.domain)
+            after, _ = performed(event, here, [m.state for m in situation.moves], self.domain)
             self._performed[situation.step] = event
             reading = SensorReading(after.health, after.hazard, region)
         else:

@@ -298,7 +298,8 @@ class Simulator:
         inputs = self._input_names(request.inputs)
         after = self.domain.decode(self.strategy.valuation(node) | inputs)
         broken = [self.monitor.violation(index, "env_trans", i) for i in failed]
-        return broken_words(self.state(node), after, self.domain, broken)
+        allowed = [m.state for m in self.moves(node)]
+        return broken_words(self.state(node), after, self.domain, broken, allowed)
 
     def _recover(self, index: int, node: int, request: Request, pursuing: int,
                  opts: SurpriseOptions) -> tuple[Surprise, Entry]:

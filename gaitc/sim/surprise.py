@@ -97,19 +97,60 @@ class Event:
     def apply(self, state: State, domain: Domain) -> State:
         """The state after the event: the legs' levels and the hazard changed, the robot's
         region and gait as they were (the robot has not answered yet)."""
-        levels = dict(state.health)
+        return self.onto(state, state, domain)
+
+    def onto(self, base: State, now: State, domain: Domain) -> State:
+        """``base`` (what the environment would do anyway at ``now``) with the event's own
+        changes: a failed leg at level 1, a degraded one ``lost`` levels below its level at
+        ``now``, a repaired one at full health, the hazard switched; everything else as in
+        ``base``."""
+        levels = dict(base.health)
+        old = dict(now.health)
         for leg, lost in self.degrade:
-            levels[leg] = max(1, levels[leg] - lost)
+            levels[leg] = max(1, old[leg] - lost)
         for leg in self.fail:
             levels[leg] = 1
         for leg in self.repair:
             levels[leg] = domain.full[leg]
-        hazard = state.hazard
+        hazard = base.hazard
         if self.hazard is not None:
             hazard = self.hazard if self.switch_on else (
-                None if state.hazard == self.hazard else state.hazard)
-        return State(state.region, state.gait, tuple((leg, levels[leg]) for leg in domain.legs),
+                None if base.hazard == self.hazard else base.hazard)
+        return State(base.region, base.gait, tuple((leg, levels[leg]) for leg in domain.legs),
                      hazard)
+
+
+def differences(a: State, b: State) -> int:
+    """How many of the environment's parts (legs' levels, the hazard) differ in ``a`` and
+    ``b``."""
+    legs = sum(x != y for (_, x), (_, y) in zip(a.health, b.health, strict=True))
+    return legs + int(a.hazard != b.hazard)
+
+
+def performed(event: Event, now: State, allowed: Sequence[State],
+              domain: Domain) -> tuple[State, int | None]:
+    """The state ``event`` performed at ``now`` leaves, the rest of the environment's move
+    being one the assumptions allow, so that only the event itself can break one (a hazard
+    switched on in a cache still has the cache reset every leg); and the index of that move
+    in ``allowed`` (the states of the moves the controller accepts at ``now``).
+
+    The event is laid onto each allowed move (:meth:`Event.onto`); the result preferred is
+    one that is allowed itself, then one the event changes least, then one closest to
+    ``event.apply(now)`` (the levels and hazard as they were), then the first.  Without
+    allowed moves it is ``event.apply(now)``, with no index."""
+    naive = event.apply(now, domain)
+    accepted = {(s.health, s.hazard) for s in allowed}
+    if not allowed or (naive.health, naive.hazard) in accepted:
+        return naive, None
+    best: tuple[tuple[int, int, int], State] | None = None
+    for rank, base in enumerate(allowed):
+        state = event.onto(base, now, domain)
+        broken = 0 if (state.health, state.hazard) in accepted else 1 + differences(state, base)
+        key = (broken, differences(state, naive), rank)
+        if best is None or key < best[0]:
+            best = (key, state)
+    assert best is not None
+    return best[1], best[0][2]
 
 
 @dataclass(frozen=True)
@@ -186,10 +227,12 @@ def _where(violation: Violation) -> str:
     return f", line {span.line}" if isinstance(span, Span) else ""
 
 
-def change_words(before: State, after: State, domain: Domain) -> list[str]:
+def change_words(before: State, after: State, domain: Domain,
+                 allowed: Sequence[State] = ()) -> list[str]:
     """What the environment changed from ``before`` to ``after`` that the gait of ``before``
     does not explain, in the robot's words (a leg in use losing one level is told only when
-    nothing else changed)."""
+    nothing else changed, a cache's reset never, a hazard switched as one of the ``allowed``
+    moves switches it neither)."""
     used = set(domain.legs_used(before.gait))
     in_cache = before.region in domain.model.caches
     now = dict(after.health)
@@ -200,6 +243,8 @@ def change_words(before: State, after: State, domain: Domain) -> list[str]:
         if new == level:
             continue
         if new > level:
+            if in_cache and new == domain.full[leg]:
+                continue  # the cache's reset (eq. 3.6)
             out.append(f"{leg} was repaired outside a cache" if not in_cache
                        else f"{leg} went up to level {new}")
             continue
@@ -215,22 +260,23 @@ def change_words(before: State, after: State, domain: Domain) -> list[str]:
                        + (" and failed" if new == 1 else ""))
         else:
             usual.append(f"{leg} {what}")
-    if before.hazard != after.hazard:
+    if before.hazard != after.hazard and after.hazard not in {s.hazard for s in allowed}:
         out.append(f"hazard {after.hazard} switched on" if after.hazard is not None
                    else f"hazard {before.hazard} switched off")
     return out or usual
 
 
 def broken_words(before: State, after: State, domain: Domain,
-                 broken: Sequence[Violation]) -> str:
+                 broken: Sequence[Violation], allowed: Sequence[State] = ()) -> str:
     """The first broken assumption in the robot's words: what changed, then the clause's
     equation and line (``L5 failed while not in use (eq. 3.5, line 23)``); a clause that
     names no equation is quoted.  A generated clause without a source line (the one of
-    "no gait") cites the line declaring the first leg that changed."""
+    "no gait") cites the line declaring the first leg that changed; ``allowed`` are the
+    states of the moves the assumptions allow at ``before`` (:func:`change_words`)."""
     if not broken:
         return ""
     first = next((v for v in broken if v.span is not None), broken[0])
-    changes = change_words(before, after, domain)
+    changes = change_words(before, after, domain, allowed)
     tag = equation(first.rule)
     where = _where(first)
     if not where:

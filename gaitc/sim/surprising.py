@@ -17,7 +17,15 @@ from typing import TYPE_CHECKING
 
 from gaitc.sim.environments import Request
 from gaitc.sim.run import Step
-from gaitc.sim.surprise import Event, Outcome, Surprise, broken_words, change_words, parse_event
+from gaitc.sim.surprise import (
+    Event,
+    Outcome,
+    Surprise,
+    broken_words,
+    change_words,
+    parse_event,
+    performed,
+)
 from gaitc.solver.progress import goal_titles
 
 if TYPE_CHECKING:
@@ -40,12 +48,16 @@ class Breaking:
 
 
 def forced(sim: Simulator, node: int, event: Event) -> Request:
-    """The inputs of ``event`` performed at ``node`` of ``sim``'s controller: the node's
-    state with the event's changes, the other inputs as they were."""
-    after = event.apply(sim.state(node), sim.domain)
-    values = sim.domain.encode(after)
-    here = sim.strategy.valuation(node)
-    return Request(tuple(int(values.get(name, here[name])) for name in sim.strategy.inputs),
+    """The inputs of ``event`` performed at ``node`` of ``sim``'s controller, laid onto a
+    move the assumptions allow there (:func:`gaitc.sim.surprise.performed`), so that only
+    the event itself can break an assumption; inputs the robot's state does not name are
+    that move's (the node's own when it has no moves)."""
+    moves = sim.moves(node)
+    state, base = performed(event, sim.state(node), [m.state for m in moves], sim.domain)
+    rest = (sim.strategy.valuation(node) if base is None
+            else dict(zip(sim.strategy.inputs, moves[base].inputs, strict=True)))
+    values = sim.domain.encode(state)
+    return Request(tuple(int(values.get(name, rest[name])) for name in sim.strategy.inputs),
                    event.words)
 
 
@@ -66,7 +78,9 @@ def breaking(sim: Simulator, node: int, index: int = 0) -> tuple[Breaking, ...]:
     that change nothing, those the controller accepts, and those giving the inputs of an
     event listed before them (``degrade L`` at level 2 is ``fail L``)."""
     state = sim.state(node)
-    accepted = {m.inputs for m in sim.moves(node)}
+    moves = sim.moves(node)
+    accepted = {m.inputs for m in moves}
+    allowed = [m.state for m in moves]
     values = sim.strategy.values[node]
     seen: set[tuple[int, ...]] = set()
     found: list[Breaking] = []
@@ -84,7 +98,9 @@ def breaking(sim: Simulator, node: int, index: int = 0) -> tuple[Breaking, ...]:
         if not failed:
             continue
         broken = [sim.monitor.violation(index, ASSUMPTIONS, i) for i in failed]
-        found.append(Breaking(event, request, broken_words(state, after, sim.domain, broken)))
+        done = sim.domain.decode(sim.strategy.valuation(node) | inputs)
+        found.append(Breaking(event, request,
+                              broken_words(state, done, sim.domain, broken, allowed)))
     return tuple(found)
 
 
@@ -101,12 +117,13 @@ def recover(sim: Simulator, fallback: Fallback, index: int, node: int, request: 
     after = sim.domain.decode(sim.strategy.valuation(node) | names)
     broken = [sim.monitor.violation(index, ASSUMPTIONS, i)
               for i in sim.monitor.failed_assumptions(values, names)]
-    words = broken_words(before, after, sim.domain, broken)
+    allowed = [m.state for m in sim.moves(node)]
+    words = broken_words(before, after, sim.domain, broken, allowed)
     first = next((v for v in broken if v.span is not None), broken[0] if broken else None)
     titles = goal_titles(sim.monitor.spec)
     kept = tuple(titles[j] for j in entry.kept)
     lost = tuple(t for j, t in enumerate(titles) if j not in entry.kept)
-    change = ", ".join(change_words(before, after, sim.domain)) or "this event"
+    change = ", ".join(change_words(before, after, sim.domain, allowed)) or "this event"
     match entry.outcome:
         case Outcome.RECOVERED:
             note = "recovered: the state is still winning; every goal is pursued"

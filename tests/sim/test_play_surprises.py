@@ -2,11 +2,12 @@
 recovery, the play going on with the fallback strategy, saved and resumed.
 
 Nothing the player says is trusted: the moves offered are checked against the spec's
-clauses evaluated one by one (every candidate event is forbidden by ρe, and none is a
-legal move), the surprise is compared with the one ``simulate --violate`` records for the
-same event at the same state, a ``degraded`` outcome against a re-solve of the game from
-the state the surprise left (made here with :func:`gaitc.decide`), and the steps after it
-by a fresh run monitor.
+clauses evaluated one by one (no legal move agrees with an offered event, and the inputs
+performed for it break a clause of ρe; every other event agrees with a legal move), the
+surprise is compared with the one ``simulate --violate`` records for the same event at the
+same state, a ``degraded`` outcome against a re-solve of the game from the state the
+surprise left (made here with :func:`gaitc.decide`), and the steps after it by a fresh run
+monitor.
 """
 
 from __future__ import annotations
@@ -28,11 +29,13 @@ from gaitc.ir.evaluation import evaluate
 from gaitc.ir.formula import Const, Expr, Not, Var, substitute
 from gaitc.ir.spec import Clause
 from gaitc.play.player import Player
+from gaitc.sim.domain import State
 from gaitc.sim.monitor import Monitor
 from gaitc.sim.replay import RunEnvironment
 from gaitc.sim.run import read_jsonl
 from gaitc.sim.simulator import SurpriseOptions, simulate
 from gaitc.sim.surprise import Outcome, parse_event
+from gaitc.sim.surprising import forced
 
 ROOT = Path(__file__).resolve().parents[2]
 CORRIDOR = ROOT / "tests" / "data" / "surprises" / "corridor3.gait"
@@ -66,16 +69,46 @@ def _at_w(player: Player) -> Player:
     return played
 
 
-def _forbidden(player: Player, words: str) -> bool:
-    """Whether the event ``words`` at the play's last state breaks a clause of ρe, each
-    clause evaluated on its own (not through the controller or the run monitor)."""
-    sim = player._played[-1].sim
-    node = player.path[-1]
+def _agrees(player: Player, words: str, state: State) -> bool:
+    """Whether ``state`` has what the event ``words`` performed at the play's last state
+    names: its failed legs at level 1, a degraded leg ``k`` levels below its level now, its
+    hazard on (or not on)."""
     event = parse_event(words, player.domain)
-    after = player.domain.encode(event.apply(sim.state(node), player.domain))
-    current = sim.strategy.valuation(node)
+    now = dict(player._played[-1].sim.state(player.path[-1]).health)
+    levels = dict(state.health)
+    return (all(levels[leg] == 1 for leg in event.fail)
+            and all(levels[leg] == max(1, now[leg] - k) for leg, k in event.degrade)
+            and (event.hazard is None or (state.hazard == event.hazard) == event.switch_on))
+
+
+def _possible(player: Player, words: str) -> bool:
+    """Whether some legal move at the play's last state agrees with the event ``words``:
+    a verified controller accepts every input ρe allows, so an event no legal move agrees
+    with is one the assumptions forbid whatever else the environment does."""
+    sim = player._played[-1].sim
+    return any(_agrees(player, words, m.state) for m in sim.moves(player.path[-1]))
+
+
+def _forbidden(player: Player, inputs: Sequence[int]) -> bool:
+    """Whether ``inputs`` at the play's last state break a clause of ρe, each clause
+    evaluated on its own (not through the controller or the run monitor)."""
+    sim = player._played[-1].sim
+    current = sim.strategy.valuation(player.path[-1])
+    after = dict(zip(sim.strategy.inputs, inputs, strict=True))
     valuation = dict(current) | {f"{n}'": int(after.get(n, current[n])) for n in current}
     return not all(evaluate(c.formula, valuation) for c in player.session.spec.gr1.env_trans)
+
+
+def _impossible(player: Player, words: str) -> bool:
+    """The event ``words`` as a break must be: no legal move agrees with it, and the inputs
+    the player performs for it agree with it and break a clause of ρe."""
+    sim = player._played[-1].sim
+    node = player.path[-1]
+    request = forced(sim, node, parse_event(words, player.domain))
+    state = player.domain.decode(sim.strategy.valuation(node)
+                                 | dict(zip(sim.strategy.inputs, request.inputs, strict=True)))
+    return (not _possible(player, words) and _agrees(player, words, state)
+            and _forbidden(player, request.inputs))
 
 
 # ---------------------------------------------------------------------- the moves offered
@@ -92,9 +125,9 @@ def test_the_moves_that_break_an_assumption_are_listed_after_the_legal_ones(
     ]
     assert breaks[0].answer == ("the controller recovers if it can: every goal, fewer goals, "
                                 "or it stops")
-    # every one is forbidden by the clauses themselves, every legal move allowed
-    assert all(_forbidden(player, c.words) for c in breaks)
-    assert not _forbidden(player, "degrade L2")  # the legal move ('nothing' is no event)
+    # no legal move agrees with any of them, and each breaks a clause; a legal move agrees
+    assert all(_impossible(player, c.words) for c in breaks)
+    assert _possible(player, "degrade L2")  # the legal move ('nothing' is no event)
     # before the first state nothing can be broken (the initial assumptions decide it)
     assert _fresh(corridor).breaks() == ()
 
@@ -123,7 +156,6 @@ def test_every_state_offers_exactly_the_forbidden_events(robot_a: Player) -> Non
     sim = player._played[-1].sim
     node = player.path[-1]
     state = sim.state(node)
-    legal = {m.inputs for m in sim.moves(node)}
     offered = {c.words for c in player.breaks()}
     for leg, level in state.health:
         for words in (f"fail {leg}", f"degrade {leg}"):
@@ -131,13 +163,10 @@ def test_every_state_offers_exactly_the_forbidden_events(robot_a: Player) -> Non
             if event.apply(state, player.domain) == state:
                 assert words not in offered
                 continue
-            from gaitc.sim.surprising import forced
-
-            allowed = forced(sim, node, event).inputs in legal
             if words in offered:
-                assert _forbidden(player, words) and not allowed
+                assert _impossible(player, words), words
             elif not (words.startswith("degrade") and level == 2):  # same as 'fail'
-                assert allowed or not _forbidden(player, words), words
+                assert _possible(player, words), words
 
 
 # ---------------------------------------------------------------------- performing one
@@ -330,7 +359,7 @@ def test_a_hazard_the_assumptions_forbid_can_be_switched_on(small: dict[str, Pla
     spill = next(c for c in player.breaks() if c.words == "switch spill on")
     assert spill.breaks == ("hazard spill switched on ('assumption (line 35): c -> "
                             "!next(spill)', line 35)")
-    assert _forbidden(player, "switch spill on")
+    assert _impossible(player, "switch spill on")
     step = player.break_assumption(spill.number)
     assert step.hazard == "spill" and player.surprises[-1].outcome == Outcome.RECOVERED
     assert player.autoplay(6) == 6
@@ -349,28 +378,27 @@ def small() -> dict[str, Player]:
 
 def _expected_breaks(player: Player) -> list[str]:
     """The candidate events in order (each leg failing, then losing a level; each hazard
-    switched on, then off) that change the state, whose inputs no legal move has and that
-    a clause of ρe forbids (evaluated on its own); the first of equal inputs only."""
+    switched on, then off) that change the state and that no legal move agrees with; of
+    events asking the same of the state (``degrade L`` at level 2 is ``fail L``) the first
+    only."""
     sim = player._played[-1].sim
-    node = player.path[-1]
-    state = sim.state(node)
-    current = sim.strategy.valuation(node)
-    legal = {m.inputs for m in sim.moves(node)}
+    state = sim.state(player.path[-1])
     words = [f"{how} {leg}" for leg in player.domain.legs for how in ("fail", "degrade")]
     words += [f"switch {h} {how}" for h in player.domain.hazard_regions for how in ("on", "off")]
-    seen: set[tuple[int, ...]] = set()
+    seen: set[tuple[object, ...]] = set()
     out = []
     for text in words:
-        after = parse_event(text, player.domain).apply(state, player.domain)
+        event = parse_event(text, player.domain)
+        after = event.apply(state, player.domain)
         if after == state:
             continue
-        encoded = player.domain.encode(after)
-        inputs = tuple(int(encoded.get(n, current[n])) for n in sim.strategy.inputs)
-        if inputs in legal or inputs in seen:
+        asked = (after.health if event.fail or event.degrade else None,
+                 after.hazard if event.hazard else None)
+        if asked in seen or _possible(player, text):
             continue
-        seen.add(inputs)
-        if _forbidden(player, text):
-            out.append(text)
+        seen.add(asked)
+        assert _impossible(player, text)
+        out.append(text)
     return out
 
 

@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import json
 from collections.abc import Sequence
-from itertools import combinations
+from itertools import combinations, product
 from pathlib import Path
 
 import pytest
@@ -24,13 +24,14 @@ from gaitc.api.simulation import session
 from gaitc.cli import main
 from gaitc.ir.formula import Const, Expr, Not, Var, substitute
 from gaitc.ir.spec import Clause, GR1Spec
+from gaitc.sim.domain import State
 from gaitc.sim.environments import RandomEnvironment
 from gaitc.sim.monitor import Monitor
 from gaitc.sim.recovery import Fallback
-from gaitc.sim.run import Run, read_jsonl, save_run
+from gaitc.sim.run import Run, Step, read_jsonl, save_run
 from gaitc.sim.session import Session
 from gaitc.sim.simulator import SurpriseOptions, simulate
-from gaitc.sim.surprise import Outcome, SurprisePolicy, plan
+from gaitc.sim.surprise import Event, Outcome, SurprisePolicy, differences, parse_event, plan
 
 ROOT = Path(__file__).resolve().parents[2]
 ROBOT_A = ROOT / "gaitc" / "examples" / "thesis_robot_a.gait"
@@ -295,3 +296,65 @@ def test_bad_violate_options_are_usage_errors(option: str, message: str,
     code = main(["simulate", str(CORRIDOR), "--steps", "4", "--violate", option])
     assert code == 2
     assert capsys.readouterr().err.strip() == f"gaitc: usage error: {message}"
+
+
+# ------------------------------------------------------------- the event on an allowed move
+CORRIDOR_HAZARD = ROOT / "gaitc" / "examples" / "corridor_hazard.gait"
+
+
+def _agrees(event: Event, before: State, state: State) -> bool:
+    """Whether ``state`` has what ``event`` performed at ``before`` names: its failed legs at
+    level 1, a degraded leg ``k`` levels below its level before, its hazard on (or not)."""
+    now, levels = dict(before.health), dict(state.health)
+    return (all(levels[leg] == 1 for leg in event.fail)
+            and all(levels[leg] == max(1, now[leg] - k) for leg, k in event.degrade)
+            and (event.hazard is None or (state.hazard == event.hazard) == event.switch_on))
+
+
+def _state(step: Step) -> State:
+    return State(step.region, step.gait, step.health, step.hazard)
+
+
+@pytest.mark.parametrize("words", ["fail L1", "fail L3", "degrade L2", "switch spill on",
+                                   "switch spill off"])
+def test_an_event_is_laid_on_a_move_the_assumptions_allow(words: str) -> None:
+    """At every step of a run of the corridor with a spill, the event performed there has
+    what it names; it is ``allowed`` exactly when some input the assumptions allow has it
+    (every input of the robot enumerated here, each checked by a fresh monitor); and when
+    none has it, the input performed differs in no more than the event's own part from an
+    input the assumptions allow (a spill switched on in the cache keeps the cache's reset)."""
+    bound = session(CORRIDOR_HAZARD)
+    assert bound is not None
+    domain = bound.domain
+    event = parse_event(words, domain)
+    monitor = Monitor(bound.spec.gr1)
+    inputs = {v.name for v in bound.spec.gr1.inputs}
+    every = [State("", "", tuple(zip(domain.legs, levels, strict=True)), hazard)
+             for levels in product(*(range(1, domain.full[leg] + 1) for leg in domain.legs))
+             for hazard in (None, *domain.hazard_regions)]
+    outcomes = set()
+    for k in range(1, 13):
+        run = _run(bound, [f"{k}:{words}"], k + 4)
+        assert run.error is None
+        (surprise,) = run.surprises
+        before = _state(run.steps[k - 1])
+        previous = _values(bound, run, k - 1)
+
+        def allowed(state: State, previous: tuple[int, ...] = previous,
+                    at: State = before) -> bool:
+            placed = State(at.region, at.gait, state.health, state.hazard)  # inputs only
+            named = {n: v for n, v in domain.encode(placed).items() if n in inputs}
+            return not monitor.failed_assumptions(previous, named)
+
+        possible = [s for s in every if _agrees(event, before, s) and allowed(s)]
+        outcomes.add(surprise.outcome)
+        assert (surprise.outcome == Outcome.ALLOWED) == bool(possible), (k, surprise)
+        if surprise.outcome == Outcome.STOPPED and len(run.steps) == k:
+            continue
+        performed = _state(run.steps[k])
+        assert _agrees(event, before, performed), (k, performed)
+        if not possible:
+            own = len(event.fail) + len(event.degrade) + int(event.hazard is not None)
+            nearest = min(differences(performed, s) for s in every if allowed(s))
+            assert nearest <= own, (k, performed)
+    assert Outcome.ALLOWED in outcomes or words.startswith(("fail", "degrade"))
