@@ -121,7 +121,9 @@ def tolerate(spec: SpecLike, k: int, semantics: Semantics | str = Semantics.DEFA
     ``breakable`` names the one group of assumptions that may break (default: every one).
     ``form`` is as :func:`synthesize`'s: ``explicit``, ``symbolic``, ``compact``, or
     ``auto`` (explicit unless the automaton would pass ``max_nodes`` nodes); each is the
-    strategy of the game with the surprise counter, projected onto the spec's own bits.
+    strategy of the game with the surprise counter, projected onto the spec's own bits;
+    when no surprise can be planned for (the most reached is 0) it is :func:`synthesize`'s
+    controller, with its move preferences.
     """
     from gaitc.analysis.tolerance import ToleranceOptions, tolerance
     from gaitc.ir.quotient import merge_equivalent
@@ -139,6 +141,10 @@ def tolerate(spec: SpecLike, k: int, semantics: Semantics | str = Semantics.DEFA
         explicit=wanted in (Extraction.EXPLICIT, Extraction.AUTO),
         max_nodes=max_nodes if wanted is Extraction.AUTO else None, options=options,
         timeout=timeout, progress=progress))
+    if report.reached == 0:  # no surprise planned for: the plain controller, as synth's
+        return Tolerance(report, synthesize(bound, chosen, timeout=timeout, options=options,
+                                            progress=progress, verify=verify, form=form,
+                                            max_nodes=max_nodes))
     automaton: Automaton | None = report.controller
     symbolic_nodes, merged_from = None, None
     if report.automaton is not None:

@@ -413,6 +413,18 @@ def test_synth_tolerate_on_the_command_line(tmp_path: Path, capsys: pytest.Captu
     assert "unrealizable even without surprises" in capsys.readouterr().out
 
 
+def test_no_surprise_planned_for_writes_the_plain_controller() -> None:
+    """When not one surprise can be planned for, the controller is synth's own (with its
+    move preferences), not the counter game's strategy unrolled: the same automaton."""
+    spec = EXAMPLES / "shuttle_2leg.gait"
+    found = gaitc.tolerate(spec, 2)
+    assert found.report.reached == 0
+    plain = gaitc.synthesize(spec)
+    assert found.synthesis.controller is not None and plain.controller is not None
+    assert found.synthesis.controller.nodes == plain.controller.nodes
+    assert found.synthesis.report is not None and found.synthesis.report.ok
+
+
 # ---------------------------------------------------------------- properties
 @settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(tiny_specs(), st.sampled_from(list(Semantics)))
