@@ -97,14 +97,20 @@ def _total(rc: RecoveringController) -> int | float:
 
 
 def stops(rc: RecoveringController) -> list[str]:
-    """The surprise classes on which the board stops, in words."""
+    """The surprise classes on which the board stops, in words: how many of their cases
+    (state and inputs) stop because no goal is achievable, how many because their fallback
+    tables were left out, and how many recover."""
     out = []
     for c in rc.classes:
-        if not c.included and c.degraded:
-            out.append(f"{c.surprise.words()}: stop (its fallback tables do not fit)")
-        elif c.stopped:
-            out.append(f"{c.surprise.words()}: stop in {c.stopped} case(s) (no goal is "
-                       "achievable)")
+        why = []
+        if c.stopped:
+            why.append(f"stop in {c.stopped} case(s) (no goal is achievable)")
+        dropped = 0 if c.included else sum(c.degraded.values())
+        if dropped:
+            why.append(f"stop in {dropped} case(s) (its fallback tables do not fit)")
+        if why:
+            rest = f"; {c.recovered} case(s) recover" if c.recovered else ""
+            out.append(f"{c.surprise.words()}: {', '.join(why)}{rest}")
     return out
 
 

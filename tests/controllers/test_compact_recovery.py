@@ -121,7 +121,9 @@ def test_sizes_and_the_budget_name_the_surprises_that_stop(
     small, words = fit(rc, sizes.parts[0].bytes + sizes.parts[1].bytes)
     assert small is not None and small.fallbacks == ()
     assert prove_recovery(spec.gr1, small).ok
-    assert any("while unused: stop (its fallback tables do not fit)" in w for w in words)
+    dropped = [w for w in words if "case(s) (its fallback tables do not fit)" in w]
+    assert dropped and all(" fails while unused: " in w or " loses a level while unused: " in w
+                           for w in dropped)
     none, words = fit(rc, sizes.parts[0].bytes)
     assert none is None and words
 

@@ -45,7 +45,7 @@ def register(sub: Any) -> None:
                    "alone then checks only that the levels it grades are in range, not that "
                    "they are moves the spec's assumptions allow")
     p.add_argument("--recover", action="store_true",
-                   help="add recovery and fallback tables (issue 52): on a broken assumption "
+                   help="add recovery and fallback tables: on a broken assumption "
                    "the controller recovers, degrades to fewer goals or stops, instead of "
                    "venting; the recovering controller is built from SPEC and proved, and "
                    "written instead of CONTROLLER; on the board, fallbacks that do not fit "
