@@ -162,8 +162,16 @@ class Planned:
 
 
 def parse_event(text: str, domain: Domain, where: str = "--violate") -> Event:
-    """An event from the player's move words; an unknown word, leg or hazard is a
-    :class:`UsageError` naming ``where`` and what is accepted."""
+    """An event from the player's move words, several of them joined by commas as the
+    player writes a move (``fail L1, degrade L3``); an unknown word, leg or hazard, or a leg
+    or the hazard named twice, is a :class:`UsageError` naming ``where`` and what is
+    accepted."""
+    parts = [p.strip() for p in text.split(",")]
+    if len(parts) > 1:
+        if not all(parts):
+            raise UsageError(f"{where} '{text}': an event is missing "
+                             f"{'before' if not parts[0] else 'after'} a comma")
+        return combined([parse_event(p, domain, where) for p in parts], where, text)
     words = text.split()
     legs, hazards = domain.legs, tuple(domain.hazard_regions)
 
@@ -190,7 +198,32 @@ def parse_event(text: str, domain: Domain, where: str = "--violate") -> Event:
             return Event(text, hazard=name, switch_on=how == "on")
     raise UsageError(f"{where} '{text}': not an event; write one of 'fail LEG', 'degrade LEG', "
                      "'degrade LEG by N', 'repair LEG', 'switch HAZARD on', "
-                     "'switch HAZARD off'")
+                     "'switch HAZARD off', or several joined by commas")
+
+
+def combined(events: Sequence[Event], where: str, text: str | None = None) -> Event:
+    """One event doing what each of ``events`` does at the same step (``text`` its words,
+    by default theirs joined by commas); a leg or the hazard named by two of them is a
+    :class:`UsageError` naming ``where``."""
+    words = text if text is not None else ", ".join(e.words for e in events)
+    seen: dict[str, str] = {}
+    for event in events:
+        named = [*(leg for leg, _ in event.degrade), *event.fail, *event.repair]
+        if event.hazard is not None:
+            named.append("the hazard")
+        for what in named:
+            if what in seen:
+                thing = what if what == "the hazard" else f"leg {what}"
+                raise UsageError(f"{where} '{words}': '{seen[what]}' and '{event.words}' both "
+                                 f"change {thing}; give one of them")
+            seen[what] = event.words
+    hazard = next((e for e in events if e.hazard is not None), None)
+    return Event(words,
+                 degrade=tuple(d for e in events for d in e.degrade),
+                 fail=tuple(leg for e in events for leg in e.fail),
+                 repair=tuple(leg for e in events for leg in e.repair),
+                 hazard=None if hazard is None else hazard.hazard,
+                 switch_on=False if hazard is None else hazard.switch_on)
 
 
 def parse_planned(text: str, domain: Domain) -> Planned:
@@ -204,16 +237,15 @@ def parse_planned(text: str, domain: Domain) -> Planned:
 
 
 def plan(texts: Sequence[str], domain: Domain) -> dict[int, Event]:
-    """The events of several ``--violate`` options by step; two at one step are an error."""
-    out: dict[int, Event] = {}
+    """The events of several ``--violate`` options by step; events given for one step are
+    performed together (:func:`combined`)."""
+    by_step: dict[int, list[Event]] = {}
     for text in texts:
         planned = parse_planned(text, domain)
-        if planned.step in out:
-            first = out[planned.step].words
-            raise UsageError(f"--violate: two events at step {planned.step} ('{first}' and "
-                             f"'{planned.event.words}'); give one per step")
-        out[planned.step] = planned.event
-    return out
+        by_step.setdefault(planned.step, []).append(planned.event)
+    return {step: events[0] if len(events) == 1
+            else combined(events, f"--violate at step {step}")
+            for step, events in by_step.items()}
 
 
 def equation(rule: str) -> str:

@@ -166,8 +166,9 @@ def test_violate_with_stop_keeps_the_old_error(corridor: Path,
      "sensors report what happens (use --backend sim or physics)"),
     (["--violate", "2:fail L9"],
      "--violate 'fail L9': unknown leg 'L9'; the robot's legs are L1, L2"),
-    (["--violate", "2:fail L2"],
-     "--violate: two events at step 2 ('fail L1' and 'fail L2'); give one per step"),
+    (["--violate", "2:degrade L1"],
+     "--violate at step 2 'fail L1, degrade L1': 'fail L1' and 'degrade L1' both change "
+     "leg L1; give one of them"),
     (["--on-violation", "pray"],
      "argument --on-violation: invalid choice: 'pray' (choose from 'stop', 'hold', 'worst', "
      "'recover')"),

@@ -285,7 +285,10 @@ def test_cli_json_lists_the_violations(capsys: pytest.CaptureFixture[str]) -> No
                   "e.g. --violate '12:fail L5'"),
     ("3:explode L1", "--violate 'explode L1': not an event; write one of 'fail LEG', "
                      "'degrade LEG', 'degrade LEG by N', 'repair LEG', 'switch HAZARD on', "
-                     "'switch HAZARD off'"),
+                     "'switch HAZARD off', or several joined by commas"),
+    ("3:fail L1, repair L1", "--violate 'fail L1, repair L1': 'fail L1' and 'repair L1' both "
+                             "change leg L1; give one of them"),
+    ("3:fail L1,", "--violate 'fail L1,': an event is missing after a comma"),
     ("3:switch spill on", "--violate 'switch spill on': unknown hazard set 'spill'; the "
                           "spec's hazard sets are none (the spec declares no hazard)"),
     ("9:fail L1", "--violate '9:fail L1': the run has 4 steps, so step 9 never comes; give "
@@ -358,3 +361,24 @@ def test_an_event_is_laid_on_a_move_the_assumptions_allow(words: str) -> None:
             nearest = min(differences(performed, s) for s in every if allowed(s))
             assert nearest <= own, (k, performed)
     assert Outcome.ALLOWED in outcomes or words.startswith(("fail", "degrade"))
+
+
+# ------------------------------------------------------------------ several events at a step
+def test_events_at_one_step_are_performed_together(robot_a: Session) -> None:
+    """``fail L1, fail L4`` and two --violate options at one step are the same run; both
+    legs are failed at that step, every leg's other level as a move the assumptions allow;
+    and the run goes on under a fresh monitor with the goals it reports kept."""
+    joined = _run(robot_a, ["5:fail L1, fail L4"], 5 + AFTER)
+    apart = _run(robot_a, ["5:fail L1", "5:fail L4"], 5 + AFTER)
+    assert [s.values for s in joined.steps] == [s.values for s in apart.steps]
+    assert joined.steps[5].level("L1") == 1 and joined.steps[5].level("L4") == 1
+    (surprise,) = joined.surprises
+    assert surprise.event == "fail L1, fail L4" and apart.surprises[0].event == surprise.event
+    assert surprise.outcome in (Outcome.RECOVERED, Outcome.DEGRADED, Outcome.ALLOWED)
+    if surprise.outcome != Outcome.ALLOWED:
+        assert surprise.assumption is not None and "L1 failed" in surprise.assumption
+        assert "L4 failed" in surprise.assumption
+    labels = [g.label for g in robot_a.domain.goals]
+    kept = (labels if surprise.outcome != Outcome.DEGRADED
+            else [t.removeprefix("visit ") for t in surprise.kept])
+    _check_from(robot_a, joined, 6, kept)

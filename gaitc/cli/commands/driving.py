@@ -90,7 +90,8 @@ def register(sub: Any) -> None:
                    help="sim and physics backends: at step STEP the simulated robot's "
                    "environment performs EVENT whatever the assumptions say: 'fail L5', "
                    "'degrade L3', 'degrade L3 by 2', 'repair L2', 'switch spill on', "
-                   "'switch spill off' (repeatable; docs/how-to/surprises.md)")
+                   "'switch spill off', or several joined by commas (repeatable; events of "
+                   "one step happen together; docs/how-to/surprises.md)")
     p.add_argument("--pose", metavar="URL",
                    help="take the region from a tracker's pose stream: udp://HOST:PORT "
                    "(listen) or tcp://HOST:PORT (connect), JSON {\"x\": .., \"y\": ..}")

@@ -83,7 +83,8 @@ def add_surprises(p: argparse.ArgumentParser) -> None:
     p.add_argument("--violate", action="append", default=[], metavar="STEP:EVENT",
                    help="at step STEP the environment performs EVENT whatever the assumptions "
                    "say: 'fail L5', 'degrade L3', 'degrade L3 by 2', 'repair L2', 'switch "
-                   "spill on', 'switch spill off' (repeatable; docs/how-to/surprises.md)")
+                   "spill on', 'switch spill off', or several joined by commas (repeatable; "
+                   "events of one step happen together; docs/how-to/surprises.md)")
     p.add_argument("--on-surprise", choices=SurprisePolicy.values(),
                    default=SurprisePolicy.RECOVER.value,
                    help="after an input that breaks an assumption: recover (go on from the "
