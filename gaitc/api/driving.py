@@ -12,7 +12,7 @@ is. The board is one of three backend objects a notebook builds:
   with waveguide health sensing (thesis 3.4.2).
 
 A reading that breaks an assumption stops the drive, or is held, taken at worst, or
-recovered from as ``simulate`` recovers (:class:`~gaitc.hw.driver.ViolationPolicy`); on a
+recovered from as ``simulate`` recovers (:class:`~gaitc.core.modes.ViolationPolicy`); on a
 simulated board, ``violate`` makes its environment perform events whatever the assumptions
 say (``"12:fail L5"``, as ``simulate --violate``).
 """
@@ -35,10 +35,10 @@ from gaitc.api.simulation import (
     session,
 )
 from gaitc.api.solving import recorded_encoding
-from gaitc.core.modes import BackendKind, EnvironmentKind
+from gaitc.core.modes import BackendKind, EnvironmentKind, ViolationPolicy
 from gaitc.core.spec import Spec, load
 from gaitc.diagnostics import UsageError
-from gaitc.hw.driver import VIOLATION_POLICIES, ViolationPolicy
+from gaitc.hw.driver import VIOLATION_POLICIES
 from gaitc.ir.spec import Semantics
 from ltlcompiler.encoding import EncodingName
 

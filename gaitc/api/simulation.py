@@ -15,7 +15,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any, Final, TypeAlias
 
 from gaitc.api.solving import Synthesis, recorded_encoding, synthesize
-from gaitc.core.modes import EnvironmentKind, Semantics
+from gaitc.core.modes import EnvironmentKind, Semantics, SurprisePolicy
 from gaitc.core.spec import Spec, load
 from gaitc.diagnostics import UsageError
 from gaitc.forms.reader import load_runtime, runtime
@@ -27,7 +27,6 @@ from gaitc.sim.monitor import Monitor
 from gaitc.sim.session import Opponent, Session, is_run_file
 from gaitc.sim.session import environment as build_environment
 from gaitc.sim.strategy import explicit
-from gaitc.sim.surprise import SurprisePolicy
 from gaitc.solver.progress import Progress
 from ltlcompiler.encoding import EncodingName
 

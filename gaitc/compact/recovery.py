@@ -41,19 +41,10 @@ from gaitc.compact.extraction import (
     reachable_from,
     slot_order,
 )
+from gaitc.core.modes import Outcome
 from gaitc.core.vocabulary import Field, Vocabulary
 from gaitc.diagnostics.choices import Choice
 from gaitc.ir.spec import GR1Spec, Semantics
-
-
-class Outcome(Choice):
-    """What a step of a recovering controller did (the values of
-    :class:`gaitc.sim.surprise.Outcome`, which this layer cannot import)."""
-
-    ALLOWED = "allowed"  # the inputs kept the assumptions: an ordinary step
-    RECOVERED = "recovered"  # a surprise, and a move back into the winning region
-    DEGRADED = "degraded"  # a surprise; a fallback with fewer goals was entered
-    STOPPED = "stopped"  # a surprise with neither: the robot stops (the board vents)
 
 
 class Change(Choice):

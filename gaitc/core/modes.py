@@ -14,8 +14,8 @@ from gaitc.diagnostics.choices import Choice
 from gaitc.ir.spec import ControllerKind, Semantics
 from ltlcompiler.encoding import EncodingName
 
-__all__ = ["BackendKind", "ControllerKind", "EncodingName", "EnvironmentKind", "Form", "Role",
-           "SearchMethod", "Semantics"]
+__all__ = ["BackendKind", "ControllerKind", "EncodingName", "EnvironmentKind", "Form", "Outcome",
+           "Role", "SearchMethod", "Semantics", "SurprisePolicy", "ViolationPolicy"]
 
 
 class Form(Choice):
@@ -67,3 +67,31 @@ class SearchMethod(Choice):
         """A chapter 5 search in the global frame, toward a goal displacement."""
         return self in (SearchMethod.ASTAR, SearchMethod.LPA, SearchMethod.DSTAR,
                         SearchMethod.MCTS)
+
+
+class Outcome(Choice):
+    """What became of a run after an event the environment performed or an input that broke
+    an assumption (decided by :mod:`gaitc.sim.recovery` on a host and by the recovery tables
+    of :mod:`gaitc.compact.recovery` on the board; after Ehlers and Topcu, HSCC 2014)."""
+
+    RECOVERED = "recovered"  # still winning: every goal, with the game's strategy
+    DEGRADED = "degraded"  # only some goals are still achievable; those are pursued
+    STOPPED = "stopped"  # no goal is achievable: to a cache if one is sure, then stop
+    ALLOWED = "allowed"  # the event broke no assumption; the controller answered it
+
+
+class SurprisePolicy(Choice):
+    """What a run does when an observed input breaks an assumption (``--on-surprise``)."""
+
+    RECOVER = "recover"  # go on from the state reached, degraded if need be (recovery.py)
+    STOP = "stop"  # end the run with an error naming the assumption
+
+
+class ViolationPolicy(Choice):
+    """What the driver does with a reading that breaks the spec's assumptions
+    (``drive --on-violation``)."""
+
+    STOP = "stop"  # end the run with the broken assumption; every valve vented
+    HOLD = "hold"  # take the allowed input closest to the levels the controller had
+    WORST = "worst"  # take the allowed input with the lowest levels
+    RECOVER = "recover"  # go on from the state sensed, as simulate recovers (recovery.py)

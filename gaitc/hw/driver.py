@@ -21,8 +21,8 @@ from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Protocol
 
+from gaitc.core.modes import SurprisePolicy, ViolationPolicy
 from gaitc.diagnostics import SpecSemanticError
-from gaitc.diagnostics.choices import Choice
 from gaitc.gaitgraph.pairing import Resolver, ValveSequence, resolve_primitive
 from gaitc.hw.backend import (
     Backend,
@@ -40,24 +40,11 @@ from gaitc.sim.monitor import Monitor
 from gaitc.sim.run import Run
 from gaitc.sim.simulator import Simulator, SurpriseOptions
 from gaitc.sim.strategy import InputKey, StrategyView
-from gaitc.sim.surprise import Event, Surprise, SurprisePolicy
+from gaitc.sim.surprise import ALLOWED_NOTE, Event, Surprise
 from ltlcompiler.model import GaitKind, Model
-
-
-class ViolationPolicy(Choice):
-    """What the driver does with a reading that breaks the spec's assumptions."""
-
-    STOP = "stop"  # end the run with the broken assumption; every valve vented
-    HOLD = "hold"  # take the allowed input closest to the levels the controller had
-    WORST = "worst"  # take the allowed input with the lowest levels
-    RECOVER = "recover"  # go on from the state sensed, as simulate recovers (recovery.py)
-
 
 #: The policies, as ``--on-violation`` names them.
 VIOLATION_POLICIES = ViolationPolicy.values()
-#: The note of an event performed on the simulated robot that broke no assumption (as
-#: ``simulate --violate`` writes it).
-ALLOWED = "allowed: the assumptions allow this event; the controller answered it"
 
 
 class Follower(Protocol):
@@ -180,7 +167,7 @@ class Driver:
         for index in range(1, len(run.steps)):
             event = self.follower.performed(index)
             if event is not None and index not in recorded and index not in self.substituted:
-                run.surprises.append(Surprise(index, event.words, None, note=ALLOWED))
+                run.surprises.append(Surprise(index, event.words, None, note=ALLOWED_NOTE))
         run.surprises.sort(key=lambda s: s.step)
 
     def execute(self, step: int, gait: str) -> None:

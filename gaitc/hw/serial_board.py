@@ -21,10 +21,10 @@ from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any, TypeVar
 
+from gaitc.core.modes import Outcome
 from gaitc.hw.backend import Backend, HardwareError, SensorReading, where
 from gaitc.hw.sensing import HealthSensing, LegCalibration
 from gaitc.sim.environments import Move
-from gaitc.sim.surprise import Outcome
 
 PROTOCOL = 2
 FIRMWARE_PREFIX = "PONG"

@@ -36,13 +36,13 @@ from dataclasses import dataclass, field, replace
 from itertools import combinations
 from typing import Any, Final
 
+from gaitc.core.modes import Outcome
 from gaitc.diagnostics import Span
 from gaitc.ir.bddfile import materialize, node_table
 from gaitc.ir.bddwalk import first_assignment
 from gaitc.ir.formula import Or
 from gaitc.ir.spec import Clause, GR1Spec, Origin, Semantics
 from gaitc.sim.domain import Domain
-from gaitc.sim.surprise import Outcome
 from gaitc.sim.symbolic_view import SymbolicStrategy
 from gaitc.solver.canonical import spec_integers
 from gaitc.solver.game import Game

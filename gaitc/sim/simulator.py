@@ -13,6 +13,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field, fields, replace
 from typing import TYPE_CHECKING, Any
 
+from gaitc.core.modes import SurprisePolicy
 from gaitc.diagnostics import ControllerError, GaitcError, ScenarioError, Span
 from gaitc.ir.spec import Semantics
 from gaitc.sim.domain import Domain, Goal, State
@@ -21,7 +22,7 @@ from gaitc.sim.monitor import Monitor, Violation
 from gaitc.sim.play import pursued
 from gaitc.sim.run import Run, Step, Summary
 from gaitc.sim.strategy import InputKey, Strategy, StrategyView
-from gaitc.sim.surprise import Event, Surprise, SurprisePolicy, broken_words
+from gaitc.sim.surprise import ALLOWED_NOTE, Event, Surprise, broken_words
 from gaitc.sim.surprising import forced, recover
 
 if TYPE_CHECKING:
@@ -273,9 +274,8 @@ class Simulator:
                 caches = entry.cache
             else:
                 if event is not None:
-                    run.surprises.append(Surprise(index, event.words, None, note=(
-                        "allowed: the assumptions allow this event; the controller answered "
-                        "it")))
+                    run.surprises.append(Surprise(index, event.words, None,
+                                                  note=ALLOWED_NOTE))
                 target = chosen.node
             self.observe(verdicts, index, before, sim.strategy.values[target])
             step = sim._step(index, target, previous, foreign=sim is not previous_sim)

@@ -16,29 +16,16 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
+from gaitc.core.modes import Outcome
 from gaitc.diagnostics import Span, UsageError
-from gaitc.diagnostics.choices import Choice
 from gaitc.sim.domain import Domain, State
 from gaitc.sim.monitor import Violation
 
 _EQUATION = re.compile(r"^(eq\. [0-9.]+|mutex|init)")
 
 
-class Outcome(Choice):
-    """What became of a run after an event the environment performed
-    (:mod:`gaitc.sim.recovery` decides it)."""
-
-    RECOVERED = "recovered"  # still winning: every goal, with the game's strategy
-    DEGRADED = "degraded"  # only some goals are still achievable; those are pursued
-    STOPPED = "stopped"  # no goal is achievable: to a cache if one is sure, then stop
-    ALLOWED = "allowed"  # the event broke no assumption; the controller answered it
-
-
-class SurprisePolicy(Choice):
-    """What a run does when an observed input breaks an assumption."""
-
-    RECOVER = "recover"  # go on from the state reached, degraded if need be (recovery.py)
-    STOP = "stop"  # end the run with an error naming the assumption
+#: The note of an event that broke no assumption (``simulate --violate``, ``drive``).
+ALLOWED_NOTE = "allowed: the assumptions allow this event; the controller answered it"
 
 
 @dataclass(frozen=True)

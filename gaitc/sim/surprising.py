@@ -15,11 +15,11 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
+from gaitc.core.modes import Outcome
 from gaitc.sim.environments import Request
 from gaitc.sim.run import Step
 from gaitc.sim.surprise import (
     Event,
-    Outcome,
     Surprise,
     broken_words,
     change_words,

@@ -28,17 +28,16 @@ from gaitc.codegen.recovery import fit, recovery_sizes
 from gaitc.compact.controller import CompactController
 from gaitc.compact.diagram import leaf
 from gaitc.compact.recovery import (
-    Outcome,
     RecoveringController,
     RecoveringRunner,
     prove_recovery,
     recovering_controller,
 )
+from gaitc.core.modes import Outcome
 from gaitc.core.vocabulary import Field
 from gaitc.sim.domain import Domain
 from gaitc.sim.monitor import Monitor
 from gaitc.sim.recovery import Fallback
-from gaitc.sim.surprise import Outcome as SimOutcome
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = ROOT / "gaitc" / "examples"
@@ -239,10 +238,10 @@ def _lockstep(spec: gaitc.Spec, rc: RecoveringController, tmp_path: Path, steps:
             if step.outcome != Outcome.ALLOWED and was_normal:
                 entry = fallback.enter(before, _named(spec, rc, chosen))
                 expected = entry.outcome
-                if expected == SimOutcome.DEGRADED and not any(
+                if expected == Outcome.DEGRADED and not any(
                         fb.kept == entry.kept for fb in rc.fallbacks):
-                    expected = SimOutcome.STOPPED  # its tables were left out
-                assert SimOutcome(str(step.outcome)) == expected, (before, chosen)
+                    expected = Outcome.STOPPED  # its tables were left out
+                assert step.outcome == expected, (before, chosen)
                 if step.outcome == Outcome.DEGRADED:
                     assert step.kept_mask == sum(1 << j for j in entry.kept)
             if step.outcome == Outcome.STOPPED:
@@ -321,7 +320,7 @@ def test_the_board_recovers_as_the_python_runtime(tmp_path: Path) -> None:
             step = run.step(chosen)
             answer = parse_outcome(ask("C r " + "".join(DIGITS[chosen[f.name]]
                                                         for f in inputs)))
-            assert SimOutcome(str(step.outcome)) == answer.outcome
+            assert step.outcome == answer.outcome
             assert answer.kept == step.kept_mask and answer.goal == run.goal
             assert answer.move == (0 if step.move is None else step.move)
             assert answer.values == "".join(DIGITS[run.state[f.name]] for f in fields)
@@ -344,7 +343,7 @@ def test_r_lines_parse_and_garbled_ones_are_refused() -> None:
 
     line = parse_outcome("R degraded k=2 m=4 g=0 o=0a12")
     assert (line.outcome, line.kept, line.move, line.goal, line.values, line.step) == (
-        SimOutcome.DEGRADED, 2, 4, 0, "0a12", None)
+        Outcome.DEGRADED, 2, 4, 0, "0a12", None)
     assert parse_outcome("R recovered k=3 s=12").step == 12
     for bad in ("R", "R maybe k=1", "R stopped", "R stopped k=x", "R stopped k=1 k=1",
                 "R stopped k=1 z=2", "R allowed k=1 o=a/b", "M 0 g=0 o=00"):
@@ -430,7 +429,7 @@ def test_the_board_running_alone_reports_a_surprise_and_goes_on(tmp_path: Path) 
                 made_step = run.step({f.name: state[f.name] for f in inputs})
                 assert move == f"m={made_step.move}" and goal == f"g={run.goal}"
                 if pending is not None:
-                    assert SimOutcome(str(made_step.outcome)) == pending.outcome
+                    assert made_step.outcome == pending.outcome
                     assert made_step.kept_mask == pending.kept
                     assert pending.step == int(step)
                     surprises.append(pending.outcome)

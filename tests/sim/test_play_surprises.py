@@ -22,7 +22,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 import gaitc
-from gaitc.core.modes import Role
+from gaitc.core.modes import Outcome, Role
 from gaitc.diagnostics import UsageError
 from gaitc.forms.synthesis import decide
 from gaitc.ir.evaluation import evaluate
@@ -34,7 +34,7 @@ from gaitc.sim.monitor import Monitor
 from gaitc.sim.replay import RunEnvironment
 from gaitc.sim.run import read_jsonl
 from gaitc.sim.simulator import SurpriseOptions, simulate
-from gaitc.sim.surprise import Outcome, parse_event
+from gaitc.sim.surprise import parse_event
 from gaitc.sim.surprising import forced
 
 ROOT = Path(__file__).resolve().parents[2]

@@ -22,6 +22,7 @@ import pytest
 import gaitc
 from gaitc.api.simulation import session
 from gaitc.cli import main
+from gaitc.core.modes import Outcome, SurprisePolicy
 from gaitc.ir.formula import Const, Expr, Not, Var, substitute
 from gaitc.ir.spec import Clause, GR1Spec
 from gaitc.sim.domain import State
@@ -31,7 +32,7 @@ from gaitc.sim.recovery import Fallback
 from gaitc.sim.run import Run, Step, read_jsonl, save_run
 from gaitc.sim.session import Session
 from gaitc.sim.simulator import SurpriseOptions, simulate
-from gaitc.sim.surprise import Event, Outcome, SurprisePolicy, differences, parse_event, plan
+from gaitc.sim.surprise import Event, differences, parse_event, plan
 
 ROOT = Path(__file__).resolve().parents[2]
 ROBOT_A = ROOT / "gaitc" / "examples" / "thesis_robot_a.gait"
