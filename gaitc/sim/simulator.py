@@ -293,10 +293,14 @@ class Simulator:
         return bool(self.monitor.failed_assumptions(self.strategy.values[node],
                                                     self._input_names(request.inputs)))
 
+    def after(self, node: int, inputs: Mapping[str, int]) -> State:
+        """The state at ``node`` with the next ``inputs`` (spec-level names): what the
+        environment's move leaves before the robot answers."""
+        return self.domain.decode(self.strategy.valuation(node) | dict(inputs))
+
     def _told(self, index: int, node: int, request: Request, failed: list[int]) -> str:
         """The broken assumption in the robot's words (:func:`gaitc.sim.surprise.broken_words`)."""
-        inputs = self._input_names(request.inputs)
-        after = self.domain.decode(self.strategy.valuation(node) | inputs)
+        after = self.after(node, self._input_names(request.inputs))
         broken = [self.monitor.violation(index, "env_trans", i) for i in failed]
         allowed = [m.state for m in self.moves(node)]
         return broken_words(self.state(node), after, self.domain, broken, allowed)

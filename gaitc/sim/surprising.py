@@ -98,7 +98,7 @@ def breaking(sim: Simulator, node: int, index: int = 0) -> tuple[Breaking, ...]:
         if not failed:
             continue
         broken = [sim.monitor.violation(index, ASSUMPTIONS, i) for i in failed]
-        done = sim.domain.decode(sim.strategy.valuation(node) | inputs)
+        done = sim.after(node, inputs)
         found.append(Breaking(event, request,
                               broken_words(state, done, sim.domain, broken, allowed)))
     return tuple(found)
@@ -114,7 +114,7 @@ def recover(sim: Simulator, fallback: Fallback, index: int, node: int, request: 
     values = sim.strategy.values[node]
     entry = fallback.enter(values, names, pursuing)
     before = sim.state(node)
-    after = sim.domain.decode(sim.strategy.valuation(node) | names)
+    after = sim.after(node, names)
     broken = [sim.monitor.violation(index, ASSUMPTIONS, i)
               for i in sim.monitor.failed_assumptions(values, names)]
     allowed = [m.state for m in sim.moves(node)]
