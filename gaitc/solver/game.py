@@ -381,6 +381,12 @@ class Game:
             y, y_post = good, good_post
             if z <= y:  # Z ⊆ Y: later rings add only states that Z ∧ Y drops
                 break
+            if sym.options.attractor and self._assumed:  # the cheap rings again from Y
+                y, y_post, ring = self._attractor(live, z, bound, (words, j / n_goals),
+                                                  layers if keep_layers else None, rings,
+                                                  n_assm, start=(y, y_post, ring))
+                if z <= y:
+                    break
         self._track(words, f"|Y| = {y.dag_size}, {ring} rings", (j + 1) / n_goals)
         return y, y_post, layers, rings
 
@@ -422,7 +428,9 @@ class Game:
 
     def _attractor(self, live: BDDNode, z: BDDNode, bound: BDDNode,
                    progress: tuple[str, float], layers: list[BDDNode] | None,
-                   rings: list[BDDNode], n_assm: int) -> tuple[BDDNode, BDDNode, int]:
+                   rings: list[BDDNode], n_assm: int, *,
+                   start: tuple[BDDNode, BDDNode, int] | None = None
+                   ) -> tuple[BDDNode, BDDNode, int]:
         """μY. CPre(``live`` ∨ Y') ∧ ``bound``, stopped once it holds ``z``: the states
         from which the system forces the goal whatever the environment does, its liveness
         assumptions aside.  With Y and Y' and the number of rings.
@@ -436,10 +444,19 @@ class Game:
         steps as the environment can put off its liveness: on a map whose obstacle must
         come home (gridworld 256 x 256), 16 steps a ring.  When the attractor holds Z the
         goal is decided without an X fixpoint.  Each ring's strategy layer is its target
-        (the system moves one ring down), once per assumption, as the rings of μY have."""
+        (the system moves one ring down), once per assumption, as the rings of μY have.
+
+        ``start`` (Y, Y' and the ring count of a μY ring) continues from a set of μY's
+        iteration instead of the empty set: :meth:`_goal` saturates every μY ring with the
+        attractor's cheap rings, so that only the rings that need the environment's
+        liveness pay for X fixpoints.  This is sound for the same reason: Y stays below
+        μY's least fixpoint (CPre(T ∨ Y') lies in μY's step from Y), and the iteration ends
+        at a fixpoint of μY's own step.  On the 1024 x 1024 gridworld, where a goal next to
+        the obstacle's box needs the obstacle to move only near it, the 2,000 rings of
+        distance beyond then cost one CPre each instead of an X fixpoint of 13 (issue 59)."""
         sym, st, lim = self.sym, self.stats, self.limits
         words, fraction = progress
-        y, y_post, ring = sym.bdd.false, sym.bdd.false, 0
+        y, y_post, ring = start if start is not None else (sym.bdd.false, sym.bdd.false, 0)
         while True:
             ring += 1
             st.y_iterations += 1

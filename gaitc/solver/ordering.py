@@ -8,12 +8,19 @@ small transition BDDs (Bryant 1986; Aziz, Tasiran, Brayton, "BDD variable orderi
 interacting finite state machines", DAC 1994).  Last, when the system's goals are over
 integers, the integer inputs of the environment's liveness go on top (a map's obstacle above
 the robot's position, :func:`_movers_first`).  Measured in docs/design-notes.md.
+
+An integer that SLUGS's compiler has already cut into bits (``x@0.MIN.MAX``, ``x@1``, ...:
+a ``.slugsin`` file declares those Boolean bits, not ``x``) is ordered as the integer is
+(:func:`_families`): its bits form one group and count as an integer, so a spec orders the
+same from its ``.slugsin`` and from its ``.structuredslugs`` form (issue 59: the 1024 x 1024
+gridworld took 186 s from the first and 29 s from the second before).
 """
 
 from __future__ import annotations
 
 from collections.abc import Sequence
 
+from gaitc.ir.bits import parse_first_bit
 from gaitc.ir.formula import Implies, Node, atoms
 from gaitc.ir.spec import Clause, GR1Spec, Variable
 
@@ -77,7 +84,8 @@ def variable_order(spec: GR1Spec, how: str, cache: AtomCache | None = None) -> l
     if how == "occurrence":
         return occurrence
     rank = {v.name: k for k, v in enumerate(declared)}
-    groups = _groups(spec, declared, found)
+    families = _families(spec)
+    groups = _groups(spec, declared, found, families)
     score = _guard_scores(spec, groups, found)
     first = {v.name: k for k, v in enumerate(occurrence)}
     members: dict[str, list[Variable]] = {}
@@ -87,7 +95,8 @@ def variable_order(spec: GR1Spec, how: str, cache: AtomCache | None = None) -> l
         members, key=lambda g: (-score.get(g, 0), min(first[v.name] for v in members[g]))
     )
     blocks = [sorted(members[g], key=lambda v: rank[v.name]) for g in ordered]
-    follower = _per_member(spec, [[v.name for v in b] for b in blocks], found)
+    follower = _per_member(spec, [[v.name for v in b] for b in blocks
+                                  if b[0].name not in families], found)
     out: list[Variable] = []
     by_name = {v.name: v for v in declared}
     placed = set(follower.values())
@@ -96,10 +105,35 @@ def variable_order(spec: GR1Spec, how: str, cache: AtomCache | None = None) -> l
             continue  # placed below its partner
         for v in block:
             out += [v] + ([by_name[follower[v.name]]] if v.name in follower else [])
-    return _movers_first(spec, out, found)
+    return _movers_first(spec, out, found, families)
 
 
-def _movers_first(spec: GR1Spec, order: list[Variable], found: AtomCache) -> list[Variable]:
+def _families(spec: GR1Spec) -> dict[str, str]:
+    """Each Boolean variable that is a bit of an integer cut into bits by SLUGS's compiler
+    (``x@0.MIN.MAX``, ``x@1``, ..., all of one player), with the integer's name."""
+    out: dict[str, str] = {}
+    for side in (spec.inputs, spec.outputs):
+        names = {v.name for v in side if not v.is_integer}
+        for v in side:
+            first = parse_first_bit(v.name) if not v.is_integer else None
+            if first is None:
+                continue
+            integer = first[0]
+            out[v.name] = integer
+            k = 1
+            while f"{integer}@{k}" in names:
+                out[f"{integer}@{k}"] = integer
+                k += 1
+    return out
+
+
+def _unit(name: str, families: dict[str, str]) -> str:
+    """The variable ``name`` stands for when ordering: its integer if it is a SLUGS bit."""
+    return families.get(name, name)
+
+
+def _movers_first(spec: GR1Spec, order: list[Variable], found: AtomCache,
+                  families: dict[str, str] | None = None) -> list[Variable]:
     """``order`` with the environment's fair integers on top, when the system's goals are
     over integers too: the integer inputs that the environment's liveness mentions (an
     obstacle that must come home infinitely often) above everything else.
@@ -115,14 +149,19 @@ def _movers_first(spec: GR1Spec, order: list[Variable], found: AtomCache) -> lis
     obstacles (one variable per cell) stay where the guards put them: 64 of them on top
     make every set enumerate the obstacle's cells first (over 300 s)."""
 
-    def mentioned(clauses: Sequence[Clause]) -> set[str]:
-        return {name for c in clauses for name, _ in found(c.formula)}
+    bits = families or {}
 
-    inputs = {v.name for v in spec.inputs}
+    def mentioned(clauses: Sequence[Clause]) -> set[str]:
+        return {_unit(name, bits) for c in clauses for name, _ in found(c.formula)}
+
+    def integer(v: Variable) -> bool:
+        return v.is_integer or v.name in bits
+
+    inputs = {_unit(v.name, bits) for v in spec.inputs}
     fair = mentioned(spec.env_liveness) & inputs
-    movers = [v for v in order if v.is_integer and v.name in fair]
+    movers = [v for v in order if integer(v) and _unit(v.name, bits) in fair]
     goals = mentioned(spec.sys_liveness) - fair
-    if not movers or not any(v.is_integer and v.name in goals for v in order):
+    if not movers or not any(integer(v) and _unit(v.name, bits) in goals for v in order):
         return order
     return movers + [v for v in order if v not in movers]
 
@@ -186,9 +225,16 @@ def _occurrence(spec: GR1Spec, declared: list[Variable], found: AtomCache) -> li
     return [by_name[n] for n in seen]
 
 
-def _groups(spec: GR1Spec, declared: list[Variable], found: AtomCache) -> dict[str, str]:
-    """Each variable's group representative (union-find over one-player Boolean invariants)."""
+def _groups(spec: GR1Spec, declared: list[Variable], found: AtomCache,
+            families: dict[str, str] | None = None) -> dict[str, str]:
+    """Each variable's group representative (union-find over one-player Boolean invariants;
+    the bits of an integer cut by SLUGS's compiler, ``families``, are one group)."""
     parent = {v.name: v.name for v in declared}
+    bits = families or {}
+    heads: dict[str, str] = {}
+    for name in parent:
+        if name in bits:
+            parent[name] = heads.setdefault(bits[name], name)
 
     def find(name: str) -> str:
         while parent[name] != name:
@@ -196,7 +242,7 @@ def _groups(spec: GR1Spec, declared: list[Variable], found: AtomCache) -> dict[s
             name = parent[name]
         return name
 
-    booleans = {v.name for v in declared if not v.is_integer}
+    booleans = {v.name for v in declared if not v.is_integer and v.name not in bits}
     players = [{v.name for v in spec.inputs}, {v.name for v in spec.outputs}]
     env, sys = invariant_clauses(spec, found)
     for clause in env + sys:
