@@ -30,7 +30,7 @@ from gaitc.ir.formula import (
     unreachable,
 )
 from gaitc.ir.spec import SECTIONS, GR1Spec
-from slugs_bridge.slugsin import _buffered_nodes
+from slugs_bridge.slugsin import _buffered_nodes, intern_formula
 
 _Plan = list[tuple[bool, Expr]]  # (negated, operand) pieces of a chain, or the children
 
@@ -113,7 +113,9 @@ def prefix_form(expr: Expr) -> Expr:
     ``<->`` becomes ``!(^)``, ``->`` becomes ``|`` with a negated left operand (flattened
     into an enclosing ``|`` chain, and taking in a ``|`` or ``->`` on its right, when
     written inline), ``&``/``|`` of fewer than two operands become ``1``/``0`` or the
-    operand.  Shared nodes stay shared; no recursion, so any depth is fine.
+    operand.  Shared nodes stay shared, and equal subformulas are one node, as the reader
+    makes them on a line (:func:`~slugs_bridge.slugsin.intern_formula`); no recursion, so
+    any depth is fine.
     """
     buffered = {id(n) for n in _buffered_nodes(expr)}
     done: dict[int, Expr] = {}
@@ -130,7 +132,7 @@ def prefix_form(expr: Expr) -> Expr:
                 stack.extend((item, None) for item in missing)
                 continue
         done[id(node)] = _build(node, plan, done)
-    return done[id(expr)]
+    return intern_formula(done[id(expr)])
 
 
 def prefix_spec(spec: GR1Spec) -> GR1Spec:

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import re
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 from gaitc.diagnostics import SlugsFormatError, Span
@@ -26,6 +26,7 @@ from gaitc.ir.formula import (
     Xor,
 )
 from gaitc.ir.spec import SECTIONS, Clause, GR1Spec, Origin, Variable
+from gaitc.ir.traversal import fold
 from slugs_bridge.names import check_renaming, read_renaming, renaming
 from slugs_bridge.sections import FIELD_HEADERS as FIELD_HEADERS
 from slugs_bridge.sections import HEADERS as HEADERS
@@ -48,8 +49,12 @@ class _Frame:
     span: Span
     needed: int
     args: list[Expr]
+    recalled: list[bool] = field(default_factory=list)  # per operand: it came from '?'
 
 
+#: The tokens that open an operator or a buffer (every other token is a leaf).
+_OPERATOR_TOKENS = frozenset(("&", "|", "^", "!", "$", "?"))
+_NO_SPAN = Span("", 0, 0, 0, 0)  # a leaf's span before it is needed
 MAX_COUNT_DIGITS = 9  # '$ N' and '? N' counts: at most 999,999,999
 
 
@@ -81,17 +86,28 @@ def parse_prefix(
     Nested ``&``/``|`` chains written inline are flattened into one n-ary node.
     Names must be in ``declared`` (plain names; ``x'`` is the next-state copy of ``x``);
     ``names`` maps written names to the spec's names (see :mod:`slugs_bridge.names`).
+
+    Equal subformulas of the line are one node (hash-consing, keyed by the operator and
+    the identity of the operands, which are shared already): SLUGS's compiler writes a
+    comparison of bit-cut integers as the same bit patterns over and over, and the
+    1024 x 1024 gridworld's 2,113 lines held 500,000 nodes each visited by every later
+    pass.  A shared node keeps the span of its first occurrence on the line, so a message
+    about it still names the line and a column where it is written.
     """
     rename = names or {}
     matches = list(TOKEN.finditer(text))
     stack: list[_Frame] = []
-    recalled: set[int] = set()  # ids of nodes produced by '?', never flattened into parents
+    came_recalled = False  # whether ``value`` came from '?' (then never flattened)
+    interned: dict[tuple[object, ...], Expr] = {}
     result: Expr | None = None
     i = 0
     while i < len(matches):
         tok = matches[i].group()
-        span = _span(filename, line, matches[i])
+        leaf = tok not in _OPERATOR_TOKENS
+        # a leaf's span is made only for a new node or a message (most leaves are interned)
+        span = _NO_SPAN if leaf else _span(filename, line, matches[i])
         if result is not None:
+            span = _span(filename, line, matches[i])
             raise SlugsFormatError(
                 f"unexpected token '{tok}' after a complete formula; each line holds exactly "
                 "one formula in prefix notation",
@@ -138,16 +154,22 @@ def parse_prefix(
                     ref,
                 )
             value = buffer.args[k]
-            recalled.add(id(value))
+            came_recalled = True
         elif tok == "1" or tok == "0":
-            value = Const(tok == "1", span=span)
+            value = interned.get((tok,))
+            if value is None:
+                span = _span(filename, line, matches[i - 1])
+                value = interned[(tok,)] = Const(tok == "1", span=span)
         else:
-            name, primed = (tok[:-1], True) if tok.endswith("'") else (tok, False)
-            if name not in declared:
-                raise SlugsFormatError(
-                    f"unknown variable '{name}'; declare it under [INPUT] or [OUTPUT]", span
-                )
-            value = Var(rename.get(name, name), primed, span=span)
+            value = interned.get((tok,))
+            if value is None:
+                span = _span(filename, line, matches[i - 1])
+                name, primed = (tok[:-1], True) if tok.endswith("'") else (tok, False)
+                if name not in declared:
+                    raise SlugsFormatError(
+                        f"unknown variable '{name}'; declare it under [INPUT] or [OUTPUT]",
+                        span)
+                value = interned[(tok,)] = Var(rename.get(name, name), primed, span=span)
         # Feed completed values to the waiting operators.
         while value is not None:
             if not stack:
@@ -155,10 +177,12 @@ def parse_prefix(
                 break
             frame = stack[-1]
             frame.args.append(value)
+            frame.recalled.append(came_recalled)
+            came_recalled = False
             if len(frame.args) < frame.needed:
                 break
             stack.pop()
-            value = _build(frame, recalled)
+            value, came_recalled = _build(frame, interned)
     if result is None:
         if not stack:
             raise SlugsFormatError(
@@ -179,22 +203,54 @@ def parse_prefix(
     return result
 
 
-def _build(frame: _Frame, recalled: set[int]) -> Expr:
+def _build(frame: _Frame, interned: dict[tuple[object, ...], Expr]) -> tuple[Expr, bool]:
+    """The node of a completed operator (the line's equal node if it has one), and whether
+    it counts as recalled: a buffer's value does when its last element came from '?'."""
     args = frame.args
-    if frame.op == "!":
-        return Not(args[0], span=frame.span)
-    if frame.op == "^":
-        return Xor(args[0], args[1], span=frame.span)
     if frame.op == "$":
-        return args[-1]
-    kind = And if frame.op == "&" else Or
-    flat: list[Expr] = []
-    for a in args:
-        if type(a) is kind and id(a) not in recalled:
-            flat.extend(a.args)
+        return args[-1], frame.recalled[-1]
+    if frame.op in ("&", "|"):
+        kind = And if frame.op == "&" else Or
+        flat: list[Expr] = []
+        for a, recalled in zip(args, frame.recalled, strict=True):
+            if isinstance(a, (And, Or)) and type(a) is kind and not recalled:
+                flat.extend(a.args)
+            else:
+                flat.append(a)
+        args = flat
+    key = (frame.op, *map(id, args))
+    found = interned.get(key)
+    if found is not None:
+        return found, False
+    node: Expr
+    if frame.op == "!":
+        node = Not(args[0], span=frame.span)
+    elif frame.op == "^":
+        node = Xor(args[0], args[1], span=frame.span)
+    else:
+        node = (And if frame.op == "&" else Or)(tuple(args), span=frame.span)
+    interned[key] = node
+    return node, False
+
+
+def intern_formula(expr: Expr) -> Expr:
+    """``expr`` with equal subformulas made one node, as :func:`parse_prefix` makes them
+    on a line (leaves by name, operators by the identity of their interned operands)."""
+    interned: dict[tuple[object, ...], Node] = {}
+
+    def combine(node: Node, kids: list[Node]) -> Node:
+        if isinstance(node, Var):
+            key: tuple[object, ...] = ("var", node.name, node.primed)
+        elif isinstance(node, Const):
+            key = ("const", node.value)
         else:
-            flat.append(a)
-    return kind(tuple(flat), span=frame.span)
+            key = (type(node).__name__, *map(id, kids))
+        found = interned.get(key)
+        if found is None:
+            found = interned[key] = node.with_children(kids) if kids else node
+        return found
+
+    return fold(expr, combine)  # type: ignore[return-value]
 
 
 def parse_slugsin(text: str, filename: str) -> GR1Spec:

@@ -189,6 +189,10 @@ class GameStats:
     peak_nodes: int = 0  # CUDD's peak of live nodes while solving
     winning_nodes: int = 0
     longest_step: float = 0.0  # seconds of the slowest CPre: how late a timeout can fire
+    #: CUDD's computed-table lookups of the game's manager when the game ended, building
+    #: included: a count of the work done that does not depend on the machine or its load
+    #: (tests/solver/test_work_budget.py holds the published instances to a budget of it)
+    lookups: int = 0
 
 
 @dataclass
@@ -532,6 +536,7 @@ class Game:
             warnings.simplefilter("ignore")
             peak = int(self.sym.bdd.statistics()["peak_live_nodes"])
         self.stats.peak_nodes = max(self.stats.peak_nodes, peak)
+        self.stats.lookups = int(self._lookups())
         return GameResult(z, layers, self.stats, self.sym.care, decided_early, rings or [])
 
     def _track(self, words: str, detail: str, fraction: float) -> None:
