@@ -299,8 +299,8 @@ def main(argv: list[str] | None = None) -> None:
                         help="gr1c's and omega's limit per instance (default 600 s, --quick 10 s)")
     parser.add_argument("--lag-limit", type=float, default=10.0,
                         help="the --timeout given to 'gaitc check' on slower instances")
-    parser.add_argument("--slugs", help="the SLUGS binary (else $SLUGS, PATH, /opt/slugs)")
-    parser.add_argument("--gr1c", help="the gr1c binary (else $GR1C, PATH, /opt/gr1c)")
+    parser.add_argument("--slugs", help="the SLUGS binary (else $SLUGS or PATH)")
+    parser.add_argument("--gr1c", help="the gr1c binary (else $GR1C or PATH)")
     parser.add_argument("--family", action="append", choices=catalogue.FAMILIES,
                         help="only this family (repeatable)")
     parser.add_argument("--amba", type=int, action="append", help="only AMBA with N masters")

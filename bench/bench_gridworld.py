@@ -64,8 +64,8 @@ def main(argv: list[str] | None = None) -> None:
                         help="each solver's limit per row (default 600 s)")
     parser.add_argument("--repeat", type=int, default=1, metavar="N",
                         help="run each solver N times per row (min/median/max wall)")
-    parser.add_argument("--slugs", help="the SLUGS binary (else $SLUGS, PATH, /opt/slugs)")
-    parser.add_argument("--gr1c", help="the gr1c binary (else $GR1C, PATH, /opt/gr1c)")
+    parser.add_argument("--slugs", help="the SLUGS binary (else $SLUGS or PATH)")
+    parser.add_argument("--gr1c", help="the gr1c binary (else $GR1C or PATH)")
     args = parser.parse_args(argv)
     if args.repeat < 1:
         parser.error("--repeat needs a positive count")

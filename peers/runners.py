@@ -29,8 +29,6 @@ from gaitc.ir.spec import GR1Spec, Semantics
 from peers.spc import emit_spc
 from slugs_bridge.structured import emit_structuredslugs
 
-#: Where scripts/build-gr1c.sh-style builds put the binary, tried last.
-GR1C_BUILD: Final = Path("/opt/gr1c/gr1c")
 _GR1C_HINT: Final = ("build gr1c (https://github.com/tulip-control/gr1c) and set $GR1C or put "
                      "'gr1c' on PATH")
 #: The folder holding the ``peers`` package, put on the omega child's import path.
@@ -53,8 +51,9 @@ class PeerResult:
 
 
 def find_gr1c(explicit: str | None = None) -> str | None:
-    """The gr1c binary: ``explicit``, else ``$GR1C``, else ``gr1c`` on PATH, else
-    :data:`GR1C_BUILD` when it exists.  ``None`` when none is found; a
+    """The gr1c binary: ``explicit``, else ``$GR1C``, else ``gr1c`` on PATH (gaitc never
+    builds a peer, nor looks for one in a folder of its own choosing).  ``None`` when none
+    is found; a
     :class:`~gaitc.diagnostics.SolverError` when a named binary (argument or ``$GR1C``) is
     missing or cannot be run."""
     for origin, candidate in (("the gr1c argument", explicit), ("$GR1C", os.environ.get("GR1C"))):
@@ -65,10 +64,7 @@ def find_gr1c(explicit: str | None = None) -> str | None:
             raise SolverError(f"the gr1c binary given by {origin} ('{candidate}') does not "
                               "exist or is not executable", hint=_GR1C_HINT)
         return os.path.abspath(found)
-    on_path = shutil.which("gr1c")
-    if on_path is not None:
-        return on_path
-    return str(GR1C_BUILD) if os.access(GR1C_BUILD, os.X_OK) else None
+    return shutil.which("gr1c")
 
 
 def omega_installed() -> bool:

@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import os
 import re
-import shutil
 import sys
 from dataclasses import dataclass
 from pathlib import Path
@@ -29,8 +28,6 @@ from slugs_bridge.runner import OPTIONS, find_slugs
 
 ROOT: Final = Path(__file__).resolve().parent.parent.parent
 TOOLS: Final = ("gaitc", "slugs", "gr1c", "omega")
-#: Where SLUGS is built when $SLUGS is not set (tried last).
-SLUGS_BUILD: Final = Path("/opt/slugs/src/slugs")
 #: A verdict, or why there is none: ``timeout``, ``error`` (the tool failed), ``n/a`` (the
 #: tool cannot take the spec, or is not installed).
 VERDICTS: Final = ("realizable", "unrealizable", "timeout", "error", "n/a")
@@ -48,7 +45,7 @@ class Binaries:
 
     @staticmethod
     def find(slugs: str | None = None, gr1c: str | None = None) -> Binaries:
-        slugs = find_slugs(slugs) or shutil.which(str(SLUGS_BUILD))
+        slugs = find_slugs(slugs)  # $SLUGS or PATH: a peer is found, never built
         return Binaries(slugs, find_gr1c(gr1c), omega_installed())
 
 

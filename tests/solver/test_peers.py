@@ -3,7 +3,7 @@
 Each peer's verdict on every corpus spec and SLUGS example, under both semantics, must equal
 SLUGS's recorded one: the translations (initial-condition forms, ranges, comparisons,
 liveness) are checked against each other and against SLUGS independently.  Tests that need
-gr1c (``$GR1C``, PATH, /opt/gr1c/gr1c) or omega (the ``peers`` extra) are skipped cleanly
+gr1c (``$GR1C`` or PATH) or omega (the ``peers`` extra) are skipped cleanly
 without them.  Also: the golden .spc text of one small spec (``--update-golden`` rewrites
 it), the error for a liveness that mixes current and next values, word for word, and the
 comparison expansion against the atom it replaces on every value of small ranges.
@@ -64,7 +64,7 @@ CASES = [pytest.param(path, default, robotics, id=path.name,
 def gr1c() -> str:
     found = find_gr1c()
     if found is None:
-        pytest.skip("no gr1c binary ($GR1C, on PATH or /opt/gr1c/gr1c)")
+        pytest.skip("no gr1c binary ($GR1C or on PATH)")
     return found
 
 
