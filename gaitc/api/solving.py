@@ -54,14 +54,18 @@ __all__ = ["COMPACT", "FORMS", "MAX_NODES", "PREFERENCES", "SOLVERS", "Automaton
 
 def check(spec: SpecLike, semantics: Semantics | str = Semantics.DEFAULT, solver: str = "embedded",
           timeout: float | None = None, slugs: str | None = None,
-          options: Options | None = None, progress: Progress | None = None) -> Verdict:
+          options: Options | None = None, progress: Progress | None = None, *,
+          separation: bool = False) -> Verdict:
     """Decide whether a controller exists for ``spec`` (:func:`gaitc.forms.synthesis.decide`).
 
     ``semantics`` is ``default`` or ``robotics`` (:data:`gaitc.ir.spec.SEMANTICS`), ``solver``
     ``embedded`` or ``slugs`` (then ``slugs`` names the binary, else ``$SLUGS`` or PATH).
+    With ``separation`` the embedded solver also checks, on the same build, that the spec
+    is well-separated (:func:`gaitc.separation`), in the verdict's ``.separation``.
     Raises :class:`~gaitc.diagnostics.SolverError` when the solver cannot finish.
     """
-    return decide(resolve(spec), semantics, solver, timeout, slugs, options, progress)
+    return decide(resolve(spec), semantics, solver, timeout, slugs, options, progress,
+                  separation=separation)
 
 
 def synthesize(spec: SpecLike, semantics: Semantics | str = Semantics.DEFAULT,

@@ -63,6 +63,9 @@ class Verdict:
     solver: str = "embedded"
     stats: GameStats | None = field(default=None, repr=False)
     engine: str = ""  # embedded solver: the configuration that answered (gaitc.solver.portfolio)
+    #: The well-separation check made on the solver's own build, when :func:`decide` was
+    #: asked for it (``separation=True``) and the embedded solver decided.
+    separation: Separation | None = field(default=None, repr=False, compare=False)
 
     def __repr__(self) -> str:
         word = "realizable" if self.realizable else "unrealizable"
@@ -245,11 +248,14 @@ def _slugsin(spec: GR1Spec) -> str:
 
 def decide(spec: Spec | GR1Spec, semantics: Semantics | str = Semantics.DEFAULT,
            solver: str = "embedded", timeout: float | None = None, slugs: str | None = None,
-           options: Options | None = None, progress: Progress | None = None) -> Verdict:
+           options: Options | None = None, progress: Progress | None = None, *,
+           separation: bool = False) -> Verdict:
     """Decide whether a controller exists for ``spec``.
 
     ``semantics`` is ``default`` or ``robotics`` (:data:`gaitc.ir.spec.SEMANTICS`), ``solver``
     ``embedded`` or ``slugs`` (then ``slugs`` names the binary, else ``$SLUGS`` or PATH).
+    With ``separation``, the embedded solver also checks that the spec is well-separated
+    on its own build (:func:`gaitc.analysis.separation.separation`), in ``.separation``.
     Raises :class:`~gaitc.diagnostics.SolverError` when the solver cannot finish.
     """
     gr1 = spec.gr1 if isinstance(spec, Spec) else spec
@@ -263,12 +269,20 @@ def decide(spec: Spec | GR1Spec, semantics: Semantics | str = Semantics.DEFAULT,
         return Verdict(_name(spec), result.realizable, result.seconds, semantics, solver)
     from gaitc.solver import synthesis
 
+    also = None
+    if separation:
+        from gaitc.analysis.separation import separation as separated
+        from gaitc.solver.symbolic import SymbolicSpec
+
+        def also(sym: SymbolicSpec, check: Callable[[], None]) -> Separation:
+            return separated(spec, check, symbolic=sym)
+
     try:
-        checked = synthesis.check(gr1, semantics, timeout, progress, options)
+        checked = synthesis.check(gr1, semantics, timeout, progress, options, also=also)
     except MemoryError:
         raise out_of_memory() from None
     return Verdict(_name(spec), checked.realizable, time.monotonic() - started, semantics,
-                   solver, checked.stats, checked.engine)
+                   solver, checked.stats, checked.engine, separation=checked.also)
 
 
 @dataclass(frozen=True)

@@ -9,10 +9,10 @@ from __future__ import annotations
 
 import time
 import weakref
-from collections.abc import Iterator, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass, field, replace
-from typing import TYPE_CHECKING, Final
+from typing import TYPE_CHECKING, Any, Final
 
 from gaitc.diagnostics import FormulaError
 from gaitc.diagnostics.choices import Choice
@@ -41,6 +41,7 @@ class CheckResult:
     seconds: float
     stats: GameStats = field(default_factory=GameStats)
     engine: str = STATIC  # the configuration that answered (gaitc.solver.portfolio)
+    also: Any = None  # what ``check``'s ``also`` made of the game's symbolic spec
 
 
 def state_bits(spec: GR1Spec) -> int:
@@ -120,16 +121,24 @@ def check(
     timeout: float | None = None,
     progress: Progress | None = None,
     options: Options | None = None,
+    *,
+    also: Callable[[SymbolicSpec, Callable[[], None]], Any] | None = None,
 ) -> CheckResult:
-    """Decide realizability of ``spec`` under ``semantics`` ("default" or "robotics")."""
+    """Decide realizability of ``spec`` under ``semantics`` ("default" or "robotics").
+
+    ``also(sym, check)`` runs once the game is decided, on the game's own
+    :class:`SymbolicSpec` (in the process and the time limit of the solve, ``check``
+    raising past it), and its answer is the result's ``also``: a second analysis of the
+    spec without a second build (the well-separation check of ``gaitc check``)."""
     limits = Limits(timeout, progress)
 
     def run(chosen: Options, lim: Limits) -> CheckResult:
-        _, game = _game(spec, semantics, chosen, lim)
+        sym, game = _game(spec, semantics, chosen, lim)
         with memory_guard():
             result = game.solve(stop_if_lost=semantics)
             ok = game.initially_winning(result.winning, semantics)
-        return CheckResult(ok, time.monotonic() - limits.started, result.stats)
+            extra = None if also is None else also(sym, lim.check)
+        return CheckResult(ok, time.monotonic() - limits.started, result.stats, also=extra)
 
     _check_semantics(semantics)
     result, engine = solve_chosen(run, options or Options(), limits, state_bits(spec))

@@ -223,8 +223,9 @@ def _check_one(path: str, args: argparse.Namespace
     is well-separated (its warnings)."""
     spec = gaitc.load(path, args.encoding)
     with progress_display(args.verbose) as progress:
-        verdict = gaitc.check(spec, **_solver_args(args, progress))
-    return verdict, gaitc.separation(spec).warnings()
+        verdict = gaitc.check(spec, separation=True, **_solver_args(args, progress))
+    separated = verdict.separation or gaitc.separation(spec)  # SLUGS decided: check here
+    return verdict, separated.warnings()
 
 
 _SEVERITY = (ExitCode.OK, ExitCode.UNREALIZABLE, ExitCode.USER, ExitCode.SOLVER)
