@@ -44,7 +44,8 @@ def resilience(spec: Spec | str | Path, method: str = "parametric",
                health_bound: int | None = None, place_caches: int | None = None,
                *, semantics: Semantics | str = Semantics.DEFAULT, jobs: int = 1,
                dask: str | None = None, progress: Progress | None = None,
-               timeout: float | None = None, tolerate: int | None = 2) -> Resilience:
+               timeout: float | None = None, tolerate: int | None = 2,
+               encoding: EncodingName | str | None = None) -> Resilience:
     """The :class:`~gaitc.analysis.resilience.Resilience` report of a ``.gait`` spec.
 
     ``method``: ``parametric`` (one game with rigid per-leg caps answers every failure set
@@ -55,7 +56,11 @@ def resilience(spec: Spec | str | Path, method: str = "parametric",
     K-sets of regions for caches; ``tolerate`` K the most surprises (broken safety
     assumptions, :mod:`gaitc.analysis.tolerance`) up to K, None for none.  With
     ``timeout`` (seconds) the analysis runs in a child process that is stopped a tenth of a
-    second past it, its workers with it: a :class:`SolverError` (exit 4).
+    second past it, its workers with it: a :class:`SolverError` (exit 4).  ``encoding`` is
+    that of the analysis's games: binary unless asked, whatever encoding a given spec was
+    loaded in, as ``gaitc resilience`` does (the parametric games use integers, the answers
+    are the same in both encodings, and a one-hot analysis of a six-legged robot took 3-4
+    times as long: issue 59).
 
     >>> import gaitc
     >>> report = gaitc.resilience("specs/thesis_robot_b.gait")
@@ -77,7 +82,9 @@ def resilience(spec: Spec | str | Path, method: str = "parametric",
         raise UsageError(f"--place-caches {place_caches}: the map has only {sites} regions "
                          "no hazard covers")
     bound = health_bound
-    model, encoding, path = spec.model, spec.encoding, spec.path
+    model, path = spec.model, spec.path
+    encoding = (EncodingName.BINARY if encoding is None
+                else EncodingName.parse(encoding, "encoding"))
 
     def analysed() -> Resilience:
         with Pool(encoding, chosen, jobs, dask, progress) as pool:

@@ -125,6 +125,9 @@ class SymbolicSpec:
                 self.bdd.group({bit: 2})  # sifting moves a bit and its primed copy together
         self.sifted_build = sift  # whether CUDD sifted while ρ was built
         self._memo: Memo[BDDNode] = {}
+        # comparisons by structure: a map's clauses compare the same integers with the same
+        # numbers over and over, each a new node (the memo above is by node)
+        self._compares: dict[Compare, BDDNode] = {}
         self.bdd.configure(reordering=sift or bool(opts.reordering))
         self._build()
         self.bdd.configure(reordering=False)
@@ -197,6 +200,7 @@ class SymbolicSpec:
         # ∃y'.¬ρe: when ρe does not mention primed outputs this is just ¬ρe.
         self.env_blocks = self.bdd.exist(self.post_outputs, ~self.env_trans)
         self._memo.clear()
+        self._compares.clear()
         self._care_set(env_next, sys_next)
 
     def _translated(self, clauses: Sequence[Clause]) -> list[BDDNode]:
@@ -347,7 +351,10 @@ class SymbolicSpec:
             case Implies():
                 return ~args[0] | args[1]
             case Compare():
-                return self._compare(kind)
+                known = self._compares.get(kind)
+                if known is None:
+                    known = self._compares[kind] = self._compare(kind)
+                return known
             case Next() | Always() | Eventually():
                 raise FormulaError(
                     f"'{type(kind).__name__}' cannot appear in a GR(1) section; rewrite it "

@@ -226,3 +226,28 @@ def test_a_graded_hazard_reports_the_most_wear_survived() -> None:
     assert realizable(SAND.replace("health 7", "health 9").replace("wears 2", f"wears {most}"))
     assert most == 8 or not realizable(
         SAND.replace("health 7", "health 9").replace("wears 2", f"wears {most + 1}"))
+
+
+def _without_times(value: object) -> object:
+    """A report's JSON without its measured seconds."""
+    if isinstance(value, dict):
+        return {k: _without_times(v) for k, v in value.items()
+                if "seconds" not in k and k != "notes"}
+    if isinstance(value, list):
+        return [_without_times(v) for v in value]
+    return value
+
+
+def test_a_spec_loaded_one_hot_is_analysed_in_binary_with_the_same_answers() -> None:
+    """``gaitc.load`` reads one-hot by default and ``gaitc resilience`` analyses in binary:
+    ``gaitc.resilience`` of a loaded spec takes the binary games too (issue 59), and asked
+    for one-hot games it answers the same."""
+    path = Path(__file__).resolve().parent.parent.parent / "specs" / "corridor_hazard.gait"
+    loaded = gaitc.load(path)
+    assert loaded.encoding == "onehot"
+    from_loaded = gaitc.resilience(loaded)
+    from_path = gaitc.resilience(str(path))
+    one_hot = gaitc.resilience(loaded, encoding="onehot")
+    want = _without_times(from_path.to_json())
+    assert _without_times(from_loaded.to_json()) == want
+    assert _without_times(one_hot.to_json()) == want

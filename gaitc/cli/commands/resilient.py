@@ -77,7 +77,8 @@ def run_resilience(args: argparse.Namespace) -> int:
     report = gaitc.resilience(spec, method=args.method, health_bound=args.health_bound,
                               place_caches=args.place_caches, semantics=semantics_of(args),
                               jobs=args.jobs, dask=args.dask, tolerate=args.tolerate,
-                              progress=terminal_progress("resilience"), timeout=args.timeout)
+                              progress=terminal_progress("resilience"), timeout=args.timeout,
+                              encoding=args.encoding)
     if args.output:
         fmt = report.picture().save(args.output)
         print(f"wrote {args.output} ({fmt})", file=sys.stderr)
