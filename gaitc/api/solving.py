@@ -141,7 +141,7 @@ def tolerate(spec: SpecLike, k: int, semantics: Semantics | str = Semantics.DEFA
     started = time.monotonic()
     wanted = None if form == COMPACT else Extraction(form)
     report = tolerance(bound, chosen, k, ToleranceOptions(
-        breakable=breakable, controller=True,
+        breakable=breakable, controller=True, planned_only=True,
         explicit=wanted in (Extraction.EXPLICIT, Extraction.AUTO),
         max_nodes=max_nodes if wanted is Extraction.AUTO else None, options=options,
         timeout=timeout, progress=progress))

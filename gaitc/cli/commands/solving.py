@@ -64,9 +64,10 @@ def _common(p: argparse.ArgumentParser, solver: bool = True) -> None:
     p.add_argument(
         "--encoding",
         choices=EncodingName.values(),
-        default=EncodingName.ONEHOT.value if solver else None,
+        default=_Unasked(EncodingName.ONEHOT.value) if solver else None,
         help="encoding of .gait specs (default onehot"
-        + ("" if solver else "; verify: the one recorded in the controller file") + ")",
+        + ("; synth --tolerate: binary" if solver
+           else "; verify: the one recorded in the controller file") + ")",
     )
     if not solver:
         return
@@ -282,6 +283,19 @@ def run_synth(args: argparse.Namespace) -> int:
     return _print_report(found.report)
 
 
+class _Unasked(str):
+    """An option's default, told apart from the same value given on the command line (a
+    command may choose another value when the user did not ask for one)."""
+
+    __slots__ = ()
+
+
+#: What ``synth --tolerate`` says when it chose the binary encoding itself.
+TOLERATE_ENCODING_NOTE = ("synth --tolerate: solving in the binary encoding, whose counter "
+                          "game is several times faster than one-hot's (the controller "
+                          "records it; --encoding onehot keeps one-hot)")
+
+
 def _tolerate(args: argparse.Namespace) -> gaitc.Tolerance:
     """``synth --tolerate K``: the tolerance report and its controller (gaitc.tolerate)."""
     _options(args)  # a memory limit too small fails here, before the fork
@@ -294,8 +308,14 @@ def _tolerate(args: argparse.Namespace) -> gaitc.Tolerance:
         raise UsageError("--prefer does not apply with --tolerate: the controller keeps every "
                          "winning move of the game with surprises")
 
+    encoding = args.encoding
+    if isinstance(encoding, _Unasked) and str(args.spec).endswith(".gait"):
+        # issue 59: a six-legged robot's --tolerate 1 took over 300 s one-hot, 38 s binary
+        encoding = EncodingName.BINARY
+        print(f"note: {TOLERATE_ENCODING_NOTE}", file=sys.stderr)
+
     def work() -> gaitc.Tolerance:
-        spec = gaitc.load(args.spec, args.encoding)
+        spec = gaitc.load(args.spec, encoding)
         with progress_display(args.verbose) as progress:
             form = (Form.COMPACT if args.compact else Form.SYMBOLIC if args.symbolic
                     else "auto")
