@@ -213,7 +213,7 @@ def _build(frame: _Frame, interned: dict[tuple[object, ...], Expr]) -> tuple[Exp
         kind = And if frame.op == "&" else Or
         flat: list[Expr] = []
         for a, recalled in zip(args, frame.recalled, strict=True):
-            if isinstance(a, (And, Or)) and type(a) is kind and not recalled:
+            if isinstance(a, kind) and not recalled:
                 flat.extend(a.args)
             else:
                 flat.append(a)

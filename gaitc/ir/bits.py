@@ -35,6 +35,24 @@ def parse_first_bit(bit: str) -> tuple[str, int, int] | None:
     return m.group("name"), int(m.group("low")), int(m.group("high"))
 
 
+def cut_integers(bit_names: Iterable[str]) -> dict[str, tuple[int, int, tuple[str, ...]]]:
+    """The integers SLUGS's compiler cut into ``bit_names`` (``x@0.MIN.MAX``, ``x@1``, ...
+    in a row): each integer's name with its MIN, MAX and bits, least significant first."""
+    names = list(bit_names)
+    present = set(names)
+    out: dict[str, tuple[int, int, tuple[str, ...]]] = {}
+    for bit in names:
+        first = parse_first_bit(bit)
+        if first is None:
+            continue
+        name, low, high = first
+        bits = [bit]
+        while bit_name(name, len(bits)) in present:
+            bits.append(bit_name(name, len(bits)))
+        out[name] = (low, high, tuple(bits))
+    return out
+
+
 def bit_count(var: Variable) -> int:
     """Bits of ``var``: the least n >= 1 with 2**n > MAX - MIN (:attr:`Variable.bits`).
 

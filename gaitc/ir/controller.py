@@ -16,7 +16,7 @@ from typing import Any, Final
 from gaitc.diagnostics import ControllerError, Span, span_at
 from gaitc.diagnostics.files import decode_text, read_input
 from gaitc.diagnostics.versions import CONTROLLER
-from gaitc.ir.bits import bit_name, integer_bits, parse_first_bit, spec_bits
+from gaitc.ir.bits import cut_integers, integer_bits, spec_bits
 from gaitc.ir.spec import SEMANTICS, GR1Spec, Semantics
 from gaitc.ir.spec import ControllerKind as ControllerKind
 
@@ -122,20 +122,8 @@ def _is_int(v: Any) -> bool:
 
 def integers_of(bit_names: tuple[str, ...], inputs: frozenset[str]) -> dict[str, IntegerVar]:
     """Recognise SLUGS integer encodings (``x@0.MIN.MAX``, ``x@1``, ...) among bit names."""
-    out: dict[str, IntegerVar] = {}
-    present = set(bit_names)
-    for bit in bit_names:
-        first = parse_first_bit(bit)
-        if first is None:
-            continue
-        name, low, high = first
-        bits = [bit]
-        k = 1
-        while bit_name(name, k) in present:
-            bits.append(bit_name(name, k))
-            k += 1
-        out[name] = IntegerVar(low, high, tuple(bits), "env" if bit in inputs else "sys")
-    return out
+    return {name: IntegerVar(low, high, bits, "env" if bits[0] in inputs else "sys")
+            for name, (low, high, bits) in cut_integers(bit_names).items()}
 
 
 def spec_integers(spec: GR1Spec) -> dict[str, IntegerVar]:

@@ -20,7 +20,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-from gaitc.ir.bits import parse_first_bit
+from gaitc.ir.bits import cut_integers
 from gaitc.ir.formula import Implies, Node, atoms
 from gaitc.ir.spec import Clause, GR1Spec, Variable
 
@@ -111,20 +111,11 @@ def variable_order(spec: GR1Spec, how: str, cache: AtomCache | None = None) -> l
 def _families(spec: GR1Spec) -> dict[str, str]:
     """Each Boolean variable that is a bit of an integer cut into bits by SLUGS's compiler
     (``x@0.MIN.MAX``, ``x@1``, ..., all of one player), with the integer's name."""
-    out: dict[str, str] = {}
-    for side in (spec.inputs, spec.outputs):
-        names = {v.name for v in side if not v.is_integer}
-        for v in side:
-            first = parse_first_bit(v.name) if not v.is_integer else None
-            if first is None:
-                continue
-            integer = first[0]
-            out[v.name] = integer
-            k = 1
-            while f"{integer}@{k}" in names:
-                out[f"{integer}@{k}"] = integer
-                k += 1
-    return out
+    return {bit: integer
+            for side in (spec.inputs, spec.outputs)
+            for integer, (_, _, bits) in cut_integers(
+                v.name for v in side if not v.is_integer).items()
+            for bit in bits}
 
 
 def _unit(name: str, families: dict[str, str]) -> str:
