@@ -32,9 +32,10 @@ TICK: Final = 0.5
 class StatusLine:
     """A one-line display of the latest :class:`Stage` (call it with each event)."""
 
-    def __init__(self, stream: TextIO, width: int = 100) -> None:
+    def __init__(self, stream: TextIO, width: int = 100, note: str = "") -> None:
         self.stream = stream
         self.width = width
+        self.note = note
         self.started = time.monotonic()
         self.stage: Stage | None = None
         self._drawn = 0.0
@@ -72,7 +73,7 @@ class StatusLine:
         if stage.fraction is not None:
             done = max(0, min(BAR, round(stage.fraction * BAR)))
             bar = f"  [{'#' * done}{'-' * (BAR - done)}]"
-        clock = f"  {seconds:.1f} s"
+        clock = f"  {seconds:.1f} s" + (f"  ({self.note})" if self.note else "")
         room = self.width - len(bar) - len(clock) - 1
         words = stage.words if len(stage.words) <= room else stage.words[:room - 3] + "..."
         return words + bar + clock
@@ -109,10 +110,11 @@ class StageLog:
 
 
 @contextmanager
-def progress_display(verbose: bool = False, stream: TextIO | None = None
+def progress_display(verbose: bool = False, stream: TextIO | None = None, note: str = ""
                      ) -> Iterator[Progress | None]:
     """The progress callback for a command: a :class:`StageLog` with ``verbose``, a
-    :class:`StatusLine` on a terminal (cleared on leaving), else None."""
+    :class:`StatusLine` on a terminal (cleared on leaving; ``note`` follows its clock, such
+    as the key that quits), else None."""
     out = sys.stderr if stream is None else stream
     if verbose:
         yield StageLog(out)
@@ -120,7 +122,7 @@ def progress_display(verbose: bool = False, stream: TextIO | None = None
     if not out.isatty():
         yield None
         return
-    status = StatusLine(out)
+    status = StatusLine(out, note=note)
     status.start()
     try:
         yield status

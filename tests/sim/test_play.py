@@ -12,6 +12,8 @@ import asyncio
 import io
 import itertools
 import json
+import os
+import sys
 from collections import deque
 from pathlib import Path
 
@@ -574,3 +576,21 @@ def test_a_pilot_asked_for_too_many_steps_refuses_at_once(key: str) -> None:
     asyncio.run(script())
     assert f"at most {MAX_AUTO} steps" in said[0]
     assert "pilot played" in said[1]
+
+
+@pytest.mark.skipif(not hasattr(os, "openpty"), reason="needs a pseudo-terminal")
+def test_q_quits_while_the_controller_is_being_synthesized() -> None:
+    """Issue 59: ``q`` works at once, before the player has opened. The hexapod's controller
+    takes seconds to synthesize, so an answer naming the quit came from the preparation,
+    and the key costs this test only the start-up."""
+    pexpect = pytest.importorskip("pexpect")
+    spec = ROOT / "tests" / "data" / "play" / "hexapod_warehouse.gait"
+    child = pexpect.spawn(sys.executable, ["-m", "gaitc", "play", str(spec)], cwd=str(ROOT),
+                          encoding="utf-8", timeout=120, dimensions=(24, 120))
+    child.expect("q quits")
+    child.send("q")
+    child.expect(pexpect.EOF)
+    child.close()
+    assert "quit before the play began; nothing to save" in child.before
+    assert child.exitstatus == 0
+    assert not (ROOT / "hexapod_warehouse.play.jsonl").exists()

@@ -15,6 +15,7 @@ from typing import Any
 from gaitc.api.modes import EncodingName
 from gaitc.cli.commands.arguments import run_file, semantics_of
 from gaitc.cli.exitcodes import ExitCode, exit_code_help
+from gaitc.cli.keys import Quit, quit_key
 from gaitc.cli.status import progress_display
 from gaitc.diagnostics import UsageError
 
@@ -77,10 +78,15 @@ def run_play(args: argparse.Namespace) -> int:
         raise UsageError("'gaitc play' needs a terminal; from a script or a notebook use "
                          "gaitc.player(SPEC) (or gaitc.player_widget), or replay a run with "
                          "'gaitc simulate SPEC --env scripted RUN.jsonl'")
-    with progress_display() as progress:
-        player = gaitc.player(args.spec, args.controller, against=args.against or None,
-                              start=args.start, at=args.at, encoding=args.encoding,
-                              semantics=semantics_of(args), progress=progress)
+    try:
+        with quit_key() as watched, progress_display(note="q quits" if watched else "") \
+                as progress:
+            player = gaitc.player(args.spec, args.controller, against=args.against or None,
+                                  start=args.start, at=args.at, encoding=args.encoding,
+                                  semantics=semantics_of(args), progress=progress)
+    except Quit:
+        print(f"{args.spec}: quit before the play began; nothing to save", file=sys.stderr)
+        return ExitCode.OK
     if args.no_color:
         os.environ["NO_COLOR"] = "1"
     from gaitc.play.terminal import play_in_terminal
