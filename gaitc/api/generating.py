@@ -116,12 +116,19 @@ def _recovery(spec: Spec | object, ctrl: CompactController, target: Target, file
               ) -> Recovery:
     """The recovering controller of ``spec``, proved, and trimmed to the board's flash."""
     from gaitc.codegen.build import FLASH_LIMIT
-    from gaitc.codegen.recovery import FIRMWARE_BYTES, fit, stops
-    from gaitc.compact.recovery import prove_recovery, recovering_controller
+    from gaitc.codegen.recovery import FIRMWARE_BYTES, fit, none_fits, stops
+    from gaitc.compact.diagram import TooLarge
+    from gaitc.compact.recovery import RecoveryOptions, prove_recovery, recovering_controller
 
     gr1 = as_gr1(spec)  # type: ignore[arg-type]
     vocabulary = spec.vocabulary if isinstance(spec, Spec) else ctrl.vocabulary
-    rc = recovering_controller(gr1, vocabulary, ctrl.semantics)
+    # on the board, building stops as soon as the diagrams pass its flash
+    budget = FLASH_LIMIT - FIRMWARE_BYTES if target == Target.AVR else None
+    try:
+        rc = recovering_controller(gr1, vocabulary, ctrl.semantics,
+                                   RecoveryOptions(budget=budget))
+    except TooLarge as err:
+        return Recovery(None, (none_fits(err.bytes, err.limit),))
     for report in (verify(spec, rc.base), prove_recovery(gr1, rc)):  # type: ignore[arg-type]
         if not report.ok:  # cannot happen; proved, not trusted
             raise ControllerError(f"the recovery tables failed their proof: "

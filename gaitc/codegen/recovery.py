@@ -83,9 +83,20 @@ def fit(rc: RecoveringController, budget: int) -> tuple[RecoveringController | N
     while _total(trimmed) > budget and keep:
         keep -= 1
         trimmed = rc.without_fallbacks(keep)
-    if _total(trimmed) > budget:
-        return None, ["every surprise: stop (the recovery tables do not fit)"]
+    total = _total(trimmed)
+    if total > budget:
+        return None, [none_fits(total, budget)]
     return trimmed, stops(trimmed)
+
+
+def none_fits(needed: int | float, budget: int) -> str:
+    """The words for a board on which not even the recovery diagrams fit: every surprise
+    stops; ``needed`` is what the tables take (or pass, when building stopped early)."""
+    over = "more bytes than can be addressed" if needed == float("inf") \
+        else f"at least {int(needed)} bytes"
+    return (f"every surprise: stop (the recovery tables do not fit: with the controller they "
+            f"take {over}, and the board has {budget} for tables; --target c builds them "
+            "for a larger host)")
 
 
 def _total(rc: RecoveringController) -> int | float:

@@ -61,13 +61,46 @@ class Slot:
 DONT_CARE: Ref = 2**31  # a child no state of the care set reaches
 
 
+def branch_bytes(branch: Branch) -> int:
+    """The bytes a node takes in generated tables (:mod:`gaitc.codegen.tables`): its slot
+    (1), where its children start (2) and a 2-byte reference per child."""
+    return 3 + 2 * len(branch.kids)
+
+
+class TooLarge(Exception):
+    """A build passed the byte limit its :class:`Builder` was given."""
+
+    def __init__(self, bytes_: int, limit: int) -> None:
+        super().__init__(f"the diagrams take over {bytes_} bytes, past the limit of {limit}")
+        self.bytes = bytes_
+        self.limit = limit
+
+
+@dataclass(frozen=True)
+class Mark:
+    """The size of a :class:`Builder`'s tables at one point, to roll back to."""
+
+    nodes: int
+    moves: int
+    bytes: int
+
+
 class Builder:
-    """Builds diagrams into one shared node table (roots of several goals share nodes)."""
+    """Builds diagrams into one shared node table (roots of several goals share nodes).
+
+    Every node the builder interns is reachable from the root of the diagram it was built
+    for (a node is made only as the parent of children that differ), so :attr:`bytes`, the
+    bytes of its nodes and moves in generated tables, is a lower bound of the tables of any
+    set of roots that includes every root built. With ``limit``, a build that would pass
+    that many bytes raises :class:`TooLarge` as soon as it does, instead of finishing
+    diagrams that cannot fit (``codegen --recover`` on a board)."""
 
     def __init__(self, bdd: Any, slots: Sequence[Slot], outputs: Sequence[Field],
-                 greedy: bool = False) -> None:
+                 greedy: bool = False, limit: int | None = None) -> None:
         self.bdd = bdd
         self.greedy = greedy
+        self.limit = limit
+        self.bytes = 0
         self.slots = tuple(slots)
         self.outputs = tuple(outputs)
         self.nodes: list[Branch] = []
@@ -83,9 +116,15 @@ class Builder:
             else frozenset()
 
     # ------------------------------------------------------------------ interning
+    def _grow(self, added: int) -> None:
+        self.bytes += added
+        if self.limit is not None and self.bytes > self.limit:
+            raise TooLarge(self.bytes, self.limit)
+
     def _node(self, branch: Branch) -> Ref:
         found = self._node_index.get(branch)
         if found is None:
+            self._grow(branch_bytes(branch))
             found = self._node_index[branch] = len(self.nodes)
             self.nodes.append(branch)
         return found
@@ -93,9 +132,33 @@ class Builder:
     def _move(self, values: tuple[int, ...]) -> int:
         found = self._move_index.get(values)
         if found is None:
+            self._grow(len(values))
             found = self._move_index[values] = len(self.moves)
             self.moves.append(values)
         return found
+
+    def mark(self) -> Mark:
+        """The tables as they are now, for :meth:`rollback`."""
+        return Mark(len(self.nodes), len(self.moves), self.bytes)
+
+    def rollback(self, mark: Mark) -> None:
+        """Forget every node and move made since ``mark`` (a build that did not fit)."""
+        for branch in self.nodes[mark.nodes:]:
+            del self._node_index[branch]
+        for values in self.moves[mark.moves:]:
+            del self._move_index[values]
+        del self.nodes[mark.nodes:], self.moves[mark.moves:]
+        self.bytes = mark.bytes
+        self._recent = [i for i in self._recent if i < mark.moves]
+
+        def kept(kind: int, ref: Ref) -> bool:
+            if ref == DONT_CARE:
+                return True
+            if ref >= 0:
+                return ref < mark.nodes
+            return kind == 1 or leaf_value(ref) < mark.moves  # kind 1: a 0/1 leaf
+
+        self._memo = {key: ref for key, ref in self._memo.items() if kept(key[3], ref)}
 
     def move_cube(self, index: int) -> dict[str, bool]:
         out: dict[str, bool] = {}

@@ -33,7 +33,15 @@ from itertools import combinations
 from typing import Any
 
 from gaitc.compact.controller import CompactController
-from gaitc.compact.diagram import DONT_CARE, Builder, Ref, evaluate, leaf, reachable_nodes
+from gaitc.compact.diagram import (
+    DONT_CARE,
+    Builder,
+    Ref,
+    TooLarge,
+    evaluate,
+    leaf,
+    reachable_nodes,
+)
 from gaitc.compact.extraction import (
     FieldOrder,
     counter_moves,
@@ -237,6 +245,12 @@ class RecoveryOptions:
     classes: tuple[SurpriseClass, ...] | None = None
     order: FieldOrder = FieldOrder.GREEDY
     fallbacks: bool = True
+    #: bytes of tables the result may take (a board's flash less its firmware), or None.
+    #: Building stops as soon as the diagrams pass it (:class:`~gaitc.compact.diagram.
+    #: TooLarge`): when the controller and its recovery diagrams do, the error propagates;
+    #: when a fallback does, it and the ones after it are left out (a prefix is kept, as
+    #: :meth:`RecoveringController.without_fallbacks` keeps).
+    budget: int | None = None
 
 
 def surprise_classes(vocabulary: Vocabulary) -> tuple[SurpriseClass, ...]:
@@ -368,7 +382,8 @@ def recovering_controller(spec: GR1Spec, vocabulary: Vocabulary,
                     remaining &= ~here
     # the diagrams, in one table
     slots = slot_order(vocabulary, opts.order)
-    builder = Builder(bdd, slots, vocabulary.outputs, greedy=opts.order == FieldOrder.GREEDY)
+    builder = Builder(bdd, slots, vocabulary.outputs, greedy=opts.order == FieldOrder.GREEDY,
+                      limit=opts.budget)
     post_out = work.post_out
     move_roots = [_defined(builder.build_moves(here & work.env_trans
                                                & bdd.exist(post_out, rel), rel))
@@ -387,23 +402,29 @@ def recovering_controller(spec: GR1Spec, vocabulary: Vocabulary,
     everywhere = anywhere
     not_recovered = surprises & ~enter
     for kept, here, solved in chosen:
-        entry = _defined(builder.build_moves(here, _into(work, solved.winning)))
-        applies = _defined(builder.build_boolean(not_recovered, here), leaf(0))
-        k_moving = counter_moves(bdd, solved.goals)
-        landing = work.unprime(here & _into(work, solved.winning))
-        k_reach = _closure(work, [landing] + [bdd.false] * (len(kept) - 1),
-                           solved.strategies, k_moving)
-        k_any = bdd.false
-        for r in k_reach:
-            k_any |= r
+        mark = builder.mark()
+        try:
+            entry = _defined(builder.build_moves(here, _into(work, solved.winning)))
+            applies = _defined(builder.build_boolean(not_recovered, here), leaf(0))
+            k_moving = counter_moves(bdd, solved.goals)
+            landing = work.unprime(here & _into(work, solved.winning))
+            k_reach = _closure(work, [landing] + [bdd.false] * (len(kept) - 1),
+                               solved.strategies, k_moving)
+            k_any = bdd.false
+            for r in k_reach:
+                k_any |= r
+            k_moves = tuple(_defined(builder.build_moves(r & work.env_trans
+                                                         & bdd.exist(post_out, rel), rel))
+                            for r, rel in zip(k_reach, solved.strategies, strict=True))
+            k_reached = tuple(_defined(builder.build_boolean(k_any, g), leaf(1))
+                              for g in solved.goals)
+        except TooLarge:  # this fallback does not fit beside the ones before: a prefix stays
+            builder.rollback(mark)
+            break
         everywhere |= k_any
-        k_moves = tuple(_defined(builder.build_moves(r & work.env_trans
-                                                     & bdd.exist(post_out, rel), rel))
-                        for r, rel in zip(k_reach, solved.strategies, strict=True))
-        k_reached = tuple(_defined(builder.build_boolean(k_any, g), leaf(1))
-                          for g in solved.goals)
         fallbacks.append(Degraded(kept, applies, entry, k_moves, k_reached))
         not_recovered &= ~here
+    builder.limit = None  # the monitor is chosen by size below; fit() measures the whole
     builder.greedy = False
     monitor = [_defined(builder.build_boolean(care, work.env_trans), leaf(1))
                for care in (everywhere, field_domain(bdd, slots))]
@@ -420,7 +441,8 @@ def recovering_controller(spec: GR1Spec, vocabulary: Vocabulary,
     nvars = len(work.pre) + len(work.inputs)
     reports = tuple(_class_report(bdd, c, u, enter, chosen, nvars)
                     for c, u in zip(classes, class_sets, strict=True))
-    return RecoveringController(base, flag_root, recover_root, tuple(fallbacks), reports)
+    built = RecoveringController(base, flag_root, recover_root, tuple(fallbacks), reports)
+    return built if len(fallbacks) == len(chosen) else built.without_fallbacks(len(fallbacks))
 
 
 def _integers(sym: Any) -> dict[str, Any]:

@@ -26,10 +26,12 @@ import gaitc
 from gaitc.codegen.build import write_sources
 from gaitc.codegen.recovery import fit, recovery_sizes
 from gaitc.compact.controller import CompactController
-from gaitc.compact.diagram import leaf
+from gaitc.compact.diagram import Builder, TooLarge, leaf
+from gaitc.compact.extraction import FieldOrder, slot_order
 from gaitc.compact.recovery import (
     RecoveringController,
     RecoveringRunner,
+    RecoveryOptions,
     prove_recovery,
     recovering_controller,
 )
@@ -38,6 +40,8 @@ from gaitc.core.vocabulary import Field
 from gaitc.sim.domain import Domain
 from gaitc.sim.monitor import Monitor
 from gaitc.sim.recovery import Fallback
+from gaitc.solver.game import Game, goal_strategies
+from gaitc.solver.symbolic import Options, SymbolicSpec
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = ROOT / "gaitc" / "examples"
@@ -125,6 +129,67 @@ def test_sizes_and_the_budget_name_the_surprises_that_stop(
                            for w in dropped)
     none, words = fit(rc, sizes.parts[0].bytes)
     assert none is None and words
+
+
+@pytest.mark.parametrize("name", ["patrol_2x2.gait", "corridor_hazard.gait"])  # 2 fallbacks
+def test_a_budget_stops_building_and_keeps_what_fits(
+        made: dict[str, tuple[gaitc.Spec, RecoveringController]], name: str) -> None:
+    spec, rc = made[name]
+    sizes = recovery_sizes(rc)
+    first_two = sizes.parts[0].bytes + sizes.parts[1].bytes
+    # too small for the controller and its recovery diagrams: building stops, nothing fits
+    with pytest.raises(TooLarge) as stopped:
+        recovering_controller(spec.gr1, spec.vocabulary,
+                              options=RecoveryOptions(budget=first_two // 4))
+    assert stopped.value.bytes > first_two // 4 == stopped.value.limit
+    # room for the recovery diagrams but not every fallback: a prefix of them, proved, and
+    # at least what trimming the whole build keeps
+    budget = first_two
+    kept = recovering_controller(spec.gr1, spec.vocabulary,
+                                 options=RecoveryOptions(budget=budget))
+    assert len(kept.fallbacks) < len(rc.fallbacks)
+    assert [fb.kept for fb in kept.fallbacks] == [fb.kept for fb in
+                                                  rc.fallbacks[:len(kept.fallbacks)]]
+    trimmed, _ = fit(rc, budget)
+    assert trimmed is not None and len(kept.fallbacks) >= len(trimmed.fallbacks)
+    assert all(c.included == all(k < len(kept.fallbacks) for k in c.degraded)
+               for c in kept.classes)
+    assert gaitc.verify(spec, kept.base).ok
+    assert prove_recovery(spec.gr1, kept).ok
+    # what a budgeted build stops on bounds the tables from below: with the budget of the
+    # whole tables exactly, nothing is stopped or left out
+    whole = recovering_controller(spec.gr1, spec.vocabulary,
+                                  options=RecoveryOptions(budget=sizes.total))
+    assert whole == rc
+
+
+def test_rolling_back_a_build_forgets_it() -> None:
+    """A fallback that did not fit leaves nothing behind: the table after a rollback and a
+    further build is the table of a builder that never tried it."""
+    spec = gaitc.load(ROOT / "specs" / "patrol_2x2.gait")
+    sym = SymbolicSpec(spec.gr1, Options(care=False))
+    result = Game(sym).solve()
+    slots = slot_order(spec.vocabulary, FieldOrder.GREEDY)
+    strategies = goal_strategies(sym, result)
+    care = result.winning & sym.env_trans
+    tried, fresh = (Builder(sym.bdd, slots, spec.vocabulary.outputs, greedy=True)
+                    for _ in range(2))
+    first = tried.build_moves(care & sym.bdd.exist(set(b + "'" for b in sym.output_bits),
+                                                   strategies[0]), strategies[0])
+    mark = tried.mark()
+    tried.build_boolean(result.winning, sym.sys_live[-1])
+    tried.build_moves(care & sym.bdd.exist(set(b + "'" for b in sym.output_bits),
+                                           strategies[-1]), strategies[-1])
+    assert len(tried.nodes) > mark.nodes
+    tried.rollback(mark)
+    assert (len(tried.nodes), len(tried.moves), tried.bytes) == \
+        (mark.nodes, mark.moves, mark.bytes)
+    again = tried.build_boolean(result.winning, sym.sys_live[0])
+    assert fresh.build_moves(care & sym.bdd.exist(set(b + "'" for b in sym.output_bits),
+                                                  strategies[0]), strategies[0]) == first
+    assert fresh.build_boolean(result.winning, sym.sys_live[0]) == again
+    assert tried.nodes == fresh.nodes and tried.moves == fresh.moves
+    assert tried.bytes == fresh.bytes
 
 
 # ------------------------------------------------------------------ the 10,000 steps
