@@ -25,6 +25,9 @@ from dataclasses import dataclass
 from typing import Any
 
 from gaitc.core.vocabulary import Field
+from gaitc.ir.cuddlib import cudd
+
+and_exists = cudd.and_exists
 
 Ref = int
 
@@ -177,10 +180,12 @@ class Builder:
         key = (int(care), int(relation))
         found = self._commons.get(key)
         if found is None:
-            bdd = self.bdd
-            found = ~bdd.exist(self._decision_bits, care & ~relation)
+            bdd, bits = self.bdd, self._decision_bits
+            # CUDD's and-abstract: the conjunctions are never built (half the time of a
+            # greedy build, which calls this for every slot and value it weighs)
+            found = ~and_exists(care, ~relation, bits)
             if found != bdd.false:
-                found &= bdd.exist(self._decision_bits, care & relation)
+                found &= and_exists(care, relation, bits)
             self._commons[key] = (found, care, relation)  # keeps the ids alive
             return found
         return found[0]
