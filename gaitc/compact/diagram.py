@@ -115,6 +115,12 @@ class Builder:
         self._commons: dict[tuple[int, int], Any] = {}
         self._slot_bits = [frozenset(b + ("'" if s.next else "") for b in s.field.bits)
                            for s in self.slots]
+        # each slot value's cube and each move's, made once (a greedy build asks millions)
+        self._slot_cubes = [[s.field.cube(v, s.next) for v in range(len(s.field.labels))]
+                            for s in self.slots]
+        self._out_cubes = [[f.cube(v, True) for v in range(len(f.labels))]
+                           for f in self.outputs]
+        self._move_cubes: dict[int, dict[str, bool]] = {}
         self._decision_bits = frozenset().union(*self._slot_bits) if self._slot_bits \
             else frozenset()
 
@@ -153,6 +159,7 @@ class Builder:
         del self.nodes[mark.nodes:], self.moves[mark.moves:]
         self.bytes = mark.bytes
         self._recent = [i for i in self._recent if i < mark.moves]
+        self._move_cubes = {i: c for i, c in self._move_cubes.items() if i < mark.moves}
 
         def kept(kind: int, ref: Ref) -> bool:
             if ref == DONT_CARE:
@@ -164,9 +171,12 @@ class Builder:
         self._memo = {key: ref for key, ref in self._memo.items() if kept(key[3], ref)}
 
     def move_cube(self, index: int) -> dict[str, bool]:
-        out: dict[str, bool] = {}
-        for f, value in zip(self.outputs, self.moves[index], strict=True):
-            out.update(f.cube(value, True))
+        out = self._move_cubes.get(index)
+        if out is None:
+            out = {}
+            for cubes, value in zip(self._out_cubes, self.moves[index], strict=True):
+                out.update(cubes[value])
+            self._move_cubes[index] = out
         return out
 
     # ------------------------------------------------------------------ moves
@@ -199,9 +209,9 @@ class Builder:
             if bdd.let(self.move_cube(index), common) != bdd.false:
                 return leaf(index)
         values = []
-        for f in self.outputs:
-            for k in range(len(f.labels)):
-                narrowed = bdd.let(f.cube(k, True), common)
+        for cubes in self._out_cubes:
+            for k, cube in enumerate(cubes):
+                narrowed = bdd.let(cube, common)
                 if narrowed != bdd.false:
                     values.append(k)
                     common = narrowed
@@ -254,8 +264,7 @@ class Builder:
         for index in chosen_first or wanted:
             slot = self.slots[index]
             settled = 0
-            for value in range(len(slot.field.labels)):
-                cube = slot.field.cube(value, slot.next)
+            for cube in self._slot_cubes[index]:
                 sub = bdd.let(cube, care)
                 if sub == bdd.false or self._settles(at_leaf, sub, bdd.let(cube, target)):
                     settled += 1
@@ -279,12 +288,10 @@ class Builder:
                              "bits outside the fields")
         if self.greedy:
             level = self._best_slot(level, care, target, at_leaf, support)
-        slot = self.slots[level]
         kids = []
         saved = self._recent
         self._recent = []
-        for value in range(len(slot.field.labels)):
-            cube = slot.field.cube(value, slot.next)
+        for cube in self._slot_cubes[level]:
             kids.append(self._build(0 if self.greedy else level + 1, bdd.let(cube, care),
                                     bdd.let(cube, target),
                                     at_leaf, kind))
