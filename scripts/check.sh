@@ -5,7 +5,7 @@
 # the tests of the code's shape: the layering, its map in docs/background/layout.md, the
 # quality rules and the minimum Python version. It stops the run with a message naming the
 # stage that failed, so a lint or type error is reported before the 15-minute suite starts.
-# Then the whole suite runs; arguments are passed to that pytest run, e.g.
+# Then the rest of the suite runs on every core; arguments are passed to that pytest run, e.g.
 #     scripts/check.sh -m "not slow"      # the quick run (docs/background/testing.md)
 # Set FAST_ONLY=1 to stop after the fast stage; VENV names another virtual environment.
 set -uo pipefail
@@ -34,7 +34,8 @@ echo "check: mypy (Python 3.10, strict)" >&2
 "$VENV/bin/mypy" || fail "mypy found type errors (listed above)"
 
 echo "check: layering, layout map, quality and Python-version tests" >&2
-"$PY" -m pytest -q "${FAST_TESTS[@]}" \
+# ruff and mypy ran just above: their two tests are not run a second time
+"$PY" -m pytest -q "${FAST_TESTS[@]}" -k "not test_ruff_clean and not test_mypy_clean" \
     || fail "a layering, layout-map, quality or Python-version test failed (above)"
 
 if [ "${FAST_ONLY:-0}" = 1 ]; then
@@ -42,5 +43,11 @@ if [ "${FAST_ONLY:-0}" = 1 ]; then
     exit 0
 fi
 
-echo "check: fast stage passed; the whole test suite" >&2
-exec "$PY" -m pytest "$@"
+# The rest of the suite, on every core (pytest-xdist; GAITC_TEST_JOBS=1 runs it in one
+# process): each test module stays on one worker, so its module-scoped fixtures are made
+# once. tests/codebase passed above and is not run again.
+JOBS="${GAITC_TEST_JOBS:-auto}"
+PARALLEL=()
+[ "$JOBS" = 1 ] || PARALLEL=(-n "$JOBS" --dist loadscope)
+echo "check: fast stage passed; the whole test suite (workers: $JOBS)" >&2
+exec "$PY" -m pytest "${PARALLEL[@]}" --ignore=tests/codebase --durations=20 "$@"
