@@ -40,6 +40,7 @@ from gaitc.core.spec import Spec, load
 from gaitc.diagnostics import UsageError
 from gaitc.hw.driver import VIOLATION_POLICIES
 from gaitc.ir.spec import Semantics
+from gaitc.sim.run import checked_steps
 from ltlcompiler.encoding import EncodingName
 
 if TYPE_CHECKING:
@@ -279,8 +280,8 @@ def _follower(backend: Backend) -> Any:
 
 
 def _check(board: Board, opts: DriveOptions) -> None:
-    if opts.steps is not None and opts.steps < 0:
-        raise UsageError("--steps must not be negative")
+    if opts.steps is not None:
+        checked_steps(opts.steps, "--steps")
     if opts.cycles < 1:
         raise UsageError("--cycles must be at least 1")
     if opts.step_delay is not None and opts.step_delay < 0:

@@ -24,6 +24,7 @@ from gaitc.ir.controller import Controller, ControllerKind
 from gaitc.sim.domain import Domain
 from gaitc.sim.environments import Environment
 from gaitc.sim.monitor import Monitor
+from gaitc.sim.run import checked_steps
 from gaitc.sim.session import Opponent, Session, is_run_file
 from gaitc.sim.session import environment as build_environment
 from gaitc.sim.strategy import explicit
@@ -157,9 +158,7 @@ def _counter_play(bound: Session, env: Opponent | Scenario | Environment, steps:
     counter = explicit(bound.strategy, "a counter-play")
     kind = env.kind if isinstance(env, Opponent) else EnvironmentKind.SCRIPTED
     choose, name = robot_chooser(kind, counter, seed)
-    count = DEFAULT_STEPS if steps is None else steps
-    if count < 0:
-        raise UsageError("the number of steps must not be negative")
+    count = checked_steps(DEFAULT_STEPS if steps is None else steps)
     return play(counter, bound.domain, bound.monitor, count, choose, bound.spec.path, name)
 
 
@@ -250,8 +249,7 @@ def _controller_play(bound: Session, env: Opponent | Scenario | Environment,
     if steps is None:
         steps = (len(chosen.scenario.steps) if isinstance(chosen, ScriptedEnvironment)
                  else chosen.length if isinstance(chosen, RunEnvironment) else DEFAULT_STEPS)
-    if steps < 0:
-        raise UsageError("the number of steps must not be negative")
+    checked_steps(steps)
     late = sorted(k for k in (surprises.planned if surprises is not None else {}) if k > steps)
     if late:
         assert surprises is not None

@@ -49,7 +49,7 @@ from gaitc.sim.environments import (
 )
 from gaitc.sim.play import Losses, Play, pursued
 from gaitc.sim.replay import HINT, follow, last_step, recorded, step_span
-from gaitc.sim.run import Run, Step, save_run
+from gaitc.sim.run import Run, Step, checked_steps, save_run
 from gaitc.sim.simulator import Simulator, Verdicts
 from gaitc.sim.strategy import explicit
 from gaitc.sim.surprise import Event, Surprise, parse_event
@@ -428,8 +428,7 @@ class Player:
         is the robot that avoids forced dead ends and delays them (``simulate --env
         adversarial`` of a counter-strategy). A pilot keeps the assumptions.
         """
-        if steps < 0:
-            raise UsageError("the number of steps must not be negative")
+        checked_steps(steps)
         kind = Autopilot(pilot)
         self._future.clear()
         played = 0

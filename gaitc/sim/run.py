@@ -12,7 +12,7 @@ import json
 from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Final
 
 from gaitc.diagnostics import GaitcError, ScenarioError, Span, UsageError, source_lines
 from gaitc.diagnostics.files import decode_text, read_input, write_atomically
@@ -21,6 +21,24 @@ from gaitc.sim.surprise import Surprise
 
 if TYPE_CHECKING:
     from ltlcompiler.model import Model
+
+
+#: The most steps a run may have: a run is kept whole in memory and written whole (a step
+#: takes about a kilobyte, with its line in the file), so a million steps is about a gigabyte.
+MAX_STEPS: Final = 1_000_000
+
+
+def checked_steps(steps: int, what: str = "the number of steps") -> int:
+    """``steps`` when a run may have that many (0 to :data:`MAX_STEPS`); else a
+    :class:`UsageError` naming ``what`` (``--steps``)."""
+    if steps < 0:
+        raise UsageError(f"{what} must not be negative")
+    if steps > MAX_STEPS:
+        raise UsageError(f"{what} is {steps}, more than the {MAX_STEPS:,} steps a run may have: "
+                         "a run is kept whole in memory and written whole (about a kilobyte "
+                         "a step); run fewer steps, or continue a saved run with "
+                         "'gaitc play SPEC --from RUN.jsonl'")
+    return steps
 
 
 @dataclass(frozen=True)

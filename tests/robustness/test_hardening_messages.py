@@ -69,3 +69,36 @@ def test_the_caret_stays_under_its_character(tmp_path: Path, column: int) -> Non
     _, line, caret = render("bad", Span(str(path), 1, column)).splitlines()
     assert line[caret.index("^")] == text[column - 1]
     assert len(line) <= EXCERPT + 4
+
+
+HUGE = "99999999999999999999"
+
+
+@pytest.mark.parametrize("command", [
+    ["simulate", PATROL, "--steps", HUGE],
+    ["simulate", PATROL, "--env", "adversarial", "--steps", HUGE],
+    ["drive", PATROL, "--steps", HUGE],
+])
+def test_more_steps_than_a_run_may_have_are_refused_at_once(
+        command: list[str], capsys: pytest.CaptureFixture[str]) -> None:
+    """Issue 60: a run is kept whole, so ``--steps`` past :data:`MAX_STEPS` is a usage
+    error before any work, not a run that grows until it is killed."""
+    assert main(command) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(f"gaitc: usage error: --steps is {HUGE}, more than the 1,000,000 "
+                          "steps a run may have")
+    assert "Traceback" not in err
+
+
+def test_the_library_bounds_the_steps_of_every_run() -> None:
+    import gaitc
+    from gaitc.api.runs import MAX_STEPS
+    from gaitc.diagnostics import UsageError
+
+    with pytest.raises(UsageError, match="more than the 1,000,000 steps a run may have"):
+        gaitc.simulate(PATROL, steps=MAX_STEPS + 1)
+    player = gaitc.player(PATROL)
+    before = player.step
+    with pytest.raises(UsageError, match="more than the 1,000,000 steps"):
+        player.autoplay(MAX_STEPS + 1)
+    assert player.step == before  # nothing was played

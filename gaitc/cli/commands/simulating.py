@@ -12,7 +12,7 @@ from collections.abc import Mapping
 from typing import Any
 
 from gaitc.api.modes import EncodingName, EnvironmentKind
-from gaitc.api.runs import Run
+from gaitc.api.runs import Run, checked_steps
 from gaitc.api.simulation import (
     ENVIRONMENTS,
     Opponent,
@@ -134,8 +134,8 @@ def opponent_of(args: argparse.Namespace) -> Opponent:
 
 
 def run_simulate(args: argparse.Namespace) -> int:
-    if args.steps is not None and args.steps < 0:
-        raise UsageError("--steps must not be negative")
+    if args.steps is not None:
+        checked_steps(args.steps, "--steps")
     settle_environment(args)
     with progress_display() as progress:
         played = simulate_spec(args.spec, args.controller, opponent_of(args), args.steps,
