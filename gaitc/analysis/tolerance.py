@@ -271,14 +271,50 @@ def tolerant_spec(spec: Spec | GR1Spec, bound: int, breakable: Selector | None =
         sys_liveness=gr1.sys_liveness, name=gr1.name)
 
 
+#: Budgets up to this many surprises are solved in one game, as asked. A larger budget K
+#: is approached by doubling from here, stopping once the winning region stops shrinking
+#: (:attr:`_Solved.stable`): ``synth --tolerate 1000000`` grew past 560 MB before.
+DIRECT_BOUND: Final = 8
+
+
 @dataclass(frozen=True)
 class _Solved:
-    """A solved tolerance game: the budgets it tolerates (index k: k surprises) and, when
-    asked, its symbolic parts for the projected controller."""
+    """A solved tolerance game: the budgets it tolerates (index k: k surprises, up to the
+    bound solved), the budget ``asked`` for, and, when asked, its symbolic parts for the
+    projected controller.
+
+    ``stable``: the states winning with ``solved`` surprises left are those winning with
+    one fewer. From counter c the game depends only on the surprises left, r, and its
+    winning set W(r) is a function of W(r - 1) alone (the play stays at its counter and
+    wins there, GR(1) being prefix-independent, or a surprise takes it to a state that must
+    lie in W(r - 1)); so W(r) = W(r - 1) gives W(r') = W(r) for every r' > r, and every
+    budget past ``solved`` is tolerated exactly when ``solved`` is. Solving stops there
+    instead of at ``asked``."""
 
     tolerated: tuple[bool, ...]
     sym: SymbolicSpec | None = field(default=None, repr=False)
     result: GameResult | None = field(default=None, repr=False)
+    asked: int = 0
+    stable: bool = False
+
+    @property
+    def solved(self) -> int:
+        """The bound of the game solved (at most :attr:`asked`)."""
+        return len(self.tolerated) - 1
+
+    def tolerates(self, k: int) -> bool:
+        """Whether ``k`` surprises (at most :attr:`asked`) are tolerated."""
+        return self.tolerated[min(k, self.solved)]
+
+    def largest(self) -> int | None:
+        """The largest k up to :attr:`asked` with every budget up to k tolerated (None:
+        not even 0)."""
+        best = _largest(self.tolerated)
+        return self.asked if best == self.solved and self.stable else best
+
+    def counter(self, reached: int) -> int:
+        """The counter value of this game whose winning states tolerate ``reached``."""
+        return self.solved - min(reached, self.solved)
 
 
 def _at_counter(sym: SymbolicSpec, name: str, value: int) -> BDDNode:
@@ -286,9 +322,11 @@ def _at_counter(sym: SymbolicSpec, name: str, value: int) -> BDDNode:
 
 
 def _solve(spec: GR1Spec, semantics: Semantics, bound: int, limits: Limits,
-           options: Options | None, keep: bool = False) -> _Solved:
+           options: Options | None, keep: bool = False, asked: int | None = None
+           ) -> _Solved:
     """Solve the tolerance game ``spec`` (of :func:`tolerant_spec` with ``bound``) once and
-    read off every budget 0..bound."""
+    read off every budget 0..bound, and whether it is :attr:`_Solved.stable` (``asked``:
+    the budget this game stands for, default ``bound``)."""
     from gaitc.solver.game import Game
     from gaitc.solver.symbolic import SymbolicSpec
     from gaitc.solver.synthesis import memory_guard
@@ -303,11 +341,15 @@ def _solve(spec: GR1Spec, semantics: Semantics, bound: int, limits: Limits,
         game: Game = Game(sym, limits)
         result = game.solve(keep_layers=keep)
         start = _at_counter(sym, name, 0)
+        lefts = []
         for k in range(bound + 1):
             left = sym.bdd.exist(set(sym.var_bits[name]),
                                  result.winning & _at_counter(sym, name, bound - k))
+            lefts.append(left)
             tolerated.append(game.initially_winning(left & start, semantics))
-    return _Solved(tuple(tolerated), sym if keep else None, result if keep else None)
+    return _Solved(tuple(tolerated), sym if keep else None, result if keep else None,
+                   bound if asked is None else asked,
+                   stable=bound > 0 and lefts[bound] == lefts[bound - 1])
 
 
 def _largest(tolerated: Sequence[bool]) -> int | None:
@@ -551,22 +593,35 @@ def tolerance(spec: Spec | GR1Spec, semantics: Semantics = Semantics.DEFAULT, k:
     calls = 0
 
     def solve(bound: int, chosen: Selector | None, keep: bool = False) -> _Solved:
+        """The game for ``bound`` surprises: past :data:`DIRECT_BOUND`, games of twice the
+        bound each time until one is stable or has the bound."""
         nonlocal calls
-        calls += 1
-        game = tolerant_spec(spec, bound, chosen, found)
-        return _solve(game, semantics, bound, limits, opts.options, keep)
+        tried = min(bound, DIRECT_BOUND)
+        while True:
+            calls += 1
+            game = tolerant_spec(spec, tried, chosen, found)
+            solved = _solve(game, semantics, tried, limits, opts.options, keep, bound)
+            if tried == bound or solved.stable:
+                return solved
+            tried = min(2 * tried, bound)
 
     limits.report("solving the game with surprises", f"up to {_count(k)}")
     wanted = None if breakable is None else _in_group(breakable)
     overall = solve(k, wanted, keep=opts.controller)
-    reached = _largest(overall.tolerated)
+    reached = overall.largest()
     controller, automaton = None, None
     notes = []
+    if overall.solved < k:
+        notes.append(f"budgets past {_count(overall.solved - 1)} all behave alike: the states "
+                     f"winning with {_count(overall.solved)} left are those winning with "
+                     f"{_count(overall.solved - 1)}, so the game was solved up to "
+                     f"{_count(overall.solved)}, not {_count(k)}")
     if opts.controller and reached is not None and not (opts.planned_only and reached == 0):
-        controller = projected_controller(gr1, overall, k - reached, semantics)
+        at = overall.counter(reached)
+        controller = projected_controller(gr1, overall, at, semantics)
         if opts.explicit:
             limits.report("extracting the controller")
-            automaton = projected_automaton(gr1, overall, k - reached, semantics, opts,
+            automaton = projected_automaton(gr1, overall, at, semantics, opts,
                                             limits=limits)
             if automaton is None:
                 notes.append(f"the automaton would pass {opts.max_nodes} nodes: kept "
@@ -583,12 +638,12 @@ def tolerance(spec: Spec | GR1Spec, semantics: Semantics = Semantics.DEFAULT, k:
         for n, group in enumerate(names):
             limits.report("solving each kind of surprise alone", group, n / len(names))
             alone = solve(bound, _in_group(group))
-            largest = _largest(alone.tolerated)
+            largest = alone.largest()
             groups.append(GroupTolerance(group, found.lines(group), largest, bound))
             if largest is not None and largest < bound:
 
                 def breaks(leg: str, group: str = group) -> bool:
-                    return not solve(bound, _in_group(group, leg)).tolerated[bound]
+                    return not solve(bound, _in_group(group, leg)).tolerates(bound)
 
                 limiting.append(_limit(group, found, breaks))
     return ToleranceReport(

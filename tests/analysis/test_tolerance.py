@@ -24,6 +24,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 import gaitc
+from gaitc.analysis import tolerance as tolerance_module
 from gaitc.analysis.tolerance import (
     PieceKind,
     ToleranceOptions,
@@ -471,6 +472,39 @@ def test_lives_are_surprises_survived(n: int) -> None:
     assert [raw_tolerated(lives(n), Semantics.DEFAULT, k) for k in range(4)] == [
         k < n for k in range(4)]
     found = gaitc.tolerate(lives(n), 3)
+    assert found.synthesis.verified
+
+
+@settings(max_examples=30, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(tiny_specs(), st.sampled_from(list(Semantics)))
+def test_a_huge_budget_stops_where_the_winning_states_stop_shrinking(
+        spec: GR1Spec, semantics: Semantics) -> None:
+    """Issue 60: ``--tolerate 1000000`` is answered by games of 1, 2, 4, ... surprises
+    until the winning states stop shrinking. Checked by brute force: the budget reached is
+    tolerated and one more is not (or every budget asked is, once the game was stable)."""
+    spec = replace(spec, env_liveness=())
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(tolerance_module, "DIRECT_BOUND", 1)
+        report = tolerance(spec, semantics, 1000, ToleranceOptions(groups=False))
+    if report.reached is None:
+        assert not raw_tolerated(spec, semantics, 0)
+        return
+    assert raw_tolerated(spec, semantics, min(report.reached, 12))
+    if report.reached < 1000:
+        assert not raw_tolerated(spec, semantics, report.reached + 1)
+    else:
+        assert any("all behave alike" in note for note in report.notes)
+
+
+def test_a_million_surprises_are_answered_by_a_small_game() -> None:
+    """The lives robot survives n - 1 hits whatever the budget; a robot that a hit does not
+    harm survives every budget, and the game solved was small."""
+    assert tolerance(lives(3), Semantics.DEFAULT, 1_000_000).reached == 2
+    harmless = replace(lives(3), sys_trans=(lives(3).sys_trans[2],))
+    report = tolerance(harmless, Semantics.DEFAULT, 1_000_000)
+    assert report.reached == 1_000_000 and report.complete
+    assert report.solver_calls <= 1 + 2 * 3  # the overall game and each group's, one each
+    found = gaitc.tolerate(harmless, 1_000_000)
     assert found.synthesis.verified
 
 
