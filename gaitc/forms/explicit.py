@@ -73,6 +73,13 @@ GZIP_HEADER: Final = (GZIP_MAGIC + b"\x08\x10" + b"\0\0\0\0" + b"\x00\xff"
                         b"('zcat FILE' shows it; docs/controller-format.md)\n\0")
 #: The most text a tables file may unpack to (a hand-made file must not fill the memory).
 MAX_TEXT: Final = 1 << 30
+#: The most a tables file may unpack to per byte of the file. The tables gaitc writes
+#: unpack to 7 to 11 times their size (radial8: 49 KB to 355 KB; a six-legged robot's
+#: 9,266 nodes: 96 KB to 1.0 MB), where deflate can reach about 1,000 times: a file past
+#: this ratio (beyond :data:`MIN_LIMIT`) was made to fill the memory, and reading stops
+#: as soon as it passes it, not after unpacking it all.
+MAX_RATIO: Final = 64
+MIN_LIMIT: Final = 1 << 20
 _CHUNK: Final = 1 << 16
 _HINT: Final = "write it again with 'gaitc synth -o FILE'"
 
@@ -195,6 +202,11 @@ def _fail(file: str, message: str, hint: str = _HINT) -> NoReturn:
     raise ControllerError(message, Span(file, 1, 1), hint=hint)
 
 
+def unpacked_limit(packed: int) -> int:
+    """The most text a tables file of ``packed`` bytes may unpack to."""
+    return min(MAX_TEXT, max(MIN_LIMIT, MAX_RATIO * packed))
+
+
 def read_tables(raw: bytes, file: str) -> Any:
     """The parsed JSON of a tables file's bytes ``raw``; a file cut short, damaged,
     followed by other bytes or not JSON inside is a :class:`ControllerError` that says
@@ -202,9 +214,10 @@ def read_tables(raw: bytes, file: str) -> Any:
     unpack = zlib.decompressobj(zlib.MAX_WBITS | 16)  # gzip, its CRC and length checked
     parts: list[bytes] = []
     size = 0
+    limit = unpacked_limit(len(raw))
     for start in range(0, len(raw), _CHUNK):
         try:
-            part = unpack.decompress(raw[start:start + _CHUNK], MAX_TEXT + 1 - size)
+            part = unpack.decompress(raw[start:start + _CHUNK], limit + 1 - size)
         except zlib.error as err:
             if "check" in str(err):  # the CRC-32 or the length of the gzip trailer
                 _fail(file, "the unpacked data does not match the checksum at the end of "
@@ -213,9 +226,10 @@ def read_tables(raw: bytes, file: str) -> Any:
                   f"{min(start + _CHUNK, len(raw)) - 1} of {len(raw)} ({err}); the file "
                   "was changed or not copied whole")
         size += len(part)
-        if size > MAX_TEXT or unpack.unconsumed_tail:
-            _fail(file, f"it unpacks to more than {MAX_TEXT} bytes, more than any "
-                  "controller gaitc writes")
+        if size > limit or unpack.unconsumed_tail:
+            _fail(file, f"it unpacks to more than {limit} bytes ({MAX_RATIO} times its "
+                  f"{len(raw)} bytes, at most {MAX_TEXT}), more than any controller gaitc "
+                  "writes: it was not written by gaitc")
         parts.append(part)
         if unpack.eof:
             break

@@ -66,3 +66,59 @@ def test_render_policy_reads_a_tables_file(
     assert drawn.out == expected
     assert "south_c → r14" in drawn.out
     assert "not UTF-8" not in drawn.err
+
+
+def _bomb(path: Path, unpacked: int) -> int:
+    """A tables-layout file whose text is ``unpacked`` spaces (deflate packs them about a
+    thousand to one); the file's size."""
+    import zlib
+
+    from gaitc.forms.explicit import GZIP_HEADER
+
+    pack = zlib.compressobj(9, zlib.DEFLATED, -zlib.MAX_WBITS)
+    chunk = b" " * (1 << 20)
+    with path.open("wb") as out:
+        out.write(GZIP_HEADER)
+        for _ in range(unpacked >> 20):
+            out.write(pack.compress(chunk))
+        out.write(pack.flush())
+        # the trailer a gzip stream ends with: CRC-32 and length (not checked: reading
+        # stops before it)
+        out.write(b"\0" * 8)
+    return path.stat().st_size
+
+
+def test_a_file_that_unpacks_far_past_its_size_is_refused_while_unpacking(
+        tmp_path: Path) -> None:
+    """Issue 60: a 300 KB file that unpacks to 300 MB was unpacked whole before it was
+    refused. Reading stops at 64 times the file's size, so the process stays small."""
+    import subprocess
+    import sys
+
+    from gaitc.forms.explicit import MAX_RATIO
+
+    bomb = tmp_path / "bomb.ctl.gz"
+    size = _bomb(bomb, 300 << 20)
+    assert size < 400_000
+    # the child reports its own peak memory after the command
+    probe = ("import resource, sys\nfrom gaitc.cli import main\ncode = main(sys.argv[1:])\n"
+             "print('peak', resource.getrusage(resource.RUSAGE_SELF).ru_maxrss, "
+             "file=sys.stderr)\nsys.exit(code)")
+    run = subprocess.run([sys.executable, "-c", probe, "verify", str(ROBOT_A), str(bomb)],
+                         capture_output=True, text=True, check=False, timeout=120)
+    assert run.returncode == 1, run.stderr
+    assert f"bomb.ctl.gz:1:1: error: it unpacks to more than {MAX_RATIO * size} bytes " \
+        f"({MAX_RATIO} times its {size} bytes" in run.stderr
+    assert "Traceback" not in run.stderr
+    peak_kb = int(run.stderr.split("peak ")[-1])
+    assert peak_kb < 250_000  # gaitc itself takes about 60 MB: the 300 MB were never held
+
+
+def test_the_tables_gaitc_writes_stay_far_below_the_ratio(binary: tuple[Path, Path]) -> None:
+    import gzip
+
+    from gaitc.forms.explicit import MAX_RATIO
+
+    tables, _ = binary
+    packed = tables.read_bytes()
+    assert len(gzip.decompress(packed)) < MAX_RATIO / 4 * len(packed)
