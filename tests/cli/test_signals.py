@@ -272,3 +272,46 @@ def test_a_signal_to_the_main_process_alone_ends_every_worker(
     while not all(_gone(w) for w in workers) and time.monotonic() < deadline:
         time.sleep(0.02)
     assert [w for w in workers if not _gone(w)] == []
+
+
+#: A run of the console script's entry whose process signals itself as the command line's
+#: reporting module is imported (the moment of the issue-60 traceback), and again, for the
+#: last module, at the end of the import.
+_SIGNAL_WHILE_IMPORTING = """
+import os, signal, sys
+signum, module = int(sys.argv[1]), sys.argv[2]
+class Finder:
+    def find_spec(self, name, path=None, target=None):
+        if name == module:
+            os.kill(os.getpid(), signum)
+        return None
+sys.meta_path.insert(0, Finder())
+sys.argv = ["gaitc", "check", sys.argv[3]]
+from gaitc.__main__ import command
+command()
+"""
+
+
+@pytest.mark.parametrize("module", ["gaitc.cli", "gaitc.cli.reporting",
+                                    "gaitc.cli.exitcodes"])
+@pytest.mark.parametrize("signum", [signal.SIGINT, signal.SIGTERM])
+def test_a_signal_while_the_command_line_is_imported_ends_the_run_in_one_line(
+        module: str, signum: signal.Signals) -> None:
+    """Issue 60: a SIGINT 0.4 s after start, on a loaded machine, landed in the import of
+    gaitc.cli.reporting and printed Python's raw traceback, exit -2."""
+    spec = ROOT / "specs" / "patrol_2x2.gait"
+    run = subprocess.run(
+        [sys.executable, "-c", _SIGNAL_WHILE_IMPORTING, str(int(signum)), module, str(spec)],
+        capture_output=True, text=True, check=False, timeout=60,
+        preexec_fn=lambda: signal.signal(signal.SIGINT, signal.default_int_handler))
+    code, line = ENDINGS[signum]
+    assert (run.returncode, run.stderr) == (code, line + "\n")
+    assert run.stdout == ""
+
+
+def test_the_entrys_endings_are_the_command_lines() -> None:
+    from gaitc.__main__ import ENDINGS as ENTRY
+    from gaitc.cli.exitcodes import ExitCode
+
+    assert ENTRY == {signal.SIGINT: (ExitCode.INTERRUPTED, ENDINGS[signal.SIGINT][1]),
+                     signal.SIGTERM: (ExitCode.TERMINATED, ENDINGS[signal.SIGTERM][1])}
