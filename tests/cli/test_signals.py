@@ -310,8 +310,9 @@ def test_a_signal_while_the_command_line_is_imported_ends_the_run_in_one_line(
 
 
 def test_the_entrys_endings_are_the_command_lines() -> None:
-    from gaitc.__main__ import ENDINGS as ENTRY
+    from gaitc.__main__ import ENDINGS as entry_endings
     from gaitc.cli.exitcodes import ExitCode
 
-    assert ENTRY == {signal.SIGINT: (ExitCode.INTERRUPTED, ENDINGS[signal.SIGINT][1]),
-                     signal.SIGTERM: (ExitCode.TERMINATED, ENDINGS[signal.SIGTERM][1])}
+    expected = {signal.SIGINT: (ExitCode.INTERRUPTED, ENDINGS[signal.SIGINT][1]),
+                signal.SIGTERM: (ExitCode.TERMINATED, ENDINGS[signal.SIGTERM][1])}
+    assert entry_endings == expected
