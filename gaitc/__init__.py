@@ -157,6 +157,10 @@ _HOMES = {name: module for module, names in _MODULES.items() for name in names}
 
 
 def __getattr__(name: str) -> Any:
+    if name == "__version__":
+        from gaitc.diagnostics.versions import PACKAGE
+
+        return PACKAGE
     home = _HOMES.get(name)
     if home is None:
         raise AttributeError(f"module 'gaitc' has no attribute {name!r}")
@@ -168,8 +172,6 @@ def __getattr__(name: str) -> Any:
 def __dir__() -> list[str]:
     return sorted([*globals(), *_HOMES])
 
-
-__version__ = "0.1.0"
 
 #: The public names, derived from :data:`_MODULES` (the one list of them).
 __all__ = sorted(_HOMES)

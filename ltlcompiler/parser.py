@@ -38,6 +38,7 @@ from gaitc.diagnostics import (
     usercache,
     without_bom,
 )
+from gaitc.diagnostics.versions import PACKAGE
 from ltlcompiler import syntax as s
 from ltlcompiler.parse_tree import build, token_span
 
@@ -109,13 +110,14 @@ def _load_options() -> dict[str, Any]:
 
 
 def _grammar_key(text: str) -> str:
-    """A digest of everything the analysed grammar depends on."""
+    """A digest of everything the analysed grammar depends on: the grammar's text, the
+    options, the versions of Lark, Python and gaitc."""
     from lark import __version__ as lark_version
 
     options = json.dumps(_GRAMMAR_OPTIONS, sort_keys=True)
     python = ".".join(map(str, sys.version_info[:2]))
     made_of = "\0".join((text, options, repr(sorted(_load_options())), lark_version,
-                         python))
+                         python, f"gaitc {PACKAGE}"))
     return hashlib.sha256(made_of.encode("utf-8")).hexdigest()
 
 

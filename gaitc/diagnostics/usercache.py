@@ -2,11 +2,17 @@
 kept only in a folder the user alone owns and may enter, never written through a link.
 
 A cache file is one header line (the format, a key naming what the data was made from and
-a digest of the data) followed by the data as JSON, in which tuples and dictionaries with
+a seal of the key and the data) followed by the data as JSON, in which tuples and dictionaries with
 keys other than strings are tagged so that they come back as they were.  Reading refuses a
 folder that is not the user's own with mode ``0700``, a file that is a symbolic link, is not
 a regular file, is another user's or may be written by others; anything refused, corrupt or
-made from something else reads as missing, and the caller builds the data again.  Writing
+made from something else reads as missing, and the caller builds the data again.  The seal
+is an HMAC-SHA-256 of the key and the data under a random secret kept in the same folder
+(file ``secret``, made on the first store): a plain digest of the data could be computed
+again by whoever edited it, so an edited file (the grammar's ``assume`` and ``guarantee``
+swapped, issue 60), or one copied from another machine or key, would be read as genuine.
+Now it reads as missing, unless whoever edits it reads the secret too (someone who can
+write the user's files can change gaitc's own code as well).  Writing
 goes to a new file in the same folder, renamed over the old name (a link there is replaced,
 its target never touched).  No failure of the cache is ever an error.
 """
@@ -16,6 +22,7 @@ from __future__ import annotations
 import contextlib
 import errno
 import hashlib
+import hmac
 import json
 import os
 import secrets
@@ -25,7 +32,10 @@ from pathlib import Path
 from typing import Any, Final
 
 #: The first word of every cache file, with the version of this format.
-FORMAT: Final = "gaitc-cache 1"
+FORMAT: Final = "gaitc-cache 2"
+#: The file of the folder's secret (the HMAC key of every seal) and its length in bytes.
+SECRET: Final = "secret"
+_SECRET_BYTES: Final = 32
 #: A cache file larger than this is not read (a stray file, not one of ours).
 MAX_BYTES: Final = 16 * 1024 * 1024
 _TUPLE: Final = "\0tuple"
@@ -47,12 +57,13 @@ def load(name: str, key: str) -> Any | None:
     try:
         with _private_folder(create=False) as folder:
             raw = _read_own_file(folder, name)
+            secret = _read_own_file(folder, SECRET)
     except (OSError, RuntimeError, ValueError):  # no home, a folder not ours, ...
         return None
-    if raw is None:
+    if raw is None or secret is None or len(secret) != _SECRET_BYTES:
         return None
     header, newline, payload = raw.partition(b"\n")
-    if not newline or header != _header(key, payload):
+    if not newline or not hmac.compare_digest(header, _header(key, payload, secret)):
         return None
     try:
         return json.loads(payload, object_hook=_untag)
@@ -73,12 +84,18 @@ def store(name: str, key: str, data: Any) -> None:
         return
     with contextlib.suppress(OSError, RuntimeError, ValueError), \
             _private_folder(create=True) as folder:
-        _replace_file(folder, name, _header(key, payload) + b"\n" + payload)
+        secret = _read_own_file(folder, SECRET)
+        if secret is None or len(secret) != _SECRET_BYTES:
+            secret = secrets.token_bytes(_SECRET_BYTES)
+            _replace_file(folder, SECRET, secret)
+        _replace_file(folder, name, _header(key, payload, secret) + b"\n" + payload)
 
 
-def _header(key: str, payload: bytes) -> bytes:
-    digest = hashlib.sha256(payload).hexdigest()
-    return f"{FORMAT} {key} {digest}".encode("ascii", "replace")
+def _header(key: str, payload: bytes, secret: bytes) -> bytes:
+    """The header line: the format, the key and the seal of both and the data."""
+    seal = hmac.new(secret, key.encode("utf-8", "replace") + b"\0" + payload,
+                    hashlib.sha256).hexdigest()
+    return f"{FORMAT} {key} {seal}".encode("ascii", "replace")
 
 
 # ---------------------------------------------------------------- the folder and its files

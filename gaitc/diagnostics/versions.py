@@ -13,6 +13,10 @@ from typing import Final
 
 from gaitc.diagnostics import GaitcError, Span
 
+#: gaitc's own version (``gaitc.__version__``, ``gaitc --version``; pyproject.toml's, which
+#: tests/cli/test_package.py checks). Caches made by another version are built again.
+PACKAGE: Final = "0.1.0"
+
 
 @dataclass(frozen=True)
 class FileFormat:

@@ -191,6 +191,57 @@ def test_a_corrupt_grammar_cache_is_rebuilt(home: Path) -> None:
     assert path.read_bytes().startswith(usercache.FORMAT.encode())
 
 
+def test_an_edited_grammar_cache_with_its_digest_computed_again_is_rebuilt(home: Path) -> None:
+    """Issue 60: the cache's digest was a plain SHA-256 of its data, so a cache edited to
+    swap ``assume`` and ``guarantee`` and given a digest computed again turned an
+    unrealizable spec realizable. The seal is keyed by the folder's secret now: the edited
+    cache reads as missing and the spec keeps its verdict."""
+    import hashlib
+
+    # the corridor whose spill the robot cannot make go away: unrealizable as a guarantee,
+    # realizable when read as an assumption
+    corridor = (ROOT / "specs" / "corridor_hazard.gait").read_text(encoding="utf-8")
+    kept = [line for line in corridor.splitlines()
+            if not line.startswith(("guarantee always (next(spill)", "assume always"))]
+    spec = home / "spill.gait"
+    spec.write_text("\n".join([*kept, "guarantee always eventually !spill", ""]),
+                    encoding="utf-8")
+    assert _lint(home).returncode == 0  # builds and stores the cache
+    path = home / "gaitc" / parser.GRAMMAR_CACHE
+    header, _, payload = path.read_bytes().partition(b"\n")
+    # the lexer's patterns of the two keywords swapped
+    swapped = payload.replace(b'"value":"assume"', b'"value":"@"') \
+        .replace(b'"value":"guarantee"', b'"value":"assume"') \
+        .replace(b'"value":"@"', b'"value":"guarantee"')
+    assert swapped.count(b'"value":"assume"') == 1 and swapped != payload
+    fmt_version, key, _seal = header.decode().rsplit(" ", 2)
+    # what an editor who knows the format computes: the plain digest, and the keyed one
+    # without the secret
+    for seal in (hashlib.sha256(swapped).hexdigest(),
+                 hashlib.sha256(key.encode() + b"\0" + swapped).hexdigest()):
+        path.write_bytes(f"{fmt_version} {key} {seal}".encode() + b"\n" + swapped)
+        env = {**os.environ, "XDG_CACHE_HOME": str(home)}
+        run = subprocess.run([sys.executable, "-m", "gaitc", "check", str(spec)],
+                             capture_output=True, text=True, env=env, cwd=ROOT, check=False)
+        assert "unrealizable" in run.stdout, run.stdout + run.stderr
+        stored = path.read_bytes().partition(b"\n")[2]
+        assert stored != swapped and usercache.load(parser.GRAMMAR_CACHE, key) is not None
+    # the edit matters: sealed with the folder's secret, it would be read and flip the verdict
+    secret = (home / "gaitc" / usercache.SECRET).read_bytes()
+    path.write_bytes(usercache._header(key, swapped, secret) + b"\n" + swapped)
+    env = {**os.environ, "XDG_CACHE_HOME": str(home)}
+    run = subprocess.run([sys.executable, "-m", "gaitc", "check", str(spec)],
+                         capture_output=True, text=True, env=env, cwd=ROOT, check=False)
+    assert ": realizable" in run.stdout, run.stdout + run.stderr
+
+
+def test_a_cache_of_another_gaitc_version_is_another_key(
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    before = _grammar_key()
+    monkeypatch.setattr(parser, "PACKAGE", "0.0.0-other")
+    assert _grammar_key() != before
+
+
 # ---------------------------------------------------------------- round trips
 def test_plain_data_round_trips_with_its_tuples_and_keys(home: Path) -> None:
     data = {"a": (1, (2, "x")), "b": {0: [True, None], 7: (), (1, 2): 1.5},
