@@ -108,6 +108,13 @@ class Summary:
         }
 
 
+def dropped_at(step: Step, leg: str) -> int:
+    """The step a run's summary names for ``leg``'s drop marked on ``step``: the step itself
+    when its gait used the leg (the move that wore it), else the next one, where the leg
+    dropped while not in use (a surprise, named at that step in the surprise list too)."""
+    return step.index if leg in step.legs_used else step.index + 1
+
+
 def wear(before: Step, after: Step) -> tuple[tuple[str, ...], tuple[str, ...]]:
     """The legs whose level drops from ``before`` to ``after``: (degraded, failed)."""
     now = dict(after.health)

@@ -20,7 +20,7 @@ from gaitc.sim.domain import Domain, Goal, State
 from gaitc.sim.environments import Environment, Move, Request, Situation
 from gaitc.sim.monitor import Monitor, Violation
 from gaitc.sim.play import pursued
-from gaitc.sim.run import Run, Step, Summary
+from gaitc.sim.run import Run, Step, Summary, dropped_at
 from gaitc.sim.strategy import InputKey, Strategy, StrategyView
 from gaitc.sim.surprise import ALLOWED_NOTE, Event, Surprise, broken_words
 from gaitc.sim.surprising import forced, recover
@@ -326,8 +326,9 @@ class Simulator:
             steps=max(0, len(run.steps) - 1),
             goal_visits=tuple((g.label, goal_counts[g.label]) for g in self.domain.goals),
             cache_visits=tuple((c, caches[c]) for c in self.domain.model.caches),
-            legs_failed=tuple((s.index, leg) for s in run.steps for leg in s.failed),
-            legs_degraded=tuple((s.index, leg) for s in run.steps for leg in s.degraded),
+            legs_failed=tuple((dropped_at(s, leg), leg) for s in run.steps for leg in s.failed),
+            legs_degraded=tuple((dropped_at(s, leg), leg) for s in run.steps
+                                for leg in s.degraded),
             assumptions_held=not any(v.is_assumption for v in violations),
             guarantees_held=not any(not v.is_assumption for v in violations),
             violations=tuple(v.describe() for v in violations[:MAX_REPORTED]),

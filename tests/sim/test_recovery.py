@@ -146,6 +146,21 @@ def test_robot_a_recovers_from_a_lone_unused_failure(robot_a: Session) -> None:
     assert surprise.words().startswith(f"step {k}: L5 failed while not in use (eq. 3.5")
 
 
+def test_the_summary_names_a_surprise_failure_at_the_surprises_step(robot_a: Session) -> None:
+    """Issue 60: after ``--violate "K:fail L5"`` the summary said "L5 (step K-1)", the step
+    before, while the surprise list said step K. A leg worn by a gait is named at the move
+    that wore it; one that failed while not in use, at the step it failed."""
+    k = _unused_steps(robot_a, "L5")[0]
+    run = _run(robot_a, [f"{k}:fail L5"], k + AFTER)
+    assert run.summary is not None
+    (surprise,) = run.surprises
+    assert (surprise.step, "L5") in run.summary.legs_failed
+    assert run.steps[k].level("L5") == 1 < run.steps[k - 1].level("L5")
+    for index, leg in run.summary.legs_failed:  # worn by a move: named at that move
+        if (index, leg) != (k, "L5"):
+            assert leg in run.steps[index].legs_used
+
+
 # ------------------------------------------------------------------ re-solving by hand
 def _resolve(gr1: GR1Spec, before: dict[str, int], inputs: dict[str, int],
              kept: Sequence[int]) -> bool:
