@@ -178,6 +178,16 @@ class Player:
         return len(self._played) - 1
 
     @property
+    def moves(self) -> int:
+        """The steps played after the first state: a run's count of its steps, as its
+        summary and ``simulate --steps`` have it (a play of 2 states is 1 step)."""
+        return max(0, self.step)
+
+    def played_words(self) -> str:
+        """"a play of N step(s)", counted as :attr:`moves`."""
+        return f"a play of {self.moves} step{'' if self.moves == 1 else 's'}"
+
+    @property
     def length(self) -> int:
         """The number of states played and undone: :meth:`jump` reaches ``0..length - 1``."""
         return len(self._played) + len(self._future)

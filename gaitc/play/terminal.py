@@ -415,10 +415,10 @@ class PlayApp(App[int]):
                 self.player.save(self.out or DEFAULT_RUN_FILE)
                 self.saved, self._saved_path = self.out, self._played()
         if self.return_code:
-            steps = self.player.step + 1
-            kept = (f"the play of {steps} steps is saved in {self.saved}" if self.saved
-                    else "no move had been played" if steps == 0
-                    else f"the play of {steps} steps is not saved (no file to save it to)")
+            played = self.player.played_words()
+            kept = (f"{played} is saved in {self.saved}" if self.saved
+                    else "no move had been played" if self.player.moves == 0
+                    else f"{played} is not saved (no file to save it to)")
             raise PlayCrash(f"the player stopped on an error of its own; {kept}")
         return self.saved
 

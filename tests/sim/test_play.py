@@ -441,7 +441,8 @@ def test_an_error_inside_the_app_saves_the_play_and_is_not_a_clean_exit(
 
     with pytest.raises(PlayCrash) as crash:
         app.play(headless=True, size=(80, 24), auto_pilot=script)
-    assert str(crash.value) == (f"the player stopped on an error of its own; the play of 3 "
+    # three states are two steps, as the saved run's summary counts them (issue 60)
+    assert str(crash.value) == (f"the player stopped on an error of its own; a play of 2 "
                                 f"steps is saved in {out}")
     assert app.return_code == 1 and len(read_jsonl(out).steps) == 3
     capsys.readouterr()
@@ -594,3 +595,18 @@ def test_q_quits_while_the_controller_is_being_synthesized() -> None:
     assert "quit before the play began; nothing to save" in child.before
     assert child.exitstatus == 0
     assert not (ROOT / "hexapod_warehouse.play.jsonl").exists()
+
+
+def test_a_play_counts_its_steps_as_its_run_file_does(tmp_path: Path) -> None:
+    """Issue 60: the player said "a play of 2 steps" of a file that holds one step (two
+    states). A play's steps are counted as ``simulate --steps`` and the run's summary
+    count them: the moves after the first state."""
+    player = gaitc.player(SPECS / "patrol_2x2.gait")
+    player.autoplay(1)
+    assert player.played_words() == "a play of 0 steps"
+    player.autoplay(1)
+    assert player.played_words() == "a play of 1 step"
+    run = player.save(tmp_path / "two.jsonl")
+    assert len(read_jsonl(tmp_path / "two.jsonl").steps) == 2 == len(run.steps)
+    player.autoplay(3)
+    assert player.played_words() == "a play of 4 steps"

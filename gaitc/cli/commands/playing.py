@@ -94,5 +94,5 @@ def run_play(args: argparse.Namespace) -> int:
     out = args.out or f"{Path(args.spec).stem}.play.jsonl"
     saved = play_in_terminal(player, out, args.seed)
     if saved is not None:
-        print(f"{args.spec}: play of {player.step + 1} steps saved to {saved}")
+        print(f"{args.spec}: {player.played_words()} saved to {saved}")
     return ExitCode.OK
