@@ -299,8 +299,9 @@ class ModelGaits:
         return True
 
     def draw(self, folder: str | Path) -> list[str]:
-        raise UsageError("--svg draws the chapter 2 gait graph; the model's graph has no "
-                         "drawing yet")
+        raise UsageError(f"the gaits of the {self.model} model have no drawing yet: the "
+                         "drawings are of the chapter 2 gait graph, which --model kinematic "
+                         "searches")
 
 
 def _r(x: float) -> float:

@@ -134,3 +134,16 @@ def test_render_gaits_draws_the_same_gaits_as_the_gaits_command(tmp_path: Path) 
         if name.endswith(".svg"):
             ET.parse(tmp_path / "b" / name)  # well-formed SVG
         assert (tmp_path / "a" / name).read_bytes() == (tmp_path / "b" / name).read_bytes()
+
+
+def test_render_gaits_of_a_model_robot_says_what_has_no_drawing(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    """Issue 60: ``render gaits`` of a robot with a chapter 4 model complained about an
+    ``--svg`` the user never gave. The message names the model and what is drawn."""
+    robot = str(ROBOTS / "silicone6.yaml")
+    assert main(["render", "gaits", robot, "-o", str(tmp_path / "out")]) == 2
+    err = capsys.readouterr().err
+    assert err == ("gaitc: usage error: the gaits of the active-passive model have no "
+                   "drawing yet: the drawings are of the chapter 2 gait graph, which "
+                   "--model kinematic searches\n")
+    assert not (tmp_path / "out").exists() or not any((tmp_path / "out").iterdir())
