@@ -37,7 +37,8 @@ def describe(symbol: Symbol, index: Index, model: Model | None, role: str = "") 
         cells = ", ".join(hazard.regions) if hazard and hazard.regions else "(no region)"
         effect = "fails the legs" if hazard is None else hazard.effect
         source = ("thesis eqs. 3.8, 3.9" if hazard is None or hazard.wears is None
-                  else "a graded hazard, eq. 3.5 with k levels for 1")
+                  else f"thesis eq. 3.9, graded: a loss of up to {hazard.wears} "
+                  f"level{'s' if hazard.wears != 1 else ''} in place of a failure")
         return (f"{head}\n\nregions: {cells}\n\nwhile it is on, entering one of them "
                 f"{effect} (those of the gait in use; {source})")
     text = f"{head}\n\n{_region(symbol.name, model)}"

@@ -15,10 +15,10 @@ GRADED = Path(__file__).resolve().parents[1] / "golden" / "graded.gait"
 
 
 @pytest.mark.parametrize(("name", "regions", "effect"), [
-    ("sand", "ne, se", "wears the legs by up to 2 levels (those of the gait in use; a graded "
-     "hazard, eq. 3.5 with k levels for 1)"),
-    ("grit", "se", "wears the legs by up to 3 levels (those of the gait in use; a graded "
-     "hazard, eq. 3.5 with k levels for 1)"),
+    ("sand", "ne, se", "wears the legs by up to 2 levels (those of the gait in use; thesis "
+     "eq. 3.9, graded: a loss of up to 2 levels in place of a failure)"),
+    ("grit", "se", "wears the legs by up to 3 levels (those of the gait in use; thesis "
+     "eq. 3.9, graded: a loss of up to 3 levels in place of a failure)"),
     ("spill", "sw", "fails the legs (those of the gait in use; thesis eqs. 3.8, 3.9)"),
 ])
 def test_hovering_a_hazard_tells_its_effect(name: str, regions: str, effect: str) -> None:
