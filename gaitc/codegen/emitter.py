@@ -154,11 +154,14 @@ def source(ctrl: CompactController, tables: Tables | None = None,
         "#define GAITC_FLASH PROGMEM",
         "#define GAITC_U8(a) pgm_read_byte(&(a))",
         "#define GAITC_U16(a) pgm_read_word(&(a))",
+        "#define GAITC_U32(a) pgm_read_dword(&(a))",
         "#else",
         "#define GAITC_FLASH",
         "#define GAITC_U8(a) (a)",
         "#define GAITC_U16(a) (a)",
+        "#define GAITC_U32(a) (a)",
         "#endif",
+        f"#define GAITC_FIRST(a) GAITC_U{8 * t.first_bytes}(a)",
         f"#define GAITC_LEAF {LEAF}u",
         "#define GAITC_MOVE_ROOT(g) (g)",
         "#define GAITC_REACHED_ROOT(g) (GAITC_GOALS + (g))",
@@ -166,7 +169,7 @@ def source(ctrl: CompactController, tables: Tables | None = None,
         "#define GAITC_ASSUMED_ROOT (2 * GAITC_GOALS + 1)",
         "",
         _array("uint8_t", "node_slot", t.node_slot),
-        _array("uint16_t", "node_first", t.node_first),
+        _array(f"uint{8 * t.first_bytes}_t", "node_first", t.node_first),
         _array("uint16_t", "kids", t.kids),
         _array("uint8_t", "moves", t.moves),
         _array("uint16_t", "roots", t.roots),
@@ -182,7 +185,7 @@ def source(ctrl: CompactController, tables: Tables | None = None,
         uint8_t field = GAITC_U8(slot_field[slot]);
         uint8_t value = GAITC_U8(slot_next[slot]) ? in[GAITC_U8(input_pos[field])]
                                                    : now[field];
-        ref = GAITC_U16(kids[GAITC_U16(node_first[ref]) + value]);
+        ref = GAITC_U16(kids[GAITC_FIRST(node_first[ref]) + value]);
     }
     return (uint16_t)(ref - GAITC_LEAF);
 }

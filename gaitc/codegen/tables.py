@@ -2,8 +2,8 @@
 
 Layout (every table read-only, in flash on a microcontroller):
 
-* ``node_slot[n]`` (1 byte) the slot node n reads, ``node_first[n]`` (2 bytes) where its
-  children start in ``kids``;
+* ``node_slot[n]`` (1 byte) the slot node n reads, ``node_first[n]`` (2 bytes, or 4 when
+  ``kids`` is longer than 16 bits reach) where its children start in ``kids``;
 * ``kids[k]`` (2 bytes): a child, a node index below ``LEAF`` or ``LEAF | value`` for a leaf;
 * ``moves[m * outputs + i]`` (1 byte): output field i's value in move m;
 * ``roots`` (2 bytes each): per goal the move diagram, per goal the goal diagram, the start
@@ -47,8 +47,15 @@ class Tables:
     goals: int
 
     @property
+    def first_bytes(self) -> int:
+        """The width of ``node_first``'s entries: 2 bytes, or 4 once ``kids`` passes the
+        65,536 entries a 16-bit offset reaches (a host target; no board holds that)."""
+        return 2 if max(self.node_first, default=0) <= 0xFFFF else 4
+
+    @property
     def bytes(self) -> int:
-        return (len(self.node_slot) + 2 * len(self.node_first) + 2 * len(self.kids)
+        return (len(self.node_slot) + self.first_bytes * len(self.node_first)
+                + 2 * len(self.kids)
                 + len(self.moves) + 2 * len(self.roots) + 2 * len(self.slot_field)
                 + 2 * len(self.field_sizes) + len(self.output_field))
 

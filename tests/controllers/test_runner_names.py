@@ -173,3 +173,34 @@ def test_names_in_are_clean_under_the_sanitizers(
     assert done.returncode == 0, done.stderr[-2000:]
     assert done.stderr == ""
     assert len(done.stdout.splitlines()) == len(lines)
+
+
+def test_tables_past_16_bit_offsets_compile_and_run_alike(
+        corridor: CompactController, built: Built, tmp_path: Path) -> None:
+    """Issue 60: a host controller whose ``kids`` table passed 65,536 entries was written
+    with 16-bit offsets that gcc refused (``-Werror=overflow``: 112748 became 47212). The
+    host target has no size limit: the offsets widen to 32 bits. The controller here is
+    the corridor's with a chain of 23,000 nodes above its first move diagram, each with
+    every child the same, so it must make the very moves of the corridor's own."""
+    from dataclasses import replace
+
+    from gaitc.codegen.tables import flatten
+    from gaitc.compact.diagram import Branch
+
+    slot = next(k for k, s in enumerate(corridor.slots) if len(s.field.labels) >= 3)
+    width = len(corridor.slots[slot].field.labels)
+    nodes = list(corridor.nodes)
+    top = corridor.move_roots[0]
+    for _ in range(70_000 // width):
+        nodes.append(Branch(slot, (top,) * width))
+        top = len(nodes) - 1
+    wide = replace(corridor, nodes=tuple(nodes), move_roots=(top, *corridor.move_roots[1:]))
+    tables = flatten(wide)
+    assert tables.first_bytes == 4 and len(tables.kids) > 65_536
+    done = build(wide, tmp_path / "wide", "c")
+    assert done.program is not None and built.program is not None
+    rng = random.Random(60)
+    sizes = [len(f.labels) for f in corridor.vocabulary.inputs]
+    lines = [("s " if k == 0 else "x ") + " ".join(str(rng.randrange(n)) for n in sizes)
+             for k in range(300)]
+    assert _talk(done.program, lines) == _talk(built.program, lines)
