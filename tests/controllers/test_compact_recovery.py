@@ -506,3 +506,50 @@ def test_the_board_running_alone_reports_a_surprise_and_goes_on(tmp_path: Path) 
                 sim.set_depth(0, 0.02)  # L1 reads failed from its next use on
         port.close()
     assert surprises, "the failing leg was never reported as a surprise"
+
+
+@pytest.mark.skipif(shutil.which("gcc") is None, reason="no host C compiler")
+def test_gaitc_run_of_a_recovering_controller_steps_as_the_runtime(
+        made: dict[str, tuple[gaitc.Spec, RecoveringController]], tmp_path: Path) -> None:
+    """Issue 60: the compiled gaitc-run ignored the --recover tables (its ``x`` always
+    called gaitc_step, so after a surprise it made a move with a failed leg). It steps
+    gaitc_step_surprise now and says the outcome, as RecoveringRunner does, on random
+    inputs (most of them surprises)."""
+    spec, rc = made["patrol_2x2.gait"]
+    compact = gaitc.synthesize(spec, form="compact").controller
+    assert isinstance(compact, CompactController)
+    built = gaitc.generate(spec, compact, "c", tmp_path / "out", recover=True)
+    assert built.program is not None
+    inputs = rc.base.vocabulary.inputs
+    fields = rc.base.vocabulary.fields
+    rng = random.Random(60)
+    first = {f.name: len(f.labels) - 1 if f.numeric else 0 for f in inputs}
+    # episodes from the start: mostly steps that keep the legs (the hazard at random),
+    # now and then any inputs at all (a surprise, more often than not); the expected
+    # answers come from the runtime, stepped alongside
+    lines, expected, seen = [], [], set()
+    for _ in range(30):
+        runner = RecoveringRunner(rc, first)
+        lines.append("s " + " ".join(str(first[f.name]) for f in inputs))
+        expected.append(" ".join([*(str(runner.state[f.name]) for f in fields), "0"]))
+        for _ in range(15):
+            if rng.random() < 0.25:
+                row = {f.name: rng.randrange(len(f.labels)) for f in inputs}
+            else:
+                row = {f.name: runner.state[f.name] if f.numeric
+                       else rng.randrange(len(f.labels)) for f in inputs}
+            lines.append("x " + " ".join(str(row[f.name]) for f in inputs))
+            step = runner.step(row)
+            seen.add(step.outcome)
+            if step.outcome == Outcome.STOPPED:
+                expected.append("stopped")
+                break
+            head = {Outcome.RECOVERED: ["recovered"], Outcome.ALLOWED: []}.get(
+                step.outcome, ["degraded", str(step.kept_mask)])
+            expected.append(" ".join([*head, str(step.move),
+                                      *(str(runner.state[f.name]) for f in fields),
+                                      str(runner.goal)]))
+    answers = subprocess.run([str(built.program)], input="\n".join(lines) + "\n", text=True,
+                             capture_output=True, check=True, timeout=60).stdout.splitlines()
+    assert answers == expected
+    assert {Outcome.ALLOWED, Outcome.RECOVERED, Outcome.STOPPED} <= seen, seen

@@ -3,6 +3,11 @@
  * --target c).  One command per line, one answer per line:
  *   s V1 .. VI   start with the first input values          -> "O1 .. OF goal"
  *   x V1 .. VI   one step: the environment chose V1 .. VI     -> "move O1 .. OF goal"
+ *                inputs that break the assumptions (the monitor's verdict): with the
+ *                recovery tables (codegen --recover) the step they take, "recovered move
+ *                O1 .. OF goal", "degraded MASK move O1 .. OF goal" (MASK: the goals still
+ *                pursued, bit j for goal j + 1) or "stopped" (no move, and none after);
+ *                without them "error: the inputs break the assumptions" (nothing changes)
  *   a O1 .. OF   robotics semantics: may it start there      -> "1" or "0"
  *   d            the tables, as JSON (for the verifier)
  * Values are value indices, every field's (O1 .. OF) in declaration order.  With --names
@@ -169,9 +174,27 @@ int main(int argc, char **argv)
             } else if (!started) {
                 printf("error: start first\n");
             } else {
-                unsigned move = gaitc_step(&s, in);
-                printf(names ? "move=%u " : "%u ", move);
-                print_state(&s, names);
+#ifdef GAITC_RECOVER
+                uint16_t move = 0;
+                uint8_t outcome = gaitc_step_surprise(&s, in, &move);
+                if (outcome == GAITC_STOPPED) {
+                    printf("stopped\n");
+                } else {
+                    if (outcome == GAITC_RECOVERED) printf("recovered ");
+                    if (outcome == GAITC_DEGRADED) printf("degraded %u ", gaitc_kept(&s));
+                    printf(names ? "move=%u " : "%u ", move);
+                    print_state(&s, names);
+                }
+#else
+                if (!gaitc_assumed(&s, in)) {
+                    printf("error: the inputs break the assumptions (codegen --recover "
+                           "adds what to do then)\n");
+                } else {
+                    unsigned move = gaitc_step(&s, in);
+                    printf(names ? "move=%u " : "%u ", move);
+                    print_state(&s, names);
+                }
+#endif
             }
         } else if (line[0] == 'a' && line[1] == ' ') {
             if (!read_line(line + 2, whole, GAITC_FIELDS, names, 0) ||
