@@ -306,11 +306,14 @@ def _strategy_safety(check: Check) -> set[tuple[int, int]]:
             continue  # every edge keeps both ρe and ρs: nothing to report per edge
         for target in succ:
             if not check.holds_next(assumption, target):
+                # the play is the system's once the environment breaks ρe: whatever the
+                # move (ρs kept or not), the edge is harmless, and no run that keeps the
+                # assumptions takes it
                 broken.add((node, target))
                 check.notes.append(f"edge {node} -> {target}: the input violates "
                                    f"{check.failing('env_trans', node, target)}; harmless, the "
                                    "environment broke its assumptions there")
-            if not check.holds_next(guarantee, target):
+            elif not check.holds_next(guarantee, target):
                 check.problems.append(f"edge {node} -> {target}: the system's move violates "
                                       f"{check.failing('sys_trans', node, target)}")
     return broken

@@ -160,6 +160,24 @@ def test_input_breaking_the_assumptions_is_only_a_note() -> None:
     )
 
 
+def test_a_move_on_an_input_the_assumptions_forbid_may_break_the_guarantees() -> None:
+    """Issue 60: a correct controller with an extra edge on an input ρe forbids was
+    rejected for breaking ρs on that edge, which the note called harmless: once the
+    environment breaks its assumptions the play is the system's, whatever it does. The
+    extra edge 1 -> 2 repeats the request (forbidden) and answers it with no grant."""
+    spec = replace(
+        grant_spec(), env_trans=(Clause(Or((Not(r), Not(Var("r", True)))), Origin("no repeat")),)
+    )
+    nodes = [((0, 0), (0, 1)), ((1, 1), (0, 2)), ((1, 0), (0, 1))]
+    report = verify(spec, automaton(nodes, (0, 1)))
+    assert report.ok, report.problems
+    assert report.notes == tuple(
+        f"edge {a} -> {b}: the input violates env_trans clause #1 'no repeat' (next: {{r=1}}); "
+        "harmless, the environment broke its assumptions there" for a, b in ((1, 2), (2, 1)))
+    # the same move on an input the assumptions allow is still refused
+    assert not verify(grant_spec(), automaton(nodes, (0, 1))).ok
+
+
 def test_unsatisfiable_assumptions_need_no_successors() -> None:
     spec = replace(grant_spec(), env_trans=(Clause(FALSE),))
     report = verify(spec, automaton([((0, 0), ()), ((1, 1), ())], (0, 1)))
