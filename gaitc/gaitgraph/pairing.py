@@ -163,6 +163,29 @@ def _primitive_hint(gait: Gait, order: Sequence[str]) -> str:
             f"{', '.join(order)}) or {robot_file}")
 
 
+#: The remedies of :func:`leg_mismatch`'s two cases.
+MOVE_HINT = "the spec's leg-to-gait map drives the health reasoning; make them agree"
+CORRECTION_HINT = ("a correction gait wears no leg (thesis 3.4.1): its valves may move the "
+                   "body, not a leg; make it a move gait that uses the legs, or change its "
+                   "valves")
+
+
+def leg_mismatch(gait: Gait, seq: ValveSequence) -> str | None:
+    """Why ``seq`` cannot run ``gait`` as the spec's health reasoning has it, or None: a
+    move gait's valves must pressurise exactly the legs it uses, a correction gait's none
+    (it wears no leg, eq. 3.5), so the board never fires a leg the reasoning takes as idle."""
+    pressed = seq.pressurised_legs()
+    if gait.kind is GaitKind.CORRECTION:
+        if not pressed:
+            return None
+        return (f"correction gait {gait.name} wears no leg, but its primitive ({seq.source}) "
+                f"pressurises {', '.join(pressed)}")
+    if set(pressed) == set(gait.legs):
+        return None
+    return (f"gait {gait.name} uses {', '.join(gait.legs) or 'no legs'} but its primitive "
+            f"({seq.source}) pressurises {', '.join(pressed) or 'no legs'}")
+
+
 def check_gaits(
     gaits: Sequence[Gait], spec_dir: str, legs: Sequence[str] | None = None,
     moves: Mapping[str, frozenset[tuple[str, str]]] | None = None,
@@ -200,6 +223,9 @@ def check_gaits(
             out.append(Diagnostic(err.message, err.span or span, "error", err.hint))
             continue
         if gait.kind is not GaitKind.MOVE:
+            wrong = leg_mismatch(gait, seq)
+            if wrong is not None:
+                out.append(Diagnostic(wrong, span, "error", CORRECTION_HINT))
             continue
         resolved[gait.name] = seq
         known = set(seq.leg_of_valve)
@@ -215,17 +241,9 @@ def check_gaits(
                 )
             )
             continue
-        pressed = seq.pressurised_legs()
-        if set(pressed) != set(gait.legs):
-            out.append(
-                Diagnostic(
-                    f"gait {gait.name} uses {', '.join(gait.legs) or 'no legs'} but its primitive "
-                    f"({seq.source}) pressurises {', '.join(pressed) or 'no legs'}",
-                    span,
-                    "error",
-                    "the spec's leg-to-gait map drives the health reasoning; make them agree",
-                )
-            )
+        wrong = leg_mismatch(gait, seq)
+        if wrong is not None:
+            out.append(Diagnostic(wrong, span, "error", MOVE_HINT))
     if moves is not None:
         out += _same_sequences(gaits, resolved, moves)
     return out

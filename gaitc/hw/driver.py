@@ -23,7 +23,14 @@ from typing import Protocol
 
 from gaitc.core.modes import SurprisePolicy, ViolationPolicy
 from gaitc.diagnostics import SpecSemanticError
-from gaitc.gaitgraph.pairing import Resolver, ValveSequence, resolve_primitive
+from gaitc.gaitgraph.pairing import (
+    CORRECTION_HINT,
+    MOVE_HINT,
+    Resolver,
+    ValveSequence,
+    leg_mismatch,
+    resolve_primitive,
+)
 from gaitc.hw.backend import (
     Backend,
     HardwareError,
@@ -86,6 +93,13 @@ def bind_primitives(model: Model, spec_dir: str,
             "bind one to each gait: 'gaitc lint --primitives' suggests the valves of each, "
             'or name a robot file with primitive "ROBOT.yaml" direction +x')
     bound = {g.name: (resolve or resolve_primitive)(g, spec_dir, legs) for g in gaits}
+    for g in gaits:  # the board must fire only the legs the health reasoning wears
+        wrong = leg_mismatch(g, bound[g.name])
+        if wrong is not None:
+            span = g.primitive.span if g.primitive is not None and g.primitive.span else g.span
+            raise SpecSemanticError(
+                f"cannot drive the robot: {wrong}", span,
+                MOVE_HINT if g.kind is GaitKind.MOVE else CORRECTION_HINT)
     counts = {len(seq.states[0]) for seq in bound.values() if seq.states}
     if len(counts) > 1:
         detail = ", ".join(f"{name}: {len(seq.states[0])}" for name, seq in sorted(bound.items())

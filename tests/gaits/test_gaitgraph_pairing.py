@@ -115,3 +115,16 @@ def test_the_gait_search_of_a_primitive_is_bounded(monkeypatch: pytest.MonkeyPat
     with pytest.raises(SpecSemanticError, match=f"within {pairing.PAIRING_STATES} valve states"):
         resolve_primitive(searched, str(ROBOTS.parent))
     assert asked == [pairing.PAIRING_STATES]
+
+
+def test_a_correction_gait_may_pressurise_no_leg() -> None:
+    """Issue 60: a correction gait wears no leg (thesis 3.4.1), yet one whose valves fired
+    a leg passed lint."""
+    legs = ("L1", "L2", "L3", "L4")
+    firing = Gait("adjust", GaitKind.CORRECTION, (), None, Primitive(valves=("0100",)))
+    quiet = Gait("settle", GaitKind.CORRECTION, (), None, Primitive(valves=("0000",)))
+    diags = check_gaits([firing, quiet], ".", legs)
+    assert [(d.severity, d.message) for d in diags] == [
+        ("error", "correction gait adjust wears no leg, but its primitive (inline) "
+                  "pressurises L2")]
+    assert diags[0].hint is not None and "thesis 3.4.1" in diags[0].hint

@@ -169,6 +169,25 @@ def test_cli_drive_missing_primitives(tmp_path: Path, capsys: pytest.CaptureFixt
     assert "bind one to each gait" in err
 
 
+def test_cli_drive_refuses_valves_that_fire_a_leg_the_gait_does_not_use(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    """Issue 60: ``lint`` refused a move gait whose valves fire a leg it does not use, but
+    ``drive`` ran it: the board wore L2 while the health reasoning took it as idle. Drive
+    refuses it now before any valve moves, at the primitive's line."""
+    spec = tmp_path / "crossed.gait"
+    spec.write_text(TINY.replace("uses L1 moves east valves 10, 00",
+                                 "uses L1 moves east valves 11, 00"), encoding="utf-8")
+    out = tmp_path / "run.jsonl"
+    assert main(["drive", str(spec), "--out", str(out)]) == 1
+    err = capsys.readouterr().err
+    line = next(k for k, text in enumerate(TINY.splitlines(), 1) if text.startswith("gait east"))
+    assert f"{spec}:{line}:" in err
+    assert "error: cannot drive the robot: gait east uses L1 but its primitive (inline) " \
+           "pressurises L1, L2" in err
+    assert "make them agree" in err
+    assert not out.exists()
+
+
 def test_cli_drive_usage_errors(tiny_spec: Path, capsys: pytest.CaptureFixture[str]) -> None:
     assert main(["drive", str(tiny_spec), "--backend", "serial"]) == 2
     assert "needs --port" in capsys.readouterr().err
