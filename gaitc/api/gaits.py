@@ -29,6 +29,7 @@ from gaitc.core.modes import SearchMethod
 from gaitc.diagnostics import SpecSemanticError, UsageError
 from gaitc.diagnostics.files import make_folder, write_atomically
 from gaitc.diagnostics.versions import GAITS
+from gaitc.gaitgraph.cycles import MAX_HEADING_DEG
 
 if TYPE_CHECKING:
     from gaitc.gaitgraph.displacement import Stillness
@@ -154,8 +155,8 @@ class KinematicGaits:
                    "transitions returns the chassis to where it started (chapter 2's model "
                    "is frictionless, so feet that only push or slide move nothing)")
         else:
-            why = (f"no cycle of the kinematic gait graph's {edges} transitions goes toward "
-                   f"{self.direction}")
+            why = (f"no cycle of the kinematic gait graph's {edges} transitions goes within "
+                   f"{MAX_HEADING_DEG:g} degrees of {self.direction}")
         if self.robot.models:
             fix = (f"drop --model kinematic to search the robot file's {self.robot.models[0]} "
                    "model, which models friction")
@@ -238,8 +239,8 @@ class ModelGaits:
                     "started; check the model's friction and limb parameters "
                     "(docs/models.md), or allow more open valves with --max-open",)
         return (f"no cycle of the {self.model} model's {edges} simulated transitions goes "
-                f"toward {self.direction}; more open valves (--max-open) give the search "
-                "more valve states",)
+                f"within {MAX_HEADING_DEG:g} degrees of {self.direction}; more open valves "
+                "(--max-open) give the search more valve states",)
 
     def __str__(self) -> str:
         from gaitc.models.gait_graph import gait_rows

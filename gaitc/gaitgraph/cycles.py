@@ -24,6 +24,19 @@ from gaitc.gaitgraph.motion import Edges
 
 _NAMED = {"+x": 0.0, "-x": 180.0, "+y": 90.0, "-y": 270.0}
 
+#: The most a gait's net motion per cycle may turn from the direction asked for and still
+#: count as a gait towards it (degrees). At 30 degrees a gait drifts at most 0.58 cells
+#: sideways per cell forward, so a few steps along a corridor stay in it; a gait further
+#: off moves the robot another way than the map's, and is not offered (issue 60: one 85
+#: degrees off was ranked first).
+MAX_HEADING_DEG = 30.0
+
+
+def within_heading(along: float, lateral: float) -> bool:
+    """Whether a net motion ``along`` the direction asked for, with ``lateral`` drift, is
+    forward and within :data:`MAX_HEADING_DEG` of it."""
+    return along > 0 and math.degrees(math.atan2(abs(lateral), along)) <= MAX_HEADING_DEG
+
 
 def parse_direction(text: str, span: Span | None = None) -> tuple[float, float]:
     """``+x``, ``-x``, ``+y``, ``-y`` or an angle in degrees from +x, as a unit vector."""
@@ -146,7 +159,8 @@ def make_cycle(graph: GaitGraph, poses: list[int], rows: list[int]) -> GaitCycle
 
 def rank(cycles: list[GaitCycle], direction: tuple[float, float], length: float) -> list[GaitCycle]:
     """Score = forward displacement - |lateral drift| - body length · |rotation (rad)|;
-    cycles that do not move forward are dropped, duplicates (same poses) merged."""
+    cycles that do not move forward within :data:`MAX_HEADING_DEG` of ``direction`` are
+    dropped, duplicates (same poses) merged."""
     seen: set[tuple[int, ...]] = set()
     scored = []
     for c in cycles:
@@ -158,7 +172,7 @@ def rank(cycles: list[GaitCycle], direction: tuple[float, float], length: float)
         along = c.displacement[0] * direction[0] + c.displacement[1] * direction[1]
         lateral = -c.displacement[0] * direction[1] + c.displacement[1] * direction[0]
         score = along - abs(lateral) - length * abs(math.radians(c.rotation))
-        if along > graph_epsilon:
+        if along > graph_epsilon and within_heading(along, lateral):
             scored.append(GaitCycle(**{**c.__dict__, "score": score}))
     scored.sort(key=lambda c: (-round(c.score, 6), len(c.poses), c.poses))
     return scored

@@ -22,6 +22,7 @@ from dataclasses import dataclass
 
 import networkx as nx
 
+from gaitc.gaitgraph.cycles import within_heading
 from gaitc.models.motion import IDENTITY, MotionModel, Pose2D, ValveState
 
 ZERO_MOTION = 0.5  # mm: edges that move less are "still" (reset) edges, as in chapter 2
@@ -164,7 +165,7 @@ def _rank(
         along = net.x * ux + net.y * uy
         lateral = -net.x * uy + net.y * ux
         score = along - abs(lateral) - body_length * abs(net.theta)
-        if along > ZERO_MOTION:
+        if along > ZERO_MOTION and within_heading(along, lateral):
             out.append(ModelGait(canon, steps, net, score))
     out.sort(key=lambda g: (-round(g.score, 6), len(g.states), g.states))
     return out

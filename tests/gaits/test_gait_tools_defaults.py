@@ -35,10 +35,22 @@ def test_robot_files_name_their_models() -> None:
     assert load_robot(ASYMMETRIC6).models == ()
 
 
+#: silicone6 cannot walk sideways: its best cycle towards ±y goes 61 degrees off (6.2 mm
+#: along x for 3.4 mm along y), so no gait is offered there (issue 60)
+SIDEWAYS = {(SILICONE6, "+y"), (SILICONE6, "-y")}
+
+
 @pytest.mark.parametrize("robot", [RADIAL8, SILICONE6])
 @pytest.mark.parametrize("direction", sorted(UNIT))
 def test_the_robot_files_model_is_searched_by_default(robot: str, direction: str) -> None:
     found = gaitc.gaits(robot, gaitc.GaitOptions(direction))
+    if (robot, direction) in SIDEWAYS:
+        assert not found.found
+        assert found.hints == (
+            f"no cycle of the active-passive model's 42 simulated transitions goes within 30 "
+            f"degrees of {direction}; more open valves (--max-open) give the search more "
+            "valve states",)
+        return
     assert found.found, str(found)
     doc = found.to_json()
     assert doc["model"] == load_robot(robot).models[0]
@@ -48,7 +60,9 @@ def test_the_robot_files_model_is_searched_by_default(robot: str, direction: str
     for t in first["transitions"]:
         x, y, heading = compose(x, y, heading, Step(t["dx"], t["dy"], t["rotation"]))
     ux, uy = UNIT[direction]
-    assert x * ux + y * uy > 2.0
+    along, lateral = x * ux + y * uy, -x * uy + y * ux
+    assert along > 2.0
+    assert math.degrees(math.atan2(abs(lateral), along)) <= 30.0  # the way the map means
     assert (x, y) == pytest.approx(tuple(first["displacement"]), abs=0.01)
 
 
@@ -58,8 +72,9 @@ def test_kinematic_is_asked_for_by_name_and_the_reason_names_the_model(
     assert main(["gaits", RADIAL8, "--model", "kinematic", "--direction", "+x"]) == 1
     captured = capsys.readouterr()
     assert "no gait towards +x found" in captured.out
-    assert ("no cycle of the kinematic gait graph's 7768 transitions goes toward +x; drop "
-            "--model kinematic to search the robot file's spring-damper model") in captured.err
+    assert ("no cycle of the kinematic gait graph's 7768 transitions goes within 30 degrees "
+            "of +x; drop --model kinematic to search the robot file's spring-damper model"
+            ) in captured.err
 
 
 def test_a_global_search_on_a_motionless_graph_is_answered_without_searching(

@@ -147,3 +147,21 @@ def test_render_gaits_of_a_model_robot_says_what_has_no_drawing(
                    "drawing yet: the drawings are of the chapter 2 gait graph, which "
                    "--model kinematic searches\n")
     assert not (tmp_path / "out").exists() or not any((tmp_path / "out").iterdir())
+
+
+def test_a_cycle_far_off_the_direction_is_not_a_gait_towards_it() -> None:
+    """Issue 60: a gait moving 29.9 mm sideways and 2.7 mm the way asked (85 degrees off)
+    was ranked first for that direction. Only cycles within 30 degrees count; the rest
+    stay ranked by score."""
+    from gaitc.gaitgraph.cycles import MAX_HEADING_DEG, GaitCycle, rank
+
+    def cycle(poses: tuple[int, ...], dx: float, dy: float) -> GaitCycle:
+        return GaitCycle(poses, (), (), (dx, dy), 0.0, 0.0, 0.0)
+
+    off = cycle((0, 1), 29.9, -2.7)  # towards -y: 2.7 along, 29.9 across
+    edge = cycle((0, 2), 5.0, -8.7)  # 29.9 degrees off
+    past = cycle((0, 3), 5.0, -8.6)  # 30.2 degrees off
+    straight = cycle((0, 4), 0.5, -3.0)
+    ranked = rank([off, edge, past, straight], (0.0, -1.0), 0.0)
+    assert [c.poses for c in ranked] == [(0, 2), (0, 4)]
+    assert MAX_HEADING_DEG == 30.0
