@@ -186,6 +186,17 @@ def leg_mismatch(gait: Gait, seq: ValveSequence) -> str | None:
             f"({seq.source}) pressurises {', '.join(pressed) or 'no legs'}")
 
 
+def idle_fired(gait: Gait, seq: ValveSequence) -> str | None:
+    """Why running ``seq`` for ``gait`` would wear a leg the health reasoning takes as idle
+    (a leg it fires that the gait does not use; any leg for a correction gait), or None.
+    The board may not run such a gait (``drive``); firing fewer legs than the gait uses
+    only moves it less than planned, which the run's localisation reports."""
+    extra = [leg for leg in seq.pressurised_legs() if leg not in gait.legs]
+    if not extra:
+        return None
+    return leg_mismatch(gait, seq)
+
+
 def check_gaits(
     gaits: Sequence[Gait], spec_dir: str, legs: Sequence[str] | None = None,
     moves: Mapping[str, frozenset[tuple[str, str]]] | None = None,

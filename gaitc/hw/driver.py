@@ -28,7 +28,7 @@ from gaitc.gaitgraph.pairing import (
     MOVE_HINT,
     Resolver,
     ValveSequence,
-    leg_mismatch,
+    idle_fired,
     resolve_primitive,
 )
 from gaitc.hw.backend import (
@@ -94,7 +94,7 @@ def bind_primitives(model: Model, spec_dir: str,
             'or name a robot file with primitive "ROBOT.yaml" direction +x')
     bound = {g.name: (resolve or resolve_primitive)(g, spec_dir, legs) for g in gaits}
     for g in gaits:  # the board must fire only the legs the health reasoning wears
-        wrong = leg_mismatch(g, bound[g.name])
+        wrong = idle_fired(g, bound[g.name])
         if wrong is not None:
             span = g.primitive.span if g.primitive is not None and g.primitive.span else g.span
             raise SpecSemanticError(
