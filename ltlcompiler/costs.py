@@ -51,13 +51,27 @@ def _levels_lost(hazard: Hazard, level: int) -> int:
     return level - 1 if hazard.wears is None else min(hazard.wears, level - 1)
 
 
+def by_severity(hazards: Sequence[Hazard]) -> list[Hazard]:
+    """``hazards``, the worst first: those that fail the legs (eq. 3.9), then the graded
+    ones by the levels they may take (most first), ties in the spec's order."""
+    return sorted(hazards, key=lambda h: (h.wears is not None, -(h.wears or 0)))
+
+
 def _hazard(model: Model, enc: Encoding) -> Cost:
+    """One term a hazard, the worst first (:func:`by_severity`): a move with a gait that
+    wears legs into (or within) a region of that hazard while it is active.  Hazard sets
+    are mutually exclusive, so at most one term holds and a move's cost is 0 or 1; the
+    solver also avoids the hazards one by one, the worst first
+    (:class:`gaitc.solver.preferences.MovePreferences`)."""
     meaning = "do not enter (or walk in) a region of the active hazard set"
     wearing = [g for g, legs in _moving(model) if legs]
     if not model.hazards or not wearing:
         return Cost("hazard", meaning)
-    return Cost("hazard", meaning,
-                ((1, conj((_hot(model, enc), disj(enc.gait(g, True) for g in wearing)))),))
+    gait = disj(enc.gait(g, True) for g in wearing)
+    ranked = by_severity(model.hazards)
+    return Cost("hazard", meaning, tuple((1, conj((_hot(model, enc, (h,)), gait)))
+                                         for h in ranked),
+                labels=tuple(h.name for h in ranked))
 
 
 def _health(model: Model, enc: Encoding) -> Cost:

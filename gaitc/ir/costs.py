@@ -21,7 +21,10 @@ class Cost:
     name: str
     meaning: str
     terms: tuple[tuple[int, Expr], ...] = ()
+    labels: tuple[str, ...] = ()  # what each term is, in progress words (may be empty)
 
     def __post_init__(self) -> None:
         if any(weight < 1 for weight, _ in self.terms):
             raise ValueError(f"cost {self.name!r}: every weight must be at least 1")
+        if self.labels and len(self.labels) != len(self.terms):
+            raise ValueError(f"cost {self.name!r}: one label a term, or none")

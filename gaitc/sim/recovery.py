@@ -22,6 +22,11 @@ keeps its assumptions again.  So the question is only where the jump lands:
 - **stopped**: no goal is achievable; the robot heads for a cache when reaching one can be
   guaranteed (the game whose one goal is "in a cache"), and stops there, or stops at once.
 
+Each game's controller keeps the run's move preferences (:mod:`gaitc.solver.preferences`,
+the default order unless told): after a surprise the robot still waits out a hazard it can
+wait out, and its entry into the winning region is a move of the best hazard-avoiding game
+it can enter, when there is one (issue 60).
+
 The games are solved without the care set (:class:`~gaitc.solver.options.Options`
 ``care=False``): after a surprise the state may lie outside the invariants ρe keeps, where
 the care-set solution is not exact.  Each winning region depends on the set of goals only,
@@ -46,8 +51,10 @@ from gaitc.sim.domain import Domain
 from gaitc.sim.symbolic_view import SymbolicStrategy
 from gaitc.solver.canonical import spec_integers
 from gaitc.solver.game import Game
+from gaitc.solver.preferences import PREFERENCES, MovePreferences
 from gaitc.solver.symbolic import Options, SymbolicSpec
 from gaitc.solver.symbolic_strategy import symbolic_controller
+from ltlcompiler.costs import model_costs
 from ltlcompiler.encoding import make_encoding
 
 #: The most goal sets of two or more goals a surprise tries (each a game solved once per
@@ -76,6 +83,7 @@ class _Solved:
 
     runtime: SymbolicStrategy
     entering: Any
+    avoiding: tuple[Any, ...]  # the entries of the hazard-avoiding games, best first
     bits: Mapping[str, tuple[str, ...]]  # each spec variable's bits, least significant first
     lows: Mapping[str, int]  # each integer variable's lowest value
 
@@ -87,6 +95,7 @@ class Fallback:
     spec: GR1Spec
     domain: Domain
     semantics: Semantics = Semantics.DEFAULT
+    prefer: tuple[str, ...] = PREFERENCES  # the move preferences of the games' strategies
     _games: dict[tuple[str, ...], _Solved | None] = field(default_factory=dict, repr=False)
 
     @property
@@ -157,14 +166,19 @@ class Fallback:
         result = Game(sym, purpose="solving the fallback game").solve(keep_layers=True)
         solved = None
         if result.winning != sym.bdd.false:
-            ctrl = symbolic_controller(sym, result, self.semantics)
-            order, nodes, refs = node_table(sym.bdd, {"entering": sym.sys_trans & sym.prime(
-                result.winning)})
+            prefer = None
+            if self.prefer:
+                costs = model_costs(self.domain.model, self.domain.encoding)
+                prefer = MovePreferences(sym, result, costs, self.prefer)
+            ctrl = symbolic_controller(sym, result, self.semantics, prefer)
+            avoiding = [] if prefer is None else [g.entering for g in prefer.avoiding]
+            order, nodes, refs = node_table(sym.bdd, {
+                "entering": sym.sys_trans & sym.prime(result.winning), "avoiding": avoiding})
             runtime = SymbolicStrategy(ctrl, variant, "<fallback>")
             extra = replace(ctrl, order=order, nodes=nodes, roots=refs)
-            entering = materialize(runtime.bdd, extra)["entering"]
+            made = materialize(runtime.bdd, extra)
             integers = spec_integers(sym)
-            solved = _Solved(runtime, entering,
+            solved = _Solved(runtime, made["entering"], tuple(made["avoiding"]),
                              {name: tuple(bits) for name, bits in sym.var_bits.items()},
                              {name: iv.low for name, iv in integers.items()
                               if len(iv.bits) == len(sym.var_bits.get(name, ()))})
@@ -175,7 +189,8 @@ class Fallback:
                inputs: Mapping[str, int], pursuing: int, kept: tuple[int, ...]
                ) -> tuple[SymbolicStrategy, int] | None:
         """The node of the game's strategy that a move from ``before`` with ``inputs``
-        enters, in the winning region (None: no move ρs allows lands there)."""
+        enters, in the winning region (None: no move ρs allows lands there): a move into
+        the best hazard-avoiding game's winning region that avoids its hazards, if any."""
         solved = self._game(liveness)
         if solved is None:
             return None
@@ -186,13 +201,16 @@ class Fallback:
         ins = {b for v in self.spec.inputs for b in solved.bits[v.name]}
         pre = _bits(solved, was)
         post_in = {b + "'": value for b, value in _bits(solved, now).items() if b in ins}
-        moves = runtime.bdd.let(pre | post_in, solved.entering)
         outs = list(runtime.post_out)
-        try:
-            y = first_assignment(runtime.bdd, moves, outs, runtime.rank)
-        except ValueError:  # the relation reads bits outside the state: no move to take
-            return None
-        if y is None:
+        for entering in (*solved.avoiding, solved.entering):
+            moves = runtime.bdd.let(pre | post_in, entering)
+            try:
+                y = first_assignment(runtime.bdd, moves, outs, runtime.rank)
+            except ValueError:  # the relation reads bits outside the state: no move to take
+                return None
+            if y is not None:
+                break
+        else:
             return None
         state = {b.removesuffix("'"): bool(v) for b, v in post_in.items()}
         state |= {b.removesuffix("'"): bool(v) for b, v in zip(outs, y, strict=True)}

@@ -6,10 +6,22 @@ non-empty subset of them is still winning.  :class:`MovePreferences` narrows the
 set criterion by criterion, in the order asked for, keeping at each criterion the cheapest
 candidates: the costs of :mod:`gaitc.ir.costs` (weighted terms over the move), and ``goal``,
 the fewest Y rings between the next state and the goal pursued (the fixpoint's own
-distance measure).  With ``hazard`` it also solves the game without the hazard moves: in
-that game's winning region its strategy is played instead (it never leaves the region,
-so the composed controller is still winning; the verifier checks it like any other).
-Issue 13; SLUGS's cost-annotated specs are the neighbouring idea.
+distance measure).  Issue 13; SLUGS's cost-annotated specs are the neighbouring idea.
+
+With ``hazard`` it also avoids the hazards themselves, one by one, the worst first (the
+terms of the ``hazard`` cost, one a hazard, :func:`ltlcompiler.costs.by_severity`).  For
+sets S of hazards it solves the game whose moves never enter an active hazard of S
+(:class:`Avoiding`), and ranks the sets lexicographically: S is better than S' when the
+worst hazard in which they differ is in S, so avoiding the forklift that breaks legs comes
+before avoiding any number of spills that wear them (issue 60).  At each state and next
+input the controller takes a move of the best set it can keep to: inside that game's
+winning region W_S its strategy (which never leaves W_S), else a move of ρs that avoids S
+and enters W_S.  So it never enters an active hazard while some move avoids it and still
+wins, unless that would give up a worse one.  The set kept to only gets better along a
+run (a move of S's strategy stays in W_S, an entry goes to a better set), so after
+finitely many changes one strategy is played for ever and the run wins as that game's
+does: the composed controller is still winning, and the verifier checks it like any
+other.
 """
 
 from __future__ import annotations
@@ -17,6 +29,8 @@ from __future__ import annotations
 import copy
 import operator
 from collections.abc import Callable, Iterable, Mapping, Sequence
+from dataclasses import dataclass
+from itertools import combinations
 from typing import Any, Final
 
 from gaitc.diagnostics import UsageError
@@ -36,6 +50,10 @@ MEANINGS: Final = {
     "switches": "switch gait as rarely as possible",
 }
 NONE: Final = "none"
+#: Past this many hazards that can each be avoided alone, the sets of two or more that
+#: :class:`MovePreferences` solves a game for are only the worst k, for each k (all the
+#: sets would be 2^n games).
+ALL_SETS_UP_TO: Final = 4
 
 
 def preference_order(asked: str | Iterable[str] | None) -> tuple[str, ...]:
@@ -64,6 +82,26 @@ def fewer_moves(sym: SymbolicSpec, allowed: BDDNode) -> SymbolicSpec:
     strict.game_sys_trans = sym.game_sys_trans & allowed
     strict.sys_clusters = []
     return strict
+
+
+@dataclass(frozen=True)
+class Avoiding:
+    """The game in which the robot never enters an active hazard of a set: ``hazards``
+    (indices into the ``hazard`` terms, worst first), its winning region (over the
+    state), each goal's strategy, ``entering``: the moves of ρs that avoid those hazards
+    and land in the winning region (over the state and the next state), and ``reach``:
+    the states and next inputs where one of the two has a move (the strategy has one for
+    every input ρe allows inside the winning region)."""
+
+    hazards: tuple[int, ...]
+    winning: BDDNode
+    strategies: tuple[BDDNode, ...]
+    entering: BDDNode
+    reach: BDDNode  # a state and next input where it can be kept to: W ∨ ∃y'. entering
+
+    def rank(self, count: int) -> tuple[bool, ...]:
+        """The sort key that puts better sets first (see the module's docstring)."""
+        return tuple(i not in self.hazards for i in range(count))
 
 
 class MovePreferences:
@@ -98,33 +136,78 @@ class MovePreferences:
         self._chosen: dict[tuple[int, BDDNode, Any], BDDNode] = {}  # see choose
         self._chosen_limit = REMEMBERED
         self._read_by_goal: dict[int, Callable[[Mapping[str, bool]], Any]] = {}
-        self.safe: BDDNode = sym.bdd.false  # where the robot can avoid hazards for ever
-        self.safe_strategies: list[BDDNode] = []
+        #: The hazard-avoiding games won somewhere, the best set first (see the module's
+        #: docstring): :meth:`allowed` and :meth:`relation` take, at each state and next
+        #: input, the first one the robot can keep to.
+        self.avoiding: list[Avoiding] = []
         hazard = self.terms.get("hazard", [])
         if hazard:
-            self._avoiding_game([t for _, t in hazard], limits)
+            found = by_name.get("hazard")
+            self._hazard_names = (found.labels if found is not None and found.labels
+                                  else tuple(str(k + 1) for k in range(len(hazard))))
+            self.avoiding = self._avoiding_games([t for _, t in hazard], limits)
 
-    def _avoiding_game(self, hazards: Sequence[BDDNode], limits: Limits | None) -> None:
-        """Solve the game without the hazard moves: where it is won, its strategy avoids
-        every active hazard for ever and still reaches every goal."""
+    def _avoiding_games(self, hazards: Sequence[BDDNode], limits: Limits | None
+                        ) -> list[Avoiding]:
+        """The games that avoid sets of ``hazards`` (moves, worst first), each won
+        somewhere, the best set first.  A set's winning region lies inside each of its
+        subsets' (fewer moves win no more states), so a set is tried only when all of its
+        one-smaller subsets are won somewhere, and its fixpoint starts from their
+        intersection (:meth:`Game.solve`'s ``within``)."""
+        solved: dict[tuple[int, ...], Avoiding] = {}
+        alone = [i for i in range(len(hazards))
+                 if self._avoiding((i,), hazards, self.winning, limits, solved)]
+        sizes = range(2, len(alone) + 1)
+        for size in sizes:
+            sets = (combinations(alone, size) if len(alone) <= ALL_SETS_UP_TO
+                    else [tuple(alone[:size])])
+            for chosen in sets:
+                within = self.winning
+                for smaller in combinations(chosen, size - 1):
+                    found = solved.get(smaller)
+                    within = within & found.winning if found is not None else self.sym.bdd.false
+                if within != self.sym.bdd.false:
+                    self._avoiding(chosen, hazards, within, limits, solved)
+        return sorted(solved.values(), key=lambda a: a.rank(len(hazards)))
+
+    def _avoiding(self, chosen: tuple[int, ...], hazards: Sequence[BDDNode], within: BDDNode,
+                  limits: Limits | None, solved: dict[tuple[int, ...], Avoiding]) -> bool:
+        """Solve the game that avoids the hazards ``chosen`` (its winning region inside
+        ``within``); keep it in ``solved`` when it is won somewhere."""
         sym = self.sym
         avoid = sym.bdd.true
-        for term in hazards:
-            avoid &= ~term
+        for i in chosen:
+            avoid &= ~hazards[i]
         strict = fewer_moves(sym, avoid)
         purpose = "solving the game without entries into active hazards"
-        # Fewer moves win no more states: Z starts from the full game's winning region.
-        result = Game(strict, limits, purpose).solve(keep_layers=True, within=self.winning)
-        self.safe = result.winning
-        self.safe_strategies = goal_strategies(strict, result)
+        if len(hazards) > 1:
+            purpose += f" {', '.join(self._hazard_names[i] for i in chosen)}"
+        result = Game(strict, limits, purpose).solve(keep_layers=True, within=within)
+        if result.winning == sym.bdd.false:
+            return False
+        kept = sym.sys_trans & avoid
+        landing = sym.prime(result.winning)
+        entering = kept & landing
+        reach = result.winning | cudd.and_exists(kept, landing, sym.post_outputs)
+        solved[chosen] = Avoiding(chosen, result.winning,
+                                  tuple(goal_strategies(strict, result)), entering, reach)
+        return True
 
     def allowed(self, at: Mapping[str, bool], goal: int, moves: BDDNode) -> BDDNode:
-        """The moves to choose from at the state ``at`` (pre variables) for goal ``goal``:
-        inside the hazard-avoiding game's winning region its strategy's (which never
-        leave it), else ``moves``, the strategy's own (a BDD over post variables)."""
-        if self.safe == self.sym.bdd.false or not holds_at(self.safe, at):
-            return moves
-        return self.sym.bdd.let(dict(at), self.safe_strategies[goal])
+        """The moves to choose from at the state ``at`` (pre variables) for goal ``goal``,
+        a BDD over the next inputs and outputs: for each next input, those of the best
+        hazard-avoiding game the robot can keep to (its strategy's inside its winning
+        region, else its entries), else ``moves``, the strategy's own."""
+        bdd = self.sym.bdd
+        chosen, met = bdd.false, bdd.false  # the moves taken, and the next inputs they cover
+        for game in self.avoiding:
+            if holds_at(game.winning, at):  # a move for every input ρe allows
+                return chosen | (bdd.let(dict(at), game.strategies[goal]) & ~met)
+            here = bdd.let(dict(at), game.entering) & ~met
+            if here != bdd.false:
+                chosen |= here
+                met |= bdd.exist(self.sym.post_outputs, here)
+        return chosen | (moves & ~met)
 
     def choose(self, at: Mapping[str, bool], goal: int, choices: BDDNode) -> BDDNode:
         """The preferred non-empty part of ``choices`` (a BDD over the primed outputs, the
@@ -185,14 +268,9 @@ class MovePreferences:
         known = self._relations.get(goal)
         if known is not None and known[0] == strategy:
             return known[1]
-        bdd = self.sym.bdd
         moves = self._simplified(strategy)
-        if self.safe != bdd.false:
-            # One if-then-else: the two halves as conjunctions first can be a hundred
-            # times larger (thesis 10 x 10 health 3: 3 million nodes each, 10 s).
-            safe = self._simplified(self.safe_strategies[goal])
-            moves = self._simplified(bdd.ite(self.safe, safe, moves))
-            yield
+        if self.avoiding:
+            moves = yield from self._avoiding_relation(goal, moves)
         # ρe never names a next output (gaitc.solver.synthesis checks it), so every move of the
         # strategy keeps it: the explicit extraction's preference for such moves is moot.
         for name in self.order:
@@ -204,14 +282,46 @@ class MovePreferences:
         self._relations[goal] = (strategy, moves)
         return moves
 
+    def _avoiding_relation(self, goal: int, strategy: BDDNode) -> Steps[BDDNode]:
+        """:meth:`allowed` at every state and input at once: per game, best first, its moves
+        where the robot can keep to it and no better game, else ``strategy``'s.
+
+        Built from the worst game outwards as if-then-elses (the halves as conjunctions can
+        be a hundred times larger: thesis 10 x 10 health 3, 3 million nodes each, 10 s),
+        every part, the conditions too, simplified where it decides: where a run can be
+        and no better game can be kept to.  The best game is usually kept to almost
+        everywhere, so the worse ones shrink to little.  Hexapod warehouse, 3 games: the
+        best game's if-then-else had 1.1 million nodes and took 6.5 s with unsimplified
+        conditions, and has 13,228 and takes 0.2 s so."""
+        bdd = self.sym.bdd
+        self._simplified(bdd.false)  # makes self.care
+        assert self.care is not None
+        cares = [self.care]  # where the i-th game decides, if it can be kept to
+        for game in self.avoiding:
+            cares.append(cares[-1] & ~game.reach)
+            yield
+        deciding = len(self.avoiding)
+        while deciding > 0 and cares[deciding - 1] == bdd.false:
+            deciding -= 1  # no state is left for this game: the better ones cover all
+        moves = _kept(strategy, cares[deciding])
+        for k in range(deciding - 1, -1, -1):
+            game, care = self.avoiding[k], cares[k]
+            where = care & game.reach
+            inside = bdd.ite(_kept(game.winning, where),
+                             _kept(game.strategies[goal], where & game.winning),
+                             _kept(game.entering, where & ~game.winning))
+            yield
+            moves = _kept(bdd.ite(_kept(game.reach, care), _kept(inside, where), moves), care)
+            yield
+        return moves
+
     def _simplified(self, moves: BDDNode) -> BDDNode:
         """``moves`` unchanged where a run can be (a winning state, an input ρe allows),
         free elsewhere: CUDD's restrict often shrinks the BDD there, else it is kept."""
         if self.care is None:
             sym = self.sym
             self.care = self.winning & sym.bdd.exist(sym.post_outputs, sym.env_trans)
-        smaller = cudd.restrict(moves, self.care)
-        return smaller if len(smaller) < len(moves) else moves
+        return _kept(moves, self.care)
 
     def levels(self, name: str) -> list[BDDNode]:
         """The moves by the cost criterion ``name`` gives them, cheapest first: per cost, the
@@ -301,6 +411,12 @@ class MovePreferences:
             return choices
         met = here & rings[low]
         return cofactor(bdd, inputs, met)
+
+
+def _kept(moves: BDDNode, care: BDDNode) -> BDDNode:
+    """``moves`` where ``care`` holds, free elsewhere: CUDD's restrict when it is smaller."""
+    smaller = cudd.restrict(moves, care)
+    return smaller if len(smaller) < len(moves) else moves
 
 
 def _distinct(rings: Sequence[BDDNode]) -> list[BDDNode]:
