@@ -227,8 +227,34 @@ class _Checker:
         order = list(self.health)
         used.sort(key=order.index)
         kind = GaitKind.CORRECTION if st.correction else GaitKind.MOVE
-        return Gait(name, kind, tuple(used), span=st.span, primitive=self._primitive(st),
+        gait = Gait(name, kind, tuple(used), span=st.span, primitive=self._primitive(st),
                     fired=fired)
+        self._inline_valves(gait, st)
+        return gait
+
+    def _inline_valves(self, gait: Gait, st: s.GaitDecl) -> None:
+        """Inline valves give one 0/1 per leg, in the order the legs are declared, and may
+        fire no leg the gait does not use (none for a correction gait): every command that
+        reads the spec refuses a gait whose valves would wear a leg the health reasoning
+        takes as idle (:meth:`Gait.idle_fired`; issue 60)."""
+        prim = st.primitive
+        if gait.primitive is None or not gait.primitive.valves or isinstance(
+                prim, s.RobotPrimitive) or prim is None:
+            return
+        legs = list(self.health)
+        for state in prim.states:
+            if len(state.text) != len(legs):
+                raise SpecSemanticError(
+                    f"valve state '{state.text}' has {len(state.text)} valves, but the robot "
+                    f"has {len(legs)} legs; inline valves give one 0/1 per leg, in the order "
+                    f"the legs are declared ({', '.join(legs)})",
+                    state.span,
+                )
+        pressed = [leg for i, leg in enumerate(legs)
+                   if any(t.text[i] == "1" for t in prim.states)]
+        wrong = gait.idle_fired(pressed, "inline")
+        if wrong is not None:
+            raise SpecSemanticError(wrong[0], prim.span or st.span, wrong[1])
 
     def _primitive(self, st: s.GaitDecl) -> Primitive | None:
         prim = st.primitive

@@ -12,8 +12,10 @@ compares a leg's health level (1 = failed, ``health`` = full).
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from enum import Enum
+from typing import Final
 
 from gaitc.diagnostics import Span
 from gaitc.ir.formula import Expr
@@ -73,6 +75,39 @@ class Gait:
     def firing_order(self) -> tuple[str, ...]:
         """The legs in the order they are pressurised: as the gait names them."""
         return self.fired or self.legs
+
+    def valve_mismatch(self, pressed: Sequence[str], source: str) -> tuple[str, str] | None:
+        """Why valves that pressurise the legs ``pressed`` cannot run this gait as the
+        health reasoning has it, with the remedy, or None.  A move gait's valves must
+        pressurise exactly the legs it uses, a correction gait's none (it wears no leg,
+        eq. 3.5), so the board never fires a leg the reasoning takes as idle.  ``source``
+        says where the valves come from ("inline", a robot file's gait)."""
+        if self.kind is GaitKind.CORRECTION:
+            if not pressed:
+                return None
+            return (f"correction gait {self.name} wears no leg, but its primitive ({source}) "
+                    f"pressurises {', '.join(pressed)}", CORRECTION_HINT)
+        if set(pressed) == set(self.legs):
+            return None
+        return (f"gait {self.name} uses {', '.join(self.legs) or 'no legs'} but its primitive "
+                f"({source}) pressurises {', '.join(pressed) or 'no legs'}", MOVE_HINT)
+
+    def idle_fired(self, pressed: Sequence[str], source: str) -> tuple[str, str] | None:
+        """:meth:`valve_mismatch` when the valves pressurise a leg this gait does not use
+        (any leg, for a correction gait), which would wear a leg the health reasoning
+        takes as idle: no command may take such a gait.  Firing fewer legs than the gait
+        uses only moves it less than planned (``lint`` reports it, and a drive's
+        localisation), so that alone is None here."""
+        if all(leg in self.legs for leg in pressed):
+            return None
+        return self.valve_mismatch(pressed, source)
+
+
+#: The remedies of :meth:`Gait.valve_mismatch`'s two cases.
+MOVE_HINT: Final = "the spec's leg-to-gait map drives the health reasoning; make them agree"
+CORRECTION_HINT: Final = ("a correction gait wears no leg (thesis 3.4.1): its valves may move "
+                          "the body, not a leg; make it a move gait that uses the legs, or "
+                          "change its valves")
 
 
 @dataclass(frozen=True)

@@ -163,38 +163,17 @@ def _primitive_hint(gait: Gait, order: Sequence[str]) -> str:
             f"{', '.join(order)}) or {robot_file}")
 
 
-#: The remedies of :func:`leg_mismatch`'s two cases.
-MOVE_HINT = "the spec's leg-to-gait map drives the health reasoning; make them agree"
-CORRECTION_HINT = ("a correction gait wears no leg (thesis 3.4.1): its valves may move the "
-                   "body, not a leg; make it a move gait that uses the legs, or change its "
-                   "valves")
+def leg_mismatch(gait: Gait, seq: ValveSequence) -> tuple[str, str] | None:
+    """Why ``seq`` cannot run ``gait`` as the spec's health reasoning has it, and the
+    remedy, or None (:meth:`ltlcompiler.model.Gait.valve_mismatch`: a move gait's valves
+    pressurise exactly its legs, a correction gait's none)."""
+    return gait.valve_mismatch(seq.pressurised_legs(), seq.source)
 
 
-def leg_mismatch(gait: Gait, seq: ValveSequence) -> str | None:
-    """Why ``seq`` cannot run ``gait`` as the spec's health reasoning has it, or None: a
-    move gait's valves must pressurise exactly the legs it uses, a correction gait's none
-    (it wears no leg, eq. 3.5), so the board never fires a leg the reasoning takes as idle."""
-    pressed = seq.pressurised_legs()
-    if gait.kind is GaitKind.CORRECTION:
-        if not pressed:
-            return None
-        return (f"correction gait {gait.name} wears no leg, but its primitive ({seq.source}) "
-                f"pressurises {', '.join(pressed)}")
-    if set(pressed) == set(gait.legs):
-        return None
-    return (f"gait {gait.name} uses {', '.join(gait.legs) or 'no legs'} but its primitive "
-            f"({seq.source}) pressurises {', '.join(pressed) or 'no legs'}")
-
-
-def idle_fired(gait: Gait, seq: ValveSequence) -> str | None:
-    """Why running ``seq`` for ``gait`` would wear a leg the health reasoning takes as idle
-    (a leg it fires that the gait does not use; any leg for a correction gait), or None.
-    The board may not run such a gait (``drive``); firing fewer legs than the gait uses
-    only moves it less than planned, which the run's localisation reports."""
-    extra = [leg for leg in seq.pressurised_legs() if leg not in gait.legs]
-    if not extra:
-        return None
-    return leg_mismatch(gait, seq)
+def idle_fired(gait: Gait, seq: ValveSequence) -> tuple[str, str] | None:
+    """Why running ``seq`` for ``gait`` would wear a leg the health reasoning takes as idle,
+    with the remedy, or None (:meth:`ltlcompiler.model.Gait.idle_fired`)."""
+    return gait.idle_fired(seq.pressurised_legs(), seq.source)
 
 
 def check_gaits(
@@ -236,7 +215,7 @@ def check_gaits(
         if gait.kind is not GaitKind.MOVE:
             wrong = leg_mismatch(gait, seq)
             if wrong is not None:
-                out.append(Diagnostic(wrong, span, "error", CORRECTION_HINT))
+                out.append(Diagnostic(wrong[0], span, "error", wrong[1]))
             continue
         resolved[gait.name] = seq
         known = set(seq.leg_of_valve)
@@ -254,7 +233,7 @@ def check_gaits(
             continue
         wrong = leg_mismatch(gait, seq)
         if wrong is not None:
-            out.append(Diagnostic(wrong, span, "error", MOVE_HINT))
+            out.append(Diagnostic(wrong[0], span, "error", wrong[1]))
     if moves is not None:
         out += _same_sequences(gaits, resolved, moves)
     return out

@@ -24,8 +24,6 @@ from typing import Protocol
 from gaitc.core.modes import SurprisePolicy, ViolationPolicy
 from gaitc.diagnostics import SpecSemanticError
 from gaitc.gaitgraph.pairing import (
-    CORRECTION_HINT,
-    MOVE_HINT,
     Resolver,
     ValveSequence,
     idle_fired,
@@ -97,9 +95,7 @@ def bind_primitives(model: Model, spec_dir: str,
         wrong = idle_fired(g, bound[g.name])
         if wrong is not None:
             span = g.primitive.span if g.primitive is not None and g.primitive.span else g.span
-            raise SpecSemanticError(
-                f"cannot drive the robot: {wrong}", span,
-                MOVE_HINT if g.kind is GaitKind.MOVE else CORRECTION_HINT)
+            raise SpecSemanticError(f"cannot drive the robot: {wrong[0]}", span, wrong[1])
     counts = {len(seq.states[0]) for seq in bound.values() if seq.states}
     if len(counts) > 1:
         detail = ", ".join(f"{name}: {len(seq.states[0])}" for name, seq in sorted(bound.items())

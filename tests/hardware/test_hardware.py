@@ -8,11 +8,13 @@ from __future__ import annotations
 
 import itertools
 import json
+from collections.abc import Sequence
 from pathlib import Path
 
 import pytest
 from fake_board import TINY
 
+import gaitc
 from gaitc.api.simulation import Session, session
 from gaitc.cli import main
 from gaitc.diagnostics import SpecSemanticError
@@ -169,23 +171,48 @@ def test_cli_drive_missing_primitives(tmp_path: Path, capsys: pytest.CaptureFixt
     assert "bind one to each gait" in err
 
 
-def test_cli_drive_refuses_valves_that_fire_a_leg_the_gait_does_not_use(
+def test_every_command_refuses_valves_that_fire_a_leg_the_gait_does_not_use(
         tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     """Issue 60: ``lint`` refused a move gait whose valves fire a leg it does not use, but
-    ``drive`` ran it: the board wore L2 while the health reasoning took it as idle. Drive
-    refuses it now before any valve moves, at the primitive's line."""
+    ``check`` and ``synth`` accepted it and ``drive`` ran it: the board wore L2 while the
+    health reasoning took it as idle.  Every command that reads the spec refuses it now,
+    at the primitive, before any valve moves."""
     spec = tmp_path / "crossed.gait"
     spec.write_text(TINY.replace("uses L1 moves east valves 10, 00",
                                  "uses L1 moves east valves 11, 00"), encoding="utf-8")
     out = tmp_path / "run.jsonl"
-    assert main(["drive", str(spec), "--out", str(out)]) == 1
-    err = capsys.readouterr().err
     line = next(k for k, text in enumerate(TINY.splitlines(), 1) if text.startswith("gait east"))
-    assert f"{spec}:{line}:" in err
-    assert "error: cannot drive the robot: gait east uses L1 but its primitive (inline) " \
-           "pressurises L1, L2" in err
-    assert "make them agree" in err
-    assert not out.exists()
+    for command in (["check"], ["synth", "-o", str(tmp_path / "c.json")],
+                    ["simulate", "--steps", "3"], ["lint"], ["drive", "--out", str(out)]):
+        assert main([command[0], str(spec), *command[1:]]) == 1, command
+        err = capsys.readouterr().err
+        assert f"{spec}:{line}:" in err
+        assert "error: gait east uses L1 but its primitive (inline) pressurises L1, L2" in err
+        assert "make them agree" in err
+    assert not out.exists() and not (tmp_path / "c.json").exists()
+
+
+def test_drive_refuses_a_resolved_primitive_that_fires_an_idle_leg(tmp_path: Path) -> None:
+    """A robot file's primitive is resolved only when the board needs it: ``drive`` checks
+    what the resolver gives (here a robot file's gait on both legs for a gait using L1)."""
+    from gaitc.gaitgraph.pairing import ValveSequence
+    from ltlcompiler.model import Gait
+
+    spec = tmp_path / "tiny.gait"
+    spec.write_text(TINY, encoding="utf-8")
+    loaded = gaitc.load(spec)
+    assert loaded.model is not None
+
+    def crossed(gait: Gait, spec_dir: str, legs: Sequence[str] | None = None) -> ValveSequence:
+        if gait.name != "east":
+            return resolve_primitive(gait, spec_dir, legs)
+        return ValveSequence(("11", "00"), ("L1", "L2"), "robot file gait crab")
+
+    with pytest.raises(SpecSemanticError) as caught:
+        bind_primitives(loaded.model, str(tmp_path), crossed)
+    assert caught.value.message == ("cannot drive the robot: gait east uses L1 but its "
+                                    "primitive (robot file gait crab) pressurises L1, L2")
+    assert caught.value.hint is not None and "make them agree" in caught.value.hint
 
 
 def test_cli_drive_usage_errors(tiny_spec: Path, capsys: pytest.CaptureFixture[str]) -> None:

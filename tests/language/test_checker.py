@@ -153,14 +153,14 @@ def test_leading_zero_ranges_keep_width() -> None:
 def test_primitive_binding() -> None:
     text = (
         'legs L1 health 2 gait g uses L1 moves east primitive "robots/r.yaml" direction -y '
-        "method full gait h uses L1 moves east valves 01, 10 grid 1 x 2 start r0"
+        "method full gait h uses L1 moves east valves 1, 0 grid 1 x 2 start r0"
     )
     model, _ = model_from_text(text, "p.gait")
     g, h = model.gait("g").primitive, model.gait("h").primitive
     assert g is not None and (g.robot, g.direction, g.method, g.valves) == (
         "robots/r.yaml", "-y", "full", (),
     )
-    assert h is not None and h.valves == ("01", "10") and h.robot is None
+    assert h is not None and h.valves == ("1", "0") and h.robot is None
 
 
 def test_edge_direction_and_grid_cells_mix() -> None:
