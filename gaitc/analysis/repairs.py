@@ -256,10 +256,15 @@ def _all_health_edit(model: Model, lines: list[str], level: int, cost: int) -> _
             return None
         replaced.append((number, (statement[: found.start(1)] + str(level)
                                   + statement[found.end(1):] + comment,)))
-    failed = any(leg.health == 1 for leg in model.legs)
-    who = "every working leg's" if failed else "every leg's"
-    return _Edit(f"raise {who} health to {level}", cost, ALL_RAISE, tuple(replaced),
-                 subject="*")
+    raised = [leg.name for leg in model.legs if 1 < leg.health < level]
+    if len(raised) < len([leg for leg in model.legs if leg.health > 1]):
+        # the others have the level already: the label names the legs the edit raises
+        what = (f"raise legs {name_list(raised)} to health {level} (the other working "
+                f"legs have {level} or more)")
+    else:
+        failed = any(leg.health == 1 for leg in model.legs)
+        what = f"raise {'every working leg' if failed else 'every leg'}'s health to {level}"
+    return _Edit(what, cost, ALL_RAISE, tuple(replaced), subject="*")
 
 
 def _cache_sites(model: Model, visited: Sequence[str]) -> list[str]:
@@ -423,8 +428,9 @@ def _gait_edits(model: Model, lines: list[str], failed: Sequence[str]) -> Iterat
         if len(healthy) < len(gait.legs) or set(gait.legs) <= set(healthy):
             continue
         line = lines[gait.span.line - 1]
+        statement, _ = _split(line)  # the gait's comment is about the gait, not the new one
         found = re.match(r"(\s*gait\s+)(\w+)(\s+uses\s+)(.*?)(\s+moves\b.*?)"
-                         r"(\s+(valves|primitive)\b.*)?$", line)
+                         r"(\s+(valves|primitive)\b.*)?$", statement.rstrip())
         if found is None:
             continue
         new_name = next(f"{gait.name}_{k}" for k in range(2, 100)

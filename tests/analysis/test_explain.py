@@ -242,6 +242,47 @@ def test_a_gait_on_the_spare_leg_is_a_repair() -> None:
     assert gaitc.check(gaitc.parse(added[0].text, name="spare.gait")).realizable
 
 
+def test_an_added_gait_does_not_copy_the_comment_of_its_model() -> None:
+    """Issue 60: the new gait's line took the old gait's comment along."""
+    text = (DATA / "spare_leg.gait").read_text(encoding="utf-8").replace(
+        "gait east uses L1 moves east", "gait east uses L1 moves east  # the front leg")
+    why = gaitc.explain(gaitc.parse(text, name="commented.gait"))
+    added = [r for r in why.repairs if r.change.startswith("add gait")]
+    assert added[0].diff == ("+gait east_2 uses L3 moves east",)
+    assert "gait east uses L1 moves east  # the front leg\n" in added[0].text
+
+
+def test_raising_every_legs_health_edits_every_line_that_declares_legs() -> None:
+    """Legs declared on two lines: the label says every leg, so both lines change."""
+    text = (DATA / "all_legs_short.gait").read_text(encoding="utf-8").replace(
+        "legs L1..L4 health 2", "legs L1..L2 health 2  # left\nlegs L3..L4 health 2  # right")
+    why = gaitc.explain(gaitc.parse(text, name="two_sides.gait"))
+    first = why.repairs[0]
+    assert first.change == "raise every leg's health to 4"
+    assert first.diff == ("-legs L1..L2 health 2  # left", "+legs L1..L2 health 4  # left",
+                          "-legs L3..L4 health 2  # right", "+legs L3..L4 health 4  # right")
+    fixed = gaitc.parse(first.text, name="fixed.gait")
+    assert fixed.model is not None and {leg.health for leg in fixed.model.legs} == {4}
+    assert gaitc.check(fixed).realizable
+
+
+def test_a_raise_of_the_legs_below_a_level_names_them() -> None:
+    """Issue 60: with one side at the level already, 'raise every leg's health to 4' edited
+    one line; the label now names the legs it raises."""
+    text = (DATA / "all_legs_short.gait").read_text(encoding="utf-8").replace(
+        "legs L1..L4 health 2", "legs L1..L2 health 4\nlegs L3..L4 health 2")
+    why = gaitc.explain(gaitc.parse(text, name="one_side.gait"))
+    raises = [r for r in why.repairs if r.change.startswith("raise legs")]
+    assert raises, [r.change for r in why.repairs]
+    assert raises[0].change.startswith("raise legs L3, L4 to health ")
+    assert raises[0].change.endswith(" (the other working legs have "
+                                     f"{raises[0].change.split()[6]} or more)")
+    fixed = gaitc.parse(raises[0].text, name="fixed.gait")
+    assert fixed.model is not None and gaitc.check(fixed).realizable
+    level = int(raises[0].change.split()[6])
+    assert {leg.health for leg in fixed.model.legs} == {4, level} - {0}
+
+
 def test_an_unblocked_cell_is_a_repair() -> None:
     """The goal lies past a blocked cell: unblocking it is the first repair."""
     text = ("legs L1..L2 health 3\ngait east uses L1 moves east\ngait west uses L2 moves west\n"
