@@ -6,6 +6,7 @@ Graphviz's ``dot`` program (``--format dot`` needs no Graphviz at all).
 
 from __future__ import annotations
 
+import re
 import shutil
 import subprocess
 from pathlib import Path
@@ -51,10 +52,25 @@ def run_dot(source: str, fmt: str) -> bytes:
                          + INSTALL_HINT)
     result = subprocess.run([exe, f"-T{fmt}"], input=source.encode("utf-8"),
                             capture_output=True, check=False, timeout=300)
+    said = result.stderr.decode("utf-8", "replace")
     if result.returncode != 0:
-        message = result.stderr.decode("utf-8", "replace").strip().splitlines()
+        message = said.strip().splitlines()
         raise GaitcError("Graphviz failed: " + (message[0] if message else "no message"))
+    shrunk = _SHRUNK.search(said)
+    if shrunk is not None:
+        # a bitmap has at most 32,767 pixels a side; Graphviz would scale the whole
+        # picture down (text and all) and say so only on its standard error
+        raise UsageError(
+            f"the picture is too large for a {fmt.upper()} image (at most {BITMAP_SIDE:,} "
+            f"pixels a side): Graphviz would shrink it to {float(shrunk.group(1)):.0%} and "
+            "its text would be unreadable; write it as SVG or PDF (-o FILE.svg), which have "
+            "no such limit")
     return result.stdout
+
+
+#: The longest side of a bitmap Graphviz's cairo renderer writes, in pixels.
+BITMAP_SIDE = 32767
+_SHRUNK = re.compile(r"too large for cairo-renderer bitmaps\. Scaling by ([0-9.]+)")
 
 
 class Picture:

@@ -334,3 +334,31 @@ def test_the_policy_picture_puts_each_table_where_the_map_puts_its_region() -> N
     assert set(pos) == {"nw", "ne", "sw"}  # the robot never enters the hazard cell se
     assert pos["nw"][0] < pos["ne"][0] and pos["nw"][1] == pos["ne"][1]  # ne east of nw
     assert pos["sw"][1] < pos["nw"][1] and pos["sw"][0] == pos["nw"][0]  # sw south of nw
+
+
+@pytest.mark.skipif(shutil.which("dot") is None, reason="needs Graphviz")
+def test_a_picture_too_tall_for_a_bitmap_is_refused_not_shrunk(tmp_path: Path) -> None:
+    """Issue 60: Graphviz scaled a 32,767 px strip down to unreadable text, saying so only
+    on its standard error; the PNG is refused with the remedy, and no file is written,
+    while SVG keeps the picture at its natural size."""
+    import pydot
+
+    from gaitc.sim.graphics import Picture
+
+    graph = pydot.Dot("tall", graph_type="digraph")
+    graph.set_node_defaults(shape="box", height="3")  # 150 of them: 42,000 px at 96 dpi
+    for k in range(150):
+        graph.add_edge(pydot.Edge(f"n{k}", f"n{k + 1}"))
+    picture = Picture(graph)
+    out = tmp_path / "tall.png"
+    with pytest.raises(gaitc.UsageError) as caught:
+        picture.save(out)
+    assert str(caught.value).startswith(
+        "the picture is too large for a PNG image (at most 32,767 pixels a side): Graphviz "
+        "would shrink it to ")
+    assert str(caught.value).endswith(" and its text would be unreadable; write it as SVG "
+                                      "or PDF (-o FILE.svg), which have no such limit")
+    assert not out.exists()
+    assert picture.save(tmp_path / "tall.svg") == "svg"
+    height = ET.parse(tmp_path / "tall.svg").getroot().get("height")
+    assert height is not None and float(height.removesuffix("pt")) > 32767 * 0.75
