@@ -21,15 +21,15 @@ It shares no code with the solver's game (the file reader is pure data).
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from typing import Any
 
 from gaitc.ir.bddfile import SymbolicController, materialize
 from gaitc.ir.bitblast import bitblast
-from gaitc.ir.bits import bits_mismatch
+from gaitc.ir.bits import bits_mismatch, integer_bits
 from gaitc.ir.controller import ControllerKind
 from gaitc.ir.cuddlib import cudd
-from gaitc.ir.spec import GR1Spec, Semantics
+from gaitc.ir.spec import GR1Spec, Semantics, Variable
 from gaitc.verifier.logic import Logic
 from gaitc.verifier.strategy import MAX_PROBLEMS, VerificationReport
 
@@ -56,6 +56,23 @@ class _Loop:
         self.rename = dict(zip(self.post, self.pre, strict=True))
         self.post_in = {n + "'" for n in self.logic.inputs}
         self.post_out = {n + "'" for n in self.logic.outputs}
+        self.source = spec  # the spec as written (integers whole), for the witnesses
+
+    def witness(self, bad: Any, moves: bool) -> tuple[dict[str, bool], str]:
+        """One assignment of the non-empty ``bad`` (over the state, the next inputs and,
+        with ``moves``, the next outputs), and its words: the state, the inputs the
+        environment chooses and the move, each variable at its value as the spec names it
+        (an integer whole, not its bits), as the explicit verifier names a node's."""
+        care = {*self.logic.inputs, *self.logic.outputs, *self.post_in}
+        if moves:
+            care |= self.post_out
+        found = next(self.bdd.pick_iter(bad, care_vars=care))
+        state = _values(self.source.variables(), found, "")
+        chosen = _values(self.source.inputs, found, "'")
+        words = f"for example from the state {state}, the environment choosing {chosen}"
+        if moves:
+            words += f", moving to {_values(self.source.outputs, found, chr(39))}"
+        return found, words
 
     def section(self, name: str) -> Any:
         out = self.bdd.true
@@ -140,11 +157,18 @@ def _check(loop: _Loop, roots: dict[str, Any], semantics: Semantics,
     for g, relation in enumerate(strategies):
         here = reach & loop.counter(g)
         offered = b.exist(loop.post_out, relation) & b.exist(loop.post_out, roots["env_trans"])
-        if here & b.exist(loop.post_in, inputs_ok & ~offered) != b.false:
+        stuck = here & inputs_ok & ~offered
+        if stuck != b.false:
+            _, words = loop.witness(b.exist(set(loop.g), stuck), moves=False)
             problems.append(f"goal {g + 1}: a reachable state has an input the assumptions "
-                            "allow but no move")
-        if here & b.exist(loop.post_in | loop.post_out, relation & rho_e & ~rho_s) != b.false:
-            problems.append(f"goal {g + 1}: a move from a reachable state violates sys_trans")
+                            f"allow but no move ({words})")
+        wrong = here & relation & rho_e & ~rho_s
+        if wrong != b.false:
+            found, words = loop.witness(b.exist(set(loop.g), wrong), moves=True)
+            broken = [rule for rule, u in loop.logic.clauses("sys_trans")
+                      if b.let(found, u) == b.false]
+            problems.append(f"goal {g + 1}: a move from a reachable state violates sys_trans "
+                            f"({words}; it breaks {'; '.join(broken)})")
     env_goals = loop.goals("env_liveness")
     edges = reach & trans
     for rule, goal in _goal_rules(loop):
@@ -159,6 +183,21 @@ def _check(loop: _Loop, roots: dict[str, Any], semantics: Semantics,
                 problems.append(problem)
     count = int(b.count(reach, nvars=len(loop.pre)))
     return _report(problems, count, semantics)
+
+
+def _values(variables: Sequence[Variable], found: Mapping[str, bool], mark: str) -> str:
+    """``variables`` at their values in the assignment ``found`` (``mark``: "'" for the next
+    values), integers read off their bits (:func:`gaitc.ir.bits.integer_bits`)."""
+    out = []
+    for var in variables:
+        bits = integer_bits(var)
+        if not var.is_integer:
+            out.append(f"{var.name}={int(found.get(var.name + mark, False))}")
+            continue
+        low = var.low or 0
+        value = low + sum(1 << k for k, bit in enumerate(bits) if found.get(bit + mark, False))
+        out.append(f"{var.name}={value}")
+    return ", ".join(out) or "nothing"
 
 
 def _goal_rules(loop: _Loop) -> list[tuple[str, Any]]:
