@@ -91,12 +91,27 @@ class Lattice:
         if len(m) > WALK_EDGES:
             self._walks, self._walk_cols = None, []
             return
+        table = self.walks_with(self.start, home=True)
+        if self._walks is not None:
+            moved = (self._walks != table).any(axis=0)
+            self.rekey_poses = frozenset(np.nonzero(moved)[0].tolist())
+        self._walks = table
+        self._walk_cols = table.T.tolist()
+
+    def walks_with(self, anchor: int, home: bool) -> Floats:
+        """``W[k, p]``: the longest translation (summed step lengths plus the snapping slack,
+        as the edges' bounds have them) of any walk of at most k <= WALK_STEPS live
+        transitions from pose p to pose ``anchor`` (``home``), or from ``anchor`` to p."""
+        m = self.model
         live = m.alive
         src, dst, length = m.src[live], m.dst[live], self._walk_len[live]
+        if not home:  # walks from the anchor: the same recursion over reversed edges
+            order = np.argsort(dst, kind="stable")
+            src, dst, length = dst[order], src[order], length[order]
         table = np.full((WALK_STEPS + 1, m.poses), -np.inf)
-        table[0, self.start] = 0.0
+        table[0, anchor] = 0.0
         exact = table[0].copy()
-        # rows are sorted by source pose: one maximum per pose with a live edge
+        # rows are sorted by (their) source pose: one maximum per pose with a live edge
         starts = np.searchsorted(src, np.arange(m.poses))
         has = starts < np.searchsorted(src, np.arange(m.poses), side="right")
         first = starts[has]
@@ -106,11 +121,12 @@ class Lattice:
                 longer[has] = np.maximum.reduceat(length + exact[dst], first)
             exact = longer
             table[k] = np.maximum(table[k - 1], exact)
-        if self._walks is not None:
-            moved = (self._walks != table).any(axis=0)
-            self.rekey_poses = frozenset(np.nonzero(moved)[0].tolist())
-        self._walks = table
-        self._walk_cols = table.T.tolist()
+        return table
+
+    @property
+    def walking(self) -> bool:
+        """Whether the graph is small enough for walk tables (:data:`WALK_EDGES`)."""
+        return self._walks is not None
 
     def _walk_steps(self, pose: int, distance: float) -> int:
         column = self._walk_cols[pose]

@@ -16,10 +16,20 @@ virtual goal by zero-cost edges, as in LPA*.  The heuristic between two nodes is
 of the hops between their poses, their distance over the longest step and their turn over
 the largest rotation: each is a lower bound that obeys the triangle inequality, as D* Lite
 needs.
+
+On graphs small enough for walk tables (:data:`gaitc.search.cells.WALK_EDGES`) the
+heuristic from the start is sharper: the fewest transitions whose longest walk from the
+start's pose to a node's pose (:meth:`Lattice.walks_with`) spans their distance, the bound
+that keeps A* and LPA* small toward far goals (the backward search, from about a hundred
+goal cells, ran out of its budget without it: asymmetric6's goals at (60, 0) and (0, 50)).
+That bound holds for one start only, so when the robot moves the table is built for its
+new pose and every queued key is made afresh (k_m back to zero) instead of growing k_m,
+which is the same search with a new consistent heuristic.
 """
 
 from __future__ import annotations
 
+import bisect
 import heapq
 import math
 from collections import defaultdict
@@ -62,6 +72,8 @@ class DStarLite:
         self._hops: dict[int, list[float]] = {}
         self._heap: list[tuple[float, float, int]] = []
         self._queued: dict[int, tuple[float, float]] = {}
+        self._walks: list[list[float]] = []  # per pose, W[k] of walks from the start's pose
+        self._walk_table()
         self.expanded = 0
         self.total_expanded = 0
         self._push(GOAL)
@@ -156,9 +168,28 @@ class DStarLite:
         turn = abs((ah - bh + 180.0) % 360.0 - 180.0)
         return max(self.hops(a >> 48)[b >> 48], far / lat.reach, turn / lat.turn)
 
+    def _walk_table(self) -> None:
+        """The walk table from the start's pose (none for large graphs)."""
+        lat = self.lattice
+        self._walks = (lat.walks_with(self.start >> 48, home=False).T.tolist()
+                       if lat.walking else [])
+
+    def from_start(self, node: int) -> float:
+        """:meth:`h` from the start to ``node``, sharpened by the walk table: at least the
+        fewest transitions whose longest walk from the start's pose spans the distance
+        between the two cell centres (each step's bound holds its snapping slack)."""
+        bound = self.h(self.start, node)
+        if not self._walks or node == GOAL:
+            return bound
+        lat = self.lattice
+        _, ax, ay, _ = lat.centre(self.start)
+        _, bx, by, _ = lat.centre(node)
+        steps = bisect.bisect_left(self._walks[node >> 48], math.hypot(ax - bx, ay - by))
+        return max(bound, float(steps))
+
     def key(self, node: int) -> tuple[float, float]:
         best = min(self.g.get(node, _INF), self.rhs.get(node, _INF))
-        return best + self.h(self.start, node) + self.km, best
+        return best + self.from_start(node) + self.km, best
 
     def _push(self, node: int) -> None:
         if self.g.get(node, _INF) != self.rhs.get(node, _INF):
@@ -264,7 +295,14 @@ class DStarLite:
         return frozenset(n for n, v in self.g.items() if n != GOAL and v < _INF)
 
     def move_start(self, node: int) -> None:
-        """The robot is now at ``node`` (k_m grows by the heuristic from the last start)."""
+        """The robot is now at ``node``: k_m grows by the heuristic from the last start,
+        or, with a walk table, the table is built for the new start and every key afresh."""
+        if self._walks:
+            if node != self.start:
+                self.start = node
+                self._walk_table()
+                self._rekey()
+            return
         self.km += self.h(self._last, node)
         self._last = self.start = node
 
@@ -286,6 +324,7 @@ class DStarLite:
         else:
             model.set_motion(edge, step)
         if step is not None and lattice.cover(edge):
+            self._walk_table()  # the step bounds grew
             self._rekey()
         for u in tight:
             self._recompute(u)
