@@ -1,11 +1,12 @@
 """Benchmark: what the move preferences (issue 13) change in long runs.
 
-For thesis robot A (binary encoding) and the hazard patrol of tests/data, with and without
-preferences: controller size and synthesis seconds, then 10,000 adversarial and 10,000
-random steps, with per 100 steps the moves into (or within) a region of the active hazard
-set with a leg-wearing gait, and the health levels lost; and the longest wait between two
-visits of a goal (no goal may be starved).  Target: active-hazard entries down by at least
-90% wherever the spec allows a detour, the longest wait not longer.
+For thesis robot A (binary encoding), the hazard patrol and the forklift yard of tests/data,
+with and without preferences: controller size and synthesis seconds, then 10,000
+adversarial and 10,000 random steps, with per 100 steps the moves into (or within) a
+region of the active hazard set with a leg-wearing gait, and the health levels lost; and
+the longest wait between two visits of a goal (no goal may be starved).  Target:
+active-hazard entries down by at least 90% wherever the spec allows a detour, the longest
+wait not longer.
 
 Usage: python bench/bench_preferences.py [--steps N] [--spec FILE --encoding E]
 """
@@ -23,7 +24,9 @@ from gaitc.sim.run import Run
 
 ROOT = Path(__file__).resolve().parent.parent
 SPECS = ((ROOT / "specs" / "thesis_robot_a.gait", "binary"),
-         (ROOT / "tests" / "data" / "hazard_patrol.gait", "onehot"))
+         (ROOT / "tests" / "data" / "hazard_patrol.gait", "onehot"),
+         # a forklift that comes and goes beside a spill that may stay (issue 60)
+         (ROOT / "tests" / "data" / "hazards" / "yard.gait", "onehot"))
 
 
 def measures(run: Run, hazards: dict[str, set[str]], caches: set[str]) -> tuple[int, int, int]:

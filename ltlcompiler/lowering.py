@@ -33,6 +33,19 @@ from gaitc.ir.formula import (
     push_next,
     unreachable,
 )
+from gaitc.ir.roles import (
+    ClauseRole,
+    Goal,
+    HazardEffect,
+    LegFailure,
+    Moves,
+    Restores,
+    Shape,
+    Spares,
+    StartHealth,
+    UserClause,
+    Wears,
+)
 from gaitc.ir.spec import SECTIONS, Clause, GR1Spec, Origin, section_named
 from gaitc.ir.traversal import Node, Text, fold, join_text, separated
 from ltlcompiler.encoding import Encoding, EncodingName, check_names, make_encoding
@@ -82,8 +95,10 @@ class _Lowering:
         self.region_span = {r.name: r.span for r in model.regions}
         self.moving = {g.name: (g.legs if g.kind is GaitKind.MOVE else ()) for g in model.gaits}
 
-    def add(self, section: str, formula: Expr, rule: str, span: Span | None) -> None:
-        self.sections[section].append(Clause(formula, Origin(rule, span)))
+    def add(self, section: str, formula: Expr, rule: str, span: Span | None,
+            role: ClauseRole) -> None:
+        """A clause: its label for people (``rule``), source span and typed role."""
+        self.sections[section].append(Clause(formula, Origin(rule, span, role)))
 
     def run(self) -> GR1Spec:
         self.init()
@@ -106,16 +121,16 @@ class _Lowering:
     def init(self) -> None:
         m, enc = self.model, self.enc
         for side, rule, formula in enc.mutex(primed=False):
-            self.add(section_named(side, "init"), formula, rule, None)
+            self.add(section_named(side, "init"), formula, rule, None, Shape())
         for leg in m.legs:
             self.add("env_init", enc.health(leg.name, leg.initial),
                      f"init: leg {leg.name} starts at health {leg.initial} of {leg.health}",
-                     leg.initial_span or leg.span)
+                     leg.initial_span or leg.span, StartHealth(leg.name))
         self.add("sys_init", enc.region(m.start), f"init: start in {m.start}",
-                 m.start_span or self.region_span.get(m.start))
-        self.add("sys_init", enc.gait(NO_GAIT), f"init: start with {NO_GAIT}", None)
+                 m.start_span or self.region_span.get(m.start), Shape())
+        self.add("sys_init", enc.gait(NO_GAIT), f"init: start with {NO_GAIT}", None, Shape())
         for side, rule, formula in enc.mutex(primed=True):
-            self.add(f"{side}_trans", formula, rule, None)
+            self.add(f"{side}_trans", formula, rule, None, Shape())
 
     # ------------------------------------------------------------ eq. 3.3
     def moves(self) -> None:
@@ -146,7 +161,7 @@ class _Lowering:
             words.append(f"or stay by {NO_GAIT}" if words else f"only stay by {NO_GAIT}")
             rule = f"eq. 3.3: from {region.name} " + ", ".join(words)
             self.add("sys_trans", Implies(enc.region(region.name), disj(options)), rule,
-                     region.span)
+                     region.span, Moves(region.name))
 
     # ------------------------------------------------------------ eq. 3.4
     def failed_legs(self) -> None:
@@ -159,7 +174,7 @@ class _Lowering:
             status = "is failed for ever" if leg.health == 1 else "failed"
             rule = f"eq. 3.4: leg {leg.name} {status} => gaits using {leg.name} " \
                    f"({', '.join(gaits)}) are off"
-            self.add("sys_trans", formula, rule, leg.span)
+            self.add("sys_trans", formula, rule, leg.span, LegFailure(leg.name))
 
     # ------------------------------------------------------------ eqs. 3.5, 3.8, 3.9
     def not_in_cache(self) -> list[Expr]:
@@ -184,14 +199,15 @@ class _Lowering:
                 why = "uses only failed legs" if self.moving[gait.name] else "degrades no leg"
                 self.add("env_trans", Implies(conj(away), conj(self.keep_others(()))),
                          f"eq. 3.5: {gait.name} {why}: every leg keeps its health",
-                         gait.span)
+                         gait.span, Spares(gait.name))
                 continue
             antecedent = conj([*away, Not(phi_h)] if m.hazards else away)
             body = conj([*(enc.degrade_health(leg) for leg in legs), *self.keep_others(legs)])
             which = f"legs {', '.join(legs)}" if len(legs) > 1 else f"leg {legs[0]}"
             rule = f"eq. 3.5: under {gait.name} {which} may lose one level, the other legs " \
                    "keep theirs"
-            self.add("env_trans", Implies(antecedent, body), rule, gait.span)
+            self.add("env_trans", Implies(antecedent, body), rule, gait.span,
+                     Wears(gait.name, tuple(legs)))
             for hazard in m.hazards:
                 hot = conj([*away, enc.hazard(hazard.name),
                             disj(enc.region(r) for r in hazard.regions)])
@@ -207,7 +223,8 @@ class _Lowering:
                     rule = f"eq. 3.9 graded (eq. 3.5 with up to {levels}): {where}: " \
                            f"{which} may lose up to {levels}, the other legs keep theirs"
                 body = conj([*lost, *self.keep_others(legs)])
-                self.add("env_trans", Implies(hot, body), rule, hazard.span)
+                self.add("env_trans", Implies(hot, body), rule, hazard.span,
+                         HazardEffect(hazard.name, gait.name, tuple(legs), hazard.wears))
 
     # ------------------------------------------------------------ eq. 3.6
     def caches(self) -> None:
@@ -217,7 +234,7 @@ class _Lowering:
                         for leg in self.model.legs if leg.health > 1)
             self.add("env_trans", Implies(self.enc.region(cache), full),
                      f"eq. 3.6: cache {cache} resets every leg",
-                     stated.get(cache) or self.region_span.get(cache))
+                     stated.get(cache) or self.region_span.get(cache), Restores(cache))
 
     # ------------------------------------------------------------ eq. 3.7 and user formulas
     def goals(self) -> None:
@@ -225,13 +242,15 @@ class _Lowering:
             formula = self.translate(goal, "sys")
             what = f"visit {goal.formula.name}" if isinstance(goal.formula, Var) \
                 else describe(goal.formula)
-            self.add("sys_liveness", formula, f"goal{_line(goal.span)}: {what}", goal.span)
+            self.add("sys_liveness", formula, f"goal{_line(goal.span)}: {what}", goal.span,
+                     Goal(what))
 
     def user(self, uf: UserFormula, side: str) -> None:
         formula = self.translate(uf, side)
         word = "assumption" if side == "env" else "guarantee"
         self.add(section_named(side, uf.section.value), formula,
-                 f"{word}{_line(uf.span)}: {describe(uf.formula)}", uf.span)
+                 f"{word}{_line(uf.span)}: {describe(uf.formula)}", uf.span,
+                 UserClause(assumption=side == "env"))
 
     def translate(self, uf: UserFormula, side: str) -> Expr:
         flat = push_next(uf.formula)

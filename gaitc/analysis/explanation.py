@@ -29,6 +29,7 @@ from gaitc.analysis.story import deadlock_move, last_move, narrate, narrate_valu
 from gaitc.analysis.units import GUARANTEE_SECTIONS, Unit, keep_only, units
 from gaitc.diagnostics import render, source_lines
 from gaitc.ir.controller import Controller
+from gaitc.ir.roles import Goal
 from gaitc.ir.spec import GR1Spec, Semantics
 from gaitc.sim.counterplay import choose_play
 from gaitc.sim.play import Play
@@ -335,7 +336,7 @@ def _goal_regions(spec: GR1Spec, model: Model, goals: tuple[int, ...]) -> set[st
     from gaitc.ir.formula import atoms
 
     from_goals = [j for j, c in enumerate(spec.sys_liveness)
-                  if c.origin is not None and c.origin.rule.startswith("goal")]
+                  if c.origin is not None and isinstance(c.origin.role, Goal)]
     if len(from_goals) != len(model.goals):
         return set()
     regions = {r.name for r in model.regions}
@@ -385,8 +386,7 @@ def _goal_label(spec: GR1Spec, j: int) -> str:
     origin = spec.sys_liveness[j].origin
     if origin is None:
         return f"goal {j + 1}"
-    rule = origin.rule
-    return rule.split(": ", 1)[1] if rule.startswith("goal") and ": " in rule else rule
+    return origin.role.title if isinstance(origin.role, Goal) else origin.rule
 
 
 def _run(counter: Controller, spec: GR1Spec, model: Model, encoding: EncodingName,

@@ -20,18 +20,17 @@ from collections.abc import Iterable, Sequence
 from gaitc.analysis.freedoms import Freedom
 from gaitc.analysis.units import Unit
 from gaitc.analysis.variants import gait_families
+from gaitc.ir.roles import LegFailure
 from gaitc.sim.run import Run
 from ltlcompiler.model import GaitKind, Model
 
-FAILURE_RULE = "eq. 3.4: leg "
 #: Legs of the core told one by one; the others share a sentence.
 MAX_LEGS_TOLD = 3
 
 
 def core_legs(core: Iterable[Unit]) -> tuple[str, ...]:
     """The legs whose failure rule (eq. 3.4: its gaits are off once it fails) is in the core."""
-    return tuple(u.rule.removeprefix(FAILURE_RULE).split(" ", 1)[0] for u in core
-                 if u.rule.startswith(FAILURE_RULE))
+    return tuple(u.role.leg for u in core if isinstance(u.role, LegFailure))
 
 
 def _names(items: Sequence[str]) -> str:

@@ -17,6 +17,7 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, replace
 
 from gaitc.ir.formula import Compare, Expr, Implies, IntConst, IntVar, conj, disj
+from gaitc.ir.roles import Restores, StartHealth
 from gaitc.ir.spec import Clause, GR1Spec, Origin, Semantics, Variable
 from gaitc.solver.game import Game
 from gaitc.solver.ordering import variable_order
@@ -58,17 +59,18 @@ def parametric_spec(model: Model, encoding: EncodingName, domains: Mapping[str, 
                           enc.health(leg, k if start is None else min(start, k), primed)))
                     for k in domains[leg])
 
-    env_init = [c for c in spec.env_init if not _rule(c).startswith("init: leg ")]
+    env_init = [c for c in spec.env_init if not _role_is(c, StartHealth)]
     for leg, original in zip(raised.legs, model.legs, strict=True):
         start = None if original.initial == original.health else original.initial
         env_init.append(Clause(at_cap(leg.name, False, start),
-                               Origin(f"parameter: leg {leg.name} starts at its cap")))
-    env_trans = [c for c in spec.env_trans if not _rule(c).startswith("eq. 3.6:")]
+                               Origin(f"parameter: leg {leg.name} starts at its cap",
+                                      role=StartHealth(leg.name))))
+    env_trans = [c for c in spec.env_trans if not _role_is(c, Restores)]
     for cache in raised.caches:
         reset = conj(at_cap(leg.name, True) for leg in raised.legs if leg.health > 1)
         env_trans.append(Clause(Implies(enc.region(cache), reset),
                                 Origin(f"eq. 3.6 with caps: cache {cache} resets every leg "
-                                       "to its cap")))
+                                       "to its cap", role=Restores(cache))))
     for leg in raised.legs:
         cap = caps[leg.name]
         env_trans.append(Clause(Compare("=", IntVar(cap.name, True), cap),
@@ -79,8 +81,9 @@ def parametric_spec(model: Model, encoding: EncodingName, domains: Mapping[str, 
     return replace(spec, inputs=inputs, env_init=tuple(env_init), env_trans=tuple(env_trans))
 
 
-def _rule(clause: Clause) -> str:
-    return clause.origin.rule if clause.origin is not None else ""
+def _role_is(clause: Clause, kind: type[StartHealth] | type[Restores]) -> bool:
+    """Whether the front end wrote ``clause`` with a role of ``kind``."""
+    return clause.origin is not None and isinstance(clause.origin.role, kind)
 
 
 #: Cap vectors up to which the caps sit at the top of the BDD order, and up to which they

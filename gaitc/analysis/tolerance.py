@@ -39,6 +39,20 @@ from gaitc.ir.formula import (
     IntVar,
     Or,
     conj,
+    unreachable,
+)
+from gaitc.ir.roles import (
+    ClauseRole,
+    Goal,
+    HazardEffect,
+    LegFailure,
+    Moves,
+    Restores,
+    Shape,
+    Spares,
+    StartHealth,
+    UserClause,
+    Wears,
 )
 from gaitc.ir.spec import Clause, GR1Spec, Origin, Semantics, Variable
 from gaitc.sim.monitor import clause_rule
@@ -136,9 +150,10 @@ class Assumptions:
                                    if p.group == group and p.subject))
 
 
-def _never_breaks(rule: str) -> bool:
-    """The encoding's well-formedness clauses (the lowering names them ``mutex: ...``)."""
-    return rule.startswith("mutex:")
+def _never_breaks(clause: Clause) -> bool:
+    """The encoding's well-formedness clauses (exactly one health level, at most one
+    hazard set): the state's shape, which no event breaks."""
+    return clause.origin is not None and isinstance(clause.origin.role, Shape)
 
 
 def assumption_pieces(spec: Spec | GR1Spec) -> Assumptions:
@@ -153,11 +168,11 @@ def assumption_pieces(spec: Spec | GR1Spec) -> Assumptions:
     pieces: list[Piece] = []
     for index, clause in enumerate(gr1.env_trans):
         rule = clause_rule(clause, "env_trans", index)
-        if _never_breaks(rule):
+        if _never_breaks(clause):
             fixed.append(index)
             continue
         line = clause.origin.span.line if clause.origin and clause.origin.span else None
-        split = _split(clause.formula, rule, known)
+        split = _split(clause.formula, clause.origin.role if clause.origin else None, known)
         if split is None:  # one group per clause: a SLUGS file's share one rule
             group = rule if line is None or f"line {line}" in rule else f"{rule}, line {line}"
             pieces.append(Piece(clause.formula, index, group, "",
@@ -194,23 +209,27 @@ def _leg_formulas(spec: Spec) -> LegFormulas:
     return out
 
 
-def _kind(what: str, rule: str) -> PieceKind | None:
+def _kind(what: str, role: ClauseRole | None) -> PieceKind | None:
     """The kind of a piece that says ``what`` (of :func:`_leg_formulas`) in a clause of
-    ``rule``, or None when the pair is not one the lowering writes."""
-    if what == "keep" and rule.startswith(("eq. 3.5", "eq. 3.9")):
-        return PieceKind.UNUSED_LEG_KEEPS
-    if what == "degrade" and rule.startswith("eq. 3.5"):
-        return PieceKind.USED_LEG_WEARS
-    if what == "restore" and rule.startswith("eq. 3.6"):
-        return PieceKind.CACHE_RESTORES
-    if what == "fail" and rule.startswith("eq. 3.9"):
-        return PieceKind.HAZARD_FAILS
-    if what in ("wear", "degrade") and rule.startswith("eq. 3.9 graded"):
-        return PieceKind.HAZARD_WEARS
-    return None
+    ``role``, or None when the pair is not one the lowering writes."""
+    match role:
+        case Spares() | Wears():  # eq. 3.5: the legs in use may lose a level, others keep
+            return {"keep": PieceKind.UNUSED_LEG_KEEPS,
+                    "degrade": PieceKind.USED_LEG_WEARS}.get(what)
+        case HazardEffect(wears=None):  # eq. 3.9: the legs in use fail, the others keep
+            return {"keep": PieceKind.UNUSED_LEG_KEEPS, "fail": PieceKind.HAZARD_FAILS}.get(what)
+        case HazardEffect():  # graded: the legs in use lose up to k levels
+            return {"keep": PieceKind.UNUSED_LEG_KEEPS, "fail": PieceKind.HAZARD_FAILS,
+                    "wear": PieceKind.HAZARD_WEARS, "degrade": PieceKind.HAZARD_WEARS}.get(what)
+        case Restores():  # eq. 3.6
+            return PieceKind.CACHE_RESTORES if what == "restore" else None
+        case None | Shape() | StartHealth() | Moves() | LegFailure() | Goal() | UserClause():
+            return None
+        case _:
+            unreachable(role)
 
 
-def _split(formula: Expr, rule: str, known: LegFormulas
+def _split(formula: Expr, role: ClauseRole | None, known: LegFormulas
            ) -> list[tuple[Expr, PieceKind, str]] | None:
     """``guard -> body`` as one implication per leg formula of ``body``, or None when the
     body is not made of known leg formulas only."""
@@ -223,7 +242,7 @@ def _split(formula: Expr, rule: str, known: LegFormulas
         if part not in known:
             return None
         what, leg = known[part]
-        kind = _kind(what, rule)
+        kind = _kind(what, role)
         if kind is None:
             return None
         out.append((Implies(formula.left, part), kind, leg))

@@ -13,28 +13,30 @@ from collections.abc import Iterable
 from dataclasses import dataclass
 
 from gaitc.diagnostics import Span
+from gaitc.ir.roles import ClauseRole, Moves
 from gaitc.ir.spec import SECTIONS, Clause, GR1Spec
 
 GUARANTEE_SECTIONS = ("sys_init", "sys_trans", "sys_liveness")
-#: Rules of clauses that are kept like structural ones (the region graph τ).
-STRUCTURAL_RULES = ("eq. 3.3:",)
 
 
 def is_structural(clause: Clause) -> bool:
-    """Whether ``clause`` stays in every variant (no source, or the map)."""
+    """Whether ``clause`` stays in every variant (no source, or the map's moves: the region
+    graph τ, eq. 3.3)."""
     origin = clause.origin
-    return origin is None or origin.span is None or origin.rule.startswith(STRUCTURAL_RULES)
+    return origin is None or origin.span is None or isinstance(origin.role, Moves)
 ASSUMPTION_SECTIONS = ("env_init", "env_trans", "env_liveness")
 
 
 @dataclass(frozen=True)
 class Unit:
-    """Clauses ``indices`` of ``section`` that share one source span and rule."""
+    """Clauses ``indices`` of ``section`` that share one source span and rule (their
+    label), and their role (:mod:`gaitc.ir.roles`; None for a SLUGS spec's)."""
 
     section: str
     indices: tuple[int, ...]
     rule: str
     span: Span | None
+    role: ClauseRole | None = None
 
     @property
     def side(self) -> str:
@@ -50,6 +52,7 @@ def units(spec: GR1Spec, sections: Iterable[str]) -> tuple[Unit, ...]:
     for section in sections:
         groups: dict[tuple[str, str], list[int]] = {}
         spans: dict[tuple[str, str], Span] = {}
+        roles: dict[tuple[str, str], ClauseRole | None] = {}
         for index, clause in enumerate(spec.section(section)):
             origin = clause.origin
             if origin is None or origin.span is None or is_structural(clause):
@@ -57,8 +60,9 @@ def units(spec: GR1Spec, sections: Iterable[str]) -> tuple[Unit, ...]:
             key = (str(origin.span), origin.rule)
             groups.setdefault(key, []).append(index)
             spans[key] = origin.span
+            roles.setdefault(key, origin.role)
         for key, indices in groups.items():
-            out.append(Unit(section, tuple(indices), key[1], spans[key]))
+            out.append(Unit(section, tuple(indices), key[1], spans[key], roles[key]))
     return tuple(out)
 
 

@@ -20,6 +20,7 @@ from typing import Final, Literal, get_args
 from gaitc.diagnostics import Span
 from gaitc.diagnostics.choices import Choice
 from gaitc.ir.formula import Expr
+from gaitc.ir.roles import ClauseRole
 
 Section = Literal["env_init", "sys_init", "env_trans", "sys_trans", "env_liveness", "sys_liveness"]
 #: The six sections, in the canonical order of SLUGS's files.
@@ -64,10 +65,13 @@ class ControllerKind(Choice):
 
 @dataclass(frozen=True)
 class Origin:
-    """Where a clause came from: the rule that generated it and the source span."""
+    """Where a clause came from: the rule that generated it (a label for people), the
+    source span, and what it says about the robot's world (:mod:`gaitc.ir.roles`; None for
+    clauses of SLUGS specs and those an analysis adds).  Meaning is read from the role."""
 
     rule: str
     span: Span | None = None
+    role: ClauseRole | None = None
 
 
 @dataclass(frozen=True)

@@ -13,6 +13,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass
 
+from gaitc.ir.roles import Goal
 from gaitc.ir.spec import Clause, GR1Spec
 
 
@@ -39,8 +40,8 @@ def goal_titles(spec: GR1Spec) -> tuple[str, ...]:
 
 def _title(clause: Clause, number: int) -> str:
     origin = clause.origin
-    if origin is not None and "): " in origin.rule:
-        return origin.rule.split("): ", 1)[1]
+    if origin is not None and isinstance(origin.role, Goal):
+        return origin.role.title
     if origin is not None and origin.span is not None:
         return f"line {origin.span.line}"
     return f"goal {number}"
