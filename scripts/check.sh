@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The test command (README.md's second line, and .ci/run): a fast stage first, then the suite.
 #
-# The fast stage (about half a minute) runs ruff, mypy (at Python 3.10, pyproject.toml) and
+# The fast stage (about half a minute) runs ruff, mypy (at Python 3.11, pyproject.toml) and
 # the tests of the code's shape: the layering, its map in docs/background/layout.md, the
 # quality rules and the minimum Python version. It stops the run with a message naming the
 # stage that failed, so a lint or type error is reported before the 15-minute suite starts.
@@ -30,7 +30,7 @@ echo "check: ruff" >&2
 "$VENV/bin/ruff" check gaitc ltlcompiler slugs_bridge tests bench tools typings \
     || fail "ruff found problems (listed above; 'ruff check --fix' fixes the ones marked [*])"
 
-echo "check: mypy (Python 3.10, strict)" >&2
+echo "check: mypy (Python 3.11, strict)" >&2
 "$VENV/bin/mypy" || fail "mypy found type errors (listed above)"
 
 echo "check: layering, layout map, quality and Python-version tests" >&2

@@ -4,13 +4,13 @@ A :class:`Choice` is a ``str`` enumeration: its members compare equal to, print 
 serialise to their values (``Semantics.ROBOTICS == "robotics"``, ``f"{m}"`` gives the value,
 ``json.dumps`` writes it), so a notebook may pass either the member or its name, and the
 library converts at its edge with :meth:`Choice.parse`, which names the accepted values in
-a :class:`~gaitc.diagnostics.UsageError`. Python 3.10 has no ``enum.StrEnum``; this is its
-small equivalent.
+a :class:`~gaitc.diagnostics.UsageError`.  It is an ``enum.StrEnum`` with that parser (its
+``__str__`` and ``__format__`` spelled out, as the members print everywhere).
 """
 
 from __future__ import annotations
 
-from enum import Enum
+from enum import StrEnum
 from typing import TypeVar
 
 from gaitc.diagnostics import UsageError
@@ -18,7 +18,7 @@ from gaitc.diagnostics import UsageError
 C = TypeVar("C", bound="Choice")
 
 
-class Choice(str, Enum):
+class Choice(StrEnum):
     """A named choice among fixed values (see the module's docstring)."""
 
     def __str__(self) -> str:

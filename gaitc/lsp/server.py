@@ -458,7 +458,7 @@ class Progress:
             try:
                 await asyncio.wait_for(self.ls.work_done_progress.create_async(token),
                                        PROGRESS_CREATE_WAIT)
-            except (asyncio.TimeoutError, JsonRpcException):
+            except (TimeoutError, JsonRpcException):
                 return  # the client refused or did not answer: no progress then
         if self.ended:
             return

@@ -14,6 +14,7 @@ import os
 import shutil
 import subprocess
 import sys
+import tomllib
 import venv
 import zipfile
 from pathlib import Path
@@ -145,11 +146,50 @@ def test_examples_are_copied_and_never_overwritten(tmp_path: Path) -> None:
         ROOT / "specs" / "patrol_2x2.gait").read_bytes()
 
 
-def test_the_wheel_works_from_a_fresh_environment(wheel: Path, tmp_path: Path) -> None:
+def _declared() -> tuple[str, ...]:
+    """The Python versions gaitc declares: its classifiers (tests/codebase/
+    test_python_versions.py checks that they agree with ``requires-python``)."""
+    with (ROOT / "pyproject.toml").open("rb") as handle:
+        classifiers = tomllib.load(handle)["project"]["classifiers"]
+    prefix = "Programming Language :: Python :: 3."
+    return tuple(c.removeprefix("Programming Language :: Python :: ") for c in classifiers
+                 if c.startswith(prefix))
+
+
+DECLARED = _declared()
+
+
+def _interpreter(version: str) -> str | None:
+    """A Python of ``version`` on this machine (PATH, then pyenv's versions), or None."""
+    if ".".join(map(str, sys.version_info[:2])) == version:
+        return sys.executable
+    candidates = [shutil.which(f"python{version}")]
+    root = Path(os.environ.get("PYENV_ROOT", Path.home() / ".pyenv")) / "versions"
+    candidates += sorted(str(p) for p in root.glob(f"{version}.*/bin/python{version}"))
+    for found in candidates:
+        if found and subprocess.run([found, "--version"], capture_output=True,
+                                    check=False).returncode == 0:
+            return found
+    return None
+
+
+@pytest.mark.parametrize("version", DECLARED)
+def test_the_wheel_works_from_a_fresh_environment(wheel: Path, tmp_path: Path,
+                                                  version: str) -> None:
+    """On every declared Python this machine has (issue 61: 3.10 was declared, but its
+    ``pip install`` failed): a fresh environment, the wheel, the README's first job."""
+    python_exe = _interpreter(version)
+    if python_exe is None:
+        pytest.skip(f"no Python {version} on this machine")
     env_dir = tmp_path / "venv"
-    venv.EnvBuilder(with_pip=True).create(env_dir)
-    python = env_dir / "bin" / "python"
     clean = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "VIRTUAL_ENV")}
+    if python_exe == sys.executable:
+        venv.EnvBuilder(with_pip=True).create(env_dir)
+    else:
+        made = subprocess.run([python_exe, "-m", "venv", str(env_dir)], capture_output=True,
+                              text=True, check=False, env=clean)
+        assert made.returncode == 0, made.stderr
+    python = env_dir / "bin" / "python"
     install = subprocess.run(
         [str(python), "-m", "pip", "install", "-q", "--disable-pip-version-check", str(wheel)],
         capture_output=True, text=True, check=False, cwd=tmp_path, env=clean)
@@ -163,16 +203,18 @@ def test_the_wheel_works_from_a_fresh_environment(wheel: Path, tmp_path: Path) -
         return subprocess.run([str(gaitc_bin), *argv], cwd=work, capture_output=True,
                               text=True, check=False, env=clean)
 
-    where = subprocess.run([str(python), "-c", "import gaitc; print(gaitc.__file__)"],
+    where = subprocess.run([str(python), "-c", "import gaitc, sys; print(gaitc.__file__); "
+                            "print('%d.%d' % sys.version_info[:2])"],
                            cwd=work, capture_output=True, text=True, check=False, env=clean)
     assert str(env_dir) in where.stdout and str(ROOT) not in where.stdout, where
+    assert where.stdout.split()[-1] == version
     assert run("--version").stdout.strip() == f"gaitc {gaitc.__version__}"
     assert run("examples", "specs").returncode == 0
     synth = run("synth", "specs/thesis_robot_a.gait", "-o", "robot_a.controller.json", "--json")
     assert synth.returncode == 0, synth.stderr
     assert json.loads(synth.stdout)["verdict"] == "realizable"
     assert (work / "robot_a.controller.json").exists()
-    if not missing_tools():
+    if python_exe == sys.executable and not missing_tools():
         firmware = run("firmware", "build", "-o", "fw")
         assert firmware.returncode == 0, firmware.stderr
         assert (work / "fw" / "gaitboard.hex").exists()

@@ -1,11 +1,13 @@
-"""gaitc runs on Python 3.10 to 3.13: nothing newer than 3.10 is used, and the project says so.
+"""gaitc runs on Python 3.11 to 3.13: nothing newer than 3.11 is used, and the project says so.
 
-The development machine runs a newer Python, so a 3.11 feature (``enum.StrEnum``,
-``typing.Self``, ``tomllib``, ``ExceptionGroup``, ``except*``) imports fine here and breaks
-only for a 3.10 user. vermin reads the sources statically and names the oldest Python each
-construct needs; code behind a ``sys.version_info`` test counts for the versions it runs on.
-mypy checks at ``python_version = "3.10"`` too (``pyproject.toml``), which catches the
-typing side (a name a 3.10 stub lacks).
+3.10 is not declared: the CUDD binding gaitc's solver stands on, ``dd`` 0.6 with its
+``dd.cudd`` wheels, needs 3.11 (on 3.10 the package index has only ``dd`` 0.5.7, whose
+``dd.cudd`` must be built from CUDD's sources, which pip cannot fetch), so ``pip install``
+failed there (issue 61).  A newer feature (a 3.12 ``typing.override``, ``itertools.batched``)
+imports fine on the development machine and breaks only for a 3.11 user; vermin reads the
+sources statically and names the oldest Python each construct needs, and mypy checks at
+``python_version = "3.11"`` (``pyproject.toml``).  tests/cli/test_package.py installs the
+wheel on every declared version this machine has, in a fresh environment, and runs it.
 """
 
 from __future__ import annotations
@@ -14,18 +16,14 @@ import re
 import shutil
 import subprocess
 import sys
+import tomllib
 from pathlib import Path
 
 import pytest
 from packages import PACKAGES, ROOT
 
-if sys.version_info >= (3, 11):
-    import tomllib
-else:  # pragma: no cover - Python 3.10
-    import tomli as tomllib
-
 #: The oldest and the newest Python gaitc supports.
-OLDEST, NEWEST = (3, 10), (3, 13)
+OLDEST, NEWEST = (3, 11), (3, 13)
 
 
 def _vermin() -> str:
@@ -45,7 +43,7 @@ def _pyproject() -> dict[str, object]:
 
 def test_no_source_needs_more_than_the_oldest_python() -> None:
     """vermin finds nothing in the packages, the tests, the benchmarks and the tools that
-    needs a Python newer than 3.10; a finding is reported as ``file:line: feature``."""
+    needs a Python newer than 3.11; a finding is reported as ``file:line: feature``."""
     folders = [p for p in [*PACKAGES, "tests", "bench", "tools"] if (ROOT / p).is_dir()]
     target = f"-t={OLDEST[0]}.{OLDEST[1]}-"
     result = subprocess.run(
@@ -68,30 +66,29 @@ def test_no_source_needs_more_than_the_oldest_python() -> None:
 
 
 def test_vermin_sees_what_it_is_for(tmp_path: Path) -> None:
-    """The check above is not vacuous: on 3.11 features vermin fails and names each line."""
+    """The check above is not vacuous: on 3.12 features vermin fails and names each line."""
     probe = tmp_path / "probe.py"
     probe.write_text(
-        '"""A module that needs Python 3.11."""\n'
-        "import enum\n"
-        "import tomllib\n"
+        '"""A module that needs Python 3.12."""\n'
+        "import itertools\n"
+        "from typing import override\n"
         "\n"
         "\n"
-        "class Kind(enum.StrEnum):\n"
-        '    A = "a"\n',
+        "pairs = list(itertools.batched('abcd', 2))\n",
         encoding="utf-8",
     )
     result = subprocess.run(
-        [_vermin(), "-t=3.10-", "--violations", "--no-tips", "--format", "parsable",
+        [_vermin(), "-t=3.11-", "--violations", "--no-tips", "--format", "parsable",
          str(probe)],
         capture_output=True, text=True, check=False,
     )
     assert result.returncode != 0
-    assert ":3:" in result.stdout and "tomllib" in result.stdout
-    assert ":6:" in result.stdout and "StrEnum" in result.stdout
+    assert ":3:" in result.stdout and "override" in result.stdout
+    assert ":6:" in result.stdout and "batched" in result.stdout
 
 
 def test_the_project_declares_the_versions_it_is_checked_for() -> None:
-    """``requires-python``, the classifiers, mypy's and ruff's targets agree on 3.10-3.13."""
+    """``requires-python``, the classifiers, mypy's and ruff's targets agree on 3.11-3.13."""
     config = _pyproject()
     project = config["project"]
     tool = config["tool"]
