@@ -20,13 +20,22 @@ def top_level_packages() -> list[str]:
     return [pattern.rstrip("*").rstrip(".") for pattern in patterns]
 
 
+def checked_packages() -> list[str]:
+    """The wheel's packages and those the checkout keeps for bench/ and tests/ only
+    (``[tool.gaitc] checked-only``): what the layering and quality tests walk."""
+    with (ROOT / "pyproject.toml").open("rb") as handle:
+        config = tomllib.load(handle)
+    return top_level_packages() + list(config["tool"]["gaitc"]["checked-only"])
+
+
 def subpackages() -> list[str]:
     """Every package directory under the top-level packages, as dotted names."""
     found = []
-    for top in top_level_packages():
+    for top in checked_packages():
         for init in sorted((ROOT / top).rglob("__init__.py")):
             found.append(".".join(init.parent.relative_to(ROOT).parts))
     return found
 
 
-PACKAGES = top_level_packages()
+PACKAGES = checked_packages()
+WHEEL_PACKAGES = top_level_packages()
