@@ -206,6 +206,11 @@ def test_a_signal_during_the_repair_workers_stops_them_all(tmp_path: Path,
     the run with its one line and exit code, and no worker outlives it."""
     spec = _repair_spec(tmp_path)
     proc, workers = _with_workers([sys.executable, "-m", "gaitc", "explain", str(spec)])
+    if not [w for w in workers if not _gone(w)]:
+        # on a loaded machine the workers can be seen only as they finish: the run is then
+        # past its repairs, and the signal would land after them
+        proc.kill()
+        pytest.skip("the repair workers ended before the signal could be sent")
     os.kill(proc.pid, signum)
     _, err = proc.communicate(timeout=30)
     code, line = ENDINGS[signum]
