@@ -9,6 +9,7 @@ from __future__ import annotations
 
 from gaitc.diagnostics import Diagnostic, Span, SpecSemanticError
 from gaitc.ir.formula import Var, unreachable
+from gaitc.ir.roles import Fails, WearsUpTo
 from ltlcompiler import syntax as s
 from ltlcompiler.fragment import FormulaChecker
 from ltlcompiler.model import (
@@ -352,7 +353,8 @@ class _Checker:
                     )
                 regions.append(name)
             self._wear(st)
-            out.append(Hazard(hazard, tuple(regions), span=st.span, wears=st.wears))
+            out.append(Hazard(hazard, tuple(regions), span=st.span,
+                              harm=Fails() if st.wears is None else WearsUpTo(st.wears)))
         return tuple(out)
 
     def _wear(self, st: s.HazardDecl) -> None:

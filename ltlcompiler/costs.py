@@ -14,7 +14,8 @@ from __future__ import annotations
 from collections.abc import Sequence
 
 from gaitc.ir.costs import Cost
-from gaitc.ir.formula import Expr, Not, conj, disj
+from gaitc.ir.formula import Expr, Not, conj, disj, unreachable
+from gaitc.ir.roles import Fails, WearsUpTo
 from ltlcompiler.encoding import Encoding, EncodingName, make_encoding
 from ltlcompiler.model import GaitKind, Hazard, Model
 
@@ -48,13 +49,24 @@ def _hot(model: Model, enc: Encoding, hazards: Sequence[Hazard] | None = None) -
 def _levels_lost(hazard: Hazard, level: int) -> int:
     """The most levels a leg at ``level`` in use loses in a region of ``hazard`` when it
     is active: all but one when it fails the legs, at most ``wears`` when it is graded."""
-    return level - 1 if hazard.wears is None else min(hazard.wears, level - 1)
+    return hazard.harm.lost(level)
 
 
 def by_severity(hazards: Sequence[Hazard]) -> list[Hazard]:
     """``hazards``, the worst first: those that fail the legs (eq. 3.9), then the graded
     ones by the levels they may take (most first), ties in the spec's order."""
-    return sorted(hazards, key=lambda h: (h.wears is not None, -(h.wears or 0)))
+    return sorted(hazards, key=_severity)
+
+
+def _severity(hazard: Hazard) -> tuple[int, int]:
+    """The sort key of :func:`by_severity`: failing first, then the most levels."""
+    match hazard.harm:
+        case Fails():
+            return (0, 0)
+        case WearsUpTo(levels=k):
+            return (1, -k)
+        case _:
+            unreachable(hazard.harm)
 
 
 def _hazard(model: Model, enc: Encoding) -> Cost:

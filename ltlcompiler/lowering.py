@@ -35,6 +35,7 @@ from gaitc.ir.formula import (
 )
 from gaitc.ir.roles import (
     ClauseRole,
+    Fails,
     Goal,
     HazardEffect,
     LegFailure,
@@ -45,6 +46,7 @@ from gaitc.ir.roles import (
     StartHealth,
     UserClause,
     Wears,
+    WearsUpTo,
 )
 from gaitc.ir.spec import SECTIONS, Clause, GR1Spec, Origin, section_named
 from gaitc.ir.traversal import Node, Text, fold, join_text, separated
@@ -213,18 +215,20 @@ class _Lowering:
                             disj(enc.region(r) for r in hazard.regions)])
                 where = f"hazard {hazard.name} active in {'|'.join(hazard.regions)} " \
                         f"under {gait.name}"
-                if hazard.wears is None:
-                    lost = [enc.health(leg, 1, True) for leg in legs]
-                    rule = f"eq. 3.9: {where} fails {which}"
-                else:  # a graded hazard: eq. 3.9 with eq. 3.5's wear of up to k levels
-                    k = hazard.wears
-                    levels = f"{k} level{'s' if k != 1 else ''}"
-                    lost = [enc.wear_health(leg, k) for leg in legs]
-                    rule = f"eq. 3.9 graded (eq. 3.5 with up to {levels}): {where}: " \
-                           f"{which} may lose up to {levels}, the other legs keep theirs"
+                match hazard.harm:
+                    case Fails():
+                        lost = [enc.health(leg, 1, True) for leg in legs]
+                        rule = f"eq. 3.9: {where} fails {which}"
+                    case WearsUpTo(levels=k):  # eq. 3.9 with eq. 3.5's wear of up to k
+                        levels = f"{k} level{'s' if k != 1 else ''}"
+                        lost = [enc.wear_health(leg, k) for leg in legs]
+                        rule = f"eq. 3.9 graded (eq. 3.5 with up to {levels}): {where}: " \
+                               f"{which} may lose up to {levels}, the other legs keep theirs"
+                    case _:
+                        unreachable(hazard.harm)
                 body = conj([*lost, *self.keep_others(legs)])
                 self.add("env_trans", Implies(hot, body), rule, hazard.span,
-                         HazardEffect(hazard.name, gait.name, tuple(legs), hazard.wears))
+                         HazardEffect(hazard.name, gait.name, tuple(legs), hazard.harm))
 
     # ------------------------------------------------------------ eq. 3.6
     def caches(self) -> None:

@@ -19,6 +19,7 @@ from typing import Final
 
 from gaitc.diagnostics import Span
 from gaitc.ir.formula import Expr
+from gaitc.ir.roles import Fails, Harm
 
 NO_GAIT = "noGait"
 
@@ -134,28 +135,18 @@ class Transition:
 
 @dataclass(frozen=True)
 class Hazard:
-    """A hazard set, the regions it covers when active and what it does to the legs.
-
-    ``wears`` None: a move in an active region fails every leg of the gait (eq. 3.9).
-    ``wears`` k >= 1 (a graded hazard): each leg of the gait may lose up to k levels, never
-    going below level 1, the environment choosing how many (eq. 3.5 with k for 1; so
-    ``wears 1`` is the normal wear, and ``wears`` h - 1 or more lets the environment pick
-    any level from the current one down to failed, which is not "fails": it may also
-    spare the leg).
-    """
+    """A hazard set, the regions it covers when active and what it does to the legs."""
 
     name: str
     regions: tuple[str, ...]  # F_T(t)
     span: Span | None = field(default=None, compare=False, repr=False)
-    wears: int | None = None  # None: fails the legs; k: they may lose up to k levels
+    harm: Harm = field(default_factory=Fails)
 
     @property
     def effect(self) -> str:
         """What an active region does to the legs of a gait, in words: "fails the legs" or
         "wears the legs by up to 2 levels" (the words of the lowering, the map and docs)."""
-        if self.wears is None:
-            return "fails the legs"
-        return f"wears the legs by up to {self.wears} level{'s' if self.wears != 1 else ''}"
+        return self.harm.words
 
 
 @dataclass(frozen=True)

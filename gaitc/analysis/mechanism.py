@@ -105,8 +105,7 @@ def connection(model: Model, core: Sequence[Unit], freedoms: Sequence[Freedom],
         hazard = next(h for h in model.hazards if h.name == f.hazard)
         touched = [x for x in legs if x in _legs_entering(model, hazard.name)]
         whose = f" ({_names(touched)} among them)" if touched else ""
-        effect = "fails the legs" if hazard.wears is None else \
-            f"wears the legs by up to {hazard.wears} level{'s' if hazard.wears > 1 else ''}"
+        effect = hazard.effect
         lines.append(f"hazard set {hazard.name}, when on, {effect} of the gait in use in "
                      f"{_names(list(hazard.regions))}{whose}")
     if run is not None and run.steps and goal is not None and goal_regions:

@@ -43,6 +43,7 @@ from gaitc.analysis.variants import (
     with_health,
 )
 from gaitc.diagnostics import GaitcError
+from gaitc.ir.roles import Fails, WearsUpTo
 from gaitc.ir.spec import Semantics
 from ltlcompiler.encoding import EncodingName
 from ltlcompiler.model import Model
@@ -467,8 +468,8 @@ def _caches_and_hazards(report: Resilience, model: Model, place: int | None, poo
     placements = _placements(model, place, pool, notes)
     names = [h.name for h in model.hazards]
     alone = pool.models([with_hazards(model, [h]) for h in names])
-    wear = tuple(_hazard_wear(model, h.name, h.wears, pool) for h in model.hazards
-                 if h.wears is not None)
+    wear = tuple(_hazard_wear(model, h.name, h.harm.levels, pool) for h in model.hazards
+                 if isinstance(h.harm, WearsUpTo))
     return _with(report, essential_caches=essential, cache_placements=placements,
                  placed=place,
                  hazards_survived_alone=tuple(h for h, ok in zip(names, alone, strict=True)
@@ -488,7 +489,8 @@ def _hazard_wear(model: Model, name: str, declared: int, pool: Pool
     from dataclasses import replace
 
     def variant(wears: int | None) -> Model:
-        return replace(model, hazards=tuple(replace(h, wears=wears) if h.name == name else h
+        harm = Fails() if wears is None else WearsUpTo(wears)
+        return replace(model, hazards=tuple(replace(h, harm=harm) if h.name == name else h
                                             for h in model.hazards))
 
     low, high = declared, max(declared, max(leg.health for leg in model.legs) - 1)

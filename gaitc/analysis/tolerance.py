@@ -43,6 +43,7 @@ from gaitc.ir.formula import (
 )
 from gaitc.ir.roles import (
     ClauseRole,
+    Fails,
     Goal,
     HazardEffect,
     LegFailure,
@@ -53,6 +54,7 @@ from gaitc.ir.roles import (
     StartHealth,
     UserClause,
     Wears,
+    WearsUpTo,
 )
 from gaitc.ir.spec import Clause, GR1Spec, Origin, Semantics, Variable
 from gaitc.sim.monitor import clause_rule
@@ -196,7 +198,8 @@ def _leg_formulas(spec: Spec) -> LegFormulas:
 
     enc: Encoding = make_encoding(spec.model, spec.robot_encoding)
     out: LegFormulas = {}
-    wears = sorted({h.wears for h in spec.model.hazards if h.wears is not None})
+    wears = sorted({h.harm.levels for h in spec.model.hazards
+                    if isinstance(h.harm, WearsUpTo)})
     for leg in spec.model.legs:
         if leg.health <= 1:
             continue
@@ -216,9 +219,9 @@ def _kind(what: str, role: ClauseRole | None) -> PieceKind | None:
         case Spares() | Wears():  # eq. 3.5: the legs in use may lose a level, others keep
             return {"keep": PieceKind.UNUSED_LEG_KEEPS,
                     "degrade": PieceKind.USED_LEG_WEARS}.get(what)
-        case HazardEffect(wears=None):  # eq. 3.9: the legs in use fail, the others keep
+        case HazardEffect(harm=Fails()):  # eq. 3.9: the legs in use fail, the others keep
             return {"keep": PieceKind.UNUSED_LEG_KEEPS, "fail": PieceKind.HAZARD_FAILS}.get(what)
-        case HazardEffect():  # graded: the legs in use lose up to k levels
+        case HazardEffect():  # graded (WearsUpTo): the legs in use lose up to k levels
             return {"keep": PieceKind.UNUSED_LEG_KEEPS, "fail": PieceKind.HAZARD_FAILS,
                     "wear": PieceKind.HAZARD_WEARS, "degrade": PieceKind.HAZARD_WEARS}.get(what)
         case Restores():  # eq. 3.6

@@ -65,15 +65,53 @@ class Wears:
 
 
 @dataclass(frozen=True)
+class Fails:
+    """What an active hazard region does to the legs of the gait in it: fails every one
+    (eq. 3.9)."""
+
+    def lost(self, level: int) -> int:
+        """The most levels a leg at ``level`` loses there: all but one."""
+        return level - 1
+
+    @property
+    def words(self) -> str:
+        return "fails the legs"
+
+
+@dataclass(frozen=True)
+class WearsUpTo:
+    """What a graded hazard region does (``wears k``): each leg of the gait may lose up to
+    ``levels`` levels, never going below level 1, the environment choosing how many (eq. 3.5
+    with k for 1; ``wears 1`` is the normal wear, and ``wears`` h - 1 or more lets the
+    environment pick any level down to failed, which is not "fails": it may also spare the
+    leg)."""
+
+    levels: int
+
+    def lost(self, level: int) -> int:
+        """The most levels a leg at ``level`` loses there."""
+        return min(self.levels, level - 1)
+
+    @property
+    def words(self) -> str:
+        return f"wears the legs by up to {self.levels} level{'s' if self.levels != 1 else ''}"
+
+
+#: What an active hazard region does to the legs of the gait in it (issue 61: a type, where
+#: an optional number stood for it in eight modules).
+Harm: TypeAlias = Fails | WearsUpTo
+
+
+@dataclass(frozen=True)
 class HazardEffect:
-    """Under gait ``gait`` in an active region of hazard ``hazard``, ``legs`` fail
-    (``wears`` None, eq. 3.9) or may lose up to ``wears`` levels (a graded hazard), and
-    the other legs keep theirs."""
+    """Under gait ``gait`` in an active region of hazard ``hazard``, ``legs`` suffer
+    ``harm`` (they fail, eq. 3.9, or lose up to k levels, a graded hazard), and the other
+    legs keep theirs."""
 
     hazard: str
     gait: str
     legs: tuple[str, ...]
-    wears: int | None = None
+    harm: Harm
 
 
 @dataclass(frozen=True)

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 from collections import deque
 
+from gaitc.ir.roles import WearsUpTo
 from gaitc.lsp.index import Index, Kind, Symbol
 from ltlcompiler import syntax as s
 from ltlcompiler.model import NO_GAIT, GaitKind, Model
@@ -36,9 +37,11 @@ def describe(symbol: Symbol, index: Index, model: Model | None, role: str = "") 
         hazard = next((h for h in model.hazards if h.name == symbol.name), None)
         cells = ", ".join(hazard.regions) if hazard and hazard.regions else "(no region)"
         effect = "fails the legs" if hazard is None else hazard.effect
-        source = ("thesis eqs. 3.8, 3.9" if hazard is None or hazard.wears is None
-                  else f"thesis eq. 3.9, graded: a loss of up to {hazard.wears} "
-                  f"level{'s' if hazard.wears != 1 else ''} in place of a failure")
+        graded = hazard.harm if hazard is not None and isinstance(hazard.harm, WearsUpTo) \
+            else None
+        source = ("thesis eqs. 3.8, 3.9" if graded is None
+                  else f"thesis eq. 3.9, graded: a loss of up to {graded.levels} "
+                  f"level{'s' if graded.levels != 1 else ''} in place of a failure")
         return (f"{head}\n\nregions: {cells}\n\nwhile it is on, entering one of them "
                 f"{effect} (those of the gait in use; {source})")
     text = f"{head}\n\n{_region(symbol.name, model)}"

@@ -109,8 +109,8 @@ def test_every_clause_of_a_shipped_spec_has_a_role_the_model_agrees_with(
                     assert section == "env_trans" and gait in gaits
                 case Wears(gait=gait, legs=used):
                     assert gait in gaits and set(used) <= set(model.gait(gait).legs)
-                case HazardEffect(hazard=hazard, gait=gait, legs=used, wears=wears):
-                    assert hazards[hazard].wears == wears and gait in gaits
+                case HazardEffect(hazard=hazard, gait=gait, legs=used, harm=harm):
+                    assert hazards[hazard].harm == harm and gait in gaits
                     assert set(used) <= set(model.gait(gait).legs)
                 case Restores(cache=cache):
                     assert cache in model.caches

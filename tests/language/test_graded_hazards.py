@@ -24,6 +24,7 @@ from gaitc.diagnostics import SpecSemanticError
 from gaitc.ir.bitblast import bitblast
 from gaitc.ir.bits import encode_bits
 from gaitc.ir.evaluation import evaluate
+from gaitc.ir.roles import Fails, WearsUpTo
 from gaitc.ir.spec import GR1Spec, Variable
 from gaitc.verifier.logic import Logic
 from ltlcompiler.encoding import EncodingName, health_prop, make_encoding
@@ -64,13 +65,13 @@ def _corridor(health: int, wears: int | None) -> str:
 
 def test_the_model_keeps_the_wear_and_says_what_it_does() -> None:
     model, warnings = model_from_text(_corridor(4, 2))
-    assert model.hazards == (Hazard("sand", ("b",), wears=2),)
+    assert model.hazards == (Hazard("sand", ("b",), harm=WearsUpTo(2)),)
     assert model.hazards[0].effect == "wears the legs by up to 2 levels"
     assert warnings == []
     failing, _ = model_from_text(_corridor(4, None))
     assert failing.hazards == (Hazard("sand", ("b",)),)
     assert failing.hazards[0].effect == "fails the legs"
-    assert Hazard("h", ("b",), wears=1).effect == "wears the legs by up to 1 level"
+    assert Hazard("h", ("b",), harm=WearsUpTo(1)).effect == "wears the legs by up to 1 level"
 
 
 def test_wears_one_warns_and_lowers_like_no_hazard() -> None:
@@ -148,10 +149,11 @@ def _hand_successors(model: Model, state: _State) -> set[tuple[tuple[int, ...], 
     for leg, level in zip(model.legs, state.health, strict=True):
         if leg.name not in used:
             choices.append(range(level, level + 1))
-        elif active is not None and active.wears is None:
+        elif active is not None and isinstance(active.harm, Fails):
             choices.append(range(1, 2))
         else:
-            loss = 1 if active is None else active.wears or 0
+            loss = 1 if active is None or not isinstance(active.harm, WearsUpTo) \
+                else active.harm.levels
             choices.append(range(max(1, level - loss), level + 1))
     return {(levels, h) for levels in itertools.product(*choices) for h in hazards}
 
@@ -253,7 +255,7 @@ start a
 def test_env_trans_allows_exactly_the_hand_written_successors(
         name: str, encoding: EncodingName) -> None:
     model, _ = model_from_text(SMALL[name])
-    graded = [h for h in model.hazards if h.wears is not None]
+    graded = [h for h in model.hazards if isinstance(h.harm, WearsUpTo)]
     seen_deep_loss = False
     checked = 0
     for state, allowed in _lowered_successors(model, encoding):

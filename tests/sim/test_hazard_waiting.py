@@ -28,6 +28,7 @@ import pytest
 import gaitc
 from gaitc.api.driving import DriveOptions, SimulatedBoard
 from gaitc.ir.formula import And, Not, Or, Var
+from gaitc.ir.roles import Fails, WearsUpTo
 from gaitc.ir.spec import Clause, GR1Spec
 from gaitc.play.player import Autopilot
 from gaitc.sim.run import Step
@@ -42,10 +43,14 @@ YARD = Path(__file__).resolve().parents[1] / "data" / "hazards" / "yard.gait"
 
 def worst_first(model: Model) -> list[Hazard]:
     """The hazards as the issue ranks them: failing ones first, then by the levels taken."""
-    failing = [h for h in model.hazards if h.wears is None]
-    graded = sorted((h for h in model.hazards if h.wears is not None),
-                    key=lambda h: -(h.wears or 0))
-    return failing + graded
+    failing = [h for h in model.hazards if isinstance(h.harm, Fails)]
+    graded = [h for h in model.hazards if isinstance(h.harm, WearsUpTo)]
+    return failing + sorted(graded, key=lambda h: -_levels(h))
+
+
+def _levels(hazard: Hazard) -> int:
+    assert isinstance(hazard.harm, WearsUpTo)
+    return hazard.harm.levels
 
 
 class Alternatives:
