@@ -17,6 +17,7 @@ from typing import Final
 from gaitc.cli import reporting
 from gaitc.cli.exitcodes import ExitCode, exit_code_help
 from gaitc.diagnostics import GaitcError, UsageError, render_error
+from gaitc.diagnostics.teardown import quiet_cudd_teardown
 
 #: Options whose values may start with a minus sign (``--direction -y``, ``--goal -10,0``):
 #: argparse would take such a value for an option, so :func:`attach_signed_values` joins it.
@@ -155,6 +156,7 @@ def _ended_by(signum: int) -> int:
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Run gaitc with ``argv`` (default: ``sys.argv[1:]``) and return the exit code."""
+    quiet_cudd_teardown()
     if threading.current_thread() is not threading.main_thread():
         return _run(argv, None)
     signals = _Signals()
