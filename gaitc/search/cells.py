@@ -123,6 +123,10 @@ class Lattice:
             table[k] = np.maximum(table[k - 1], exact)
         return table
 
+    def walk_bound(self, edge: int) -> float:
+        """The length (plus the snapping slack) the walk tables assume for ``edge``."""
+        return float(self._walk_len[edge])
+
     @property
     def walking(self) -> bool:
         """Whether the graph is small enough for walk tables (:data:`WALK_EDGES`)."""

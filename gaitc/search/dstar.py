@@ -323,9 +323,16 @@ class DStarLite:
             model.remove(edge)
         else:
             model.set_motion(edge, step)
-        if step is not None and lattice.cover(edge):
-            self._walk_table()  # the step bounds grew
-            self._rekey()
+        if step is not None:
+            bound = lattice.walk_bound(edge)
+            grew = lattice.cover(edge)
+            if self._walks and lattice.walk_bound(edge) != bound:
+                # the edge's length bound grew: walks from the start may reach farther,
+                # even where the walks home (what cover reports) stayed as they were
+                self._walk_table()
+                grew = True
+            if grew:
+                self._rekey()
         for u in tight:
             self._recompute(u)
         target = int(model.dst[edge])
