@@ -29,7 +29,7 @@ for v in $versions; do
     echo "versions: Python $v ($python) in $env" >&2
     rm -rf "$env"
     "$python" -m venv "$env"
-    "$env/bin/python" -m pip install -q --disable-pip-version-check -e ".[test,peers]"
+    "$env/bin/python" -m pip install -q --disable-pip-version-check -e ".[test,peers,notebook]"
     out="$(mktemp -d)"
     "$env/bin/gaitc" synth specs/thesis_robot_a.gait -o "$out/robot_a.controller.json"
     rm -rf "$out"
