@@ -51,9 +51,13 @@ class Server:
 
     def __init__(self, stderr: Path) -> None:
         self._stderr = stderr.open("wb")
+        # Ctrl-C as an editor's child has it: the server respects an ignored SIGINT, and a
+        # pytest worker may have left SIGINT ignored for the children it starts
         self.proc = subprocess.Popen([sys.executable, "-m", "gaitc", "lsp"],
                                      stdin=subprocess.PIPE, stdout=subprocess.PIPE,
-                                     stderr=self._stderr)
+                                     stderr=self._stderr,
+                                     preexec_fn=lambda: signal.signal(signal.SIGINT,
+                                                                      signal.SIG_DFL))
         self.received: list[tuple[float, dict[str, Any]]] = []
         self._arrived = threading.Condition()
         self._lock = threading.Lock()
