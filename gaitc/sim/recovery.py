@@ -45,6 +45,7 @@ from gaitc.core.modes import Outcome
 from gaitc.diagnostics import Span
 from gaitc.ir.bddfile import materialize, node_table
 from gaitc.ir.bddwalk import first_assignment
+from gaitc.ir.costs import Cost
 from gaitc.ir.formula import Or
 from gaitc.ir.spec import Clause, GR1Spec, Origin, Semantics
 from gaitc.sim.domain import Domain
@@ -97,6 +98,7 @@ class Fallback:
     semantics: Semantics = Semantics.DEFAULT
     prefer: tuple[str, ...] = PREFERENCES  # the move preferences of the games' strategies
     _games: dict[tuple[str, ...], _Solved | None] = field(default_factory=dict, repr=False)
+    _costs: tuple[Cost, ...] | None = field(default=None, repr=False)  # written once a run
 
     @property
     def goals(self) -> int:
@@ -168,8 +170,9 @@ class Fallback:
         if result.winning != sym.bdd.false:
             prefer = None
             if self.prefer:
-                costs = model_costs(self.domain.model, self.domain.encoding)
-                prefer = MovePreferences(sym, result, costs, self.prefer)
+                if self._costs is None:
+                    self._costs = model_costs(self.domain.model, self.domain.encoding)
+                prefer = MovePreferences(sym, result, self._costs, self.prefer)
             ctrl = symbolic_controller(sym, result, self.semantics, prefer)
             avoiding = [] if prefer is None else [g.entering for g in prefer.avoiding]
             order, nodes, refs = node_table(sym.bdd, {

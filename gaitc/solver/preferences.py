@@ -143,12 +143,12 @@ class MovePreferences:
         hazard = self.terms.get("hazard", [])
         if hazard:
             found = by_name.get("hazard")
-            self._hazard_names = (found.labels if found is not None and found.labels
-                                  else tuple(str(k + 1) for k in range(len(hazard))))
-            self.avoiding = self._avoiding_games([t for _, t in hazard], limits)
+            names = (found.labels if found is not None and found.labels
+                     else tuple(str(k + 1) for k in range(len(hazard))))
+            self.avoiding = self._avoiding_games([t for _, t in hazard], names, limits)
 
-    def _avoiding_games(self, hazards: Sequence[BDDNode], limits: Limits | None
-                        ) -> list[Avoiding]:
+    def _avoiding_games(self, hazards: Sequence[BDDNode], names: Sequence[str],
+                        limits: Limits | None) -> list[Avoiding]:
         """The games that avoid sets of ``hazards`` (moves, worst first), each won
         somewhere, the best set first.  A set's winning region lies inside each of its
         subsets' (fewer moves win no more states), so a set is tried only when all of its
@@ -156,9 +156,8 @@ class MovePreferences:
         intersection (:meth:`Game.solve`'s ``within``)."""
         solved: dict[tuple[int, ...], Avoiding] = {}
         alone = [i for i in range(len(hazards))
-                 if self._avoiding((i,), hazards, self.winning, limits, solved)]
-        sizes = range(2, len(alone) + 1)
-        for size in sizes:
+                 if self._avoiding((i,), hazards, names, self.winning, limits, solved)]
+        for size in range(2, len(alone) + 1):
             sets = (combinations(alone, size) if len(alone) <= ALL_SETS_UP_TO
                     else [tuple(alone[:size])])
             for chosen in sets:
@@ -167,11 +166,12 @@ class MovePreferences:
                     found = solved.get(smaller)
                     within = within & found.winning if found is not None else self.sym.bdd.false
                 if within != self.sym.bdd.false:
-                    self._avoiding(chosen, hazards, within, limits, solved)
+                    self._avoiding(chosen, hazards, names, within, limits, solved)
         return sorted(solved.values(), key=lambda a: a.rank(len(hazards)))
 
-    def _avoiding(self, chosen: tuple[int, ...], hazards: Sequence[BDDNode], within: BDDNode,
-                  limits: Limits | None, solved: dict[tuple[int, ...], Avoiding]) -> bool:
+    def _avoiding(self, chosen: tuple[int, ...], hazards: Sequence[BDDNode],
+                  names: Sequence[str], within: BDDNode, limits: Limits | None,
+                  solved: dict[tuple[int, ...], Avoiding]) -> bool:
         """Solve the game that avoids the hazards ``chosen`` (its winning region inside
         ``within``); keep it in ``solved`` when it is won somewhere."""
         sym = self.sym
@@ -181,7 +181,7 @@ class MovePreferences:
         strict = fewer_moves(sym, avoid)
         purpose = "solving the game without entries into active hazards"
         if len(hazards) > 1:
-            purpose += f" {', '.join(self._hazard_names[i] for i in chosen)}"
+            purpose += f" {', '.join(names[i] for i in chosen)}"
         result = Game(strict, limits, purpose).solve(keep_layers=True, within=within)
         if result.winning == sym.bdd.false:
             return False
