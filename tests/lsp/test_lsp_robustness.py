@@ -486,10 +486,18 @@ def _children(lsp: Server) -> list[psutil.Process]:
         return []
 
 
+def _alive(child: psutil.Process) -> bool:
+    """Whether a child still runs; one that exits between listing and asking is gone."""
+    try:
+        return child.status() != psutil.STATUS_ZOMBIE
+    except psutil.NoSuchProcess:
+        return False
+
+
 def _gone(lsp: Server, within: float) -> bool:
     deadline = time.monotonic() + within
     while time.monotonic() < deadline:
-        if not [c for c in _children(lsp) if c.status() != psutil.STATUS_ZOMBIE]:
+        if not [c for c in _children(lsp) if _alive(c)]:
             return True
         time.sleep(0.02)
     return False
