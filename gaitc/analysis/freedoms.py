@@ -14,8 +14,9 @@ from dataclasses import dataclass
 from gaitc.analysis.ddmin import ddmin
 from gaitc.analysis.oracle import Oracle
 from gaitc.analysis.units import with_clauses
+from gaitc.core.changes import HazardSwitch, LegWears
 from gaitc.core.spec import Spec
-from gaitc.ir.formula import Expr, Implies, Not, conj, disj
+from gaitc.ir.formula import Expr, Implies, Not, conj, disj, unreachable
 from gaitc.ir.spec import Clause, GR1Spec, Origin
 from ltlcompiler.encoding import Encoding, make_encoding
 from ltlcompiler.model import GaitKind, Model
@@ -23,32 +24,43 @@ from ltlcompiler.model import GaitKind, Model
 
 @dataclass(frozen=True)
 class Freedom:
-    """One freedom of the environment: degrading ``leg`` under ``gait``, or ``hazard``."""
+    """One freedom of the environment: a change it may make (:mod:`gaitc.core.changes`),
+    a leg losing a level while ``gait`` is in use, or a hazard set switching on."""
 
-    kind: str  # "degrade" or "hazard"
-    leg: str = ""
+    change: LegWears | HazardSwitch
     gait: str = ""
-    hazard: str = ""
+
+    @property
+    def kind(self) -> str:
+        """``degrade`` or ``hazard``: the freedom's kind in ``--json``."""
+        return "degrade" if isinstance(self.change, LegWears) else "hazard"
 
     def describe(self) -> str:
-        if self.kind == "degrade":
-            return f"degrade leg {self.leg} while gait {self.gait} is in use"
-        return f"switch hazard set {self.hazard} on"
+        match self.change:
+            case LegWears(leg):
+                return f"degrade leg {leg} while gait {self.gait} is in use"
+            case HazardSwitch(hazard):
+                return f"switch hazard set {hazard} on"
+            case _:
+                unreachable(self.change)
 
     def to_json(self) -> dict[str, str]:
         out = {"kind": self.kind, "text": self.describe()}
-        out.update({k: v for k, v in (("leg", self.leg), ("gait", self.gait),
-                                      ("hazard", self.hazard)) if v})
+        match self.change:
+            case LegWears(leg):
+                out.update(leg=leg, gait=self.gait)
+            case HazardSwitch(hazard):
+                out.update(hazard=hazard)
         return out
 
 
 def freedoms(model: Model) -> tuple[Freedom, ...]:
     """Every freedom the spec gives its environment, in declaration order."""
     health = {leg.name: leg.health for leg in model.legs}
-    out = [Freedom("degrade", leg, gait.name)
+    out = [Freedom(LegWears(leg), gait.name)
            for gait in model.gaits if gait.kind is GaitKind.MOVE
            for leg in gait.legs if health[leg] > 1]
-    out.extend(Freedom("hazard", hazard=h.name) for h in model.hazards)
+    out.extend(Freedom(HazardSwitch(h.name, True)) for h in model.hazards)
     return tuple(out)
 
 
@@ -60,12 +72,15 @@ def _restrictions(model: Model, enc: Encoding, taken: tuple[Freedom, ...]
     away = [Not(enc.region(c)) for c in model.caches]
     for f in taken:
         origin = Origin(f"freedom taken away: {f.describe()}")
-        if f.kind == "degrade":
-            guard = conj([enc.gait(f.gait), *away, *([Not(hot)] if model.hazards else [])])
-            extra["env_trans"].append(Clause(Implies(guard, enc.keep_health(f.leg)), origin))
-        else:
-            extra["env_init"].append(Clause(Not(enc.hazard(f.hazard)), origin))
-            extra["env_trans"].append(Clause(Not(enc.hazard(f.hazard, True)), origin))
+        match f.change:
+            case LegWears(leg):
+                guard = conj([enc.gait(f.gait), *away, *([Not(hot)] if model.hazards else [])])
+                extra["env_trans"].append(Clause(Implies(guard, enc.keep_health(leg)), origin))
+            case HazardSwitch(hazard):
+                extra["env_init"].append(Clause(Not(enc.hazard(hazard)), origin))
+                extra["env_trans"].append(Clause(Not(enc.hazard(hazard, True)), origin))
+            case _:
+                unreachable(f.change)
     return extra
 
 

@@ -20,6 +20,7 @@ from collections.abc import Iterable, Sequence
 from gaitc.analysis.freedoms import Freedom
 from gaitc.analysis.units import Unit
 from gaitc.analysis.variants import gait_families
+from gaitc.core.changes import HazardSwitch, LegWears
 from gaitc.ir.roles import LegFailure
 from gaitc.sim.run import Run
 from ltlcompiler.model import GaitKind, Model
@@ -91,7 +92,7 @@ def connection(model: Model, core: Sequence[Unit], freedoms: Sequence[Freedom],
         closed = closed_directions(model, leg)
         said = "; ".join(_direction_text(d, g, leg) for d, g in closed) if closed else \
             f"the gaits {_names(model.gaits_using(leg))} use {leg}"
-        worn = [f.gait for f in freedoms if f.kind == "degrade" and f.leg == leg]
+        worn = [f.gait for f in freedoms if f.change == LegWears(leg)]
         if worn:
             said += f"; the environment may wear {leg} down under {_names(worn)}"
         lines.append(said)
@@ -100,9 +101,9 @@ def connection(model: Model, core: Sequence[Unit], freedoms: Sequence[Freedom],
         lines.append(f"likewise {_names(rest)}, whose failure turns off "
                      f"{_names(sorted({g for x in rest for g in model.gaits_using(x)}))}")
     for f in freedoms:
-        if f.kind != "hazard":
+        if not isinstance(f.change, HazardSwitch):
             continue
-        hazard = next(h for h in model.hazards if h.name == f.hazard)
+        hazard = next(h for h in model.hazards if h.name == f.change.hazard)
         touched = [x for x in legs if x in _legs_entering(model, hazard.name)]
         whose = f" ({_names(touched)} among them)" if touched else ""
         effect = hazard.effect

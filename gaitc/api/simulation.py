@@ -15,6 +15,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any, Final, TypeAlias
 
 from gaitc.api.solving import Synthesis, recorded_encoding, synthesize
+from gaitc.core.changes import EXAMPLES as CHANGE_EXAMPLES
 from gaitc.core.modes import EnvironmentKind, Semantics, SurprisePolicy
 from gaitc.core.spec import Spec, load
 from gaitc.diagnostics import UsageError
@@ -36,9 +37,9 @@ if TYPE_CHECKING:
     from gaitc.sim.scenario import Scenario
     from gaitc.sim.simulator import SurpriseOptions
 
-__all__ = ["DEFAULT_STEPS", "ENVIRONMENTS", "EnvironmentLike", "Opponent", "Session",
-           "Simulation", "SurprisePolicy", "counter_session", "environment", "is_run_file",
-           "opponent", "run_document", "session", "simulate", "simulate_spec"]
+__all__ = ["CHANGE_EXAMPLES", "DEFAULT_STEPS", "ENVIRONMENTS", "EnvironmentLike", "Opponent",
+           "Session", "Simulation", "SurprisePolicy", "counter_session", "environment",
+           "is_run_file", "opponent", "run_document", "session", "simulate", "simulate_spec"]
 
 #: The environments :func:`simulate` and ``gaitc simulate --env`` know by name.
 ENVIRONMENTS: Final = EnvironmentKind.values()

@@ -19,7 +19,7 @@ from dataclasses import dataclass
 from typing import Final
 
 from gaitc.codegen.tables import flatten
-from gaitc.compact.recovery import RecoveringController
+from gaitc.compact.recovery import RecoveringController, told
 from gaitc.diagnostics import ControllerError
 
 #: Flash the firmware itself takes beside the tables (measured: gaitboard.c with a linked
@@ -121,7 +121,7 @@ def stops(rc: RecoveringController) -> list[str]:
             why.append(f"stop in {dropped} case(s) (its fallback tables do not fit)")
         if why:
             rest = f"; {c.recovered} case(s) recover" if c.recovered else ""
-            out.append(f"{c.surprise.words()}: {', '.join(why)}{rest}")
+            out.append(f"{told(c.surprise)}: {', '.join(why)}{rest}")
     return out
 
 

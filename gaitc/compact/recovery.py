@@ -30,7 +30,7 @@ from __future__ import annotations
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field, replace
 from itertools import combinations
-from typing import Any
+from typing import Any, TypeAlias
 
 from gaitc.compact.controller import CompactController
 from gaitc.compact.diagram import (
@@ -49,31 +49,34 @@ from gaitc.compact.extraction import (
     reachable_from,
     slot_order,
 )
+from gaitc.core.changes import Change, HazardSwitch, LegFails, LegRepaired, LegWears
 from gaitc.core.modes import Outcome
-from gaitc.core.vocabulary import Field, Vocabulary
+from gaitc.core.vocabulary import HAZARD_FIELD, Field, Vocabulary
 from gaitc.diagnostics.choices import Choice
+from gaitc.ir.formula import unreachable
 from gaitc.ir.spec import GR1Spec, Semantics
 
 
-class Change(Choice):
-    """How one input field changes in a single-field surprise."""
-
-    FAILS = "fails"  # a leg drops to its lowest level
-    LOSES = "loses a level"  # a leg drops by one level
-    SWITCHES = "switches"  # a non-numeric input (the hazard) takes another value
-
-
 @dataclass(frozen=True)
-class SurpriseClass:
-    """The surprises where input field ``field`` makes ``change`` and nothing else moves."""
+class FieldSwitch:
+    """A plain spec's input ``field`` taking another value (a spec with no robot words)."""
 
     field: str
-    change: Change
 
-    def words(self) -> str:
-        if self.change == Change.SWITCHES:
-            return f"{self.field} switching where the assumptions do not allow it"
-        return f"{self.field} {self.change} while unused"
+    def told(self) -> str:
+        return f"{self.field} switches"
+
+
+#: A class of single-field surprises: a change of the robot's environment
+#: (:mod:`gaitc.core.changes`: a leg failing or losing levels, a hazard set switching), or
+#: a plain spec's input switching.  Its surprises are the (state, inputs) pairs where that
+#: field makes the change, every other input stays, and ρe is broken.
+SurpriseClass: TypeAlias = Change | FieldSwitch
+
+
+def told(surprise: SurpriseClass) -> str:
+    """A surprise class in the robot's words (``L3 fails where the assumptions forbid it``)."""
+    return f"{surprise.told()} where the assumptions forbid it"
 
 
 @dataclass(frozen=True)
@@ -254,16 +257,18 @@ class RecoveryOptions:
 
 
 def surprise_classes(vocabulary: Vocabulary) -> tuple[SurpriseClass, ...]:
-    """Every single-field class: per numeric input (a leg) failing and losing a level, per
-    other input (the hazard) switching."""
+    """Every single-field class: per numeric input (a leg) failing and losing a level; per
+    hazard set switching on and off; per other input of a plain spec switching."""
     out: list[SurpriseClass] = []
     for f in vocabulary.inputs:
         if f.numeric:
-            out.append(SurpriseClass(f.name, Change.FAILS))
+            out.append(LegFails(f.name))
             if len(f.labels) > 2:
-                out.append(SurpriseClass(f.name, Change.LOSES))
+                out.append(LegWears(f.name))
+        elif vocabulary.domain == "robot" and f.name == HAZARD_FIELD:
+            out.extend(HazardSwitch(h, on) for h in f.labels[1:] for on in (True, False))
         elif len(f.labels) > 1:
-            out.append(SurpriseClass(f.name, Change.SWITCHES))
+            out.append(FieldSwitch(f.name))
     return tuple(out)
 
 
@@ -491,10 +496,11 @@ def _closure(work: _Work, starts: Sequence[Any], strategies: Sequence[Any],
 
 
 def _class_set(bdd: Any, vocabulary: Vocabulary, c: SurpriseClass) -> Any:
-    """(x, x') where field ``c.field`` makes the change and every other input stays."""
+    """(x, x') where the class's field makes its change and every other input stays."""
+    name = _field(c)
     out = bdd.true
     for f in vocabulary.inputs:
-        if f.name != c.field:
+        if f.name != name:
             same = bdd.false
             for k in range(len(f.labels)):
                 same |= bdd.cube(f.cube(k) | f.cube(k, True))
@@ -502,18 +508,45 @@ def _class_set(bdd: Any, vocabulary: Vocabulary, c: SurpriseClass) -> Any:
             continue
         pairs = bdd.false
         for k in range(len(f.labels)):
-            for after in _changed(c.change, k, len(f.labels)):
+            for after in _changed(c, k, f.labels):
                 pairs |= bdd.cube(f.cube(k) | f.cube(after, True))
         out &= pairs
     return out
 
 
-def _changed(change: Change, value: int, size: int) -> list[int]:
-    if change == Change.FAILS:
-        return [0] if value > 0 else []
-    if change == Change.LOSES:
-        return [value - 1] if value > 0 else []
-    return [v for v in range(size) if v != value]
+def _field(c: SurpriseClass) -> str:
+    match c:
+        case LegFails(leg) | LegWears(leg) | LegRepaired(leg):
+            return leg
+        case HazardSwitch():
+            return HAZARD_FIELD
+        case FieldSwitch(name):
+            return name
+        case _:
+            unreachable(c)
+
+
+def _changed(c: SurpriseClass, value: int, labels: Sequence[str]) -> list[int]:
+    """The values the class's field takes from ``value`` (an index into ``labels``; a
+    numeric field's lowest value is a failed leg's level)."""
+    top = len(labels) - 1
+    match c:
+        case LegFails():
+            return [0] if value > 0 else []
+        case LegWears(_, levels):
+            return [max(0, value - levels)] if value > 0 else []
+        case LegRepaired(_, level):
+            to = top if level is None else labels.index(str(level))
+            return [to] if to > value else []
+        case HazardSwitch(hazard, on):
+            if not on:  # to value 0, none
+                return [0] if labels[value] == hazard else []
+            to = labels.index(hazard)
+            return [to] if value != to else []
+        case FieldSwitch():
+            return [v for v in range(len(labels)) if v != value]
+        case _:
+            unreachable(c)
 
 
 def _class_report(bdd: Any, c: SurpriseClass, u: Any, enter: Any,

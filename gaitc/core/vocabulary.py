@@ -22,6 +22,8 @@ from ltlcompiler.encoding import EncodingName, health_prop
 from ltlcompiler.model import Model
 
 Cube = tuple[tuple[str, bool], ...]
+#: The field of the active hazard set in a robot's vocabulary (its first value ``none``).
+HAZARD_FIELD = "hazard"
 
 
 @dataclass(frozen=True)
@@ -118,7 +120,7 @@ def robot_vocabulary(model: Model, encoding: EncodingName,
             return [RobotState(r, base.gait, base.health, None) for r in regions]
         if name == "gait":
             return [RobotState(base.region, g, base.health, None) for g in gaits]
-        if name == "hazard":
+        if name == HAZARD_FIELD:
             return [RobotState(base.region, base.gait, base.health, h)
                     for h in [None, *hazards]]
         leg = next(leg for leg in model.legs if leg.name == name)
@@ -148,7 +150,7 @@ def robot_vocabulary(model: Model, encoding: EncodingName,
     for leg in model.legs:
         fields.append(field(leg.name, True, [str(k) for k in range(1, leg.health + 1)], True))
     if hazards:
-        fields.append(field("hazard", True, ["none", *hazards], False))
+        fields.append(field(HAZARD_FIELD, True, ["none", *hazards], False))
     return Vocabulary(tuple(fields), "robot")
 
 

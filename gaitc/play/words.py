@@ -1,7 +1,8 @@
 """The moves of a play in the robot's words: what the environment does, what the robot does.
 
-An environment move is told as the change it makes to the state before it (``degrade L3``,
-``fail L5``, ``switch spill on``, ``nothing``); the first state as how it starts
+An environment move is told as the changes it makes to the state before it, in the words
+of :mod:`gaitc.core.changes` (``degrade L3``, ``fail L5``, ``switch spill on``) or
+``nothing``; the first state as how it starts
 (``start with L3 at level 2``). A robot move is told as its gait and where it goes
 (``north_a to r0``). Moves that the words cannot tell apart (inputs the decoding does not
 show) get the differing values appended, so a list of moves never shows one line twice.
@@ -11,50 +12,27 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 
+from gaitc.core.changes import between, words
 from gaitc.sim.domain import State
 from ltlcompiler.model import NO_GAIT
 
 NOTHING = "nothing"
 
 
-def _hazard_words(before: str | None, after: str | None) -> list[str]:
-    if before == after:
-        return []
-    if after is None:
-        return [f"switch {before} off"]
-    if before is None:
-        return [f"switch {after} on"]
-    return [f"switch {before} off and {after} on"]
-
-
-def _leg_words(leg: str, before: int, after: int, full: int) -> str:
-    if after == 1 and before > 1:
-        return f"fail {leg}"
-    if after == before - 1:
-        return f"degrade {leg}"
-    if after < before:
-        return f"{leg} down to level {after}"
-    if after == full:
-        return f"repair {leg}"
-    return f"{leg} up to level {after}"
-
-
 def environment_words(before: State | None, after: State, full: Mapping[str, int]) -> str:
     """The environment's move from ``before`` to ``after`` (its inputs: leg health and
-    hazard), or how the first state starts when ``before`` is None."""
+    hazard) as the changes it makes (:func:`gaitc.core.changes.between`), in the words
+    ``break an assumption`` and ``--violate`` read back; or how the first state starts when
+    ``before`` is None."""
     if before is None:
         parts = [f"{leg} at level {level}" for leg, level in after.health
                  if level != full.get(leg, level)]
         if after.hazard is not None:
             parts.append(f"{after.hazard} on")
         return "start with " + ", ".join(parts) if parts else "start at full health"
-    parts = _hazard_words(before.hazard, after.hazard)
-    now = dict(after.health)
-    for leg, level in before.health:
-        new = now.get(leg, level)
-        if new != level:
-            parts.append(_leg_words(leg, level, new, full.get(leg, level)))
-    return ", ".join(parts) or NOTHING
+    changes = between(dict(before.health), dict(after.health), full, before.hazard,
+                      after.hazard)
+    return words(changes) or NOTHING
 
 
 def robot_words(before: State | None, after: State) -> str:

@@ -16,8 +16,23 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
+from gaitc.core.changes import (
+    Change,
+    HazardSwitch,
+    LegFails,
+    LegRepaired,
+    LegWears,
+    active_after,
+    between,
+    conflict,
+    leg_level,
+    parse_changes,
+    subject,
+)
+from gaitc.core.changes import words as change_words_of
 from gaitc.core.modes import Outcome
 from gaitc.diagnostics import Span, UsageError
+from gaitc.ir.formula import unreachable
 from gaitc.sim.domain import Domain, State
 from gaitc.sim.monitor import Violation
 
@@ -72,14 +87,16 @@ class Surprise:
 
 @dataclass(frozen=True)
 class Event:
-    """One environment event: legs losing levels or failing, a repair, a hazard switched."""
+    """What the environment does at one step: one or more changes
+    (:mod:`gaitc.core.changes`: legs failing, losing levels or repaired, a hazard set
+    switched), with the words they were given in (by default the changes' own)."""
 
-    words: str
-    degrade: tuple[tuple[str, int], ...] = ()  # (leg, levels lost)
-    fail: tuple[str, ...] = ()
-    repair: tuple[str, ...] = ()
-    hazard: str | None = None
-    switch_on: bool = False  # with ``hazard``: on (True) or off (False)
+    changes: tuple[Change, ...]
+    text: str | None = None
+
+    @property
+    def words(self) -> str:
+        return self.text if self.text is not None else change_words_of(self.changes)
 
     def apply(self, state: State, domain: Domain) -> State:
         """The state after the event: the legs' levels and the hazard changed, the robot's
@@ -89,20 +106,14 @@ class Event:
     def onto(self, base: State, now: State, domain: Domain) -> State:
         """``base`` (what the environment would do anyway at ``now``) with the event's own
         changes: a failed leg at level 1, a degraded one ``lost`` levels below its level at
-        ``now``, a repaired one at full health, the hazard switched; everything else as in
-        ``base``."""
+        ``now``, a repaired one at full health (or the level named), the hazard switched;
+        everything else as in ``base``."""
         levels = dict(base.health)
         old = dict(now.health)
-        for leg, lost in self.degrade:
-            levels[leg] = max(1, old[leg] - lost)
-        for leg in self.fail:
-            levels[leg] = 1
-        for leg in self.repair:
-            levels[leg] = domain.full[leg]
-        hazard = base.hazard
-        if self.hazard is not None:
-            hazard = self.hazard if self.switch_on else (
-                None if base.hazard == self.hazard else base.hazard)
+        for change in self.changes:
+            if not isinstance(change, HazardSwitch):
+                levels[change.leg] = leg_level(change, old[change.leg], domain.full[change.leg])
+        hazard = active_after(self.changes, base.hazard)
         return State(base.region, base.gait, tuple((leg, levels[leg]) for leg in domain.legs),
                      hazard)
 
@@ -150,67 +161,29 @@ class Planned:
 
 def parse_event(text: str, domain: Domain, where: str = "--violate") -> Event:
     """An event from the player's move words, several of them joined by commas as the
-    player writes a move (``fail L1, degrade L3``); an unknown word, leg or hazard, or a leg
-    or the hazard named twice, is a :class:`UsageError` naming ``where`` and what is
+    player writes a move (``fail L1, degrade L3``), read by
+    :func:`gaitc.core.changes.parse_changes`: an unknown word, leg or hazard, or two
+    changes of one leg or hazard, is a :class:`UsageError` naming ``where`` and what is
     accepted."""
-    parts = [p.strip() for p in text.split(",")]
-    if len(parts) > 1:
-        if not all(parts):
-            raise UsageError(f"{where} '{text}': an event is missing "
-                             f"{'before' if not parts[0] else 'after'} a comma")
-        return combined([parse_event(p, domain, where) for p in parts], where, text)
-    words = text.split()
-    legs, hazards = domain.legs, tuple(domain.hazard_regions)
-
-    def leg(name: str) -> str:
-        if name not in legs:
-            raise UsageError(f"{where} '{text}': unknown leg '{name}'; the robot's legs are "
-                             f"{', '.join(legs)}")
-        return name
-
-    match words:
-        case ["fail", name]:
-            return Event(text, fail=(leg(name),))
-        case ["degrade", name]:
-            return Event(text, degrade=((leg(name), 1),))
-        case ["degrade", name, "by", count] if count.isdigit() and int(count) >= 1:
-            return Event(text, degrade=((leg(name), int(count)),))
-        case ["repair", name]:
-            return Event(text, repair=(leg(name),))
-        case ["switch", name, ("on" | "off") as how]:
-            if name not in hazards:
-                known = ", ".join(hazards) if hazards else "none (the spec declares no hazard)"
-                raise UsageError(f"{where} '{text}': unknown hazard set '{name}'; the spec's "
-                                 f"hazard sets are {known}")
-            return Event(text, hazard=name, switch_on=how == "on")
-    raise UsageError(f"{where} '{text}': not an event; write one of 'fail LEG', 'degrade LEG', "
-                     "'degrade LEG by N', 'repair LEG', 'switch HAZARD on', "
-                     "'switch HAZARD off', or several joined by commas")
+    return Event(parse_changes(text, domain.legs, tuple(domain.hazard_regions), where), text)
 
 
 def combined(events: Sequence[Event], where: str, text: str | None = None) -> Event:
     """One event doing what each of ``events`` does at the same step (``text`` its words,
-    by default theirs joined by commas); a leg or the hazard named by two of them is a
-    :class:`UsageError` naming ``where``."""
+    by default theirs joined by commas); two changes that cannot happen at one step
+    (:func:`gaitc.core.changes.conflict`) are a :class:`UsageError` naming ``where``."""
     words = text if text is not None else ", ".join(e.words for e in events)
-    seen: dict[str, str] = {}
+    seen: list[tuple[Change, Event]] = []
     for event in events:
-        named = [*(leg for leg, _ in event.degrade), *event.fail, *event.repair]
-        if event.hazard is not None:
-            named.append("the hazard")
-        for what in named:
-            if what in seen:
-                thing = what if what == "the hazard" else f"leg {what}"
-                raise UsageError(f"{where} '{words}': '{seen[what]}' and '{event.words}' both "
-                                 f"change {thing}; give one of them")
-            seen[what] = event.words
-    hazard = next((e for e in events if e.hazard is not None), None)
-    return Event(words,
-                 degrade=tuple(d for e in events for d in e.degrade),
-                 fail=tuple(leg for e in events for leg in e.fail),
-                 repair=tuple(leg for e in events for leg in e.repair),
-                 hazard=None if hazard is None else hazard.hazard,
-                 switch_on=False if hazard is None else hazard.switch_on)
+        for change in event.changes:
+            clash = next((e for c, e in seen if conflict(c, change)), None)
+            if clash is not None:
+                thing = subject(change)
+                thing = thing if thing == "the hazard" else f"leg {thing}"
+                raise UsageError(f"{where} '{words}': '{clash.words}' and '{event.words}' "
+                                 f"both change {thing}; give one of them")
+            seen.append((change, event))
+    return Event(tuple(c for e in events for c in e.changes), words)
 
 
 def parse_planned(text: str, domain: Domain) -> Planned:
@@ -249,40 +222,44 @@ def _where(violation: Violation) -> str:
 def change_words(before: State, after: State, domain: Domain,
                  allowed: Sequence[State] = ()) -> list[str]:
     """What the environment changed from ``before`` to ``after`` that the gait of ``before``
-    does not explain, in the robot's words (a leg in use losing one level is told only when
+    does not explain, in the robot's words, one per change of
+    :func:`gaitc.core.changes.between` (a leg in use losing one level is told only when
     nothing else changed, a cache's reset never, a hazard switched as one of the ``allowed``
     moves switches it neither)."""
     used = set(domain.legs_used(before.gait))
     in_cache = before.region in domain.model.caches
-    now = dict(after.health)
+    old = dict(before.health)
+    changes = between(old, dict(after.health), domain.full, before.hazard, after.hazard)
     out: list[str] = []
     usual: list[str] = []  # what eq. 3.5 allows: a leg in use losing one level
-    for leg, level in before.health:
-        new = now[leg]
-        if new == level:
-            continue
-        if new > level:
-            if in_cache and new == domain.full[leg]:
-                continue  # the cache's reset (eq. 3.6)
-            out.append(f"{leg} was repaired outside a cache" if not in_cache
-                       else f"{leg} went up to level {new}")
-            continue
-        lost = level - new
-        what = "failed" if new == 1 else (
-            "lost a level" if lost == 1 else f"lost {lost} levels")
-        if in_cache:
-            out.append(f"{leg} {what} in cache {before.region}")
-        elif leg not in used:
-            out.append(f"{leg} {what} while not in use")
-        elif lost > 1:
-            out.append(f"{leg} dropped {lost} levels in one move"
-                       + (" and failed" if new == 1 else ""))
-        else:
-            usual.append(f"{leg} {what}")
-    if before.hazard != after.hazard and after.hazard not in {s.hazard for s in allowed}:
-        out.append(f"hazard {after.hazard} switched on" if after.hazard is not None
-                   else f"hazard {before.hazard} switched off")
-    return out or usual
+    hazard: list[str] = []  # told after the legs
+    switched = before.hazard != after.hazard and after.hazard not in {s.hazard for s in allowed}
+    for change in changes:
+        match change:
+            case HazardSwitch(name, on):
+                if switched and on == (after.hazard is not None):
+                    hazard.append(f"hazard {name} switched {'on' if on else 'off'}")
+            case LegRepaired(leg, level):
+                if not in_cache:
+                    out.append(f"{leg} was repaired outside a cache")
+                elif level is not None:  # a cache's reset to full health is eq. 3.6
+                    out.append(f"{leg} went up to level {level}")
+            case LegFails(leg) | LegWears(leg):
+                lost = old[leg] - leg_level(change, old[leg], domain.full[leg])
+                what = "failed" if isinstance(change, LegFails) else (
+                    "lost a level" if lost == 1 else f"lost {lost} levels")
+                if in_cache:
+                    out.append(f"{leg} {what} in cache {before.region}")
+                elif leg not in used:
+                    out.append(f"{leg} {what} while not in use")
+                elif lost > 1:
+                    out.append(f"{leg} dropped {lost} levels in one move"
+                               + (" and failed" if isinstance(change, LegFails) else ""))
+                else:
+                    usual.append(f"{leg} {what}")
+            case _:
+                unreachable(change)
+    return [*out, *hazard] or usual
 
 
 def broken_words(before: State, after: State, domain: Domain,

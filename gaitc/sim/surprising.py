@@ -15,7 +15,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
+from gaitc.core.changes import Change, HazardSwitch, LegFails, LegWears
 from gaitc.core.modes import Outcome
+from gaitc.sim.domain import Domain
 from gaitc.sim.environments import Request
 from gaitc.sim.run import Step
 from gaitc.sim.surprise import (
@@ -23,7 +25,6 @@ from gaitc.sim.surprise import (
     Surprise,
     broken_words,
     change_words,
-    parse_event,
     performed,
 )
 from gaitc.solver.progress import goal_titles
@@ -61,13 +62,11 @@ def forced(sim: Simulator, node: int, event: Event) -> Request:
                    event.words)
 
 
-def _words(sim: Simulator) -> list[str]:
-    """The candidate events in move words: each leg failing and losing a level, each hazard
-    set switched on (or off when it is on)."""
-    domain = sim.domain
-    out = [f"{how} {leg}" for leg in domain.legs for how in ("fail", "degrade")]
-    out.extend(f"switch {name} {how}" for name in domain.hazard_regions
-               for how in ("on", "off"))
+def candidates(domain: Domain) -> list[Change]:
+    """The changes a surprise may make: each leg failing and losing a level, each hazard
+    set switched on and off."""
+    out: list[Change] = [c for leg in domain.legs for c in (LegFails(leg), LegWears(leg))]
+    out.extend(HazardSwitch(name, on) for name in domain.hazard_regions for on in (True, False))
     return out
 
 
@@ -84,8 +83,8 @@ def breaking(sim: Simulator, node: int, index: int = 0) -> tuple[Breaking, ...]:
     values = sim.strategy.values[node]
     seen: set[tuple[int, ...]] = set()
     found: list[Breaking] = []
-    for words in _words(sim):
-        event = parse_event(words, sim.domain)
+    for change in candidates(sim.domain):
+        event = Event((change,))
         after = event.apply(state, sim.domain)
         if after == state:
             continue

@@ -17,6 +17,7 @@ import pytest
 
 import gaitc
 from gaitc.analysis.explanation import Explanation
+from gaitc.core.changes import LegWears
 
 DATA = Path(__file__).resolve().parents[1] / "data" / "explain"
 
@@ -38,7 +39,7 @@ def test_header_core_freedoms_and_play_tell_one_story(starfish: Explanation) -> 
     assert any(u.section == "sys_liveness" and u.rule.endswith(f": {goal}") for u in why.core)
     failure_legs = {m.group(1) for u in why.core
                     if (m := re.match(r"eq\. 3\.4: leg (\w+) failed", u.rule))}
-    worn = {f.leg for f in why.freedoms if f.kind == "degrade"}
+    worn = {f.change.leg for f in why.freedoms if isinstance(f.change, LegWears)}
     assert failure_legs and worn and worn <= failure_legs
     # the play heads for that goal and fails that leg
     assert why.story[0].startswith(f"the robot is kept from {goal}")

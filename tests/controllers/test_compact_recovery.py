@@ -125,7 +125,8 @@ def test_sizes_and_the_budget_name_the_surprises_that_stop(
     assert small is not None and small.fallbacks == ()
     assert prove_recovery(spec.gr1, small).ok
     dropped = [w for w in words if "case(s) (its fallback tables do not fit)" in w]
-    assert dropped and all(" fails while unused: " in w or " loses a level while unused: " in w
+    assert dropped and all(" fails where the assumptions forbid it: " in w
+                           or " loses a level where the assumptions forbid it: " in w
                            for w in dropped)
     none, words = fit(rc, sizes.parts[0].bytes)
     assert none is None and words
@@ -427,7 +428,8 @@ def test_codegen_recover_reports_the_tables_on_the_command_line(
                  str(tmp_path / "gen"), "--recover"]) == 0
     out = capsys.readouterr().out
     assert "recovery tables: controller and assumption monitor: " in out
-    assert "surprise: L3 fails while unused: stop in 8 case(s) (no goal is achievable)" in out
+    assert ("surprise: L3 fails where the assumptions forbid it: stop in 8 case(s) (no goal is "
+            "achievable)") in out
     header = (tmp_path / "gen" / "gaitc_controller.h").read_text()
     assert "#define GAITC_RECOVER 1" in header and "gaitc_step_surprise" in header
     assert main(["codegen", spec, str(controller), "--target", "c", "-o",

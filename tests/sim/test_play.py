@@ -487,16 +487,16 @@ def test_the_words_of_each_kind_of_move() -> None:
     assert environment_words(here, moved, full) == \
         "switch spill on, degrade L1, fail L2, repair L3"
     assert environment_words(moved, here, full) == \
-        "switch spill off, repair L1, L2 up to level 2, fail L3"
+        "switch spill off, repair L1, repair L2 to level 2, fail L3"
     assert environment_words(State("r1", "x", (("L4", 5),), None),
                              State("r1", "x", (("L4", 3),), None), {"L4": 5}) == \
-        "L4 down to level 3"
+        "degrade L4 by 2"
     assert environment_words(here, here, full) == "nothing"
     assert environment_words(None, here, full) == "start with L2 at level 2, L3 at level 1"
     assert environment_words(None, State("r1", "noGait", (("L1", 3),), "a"), full) == \
         "start with a on"
     other = State("r1", "north", here.health, "acid")
-    assert environment_words(moved, other, full).startswith("switch spill off and acid on")
+    assert environment_words(moved, other, full).startswith("switch spill off, switch acid on")
     assert robot_words(here, moved) == "east to r2"
     assert robot_words(here, State("r1", "noGait", here.health, None)) == "stay in r1"
     assert robot_words(None, State("r1", "noGait", here.health, None)) == "start in r1"

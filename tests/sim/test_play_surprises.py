@@ -18,6 +18,7 @@ from itertools import combinations
 from pathlib import Path
 
 import pytest
+from changed import agrees, hazard_named, legs_named
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
@@ -75,10 +76,7 @@ def _agrees(player: Player, words: str, state: State) -> bool:
     hazard on (or not on)."""
     event = parse_event(words, player.domain)
     now = dict(player._played[-1].sim.state(player.path[-1]).health)
-    levels = dict(state.health)
-    return (all(levels[leg] == 1 for leg in event.fail)
-            and all(levels[leg] == max(1, now[leg] - k) for leg, k in event.degrade)
-            and (event.hazard is None or (state.hazard == event.hazard) == event.switch_on))
+    return agrees(event, now, state)
 
 
 def _possible(player: Player, words: str) -> bool:
@@ -392,8 +390,8 @@ def _expected_breaks(player: Player) -> list[str]:
         after = event.apply(state, player.domain)
         if after == state:
             continue
-        asked = (after.health if event.fail or event.degrade else None,
-                 after.hazard if event.hazard else None)
+        asked = (after.health if legs_named(event) else None,
+                 after.hazard if hazard_named(event) else None)
         if asked in seen or _possible(player, text):
             continue
         seen.add(asked)

@@ -18,6 +18,7 @@ from itertools import combinations, product
 from pathlib import Path
 
 import pytest
+from changed import agrees
 
 import gaitc
 from gaitc.api.simulation import session
@@ -300,8 +301,8 @@ def test_cli_json_lists_the_violations(capsys: pytest.CaptureFixture[str]) -> No
     ("0:fail L1", "--violate '0:fail L1': write STEP:EVENT with STEP a step number from 1, "
                   "e.g. --violate '12:fail L5'"),
     ("3:explode L1", "--violate 'explode L1': not an event; write one of 'fail LEG', "
-                     "'degrade LEG', 'degrade LEG by N', 'repair LEG', 'switch HAZARD on', "
-                     "'switch HAZARD off', or several joined by commas"),
+                     "'degrade LEG', 'degrade LEG by N', 'repair LEG', 'repair LEG to level N', "
+                     "'switch HAZARD on', 'switch HAZARD off', or several joined by commas"),
     ("3:fail L1, repair L1", "--violate 'fail L1, repair L1': 'fail L1' and 'repair L1' both "
                              "change leg L1; give one of them"),
     ("3:fail L1,", "--violate 'fail L1,': an event is missing after a comma"),
@@ -324,10 +325,7 @@ CORRIDOR_HAZARD = ROOT / "gaitc" / "examples" / "corridor_hazard.gait"
 def _agrees(event: Event, before: State, state: State) -> bool:
     """Whether ``state`` has what ``event`` performed at ``before`` names: its failed legs at
     level 1, a degraded leg ``k`` levels below its level before, its hazard on (or not)."""
-    now, levels = dict(before.health), dict(state.health)
-    return (all(levels[leg] == 1 for leg in event.fail)
-            and all(levels[leg] == max(1, now[leg] - k) for leg, k in event.degrade)
-            and (event.hazard is None or (state.hazard == event.hazard) == event.switch_on))
+    return agrees(event, dict(before.health), state)
 
 
 def _state(step: Step) -> State:
@@ -373,7 +371,7 @@ def test_an_event_is_laid_on_a_move_the_assumptions_allow(words: str) -> None:
         performed = _state(run.steps[k])
         assert _agrees(event, before, performed), (k, performed)
         if not possible:
-            own = len(event.fail) + len(event.degrade) + int(event.hazard is not None)
+            own = len(event.changes)
             nearest = min(differences(performed, s) for s in every if allowed(s))
             assert nearest <= own, (k, performed)
     assert Outcome.ALLOWED in outcomes or words.startswith(("fail", "degrade"))

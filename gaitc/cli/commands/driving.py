@@ -13,7 +13,7 @@ from typing import Any
 import gaitc
 from gaitc.api.driving import VIOLATION_POLICIES
 from gaitc.api.modes import BackendKind, EncodingName
-from gaitc.api.simulation import run_document
+from gaitc.api.simulation import CHANGE_EXAMPLES, run_document
 from gaitc.cli.commands.arguments import add_prefer, positive_seconds, run_file, semantics_of
 from gaitc.cli.commands.simulating import add_json, opponent_of, report_run, settle_environment
 from gaitc.cli.exitcodes import ExitCode, exit_code_help
@@ -88,9 +88,8 @@ def register(sub: Any) -> None:
                    "--violate)")
     p.add_argument("--violate", action="append", default=[], metavar="STEP:EVENT",
                    help="sim and physics backends: at step STEP the simulated robot's "
-                   "environment performs EVENT whatever the assumptions say: 'fail L5', "
-                   "'degrade L3', 'degrade L3 by 2', 'repair L2', 'switch spill on', "
-                   "'switch spill off', or several joined by commas (repeatable; events of "
+                   f"environment performs EVENT whatever the assumptions say: "
+                   f"{CHANGE_EXAMPLES}, or several joined by commas (repeatable; events of "
                    "one step happen together; docs/how-to/surprises.md)")
     p.add_argument("--pose", metavar="URL",
                    help="take the region from a tracker's pose stream: udp://HOST:PORT "

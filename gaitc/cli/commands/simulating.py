@@ -14,6 +14,7 @@ from typing import Any
 from gaitc.api.modes import EncodingName, EnvironmentKind
 from gaitc.api.runs import Run, checked_steps
 from gaitc.api.simulation import (
+    CHANGE_EXAMPLES,
     ENVIRONMENTS,
     Opponent,
     SurprisePolicy,
@@ -82,8 +83,7 @@ def add_surprises(p: argparse.ArgumentParser) -> None:
     assumptions say, and what the controller does after an input that breaks them."""
     p.add_argument("--violate", action="append", default=[], metavar="STEP:EVENT",
                    help="at step STEP the environment performs EVENT whatever the assumptions "
-                   "say: 'fail L5', 'degrade L3', 'degrade L3 by 2', 'repair L2', 'switch "
-                   "spill on', 'switch spill off', or several joined by commas (repeatable; "
+                   f"say: {CHANGE_EXAMPLES}, or several joined by commas (repeatable; "
                    "events of one step happen together; docs/how-to/surprises.md)")
     p.add_argument("--on-surprise", choices=SurprisePolicy.values(),
                    default=SurprisePolicy.RECOVER.value,
