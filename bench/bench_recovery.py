@@ -18,9 +18,9 @@ from pathlib import Path
 
 import gaitc
 from gaitc.sim.environments import RandomEnvironment
+from gaitc.sim.events import plan
 from gaitc.sim.recovery import Fallback
 from gaitc.sim.simulator import SurpriseOptions, simulate
-from gaitc.sim.surprise import plan
 
 ROOT = Path(__file__).resolve().parent.parent
 QUICK = ("shuttle_2leg", "thesis_robot_a", "radial8_patrol")

@@ -7,7 +7,7 @@ from collections.abc import Mapping
 
 from gaitc.core.changes import HazardSwitch, LegFails, LegRepaired, LegWears
 from gaitc.sim.domain import State
-from gaitc.sim.surprise import Event
+from gaitc.sim.events import Event
 
 
 def agrees(event: Event, now: Mapping[str, int], state: State) -> bool:

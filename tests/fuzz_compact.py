@@ -197,7 +197,7 @@ def walks(spec: Spec, ctrl: CompactController, steps: int, seed: int, adversaria
     """(inputs chosen, outputs made) along a run of the symbolic runtime over the
     controller's relations, the environment random or adversarial (lowest levels and a
     hazard whenever it may)."""
-    view = view_of(ctrl, spec.gr1)
+    view = view_of(ctrl, spec)
     rng = random.Random(seed)
     node = view.initial[0]
     first = view.valuation(node)

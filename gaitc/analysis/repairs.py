@@ -38,7 +38,7 @@ from typing import Final
 from gaitc.analysis.oracle import WORKERS, Oracle
 from gaitc.diagnostics import GaitcError, SolverError, source_lines
 from gaitc.ir.formula import Var
-from gaitc.ir.roles import WearsUpTo
+from gaitc.ir.roles import graded_levels
 from gaitc.ir.spec import GR1Spec
 from ltlcompiler.checker import MAX_HEALTH
 from ltlcompiler.encoding import EncodingName
@@ -367,7 +367,8 @@ def _wear_edit(model: Model, lines: list[str], hazard: str, wears: int) -> _Edit
         return None
     new = f"{found.group(1)}{found.group(2)} wears {wears}{found.group(4)}"
     harm = found_hazard.harm
-    was = f"by {harm.levels}" if isinstance(harm, WearsUpTo) else "failing them"
+    levels = graded_levels(harm)
+    was = "failing them" if levels is None else f"by {levels}"
     return _Edit(f"let hazard set {hazard} wear the legs by up to {wears} "
                  f"level{'s' if wears > 1 else ''} instead of {was}", 1, HAZARD_WEAR,
                  ((found_hazard.span.line, (new,)),), subject=hazard)
@@ -383,7 +384,8 @@ def _wear_edits(model: Model, search: _Search, plan: _Plan) -> list[_Edit]:
     top_health = max(leg.health for leg in model.legs)
     edits: list[_Edit] = []
     for hazard in model.hazards:
-        high = hazard.harm.levels - 1 if isinstance(hazard.harm, WearsUpTo) else top_health - 2
+        levels = graded_levels(hazard.harm)
+        high = top_health - 2 if levels is None else levels - 1
         if high < 2:
             continue
 

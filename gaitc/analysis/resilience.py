@@ -43,7 +43,7 @@ from gaitc.analysis.variants import (
     with_health,
 )
 from gaitc.diagnostics import GaitcError
-from gaitc.ir.roles import Fails, WearsUpTo
+from gaitc.ir.roles import Fails, WearsUpTo, graded_levels
 from gaitc.ir.spec import Semantics
 from ltlcompiler.encoding import EncodingName
 from ltlcompiler.model import Model
@@ -468,8 +468,8 @@ def _caches_and_hazards(report: Resilience, model: Model, place: int | None, poo
     placements = _placements(model, place, pool, notes)
     names = [h.name for h in model.hazards]
     alone = pool.models([with_hazards(model, [h]) for h in names])
-    wear = tuple(_hazard_wear(model, h.name, h.harm.levels, pool) for h in model.hazards
-                 if isinstance(h.harm, WearsUpTo))
+    wear = tuple(_hazard_wear(model, h.name, levels, pool) for h in model.hazards
+                 if (levels := graded_levels(h.harm)) is not None)
     return _with(report, essential_caches=essential, cache_placements=placements,
                  placed=place,
                  hazards_survived_alone=tuple(h for h, ok in zip(names, alone, strict=True)

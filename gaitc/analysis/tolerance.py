@@ -219,11 +219,17 @@ def _kind(what: str, role: ClauseRole | None) -> PieceKind | None:
         case Spares() | Wears():  # eq. 3.5: the legs in use may lose a level, others keep
             return {"keep": PieceKind.UNUSED_LEG_KEEPS,
                     "degrade": PieceKind.USED_LEG_WEARS}.get(what)
-        case HazardEffect(harm=Fails()):  # eq. 3.9: the legs in use fail, the others keep
-            return {"keep": PieceKind.UNUSED_LEG_KEEPS, "fail": PieceKind.HAZARD_FAILS}.get(what)
-        case HazardEffect():  # graded (WearsUpTo): the legs in use lose up to k levels
-            return {"keep": PieceKind.UNUSED_LEG_KEEPS, "fail": PieceKind.HAZARD_FAILS,
-                    "wear": PieceKind.HAZARD_WEARS, "degrade": PieceKind.HAZARD_WEARS}.get(what)
+        case HazardEffect(harm=harm):
+            match harm:
+                case Fails():  # eq. 3.9: the legs in use fail, the others keep
+                    return {"keep": PieceKind.UNUSED_LEG_KEEPS,
+                            "fail": PieceKind.HAZARD_FAILS}.get(what)
+                case WearsUpTo():  # graded: the legs in use lose up to k levels
+                    return {"keep": PieceKind.UNUSED_LEG_KEEPS, "fail": PieceKind.HAZARD_FAILS,
+                            "wear": PieceKind.HAZARD_WEARS,
+                            "degrade": PieceKind.HAZARD_WEARS}.get(what)
+                case _:
+                    unreachable(harm)
         case Restores():  # eq. 3.6
             return PieceKind.CACHE_RESTORES if what == "restore" else None
         case None | Shape() | StartHealth() | Moves() | LegFailure() | Goal() | UserClause():

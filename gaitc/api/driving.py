@@ -48,8 +48,8 @@ if TYPE_CHECKING:
     from gaitc.hw.backend import Backend
     from gaitc.ir.controller import Controller
     from gaitc.sim.environments import Environment
+    from gaitc.sim.events import Event, Surprise
     from gaitc.sim.run import Run
-    from gaitc.sim.surprise import Event, Surprise
     from gaitc.solver.progress import Progress
 
 __all__ = ["VIOLATION_POLICIES", "Board", "Drive", "DriveOptions", "PhysicsBoard",
@@ -263,7 +263,7 @@ def _planned(board: Board, opts: DriveOptions, bound: Session) -> dict[int, Even
     if opts.tracker is not None:
         raise UsageError("--violate changes the simulated robot's readings; with --pose the "
                          "region comes from a tracker")
-    from gaitc.sim.surprise import plan
+    from gaitc.sim.events import plan
 
     return plan(opts.violate, bound.domain)
 
@@ -271,7 +271,7 @@ def _planned(board: Board, opts: DriveOptions, bound: Session) -> dict[int, Even
 def _follower(backend: Backend) -> Any:
     """The surprising simulated robot inside ``backend`` (a physics board wraps it), or
     None."""
-    from gaitc.hw.surprised import SurprisingRobot
+    from gaitc.hw.saboteur import SurprisingRobot
 
     inner: Any = backend
     while inner is not None and not isinstance(inner, SurprisingRobot):
@@ -335,7 +335,7 @@ def _backend(board: Board, opts: DriveOptions, bound: Session, spec_path: str,
     if isinstance(chosen, ScriptedEnvironment) and opts.steps is None:
         steps = len(chosen.scenario.steps)
     if planned is not None:
-        from gaitc.hw.surprised import SurprisingRobot
+        from gaitc.hw.saboteur import SurprisingRobot
 
         robot: SimulatedRobot = SurprisingRobot(bound.strategy, bound.domain, bound.monitor,
                                                 chosen, valves, planned)

@@ -8,6 +8,7 @@ encodings of a ``.gait`` spec are :mod:`ltlcompiler.encoding`'s.
 from __future__ import annotations
 
 from gaitc.core.modes import (
+    FORM_CHOICES,
     BackendKind,
     ControllerKind,
     EncodingName,
@@ -16,8 +17,9 @@ from gaitc.core.modes import (
     Role,
     SearchMethod,
     Semantics,
+    form_choice,
 )
 from ltlcompiler.encoding import ENCODINGS
 
-__all__ = ["ENCODINGS", "BackendKind", "ControllerKind", "EncodingName", "EnvironmentKind",
-           "Form", "Role", "SearchMethod", "Semantics"]
+__all__ = ["ENCODINGS", "FORM_CHOICES", "BackendKind", "ControllerKind", "EncodingName",
+           "EnvironmentKind", "Form", "Role", "SearchMethod", "Semantics", "form_choice"]

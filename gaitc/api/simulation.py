@@ -199,7 +199,7 @@ def simulate_spec(spec: Spec | Session | str | Path,
     answer's ``run`` is None).
 
     ``violate`` lists events to perform whatever the assumptions say (``"12:fail L5"``,
-    in the player's move words, :mod:`gaitc.sim.surprise`); ``on_surprise`` says whether
+    in the player's move words, :mod:`gaitc.sim.events`); ``on_surprise`` says whether
     a controller recovers from an input that breaks an assumption (the default, by
     :mod:`gaitc.sim.recovery`) or stops with an error.  The run's ``surprises`` list each
     event with what became of the run."""
@@ -227,8 +227,8 @@ def simulate_spec(spec: Spec | Session | str | Path,
         raise UsageError("--violate makes the environment break its assumptions against a "
                          "controller; this spec is unrealizable and its counter-strategy "
                          "plays the environment")
+    from gaitc.sim.events import plan
     from gaitc.sim.simulator import SurpriseOptions
-    from gaitc.sim.surprise import plan
 
     surprises = SurpriseOptions(plan(violate, bound.domain),
                                 SurprisePolicy.parse(on_surprise, "--on-surprise"),

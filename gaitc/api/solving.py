@@ -14,13 +14,11 @@ from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from gaitc.core.modes import ControllerKind, Form
+from gaitc.core.modes import FORM_CHOICES, ControllerKind, Form, form_choice
 from gaitc.core.spec import Spec, SpecLike, as_spec, resolve
 from gaitc.diagnostics import UsageError
 from gaitc.forms.base import Automaton
 from gaitc.forms.synthesis import (
-    COMPACT,
-    FORMS,
     MAX_NODES,
     SOLVERS,
     SolveOptions,
@@ -46,7 +44,7 @@ if TYPE_CHECKING:
     from gaitc.ir.bddfile import SymbolicController
     from gaitc.verifier.strategy import VerificationReport as VerificationReport
 
-__all__ = ["COMPACT", "FORMS", "MAX_NODES", "PREFERENCES", "SOLVERS", "Automaton",
+__all__ = ["FORM_CHOICES", "MAX_NODES", "PREFERENCES", "SOLVERS", "Automaton",
            "SolverName", "Synthesis", "Tolerance", "Verdict", "check", "compact", "controller_form",
            "counterstrategy", "preference_order", "read_controller", "recorded_encoding",
            "synthesize", "tolerate", "verify", "vocabulary_of"]
@@ -71,15 +69,17 @@ def check(spec: SpecLike, semantics: Semantics | str = Semantics.DEFAULT, solver
 def synthesize(spec: SpecLike, semantics: Semantics | str = Semantics.DEFAULT,
                solver: str = "embedded", timeout: float | None = None, *, slugs: str | None = None,
                options: Options | None = None, progress: Progress | None = None,
-               verify: bool = True, form: str = "auto", max_nodes: int | None = MAX_NODES,
+               verify: bool = True, form: Form | str | None = "auto",
+               max_nodes: int | None = MAX_NODES,
                prefer: str | Sequence[str] | None = None) -> Synthesis:
     """A controller for ``spec``, proved by the independent verifier unless ``verify`` is
     False; ``.controller`` is None when the spec is unrealizable.
 
-    ``form`` (:data:`gaitc.solver.synthesis.FORMS`): ``explicit`` an automaton, ``symbolic`` BDDs
-    (:mod:`gaitc.ir.bddfile`), ``auto`` an automaton unless it would pass ``max_nodes`` nodes,
-    ``compact`` decision diagrams over the robot's words (:mod:`gaitc.compact`), made from
-    the symbolic strategy and proved on every state by the symbolic verifier.
+    ``form`` (:data:`FORM_CHOICES`, or a :class:`Form`): ``explicit`` an automaton,
+    ``symbolic`` BDDs (:mod:`gaitc.ir.bddfile`), ``auto`` an automaton unless it would pass
+    ``max_nodes`` nodes, ``compact`` decision diagrams over the robot's words
+    (:mod:`gaitc.compact`), made from the symbolic strategy and proved on every state by
+    the symbolic verifier.
 
     ``prefer`` orders the move preferences of the controller (either form) among the winning
     moves (``gaitc.solver.preferences``: ``hazard``, ``health``, ``goal``, ``switches``; a list or
@@ -92,16 +92,14 @@ def synthesize(spec: SpecLike, semantics: Semantics | str = Semantics.DEFAULT,
     assumption, and ``.separation`` says which kind it wrote
     (docs/background/well-separation.md).
     """
-    if form not in (*FORMS, COMPACT):
-        raise UsageError(f"unknown controller form '{form}'; use one of "
-                         f"{', '.join((*FORMS, COMPACT))}")
-    if form in ("symbolic", COMPACT) and solver != "embedded":
-        raise UsageError(f"{form} controllers come from the embedded solver; drop --solver "
-                         f"slugs or --{form}")
+    written = form_choice(form)
+    if written in (Form.SYMBOLIC, Form.COMPACT) and solver != "embedded":
+        raise UsageError(f"{written} controllers come from the embedded solver; drop --solver "
+                         f"slugs or --{written}")
     chosen = Semantics.parse(semantics, "semantics")
     return solve(resolve(spec), ControllerKind.STRATEGY, chosen, SolveOptions(
         solver=solver, timeout=timeout, slugs=slugs, options=options, progress=progress,
-        check_it=verify, form=form, max_nodes=max_nodes, prefer=prefer))
+        check_it=verify, form=written, max_nodes=max_nodes, prefer=prefer))
 
 
 @dataclass(frozen=True)
@@ -114,7 +112,7 @@ class Tolerance:
 
 
 def tolerate(spec: SpecLike, k: int, semantics: Semantics | str = Semantics.DEFAULT, *,
-             breakable: str | None = None, form: str = "auto", verify: bool = True,
+             breakable: str | None = None, form: Form | str | None = "auto", verify: bool = True,
              max_nodes: int | None = MAX_NODES, options: Options | None = None,
              timeout: float | None = None, progress: Progress | None = None) -> Tolerance:
     """A controller of ``spec`` that keeps every guarantee through up to ``k`` surprises
@@ -133,13 +131,12 @@ def tolerate(spec: SpecLike, k: int, semantics: Semantics | str = Semantics.DEFA
     from gaitc.ir.quotient import merge_equivalent
     from gaitc.solver.synthesis import Extraction
 
-    if form not in (*FORMS, COMPACT):
-        raise UsageError(f"unknown controller form '{form}'; use one of "
-                         f"{', '.join((*FORMS, COMPACT))}")
+    written = form_choice(form)
     chosen = Semantics.parse(semantics, "semantics")
     bound = resolve(spec)
     started = time.monotonic()
-    wanted = None if form == COMPACT else Extraction(form)
+    wanted = (None if written is Form.COMPACT
+              else Extraction.AUTO if written is None else Extraction(written.value))
     report = tolerance(bound, chosen, k, ToleranceOptions(
         breakable=breakable, controller=True, planned_only=True,
         explicit=wanted in (Extraction.EXPLICIT, Extraction.AUTO),
@@ -155,7 +152,7 @@ def tolerate(spec: SpecLike, k: int, semantics: Semantics | str = Semantics.DEFA
         automaton = merge_equivalent(report.automaton)
         if automaton is not report.automaton:
             merged_from = len(report.automaton.nodes)
-    elif form == COMPACT and report.controller is not None:
+    elif written is Form.COMPACT and report.controller is not None:
         symbolic_nodes = len(report.controller.nodes)
         automaton = compacted(bound, report.controller)
     if automaton is not None:
@@ -177,7 +174,7 @@ def counterstrategy(spec: SpecLike, semantics: Semantics | str = Semantics.DEFAU
     chosen = Semantics.parse(semantics, "semantics")
     return solve(resolve(spec), ControllerKind.COUNTERSTRATEGY, chosen,
                  SolveOptions(solver=solver, timeout=timeout, slugs=slugs, options=options,
-                              progress=progress, check_it=verify, form="explicit",
+                              progress=progress, check_it=verify, form=Form.EXPLICIT,
                               max_nodes=None))
 
 
@@ -227,7 +224,7 @@ def read_controller(path: str | Path, spec: SpecLike) -> Automaton:
     (:mod:`gaitc.forms.reader`, the one reader every command uses)."""
     from gaitc.forms.reader import read_controller as read_checked
 
-    return read_checked(path, spec)
+    return read_checked(path, as_spec(spec))
 
 
 def controller_form(path: str | Path) -> Form:

@@ -10,12 +10,16 @@ Three of them are defined where the lower layers need them and re-exported here:
 
 from __future__ import annotations
 
+from typing import Final
+
+from gaitc.diagnostics import UsageError
 from gaitc.diagnostics.choices import Choice
 from gaitc.ir.spec import ControllerKind, Semantics
 from ltlcompiler.encoding import EncodingName
 
-__all__ = ["BackendKind", "ControllerKind", "EncodingName", "EnvironmentKind", "Form", "Outcome",
-           "Role", "SearchMethod", "Semantics", "SurprisePolicy", "ViolationPolicy"]
+__all__ = ["AUTO_FORM", "FORM_CHOICES", "BackendKind", "ControllerKind", "EncodingName",
+           "EnvironmentKind", "Form", "Outcome", "Role", "SearchMethod", "Semantics",
+           "SurprisePolicy", "ViolationPolicy", "form_choice"]
 
 
 class Form(Choice):
@@ -24,6 +28,23 @@ class Form(Choice):
     EXPLICIT = "explicit"  # every node listed (docs/controller-format.md)
     SYMBOLIC = "symbolic"  # BDDs of the winning region and the strategy's relations
     COMPACT = "compact"  # decision diagrams over the spec's fields, for the valve board
+
+
+#: ``synth --form``'s choice besides the forms themselves: explicit, unless the automaton
+#: would pass the node limit, then symbolic.
+AUTO_FORM: Final = "auto"
+#: What ``synth --form`` and :func:`gaitc.synthesize`'s ``form`` take.
+FORM_CHOICES: Final = (AUTO_FORM, *Form.values())
+
+
+def form_choice(value: Form | str | None) -> Form | None:
+    """The form ``value`` names (a member or its value), None for ``auto`` (or None); any
+    other value is a :class:`UsageError` listing :data:`FORM_CHOICES`."""
+    if value is None or value == AUTO_FORM:
+        return None
+    if isinstance(value, Form) or value in Form.values():
+        return Form(value)
+    raise UsageError(f"unknown controller form {value!r}; use one of {', '.join(FORM_CHOICES)}")
 
 
 class EnvironmentKind(Choice):

@@ -7,7 +7,8 @@ between the players, the layout of its integers and, for a compact controller, i
 addresses an input by its field's position and a value by its index, so two files with the
 same logic but another value order drive a robot differently.  :func:`check_belongs`
 therefore demands the spec's own vocabulary, computed from the spec alone, and names the
-first difference.
+first difference.  Every function takes the loaded :class:`~gaitc.core.spec.Spec`: the
+facade loads a spec once per command and hands the same object to each.
 """
 
 from __future__ import annotations
@@ -15,7 +16,7 @@ from __future__ import annotations
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from gaitc.core.spec import SpecLike, as_spec
+from gaitc.core.spec import Spec
 from gaitc.core.vocabulary import vocabulary_difference
 from gaitc.diagnostics import ControllerError, Span
 from gaitc.forms.base import Automaton
@@ -34,9 +35,9 @@ __all__ = ["HINT_RESYNTHESIZE", "Automaton", "belongs", "check_belongs", "load_r
 HINT_RESYNTHESIZE = "synthesize it again from this spec with 'gaitc synth'"
 
 
-def parse_controller(data: Any, file: str, spec: SpecLike) -> Automaton:
+def parse_controller(data: Any, file: str, spec: Spec) -> Automaton:
     """The controller in a parsed file, its own structure checked (not yet its spec)."""
-    return detect(data).parse(data, file, as_spec(spec))
+    return detect(data).parse(data, file, spec)
 
 
 def read_document(path: str | Path) -> Any:
@@ -54,28 +55,26 @@ def read_document(path: str | Path) -> Any:
     return read_controller_json(file)
 
 
-def parse_file(path: str | Path, spec: SpecLike) -> Automaton:
+def parse_file(path: str | Path, spec: Spec) -> Automaton:
     """The controller in the file ``path``, its own structure checked (not yet its spec:
     :func:`read_controller` does both)."""
     return parse_controller(read_document(path), str(path), spec)
 
 
-def read_controller(path: str | Path, spec: SpecLike) -> Automaton:
+def read_controller(path: str | Path, spec: Spec) -> Automaton:
     """Read the controller file ``path`` and check that it belongs to ``spec``; raises
     :class:`~gaitc.diagnostics.ControllerError` naming the file and the first difference."""
     file = str(path)
-    bound = as_spec(spec)
-    automaton = parse_file(file, bound)
-    check_belongs(automaton, bound, file)
+    automaton = parse_file(file, spec)
+    check_belongs(automaton, spec, file)
     return automaton
 
 
-def belongs(automaton: Automaton, spec: SpecLike) -> str | None:
+def belongs(automaton: Automaton, spec: Spec) -> str | None:
     """Why ``automaton`` does not belong to ``spec`` (its bits in order, their owners, its
     integers, a compact controller's fields against the spec's vocabulary); None when it
     does."""
-    bound = as_spec(spec)
-    ins, outs = spec_bits(bound.gr1)
+    ins, outs = spec_bits(spec.gr1)
     mismatch = bits_mismatch(automaton.variables, ins + outs)
     if mismatch is not None:
         return mismatch.removeprefix("controller does not belong to this spec: ")
@@ -85,14 +84,14 @@ def belongs(automaton: Automaton, spec: SpecLike) -> str | None:
     if tuple(automaton.outputs) != outs:
         return (f"it makes {_first_moved(automaton.outputs, outs, ins)} an output, which "
                 "the spec's environment sets")
-    integers = _integers_difference(automaton.integers, spec_integers(bound.gr1))
+    integers = _integers_difference(automaton.integers, spec_integers(spec.gr1))
     if integers is not None:
         return integers
     fields = entry(automaton).vocabulary(automaton)
-    return None if fields is None else vocabulary_difference(fields, bound.vocabulary)
+    return None if fields is None else vocabulary_difference(fields, spec.vocabulary)
 
 
-def check_belongs(automaton: Automaton, spec: SpecLike, file: str = "") -> None:
+def check_belongs(automaton: Automaton, spec: Spec, file: str = "") -> None:
     """Raise :class:`~gaitc.diagnostics.ControllerError` when :func:`belongs` finds a
     difference."""
     why = belongs(automaton, spec)
@@ -123,12 +122,11 @@ def _integers_difference(found: Mapping[str, IntegerVar], wanted: Mapping[str, I
     return None
 
 
-def runtime(automaton: Automaton, spec: SpecLike, file: str = "") -> StrategyView:
+def runtime(automaton: Automaton, spec: Spec, file: str = "") -> StrategyView:
     """The run view of a controller of any form (:meth:`ControllerForm.runtime`)."""
-    return entry(automaton).runtime(as_spec(spec), automaton, file)
+    return entry(automaton).runtime(spec, automaton, file)
 
 
-def load_runtime(path: str | Path, spec: SpecLike) -> StrategyView:
+def load_runtime(path: str | Path, spec: Spec) -> StrategyView:
     """Read a controller file through :func:`read_controller` and give its run view."""
-    bound = as_spec(spec)
-    return runtime(read_controller(path, bound), bound, str(path))
+    return runtime(read_controller(path, spec), spec, str(path))

@@ -22,11 +22,12 @@ from gaitc.core.spec import Spec
 from gaitc.diagnostics import SolverError, UsageError
 from gaitc.diagnostics.files import write_atomically
 from gaitc.forms.base import Automaton
+from gaitc.ir.formula import unreachable
 from gaitc.ir.spec import GR1Spec, Semantics
 from gaitc.solver.game import GameStats, out_of_memory
 from gaitc.solver.progress import Progress, Stage
 from gaitc.solver.symbolic import Options
-from gaitc.solver.synthesis import FORMS as SOLVER_FORMS
+from gaitc.solver.synthesis import Extraction
 from ltlcompiler.encoding import EncodingName
 
 if TYPE_CHECKING:
@@ -43,13 +44,8 @@ SolverName = Literal["embedded", "slugs"]
 SOLVERS: Final[tuple[SolverName, ...]] = get_args(SolverName)
 #: What the embedded solver leaves of a strategy: an automaton, BDDs, or none.
 Solved = Union["Controller", "SymbolicController", None]
-#: The forms a solver leaves (:data:`gaitc.solver.synthesis.FORMS`).
-FORMS: Final = SOLVER_FORMS
 #: Above this many nodes ``synthesize`` keeps the controller symbolic (form ``auto``).
 MAX_NODES: Final = 100_000
-#: The forms ``synthesize`` writes: the solver's (:data:`gaitc.solver.synthesis.FORMS`) and
-#: ``compact``, decision diagrams over the robot's words (:mod:`gaitc.compact`).
-COMPACT: Final = "compact"
 
 
 @dataclass(frozen=True)
@@ -285,11 +281,25 @@ def decide(spec: Spec | GR1Spec, semantics: Semantics | str = Semantics.DEFAULT,
                    solver, checked.stats, checked.engine, separation=checked.also)
 
 
+def _extraction(form: Form | None) -> Extraction:
+    """What the solver leaves for a controller of ``form`` (None: ``auto``): a compact
+    controller is made from the symbolic strategy."""
+    match form:
+        case None:
+            return Extraction.AUTO
+        case Form.EXPLICIT:
+            return Extraction.EXPLICIT
+        case Form.SYMBOLIC | Form.COMPACT:
+            return Extraction.SYMBOLIC
+        case _:
+            unreachable(form)
+
+
 @dataclass(frozen=True)
 class SolveOptions:
     """How :func:`solve` runs: the solver and its limits, whether the result is proved, the
-    form of a strategy (:data:`FORMS` or ``compact``), the node limit of ``auto`` and the
-    move preferences."""
+    form of a strategy (None: ``auto``), the node limit of ``auto`` and the move
+    preferences."""
 
     solver: str = "embedded"
     timeout: float | None = None
@@ -297,7 +307,7 @@ class SolveOptions:
     options: Options | None = None
     progress: Progress | None = None
     check_it: bool = True
-    form: str = "auto"
+    form: Form | None = None
     max_nodes: int | None = MAX_NODES
     prefer: str | Sequence[str] | None = None
     separate: bool = True  # prefer a controller that never forces an assumption to break
@@ -344,7 +354,7 @@ def solve(spec: Spec | GR1Spec, kind: ControllerKind, semantics: Semantics,
                 progress=progress,
                 options=opts.options,
                 max_nodes=opts.max_nodes,
-                form="symbolic" if form == COMPACT else form,
+                form=_extraction(form),
                 prefer=order,
                 costs=_costs(spec, order),
             )
@@ -353,9 +363,9 @@ def solve(spec: Spec | GR1Spec, kind: ControllerKind, semantics: Semantics,
                     automaton, separated[1], lambda: synthesis.synthesize_controller(
                         spec=gr1, semantics=semantics, timeout=timeout, progress=progress,
                         options=opts.options, max_nodes=opts.max_nodes,
-                        form="symbolic" if form == COMPACT else form, prefer=order,
+                        form=_extraction(form), prefer=order,
                         costs=_costs(spec, order)))
-            if form == COMPACT and isinstance(automaton, SymbolicController):
+            if form is Form.COMPACT and isinstance(automaton, SymbolicController):
                 if progress is not None:
                     progress(Stage("writing the strategy as decision diagrams"))
                 symbolic_nodes = len(automaton.nodes)

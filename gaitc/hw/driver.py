@@ -41,11 +41,11 @@ from gaitc.hw.simulated import ScenarioFinished
 from gaitc.ir.spec import Semantics
 from gaitc.sim.domain import Domain, State
 from gaitc.sim.environments import Environment, Move, Request, Situation
+from gaitc.sim.events import ALLOWED_NOTE, Event, Surprise
 from gaitc.sim.monitor import Monitor
 from gaitc.sim.run import Run
 from gaitc.sim.simulator import Simulator, SurpriseOptions
 from gaitc.sim.strategy import InputKey, StrategyView
-from gaitc.sim.surprise import ALLOWED_NOTE, Event, Surprise
 from ltlcompiler.model import GaitKind, Model
 
 #: The policies, as ``--on-violation`` names them.

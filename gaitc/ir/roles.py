@@ -20,6 +20,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import TypeAlias
 
+from gaitc.ir.formula import unreachable
+
 
 @dataclass(frozen=True)
 class Shape:
@@ -100,6 +102,19 @@ class WearsUpTo:
 #: What an active hazard region does to the legs of the gait in it (issue 61: a type, where
 #: an optional number stood for it in eight modules).
 Harm: TypeAlias = Fails | WearsUpTo
+
+
+def graded_levels(harm: Harm) -> int | None:
+    """The levels a graded hazard wears (``wears k``), None for one that fails the legs;
+    the readers that ask only this go through here, so a new kind of harm is named by mypy
+    in this ``match``."""
+    match harm:
+        case Fails():
+            return None
+        case WearsUpTo(levels):
+            return levels
+        case _:
+            unreachable(harm)
 
 
 @dataclass(frozen=True)

@@ -13,7 +13,8 @@ from __future__ import annotations
 
 from collections import deque
 
-from gaitc.ir.roles import WearsUpTo
+from gaitc.ir.formula import unreachable
+from gaitc.ir.roles import Fails, WearsUpTo
 from gaitc.lsp.index import Index, Kind, Symbol
 from ltlcompiler import syntax as s
 from ltlcompiler.model import NO_GAIT, GaitKind, Model
@@ -37,11 +38,15 @@ def describe(symbol: Symbol, index: Index, model: Model | None, role: str = "") 
         hazard = next((h for h in model.hazards if h.name == symbol.name), None)
         cells = ", ".join(hazard.regions) if hazard and hazard.regions else "(no region)"
         effect = "fails the legs" if hazard is None else hazard.effect
-        graded = hazard.harm if hazard is not None and isinstance(hazard.harm, WearsUpTo) \
-            else None
-        source = ("thesis eqs. 3.8, 3.9" if graded is None
-                  else f"thesis eq. 3.9, graded: a loss of up to {graded.levels} "
-                  f"level{'s' if graded.levels != 1 else ''} in place of a failure")
+        harm = Fails() if hazard is None else hazard.harm
+        match harm:
+            case Fails():
+                source = "thesis eqs. 3.8, 3.9"
+            case WearsUpTo(levels):
+                source = (f"thesis eq. 3.9, graded: a loss of up to {levels} "
+                          f"level{'s' if levels != 1 else ''} in place of a failure")
+            case _:
+                unreachable(harm)
         return (f"{head}\n\nregions: {cells}\n\nwhile it is on, entering one of them "
                 f"{effect} (those of the gait in use; {source})")
     text = f"{head}\n\n{_region(symbol.name, model)}"

@@ -11,7 +11,7 @@ counter-strategy visualiser:
   controller are exactly those the assumptions allow; the controller answers (Mealy).
   Besides them, the "break an assumption" moves of :meth:`Player.breaks` (a leg failing or
   losing a level, a hazard switched, where ρe forbids it) are performed through the
-  recovery of ``simulate --violate`` (:mod:`gaitc.sim.surprising`, after Ehlers and Topcu,
+  recovery of ``simulate --violate`` (:mod:`gaitc.sim.jumps`, after Ehlers and Topcu,
   HSCC 2014): the play goes on with the fallback strategy, with every goal, fewer goals,
   or towards a cache where the robot stops.
 - :attr:`Role.ROBOT`: for an unrealizable spec the roles swap. The environment follows its
@@ -47,13 +47,13 @@ from gaitc.sim.environments import (
     RandomEnvironment,
     Request,
 )
+from gaitc.sim.events import Event, Surprise, parse_event
+from gaitc.sim.jumps import breaking, entered, forced, jump
 from gaitc.sim.play import Losses, Play, pursued
 from gaitc.sim.replay import HINT, follow, last_step, recorded, step_span
 from gaitc.sim.run import Run, Step, checked_steps, save_run
 from gaitc.sim.simulator import Simulator, Verdicts
 from gaitc.sim.strategy import explicit
-from gaitc.sim.surprise import Event, Surprise, parse_event
-from gaitc.sim.surprising import breaking, entered, forced, recover
 
 if TYPE_CHECKING:
     from gaitc.sim.recovery import Fallback
@@ -268,7 +268,7 @@ class Player:
     def breaks(self) -> tuple[Choice, ...]:
         """Environment role: the moves that break an assumption here (numbered after
         :meth:`choices`): for each leg, failing it and taking a level from it, and each
-        hazard set switched, where ρe forbids it (:func:`gaitc.sim.surprising.breaking`)."""
+        hazard set switched, where ρe forbids it (:func:`gaitc.sim.jumps.breaking`)."""
         if self.role is not Role.ENVIRONMENT or not self._played or self._stopped():
             return ()
         last = self._played[-1]
@@ -332,7 +332,7 @@ class Player:
 
     def break_assumption(self, move: int | str | Event) -> Step:
         """Play a move of :meth:`breaks` (its number, its words, or any event of
-        :func:`gaitc.sim.surprise.parse_event`'s words that breaks an assumption here)
+        :func:`gaitc.sim.events.parse_event`'s words that breaks an assumption here)
         through the recovery; return the new state (the last one when the robot stops
         where it is). The surprise is in :attr:`surprises`, its words in
         :meth:`Surprise.words`."""
@@ -370,18 +370,16 @@ class Player:
             from gaitc.sim.recovery import Fallback
 
             self._fallback = Fallback(self.session.monitor.spec, self.domain, self.semantics)
-        surprise, entry = recover(sim, self._fallback, index, last.node, request, pursuing)
+        jumped = jump(sim, self._fallback, index, last.node, request, pursuing,
+                      self._simulator)
         self._future.clear()
-        if entry.strategy is None or entry.node is None:
-            self._halted = surprise
+        if jumped.sim is None or jumped.node is None:
+            self._halted = jumped.surprise
             return last.step
-        target = self._simulator(entry.strategy)
-        goals = tuple(self.domain.goals[j] for j in entry.kept)
-        goal = entry.kept.index(pursuing) if pursuing in entry.kept else 0
-        step = entered(target, index, entry.node, last.step)
-        goal = pursued(goals, goal, step.goals) if goals else 0
-        self._played.append(Played(target, entry.node, step, goals, goal, surprise,
-                                   entry.cache))
+        step = entered(jumped.sim, index, jumped.node, last.step)
+        goal = pursued(jumped.goals, jumped.goal, step.goals) if jumped.goals else 0
+        self._played.append(Played(jumped.sim, jumped.node, step, jumped.goals, goal,
+                                   jumped.surprise, jumped.caches))
         return step
 
     def _simulator(self, strategy: StrategyView) -> Simulator:

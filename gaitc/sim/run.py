@@ -17,7 +17,7 @@ from typing import TYPE_CHECKING, Any, Final
 from gaitc.diagnostics import GaitcError, ScenarioError, Span, UsageError, source_lines
 from gaitc.diagnostics.files import decode_text, read_input, write_atomically
 from gaitc.diagnostics.versions import RUN
-from gaitc.sim.surprise import Surprise
+from gaitc.sim.events import Surprise
 
 if TYPE_CHECKING:
     from ltlcompiler.model import Model

@@ -18,15 +18,15 @@ from gaitc.diagnostics import ControllerError, GaitcError, ScenarioError, Span
 from gaitc.ir.spec import Semantics
 from gaitc.sim.domain import Domain, Goal, State
 from gaitc.sim.environments import Environment, Move, Request, Situation
+from gaitc.sim.events import ALLOWED_NOTE, Event, Surprise, broken_words
+from gaitc.sim.jumps import Jump, forced, jump
 from gaitc.sim.monitor import Monitor, Violation
 from gaitc.sim.play import pursued
 from gaitc.sim.run import Run, Step, Summary, dropped_at
 from gaitc.sim.strategy import InputKey, Strategy, StrategyView
-from gaitc.sim.surprise import ALLOWED_NOTE, Event, Surprise, broken_words
-from gaitc.sim.surprising import forced, recover
 
 if TYPE_CHECKING:
-    from gaitc.sim.recovery import Entry, Fallback
+    from gaitc.sim.recovery import Fallback
 
 MAX_REPORTED = 20
 
@@ -261,17 +261,13 @@ class Simulator:
             pursuing = self.domain.goals.index(goals[goal_index]) if goals else 0
             if chosen is None:
                 assert node is not None
-                surprise, entry = sim._recover(index, node, request, pursuing, opts)
-                run.surprises.append(surprise)
-                if entry.strategy is None or entry.node is None:
-                    run.halted = surprise.note
+                jumped = sim._jump(index, node, request, pursuing, opts)
+                run.surprises.append(jumped.surprise)
+                if jumped.sim is None or jumped.node is None:
+                    run.halted = jumped.surprise.note
                     break
-                sim = Simulator(entry.strategy, self.domain, self.monitor)
-                sim._fallback = self._fallback
-                target = entry.node
-                goals = tuple(self.domain.goals[j] for j in entry.kept)
-                goal_index = entry.kept.index(pursuing) if pursuing in entry.kept else 0
-                caches = entry.cache
+                sim, target = jumped.sim, jumped.node
+                goals, goal_index, caches = jumped.goals, jumped.goal, jumped.caches
             else:
                 if event is not None:
                     run.surprises.append(Surprise(index, event.words, None,
@@ -299,22 +295,29 @@ class Simulator:
         return self.domain.decode(self.strategy.valuation(node) | dict(inputs))
 
     def _told(self, index: int, node: int, request: Request, failed: list[int]) -> str:
-        """The broken assumption in the robot's words (:func:`gaitc.sim.surprise.broken_words`)."""
+        """The broken assumption in the robot's words (:func:`gaitc.sim.events.broken_words`)."""
         after = self.after(node, self._input_names(request.inputs))
         broken = [self.monitor.violation(index, "env_trans", i) for i in failed]
         allowed = [m.state for m in self.moves(node)]
         return broken_words(self.state(node), after, self.domain, broken, allowed)
 
-    def _recover(self, index: int, node: int, request: Request, pursuing: int,
-                 opts: SurpriseOptions) -> tuple[Surprise, Entry]:
-        """Where the run goes after the request at ``node`` broke an assumption, and the
-        record of it (:func:`gaitc.sim.surprising.recover`, with this run's games)."""
+    def _jump(self, index: int, node: int, request: Request, pursuing: int,
+              opts: SurpriseOptions) -> Jump:
+        """Where the run goes after the request at ``node`` broke an assumption
+        (:func:`gaitc.sim.jumps.jump`, with this run's games)."""
         from gaitc.sim.recovery import Fallback
 
         if self._fallback is None:
             self._fallback = opts.fallback or Fallback(self.monitor.spec, self.domain,
                                                        opts.semantics)
-        return recover(self, self._fallback, index, node, request, pursuing)
+        fallback = self._fallback
+
+        def simulator(strategy: StrategyView) -> Simulator:
+            found = Simulator(strategy, self.domain, self.monitor)
+            found._fallback = fallback
+            return found
+
+        return jump(self, fallback, index, node, request, pursuing, simulator)
 
     def summarize(self, run: Run, verdicts: Verdicts) -> Summary:
         """The summary of ``run`` from the monitor's ``verdicts`` along it."""

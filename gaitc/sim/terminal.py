@@ -8,8 +8,8 @@ import os
 from collections.abc import Sequence
 from typing import TextIO
 
+from gaitc.sim.events import Surprise
 from gaitc.sim.run import Run, Step, Summary
-from gaitc.sim.surprise import Surprise
 
 _RESET = "\033[0m"
 _COLOURS = {"healthy": "\033[34m", "degraded": "\033[33m", "failed": "\033[31m",

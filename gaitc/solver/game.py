@@ -224,6 +224,7 @@ class Game:
         # variables are pinned (Options.first: an order chosen on purpose, which sifting
         # would undo; the resilience games split each sub-game at the top).
         self._resift = not sym.options.reordering and not sym.options.first
+        self._resumed = False  # whether this game turned CUDD's sifting on (resume_sifting)
         # the work a step that shows a misfit averages, the smaller of a small game's and a
         # refitted build's (restarted, or sifted once built); None: only the image's
         # growth and the work's ratio to the sets do
@@ -527,10 +528,16 @@ class Game:
         fixed order misfits (:meth:`_order_misfits`): the order was chosen, or sifted,
         for ρ, and the fixpoint's sets outgrow it."""
         self._resift = False
+        self._resumed = True
         self.sym.bdd.configure(reordering=True)
 
     def _result(self, z: BDDNode, layers: list[list[BDDNode]], decided_early: bool,
                 rings: list[list[BDDNode]] | None = None) -> GameResult:
+        if self._resumed:  # the sifting a misfit turned on was for this game only: left on,
+            # CUDD sifts the whole manager, the kept layers too, inside whatever operation
+            # next passes its threshold (radial12: a 3 s extraction took 150 s, issue 61)
+            self._resumed = False
+            self.sym.bdd.configure(reordering=False)
         self.stats.winning_nodes = z.dag_size
         with warnings.catch_warnings():  # dd warns that the unrelated 'mem' field changed unit
             warnings.simplefilter("ignore")

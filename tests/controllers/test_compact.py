@@ -114,7 +114,7 @@ def _walk(spec: Spec, ctrl: CompactController, steps: int, seed: int, adversaria
     """(inputs chosen, outputs made) of a run of the symbolic runtime over ``ctrl``'s
     relations; the environment random, or adversarial (the lowest health levels and a
     hazard whenever it may)."""
-    view = view_of(ctrl, spec.gr1)
+    view = view_of(ctrl, spec)
     rng = random.Random(seed)
     node = view.initial[0]
     yield _field_values(ctrl, view.valuation(node), True), _field_values(

@@ -19,11 +19,11 @@ from gaitc.api.driving import DriveOptions, SimulatedBoard
 from gaitc.cli import main
 from gaitc.core.modes import Outcome, ViolationPolicy
 from gaitc.hw.driver import Driver, bind_primitives
-from gaitc.hw.surprised import SurprisingRobot
+from gaitc.hw.saboteur import SurprisingRobot
 from gaitc.sim.environments import RandomEnvironment
+from gaitc.sim.events import plan
 from gaitc.sim.monitor import Monitor
 from gaitc.sim.run import read_jsonl
-from gaitc.sim.surprise import plan
 
 #: The corridor of tests/data/surprises/corridor3.gait with valves: only L1 moves east,
 #: only L2 west; L1 failing while the robot goes west puts e out of reach for good.

@@ -19,7 +19,7 @@ from gaitc.core.changes import (
 from gaitc.diagnostics import UsageError
 from gaitc.play.words import environment_words
 from gaitc.sim.domain import State
-from gaitc.sim.surprise import Event
+from gaitc.sim.events import Event
 
 LEGS = ("L1", "L2", "L3")
 HAZARDS = ("spill", "acid")

@@ -31,12 +31,12 @@ from gaitc.ir.formula import Const, Expr, Not, Var, substitute
 from gaitc.ir.spec import Clause
 from gaitc.play.player import Player
 from gaitc.sim.domain import State
+from gaitc.sim.events import parse_event
+from gaitc.sim.jumps import forced
 from gaitc.sim.monitor import Monitor
 from gaitc.sim.replay import RunEnvironment
 from gaitc.sim.run import read_jsonl
 from gaitc.sim.simulator import SurpriseOptions, simulate
-from gaitc.sim.surprise import parse_event
-from gaitc.sim.surprising import forced
 
 ROOT = Path(__file__).resolve().parents[2]
 CORRIDOR = ROOT / "tests" / "data" / "surprises" / "corridor3.gait"

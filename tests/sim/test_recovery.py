@@ -28,12 +28,12 @@ from gaitc.ir.formula import Const, Expr, Not, Var, substitute
 from gaitc.ir.spec import Clause, GR1Spec
 from gaitc.sim.domain import State
 from gaitc.sim.environments import RandomEnvironment
+from gaitc.sim.events import Event, differences, parse_event, plan
 from gaitc.sim.monitor import Monitor
 from gaitc.sim.recovery import Fallback
 from gaitc.sim.run import Run, Step, read_jsonl, save_run
 from gaitc.sim.session import Session
 from gaitc.sim.simulator import SurpriseOptions, simulate
-from gaitc.sim.surprise import Event, differences, parse_event, plan
 
 ROOT = Path(__file__).resolve().parents[2]
 ROBOT_A = ROOT / "gaitc" / "examples" / "thesis_robot_a.gait"

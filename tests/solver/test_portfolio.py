@@ -206,11 +206,15 @@ def test_a_static_build_too_large_for_its_order_starts_again_sifting(tmp_path: P
         game, plain = Game(sym), Game(never)
         won, plain_won = game.solve().winning, plain.solve().winning
         assert sym.restarted is sifts
-        with mock.patch.object(game_module, "RESIFT_WORK", -1):  # sift again at once
+        original = Game.resume_sifting
+        with mock.patch.object(game_module, "RESIFT_WORK", -1), \
+                mock.patch.object(Game, "resume_sifting", autospec=True,
+                                  side_effect=original) as resumed:  # sift again at once
             again = SymbolicSpec(gr1, Options(reordering=False))
             resifted = Game(again)
             again_won = resifted.solve().winning
-        assert again.bdd.configure()["reordering"] is sifts
+        assert resumed.called is sifts
+        assert again.bdd.configure()["reordering"] is False  # for its game only
         forced = [mock.patch.object(game_module, name, -1.0)
                   for name in ("RESIFT_WORK", "SMALL_WORK", "RESIFT_NODES", "RESIFT_BLOWUP",
                                "MISFIT_WORK", "MISFIT_RATIO")]
@@ -287,6 +291,30 @@ def test_a_game_whose_steps_work_too_hard_for_its_sets_is_built_again_sifting(
     refitted = SymbolicSpec(genbuf, replace(engine_options(STATIC), rebuild_misfit=True))
     assert refitted.refitted
     assert game_module.Game(refitted).solve().winning is not None
+
+
+def test_the_sifting_a_misfit_turns_on_ends_with_its_game(monkeypatch: pytest.MonkeyPatch
+                                                           ) -> None:
+    """A misfit turns CUDD's sifting on for the rest of its game only: left on, the
+    manager was sifted whole, the kept layers too, inside whatever operation of the
+    extraction next passed its threshold (radial12's synth: 9 s became 165 s).  Forced
+    here: every step of robot B's static game is judged a misfit."""
+    robot_b = gaitc.load(ROOT / "specs" / "thesis_robot_b.gait", "binary").gr1
+    sym = SymbolicSpec(robot_b, engine_options(STATIC))
+    game = game_module.Game(sym)
+    resumed: list[bool] = []
+    original = game.resume_sifting
+
+    def resume() -> None:
+        resumed.append(sym.bdd.configure()["reordering"])
+        original()
+
+    monkeypatch.setattr(game, "_order_misfits", lambda *_: game_module._SIFT)
+    monkeypatch.setattr(game, "resume_sifting", resume)
+    result = game.solve(keep_layers=True)
+    assert resumed and resumed[0] is False, "the static game turned sifting on"
+    assert sym.bdd.configure()["reordering"] is False
+    assert result.winning == game_module.Game(sym).solve().winning  # sifted, same region
 
 
 @pytest.mark.parametrize("name", ["thesis_robot_a", "corridor_hazard"])

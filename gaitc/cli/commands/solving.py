@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING, Any
 
 import gaitc
 from gaitc.api.isolation import HardLimits, run_limited, solver_options
-from gaitc.api.modes import ControllerKind, EncodingName, Form
+from gaitc.api.modes import FORM_CHOICES, ControllerKind, EncodingName, Form, form_choice
 from gaitc.api.solving import MAX_NODES, SOLVERS, recorded_encoding
 from gaitc.cli.commands.arguments import (
     add_prefer,
@@ -113,14 +113,16 @@ def register(sub: Any) -> None:
     p.add_argument("-o", "--output", required=True, metavar="FILE", type=output_file)
     p.add_argument("--no-verify", action="store_true", help="skip the verification step")
     _json(p)
-    p.add_argument("--symbolic", action="store_true",
-                   help="write the strategy as BDDs (docs/controller-format.md, symbolic "
-                   "controllers); simulate, drive, verify and render map read it")
-    p.add_argument("--compact", action="store_true",
-                   help="write the strategy as decision diagrams over the robot's words "
-                   "(regions, gaits, leg health, hazards), proved on every state; 'render "
-                   "policy' prints them as rules, 'codegen' turns them into C for a host or "
-                   "the valve board")
+    p.add_argument("--form", choices=FORM_CHOICES, default=None,
+                   help="the controller's form: explicit (every node listed), symbolic "
+                   "(BDDs; simulate, drive, verify and render map read it), compact "
+                   "(decision diagrams over the robot's words: regions, gaits, leg health, "
+                   "hazards, proved on every state; 'render policy' prints them as rules, "
+                   "'codegen' turns them into C for a host or the valve board), or auto "
+                   "(default: explicit unless it would pass --max-nodes nodes, then "
+                   "symbolic); docs/controller-format.md")
+    p.add_argument("--symbolic", action="store_true", help="the same as --form symbolic")
+    p.add_argument("--compact", action="store_true", help="the same as --form compact")
     p.add_argument("--max-nodes", type=positive_count, default=MAX_NODES, metavar="N",
                    help=f"keep the controller symbolic when the explicit automaton would pass "
                    f"N nodes (default {MAX_NODES:,})")
@@ -241,12 +243,7 @@ def _solve(args: argparse.Namespace, kind: ControllerKind
         with progress_display(args.verbose) as progress:
             if kind == ControllerKind.COUNTERSTRATEGY:
                 return spec, gaitc.counterstrategy(spec, **_solver_args(args, progress))
-            if args.symbolic and args.compact:
-                raise UsageError("--symbolic and --compact are two forms of the controller: "
-                                 "give one")
-            form = (Form.COMPACT if args.compact else Form.SYMBOLIC if args.symbolic
-                    else "auto")
-            return spec, gaitc.synthesize(spec, verify=not args.no_verify, form=form,
+            return spec, gaitc.synthesize(spec, verify=not args.no_verify, form=_form(args),
                                           max_nodes=args.max_nodes, prefer=args.prefer,
                                           **_solver_args(args, progress))
 
@@ -290,6 +287,18 @@ class _Unasked(str):
     __slots__ = ()
 
 
+def _form(args: argparse.Namespace) -> Form | None:
+    """The form ``--form``, ``--symbolic`` or ``--compact`` asks for (None: auto); two of
+    them naming different forms is a :class:`UsageError`."""
+    asked = [(f"--form {args.form}", form_choice(args.form))] if args.form is not None else []
+    asked += [(f"--{form}", form) for form in (Form.SYMBOLIC, Form.COMPACT)
+              if getattr(args, str(form))]
+    if len({form for _, form in asked}) > 1:
+        raise UsageError(f"{' and '.join(flag for flag, _ in asked)} are two forms of the "
+                         "controller: give one")
+    return asked[0][1] if asked else None
+
+
 #: What ``synth --tolerate`` says when it chose the binary encoding itself.
 TOLERATE_ENCODING_NOTE = ("synth --tolerate: solving in the binary encoding, whose counter "
                           "game is several times faster than one-hot's (the controller "
@@ -302,8 +311,7 @@ def _tolerate(args: argparse.Namespace) -> gaitc.Tolerance:
     if args.solver != "embedded":
         raise UsageError("--tolerate solves a game of its own with the embedded solver; drop "
                          "--solver slugs")
-    if args.symbolic and args.compact:
-        raise UsageError("--symbolic and --compact are two forms of the controller: give one")
+    form = _form(args)
     if args.prefer is not None:
         raise UsageError("--prefer does not apply with --tolerate: the controller keeps every "
                          "winning move of the game with surprises")
@@ -317,8 +325,6 @@ def _tolerate(args: argparse.Namespace) -> gaitc.Tolerance:
     def work() -> gaitc.Tolerance:
         spec = gaitc.load(args.spec, encoding)
         with progress_display(args.verbose) as progress:
-            form = (Form.COMPACT if args.compact else Form.SYMBOLIC if args.symbolic
-                    else "auto")
             return gaitc.tolerate(spec, args.tolerate, semantics_of(args),
                                   breakable=args.breakable, form=form,
                                   max_nodes=args.max_nodes,

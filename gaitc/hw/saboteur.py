@@ -1,5 +1,6 @@
-"""The simulated robot that surprises its controller (``drive --violate``, ``--on-violation
-recover``): it reads the driver's controller, not a copy of it, and performs planned events.
+"""The saboteur: a simulated robot that surprises its controller (``drive --violate``,
+``--on-violation recover``): it reads the driver's controller, not a copy of it, and
+performs planned events.
 
 :class:`~gaitc.hw.simulated.SimulatedRobot` shadows the controller it was built with; after
 a surprise the driver goes on with a fallback strategy (:mod:`gaitc.sim.recovery`, after
@@ -8,7 +9,7 @@ told the driver's situation before each reading (:class:`gaitc.hw.driver.Followe
 environment chooses among the moves of the controller the driver runs now, and at a step of
 ``planned`` it performs the event whatever the assumptions say: the legs' levels and the
 hazard change as the event says, the rest of the reading is a move the assumptions allow
-(:func:`gaitc.sim.surprise.performed`, as ``simulate --violate`` does) and the robot stays
+(:func:`gaitc.sim.events.performed`, as ``simulate --violate`` does) and the robot stays
 where the last gait took it.
 """
 
@@ -20,9 +21,9 @@ from gaitc.hw.backend import SensorReading, where
 from gaitc.hw.simulated import ScenarioFinished, SimulatedRobot
 from gaitc.sim.domain import Domain
 from gaitc.sim.environments import Environment, Situation
+from gaitc.sim.events import Event, performed
 from gaitc.sim.monitor import Monitor
 from gaitc.sim.strategy import StrategyView
-from gaitc.sim.surprise import Event, performed
 
 
 class SurprisingRobot(SimulatedRobot):

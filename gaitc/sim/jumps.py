@@ -1,37 +1,38 @@
-"""Performing a surprise at one controller node: the events that would break ρe there, the
-inputs an event stands for, and where the run goes after it (the player's "break an
-assumption" moves and ``drive``'s recovery; ``simulate --violate`` does the same inside
-:meth:`gaitc.sim.simulator.Simulator.run`).
+"""The jump a surprise makes: at one controller node, the events that would break ρe
+there, the inputs an event stands for, and where the run goes after it (:class:`Jump`).
+``simulate --violate`` and ``drive`` (inside :meth:`gaitc.sim.simulator.Simulator.run`)
+and the player's "break an assumption" moves all jump through :func:`jump`.
 
 The recovery decision is :meth:`gaitc.sim.recovery.Fallback.enter`, after Ehlers and
 Topcu ("Resilience to intermittent assumption violations in reactive synthesis", HSCC
 2014): the surprise is a jump of the game, after which the run goes on from the winning
-region of all goals, of fewer goals, or towards a cache.  This module only packages one
-such jump so that a front end stepping a play by hand can make it one move at a time.
+region of all goals, of fewer goals, or towards a cache.
 """
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 from gaitc.core.changes import Change, HazardSwitch, LegFails, LegWears
 from gaitc.core.modes import Outcome
-from gaitc.sim.domain import Domain
+from gaitc.sim.domain import Domain, Goal
 from gaitc.sim.environments import Request
-from gaitc.sim.run import Step
-from gaitc.sim.surprise import (
+from gaitc.sim.events import (
     Event,
     Surprise,
     broken_words,
     change_words,
     performed,
 )
+from gaitc.sim.run import Step
 from gaitc.solver.progress import goal_titles
 
 if TYPE_CHECKING:
     from gaitc.sim.recovery import Entry, Fallback
     from gaitc.sim.simulator import Simulator
+    from gaitc.sim.strategy import StrategyView
 
 #: The section of the spec whose clauses a surprise breaks (ρe).
 ASSUMPTIONS = "env_trans"
@@ -50,7 +51,7 @@ class Breaking:
 
 def forced(sim: Simulator, node: int, event: Event) -> Request:
     """The inputs of ``event`` performed at ``node`` of ``sim``'s controller, laid onto a
-    move the assumptions allow there (:func:`gaitc.sim.surprise.performed`), so that only
+    move the assumptions allow there (:func:`gaitc.sim.events.performed`), so that only
     the event itself can break an assumption; inputs the robot's state does not name are
     that move's (the node's own when it has no moves)."""
     moves = sim.moves(node)
@@ -138,6 +139,36 @@ def recover(sim: Simulator, fallback: Fallback, index: int, node: int, request: 
                         line=None if first is None or first.span is None else str(first.span),
                         outcome=entry.outcome, kept=kept, lost=lost, note=note)
     return surprise, entry
+
+
+@dataclass(frozen=True)
+class Jump:
+    """Where a run goes after a surprise: its record, and the controller, node, goals (with
+    the index of the one pursued) and caches the run goes on with; ``sim`` None when the
+    robot stops where it is.  Every front end that steps a controller through surprises
+    (``simulate`` and ``drive`` through :meth:`gaitc.sim.simulator.Simulator.run`, the
+    player) takes the same jump."""
+
+    surprise: Surprise
+    sim: Simulator | None
+    node: int | None
+    goals: tuple[Goal, ...]
+    goal: int
+    caches: tuple[str, ...]
+
+
+def jump(sim: Simulator, fallback: Fallback, index: int, node: int, request: Request,
+         pursuing: int, simulator: Callable[[StrategyView], Simulator]) -> Jump:
+    """The jump ``request`` makes at ``node`` of ``sim``'s controller, where it broke an
+    assumption at step ``index`` with the robot pursuing goal ``pursuing`` (an index into
+    the spec's □◇ guarantees): :func:`recover`'s entry, with the fallback strategy run by
+    ``simulator`` and the goal pursued kept when the fallback keeps it."""
+    surprise, entry = recover(sim, fallback, index, node, request, pursuing)
+    if entry.strategy is None or entry.node is None:
+        return Jump(surprise, None, None, (), 0, entry.cache)
+    goals = tuple(sim.domain.goals[j] for j in entry.kept)
+    goal = entry.kept.index(pursuing) if pursuing in entry.kept else 0
+    return Jump(surprise, simulator(entry.strategy), entry.node, goals, goal, entry.cache)
 
 
 def entered(sim: Simulator, index: int, node: int, previous: Step | None) -> Step:
