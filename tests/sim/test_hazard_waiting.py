@@ -63,6 +63,8 @@ class Alternatives:
         self.model = spec.model
         self.gr1 = spec.gr1
         self.inputs = [v.name for v in spec.gr1.inputs]
+        self.walking = {g.name for g in self.model.gaits if g.kind is GaitKind.MOVE}
+        self.regions = {h.name: set(h.regions) for h in self.model.hazards}
         ranked = worst_first(spec.model)
         self.games: dict[str, tuple[Any, Any, dict[str, str]]] = {}
         for k, hazard in enumerate(ranked):
@@ -83,28 +85,32 @@ class Alternatives:
         values |= {names[n] + "'": bool(now[n]) for n in self.inputs}
         return bool(aut.let(values, moves) != aut.false)
 
+    def _walks_in(self, step: Step) -> str | None:
+        """The active hazard into one of whose regions ``step`` walks (with a gait that
+        moves), or None."""
+        hazard = step.hazard
+        if hazard in self.regions and step.region in self.regions[hazard] \
+                and step.gait in self.walking:
+            return hazard
+        return None
+
     def entries(self, steps: Sequence[Step]) -> dict[str, int]:
         """Per hazard, the moves of ``steps`` into one of its active regions with a gait
         that walks, that had an alternative (:meth:`exists`)."""
-        walking = {g.name for g in self.model.gaits if g.kind is GaitKind.MOVE}
-        regions = {h.name: set(h.regions) for h in self.model.hazards}
         count = {h.name: 0 for h in self.model.hazards}
         for before, after in itertools.pairwise(steps):
-            hazard = after.hazard
-            if hazard in regions and after.region in regions[hazard] \
-                    and after.gait in walking and self.exists(hazard, before, after):
+            hazard = self._walks_in(after)
+            if hazard is not None and self.exists(hazard, before, after):
                 count[hazard] += 1
         return count
 
     def walks_into(self, steps: Sequence[Step]) -> dict[str, int]:
         """Per hazard, every move into one of its active regions with a gait that walks."""
-        walking = {g.name for g in self.model.gaits if g.kind is GaitKind.MOVE}
-        regions = {h.name: set(h.regions) for h in self.model.hazards}
         count = {h.name: 0 for h in self.model.hazards}
         for step in steps[1:]:
-            if step.hazard in regions and step.region in regions[step.hazard] \
-                    and step.gait in walking:
-                count[step.hazard] += 1
+            hazard = self._walks_in(step)
+            if hazard is not None:
+                count[hazard] += 1
         return count
 
 
