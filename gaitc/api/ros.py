@@ -1,0 +1,284 @@
+"""The controller on ROS 2 (``gaitc ros``): a verified controller of a ``.gait`` spec as a
+ROS 2 node (:mod:`gaitc.ros.node`), optionally with a simulated robot node beside it
+(:mod:`gaitc.ros.robot`) and every topic recorded as MCAP; and any run written as MCAP with
+the same topics (``simulate --mcap``).  Needs the ``ros`` extra (``pip install
+'gaitc[ros]'``); without it each function raises a :class:`UsageError` that says so.
+"""
+
+from __future__ import annotations
+
+import threading
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+from gaitc.api.simulation import (
+    DEFAULT_STEPS,
+    EnvironmentLike,
+    Session,
+    environment,
+    opponent,
+    session,
+)
+from gaitc.api.solving import recorded_encoding
+from gaitc.core.modes import EnvironmentKind, Semantics, SurprisePolicy
+from gaitc.core.spec import Spec, load
+from gaitc.diagnostics import GaitcError, UsageError
+from gaitc.sim.run import checked_steps
+from ltlcompiler.encoding import EncodingName
+
+if TYPE_CHECKING:
+    from gaitc.gaitgraph.pairing import ValveSequence
+    from gaitc.ir.controller import Controller
+    from gaitc.ros.node import NodeOptions
+    from gaitc.sim.run import Run
+    from gaitc.solver.progress import Progress
+
+#: The watchdog (s) beside a simulated robot: its copy of the controller solves the recovery
+#: games of a surprise before it senses, which may take seconds.
+SIM_WATCHDOG = 60.0
+
+__all__ = ["SIM_WATCHDOG", "RosOptions", "RosRun", "SimulatedRobot", "record_run", "ros"]
+
+
+@dataclass(frozen=True)
+class SimulatedRobot:
+    """The simulated robot node of ``gaitc ros --sim``: the environment it plays (as
+    ``simulate --env``: random with ``seed``, adversarial, or scripted with its file), the
+    events it performs whatever the assumptions say (``"12:fail L5"``), and the steps (50,
+    or a scenario's or run file's length)."""
+
+    env: EnvironmentLike = EnvironmentKind.RANDOM
+    seed: int = 0
+    violate: Sequence[str] = ()
+    steps: int | None = None
+
+
+@dataclass(frozen=True)
+class RosOptions:
+    """How :func:`ros` runs the node: after an input that breaks an assumption, recover or
+    stop (``on_surprise``, with the recovery games' ``semantics``); the /diagnostics
+    heartbeat ``rate`` (Hz), the ``watchdog`` (s without an observation; None: 2, or 60
+    beside a simulated robot, whose copy of the controller solves the recovery games of a
+    surprise before it senses) and the largest age
+    of a stamp (``stale_after``, s); the steps to run without a simulated robot (None: until
+    stopped); the ROS arguments (``-r gait:=/robot/gait``, ``-p watchdog:=5.0``); an MCAP
+    file to ``record`` every topic into; the spec's ``encoding`` (default: the controller
+    file's)."""
+
+    on_surprise: SurprisePolicy | str = SurprisePolicy.RECOVER
+    semantics: Semantics | str = Semantics.DEFAULT
+    rate: float = 1.0
+    watchdog: float | None = None
+    stale_after: float = 1.0
+    steps: int | None = None
+    ros_args: Sequence[str] = ()
+    record: str | Path | None = None
+    encoding: EncodingName | str | None = None
+
+
+@dataclass
+class RosRun:
+    """What :func:`ros` ran: the controller node's run (None: the spec is unrealizable, or
+    a signal stopped the node outside its wait for an observation), why it stopped, how
+    often it vented, the bad observations it reported, the simulated robot's account, the
+    recording and its message counts by topic."""
+
+    spec: str
+    run: Run | None
+    full_health: dict[str, int] = field(default_factory=dict)
+    stopped: str = ""
+    vents: int = 0
+    faults: tuple[str, ...] = ()
+    interrupted: str = ""
+    robot: str = ""
+    recording: str | None = None
+    recorded: dict[str, int] = field(default_factory=dict)
+    robot_error: GaitcError | None = None
+
+
+def _bound(spec: Spec | str | Path, controller: Controller | str | Path | None,
+           encoding: EncodingName | str | None, semantics: Semantics | str
+           ) -> tuple[Spec, Session | None]:
+    recorded = recorded_encoding(controller) if isinstance(controller, (str, Path)) else None
+    checked = spec if isinstance(spec, Spec) else load(spec, encoding or recorded
+                                                       or EncodingName.ONEHOT)
+    return checked, session(checked, controller, semantics=semantics)
+
+
+def _primitives(checked: Spec) -> dict[str, ValveSequence] | None:
+    """The gaits' valve sequences when the spec binds any (then all must be bound, as
+    ``drive`` needs), else None."""
+    from gaitc.hw.driver import bind_primitives
+    from gaitc.search.primitives import resolve_primitive
+
+    model = checked.robot
+    if not any(g.primitive is not None for g in model.gaits):
+        return None
+    return bind_primitives(model, str(Path(checked.path).parent), resolve_primitive)
+
+
+def ros(spec: Spec | str | Path, controller: Controller | str | Path | None = None,
+        options: RosOptions | None = None, robot: SimulatedRobot | None = None,
+        progress: Progress | None = None) -> RosRun:
+    """Run ``controller`` (synthesized first when None) of the ``.gait`` ``spec`` as a ROS 2
+    node until its steps are done, a bad observation, the watchdog or a signal stops it
+    (every valve vented then); with ``robot``, a simulated robot node beside it plays the
+    environment over the topics for the robot's steps.  Every topic goes to
+    ``options.record`` (MCAP) when given."""
+    from gaitc.ros.node import NodeOptions
+    from gaitc.ros.topics import require
+
+    require()
+    opts = options or RosOptions()
+    policy = SurprisePolicy.parse(opts.on_surprise, "--on-surprise")
+    semantics = Semantics.parse(opts.semantics)
+    checked, bound = _bound(spec, controller, opts.encoding, semantics)
+    if bound is None:
+        return RosRun(checked.path, None, stopped="unrealizable: no controller to run")
+    primitives = _primitives(checked)
+    steps = opts.steps
+    planned: dict[int, Any] = {}
+    chosen = None
+    if robot is not None:
+        from gaitc.sim.surprise import plan
+
+        chosen, steps = _robot_environment(robot, bound)
+        planned = plan(robot.violate, bound.domain)
+        late = sorted(k for k in planned if k > steps)
+        if late:
+            raise UsageError(f"--violate '{late[0]}:{planned[late[0]].words}': the run has "
+                             f"{steps} steps, so step {late[0]} never comes; give --steps "
+                             f"{late[-1]} or more")
+    elif steps is not None:
+        checked_steps(steps, "--steps")
+    watchdog = opts.watchdog if opts.watchdog is not None else (
+        SIM_WATCHDOG if chosen is not None else NodeOptions.watchdog)
+    node_options = NodeOptions(on_surprise=policy, semantics=semantics, rate=opts.rate,
+                               watchdog=watchdog, stale_after=opts.stale_after,
+                               steps=steps).checked()
+    return _run_graph(_Plan(checked, bound, primitives, node_options, chosen, planned,
+                            str(controller) if isinstance(controller, (str, Path)) else ""),
+                      opts)
+
+
+def _robot_environment(robot: SimulatedRobot, bound: Session) -> tuple[Any, int]:
+    """The simulated robot's environment and the steps it plays (as ``simulate``'s)."""
+    from gaitc.sim.replay import RunEnvironment
+    from gaitc.sim.scenario import ScriptedEnvironment
+
+    chosen = environment(opponent(robot.env), bound, robot.seed)
+    steps = robot.steps
+    if steps is None:
+        steps = (len(chosen.scenario.steps) if isinstance(chosen, ScriptedEnvironment)
+                 else chosen.length if isinstance(chosen, RunEnvironment) else DEFAULT_STEPS)
+    return chosen, checked_steps(steps, "--steps")
+
+
+@dataclass(frozen=True)
+class _Plan:
+    """What :func:`ros` runs: the spec and its session, the gaits' valves, the node's
+    options, the simulated robot's environment and planned events (None: no robot), the
+    controller file's name."""
+
+    checked: Spec
+    bound: Session
+    primitives: dict[str, ValveSequence] | None
+    node: NodeOptions
+    chosen: Any
+    planned: dict[int, Any]
+    controller: str
+
+
+def _run_graph(plan: _Plan, opts: RosOptions) -> RosRun:
+    from gaitc.ros.graph import Graph, wait_until
+    from gaitc.ros.node import ControllerNode
+    from gaitc.ros.recorder import Recorder
+    from gaitc.ros.recording import Recording
+    from gaitc.ros.robot import RobotNode, RobotOptions
+    from gaitc.ros.topics import TOPICS, present
+
+    checked, bound, primitives, chosen = plan.checked, plan.bound, plan.primitives, plan.chosen
+    steps = plan.node.steps
+    domain = bound.domain
+    topics = present(TOPICS, bool(domain.hazard_regions), primitives is not None)
+    recording = Recording(opts.record) if opts.record is not None else None
+    result = RosRun(checked.path, None, dict(bound.domain.full),
+                    recording=None if opts.record is None else str(opts.record))
+    try:
+        with Graph(opts.ros_args) as graph:
+            recorder = Recorder(graph, topics, recording) if recording is not None else None
+            node = ControllerNode(graph, bound.strategy, domain, bound.monitor, primitives,
+                                  plan.node, spec_file=checked.path,
+                                  controller_file=plan.controller)
+            thread = None
+            robot_node = None
+            if chosen is not None:
+                assert steps is not None
+                robot_node = RobotNode(graph, bound.strategy, domain, bound.monitor, chosen,
+                                       RobotOptions(plan.planned, node.games,
+                                                    node.options.on_surprise,
+                                                    node.options.semantics,
+                                                    wait=node.options.watchdog),
+                                       checked.path)
+                thread = _start(robot_node, steps, result)
+            if recorder is not None:  # every publisher seen before the first message
+                wait_until(lambda: recorder.connected(
+                    {node.node.resolve_topic_name(t.name): 1 for t in topics}), 5.0)
+            with node.signals():
+                result.run = node.run()
+            if thread is not None:
+                thread.join(timeout=node.options.watchdog + 1.0)
+            if robot_node is not None:
+                result.robot = robot_node.note
+            if recorder is not None:
+                expected = {node.node.resolve_topic_name(t): n for t, n in node.sent.items()}
+                if robot_node is not None:
+                    for topic, count in robot_node.sent.items():
+                        resolved = node.node.resolve_topic_name(topic)
+                        expected[resolved] = expected.get(resolved, 0) + count
+                recorder.settle(expected)
+                result.recorded = dict(recording.counts) if recording is not None else {}
+            result.vents, result.faults = node.vents, tuple(node.faults)
+            result.interrupted = node.interrupted
+            result.stopped = node.status.message
+    finally:
+        if recording is not None:
+            recording.close()
+    return result
+
+
+def _start(robot: Any, steps: int, result: RosRun) -> threading.Thread:
+    def play() -> None:
+        try:
+            robot.run(steps)
+        except GaitcError as err:
+            result.robot_error = err
+            robot.note = f"the simulated robot stopped: {err.message}"
+
+    thread = threading.Thread(target=play, name="gaitc-sim-robot", daemon=True)
+    thread.start()
+    return thread
+
+
+def record_run(run: Run, spec: Spec | Session | str | Path, path: str | Path,
+               controller: str | Path | None = None, period: float = 1.0) -> dict[str, int]:
+    """Write ``run`` (of ``spec``) to the MCAP file ``path`` with the topics and messages
+    ``gaitc ros`` publishes, one step every ``period`` s from time 0 (so the same run gives
+    the same file); returns the messages written by topic."""
+    from gaitc.ros.recording import write_run
+    from gaitc.ros.topics import require
+
+    require()
+    if isinstance(spec, Session):
+        bound: Session | None = spec
+        checked = spec.spec
+    else:
+        checked = spec if isinstance(spec, Spec) else load(
+            spec, (recorded_encoding(controller) if controller is not None else None)
+            or EncodingName.ONEHOT)
+        bound = None
+    model = checked.robot
+    return write_run(run, model, bound.monitor if bound is not None else None,
+                     _primitives(checked), checked.path, path, period)
