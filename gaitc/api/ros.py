@@ -39,7 +39,8 @@ if TYPE_CHECKING:
 #: games of a surprise before it senses, which may take seconds.
 SIM_WATCHDOG = 60.0
 
-__all__ = ["SIM_WATCHDOG", "RosOptions", "RosRun", "SimulatedRobot", "record_run", "ros"]
+__all__ = ["SIM_WATCHDOG", "RosOptions", "RosRun", "SimulatedRobot", "record_run",
+           "require_ros", "ros"]
 
 
 @dataclass(frozen=True)
@@ -128,9 +129,8 @@ def ros(spec: Spec | str | Path, controller: Controller | str | Path | None = No
     environment over the topics for the robot's steps.  Every topic goes to
     ``options.record`` (MCAP) when given."""
     from gaitc.ros.node import NodeOptions
-    from gaitc.ros.topics import require
 
-    require()
+    require_ros()
     opts = options or RosOptions()
     policy = SurprisePolicy.parse(opts.on_surprise, "--on-surprise")
     semantics = Semantics.parse(opts.semantics)
@@ -262,23 +262,30 @@ def _start(robot: Any, steps: int, result: RosRun) -> threading.Thread:
     return thread
 
 
-def record_run(run: Run, spec: Spec | Session | str | Path, path: str | Path,
-               controller: str | Path | None = None, period: float = 1.0) -> dict[str, int]:
-    """Write ``run`` (of ``spec``) to the MCAP file ``path`` with the topics and messages
-    ``gaitc ros`` publishes, one step every ``period`` s from time 0 (so the same run gives
-    the same file); returns the messages written by topic."""
-    from gaitc.ros.recording import write_run
+def require_ros() -> None:
+    """A :class:`UsageError` naming the ``ros`` extra when ROS 2 or mcap is missing."""
     from gaitc.ros.topics import require
 
     require()
+
+
+def record_run(run: Run, spec: Spec | Session | str | Path, path: str | Path,
+               controller: str | Path | None = None, period: float = 1.0, *,
+               encoding: EncodingName | str | None = None) -> dict[str, int]:
+    """Write ``run`` (of ``spec``; a path is loaded with ``encoding``, else the one the
+    ``controller`` file records) to the MCAP file ``path`` with the topics and messages
+    ``gaitc ros`` publishes, step k at (k + 1) * ``period`` s (so the same run gives the
+    same file); returns the messages written by topic."""
+    from gaitc.ros.recording import write_run
+    from gaitc.sim.monitor import Monitor
+
+    require_ros()
     if isinstance(spec, Session):
-        bound: Session | None = spec
         checked = spec.spec
+    elif isinstance(spec, Spec):
+        checked = spec
     else:
-        checked = spec if isinstance(spec, Spec) else load(
-            spec, (recorded_encoding(controller) if controller is not None else None)
-            or EncodingName.ONEHOT)
-        bound = None
-    model = checked.robot
-    return write_run(run, model, bound.monitor if bound is not None else None,
-                     _primitives(checked), checked.path, path, period)
+        checked = load(spec, encoding or (recorded_encoding(controller) if controller
+                                          is not None else None) or EncodingName.ONEHOT)
+    return write_run(run, checked.robot, Monitor(checked.gr1), _primitives(checked),
+                     checked.path, path, period)

@@ -167,10 +167,14 @@ class Recorded:
 
 def read(path: str | Path) -> Iterator[Recorded]:
     """The messages of an MCAP recording in log-time order, decoded."""
-    from mcap_ros2.reader import read_ros2_messages
+    from mcap.reader import make_reader
+    from mcap_ros2.decoder import DecoderFactory
 
-    for found in read_ros2_messages(str(path)):
-        yield Recorded(found.channel.topic, found.log_time_ns, found.ros_msg)
+    with Path(path).open("rb") as handle:
+        reader = make_reader(handle, decoder_factories=[DecoderFactory()])
+        for _schema, channel, message, decoded in reader.iter_decoded_messages(
+                log_time_order=True):
+            yield Recorded(channel.topic, message.log_time, decoded)
 
 
 def end_reason(run: Run) -> str:
@@ -180,7 +184,7 @@ def end_reason(run: Run) -> str:
     return f"{run.halted or f'finished {max(0, len(run.steps) - 1)} steps'}; every valve vented"
 
 
-def write_run(run: Run, model: Model, monitor: Monitor | None,
+def write_run(run: Run, model: Model, monitor: Monitor,
               primitives: Mapping[str, ValveSequence] | None, hardware_id: str,
               path: str | Path, period: float = 1.0) -> dict[str, int]:
     """Write ``run`` to ``path`` as the controller node and the robot would have published
@@ -212,48 +216,45 @@ def write_run(run: Run, model: Model, monitor: Monitor | None,
     no_gait = next(g.name for g in model.gaits if g.kind is GaitKind.NONE)
     count = 0 if not primitives else next(
         (len(s.states[0]) for s in primitives.values() if s.states), 0)
-    titles = goal_titles(monitor.spec) if monitor is not None else tuple(
-        f"goal {k + 1}" for k in range(len(model.goals)))
+    titles = goal_titles(monitor.spec)
     step_ns = max(1, int(period * 1e9))
     broken: list[str] = []
     previous: tuple[int, ...] | None = None
     with Recording(path) as out:
         for topic in present(TOPICS, bool(hazards), primitives is not None):
-            out.channel(topic)
+            out.channel(topic, topic.default_name)
 
-        def put(topic: str, message: Any, at: int) -> None:
-            out.write(topic, serialized(message), at)
+        def put(topic: Topic, message: Any, at: int) -> None:
+            out.write(topic.default_name, serialized(message), at)
 
         at = 0
         kept, lost = list(titles), []
         for step in run.steps:
             at = (step.index + 1) * step_ns
             if hazards:
-                put(HAZARDS.name, hazards_message(hazards, step.hazard, at), at)
-            put(LEG_HEALTH.name, health_message(step.health, at), at)
-            put(REGION.name, text_message(step.region), at + 1000)
-            put(GAIT.name, text_message(step.gait), at + 1000)
+                put(HAZARDS, hazards_message(hazards, step.hazard, at), at)
+            put(LEG_HEALTH, health_message(step.health, at), at)
+            put(REGION, text_message(step.region), at + 1000)
+            put(GAIT, text_message(step.gait), at + 1000)
             if primitives is not None:
-                put(VALVES.name, text_message(valve_pattern(primitives, step.gait, count)),
+                put(VALVES, text_message(valve_pattern(primitives, step.gait, count)),
                     at + 1000)
-            if monitor is not None:
-                values = monitor.values(dict(step.values))
-                broken.extend(v.describe() for v in _broken(monitor, step.index, previous,
-                                                            values))
-                previous = values
+            values = monitor.values(dict(step.values))
+            broken.extend(v.describe() for v in _broken(monitor, step.index, previous, values))
+            previous = values
             surprising = [s for s in run.surprises if s.step <= step.index
                           and s.note != ALLOWED_NOTE]
             if surprising:
                 kept, lost = list(surprising[-1].kept), list(surprising[-1].lost)
             status = step_status(step.index, step.region, step.gait, broken,
                                  [s.outcome.value for s in surprising], kept, lost)
-            put(DIAGNOSTICS.name, diagnostics_message(status, hardware_id, at + 2000),
+            put(DIAGNOSTICS, diagnostics_message(status, hardware_id, at + 2000),
                 at + 2000)
         at += step_ns // 2
-        put(GAIT.name, text_message(no_gait), at)
+        put(GAIT, text_message(no_gait), at)
         if primitives is not None:
-            put(VALVES.name, text_message("0" * count), at)
-        put(DIAGNOSTICS.name, diagnostics_message(stop_status(end_reason(run), kept, lost),
+            put(VALVES, text_message("0" * count), at)
+        put(DIAGNOSTICS, diagnostics_message(stop_status(end_reason(run), kept, lost),
                                                   hardware_id, at), at)
         return dict(out.counts)
 

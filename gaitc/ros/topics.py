@@ -48,6 +48,11 @@ class Topic:
     only: str = ""  # when it exists: every spec if empty
 
     @property
+    def default_name(self) -> str:
+        """The name in the root namespace without remaps (``/gait``), as recordings say it."""
+        return self.name if self.name.startswith("/") else f"/{self.name}"
+
+    @property
     def message_class(self) -> Any:
         """The rclpy message class of :attr:`type`."""
         package, _, kind = self.type.split("/")

@@ -1,0 +1,106 @@
+"""``gaitc ros --sim``: the controller node and a simulated robot node talk over real ROS 2
+topics, every topic goes to an MCAP file, and the gaits recorded are those of ``gaitc
+simulate`` with the same environment, seed, steps and violations, step by step (issue 62),
+on robot A (hazard sets) and on the 8-leg radial robot (valve primitives)."""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+from collections import Counter
+from pathlib import Path
+
+import pytest
+from ros_graph import RADIAL8, ROBOT_A, controller, ros_domain
+
+import gaitc
+from gaitc.api.ros import RosOptions, SimulatedRobot, ros
+from gaitc.ros.recording import read
+from gaitc.ros.topics import status_of
+
+__all__ = ["ros_domain"]
+
+TWO_EVENTS = {ROBOT_A: ("40:fail L1", "120:degrade L3,switch blue on"),
+              RADIAL8: ("40:fail L1", "120:degrade L3 by 2")}
+
+
+@pytest.fixture(scope="module")
+def controllers(tmp_path_factory: pytest.TempPathFactory) -> dict[Path, Path]:
+    folder = tmp_path_factory.mktemp("controllers")
+    return {spec: controller(spec, folder) for spec in (ROBOT_A, RADIAL8)}
+
+
+def recorded(path: Path) -> tuple[list[str], Counter[str], list[object]]:
+    """The gaits, the messages by topic and the controller's statuses of a recording."""
+    messages = list(read(path))
+    gaits = [m.message.data for m in messages if m.topic == "/gait"]
+    statuses = [status_of(m.message) for m in messages if m.topic == "/diagnostics"]
+    return gaits, Counter(m.topic for m in messages), statuses
+
+
+@pytest.mark.parametrize(("spec", "env", "violate"), [
+    (ROBOT_A, "random", False),
+    (RADIAL8, "adversarial", True),
+], ids=["robot_a-random", "radial8-adversarial-two-events"])
+def test_the_recording_is_the_simulation_step_by_step(
+        spec: Path, env: str, violate: bool, controllers: dict[Path, Path], tmp_path: Path,
+        ros_domain: dict[str, str]) -> None:
+    events = TWO_EVENTS[spec] if violate else ()
+    mcap = tmp_path / "run.mcap"
+    ran = ros(spec, controllers[spec], RosOptions(record=mcap),
+              SimulatedRobot(env, seed=7, violate=events, steps=200))
+    assert ran.run is not None and ran.run.error is None, ran.stopped
+    assert ran.robot == "played 200 steps"
+    simulated = gaitc.simulate(spec, controllers[spec], env=env, steps=200, seed=7,
+                               violate=events)
+    expected = [s.gait for s in simulated.steps]
+    assert len(expected) == 201
+    assert [s.gait for s in ran.run.steps] == expected
+    gaits, counts, statuses = recorded(mcap)
+    assert gaits == [*expected, "noGait"]  # each step's gait, then the vent at the end
+    assert counts["/leg_health"] == 201 and counts["/target_region"] == 201
+    if spec == ROBOT_A:
+        assert counts["/hazards"] == 201 and "/valves" not in counts
+    else:
+        assert counts["/valves"] == 202 and "/hazards" not in counts
+    if violate:
+        assert [(s.step, s.outcome.value) for s in ran.run.surprises] == [
+            (s.step, s.outcome.value) for s in simulated.surprises]
+        surprised = [s for s in statuses if s is not None and s.value("surprises") == "2"]
+        assert surprised and surprised[-1].value("last surprise") == \
+            simulated.surprises[-1].outcome.value
+    last = statuses[-1]
+    assert last is not None and last.level == 2 and last.message == \
+        "finished 200 steps; every valve vented"
+
+
+def test_the_command_with_two_events_on_robot_a_is_simulate_json(
+        controllers: dict[Path, Path], tmp_path: Path, ros_domain: dict[str, str]) -> None:
+    """The command line, as the issue says it: ``gaitc ros ... --sim`` beside ``gaitc
+    simulate ... --json`` (run at the same time: robot A's recovery games take seconds)."""
+    words = [str(ROBOT_A), str(controllers[ROBOT_A]), "--env", "adversarial", "--steps", "200"]
+    for event in TWO_EVENTS[ROBOT_A]:
+        words += ["--violate", event]
+    mcap = tmp_path / "run.mcap"
+    env = {**os.environ, **ros_domain}
+    node = subprocess.Popen([sys.executable, "-m", "gaitc", "ros", *words, "--sim", "--record",
+                             str(mcap), "--quiet"], env=env, stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True)
+    try:
+        simulated = subprocess.run([sys.executable, "-m", "gaitc", "simulate", *words,
+                                    "--json"], env=env, capture_output=True, text=True,
+                                   timeout=120, check=False)
+        out, err = node.communicate(timeout=120)
+    finally:
+        if node.poll() is None:
+            node.kill()
+            node.wait()
+    assert node.returncode == 0, err
+    assert "simulated robot: played 200 steps" in out
+    document = json.loads(simulated.stdout)
+    expected = [s["gait"] for s in document["steps"]]
+    assert len(expected) == 201 and len(document["violations"]) == 2
+    gaits, _, _ = recorded(mcap)
+    assert gaits == [*expected, "noGait"]
