@@ -98,12 +98,19 @@ class Probe:
     def gait(self, timeout: float = 5.0) -> str:
         return self.gaits.get(timeout=timeout)
 
+    def step(self, index: int, timeout: float = 5.0) -> Any:
+        """The status of step ``index`` (waiting up to ``timeout`` s), or None."""
+        return self._first(lambda s: s.value("step") == str(index) and not s.value("stopped"),
+                           timeout)
+
     def stopped(self, timeout: float = 5.0) -> Any:
         """The first status that says the controller stopped (waiting up to ``timeout`` s)."""
+        return self._first(lambda s: bool(s.value("stopped")), timeout)
+
+    def _first(self, wanted: Any, timeout: float) -> Any:
         end = time.monotonic() + timeout
         while time.monotonic() < end:
-            found = next((s for s in list(self.statuses)
-                          if s is not None and s.value("stopped")), None)
+            found = next((s for s in list(self.statuses) if s is not None and wanted(s)), None)
             if found is not None:
                 return found
             time.sleep(0.01)

@@ -159,6 +159,8 @@ class ControllerNode:
         if self.options.rate > 0:
             node.create_timer(1.0 / self.options.rate, self._heartbeat)
         graph.add(node)
+        listened = ", ".join(s.topic_name for s in self.subscriptions)
+        node.get_logger().info(f"ready: waiting for observations on {listened}")
 
     # -- parameters --------------------------------------------------------------------
 
@@ -341,8 +343,10 @@ class ControllerNode:
                 self.interrupt(name)
             raise Interrupted(name)
 
-        kept = {sig: signal.signal(sig, stop)
-                for sig in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)}
+        # an ignored SIGINT (a background job's) stays ignored, as gaitc leaves it elsewhere
+        caught = [sig for sig in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)
+                  if sig != signal.SIGINT or signal.getsignal(sig) is not signal.SIG_IGN]
+        kept = {sig: signal.signal(sig, stop) for sig in caught}
         try:
             yield
         finally:
