@@ -146,6 +146,7 @@ class ControllerNode:
         self._inbox: queue.Queue[Reading | HardwareError | Interrupted] = queue.Queue()
         self._lock = threading.RLock()
         self.vents = 0  # times every valve was vented
+        self.taken = 0  # observation messages handled
         self.faults: list[str] = []  # the bad observations, in words
         self.interrupted = ""  # the signal that stopped the node
         self.received: float | None = None  # monotonic time of the last observation
@@ -205,6 +206,7 @@ class ControllerNode:
         self._take(self.intake.hazards, message)
 
     def _take(self, read: Any, message: Any) -> None:
+        self.taken += 1
         try:
             reading = read(message, time.time_ns())
         except HardwareError as err:
@@ -376,7 +378,7 @@ class _Following(Simulator):
 class _Observed(Environment):
     """The environment as the robot's messages tell it: waits for the next reading."""
 
-    name = "ROS 2 (leg_health, hazards)"
+    name = "ROS 2 topics"
 
     def __init__(self, owner: ControllerNode) -> None:
         self.owner = owner

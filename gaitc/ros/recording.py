@@ -90,12 +90,16 @@ def definition(type_name: str) -> str:
     return "\n".join(part.rstrip("\n") for part in parts) + "\n"
 
 
-def serialized(message: Any) -> bytes:
-    """``message`` in CDR, as it goes over the wire."""
-    from rclpy.serialization import serialize_message
-
-    data: bytes = serialize_message(message)
-    return data
+def plain(message: Any) -> Any:
+    """An rclpy message as plain data (dicts, lists, numbers, text), field by field."""
+    if hasattr(message, "get_fields_and_field_types"):
+        return {name: plain(getattr(message, name))
+                for name in message.get_fields_and_field_types()}
+    if isinstance(message, (bytes, bytearray)) and len(message) == 1:
+        return message[0]  # a 'byte' field
+    if isinstance(message, (list, tuple)) or type(message).__name__ == "array":
+        return [plain(item) for item in message]
+    return message
 
 
 class Recording:
@@ -112,8 +116,10 @@ class Recording:
         self._writer = Writer(self._file)
         self._writer.start(profile="ros2", library="gaitc")
         self._schemas: dict[str, int] = {}
+        self._encoders: dict[str, Any] = {}
         self._channels: dict[str, int] = {}
         self._sequence: dict[str, int] = {}
+        self._types: dict[str, str] = {}
         self.counts: dict[str, int] = {}
         self._closed = False
 
@@ -129,6 +135,7 @@ class Recording:
                                                   definition(topic.type).encode("utf-8"))
             self._schemas[topic.type] = schema
         self._channels[shown] = self._writer.register_channel(shown, "cdr", schema)
+        self._types[shown] = topic.type
         self._sequence[shown] = 0
         self.counts[shown] = 0
 
@@ -141,6 +148,22 @@ class Recording:
         self._writer.add_message(self._channels[topic], log_time, data,
                                  log_time if publish_time is None else publish_time,
                                  self._sequence[topic])
+
+    def encoded(self, topic: str, message: Any) -> bytes:
+        """``message`` (an rclpy message) in CDR by the schema of ``topic``'s channel, with
+        mcap-ros2-support's encoder: the same message gives the same bytes (rclpy's
+        serializer leaves its alignment padding unset)."""
+        from mcap_ros2._dynamic import serialize_dynamic  # the encoder of mcap_ros2.writer
+
+        kind = self._types[topic]
+        encoder = self._encoders.get(kind)
+        if encoder is None:
+            package, name = _split(kind)
+            schema = f"{package}/msg/{name}"
+            encoder = serialize_dynamic(schema, definition(kind))[schema]
+            self._encoders[kind] = encoder
+        data: bytes = encoder(plain(message))
+        return data
 
     def close(self) -> None:
         if not self._closed:
@@ -225,7 +248,7 @@ def write_run(run: Run, model: Model, monitor: Monitor,
             out.channel(topic, topic.default_name)
 
         def put(topic: Topic, message: Any, at: int) -> None:
-            out.write(topic.default_name, serialized(message), at)
+            out.write(topic.default_name, out.encoded(topic.default_name, message), at)
 
         at = 0
         kept, lost = list(titles), []

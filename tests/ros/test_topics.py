@@ -1,0 +1,151 @@
+"""The topic layout, the observation checks and the MCAP files, without a graph: every bad
+observation is named in its message; a reading pairs leg_health and hazards by stamp; the
+schemas are the installed definitions; ``simulate --mcap`` writes the topics and messages
+the node publishes; the docs' topic table is the layout's; without the extra, ``gaitc ros``
+and ``simulate --mcap`` say what to install."""
+
+from __future__ import annotations
+
+import math
+import sys
+import time
+from pathlib import Path
+
+import pytest
+from ros_graph import RADIAL8, ROBOT_A, controller
+
+import gaitc
+from gaitc.api.ros import record_run
+from gaitc.cli import main
+from gaitc.hw.backend import HardwareError
+from gaitc.ros.observation import Intake
+from gaitc.ros.recording import definition, read
+from gaitc.ros.topics import TOPICS, hazards_message, health_message, status_of, table
+
+ROOT = Path(__file__).resolve().parents[2]
+LEGS = {f"L{i}": 3 for i in range(1, 9)}
+FULL = tuple((leg, 3) for leg in LEGS)
+NOW = 1_700_000_000 * 10**9
+
+
+def intake() -> Intake:
+    return Intake(LEGS, ("blue", "red"), stale_after=1.0)
+
+
+def health(pairs: object, at: int = NOW) -> object:
+    message = health_message((), at)
+    names, values = zip(*pairs, strict=True) if pairs else ((), ())  # type: ignore[call-overload]
+    message.name, message.position = list(names), [float(v) for v in values]
+    return message
+
+
+BAD_HEALTH = [
+    ([*FULL[:7], ("L9", 3)], "leg_health: unknown leg 'L9'; the spec has L1, L2, L3, L4, L5, "
+                             "L6, L7, L8"),
+    ([*FULL, ("L1", 3)], "leg_health: leg L1 is named twice"),
+    (FULL[:7], "leg_health: no value for leg L8"),
+    ([*FULL[:7], ("L8", 0)], "leg_health: leg L8 has health level 0, outside 1..3"),
+    ([*FULL[:7], ("L8", 4)], "leg_health: leg L8 has health level 4, outside 1..3"),
+    ([*FULL[:7], ("L8", 2.5)], "leg_health: leg L8 has health level 2.5, outside 1..3"),
+    ([*FULL[:7], ("L8", math.nan)], "leg_health: leg L8 has health level nan, outside 1..3"),
+    ([*FULL[:7], ("L8", -math.inf)], "leg_health: leg L8 has health level -inf, outside 1..3"),
+]
+
+
+@pytest.mark.parametrize(("pairs", "words"), BAD_HEALTH)
+def test_a_bad_leg_health_message_is_named(pairs: list[tuple[str, float]], words: str) -> None:
+    with pytest.raises(HardwareError) as bad:
+        intake().health(health(pairs), NOW)
+    assert bad.value.message == words
+
+
+def test_stamps_are_checked() -> None:
+    with pytest.raises(HardwareError, match=r"^leg_health: stale reading, stamped 2\.000 s "
+                       r"ago \(more than 1 s\)$"):
+        intake().health(health(FULL, NOW - 2 * 10**9), NOW)
+    with pytest.raises(HardwareError, match=r"stamped 3\.000 s in the future"):
+        intake().health(health(FULL, NOW + 3 * 10**9), NOW)
+    with pytest.raises(HardwareError, match=r"has no stamp \(header.stamp is 0\)"):
+        intake().health(health(FULL, 0), NOW)
+    paired = intake()
+    paired.hazards(hazards_message(("blue", "red"), None, NOW), NOW)
+    assert paired.health(health(FULL, NOW), NOW) is not None
+    with pytest.raises(HardwareError, match=r"not newer than the last one"):
+        paired.health(health(FULL, NOW), NOW)
+    message = health(FULL)
+    message.position = message.position[:3]  # type: ignore[attr-defined]
+    with pytest.raises(HardwareError, match="8 names but 3 positions"):
+        intake().health(message, NOW)
+
+
+def test_hazards_are_checked_and_paired_by_stamp() -> None:
+    taken = intake()
+    assert taken.health(health(FULL, NOW), NOW) is None  # waits for its hazards
+    assert taken.hazards(hazards_message(("blue", "red"), "red", NOW + 5), NOW) is None
+    reading = taken.hazards(hazards_message(("blue", "red"), "blue", NOW), NOW)
+    assert reading is not None and (reading.stamp, reading.hazard) == (NOW, "blue")
+    assert reading.health == FULL
+    both = hazards_message(("blue", "red"), None, NOW)
+    both.position = [1.0, 1.0]
+    with pytest.raises(HardwareError, match="hazard sets blue, red are on at once"):
+        intake().hazards(both, NOW)
+    half = hazards_message(("blue", "red"), None, NOW)
+    half.position = [0.5, 0.0]
+    with pytest.raises(HardwareError, match=r"1 \(on\) or 0 \(off\), not blue 0.5"):
+        intake().hazards(half, NOW)
+    with pytest.raises(HardwareError, match="unknown hazard set 'spill'"):
+        intake().hazards(hazards_message(("blue", "red", "spill"), None, NOW), NOW)
+    with pytest.raises(HardwareError, match="the spec has no hazard sets"):
+        Intake(LEGS, (), 1.0).hazards(hazards_message(("blue",), None, NOW), NOW)
+    assert Intake(LEGS, (), 1.0).health(health(FULL), NOW) is not None  # no hazards: alone
+
+
+def test_a_schema_is_the_installed_definition_with_those_it_uses() -> None:
+    text = definition("diagnostic_msgs/msg/DiagnosticArray")
+    assert text.startswith("# This message is used to send diagnostic information") or \
+        "DiagnosticStatus[] status" in text.splitlines()[0:40].__str__()
+    used = [line.removeprefix("MSG: ") for line in text.splitlines() if line.startswith("MSG: ")]
+    assert used == ["std_msgs/Header", "builtin_interfaces/Time",
+                    "diagnostic_msgs/DiagnosticStatus", "diagnostic_msgs/KeyValue"]
+    assert "MSG: builtin_interfaces/Time" in definition("sensor_msgs/msg/JointState")
+
+
+def test_simulate_mcap_writes_the_topics_of_the_node(tmp_path: Path) -> None:
+    control = controller(RADIAL8, tmp_path)
+    mcap = tmp_path / "run.mcap"
+    assert main(["simulate", str(RADIAL8), str(control), "--steps", "12", "--seed", "3",
+                 "--violate", "5:fail L2", "--mcap", str(mcap), "--quiet"]) == 0
+    run = gaitc.simulate(RADIAL8, control, steps=12, seed=3, violate=["5:fail L2"])
+    messages = list(read(mcap))
+    topics = {m.topic for m in messages}
+    assert topics == {"/leg_health", "/gait", "/target_region", "/valves", "/diagnostics"}
+    assert [m.message.data for m in messages if m.topic == "/gait"] == [
+        *(s.gait for s in run.steps), "noGait"]
+    valves = [m.message.data for m in messages if m.topic == "/valves"]
+    assert valves[-1] == "00000000" and all(len(w) == 8 for v in valves for w in v.split())
+    statuses = [status_of(m.message) for m in messages if m.topic == "/diagnostics"]
+    fifth = next(s for s in statuses if s is not None and s.value("step") == "5")
+    assert fifth.value("surprises") == "1" and fifth.value("last surprise") == \
+        run.surprises[0].outcome.value
+    assert statuses[-1] is not None and statuses[-1].value("stopped") == \
+        "finished 12 steps; every valve vented"
+    again = tmp_path / "again.mcap"  # the same run written again: the same bytes
+    record_run(run, RADIAL8, again, control)
+    assert again.read_bytes() == mcap.read_bytes()
+
+
+def test_the_docs_table_is_the_layout() -> None:
+    page = (ROOT / "docs" / "how-to" / "ros.md").read_text(encoding="utf-8")
+    assert table() in page
+    assert len(TOPICS) == 6
+
+
+def test_no_extra_names_what_to_install(monkeypatch: pytest.MonkeyPatch,
+                                        capsys: pytest.CaptureFixture[str]) -> None:
+    monkeypatch.setitem(sys.modules, "rclpy", None)  # as if the ros extra were missing
+    assert main(["ros", str(ROBOT_A)]) == 2
+    err = capsys.readouterr().err
+    assert "pip install 'gaitc[ros]'" in err and "Traceback" not in err
+    assert main(["simulate", str(ROBOT_A), "--steps", "2", "--mcap",
+                 str(Path(time.strftime("/tmp")) / "never.mcap")]) == 2
+    assert "pip install 'gaitc[ros]'" in capsys.readouterr().err
