@@ -22,7 +22,7 @@ from gaitc.api.simulation import (
     session,
 )
 from gaitc.api.solving import recorded_encoding
-from gaitc.core.modes import EnvironmentKind, Semantics, SurprisePolicy
+from gaitc.core.modes import ControllerKind, EnvironmentKind, Semantics, SurprisePolicy
 from gaitc.core.spec import Spec, load
 from gaitc.diagnostics import GaitcError, UsageError
 from gaitc.sim.run import checked_steps
@@ -137,6 +137,9 @@ def ros(spec: Spec | str | Path, controller: Controller | str | Path | None = No
     checked, bound = _bound(spec, controller, opts.encoding, semantics)
     if bound is None:
         return RosRun(checked.path, None, stopped="unrealizable: no controller to run")
+    if bound.strategy.kind == ControllerKind.COUNTERSTRATEGY:
+        raise UsageError("CONTROLLER is a counter-strategy (the environment's strategy, from "
+                         "'gaitc counter'); 'gaitc ros' runs a controller of the robot")
     primitives = _primitives(checked)
     steps = opts.steps
     planned: dict[int, Any] = {}

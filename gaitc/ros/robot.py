@@ -110,8 +110,17 @@ class RobotNode:
         return ready and self.gait_subscription.get_publisher_count() > 0
 
     def observe(self, index: int, state: State) -> None:
-        """Publish step ``index``'s observation of ``state`` (the hazards first, with the same
-        stamp), then wait for the controller's gait of that step and check it."""
+        """Publish step ``index``'s observation of ``state``, then wait for the controller's
+        gait of that step and check it."""
+        self.publish(state)
+        gait = self._next_gait()
+        if gait != state.gait:
+            raise HardwareError(f"step {index}: the controller node commanded gait {gait}, "
+                                f"but the simulated robot's copy of the controller runs "
+                                f"{state.gait}")
+
+    def publish(self, state: State) -> None:
+        """Publish the observation of ``state`` (the hazards first, with the same stamp)."""
         at = max(time.time_ns(), self._last_stamp + 1)
         self._last_stamp = at
         if self.hazards is not None:
@@ -121,11 +130,6 @@ class RobotNode:
         self.health.publish(health_message(state.health, at))
         self.sent[LEG_HEALTH.name] += 1
         self.published += 1
-        gait = self._next_gait()
-        if gait != state.gait:
-            raise HardwareError(f"step {index}: the controller node commanded gait {gait}, "
-                                f"but the simulated robot's copy of the controller runs "
-                                f"{state.gait}")
 
     def _next_gait(self) -> str:
         end = time.monotonic() + self.options.wait
@@ -155,17 +159,16 @@ class RobotNode:
             return None
         if run.error is not None and run.steps:
             # the stop policy refused an event: the robot performed it all the same
-            event = opts.planned.get(len(run.steps))
+            step = len(run.steps)
+            event = opts.planned.get(step)
             if event is not None:
                 last = run.steps[-1].node
                 request = forced(copy, last, event)
-                after = copy.after(last, dict(zip(copy.strategy.inputs, request.inputs,
-                                                  strict=True)))
-                try:
-                    self.observe(len(run.steps), after)
-                except (ControllerStopped, HardwareError) as stopped:
-                    self.note = f"the controller node stopped: {stopped}"
-                    return run
+                self.publish(copy.after(last, dict(zip(copy.strategy.inputs, request.inputs,
+                                                       strict=True))))
+                self.note = (f"performed '{event.words}' at step {step}, which breaks an "
+                             f"assumption; the controller stops (--on-surprise stop)")
+                return run
         self.note = f"played {max(0, len(run.steps) - 1)} steps"
         return run
 

@@ -76,6 +76,7 @@ def test_the_recording_is_the_simulation_step_by_step(
         "finished 200 steps; every valve vented"
 
 
+@pytest.mark.slow  # robot A's recovery games: about 15 s of CPU in each process
 def test_the_command_with_two_events_on_robot_a_is_simulate_json(
         controllers: dict[Path, Path], tmp_path: Path, ros_domain: dict[str, str]) -> None:
     """The command line, as the issue says it: ``gaitc ros ... --sim`` beside ``gaitc

@@ -12,7 +12,7 @@ import time
 from pathlib import Path
 
 import pytest
-from ros_graph import RADIAL8, ROBOT_A, controller
+from ros_graph import RADIAL8, ROBOT_A
 
 import gaitc
 from gaitc.api.ros import record_run
@@ -110,12 +110,12 @@ def test_a_schema_is_the_installed_definition_with_those_it_uses() -> None:
     assert "MSG: builtin_interfaces/Time" in definition("sensor_msgs/msg/JointState")
 
 
-def test_simulate_mcap_writes_the_topics_of_the_node(tmp_path: Path) -> None:
-    control = controller(RADIAL8, tmp_path)
+def test_a_run_is_written_with_the_topics_of_the_node(tmp_path: Path) -> None:
+    spec = gaitc.load(RADIAL8)
+    made = gaitc.synthesize(spec, verify=False)  # the solver's strategy (verify proves it)
+    run = gaitc.simulate(spec, made, steps=12, seed=3, violate=["5:fail L2"])
     mcap = tmp_path / "run.mcap"
-    assert main(["simulate", str(RADIAL8), str(control), "--steps", "12", "--seed", "3",
-                 "--violate", "5:fail L2", "--mcap", str(mcap), "--quiet"]) == 0
-    run = gaitc.simulate(RADIAL8, control, steps=12, seed=3, violate=["5:fail L2"])
+    record_run(run, spec, mcap)
     messages = list(read(mcap))
     topics = {m.topic for m in messages}
     assert topics == {"/leg_health", "/gait", "/target_region", "/valves", "/diagnostics"}
@@ -130,8 +130,22 @@ def test_simulate_mcap_writes_the_topics_of_the_node(tmp_path: Path) -> None:
     assert statuses[-1] is not None and statuses[-1].value("stopped") == \
         "finished 12 steps; every valve vented"
     again = tmp_path / "again.mcap"  # the same run written again: the same bytes
-    record_run(run, RADIAL8, again, control)
+    record_run(run, spec, again)
     assert again.read_bytes() == mcap.read_bytes()
+
+
+def test_simulate_mcap_writes_the_run(tmp_path: Path) -> None:
+    spec = ROOT / "specs" / "patrol_2x2.gait"
+    mcap = tmp_path / "run.mcap"
+    assert main(["simulate", str(spec), "--steps", "6", "--mcap", str(mcap), "--quiet"]) == 0
+    run = gaitc.simulate(spec, steps=6)
+    messages = list(read(mcap))
+    assert {m.topic for m in messages} == {"/leg_health", "/gait", "/target_region",
+                                           "/diagnostics"}
+    assert [m.message.data for m in messages if m.topic == "/gait"] == [
+        *(s.gait for s in run.steps), "noGait"]
+    health = next(m.message for m in messages if m.topic == "/leg_health")
+    assert list(health.name) == ["L1", "L2", "L3", "L4"] and health.header.stamp.sec == 1
 
 
 def test_the_docs_table_is_the_layout() -> None:
