@@ -31,8 +31,11 @@ class Graph:
         try:
             rclpy.init(args=args, context=self.context,
                        signal_handler_options=SignalHandlerOptions.NO)
-        except Exception as err:  # rclpy's RCLError for malformed --ros-args
-            raise UsageError(f"--ros-args: {err}") from None
+        except Exception as err:  # rclpy's UnknownROSArgsError, RCLError for malformed ones
+            unknown = type(err).__name__ == "UnknownROSArgsError"
+            raise UsageError(f"--ros-args: {'unknown ROS arguments ' if unknown else ''}{err}",
+                             hint="ROS arguments are remaps (-r FROM:=TO), parameters (-p "
+                             "NAME:=VALUE) and --log-level LEVEL") from None
         self.executor = SingleThreadedExecutor(context=self.context)
         self.nodes: list[Any] = []
         self._thread = threading.Thread(target=self._spin, name="gaitc-ros-executor",

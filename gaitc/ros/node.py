@@ -170,12 +170,16 @@ class ControllerNode:
         """Declare the node's parameters with ``options`` as defaults and read them back
         (``--ros-args -p name:=value`` overrides a default)."""
         from rcl_interfaces.msg import ParameterDescriptor
+        from rclpy.exceptions import ParameterException
 
         node = self.node
 
         def declare(name: str, value: Any, description: str, read_only: bool = False) -> Any:
-            found = node.declare_parameter(name, value, ParameterDescriptor(
-                description=description, read_only=read_only)).value
+            try:
+                found = node.declare_parameter(name, value, ParameterDescriptor(
+                    description=description, read_only=read_only)).value
+            except ParameterException as err:  # a -p NAME:=VALUE of the wrong type
+                raise UsageError(f"parameter {name}: {err}") from None
             if type(found) is not type(value):
                 raise UsageError(f"parameter {name}: expected a {type(value).__name__}, got "
                                  f"{found!r}")

@@ -105,3 +105,23 @@ def test_the_command_with_two_events_on_robot_a_is_simulate_json(
     assert len(expected) == 201 and len(document["violations"]) == 2
     gaits, _, _ = recorded(mcap)
     assert gaits == [*expected, "noGait"]
+
+
+def test_a_run_file_replayed_under_remapped_names(tmp_path: Path, ros_domain: dict[str, str]
+                                                  ) -> None:
+    """``--env scripted RUN.jsonl`` plays a run file's inputs again, and ``--ros-args -r``
+    moves a topic for every node of the command, the recorder too."""
+    spec = ROBOT_A.parent / "patrol_2x2.gait"
+    played = gaitc.simulate(spec, steps=8, seed=4)
+    file = tmp_path / "run.jsonl"
+    from gaitc.api.runs import save_run
+
+    save_run(played, str(file))
+    mcap = tmp_path / "again.mcap"
+    ran = ros(spec, None, RosOptions(record=mcap, ros_args=("-r", "gait:=/robot/gait_cmd")),
+              SimulatedRobot(f"scripted:{file}"))
+    assert ran.run is not None and ran.robot == "played 8 steps"
+    messages = list(read(mcap))
+    assert "/gait" not in {m.topic for m in messages}
+    assert [m.message.data for m in messages if m.topic == "/robot/gait_cmd"] == [
+        *(s.gait for s in played.steps), "noGait"]

@@ -12,7 +12,7 @@ import time
 from pathlib import Path
 
 import pytest
-from ros_graph import RADIAL8, ROBOT_A
+from ros_graph import RADIAL8, ROBOT_A, ros_domain
 
 import gaitc
 from gaitc.api.ros import record_run
@@ -23,6 +23,8 @@ from gaitc.ros.recording import definition, read
 from gaitc.ros.topics import TOPICS, hazards_message, health_message, status_of, table
 
 ROOT = Path(__file__).resolve().parents[2]
+__all__ = ["ros_domain"]
+
 LEGS = {f"L{i}": 3 for i in range(1, 9)}
 FULL = tuple((leg, 3) for leg in LEGS)
 NOW = 1_700_000_000 * 10**9
@@ -163,3 +165,19 @@ def test_no_extra_names_what_to_install(monkeypatch: pytest.MonkeyPatch,
     assert main(["simulate", str(ROBOT_A), "--steps", "2", "--mcap",
                  str(Path(time.strftime("/tmp")) / "never.mcap")]) == 2
     assert "pip install 'gaitc[ros]'" in capsys.readouterr().err
+
+
+def test_ros_arguments_are_checked(capsys: pytest.CaptureFixture[str],
+                                   ros_domain: dict[str, str]) -> None:
+    spec = str(ROOT / "specs" / "patrol_2x2.gait")
+    assert main(["ros", spec, "--ros-args", "-p", "watchdog:=abc"]) == 2
+    assert "usage error: parameter watchdog: Trying to set parameter 'watchdog' to 'abc'" in \
+        capsys.readouterr().err
+    assert main(["ros", spec, "--ros-args", "-p", "on_surprise:=maybe"]) == 2
+    assert "unknown parameter on_surprise 'maybe'; use one of recover, stop" in \
+        capsys.readouterr().err
+    assert main(["ros", spec, "--ros-args", "--bogus"]) == 2
+    assert "--ros-args: unknown ROS arguments ['--bogus']" in capsys.readouterr().err
+    assert main(["ros", spec, "--seed", "3"]) == 2
+    assert "--env, --seed and --violate are for the simulated robot: add --sim" in \
+        capsys.readouterr().err
