@@ -72,7 +72,8 @@ class NodeOptions:
     -p watchdog:=5.0`` overrides it): after an input that breaks an assumption, recover or
     stop (``on_surprise``) with the recovery games' ``semantics``; the /diagnostics heartbeat
     ``rate`` (Hz; 0 publishes on every step only); the ``watchdog`` (s without an
-    observation, once the first came, before stopping); the largest age of an observation's
+    observation, once the first came, before stopping; counted from the last command when
+    the node took longer to answer); the largest age of an observation's
     stamp (``stale_after``, s); the ``steps`` to run (None: until stopped); the node's name."""
 
     on_surprise: SurprisePolicy = SurprisePolicy.RECOVER
@@ -150,6 +151,7 @@ class ControllerNode:
         self.faults: list[str] = []  # the bad observations, in words
         self.interrupted = ""  # the signal that stopped the node
         self.received: float | None = None  # monotonic time of the last observation
+        self.commanded = 0.0  # monotonic time of the last command
         self.status = Status(OK, "waiting for the first observation",
                              (("step", "-"),))
         self.published = 0  # commands published
@@ -260,6 +262,7 @@ class ControllerNode:
                 self._publish(VALVES.name, valve_pattern(self.primitives, state.gait,
                                                          self.valve_count))
             self.published += 1
+            self.commanded = time.monotonic()
             entries = self._entries()
             self.status = step_status(index, state.region, state.gait,
                                       [v.describe() for v in verdicts.violations],
@@ -396,8 +399,10 @@ class _Observed(Environment):
                 try:
                     item = inbox.get(timeout=POLL)
                 except queue.Empty:
-                    if owner.received is not None and \
-                            time.monotonic() - owner.received > watchdog:
+                    # the robot's silence counts from its last observation, or from the
+                    # last command when the node took longer to answer than the robot
+                    if owner.received is not None and time.monotonic() - max(
+                            owner.received, owner.commanded) > watchdog:
                         owner.vent(f"watchdog: no observation for {watchdog:g} s; stopped "
                                    "with every valve vented")
                         owner.faults.append(f"watchdog: no observation for {watchdog:g} s")
