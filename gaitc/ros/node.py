@@ -159,6 +159,7 @@ class ControllerNode:
         self.stopped = False
         self.games = Games(monitor.spec, domain, self.options.semantics)
         self._runner: int | None = None  # the thread that runs the node's loop
+        self._told = 0  # the surprises logged
         if self.options.rate > 0:
             node.create_timer(1.0 / self.options.rate, self._heartbeat)
         graph.add(node)
@@ -264,6 +265,13 @@ class ControllerNode:
             self.published += 1
             self.commanded = time.monotonic()
             entries = self._entries()
+            if len(entries) > self._told:  # a surprise since the last step: say it in words
+                self._told = len(entries)
+                kept, lost = self._goals()
+                self.node.get_logger().warning(
+                    f"step {index}: the observation broke an assumption; "
+                    f"{entries[-1].outcome.value}: pursuing {', '.join(kept) or 'no goal'}"
+                    + (f"; out of reach: {', '.join(lost)}" if lost else ""))
             self.status = step_status(index, state.region, state.gait,
                                       [v.describe() for v in verdicts.violations],
                                       [e.outcome.value for e in entries], *self._goals())
