@@ -30,6 +30,7 @@ from gaitc.diagnostics import UsageError
 from gaitc.hw.backend import HardwareError, Interrupted
 from gaitc.ir.spec import Semantics
 from gaitc.ros.observation import Intake, Reading
+from gaitc.ros.recording import end_reason
 from gaitc.ros.topics import (
     DIAGNOSTICS,
     GAIT,
@@ -338,13 +339,10 @@ class ControllerNode:
                 run.summary = replace(run.summary, stopped=f"interrupted ({self.interrupted}); "
                                       "every valve vented")
             return
-        if run.error is not None:
-            if not (isinstance(run.error, HardwareError) and self.faults
-                    and run.error.message in self.faults):
-                self.vent(f"stopped: {run.error.message}; every valve vented")
-            return
-        done = run.halted or f"finished {max(0, len(run.steps) - 1)} steps"
-        self.vent(f"{done}; every valve vented")
+        if run.error is not None and isinstance(run.error, HardwareError) and \
+                run.error.message in self.faults:
+            return  # vented when the bad observation (or the watchdog) came
+        self.vent(end_reason(run))
 
     @contextlib.contextmanager
     def signals(self) -> Iterator[None]:
