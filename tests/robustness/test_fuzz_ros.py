@@ -15,7 +15,7 @@ from typing import Any
 import pytest
 from fuzz_mutate import mutate
 from fuzz_ros import EXCHANGES, Oracle, Tally, exchange, message, parse
-from ros_graph import MISSING, RADIAL8, ROBOT_A, Probe, ros_domain
+from ros_graph import MISSING, ROBOT_A, Probe, ros_domain
 
 __all__ = ["ros_domain"]
 
@@ -74,16 +74,16 @@ def test_a_thousand_bad_observations_never_crash_the_node_and_each_vents(graph: 
 
 def test_bad_observations_over_a_real_graph_each_vent(graph: Any) -> None:
     """The slice over real topics: a test node publishes mutant ``leg_health`` messages of
-    the radial robot to the controller node, each once the one before was handled (as a
-    robot senses once a step)."""
+    the 2 x 2 patrol robot (four legs, no hazard sets) to the controller node, each once
+    the one before was handled (as a robot senses once a step)."""
     from gaitc.ros.graph import wait_until
 
-    node = node_of(RADIAL8, graph)
+    node = node_of(ROBOT_A.parent / "patrol_2x2.gait", graph)
     probe = Probe(graph, hazards=False)
     assert probe.connected()
     oracle = Oracle(node.domain.full, ())
     rng = random.Random(7)
-    seed = b"leg_health +0 " + b" ".join(b"L%d=3" % i for i in range(1, 9)) + b"\n"
+    seed = b"leg_health +0 L1=2 L2=2 L3=2 L4=2\n"
     sent = bad = 0
     while sent < 60:
         for seen in parse(mutate(seed, rng, [seed])):
