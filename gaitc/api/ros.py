@@ -66,7 +66,8 @@ class RosOptions:
     of a stamp (``stale_after``, s); the steps to run without a simulated robot (None: until
     stopped); the ROS arguments (``-r gait:=/robot/gait``, ``-p watchdog:=5.0``); an MCAP
     file to ``record`` every topic into; the spec's ``encoding`` (default: the controller
-    file's)."""
+    file's); the ``robot`` file the gaits' valve primitives are read from (default: the one
+    each primitive names)."""
 
     on_surprise: SurprisePolicy | str = SurprisePolicy.RECOVER
     semantics: Semantics | str = Semantics.DEFAULT
@@ -77,6 +78,7 @@ class RosOptions:
     ros_args: Sequence[str] = ()
     record: str | Path | None = None
     encoding: EncodingName | str | None = None
+    robot: str | Path | None = None
 
 
 @dataclass
@@ -99,25 +101,45 @@ class RosRun:
     robot_error: GaitcError | None = None
 
 
-def _bound(spec: Spec | str | Path, controller: Controller | str | Path | None,
-           encoding: EncodingName | str | None, semantics: Semantics | str
-           ) -> tuple[Spec, Session | None]:
+def _loaded(spec: Spec | str | Path, controller: Controller | str | Path | None,
+            encoding: EncodingName | str | None) -> Spec:
+    """``spec`` loaded with ``encoding``, else the one the controller file records."""
+    if isinstance(spec, Spec):
+        return spec
     recorded = recorded_encoding(controller) if isinstance(controller, (str, Path)) else None
-    checked = spec if isinstance(spec, Spec) else load(spec, encoding or recorded
-                                                       or EncodingName.ONEHOT)
-    return checked, session(checked, controller, semantics=semantics)
+    return load(spec, encoding or recorded or EncodingName.ONEHOT)
 
 
-def _primitives(checked: Spec) -> dict[str, ValveSequence] | None:
+def _primitives(checked: Spec, robot_file: str | Path | None = None
+                ) -> dict[str, ValveSequence] | None:
     """The gaits' valve sequences when the spec binds any (then all must be bound, as
-    ``drive`` needs), else None."""
+    ``drive`` needs), else None; a primitive that names a robot file reads ``robot_file``
+    instead when one is given."""
+    import dataclasses
+
     from gaitc.hw.driver import bind_primitives
     from gaitc.search.primitives import resolve_primitive
 
     model = checked.robot
     if not any(g.primitive is not None for g in model.gaits):
+        if robot_file is not None:
+            raise UsageError(f"--robot {robot_file}: no gait of '{checked.path}' binds a "
+                             "valve primitive, so no robot file is read")
         return None
-    return bind_primitives(model, str(Path(checked.path).parent), resolve_primitive)
+    if robot_file is None:
+        return bind_primitives(model, str(Path(checked.path).parent), resolve_primitive)
+    chosen = Path(robot_file).resolve()
+    if not chosen.is_file():
+        raise UsageError(f"--robot {robot_file}: no such robot file")
+
+    def resolve(gait: Any, spec_dir: str, legs: Sequence[str] | None = None) -> ValveSequence:
+        prim = gait.primitive
+        if prim is not None and prim.robot is not None:
+            gait = dataclasses.replace(gait, primitive=dataclasses.replace(
+                prim, robot=str(chosen)))
+        return resolve_primitive(gait, spec_dir, legs)
+
+    return bind_primitives(model, str(Path(checked.path).parent), resolve)
 
 
 def ros(spec: Spec | str | Path, controller: Controller | str | Path | None = None,
@@ -134,13 +156,17 @@ def ros(spec: Spec | str | Path, controller: Controller | str | Path | None = No
     opts = options or RosOptions()
     policy = SurprisePolicy.parse(opts.on_surprise, "--on-surprise")
     semantics = Semantics.parse(opts.semantics)
-    checked, bound = _bound(spec, controller, opts.encoding, semantics)
+    checked = _loaded(spec, controller, opts.encoding)
+    if checked.model is None:
+        raise UsageError(f"'{checked.path}': 'gaitc ros' needs a .gait spec, which says what "
+                         "the variables mean (legs, hazards, gaits, regions)")
+    primitives = _primitives(checked, opts.robot)  # before synthesis: a wrong file fails fast
+    bound = session(checked, controller, semantics=semantics)
     if bound is None:
         return RosRun(checked.path, None, stopped="unrealizable: no controller to run")
     if bound.strategy.kind == ControllerKind.COUNTERSTRATEGY:
         raise UsageError("CONTROLLER is a counter-strategy (the environment's strategy, from "
                          "'gaitc counter'); 'gaitc ros' runs a controller of the robot")
-    primitives = _primitives(checked)
     steps = opts.steps
     planned: dict[int, Any] = {}
     chosen = None

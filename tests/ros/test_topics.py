@@ -181,3 +181,16 @@ def test_ros_arguments_are_checked(capsys: pytest.CaptureFixture[str],
     assert main(["ros", spec, "--seed", "3"]) == 2
     assert "--env, --seed and --violate are for the simulated robot: add --sim" in \
         capsys.readouterr().err
+
+
+def test_a_robot_file_for_the_valves_is_checked(tmp_path: Path,
+                                                capsys: pytest.CaptureFixture[str]) -> None:
+    radial8 = str(ROOT / "specs" / "radial8_patrol.gait")
+    assert main(["ros", str(ROOT / "specs" / "patrol_2x2.gait"), "--robot", radial8]) == 2
+    assert "no gait of" in capsys.readouterr().err
+    assert main(["ros", radial8, "--robot", str(tmp_path / "none.yaml")]) == 2
+    assert "none.yaml: no such robot file" in capsys.readouterr().err
+    assert main(["ros", radial8, "--robot", str(ROOT / "specs" / "robots" / "silicone6.yaml")
+                 ]) == 1
+    assert "gait north_a uses L6, L8, which robot silicone6 does not have" in \
+        capsys.readouterr().err

@@ -73,6 +73,9 @@ def register(sub: Any) -> None:
     p.add_argument("--seed", type=int, help="--sim: seed of the random environment (0)")
     p.add_argument("--steps", type=int, metavar="N",
                    help="steps to run (--sim: 50, or a scenario's length; else until stopped)")
+    p.add_argument("--robot", metavar="ROBOT.yaml",
+                   help="the robot file the gaits' valve primitives are read from (default: "
+                   "the one each primitive names)")
     p.add_argument("--record", metavar="RUN.mcap", type=mcap_file,
                    help="record every topic to an MCAP file (ROS 2 encoding)")
     p.add_argument("--rate", type=seconds_or_zero, default=1.0, metavar="HZ",
@@ -112,7 +115,7 @@ def run_ros(args: argparse.Namespace) -> int:
                          rate=args.rate, watchdog=args.watchdog, stale_after=args.stale_after,
                          steps=None if args.sim else args.steps,
                          ros_args=tuple(args.ros_args), record=args.record,
-                         encoding=args.encoding)
+                         encoding=args.encoding, robot=args.robot)
     with progress_display() as progress:
         ran = ros(args.spec, args.controller, options, robot, progress)
     if ran.run is None:
