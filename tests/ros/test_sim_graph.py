@@ -125,3 +125,27 @@ def test_a_run_file_replayed_under_remapped_names(tmp_path: Path, ros_domain: di
     assert "/gait" not in {m.topic for m in messages}
     assert [m.message.data for m in messages if m.topic == "/robot/gait_cmd"] == [
         *(s.gait for s in played.steps), "noGait"]
+
+
+@pytest.mark.parametrize("form", ["explicit", "symbolic", "compact"])
+def test_every_controller_form_runs_on_the_node(form: str, tmp_path: Path,
+                                                ros_domain: dict[str, str]) -> None:
+    """Each form through its run view (:mod:`gaitc.forms`), on the two-leg shuttle with its
+    valves; L2 failing unused at step 3 leaves the robot one goal (degraded)."""
+    spec = ROBOT_A.parent / "shuttle_2leg.gait"
+    made = gaitc.synthesize(gaitc.load(spec), form=form, verify=False)
+    path = tmp_path / f"{form}.json"
+    made.save(path)
+    mcap = tmp_path / "run.mcap"
+    ran = ros(spec, path, RosOptions(record=mcap),
+              SimulatedRobot("random", seed=2, violate=("3:fail L2",), steps=12))
+    simulated = gaitc.simulate(spec, path, env="random", steps=12, seed=2,
+                               violate=["3:fail L2"])
+    assert ran.run is not None
+    assert [s.gait for s in ran.run.steps] == [s.gait for s in simulated.steps]
+    gaits, counts, statuses = recorded(mcap)
+    assert gaits[:len(simulated.steps)] == [s.gait for s in simulated.steps]
+    assert counts["/valves"] == counts["/gait"]
+    degraded = next(s for s in statuses if s is not None and s.value("surprises") == "1")
+    assert (degraded.value("last surprise"), degraded.value("goals lost")) == (
+        "degraded", "visit a")
