@@ -64,10 +64,6 @@ class Graph:
             if self.context.ok():
                 raise
 
-    def now(self) -> int:
-        """The time of the graph's clock, in ns."""
-        return time.time_ns()
-
     def close(self) -> None:
         """Destroy every node, shut down the context and join the executor thread."""
         self._stop.set()

@@ -155,7 +155,6 @@ class ControllerNode:
         self.commanded = 0.0  # monotonic time of the last command
         self.status = Status(OK, "waiting for the first observation",
                              (("step", "-"),))
-        self.published = 0  # commands published
         self.sent: Counter[str] = Counter()  # messages published, by topic
         self.stopped = False
         self.games = Games(monitor.spec, domain, self.options.semantics)
@@ -263,7 +262,6 @@ class ControllerNode:
             if VALVES.name in self.publishers:
                 self._publish(VALVES.name, valve_pattern(self.primitives, state.gait,
                                                          self.valve_count))
-            self.published += 1
             self.commanded = time.monotonic()
             entries = self._entries()
             if len(entries) > self._told:  # a surprise since the last step: say it in words

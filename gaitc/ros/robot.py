@@ -90,7 +90,6 @@ class RobotNode:
         self._gaits: queue.Queue[str] = queue.Queue()
         self.controller_stopped = ""  # what the controller said when it stopped
         self.note = ""  # how the robot's run ended, in words
-        self.published = 0
         self.sent: Counter[str] = Counter()  # messages published, by topic
         self._last_stamp = 0
         graph.add(node)
@@ -129,7 +128,6 @@ class RobotNode:
             self.sent[HAZARDS.name] += 1
         self.health.publish(health_message(state.health, at))
         self.sent[LEG_HEALTH.name] += 1
-        self.published += 1
 
     def _next_gait(self) -> str:
         end = time.monotonic() + self.options.wait

@@ -29,11 +29,16 @@ EXTRA_HINT: Final = "pip install 'gaitc[ros]' (or run scripts/setup.sh)"
 
 
 class Flow(Enum):
-    """Which way a topic's messages go, seen from the controller node."""
+    """What a topic carries, seen from the controller node."""
 
-    OBSERVATION = "subscribed"  # the robot's sensors to the controller
-    COMMAND = "published"  # the controller to the robot
-    DIAGNOSTICS = "published "  # the controller's state, for people and monitors
+    OBSERVATION = "observation"  # the robot's sensors to the controller
+    COMMAND = "command"  # the controller to the robot
+    DIAGNOSTICS = "diagnostics"  # the controller's state, for people and monitors
+
+    @property
+    def direction(self) -> str:
+        """``subscribed`` or ``published``, by the controller node."""
+        return "subscribed" if self is Flow.OBSERVATION else "published"
 
 
 @dataclass(frozen=True)
@@ -236,6 +241,6 @@ def table() -> str:
     lines = ["| topic | type | direction | QoS | carries |", "|---|---|---|---|---|"]
     for t in TOPICS:
         when = f" ({t.only})" if t.only else ""
-        lines.append(f"| `{t.name}` | `{t.type}` | {t.flow.value.strip()} | {qos_words(t)} | "
+        lines.append(f"| `{t.name}` | `{t.type}` | {t.flow.direction} | {qos_words(t)} | "
                      f"{t.carries}{when} |")
     return "\n".join(lines)
