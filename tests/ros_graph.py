@@ -36,16 +36,19 @@ MISSING = missing_extra()
 needs_ros = pytest.mark.skipif(MISSING is not None, reason=f"{MISSING}")
 
 
-def domain_id() -> int:
+def domain_id(second: bool = False) -> int:
     """A ROS domain of this test process's own: 60 + the xdist worker's number (gw3: 63),
-    59 without xdist, so that workers running at once never hear each other."""
+    59 without xdist, so that workers running at once never hear each other; ``second``:
+    another one, 20 higher, for a graph that must not hear the first."""
     worker = os.environ.get("PYTEST_XDIST_WORKER", "")
-    return 60 + int(worker[2:]) if worker.startswith("gw") and worker[2:].isdigit() else 59
+    first = 60 + int(worker[2:]) if worker.startswith("gw") and worker[2:].isdigit() else 59
+    return first + 20 if second else first
 
 
-def ros_environment() -> dict[str, str]:
+def ros_environment(second: bool = False) -> dict[str, str]:
     """The environment variables that keep a ROS 2 graph on this machine, in its domain."""
-    return {"ROS_DOMAIN_ID": str(domain_id()), "ROS_AUTOMATIC_DISCOVERY_RANGE": "LOCALHOST"}
+    return {"ROS_DOMAIN_ID": str(domain_id(second)),
+            "ROS_AUTOMATIC_DISCOVERY_RANGE": "LOCALHOST"}
 
 
 @pytest.fixture()
