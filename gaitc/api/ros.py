@@ -35,6 +35,8 @@ if TYPE_CHECKING:
     from gaitc.sim.run import Run
     from gaitc.solver.progress import Progress
 
+#: How long (s) the nodes of one command may take to see each other.
+CONNECT = 15.0
 #: The watchdog (s) beside a simulated robot: its copy of the controller solves the recovery
 #: games of a surprise before it senses, which may take seconds.
 SIM_WATCHDOG = 60.0
@@ -221,12 +223,13 @@ class _Plan:
 
 
 def _run_graph(plan: _Plan, opts: RosOptions) -> RosRun:
+    from gaitc.hw.backend import HardwareError
     from gaitc.ros.graph import Graph, wait_until
     from gaitc.ros.node import ControllerNode
     from gaitc.ros.recorder import Recorder
     from gaitc.ros.recording import Recording
     from gaitc.ros.robot import RobotNode, RobotOptions
-    from gaitc.ros.topics import TOPICS, present
+    from gaitc.ros.topics import TOPICS, Flow, present
 
     checked, bound, primitives, chosen = plan.checked, plan.bound, plan.primitives, plan.chosen
     steps = plan.node.steps
@@ -244,17 +247,25 @@ def _run_graph(plan: _Plan, opts: RosOptions) -> RosRun:
             thread = None
             robot_node = None
             if chosen is not None:
-                assert steps is not None
                 robot_node = RobotNode(graph, bound.strategy, domain, bound.monitor, chosen,
                                        RobotOptions(plan.planned, node.games,
                                                     node.options.on_surprise,
                                                     node.options.semantics,
                                                     wait=node.options.watchdog),
                                        checked.path)
+            # every publisher and subscriber of this command matched before the first
+            # message (a real robot's may come later), so that the recording misses none
+            ours = [t for t in topics if robot_node is not None
+                    or t.flow is not Flow.OBSERVATION]
+            wanted = {node.node.resolve_topic_name(t.name): 1 for t in ours}
+            readers = _readers(node, robot_node, recording is not None)
+            if not wait_until(lambda: (recorder is None or recorder.connected(wanted)) and all(
+                    p.get_subscription_count() >= n for p, n in readers), CONNECT):
+                raise HardwareError(f"the nodes of this command did not see each other in "
+                                    f"{CONNECT:g} s")
+            if robot_node is not None:
+                assert steps is not None
                 thread = _start(robot_node, steps, result)
-            if recorder is not None:  # every publisher seen before the first message
-                wait_until(lambda: recorder.connected(
-                    {node.node.resolve_topic_name(t.name): 1 for t in topics}), 5.0)
             with node.signals():
                 result.run = node.run()
             if thread is not None:
@@ -276,6 +287,20 @@ def _run_graph(plan: _Plan, opts: RosOptions) -> RosRun:
         if recording is not None:
             recording.close()
     return result
+
+
+def _readers(node: Any, robot: Any, recorded: bool) -> list[tuple[Any, int]]:
+    """Each publisher of the command's nodes and how many of its subscribers it must see:
+    the recorder's, the robot's (gait, /diagnostics) and the node's (the observations)."""
+    from gaitc.ros.topics import DIAGNOSTICS, GAIT
+
+    found = [(publisher, int(recorded) + int(robot is not None
+                                             and topic in (GAIT.name, DIAGNOSTICS.name)))
+             for topic, publisher in node.publishers.items()]
+    if robot is not None:
+        found += [(publisher, 1 + int(recorded)) for publisher in (robot.health, robot.hazards)
+                  if publisher is not None]
+    return found
 
 
 def _start(robot: Any, steps: int, result: RosRun) -> threading.Thread:

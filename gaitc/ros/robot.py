@@ -141,7 +141,7 @@ class RobotNode:
                     raise HardwareError(f"the controller node sent no gait in "
                                         f"{self.options.wait:g} s") from None
 
-    def run(self, steps: int, connect: float = 10.0) -> Run | None:
+    def run(self, steps: int, connect: float = 15.0) -> Run | None:
         """Play ``steps`` steps against the controller node (after waiting up to ``connect``
         s for it); the copy's run, or None when the controller stopped first."""
         if not wait_until(self.connected, connect):
