@@ -8,8 +8,10 @@ Besides the file kinds of ``tests/fuzz_cases.py``: ``serial`` (the board's repli
 output paths; its first inputs are the fixed special targets), ``codegen`` (codegen's
 option words), ``lsp`` (sessions of LSP messages for a fresh ``gaitc lsp``, skipped
 without pygls) and ``player`` (screen sizes and keys for the terminal player, skipped
-without textual), from ``tests/fuzz_serial.py``, ``fuzz_runner.py``, ``fuzz_targets.py``,
-``fuzz_lsp.py`` and ``fuzz_player.py``. A session of ``lsp`` may take ``--limit`` seconds
+without textual) and ``ros`` (malformed and out-of-range observations for the controller
+node's callbacks, each bad one vented, skipped without rclpy), from ``tests/fuzz_serial.py``,
+``fuzz_runner.py``, ``fuzz_targets.py``, ``fuzz_lsp.py``, ``fuzz_player.py`` and
+``fuzz_ros.py``. A session of ``lsp`` may take ``--limit`` seconds
 (its server's start-up not counted); a key sequence of ``player`` at least
 :data:`PLAYER_LIMIT`.
 
@@ -36,6 +38,7 @@ import time
 from collections import Counter
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
 
@@ -49,9 +52,9 @@ from fuzz_targets import NAMES, OPTIONS, SPECIAL, SPECIALS, run_codegen, run_tar
 
 # the file kinds, the board's serial replies, gaitc-run's scripts, output targets and
 # codegen's options, the language server's sessions and the player's keys
-ALL_KINDS = (*KIND_NAMES, "serial", "runner", "target", "codegen", "lsp", "player")
+ALL_KINDS = (*KIND_NAMES, "serial", "runner", "target", "codegen", "lsp", "player", "ros")
 #: What each front-end kind needs installed (the kind is skipped without it).
-NEEDS = {"lsp": "pygls", "player": "textual"}
+NEEDS = {"lsp": "pygls", "player": "textual", "ros": "rclpy"}
 PLAYER_LIMIT = 30.0  # seconds a key sequence may take, at least (Textual's pilot is slow)
 SERIAL_COMMANDS = ("board",)
 
@@ -83,10 +86,31 @@ def target_of(seed: int, index: int) -> tuple[str, bytes]:
     return mutant_of(NAMES, seed, "target", index)
 
 
+def _ros_node(fx: Fixtures) -> Any:
+    """The ros kind's controller node: thesis robot A (the seeds' legs and hazard sets) in a
+    graph of this worker's own, its ROS traffic kept on this machine, in the bench's domain."""
+    import os
+
+    os.environ["ROS_AUTOMATIC_DISCOVERY_RANGE"] = "LOCALHOST"
+    os.environ.setdefault("ROS_DOMAIN_ID", "57")
+    import gaitc
+    from gaitc.api.simulation import session
+    from gaitc.ros.graph import Graph
+    from gaitc.ros.node import ControllerNode, NodeOptions
+
+    bound = session(gaitc.load(Path(__file__).resolve().parent.parent / "specs"
+                               / "thesis_robot_a.gait"), None)
+    assert bound is not None
+    graph = Graph()  # lives as long as the worker
+    return ControllerNode(graph, bound.strategy, bound.domain, bound.monitor, None,
+                          NodeOptions(rate=0.0), spec_file="thesis_robot_a.gait")
+
+
 def _worker(conn: multiprocessing.connection.Connection, folder: str, limit: float) -> None:
     fx = Fixtures(Path(folder))
     table = kinds(fx)
     program: Path | None = None  # gaitc-run, built for the first runner job
+    ros_node: Any = None  # the controller node of the ros kind, made for its first job
     while True:
         job = conn.recv()
         if job is None:
@@ -119,6 +143,15 @@ def _worker(conn: multiprocessing.connection.Connection, folder: str, limit: flo
             name, data = mutant_of(SESSIONS, seed, kind, index)
             current.write_bytes(data)
             verdicts = [run_session(data, limit)]
+        elif kind == "ros":
+            from fuzz_ros import EXCHANGES as OBSERVATIONS
+            from fuzz_ros import exchange as observe
+
+            if ros_node is None:
+                ros_node = _ros_node(fx)
+            name, data = mutant_of(OBSERVATIONS, seed, kind, index)
+            current.write_bytes(data)
+            verdicts = [observe(data, ros_node, limit=limit)]
         elif kind == "player":
             from fuzz_player import exchange as play
 

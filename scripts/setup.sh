@@ -2,7 +2,8 @@
 # Set up gaitc on a fresh machine: Graphviz (for rendering), the AVR toolchain and simavr (for
 # the valve-board firmware), a virtual environment in .venv,
 # and gaitc installed into it with its test tools, Dask ('gaitc resilience --dask') and
-# ipywidgets (the notebook player) and MkDocs (the documentation site).
+# ipywidgets (the notebook player), MkDocs (the documentation site) and ROS 2 with MCAP
+# ('gaitc ros', 'simulate --mcap'; ROS 2's Python client and messages install as wheels).
 # Safe to run again.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -49,7 +50,19 @@ PYTHON="${PYTHON:-python3}"
 if [ ! -x .venv/bin/python ]; then
     "$PYTHON" -m venv .venv
 fi
-.venv/bin/python -m pip install -q --disable-pip-version-check -e '.[test,cluster,notebook,docs,peers]'
+.venv/bin/python -m pip install -q --disable-pip-version-check -e '.[test,cluster,notebook,docs,peers,ros]'
+# The ROS 2 wheels (the ros extra) pull in lark-parser 0.12 for rosidl's code generators (ROS's
+# build-time tools, which gaitc does not run): it installs its files, and its type stubs, over
+# lark's own 'lark' package, and gaitc's parser and mypy need lark 1.  So lark-parser is removed
+# and lark's files are put back (rclpy does not use lark when it runs).
+if .venv/bin/python -m pip show -q lark-parser >/dev/null 2>&1; then
+    LARK="$(.venv/bin/python -m pip show lark 2>/dev/null | sed -n 's/^Version: //p')"
+    .venv/bin/python -m pip uninstall -q -y lark-parser >/dev/null
+    .venv/bin/python -m pip install -q --disable-pip-version-check --force-reinstall --no-deps \
+        "lark==${LARK:-1.3.1}"
+fi
+.venv/bin/python -c 'import lark, sys; sys.exit(int(lark.__version__.split(".")[0]) < 1)' \
+    || { echo "setup: the lark module is not lark 1 (gaitc's parser needs it)" >&2; exit 1; }
 # scripts/check.sh (the test command) runs ruff and mypy before the suite: both come with the
 # test extra, and a setup without them is a failed setup.
 for tool in ruff mypy vermin; do

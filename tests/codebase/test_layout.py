@@ -26,7 +26,7 @@ LAYERS: list[tuple[str, ...]] = [
     ("gaitc.models", "gaitc.sim"),
     ("gaitc.analysis", "gaitc.hw", "gaitc.play"),
     ("gaitc.search", "gaitc.codegen"),
-    ("gaitc.forms",),
+    ("gaitc.forms", "gaitc.ros"),
     ("gaitc.api",),
     ("gaitc",),
     ("gaitc.lsp",),

@@ -32,6 +32,7 @@ COMMANDS: Final = {
     "gaits": "gaits",
     "learn": "learning",
     "drive": "driving",
+    "ros": "ros",
     "firmware": "firmware",
     "codegen": "generating",
     "calibrate": "calibrating",

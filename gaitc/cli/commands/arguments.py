@@ -112,3 +112,21 @@ def semantics_of(args: argparse.Namespace) -> Semantics:
     from gaitc.api.modes import Semantics
 
     return Semantics.ROBOTICS if args.robotics_semantics else Semantics.DEFAULT
+
+
+def mcap_file(value: str) -> str:
+    """An MCAP recording to write (``--record``, ``--mcap``): a writable ``.mcap`` file."""
+    if not value.lower().endswith(".mcap"):
+        raise argparse.ArgumentTypeError(f"'{value}': an MCAP recording is named FILE.mcap")
+    return output_file(value)
+
+
+def seconds_or_zero(value: str) -> float:
+    """A finite number of at least 0 (``--rate``)."""
+    try:
+        number = float(value)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"'{value}' is not a number") from None
+    if not math.isfinite(number) or number < 0:
+        raise argparse.ArgumentTypeError(f"must be a finite number of at least 0, not {value}")
+    return number

@@ -21,7 +21,7 @@ from gaitc.api.simulation import (
     run_document,
     simulate_spec,
 )
-from gaitc.cli.commands.arguments import add_prefer, run_file, semantics_of
+from gaitc.cli.commands.arguments import add_prefer, mcap_file, run_file, semantics_of
 from gaitc.cli.exitcodes import ExitCode, exit_code_help
 from gaitc.cli.reporting import document, exit_code_of, print_json
 from gaitc.cli.status import progress_display
@@ -67,6 +67,9 @@ def register(sub: Any) -> None:
                    help="number of steps (default 50; a scenario's length when scripted)")
     p.add_argument("--out", metavar="FILE", type=run_file,
                    help="save the run as .jsonl or .csv")
+    p.add_argument("--mcap", metavar="RUN.mcap", type=mcap_file,
+                   help="also write the run as MCAP with the topics of 'gaitc ros' (one step "
+                   "a second; needs the ros extra; docs/how-to/ros.md)")
     p.add_argument("--encoding", choices=EncodingName.values(),
                    help="encoding of the spec (default: the one recorded in the controller)")
     p.add_argument("--robotics-semantics", action="store_true",
@@ -137,6 +140,10 @@ def run_simulate(args: argparse.Namespace) -> int:
     if args.steps is not None:
         checked_steps(args.steps, "--steps")
     settle_environment(args)
+    if args.mcap:
+        from gaitc.api.ros import require_ros
+
+        require_ros()  # before the run, not after it
     with progress_display() as progress:
         played = simulate_spec(args.spec, args.controller, opponent_of(args), args.steps,
                                args.seed or 0, encoding=args.encoding,
@@ -148,6 +155,10 @@ def run_simulate(args: argparse.Namespace) -> int:
         if args.json:
             print_json(document("simulate", run_document(args.spec, None, None, None, False)))
         return ExitCode.UNREALIZABLE
+    if args.mcap:
+        from gaitc.api.ros import record_run
+
+        record_run(played.run, args.spec, args.mcap, args.controller, encoding=args.encoding)
     return report_run(played.run, played.full_health, played.run.environment, args.quiet,
                       out=args.out, as_json=args.json, realizable=played.realizable)
 
