@@ -34,7 +34,7 @@ from gaitc.api.simulation import (
     run_document,
     session,
 )
-from gaitc.api.solving import recorded_encoding
+from gaitc.api.solving import ControllerFile, read_once, recorded_encoding
 from gaitc.core.modes import BackendKind, EnvironmentKind, ViolationPolicy
 from gaitc.core.spec import Spec, load
 from gaitc.diagnostics import UsageError
@@ -190,7 +190,7 @@ class Drive:
 
 
 def drive(spec: Spec | str | Path,
-          controller: Controller | str | Path | None = None,
+          controller: Controller | str | Path | ControllerFile | None = None,
           board: Board | None = None, options: DriveOptions | None = None,
           progress: Progress | None = None,
           live: Callable[[str], None] | None = None) -> Drive:
@@ -205,7 +205,9 @@ def drive(spec: Spec | str | Path,
     chosen = board if board is not None else SimulatedBoard()
     opts = options or DriveOptions()
     _check(chosen, opts)
-    recorded = recorded_encoding(controller) if isinstance(controller, (str, Path)) else None
+    controller = read_once(controller)
+    recorded = (recorded_encoding(controller)
+                if isinstance(controller, (str, Path, ControllerFile)) else None)
     encoding = opts.encoding or recorded or EncodingName.ONEHOT
     checked = spec if isinstance(spec, Spec) else load(spec, encoding)
     if checked.model is None:

@@ -10,13 +10,11 @@ from __future__ import annotations
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from gaitc.api.simulation import counter_session, session
-from gaitc.api.solving import Synthesis, recorded_encoding
+from gaitc.api.simulation import ControllerLike, counter_session, session
+from gaitc.api.solving import ControllerFile, read_once, recorded_encoding
 from gaitc.core.modes import Role
 from gaitc.core.spec import Spec, load
 from gaitc.diagnostics import ScenarioError, UsageError
-from gaitc.ir.bddfile import SymbolicController
-from gaitc.ir.controller import Controller
 from gaitc.ir.spec import Semantics
 from gaitc.play.player import Autopilot, Choice, Player
 from gaitc.sim.run import Run, read_jsonl
@@ -30,7 +28,7 @@ __all__ = ["Autopilot", "Choice", "Player", "Role", "player", "player_widget"]
 
 
 def player(spec: Spec | str | Path,
-           controller: Controller | SymbolicController | Synthesis | str | Path | None = None,
+           controller: ControllerLike | None = None,
            *, against: bool | None = None, start: Run | str | Path | None = None,
            at: int | None = None, encoding: EncodingName | str | None = None,
            semantics: Semantics | str = Semantics.DEFAULT,
@@ -50,8 +48,9 @@ def player(spec: Spec | str | Path,
     if against and controller is not None:
         raise UsageError("--against plays the robot against the environment's counter-"
                          "strategy; a CONTROLLER is for playing the environment")
+    controller = read_once(controller)
     if not isinstance(spec, Spec):
-        if encoding is None and isinstance(controller, (str, Path)):
+        if encoding is None and isinstance(controller, (str, Path, ControllerFile)):
             encoding = recorded_encoding(controller)
         spec = load(spec, encoding or EncodingName.ONEHOT)
     bound = None if against else session(spec, controller, None, semantics, progress=progress)
@@ -96,8 +95,8 @@ def _explains_player(spec: Spec, semantics: Semantics | str, run: Run,
 
 
 def player_widget(spec: Spec | str | Path | Player,
-                  controller: Controller | SymbolicController | Synthesis | str | Path | None
-                  = None, *, against: bool | None = None, start: Run | str | Path | None = None,
+                  controller: ControllerLike | None = None, *, against: bool | None = None,
+                  start: Run | str | Path | None = None,
                   at: int | None = None, encoding: EncodingName | str | None = None,
                   semantics: Semantics | str = Semantics.DEFAULT) -> PlayerWidget:
     """The player as a notebook widget (ipywidgets): the map as SVG, the moves as buttons,

@@ -21,7 +21,7 @@ from gaitc.api.simulation import (
     opponent,
     session,
 )
-from gaitc.api.solving import recorded_encoding
+from gaitc.api.solving import ControllerFile, read_once, recorded_encoding
 from gaitc.core.modes import ControllerKind, EnvironmentKind, Semantics, SurprisePolicy
 from gaitc.core.spec import Spec, load
 from gaitc.diagnostics import GaitcError, UsageError
@@ -103,12 +103,13 @@ class RosRun:
     robot_error: GaitcError | None = None
 
 
-def _loaded(spec: Spec | str | Path, controller: Controller | str | Path | None,
+def _loaded(spec: Spec | str | Path, controller: Controller | str | Path | ControllerFile | None,
             encoding: EncodingName | str | None) -> Spec:
     """``spec`` loaded with ``encoding``, else the one the controller file records."""
     if isinstance(spec, Spec):
         return spec
-    recorded = recorded_encoding(controller) if isinstance(controller, (str, Path)) else None
+    recorded = (recorded_encoding(controller)
+                if isinstance(controller, (str, Path, ControllerFile)) else None)
     return load(spec, encoding or recorded or EncodingName.ONEHOT)
 
 
@@ -144,7 +145,8 @@ def _primitives(checked: Spec, robot_file: str | Path | None = None
     return bind_primitives(model, str(Path(checked.path).parent), resolve)
 
 
-def ros(spec: Spec | str | Path, controller: Controller | str | Path | None = None,
+def ros(spec: Spec | str | Path,
+        controller: Controller | str | Path | ControllerFile | None = None,
         options: RosOptions | None = None, robot: SimulatedRobot | None = None,
         progress: Progress | None = None) -> RosRun:
     """Run ``controller`` (synthesized first when None) of the ``.gait`` ``spec`` as a ROS 2
@@ -158,6 +160,7 @@ def ros(spec: Spec | str | Path, controller: Controller | str | Path | None = No
     opts = options or RosOptions()
     policy = SurprisePolicy.parse(opts.on_surprise, "--on-surprise")
     semantics = Semantics.parse(opts.semantics)
+    controller = read_once(controller)
     checked = _loaded(spec, controller, opts.encoding)
     if checked.model is None:
         raise UsageError(f"'{checked.path}': 'gaitc ros' needs a .gait spec, which says what "

@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Final, TypeAlias
 
-from gaitc.api.solving import Synthesis, recorded_encoding, synthesize
+from gaitc.api.solving import ControllerFile, Synthesis, read_once, recorded_encoding, synthesize
 from gaitc.core.changes import EXAMPLES as CHANGE_EXAMPLES
 from gaitc.core.modes import EnvironmentKind, Semantics, SurprisePolicy
 from gaitc.core.spec import Spec, load
@@ -37,9 +37,10 @@ if TYPE_CHECKING:
     from gaitc.sim.scenario import Scenario
     from gaitc.sim.simulator import SurpriseOptions
 
-__all__ = ["CHANGE_EXAMPLES", "DEFAULT_STEPS", "ENVIRONMENTS", "EnvironmentLike", "Opponent",
-           "Session", "Simulation", "SurprisePolicy", "counter_session", "environment",
-           "is_run_file", "opponent", "run_document", "session", "simulate", "simulate_spec"]
+__all__ = ["CHANGE_EXAMPLES", "DEFAULT_STEPS", "ENVIRONMENTS", "ControllerLike",
+           "EnvironmentLike", "Opponent", "Session", "Simulation", "SurprisePolicy",
+           "counter_session", "environment", "is_run_file", "opponent", "run_document",
+           "session", "simulate", "simulate_spec"]
 
 #: The environments :func:`simulate` and ``gaitc simulate --env`` know by name.
 ENVIRONMENTS: Final = EnvironmentKind.values()
@@ -47,10 +48,14 @@ DEFAULT_STEPS: Final = 50
 #: What the facade takes as an environment: a typed :class:`Opponent`, a name of
 #: :class:`EnvironmentKind` (or ``scripted:FILE``), a scenario or an environment object.
 EnvironmentLike: TypeAlias = "Opponent | EnvironmentKind | str | Scenario | Environment"
+#: What the facade takes as a controller: one in memory (any form, or a synthesis), or a
+#: controller file, given by its path or read already (read once either way).
+ControllerLike: TypeAlias = (
+    "Controller | SymbolicController | Synthesis | str | Path | ControllerFile")
 
 
 def session(spec: Spec | str | Path,
-            controller: Controller | SymbolicController | Synthesis | str | Path | None = None,
+            controller: ControllerLike | None = None,
             encoding: EncodingName | str | None = None,
             semantics: Semantics | str = Semantics.DEFAULT,
             prefer: str | Sequence[str] | None = None,
@@ -65,13 +70,14 @@ def session(spec: Spec | str | Path,
     ``prefer`` with a given controller is a :class:`UsageError`: its moves are chosen already.
     """
     _check_prefer(controller, prefer)
+    controller = read_once(controller)
     spec = _load(spec, controller, encoding)
     if spec.model is None:
         raise UsageError(f"'{spec.path}': simulating, driving and drawing a controller need "
                          "a .gait spec, which says what the variables mean (regions, gaits, "
                          "legs); for this spec 'gaitc synth' writes a controller and 'gaitc "
                          "verify' checks it")
-    if isinstance(controller, (str, Path)):
+    if isinstance(controller, (str, Path, ControllerFile)):
         strategy = load_runtime(controller, spec)
     else:
         if controller is None:
@@ -97,7 +103,7 @@ def _load(spec: Spec | str | Path, controller: object, encoding: EncodingName | 
     onehot."""
     if isinstance(spec, Spec):
         return spec
-    if encoding is None and isinstance(controller, (str, Path)):
+    if encoding is None and isinstance(controller, (str, Path, ControllerFile)):
         encoding = recorded_encoding(controller)
     return load(spec, encoding or EncodingName.ONEHOT)
 
@@ -181,8 +187,8 @@ class Simulation:
 
 
 def simulate_spec(spec: Spec | Session | str | Path,
-                  controller: Controller | SymbolicController | Synthesis | str | Path | None
-                  = None, env: EnvironmentLike = EnvironmentKind.RANDOM,
+                  controller: ControllerLike | None = None,
+                  env: EnvironmentLike = EnvironmentKind.RANDOM,
                   steps: int | None = None, seed: int = 0, *,
                   encoding: EncodingName | str | None = None,
                   semantics: Semantics | str = Semantics.DEFAULT,
@@ -208,6 +214,7 @@ def simulate_spec(spec: Spec | Session | str | Path,
         loaded = spec.spec
     else:
         _check_prefer(controller, prefer)
+        controller = read_once(controller)
         loaded = _load(spec, controller, encoding)
         bound = session(loaded, controller, None, semantics, prefer, progress)
     chosen_env = opponent(env)
@@ -262,7 +269,7 @@ def _controller_play(bound: Session, env: Opponent | Scenario | Environment,
 
 
 def simulate(spec: Spec | Session | str | Path,
-             controller: Controller | SymbolicController | Synthesis | str | Path | None = None,
+             controller: ControllerLike | None = None,
              env: EnvironmentLike = EnvironmentKind.RANDOM, steps: int | None = None,
              seed: int = 0, semantics: Semantics | str = Semantics.DEFAULT,
              prefer: str | Sequence[str] | None = None, *, violate: Sequence[str] = (),

@@ -12,12 +12,13 @@ import time
 from collections.abc import Sequence
 from dataclasses import dataclass, replace
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, TypeVar
 
 from gaitc.core.modes import FORM_CHOICES, ControllerKind, Form, form_choice
 from gaitc.core.spec import Spec, SpecLike, as_spec, resolve
 from gaitc.diagnostics import UsageError
 from gaitc.forms.base import Automaton
+from gaitc.forms.reader import ControllerFile
 from gaitc.forms.synthesis import (
     MAX_NODES,
     SOLVERS,
@@ -44,10 +45,12 @@ if TYPE_CHECKING:
     from gaitc.ir.bddfile import SymbolicController
     from gaitc.verifier.strategy import VerificationReport as VerificationReport
 
-__all__ = ["FORM_CHOICES", "MAX_NODES", "PREFERENCES", "SOLVERS", "Automaton",
+__all__ = ["FORM_CHOICES", "MAX_NODES", "PREFERENCES", "SOLVERS", "Automaton", "ControllerFile",
            "SolverName", "Synthesis", "Tolerance", "Verdict", "check", "compact", "controller_form",
-           "counterstrategy", "preference_order", "read_controller", "recorded_encoding",
-           "synthesize", "tolerate", "verify", "vocabulary_of"]
+           "counterstrategy", "preference_order", "read_controller", "read_once",
+           "recorded_encoding", "synthesize", "tolerate", "verify", "vocabulary_of"]
+
+T = TypeVar("T")
 
 
 def check(spec: SpecLike, semantics: Semantics | str = Semantics.DEFAULT, solver: str = "embedded",
@@ -196,7 +199,7 @@ def compact(spec: SpecLike, controller: Automaton) -> CompactController:
 
 
 def verify(spec: SpecLike,
-           controller: Automaton | Synthesis | str | Path,
+           controller: Automaton | Synthesis | str | Path | ControllerFile,
            semantics: Semantics | str | None = None) -> VerificationReport:
     """Prove independently that ``controller`` (a strategy in any form, or a
     counter-strategy) realizes ``spec``, or defeats it; a path is read as a controller
@@ -206,7 +209,7 @@ def verify(spec: SpecLike,
 
     bound = as_spec(spec)
     automaton: Automaton
-    if isinstance(controller, (str, Path)):
+    if isinstance(controller, (str, Path, ControllerFile)):
         automaton = parse_file(controller, bound)
     elif isinstance(controller, Synthesis):
         if controller.controller is None:
@@ -217,7 +220,7 @@ def verify(spec: SpecLike,
     return prove(bound, automaton, semantics)
 
 
-def read_controller(path: str | Path, spec: SpecLike) -> Automaton:
+def read_controller(path: str | Path | ControllerFile, spec: SpecLike) -> Automaton:
     """A controller file of any form (an explicit automaton, a symbolic or a compact one),
     checked against ``spec``: a file whose bits, integers or fields differ from the spec's
     is a :class:`~gaitc.diagnostics.ControllerError` naming the first difference
@@ -237,19 +240,34 @@ def controller_form(path: str | Path) -> Form:
     return form_of(read_document(path))
 
 
-def recorded_encoding(path: str | Path) -> EncodingName | None:
+def recorded_encoding(path: str | Path | ControllerFile) -> EncodingName | None:
     """The encoding a controller file says its spec was compiled with, if it says one
-    (a file of any form and layout, :func:`gaitc.forms.reader.read_document`); None also
-    when the file cannot be read (the reader that follows names what is wrong)."""
+    (a file of any form and layout, :func:`gaitc.forms.reader.read_document`, or a file
+    read already); None also when the file cannot be read (the reader that follows names
+    what is wrong)."""
     from gaitc.diagnostics import ControllerError
-    from gaitc.forms.reader import read_document
-    from ltlcompiler.encoding import ENCODINGS
 
+    if isinstance(path, ControllerFile):
+        return path.encoding
     try:
-        encoding = read_document(path)["gaitc"]["source"]["encoding"]
-    except (ControllerError, OSError, KeyError, TypeError):
+        return ControllerFile.read(path).encoding
+    except (ControllerError, OSError):
         return None
-    return EncodingName(encoding) if encoding in ENCODINGS else None
+
+
+def read_once(controller: T) -> T | ControllerFile:
+    """A controller given as a path, read once (:class:`~gaitc.forms.reader.ControllerFile`)
+    so that a command asks its encoding and parses its controller from one reading;
+    anything else as it is, and so is a path whose file cannot be read (the reader that
+    follows names what is wrong)."""
+    from gaitc.diagnostics import ControllerError
+
+    if not isinstance(controller, (str, Path)):
+        return controller
+    try:
+        return ControllerFile.read(controller)
+    except (ControllerError, OSError):
+        return controller
 
 
 #: A SLUGS-JSON explicit controller past this many bytes gets a hint of the tables layout.

@@ -13,6 +13,7 @@ facade loads a spec once per command and hands the same object to each.
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -22,15 +23,17 @@ from gaitc.diagnostics import ControllerError, Span
 from gaitc.forms.base import Automaton
 from gaitc.forms.registry import detect, entry
 from gaitc.ir.bits import bits_mismatch, spec_bits
-from gaitc.ir.controller import IntegerVar, read_controller_json, spec_integers
+from gaitc.ir.controller import IntegerVar, parse_controller_json, spec_integers
+from ltlcompiler.encoding import ENCODINGS, EncodingName
 
 if TYPE_CHECKING:
     from collections.abc import Mapping
 
     from gaitc.sim.view import StrategyView
 
-__all__ = ["HINT_RESYNTHESIZE", "Automaton", "belongs", "check_belongs", "load_runtime",
-           "parse_controller", "parse_file", "read_controller", "read_document", "runtime"]
+__all__ = ["HINT_RESYNTHESIZE", "Automaton", "ControllerFile", "ControllerSource", "belongs",
+           "check_belongs", "load_runtime", "opened", "parse_controller", "parse_file",
+           "read_controller", "read_document", "runtime"]
 
 HINT_RESYNTHESIZE = "synthesize it again from this spec with 'gaitc synth'"
 
@@ -52,21 +55,56 @@ def read_document(path: str | Path) -> Any:
     raw = read_input(file, "controller file")
     if raw.startswith(GZIP_MAGIC):
         return read_tables(raw, file)
-    return read_controller_json(file)
+    return parse_controller_json(raw, file)
 
 
-def parse_file(path: str | Path, spec: Spec) -> Automaton:
+@dataclass(frozen=True, eq=False)
+class ControllerFile:
+    """A controller file read once: its path and its parsed document (any form, any
+    layout).  A command reads the file once, asks it the encoding its spec was compiled
+    with, and parses the controller from the same document."""
+
+    path: str
+    document: Any
+
+    @classmethod
+    def read(cls, path: str | Path) -> ControllerFile:
+        """Read ``path`` (a :class:`~gaitc.diagnostics.ControllerError` when it is neither
+        JSON nor the tables layout)."""
+        return cls(str(path), read_document(path))
+
+    @property
+    def encoding(self) -> EncodingName | None:
+        """The encoding the file says its spec was compiled with, if it says one."""
+        try:
+            encoding = self.document["gaitc"]["source"]["encoding"]
+        except (KeyError, TypeError):
+            return None
+        return EncodingName(encoding) if encoding in ENCODINGS else None
+
+
+#: A controller file as the readers take it: a path, or the file read already.
+ControllerSource = str | Path | ControllerFile
+
+
+def opened(source: ControllerSource) -> ControllerFile:
+    """``source`` read (a path) or as it is (a file read already)."""
+    return source if isinstance(source, ControllerFile) else ControllerFile.read(source)
+
+
+def parse_file(path: ControllerSource, spec: Spec) -> Automaton:
     """The controller in the file ``path``, its own structure checked (not yet its spec:
     :func:`read_controller` does both)."""
-    return parse_controller(read_document(path), str(path), spec)
+    file = opened(path)
+    return parse_controller(file.document, file.path, spec)
 
 
-def read_controller(path: str | Path, spec: Spec) -> Automaton:
+def read_controller(path: ControllerSource, spec: Spec) -> Automaton:
     """Read the controller file ``path`` and check that it belongs to ``spec``; raises
     :class:`~gaitc.diagnostics.ControllerError` naming the file and the first difference."""
-    file = str(path)
-    automaton = parse_file(file, spec)
-    check_belongs(automaton, spec, file)
+    file = opened(path)
+    automaton = parse_controller(file.document, file.path, spec)
+    check_belongs(automaton, spec, file.path)
     return automaton
 
 
@@ -127,6 +165,7 @@ def runtime(automaton: Automaton, spec: Spec, file: str = "") -> StrategyView:
     return entry(automaton).runtime(spec, automaton, file)
 
 
-def load_runtime(path: str | Path, spec: Spec) -> StrategyView:
+def load_runtime(path: ControllerSource, spec: Spec) -> StrategyView:
     """Read a controller file through :func:`read_controller` and give its run view."""
-    return runtime(read_controller(path, spec), spec, str(path))
+    file = opened(path)
+    return runtime(read_controller(file, spec), spec, file.path)

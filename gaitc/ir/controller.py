@@ -292,7 +292,12 @@ def controller_from_dict(
 
 def read_controller_json(path: str) -> Any:
     """The parsed JSON of a controller file (explicit or symbolic), with positioned errors."""
-    raw = read_input(path, "controller file")
+    return parse_controller_json(read_input(path, "controller file"), path)
+
+
+def parse_controller_json(raw: bytes, path: str) -> Any:
+    """The parsed JSON of the bytes ``raw`` of the controller file ``path``, with positioned
+    errors."""
     text = decode_text(raw, path, ControllerError)
     try:
         return json.loads(text)

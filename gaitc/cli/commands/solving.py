@@ -15,7 +15,7 @@ from typing import TYPE_CHECKING, Any
 import gaitc
 from gaitc.api.isolation import HardLimits, run_limited, solver_options
 from gaitc.api.modes import FORM_CHOICES, ControllerKind, EncodingName, Form, form_choice
-from gaitc.api.solving import MAX_NODES, SOLVERS, recorded_encoding
+from gaitc.api.solving import MAX_NODES, SOLVERS, read_once, recorded_encoding
 from gaitc.cli.commands.arguments import (
     add_prefer,
     output_file,
@@ -417,10 +417,11 @@ def run_counter(args: argparse.Namespace) -> int:
 
 
 def run_verify(args: argparse.Namespace) -> int:
-    encoding = args.encoding or recorded_encoding(args.controller) or EncodingName.ONEHOT
+    controller = read_once(args.controller)
+    encoding = args.encoding or recorded_encoding(controller) or EncodingName.ONEHOT
     spec = gaitc.load(args.spec, encoding)
     semantics = semantics_of(args) if args.robotics_semantics else None  # None: as recorded
-    report = gaitc.verify(spec, args.controller, semantics)
+    report = gaitc.verify(spec, controller, semantics)
     if not args.json:
         return _print_report(report)
     print_json(document("verify", {"file": args.spec, "controller": args.controller,
