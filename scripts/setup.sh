@@ -2,7 +2,8 @@
 # Set up gaitc on a fresh machine: Graphviz (for rendering), the AVR toolchain and simavr (for
 # the valve-board firmware), a virtual environment in .venv,
 # and gaitc installed into it with its test tools, Dask ('gaitc resilience --dask') and
-# ipywidgets (the notebook player) and MkDocs (the documentation site).
+# ipywidgets (the notebook player), MkDocs (the documentation site) and stormpy ('gaitc
+# chances').
 # Safe to run again.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -49,7 +50,7 @@ PYTHON="${PYTHON:-python3}"
 if [ ! -x .venv/bin/python ]; then
     "$PYTHON" -m venv .venv
 fi
-.venv/bin/python -m pip install -q --disable-pip-version-check -e '.[test,cluster,notebook,docs,peers]'
+.venv/bin/python -m pip install -q --disable-pip-version-check -e '.[test,cluster,notebook,docs,peers,chances]'
 # scripts/check.sh (the test command) runs ruff and mypy before the suite: both come with the
 # test extra, and a setup without them is a failed setup.
 for tool in ruff mypy vermin; do
