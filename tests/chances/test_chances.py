@@ -214,3 +214,21 @@ def test_answers_are_cached_by_spec_and_rates(corridor: tuple[Path, Path],
     other = chances(spec, rates=rates, options=ChancesOptions(4, 1))
     assert "model" in other.seconds  # another question: computed
     assert other.best.patrols != first.best.patrols
+
+
+def test_sensitivity_closed_forms(corridor: tuple[Path, Path]) -> None:
+    """One patrol within 4 moves, (1 - p)(1 - q) now.  One more level on L1 spares the walk
+    to c: 1 - q (gain p (1 - q)); on L2, the walk back: 1 - p (gain (1 - p) q); a cache in b
+    spares both: 1 (gain 1 - (1 - p)(1 - q)); a cache in c changes nothing."""
+    from gaitc.api.chances import ChancesOptions, chances
+
+    spec, rates = corridor
+    got = chances(spec, rates=rates, options=ChancesOptions(4, 1), write=False,
+                  sensitivity=True)
+    gains = {g.change: g.gain for g in got.sensitivity}
+    now = (1 - P) * (1 - Q)
+    assert gains == pytest.approx({"a cache in b": 1 - now, "one more health level on L2":
+                                   (1 - P) * Q, "one more health level on L1": P * (1 - Q),
+                                   "a cache in c": 0.0}, abs=1e-6)
+    assert [g.change for g in got.sensitivity][:3] == [
+        "a cache in b", "one more health level on L2", "one more health level on L1"]
