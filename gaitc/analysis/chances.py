@@ -16,7 +16,6 @@ Checking", ch. 10 (MDPs, step-bounded reachability, optimal schedulers).
 from __future__ import annotations
 
 import html
-import math
 import time
 from dataclasses import dataclass, field
 from typing import Any
@@ -437,6 +436,3 @@ def best_controller(gr1: GR1Spec, mdp: SpecModel, patrols: int) -> Controller:
                       initial=tuple(initial), integers=spec_integers(gr1),
                       kind=ControllerKind.STRATEGY, solver="storm")
 
-
-def infinite(value: float) -> bool:
-    return math.isinf(value)
