@@ -143,6 +143,14 @@ class Chances:
     def __str__(self) -> str:
         return "\n".join(self.lines())
 
+    def __repr__(self) -> str:
+        k = self.options.patrols
+        written = "" if self.written is None else \
+            f", the controller written {self.written.patrols[-1]:.6f}"
+        return (f"<Chances of {self.spec!r} within {self.options.steps} steps: at least {k} "
+                f"patrols, best {self.best.patrols[-1]:.6f}{written}; "
+                f"{self.best.states} states>")
+
     def _repr_html_(self) -> str:
         head = f"<p><b>{html.escape(self.spec)}</b>: chances within {self.options.steps} steps</p>"
         rates = "".join(f"<li>{html.escape(w)}</li>" for w in self.rate_words)
