@@ -8,6 +8,7 @@ import argparse
 import sys
 from typing import Any
 
+from gaitc.api.modes import EncodingName
 from gaitc.cli.commands.arguments import output_file, positive_count, probability
 from gaitc.cli.exitcodes import ExitCode, exit_code_help
 from gaitc.cli.reporting import document, print_json
@@ -48,14 +49,18 @@ def register(sub: Any) -> None:
     p.add_argument("--sensitivity", action="store_true",
                    help="also what one more health level on each leg, or a cache on each free "
                         "cell, buys (one model each: slow on big robots)")
+    p.add_argument("--encoding", choices=EncodingName.values(), default=EncodingName.ONEHOT.value,
+                   help="the encoding of the leg levels (as the CONTROLLER was synthesized)")
     p.add_argument("--json", action="store_true", help="print one JSON object (docs/json.md)")
     p.set_defaults(run=run_chances)
 
 
 def run_chances(args: argparse.Namespace) -> int:
+    import gaitc
     from gaitc.api.chances import ChancesOptions, chances, save_best
 
-    answer = chances(args.spec, args.controller, rates=args.rates, wear=args.wear,
+    answer = chances(gaitc.load(args.spec, args.encoding), args.controller, rates=args.rates,
+                     wear=args.wear,
                      options=ChancesOptions(args.steps, args.patrols, args.max_states),
                      write=args.out is not None or args.plot is not None,
                      sensitivity=args.sensitivity)
