@@ -269,7 +269,8 @@ class ControllerChain:
         queue: deque[tuple[int, int]] = deque()
         start = State(self.domain.model.start, NO_GAIT,
                       tuple((leg.name, leg.initial) for leg in self.domain.model.legs), None)
-        first = Outcome(1.0, start.health, None)  # every hazard set starts off
+        first = Outcome(1.0, tuple(lv for _, lv in start.health), None,
+                        legs=tuple(leg for leg, _ in start.health))  # hazards start off
         self._row(start, None, self.strategy.initial_options(), (first,), queue)
         self.arrays.cols.append(1)  # state 1 stays off the controller
         self.arrays.vals.append(1.0)

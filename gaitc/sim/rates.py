@@ -242,10 +242,15 @@ class Outcome:
     breaks the spec's assumptions (a sudden failure beyond eq. 3.5)."""
 
     chance: float
-    health: tuple[tuple[str, int], ...]
+    levels: tuple[int, ...]  # in the order of ``legs``
     hazard: str | None
     breaks: bool = False
-    levels: tuple[int, ...] = ()  # the levels of ``health`` alone, in leg order
+    legs: tuple[str, ...] = ()
+
+    @property
+    def health(self) -> tuple[tuple[str, int], ...]:
+        """(leg, level) in leg order, as :class:`~gaitc.sim.domain.State` holds them."""
+        return tuple(zip(self.legs, self.levels, strict=True))
 
 
 class StepLaw:
@@ -332,7 +337,7 @@ class StepLaw:
             used = set(self.moving.get(state.gait, ()))
             legs = [self._leg(state, leg, level) if leg in used and level > 1 else
                     [(level, 1.0, False)] for leg, level in state.health]
-        names = [leg for leg, _ in state.health]
+        names = tuple(leg for leg, _ in state.health)
         base = [options[0][0] for options in legs]
         varying = [i for i, options in enumerate(legs) if len(options) > 1 or options[0][2]]
         fixed = math.prod(legs[i][0][1] for i in range(len(legs)) if i not in varying)
@@ -344,8 +349,7 @@ class StepLaw:
                 breaks = breaks or beyond
                 levels[i] = level
             frozen = tuple(levels)
-            health = tuple(zip(names, frozen, strict=True))
-            out.extend(Outcome(chance * q, health, hazard, breaks, frozen)
+            out.extend(Outcome(chance * q, frozen, hazard, breaks, names)
                        for hazard, q in hazards)
         found = tuple(out)
         self._memo[state] = found
