@@ -48,6 +48,10 @@ from typing import TYPE_CHECKING, Any
 if TYPE_CHECKING:  # the names of _MODULES, for the type checker (tests/cli/test_cli_facade.py)
     from gaitc.api.answers import explain as explain
     from gaitc.api.answers import resilience as resilience
+    from gaitc.api.chances import Chances as Chances
+    from gaitc.api.chances import ChancesOptions as ChancesOptions
+    from gaitc.api.chances import Rates as Rates
+    from gaitc.api.chances import chances as chances
     from gaitc.api.characterizing import Recordings as Recordings
     from gaitc.api.characterizing import calibrate as calibrate
     from gaitc.api.characterizing import characterize as characterize
@@ -110,6 +114,7 @@ if TYPE_CHECKING:  # the names of _MODULES, for the type checker (tests/cli/test
     from gaitc.diagnostics import FormulaError as FormulaError
     from gaitc.diagnostics import GaitcError as GaitcError
     from gaitc.diagnostics import MissingFileError as MissingFileError
+    from gaitc.diagnostics import RatesError as RatesError
     from gaitc.diagnostics import ScenarioError as ScenarioError
     from gaitc.diagnostics import SlugsFormatError as SlugsFormatError
     from gaitc.diagnostics import SolverError as SolverError
@@ -136,6 +141,7 @@ _MODULES: dict[str, tuple[str, ...]] = {
         "synthesize", "tolerate", "verify",
     ),
     "gaitc.api.answers": ("explain", "resilience"),
+    "gaitc.api.chances": ("Chances", "ChancesOptions", "Rates", "chances"),
     "gaitc.api.simulation": ("Session", "SurprisePolicy", "session", "simulate"),
     "gaitc.api.playing": ("Autopilot", "Player", "player", "player_widget"),
     "gaitc.api.examples": ("copy_examples",),
@@ -149,8 +155,8 @@ _MODULES: dict[str, tuple[str, ...]] = {
     "gaitc.api.generating": ("Target", "compact_policy", "generate"),
     "gaitc.diagnostics": (
         "ControllerError", "FileAccessError", "FormulaError", "GaitcError", "MissingFileError",
-        "ScenarioError", "SlugsFormatError", "SolverError", "Span", "SpecSemanticError",
-        "SpecSyntaxError", "UsageError",
+        "RatesError", "ScenarioError", "SlugsFormatError", "SolverError", "Span",
+        "SpecSemanticError", "SpecSyntaxError", "UsageError",
     ),
 }
 _HOMES = {name: module for module, names in _MODULES.items() for name in names}

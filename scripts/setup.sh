@@ -2,8 +2,9 @@
 # Set up gaitc on a fresh machine: Graphviz (for rendering), the AVR toolchain and simavr (for
 # the valve-board firmware), a virtual environment in .venv,
 # and gaitc installed into it with its test tools, Dask ('gaitc resilience --dask') and
-# ipywidgets (the notebook player), MkDocs (the documentation site) and ROS 2 with MCAP
-# ('gaitc ros', 'simulate --mcap'; ROS 2's Python client and messages install as wheels).
+# ipywidgets (the notebook player), MkDocs (the documentation site), ROS 2 with MCAP
+# ('gaitc ros', 'simulate --mcap'; ROS 2's Python client and messages install as wheels) and
+# stormpy ('gaitc chances').
 # Safe to run again.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -63,6 +64,10 @@ if .venv/bin/python -m pip show -q lark-parser >/dev/null 2>&1; then
 fi
 .venv/bin/python -c 'import lark, sys; sys.exit(int(lark.__version__.split(".")[0]) < 1)' \
     || { echo "setup: the lark module is not lark 1 (gaitc's parser needs it)" >&2; exit 1; }
+# 'gaitc chances' (Storm): stormpy ships manylinux_2_34 wheels (glibc 2.34 or newer); where
+# none fits, the rest of gaitc works and the chances tests are skipped.
+.venv/bin/python -m pip install -q --disable-pip-version-check -e '.[chances]' \
+    || echo "setup: could not install stormpy (the chances extra); 'gaitc chances' and its tests will be skipped" >&2
 # scripts/check.sh (the test command) runs ruff and mypy before the suite: both come with the
 # test extra, and a setup without them is a failed setup.
 for tool in ruff mypy vermin; do

@@ -34,10 +34,11 @@ from gaitc.api.simulation import (
     run_document,
     session,
 )
-from gaitc.api.solving import ControllerFile, read_once, recorded_encoding
+from gaitc.api.solving import read_once, recorded_encoding
 from gaitc.core.modes import BackendKind, EnvironmentKind, ViolationPolicy
 from gaitc.core.spec import Spec, load
 from gaitc.diagnostics import UsageError
+from gaitc.forms.reader import ControllerFile
 from gaitc.hw.driver import VIOLATION_POLICIES
 from gaitc.ir.spec import Semantics
 from gaitc.sim.run import checked_steps

@@ -11,10 +11,11 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from gaitc.api.simulation import ControllerLike, counter_session, session
-from gaitc.api.solving import ControllerFile, read_once, recorded_encoding
+from gaitc.api.solving import read_once, recorded_encoding
 from gaitc.core.modes import Role
 from gaitc.core.spec import Spec, load
 from gaitc.diagnostics import ScenarioError, UsageError
+from gaitc.forms.reader import ControllerFile
 from gaitc.ir.spec import Semantics
 from gaitc.play.player import Autopilot, Choice, Player
 from gaitc.sim.run import Run, read_jsonl

@@ -21,10 +21,11 @@ from gaitc.api.simulation import (
     opponent,
     session,
 )
-from gaitc.api.solving import ControllerFile, read_once, recorded_encoding
+from gaitc.api.solving import read_once, recorded_encoding
 from gaitc.core.modes import ControllerKind, EnvironmentKind, Semantics, SurprisePolicy
 from gaitc.core.spec import Spec, load
 from gaitc.diagnostics import GaitcError, UsageError
+from gaitc.forms.reader import ControllerFile
 from gaitc.sim.run import checked_steps
 from ltlcompiler.encoding import EncodingName
 

@@ -14,12 +14,12 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Final, TypeAlias
 
-from gaitc.api.solving import ControllerFile, Synthesis, read_once, recorded_encoding, synthesize
+from gaitc.api.solving import Synthesis, read_once, recorded_encoding, synthesize
 from gaitc.core.changes import EXAMPLES as CHANGE_EXAMPLES
 from gaitc.core.modes import EnvironmentKind, Semantics, SurprisePolicy
 from gaitc.core.spec import Spec, load
 from gaitc.diagnostics import UsageError
-from gaitc.forms.reader import load_runtime, runtime
+from gaitc.forms.reader import ControllerFile, load_runtime, runtime
 from gaitc.ir.bddfile import SymbolicController
 from gaitc.ir.controller import Controller, ControllerKind
 from gaitc.sim.domain import Domain
@@ -302,10 +302,12 @@ def run_document(file: str, run: Run | None, environment: str | None, output: st
     """A run as ``simulate --json`` and ``drive --json`` print it (docs/json.md): the run
     (:meth:`Run.to_json`), the environment that played it, the file it was saved to, the
     error that stopped it. ``run`` is None when an unrealizable spec left nothing to run."""
-    body: dict[str, Any] = {"legs": [], "steps": [], "violations": [], "summary": None}
+    body: dict[str, Any] = {"legs": [], "steps": [], "violations": [], "summary": None,
+                            "patrols": 0}
     if run is not None:
         body.update(run.to_json())
         body.pop("spec")  # the same as "file"
+        body["patrols"] = run.patrols()
     stopped = None if run is None or run.error is None else run.error.to_json()
     return {**body, "file": file, "environment": environment, "realizable": realizable,
             "output": output, "error": stopped}

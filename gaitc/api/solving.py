@@ -18,7 +18,6 @@ from gaitc.core.modes import FORM_CHOICES, ControllerKind, Form, form_choice
 from gaitc.core.spec import Spec, SpecLike, as_spec, resolve
 from gaitc.diagnostics import UsageError
 from gaitc.forms.base import Automaton
-from gaitc.forms.reader import ControllerFile
 from gaitc.forms.synthesis import (
     MAX_NODES,
     SOLVERS,
@@ -42,10 +41,11 @@ if TYPE_CHECKING:
     from gaitc.analysis.tolerance import ToleranceReport
     from gaitc.compact.controller import CompactController
     from gaitc.core.vocabulary import Vocabulary
+    from gaitc.forms.reader import ControllerFile
     from gaitc.ir.bddfile import SymbolicController
     from gaitc.verifier.strategy import VerificationReport as VerificationReport
 
-__all__ = ["FORM_CHOICES", "MAX_NODES", "PREFERENCES", "SOLVERS", "Automaton", "ControllerFile",
+__all__ = ["FORM_CHOICES", "MAX_NODES", "PREFERENCES", "SOLVERS", "Automaton",
            "SolverName", "Synthesis", "Tolerance", "Verdict", "check", "compact", "controller_form",
            "counterstrategy", "preference_order", "read_controller", "read_once",
            "recorded_encoding", "synthesize", "tolerate", "verify", "vocabulary_of"]
@@ -205,7 +205,7 @@ def verify(spec: SpecLike,
     counter-strategy) realizes ``spec``, or defeats it; a path is read as a controller
     file.  ``semantics`` defaults to the one recorded in the controller
     (:func:`gaitc.forms.synthesis.prove`)."""
-    from gaitc.forms.reader import parse_file
+    from gaitc.forms.reader import ControllerFile, parse_file
 
     bound = as_spec(spec)
     automaton: Automaton
@@ -246,6 +246,7 @@ def recorded_encoding(path: str | Path | ControllerFile) -> EncodingName | None:
     read already); None also when the file cannot be read (the reader that follows names
     what is wrong)."""
     from gaitc.diagnostics import ControllerError
+    from gaitc.forms.reader import ControllerFile  # lazy: 'gaitc check' reads no controller
 
     if isinstance(path, ControllerFile):
         return path.encoding
@@ -261,6 +262,7 @@ def read_once(controller: T) -> T | ControllerFile:
     anything else as it is, and so is a path whose file cannot be read (the reader that
     follows names what is wrong)."""
     from gaitc.diagnostics import ControllerError
+    from gaitc.forms.reader import ControllerFile  # lazy: 'gaitc check' reads no controller
 
     if not isinstance(controller, (str, Path)):
         return controller

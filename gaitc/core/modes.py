@@ -53,6 +53,7 @@ class EnvironmentKind(Choice):
     SCRIPTED = "scripted"  # a scenario file (or a run file) says each input
     RANDOM = "random"  # uniform among the inputs the assumptions allow (seeded)
     ADVERSARIAL = "adversarial"  # the inputs that keep the robot from its goals longest
+    STOCHASTIC = "stochastic"  # drawn from the rates of a rates file or --wear (gaitc chances)
 
 
 class BackendKind(Choice):

@@ -87,6 +87,11 @@ class ScenarioError(GaitcError, ValueError):
     """A simulation scenario is malformed or asks for a step the assumptions forbid."""
 
 
+class RatesError(GaitcError, ValueError):
+    """A rates file (``gaitc chances --rates``) is malformed: an unknown leg, gait or hazard,
+    a chance outside [0, 1], chances that add up to more than 1."""
+
+
 class UsageError(GaitcError, ValueError):
     """A call asks for something that cannot be done: a bad option or argument value (the
     command line's exit code 2)."""

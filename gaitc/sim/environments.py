@@ -16,6 +16,7 @@ from gaitc.ir.formula import has_primes
 from gaitc.sim.adversary import DISCOUNT, harm_table
 from gaitc.sim.domain import Domain, Goal, State
 from gaitc.sim.monitor import Monitor
+from gaitc.sim.rates import StepLaw
 from gaitc.sim.strategy import InputKey, Strategy
 
 INFINITY = 10**6
@@ -78,6 +79,47 @@ class RandomEnvironment(Environment):
             return None
         move = situation.moves[self.rng.randrange(len(situation.moves))]
         return Request(move.inputs)
+
+
+class StochasticEnvironment(Environment):
+    """Draws each next input from the rates (:class:`gaitc.sim.rates.StepLaw`, the law
+    ``gaitc chances`` gives Storm); every hazard set starts off.  An input the controller
+    has no answer to (a sudden failure beyond eq. 3.5) is still requested: the run then
+    stops, naming the assumption it breaks."""
+
+    def __init__(self, law: StepLaw, seed: int = 0) -> None:
+        self.law = law
+        self.seed = seed
+        self.rng = random.Random(seed)
+        self.name = f"stochastic --seed {seed}"
+
+    def choose(self, situation: Situation) -> Request | None:
+        domain = situation.domain
+        here = situation.state
+        if here is None:
+            start = tuple((leg.name, leg.initial) for leg in domain.model.legs)
+            wanted = State(domain.model.start, "noGait", start, None)
+            what = "start"
+        else:
+            outcomes = [o for o in self.law.outcomes(here) if o.chance > 0.0]
+            pick = self.rng.random()
+            chosen = outcomes[-1]
+            for outcome in outcomes:
+                pick -= outcome.chance
+                if pick < 0.0:
+                    chosen = outcome
+                    break
+            wanted = State(here.region, here.gait, chosen.health, chosen.hazard)
+            what = "a sudden failure" if chosen.breaks else "drawn from the rates"
+        for move in situation.moves:
+            if move.state.health == wanted.health and move.state.hazard == wanted.hazard:
+                return Request(move.inputs, what)
+        values = domain.encode(wanted)
+        names = situation.strategy.inputs if situation.strategy is not None else \
+            situation.monitor.inputs if situation.monitor is not None else ()
+        if not names:
+            return None
+        return Request(tuple(values[name] for name in names), what)
 
 
 def levels_lost(before: State, after: State) -> int:

@@ -169,6 +169,20 @@ class Run:
             self.steps[-1] = replace(self.steps[-1], degraded=degraded, failed=failed)
         self.steps.append(step)
 
+    def patrols(self) -> int:
+        """Patrols completed: rounds that visit the goals in their order, from the first
+        state on (as ``gaitc chances`` counts them, and a GR(1) controller's rank moves)."""
+        if self.summary is None or not self.summary.goal_visits:
+            return 0
+        order = [goal for goal, _ in self.summary.goal_visits]
+        done, goal = 0, 0
+        for step in self.steps:
+            goal = 0 if goal == len(order) else goal
+            while goal < len(order) and order[goal] in step.goals:
+                goal += 1
+            done += goal == len(order)
+        return done
+
     def to_json(self) -> dict[str, Any]:
         """The whole run as one object (``simulate --json``, docs/json.md): the header's
         legs, environment and spec, every step, the summary (null when not checked)."""

@@ -17,7 +17,12 @@ from gaitc.core.modes import EnvironmentKind
 from gaitc.core.spec import Spec
 from gaitc.diagnostics import UsageError
 from gaitc.sim.domain import Domain
-from gaitc.sim.environments import AdversarialEnvironment, Environment, RandomEnvironment
+from gaitc.sim.environments import (
+    AdversarialEnvironment,
+    Environment,
+    RandomEnvironment,
+    StochasticEnvironment,
+)
 from gaitc.sim.monitor import Monitor
 
 if TYPE_CHECKING:
@@ -43,8 +48,14 @@ class Opponent:
 
     kind: EnvironmentKind = EnvironmentKind.RANDOM
     file: str | None = None
+    rates: str | None = None  # the stochastic environment's rates file (gaitc/sim/rates.py)
+    wear: float | None = None  # ... and every leg's wear chance over it (--wear P)
 
     def __post_init__(self) -> None:
+        if (self.rates is not None or self.wear is not None) and \
+                self.kind != EnvironmentKind.STOCHASTIC:
+            raise UsageError("--rates and --wear give the chances of the stochastic "
+                             "environment: use --env stochastic")
         if (self.kind == EnvironmentKind.SCRIPTED) != (self.file is not None):
             raise UsageError("a scripted environment reads one scenario or run file: "
                              "--env scripted FILE.yaml or --env scripted RUN.jsonl"
@@ -70,7 +81,10 @@ class Opponent:
         return cls(EnvironmentKind.parse(value, "environment"), file)
 
     def __str__(self) -> str:
-        return str(self.kind) if self.file is None else f"{self.kind} {self.file}"
+        words = [str(self.kind)] + ([self.file] if self.file is not None else []) + (
+            [f"--rates {self.rates}"] if self.rates is not None else []) + (
+            [f"--wear {self.wear:g}"] if self.wear is not None else [])
+        return " ".join(words)
 
 
 @dataclass(frozen=True)
@@ -113,6 +127,11 @@ def environment(opponent: Opponent | Scenario | Environment, bound: Session, see
         return RandomEnvironment(seed)
     if opponent.kind == EnvironmentKind.ADVERSARIAL:
         return AdversarialEnvironment()
+    if opponent.kind == EnvironmentKind.STOCHASTIC:
+        from gaitc.sim.rates import Rates, StepLaw, load_rates
+
+        rates = Rates() if opponent.rates is None else load_rates(opponent.rates, bound.model)
+        return StochasticEnvironment(StepLaw(bound.model, rates.with_wear(opponent.wear)), seed)
     assert opponent.file is not None  # a scripted opponent reads a file (__post_init__)
     if opponent.replays_run:
         from gaitc.sim.replay import RunEnvironment

@@ -193,6 +193,9 @@ class GameStats:
     #: included: a count of the work done that does not depend on the machine or its load
     #: (tests/solver/test_work_budget.py holds the published instances to a budget of it)
     lookups: int = 0
+    #: whether a misfit turned CUDD's sifting on for the rest of the game
+    #: (:meth:`Game.resume_sifting`; it is off again when the game ends)
+    resumed_sifting: bool = False
 
 
 @dataclass
@@ -528,7 +531,7 @@ class Game:
         fixed order misfits (:meth:`_order_misfits`): the order was chosen, or sifted,
         for ρ, and the fixpoint's sets outgrow it."""
         self._resift = False
-        self._resumed = True
+        self._resumed = self.stats.resumed_sifting = True
         self.sym.bdd.configure(reordering=True)
 
     def _result(self, z: BDDNode, layers: list[list[BDDNode]], decided_early: bool,

@@ -20,6 +20,7 @@ import gaitc
 from gaitc.analysis.explanation import Explanation
 from gaitc.analysis.freedoms import Freedom, freedoms
 from gaitc.cli import main
+from gaitc.core.changes import HazardSwitch, LegWears
 from gaitc.ir.evaluation import evaluate
 from gaitc.ir.formula import Implies, Not, atoms, conj, disj
 from gaitc.ir.spec import Clause, GR1Spec
@@ -98,13 +99,14 @@ def _restrict(spec: gaitc.Spec, taken: Sequence[Freedom]) -> GR1Spec:
                for h in model.hazards)
     extra_init, extra_trans = [], []
     for f in taken:
-        if f.kind == "degrade":
+        if isinstance(f.change, LegWears):
             guard = conj([enc.gait(f.gait), *(Not(enc.region(c)) for c in model.caches),
                           *([Not(hot)] if model.hazards else [])])
-            extra_trans.append(Clause(Implies(guard, enc.keep_health(f.leg))))
+            extra_trans.append(Clause(Implies(guard, enc.keep_health(f.change.leg))))
         else:
-            extra_init.append(Clause(Not(enc.hazard(f.hazard))))
-            extra_trans.append(Clause(Not(enc.hazard(f.hazard, True))))
+            assert isinstance(f.change, HazardSwitch) and f.change.on
+            extra_init.append(Clause(Not(enc.hazard(f.change.hazard))))
+            extra_trans.append(Clause(Not(enc.hazard(f.change.hazard, True))))
     gr1 = spec.gr1
     return gr1.with_sections(env_init=gr1.env_init + tuple(extra_init),
                              env_trans=gr1.env_trans + tuple(extra_trans))

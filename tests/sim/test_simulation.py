@@ -285,7 +285,7 @@ def test_cli_simulate_synthesizes_prints_and_saves(tmp_path: Path,
     (["--env", "scripted"], "--env scripted needs one scenario or run file: --env scripted "
      "FILE.yaml or --env scripted RUN.jsonl"),
     (["--env", "chaotic"], "unknown environment 'chaotic'; use one of scripted, random, "
-                           "adversarial"),
+                           "adversarial, stochastic"),
     (["--env", "random", "x.yaml"], "--env random takes no file (got 'x.yaml')"),
 ])
 def test_cli_usage_errors(argv: list[str], message: str,

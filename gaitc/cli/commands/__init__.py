@@ -26,6 +26,7 @@ COMMANDS: Final = {
     "verify": "solving",
     "explain": "explaining",
     "resilience": "resilient",
+    "chances": "chances",
     "simulate": "simulating",
     "play": "playing",
     "render": "rendering",

@@ -23,6 +23,18 @@ def positive_seconds(value: str) -> float:
     return seconds
 
 
+def probability(value: str) -> float:
+    """A probability in [0, 1] (``--wear``), as a number or a percentage (``2%``)."""
+    text = value.strip()
+    try:
+        p = float(text[:-1]) / 100 if text.endswith("%") else float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"'{value}' is not a probability") from None
+    if not math.isfinite(p) or not 0.0 <= p <= 1.0:
+        raise argparse.ArgumentTypeError(f"must be a probability in [0, 1], not {value}")
+    return p
+
+
 def positive_megabytes(value: str) -> int:
     """A positive whole number of megabytes (``--memory-limit``)."""
     try:

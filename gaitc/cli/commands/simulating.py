@@ -21,7 +21,13 @@ from gaitc.api.simulation import (
     run_document,
     simulate_spec,
 )
-from gaitc.cli.commands.arguments import add_prefer, mcap_file, run_file, semantics_of
+from gaitc.cli.commands.arguments import (
+    add_prefer,
+    mcap_file,
+    probability,
+    run_file,
+    semantics_of,
+)
 from gaitc.cli.exitcodes import ExitCode, exit_code_help
 from gaitc.cli.reporting import document, exit_code_of, print_json
 from gaitc.cli.status import progress_display
@@ -34,6 +40,9 @@ EPILOG = """environments:
                             unrealizable spec without CONTROLLER, plays its counter-strategy
   --env scripted FILE.yaml  a scenario: per step the hazard and the legs that degrade/fail
   --env scripted RUN.jsonl  the inputs of a run file (gaitc play, simulate --out), again
+  --env stochastic [--rates RATES.yaml] [--wear P] [--seed N]
+                            drawn from the rates 'gaitc chances' reads (a leg's wear chance
+                            a move, hazards switching); unrated wear is always taken
 A counter-strategy (from 'gaitc counter') is the environment itself; --env random,
 adversarial or scripted RUN.jsonl then says how the robot answers (adversarial: it avoids
 forced deadlocks; a run file: as the run did).
@@ -62,7 +71,13 @@ def register(sub: Any) -> None:
     p.add_argument("--env", nargs="+", metavar="KIND", default=[EnvironmentKind.RANDOM.value],
                    help="scripted FILE.yaml | scripted RUN.jsonl | random | adversarial "
                    "(default random)")
-    p.add_argument("--seed", type=int, help="seed of the random environment (default 0)")
+    p.add_argument("--seed", type=int,
+                   help="seed of the random or stochastic environment (default 0)")
+    p.add_argument("--rates", metavar="RATES.yaml",
+                   help="the stochastic environment's chances (docs/how-to/chances.md)")
+    p.add_argument("--wear", type=probability, metavar="P",
+                   help="the stochastic environment: every leg in use loses a level with "
+                        "chance P a move")
     p.add_argument("--steps", type=int, metavar="N",
                    help="number of steps (default 50; a scenario's length when scripted)")
     p.add_argument("--out", metavar="FILE", type=run_file,
@@ -116,7 +131,8 @@ def settle_environment(args: argparse.Namespace, real_sensors: bool = False) -> 
     if args.seed is not None and real_sensors:
         raise UsageError("--seed seeds the simulated random environment; the serial backend "
                          "reads real sensors")
-    if args.seed is not None and kind != EnvironmentKind.RANDOM:
+    if args.seed is not None and kind not in (EnvironmentKind.RANDOM,
+                                              EnvironmentKind.STOCHASTIC):
         raise UsageError(f"--seed seeds the random environment; --env {kind} uses no random "
                          "numbers (drop --seed, or use --env random)")
 
@@ -133,6 +149,12 @@ def opponent_of(args: argparse.Namespace) -> Opponent:
         return Opponent(EnvironmentKind.SCRIPTED, rest[0])
     if rest:
         raise UsageError(f"--env {kind} takes no file (got '{rest[0]}')")
+    rates, wear = getattr(args, "rates", None), getattr(args, "wear", None)
+    if kind == EnvironmentKind.STOCHASTIC:
+        return Opponent(EnvironmentKind.STOCHASTIC, rates=rates, wear=wear)
+    if rates is not None or wear is not None:
+        raise UsageError("--rates and --wear give the chances of the stochastic environment: "
+                         "use --env stochastic")
     return Opponent(EnvironmentKind.parse(kind))
 
 
