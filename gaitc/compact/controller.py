@@ -23,7 +23,7 @@ from __future__ import annotations
 import json
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import Any, Final
+from typing import TYPE_CHECKING, Any, Final, TypedDict
 
 from gaitc.compact.diagram import (
     Branch,
@@ -40,6 +40,9 @@ from gaitc.diagnostics import ControllerError, Span
 from gaitc.ir.bddfile import SymbolicController, node_table
 from gaitc.ir.controller import ControllerKind, IntegerVar, integers_from_json, integers_to_json
 from gaitc.ir.spec import GR1Spec, Semantics
+
+if TYPE_CHECKING:
+    from dd.cudd import BDD, Function
 
 COMPACT_FORMAT: Final = "compact"
 COMPACT_VERSION: Final = 1
@@ -195,16 +198,25 @@ class Runner:
 
 
 # -------------------------------------------------------------------- back to BDDs
-def relations(bdd: Any, ctrl: CompactController) -> dict[str, Any]:
+class Relations(TypedDict):
+    """A compact controller's diagrams as BDDs (:func:`relations`)."""
+
+    strategies: list[Function]
+    goals: list[Function]
+    start: Function
+    assumed: Function
+
+
+def relations(bdd: BDD, ctrl: CompactController) -> Relations:
     """The diagrams as BDDs of ``bdd`` over the spec's bits: per goal the move relation
     (path cube and move cube), the goal functions, the start relation or set and the
     assumption monitor (true without one)."""
     move_cubes = [_move_cube(bdd, ctrl, k, primed=True) for k in range(len(ctrl.moves))]
     truth = [bdd.false, bdd.true]
     # nodes shared by several roots are built once per reading of the leaves
-    cache: dict[int, dict[Ref, Any]] = {id(move_cubes): {}, id(truth): {}}
+    cache: dict[int, dict[Ref, Function]] = {id(move_cubes): {}, id(truth): {}}
 
-    def diagram(root: Ref, leaves: Sequence[Any]) -> Any:
+    def diagram(root: Ref, leaves: Sequence[Function]) -> Function:
         built = cache[id(leaves)]
         for index in reachable_nodes(ctrl.nodes, [root]):
             if index in built:
@@ -218,7 +230,7 @@ def relations(bdd: Any, ctrl: CompactController) -> dict[str, Any]:
             built[index] = out
         return leaves[leaf_value(root)] if root < 0 else built[root]
 
-    start_leaves: Sequence[Any] = truth if ctrl.semantics == Semantics.ROBOTICS else move_cubes
+    start_leaves: Sequence[Function] = truth if ctrl.semantics == Semantics.ROBOTICS else move_cubes
     start = diagram(ctrl.start_root, start_leaves)
     if ctrl.semantics != Semantics.ROBOTICS:
         # the start diagram reads the first inputs as next values: bring them to now
@@ -232,13 +244,13 @@ def relations(bdd: Any, ctrl: CompactController) -> dict[str, Any]:
     }
 
 
-def monitor_function(bdd: Any, ctrl: CompactController) -> Any:
+def monitor_function(bdd: BDD, ctrl: CompactController) -> Function:
     """The assumption monitor as a BDD of ``bdd`` over current bits and the inputs' next
     bits (true when the controller carries none)."""
     return relations(bdd, ctrl)["assumed"]
 
 
-def _move_cube(bdd: Any, ctrl: CompactController, index: int, primed: bool) -> Any:
+def _move_cube(bdd: BDD, ctrl: CompactController, index: int, primed: bool) -> Function:
     cube: dict[str, bool] = {}
     for f, value in zip(ctrl.vocabulary.outputs, ctrl.moves[index], strict=True):
         cube.update(f.cube(value, primed))
