@@ -20,6 +20,7 @@ so that the independent verifier (:mod:`gaitc.verifier.symbolic`) proves it on e
 
 from __future__ import annotations
 
+import html
 import json
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
@@ -38,8 +39,11 @@ from gaitc.compact.diagram import (
 from gaitc.core.vocabulary import Field, Vocabulary
 from gaitc.diagnostics import ControllerError, Span
 from gaitc.ir.bddfile import SymbolicController, node_table
+from gaitc.ir.bitblast import bitblast
 from gaitc.ir.controller import ControllerKind, IntegerVar, integers_from_json, integers_to_json
+from gaitc.ir.manager import manager
 from gaitc.ir.spec import GR1Spec, Semantics
+from gaitc.verifier.logic import Logic
 
 if TYPE_CHECKING:
     from dd.cudd import BDD, Function
@@ -167,8 +171,6 @@ class CompactController:
     def _repr_html_(self) -> str:
         """Its sizes: which of its rules a run uses depends on the spec, so its rules are
         shown by ``gaitc.api.drawing.compact_rules(spec, controller)``."""
-        import html
-
         return (f"<p>compact controller: {html.escape(self.summary())}; its rules, with the "
                 "spec: <code>compact_rules(spec, controller)</code></p>")
 
@@ -278,12 +280,8 @@ def to_symbolic(ctrl: CompactController, spec: GR1Spec | None = None) -> Symboli
     the moves it makes, for the independent verifier and the symbolic runtime.  With
     ``spec``, its θe and ρe are the controller's (a runtime enumerates the environment's
     moves from them); without, they are left true (the verifier reads the spec's own)."""
-    from gaitc.ir.manager import manager
-
     env_init = env_trans = None
     if spec is not None:
-        from gaitc.ir.bitblast import bitblast
-        from gaitc.verifier.logic import Logic
 
         logic = Logic(bitblast(spec), diagram_order(ctrl))
         bdd = logic.bdd

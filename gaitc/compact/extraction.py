@@ -20,6 +20,7 @@ from gaitc.compact.diagram import DONT_CARE, Builder, Ref, Slot, leaf, reachable
 from gaitc.core.vocabulary import Vocabulary
 from gaitc.diagnostics.choices import Choice
 from gaitc.ir.bddfile import SymbolicController, declare, materialize
+from gaitc.ir.manager import manager
 from gaitc.ir.spec import Semantics
 
 if TYPE_CHECKING:
@@ -241,8 +242,6 @@ def _defined(ref: int, otherwise: int | None = None) -> int:
 def compact_from_symbolic(ctrl: SymbolicController, vocabulary: Vocabulary,
                           orders: Sequence[FieldOrder] = ORDERS) -> CompactController:
     """The compact controller of a stored symbolic controller."""
-    from gaitc.ir.manager import manager
-
     bdd = manager()
     declare(bdd, ctrl)
     roots = materialize(bdd, ctrl)

@@ -32,7 +32,7 @@ from dataclasses import dataclass, field, replace
 from itertools import combinations
 from typing import TYPE_CHECKING, TypeAlias
 
-from gaitc.compact.controller import CompactController
+from gaitc.compact.controller import CompactController, relations, to_symbolic
 from gaitc.compact.diagram import (
     DONT_CARE,
     Builder,
@@ -53,8 +53,14 @@ from gaitc.core.changes import Change, HazardSwitch, LegFails, LegRepaired, LegW
 from gaitc.core.modes import Outcome
 from gaitc.core.vocabulary import HAZARD_FIELD, Field, Vocabulary
 from gaitc.diagnostics.choices import Choice
+from gaitc.ir.bddfile import materialize
 from gaitc.ir.formula import unreachable
 from gaitc.ir.spec import GR1Spec, Semantics
+from gaitc.solver.canonical import spec_integers
+from gaitc.solver.game import Game, goal_strategies
+from gaitc.solver.symbolic import Options, SymbolicSpec
+from gaitc.solver.symbolic_strategy import symbolic_controller
+from gaitc.verifier.recovery import FallbackRelations, RecoveryRelations, verify_recovery
 
 if TYPE_CHECKING:
     from dd.cudd import BDD, Function
@@ -328,9 +334,6 @@ def recovering_controller(spec: GR1Spec, vocabulary: Vocabulary,
                           semantics: Semantics = Semantics.DEFAULT,
                           options: RecoveryOptions | None = None) -> RecoveringController:
     """The recovering compact controller of ``spec`` (see the module text)."""
-    from gaitc.solver.game import Game, goal_strategies
-    from gaitc.solver.symbolic import Options, SymbolicSpec
-
     opts = options or RecoveryOptions()
     sym = SymbolicSpec(spec, Options(care=False))
     result = Game(sym, purpose="solving the recovery game").solve(keep_layers=True)
@@ -460,8 +463,6 @@ def recovering_controller(spec: GR1Spec, vocabulary: Vocabulary,
 
 
 def _integers(sym: SymbolicSpec) -> dict[str, IntegerVar]:
-    from gaitc.solver.canonical import spec_integers
-
     return dict(spec_integers(sym))
 
 
@@ -480,10 +481,6 @@ def _game(work: _Work, spec: GR1Spec, kept: tuple[int, ...]) -> _Solved | None:
     """The game with only the goals ``kept`` (solved once), in the shared manager."""
     if kept in work.games:
         return work.games[kept]
-    from gaitc.ir.bddfile import materialize
-    from gaitc.solver.game import Game
-    from gaitc.solver.symbolic import Options, SymbolicSpec
-    from gaitc.solver.symbolic_strategy import symbolic_controller
 
     variant = spec.with_sections(sys_liveness=tuple(spec.sys_liveness[j] for j in kept))
     sym = SymbolicSpec(variant, Options(care=False))
@@ -588,9 +585,6 @@ def _defined(ref: int, otherwise: int | None = None) -> int:
 def recovery_relations(bdd: BDD, rc: RecoveringController) -> RecoveryRelations:
     """The recovery diagrams of ``rc`` as BDDs of ``bdd`` over the spec's bits, for
     :func:`gaitc.verifier.recovery.verify_recovery`."""
-    from gaitc.compact.controller import relations
-    from gaitc.verifier.recovery import FallbackRelations, RecoveryRelations
-
     base = rc.base
 
     def built(moves: Sequence[Ref], flags: Sequence[Ref]) -> Relations:
@@ -609,9 +603,6 @@ def recovery_relations(bdd: BDD, rc: RecoveringController) -> RecoveryRelations:
 def prove_recovery(spec: GR1Spec, rc: RecoveringController) -> VerificationReport:
     """The verifier's report on ``rc``'s surprise handling (:mod:`gaitc.verifier.recovery`);
     the ordinary part is proved by :meth:`gaitc.forms.compact.CompactForm.verify`."""
-    from gaitc.compact.controller import to_symbolic
-    from gaitc.verifier.recovery import verify_recovery
-
     inputs = rc.base.vocabulary.inputs
     return verify_recovery(spec, to_symbolic(rc.base), lambda b: recovery_relations(b, rc),
                            lambda b: _valid(b, inputs, True), rc.base.semantics)

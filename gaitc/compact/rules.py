@@ -20,8 +20,12 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
+from gaitc.compact.controller import diagram_order, relations
 from gaitc.compact.diagram import Slot, paths
+from gaitc.compact.extraction import counter_moves, reachable
+from gaitc.ir.bitblast import bitblast
 from gaitc.ir.spec import Semantics
+from gaitc.verifier.logic import Logic
 
 if TYPE_CHECKING:
     from dd.cudd import BDD, Function
@@ -229,11 +233,6 @@ def reach(ctrl: CompactController, spec: GR1Spec) -> Reach:
     controller's own move, the goal counter moved by its goal diagrams.  The fixpoint is
     the one compaction shrinks its care sets with (:func:`gaitc.compact.extraction.reachable`),
     here over the controller's relations alone, as the verifier models the closed loop."""
-    from gaitc.compact.controller import diagram_order, relations
-    from gaitc.compact.extraction import counter_moves, reachable
-    from gaitc.ir.bitblast import bitblast
-    from gaitc.verifier.logic import Logic
-
     logic = Logic(bitblast(spec), diagram_order(ctrl))
     bdd = logic.bdd
     env_init, env_trans = logic.conjunction("env_init"), logic.conjunction("env_trans")

@@ -19,6 +19,9 @@ from gaitc.diagnostics import UsageError
 from gaitc.sim.domain import Domain
 from gaitc.sim.environments import AdversarialEnvironment, Environment, RandomEnvironment
 from gaitc.sim.monitor import Monitor
+from gaitc.sim.replay import RunEnvironment
+from gaitc.sim.run import read_jsonl
+from gaitc.sim.scenario import Scenario, ScriptedEnvironment, load_scenario
 
 if TYPE_CHECKING:
     from gaitc.sim.scenario import Scenario
@@ -103,8 +106,6 @@ def environment(opponent: Opponent | Scenario | Environment, bound: Session, see
                 ) -> Environment:
     """The environment ``opponent`` names for a run of ``bound`` (``seed`` for the random
     one), or ``opponent`` itself when it already is one."""
-    from gaitc.sim.scenario import Scenario, ScriptedEnvironment, load_scenario
-
     if isinstance(opponent, Environment):
         return opponent
     if isinstance(opponent, Scenario):
@@ -115,8 +116,6 @@ def environment(opponent: Opponent | Scenario | Environment, bound: Session, see
         return AdversarialEnvironment()
     assert opponent.file is not None  # a scripted opponent reads a file (__post_init__)
     if opponent.replays_run:
-        from gaitc.sim.replay import RunEnvironment
-        from gaitc.sim.run import read_jsonl
 
         return RunEnvironment(read_jsonl(opponent.file), bound.strategy.inputs,
                               bound.domain.legs)
