@@ -176,7 +176,7 @@ def synthesize(
     ``prefer`` orders the preferences of :mod:`gaitc.solver.preferences` (empty: the first move in
     BDD order); ``costs`` gives the terms of the cost-based ones (e.g. a robot model's).
     """
-    from gaitc.ir.bddfile import SymbolicController
+    from gaitc.ir.bddfile import SymbolicController  # lazy: not on check's path (start-up)
 
     found = synthesize_controller(
         spec=spec,
