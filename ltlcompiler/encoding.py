@@ -10,6 +10,7 @@ from typing import TYPE_CHECKING, Final
 
 from gaitc.diagnostics import FormulaError, SpecSemanticError, UsageError
 from gaitc.diagnostics.choices import Choice
+from gaitc.ir.evaluation import evaluate
 from gaitc.ir.formula import (
     Add,
     And,
@@ -234,8 +235,6 @@ class OneHot(Encoding):
                 [self.hazard(h.name, primed) for h in m.hazards])
 
     def _compare_legs(self, cmp: Compare, names: list[tuple[str, bool]]) -> Expr:
-        from gaitc.ir.evaluation import evaluate
-
         ranges = [range(self.legs[n].health, 0, -1) for n, _ in names]
         cases: list[Expr] = []
         for levels in itertools.product(*ranges):

@@ -21,13 +21,16 @@ from functools import cache
 from typing import Any, Final
 
 from lark import Lark, Token
+from lark import __version__ as lark_version
 from lark.exceptions import (
     UnexpectedCharacters,
     UnexpectedEOF,
     UnexpectedInput,
     UnexpectedToken,
 )
-from lark.lexer import PatternStr
+from lark.grammar import Rule
+from lark.lark import _LOAD_ALLOWED_OPTIONS
+from lark.lexer import PatternStr, TerminalDef
 
 from gaitc.diagnostics import (
     FormulaError,
@@ -112,8 +115,6 @@ def _load_options() -> dict[str, Any]:
 def _grammar_key(text: str) -> str:
     """A digest of everything the analysed grammar depends on: the grammar's text, the
     options, the versions of Lark, Python and gaitc."""
-    from lark import __version__ as lark_version
-
     options = json.dumps(_GRAMMAR_OPTIONS, sort_keys=True)
     python = ".".join(map(str, sys.version_info[:2]))
     made_of = "\0".join((text, options, repr(sorted(_load_options())), lark_version,
@@ -124,10 +125,6 @@ def _grammar_key(text: str) -> str:
 def _to_cache(parser: Lark) -> dict[str, Any]:
     """The analysed grammar as plain data, as :meth:`Lark.save` has it before pickling: the
     options given on each load (code among them) left out."""
-    from lark.grammar import Rule
-    from lark.lark import _LOAD_ALLOWED_OPTIONS
-    from lark.lexer import TerminalDef
-
     data, memo = parser.memo_serialize([TerminalDef, Rule])
     data["options"] = {name: value for name, value in data["options"].items()
                        if name not in _LOAD_ALLOWED_OPTIONS}

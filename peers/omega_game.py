@@ -63,6 +63,7 @@ from gaitc.ir.formula import (
 from gaitc.ir.spec import SEMANTICS, GR1Spec, Semantics, semantics_named
 from gaitc.ir.traversal import Memo, Node, fold
 from peers.game import peer_game
+from slugs_bridge.formats import load_spec_file
 
 #: omega's ``qinit`` for each semantics (see the module's docstring).
 QINIT = {Semantics.DEFAULT: r"\A \E", Semantics.ROBOTICS: r"\A \A"}
@@ -153,7 +154,7 @@ def _formula_children(node: Node) -> tuple[Node, ...]:
 def build_automaton(spec: GR1Spec, semantics: Semantics = Semantics.DEFAULT) -> Any:
     """omega's ``temporal.Automaton`` for ``spec`` under ``semantics``, ready for
     ``omega.games.gr1.solve_streett_game`` (see the module's docstring)."""
-    from omega.symbolic import temporal
+    from omega.symbolic import temporal  # lazy: the peers extra (omega) may be missing
 
     game = peer_game(spec)
     names = omega_names(game)
@@ -190,7 +191,7 @@ def build_automaton(spec: GR1Spec, semantics: Semantics = Semantics.DEFAULT) -> 
 
 def decide(spec: GR1Spec, semantics: Semantics = Semantics.DEFAULT) -> bool:
     """Whether ``spec`` is realizable under ``semantics``, by omega's GR(1) solver."""
-    from omega.games import gr1
+    from omega.games import gr1  # lazy: the peers extra (omega) may be missing
 
     aut = build_automaton(spec, semantics)
     winning, _, _ = gr1.solve_streett_game(aut)
@@ -201,8 +202,6 @@ def decide(spec: GR1Spec, semantics: Semantics = Semantics.DEFAULT) -> bool:
 def main(argv: list[str] | None = None) -> int:
     """``python -m peers.omega_game FILE [--semantics S]``: 0 realizable, 3 unrealizable,
     1 for a file that cannot be read or translated."""
-    from slugs_bridge.formats import load_spec_file
-
     parser = argparse.ArgumentParser(
         prog="python -m peers.omega_game",
         description="Decide a .slugsin or .structuredslugs spec with omega's GR(1) solver.")

@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import html
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
@@ -31,12 +31,14 @@ from gaitc.analysis.markov import (
     SpecModel,
     user_trans_clauses,
 )
+from gaitc.analysis.patrol_plot import write_patrol_plot
 from gaitc.diagnostics import SpecSemanticError
 from gaitc.ir.bits import encode_bits, spec_bits
 from gaitc.ir.controller import Controller, ControllerKind, ControllerNode, spec_integers
 from gaitc.ir.spec import GR1Spec
 from gaitc.sim.domain import Domain, State
 from gaitc.sim.rates import Rates, StepLaw
+from gaitc.sim.strategy import strategy_from_controller
 from gaitc.sim.view import StrategyView
 from ltlcompiler.model import NO_GAIT, Model
 
@@ -103,7 +105,6 @@ class Chances:
     def plot(self, path: str) -> None:
         """Write the chance of at least k patrols against k (``.svg``, or ``.png`` with
         matplotlib)."""
-        from gaitc.analysis.patrol_plot import write_patrol_plot
 
         others = [(name, f.patrols) for name, f in (("the controller written", self.written),
                                                     ("the controller given", self.given))
@@ -260,7 +261,6 @@ def chances(gr1: GR1Spec, model: Model, domain: Domain, rates: Rates, file: str,
         answer.controller = best_controller(gr1, mdp, opt.patrols)
         seconds["scheduler"] = time.perf_counter() - clock
         clock = time.perf_counter()
-        from gaitc.sim.strategy import strategy_from_controller
 
         view = strategy_from_controller(answer.controller, gr1, file="<written>")
         answer.written = chain_figures(view, domain, law, opt)
@@ -301,7 +301,6 @@ def sensitivity(model: Model, domain: Domain, rates: Rates, opt: ChancesOptions,
                 headline: float) -> tuple[Gain, ...]:
     """The gain in the headline chance from one more health level on each leg that has more
     than one, and from a cache on each free cell (no cache, no hazard), best first."""
-    from dataclasses import replace
 
     variants: list[tuple[str, Model]] = []
     for i, leg in enumerate(model.legs):

@@ -13,6 +13,7 @@ from __future__ import annotations
 import contextlib
 import html
 import time
+from collections import deque
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
@@ -29,10 +30,17 @@ from gaitc.analysis.story import deadlock_move, last_move, narrate, narrate_valu
 from gaitc.analysis.units import GUARANTEE_SECTIONS, Unit, keep_only, units
 from gaitc.diagnostics import render, source_lines
 from gaitc.ir.controller import Controller
+from gaitc.ir.formula import atoms
 from gaitc.ir.roles import Goal
 from gaitc.ir.spec import GR1Spec, Semantics
 from gaitc.sim.counterplay import choose_play
+from gaitc.sim.domain import Domain
+from gaitc.sim.monitor import Monitor
 from gaitc.sim.play import Play
+from gaitc.sim.replay import replay
+from gaitc.sim.simulator import Simulator
+from gaitc.sim.strategy import strategy_from_controller
+from ltlcompiler.decoding import decode
 from ltlcompiler.encoding import EncodingName
 
 if TYPE_CHECKING:
@@ -286,7 +294,6 @@ def _final_move(spec: GR1Spec, counter: Controller, play: Play, model: Model,
                 encoding: EncodingName, run: Run) -> str | None:
     if not play.deadlock or not run.steps:
         return None
-    from gaitc.sim.domain import Domain
 
     values = deadlock_move(spec, counter, play.path[-1])
     if values is None:
@@ -333,8 +340,6 @@ def _trying_play(counter: Controller, spec: GR1Spec, model: Model | None,
 def _goal_regions(spec: GR1Spec, model: Model, goals: tuple[int, ...]) -> set[str]:
     """The regions the blocked goals (``sys_liveness`` indices) name: the goal statements'
     clauses come first among the liveness clauses, in the order of ``model.goals``."""
-    from gaitc.ir.formula import atoms
-
     from_goals = [j for j, c in enumerate(spec.sys_liveness)
                   if c.origin is not None and isinstance(c.origin.role, Goal)]
     if len(from_goals) != len(model.goals):
@@ -352,10 +357,6 @@ def _region_progress(counter: Controller, spec: GR1Spec, model: Model,
                      ) -> Callable[[int], int] | None:
     """For each counter-strategy node, the robot's distance on the map (moves along τ) to
     the regions of the goals it is kept from; None where the goals name no region."""
-    from collections import deque
-
-    from ltlcompiler.decoding import decode
-
     targets = _goal_regions(spec, model, goals)
     if not targets:
         return None
@@ -392,12 +393,6 @@ def _goal_label(spec: GR1Spec, j: int) -> str:
 def _run(counter: Controller, spec: GR1Spec, model: Model, encoding: EncodingName,
          play: Play, file: str) -> Run:
     """The run of ``play``, every step checked against ``spec``."""
-    from gaitc.sim.domain import Domain
-    from gaitc.sim.monitor import Monitor
-    from gaitc.sim.replay import replay
-    from gaitc.sim.simulator import Simulator
-    from gaitc.sim.strategy import strategy_from_controller
-
     strategy = strategy_from_controller(counter, spec, file)
     stopped = None
     if play.deadlock:

@@ -73,9 +73,11 @@ def write_patrol_plot(path: str | Path, title: str, best: Sequence[float],
     if suffix != ".png":
         raise UsageError(f"--plot writes .svg or .png, not '{suffix or path}'")
     try:
+        # lazy: matplotlib is optional: PNG plots only
         import matplotlib
 
         matplotlib.use("Agg")
+        # lazy: matplotlib is optional: PNG plots only
         from matplotlib import pyplot
     except ImportError:
         raise UsageError("a .png plot needs matplotlib (pip install matplotlib); "

@@ -20,6 +20,8 @@ from typing import Any
 from gaitc.diagnostics import SolverError, UsageError
 from gaitc.diagnostics.processes import as_worker
 from gaitc.ir.spec import GR1Spec, Semantics
+from gaitc.solver import synthesis
+from gaitc.solver.symbolic import Options
 from ltlcompiler.encoding import EncodingName
 from ltlcompiler.lowering import lower
 from ltlcompiler.model import Model
@@ -37,9 +39,6 @@ def spec_realizable(spec: GR1Spec, semantics: Semantics, first: tuple[str, ...] 
     order, without the solver's race (gaitc.solver.portfolio): variants of a robot's task are
     the family it is tuned for, and the workers of --jobs and --dask already fill the
     machine."""
-    from gaitc.solver import synthesis
-    from gaitc.solver.symbolic import Options
-
     options = Options(first=first, reordering=False)
     return synthesis.check(spec, semantics, options=options).realizable
 
@@ -63,7 +62,7 @@ class Pool:
             raise UsageError("--jobs must be at least 1")
         if self.dask is not None:
             try:
-                from distributed import Client
+                from distributed import Client  # lazy: the cluster extra (Dask) may be missing
             except ImportError:
                 raise UsageError("--dask needs the 'distributed' package: pip install "
                                  "'dask[distributed]' (scripts/setup.sh installs it)") from None

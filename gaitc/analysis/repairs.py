@@ -36,6 +36,8 @@ from dataclasses import dataclass, field
 from typing import Final
 
 from gaitc.analysis.oracle import WORKERS, Oracle
+from gaitc.analysis.parametric import winning_caps
+from gaitc.analysis.variants import with_health
 from gaitc.diagnostics import GaitcError, SolverError, source_lines
 from gaitc.ir.formula import Var
 from gaitc.ir.roles import graded_levels
@@ -588,8 +590,6 @@ class _Search:
 def _raised(model: Model, levels: dict[str, int]) -> GR1Spec:
     """``model`` with the given legs' health raised, lowered on the binary encoding (the
     verdict does not depend on the encoding; the binary one grows by bits, not levels)."""
-    from gaitc.analysis.variants import with_health
-
     return lower(with_health(model, levels), EncodingName.BINARY)
 
 
@@ -656,8 +656,6 @@ def _least_leg_levels(model: Model, oracle: Oracle, top: int = MAX_HEALTH) -> _L
     bracketed by doubling the raise (:func:`_doubling`, all legs a round) and read off one
     parametric game over the bracket, the leg's cap a rigid parameter
     (:func:`gaitc.analysis.parametric.winning_caps`)."""
-    from gaitc.analysis.parametric import winning_caps
-
     tops = {leg.name: _vector_top(model, [leg.name], top) for leg in model.legs}
     brackets, reached, stopped = _doubling(
         oracle, {leg.name: leg.health for leg in model.legs}, tops,

@@ -23,13 +23,14 @@ from __future__ import annotations
 import itertools
 import math
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any, Final
 
 from gaitc.analysis.lattice import fatal_sets, minimal_vectors
+from gaitc.analysis.legs_picture import legs_picture
 from gaitc.analysis.parametric import failure_sets, winning_caps, winning_parameters
 from gaitc.analysis.pool import Pool
-from gaitc.analysis.tolerance import DEFAULT_BOUND, ToleranceReport
+from gaitc.analysis.tolerance import DEFAULT_BOUND, ToleranceReport, tolerance
 from gaitc.analysis.variants import (
     anytime_spec,
     at_most,
@@ -42,10 +43,16 @@ from gaitc.analysis.variants import (
     with_hazards,
     with_health,
 )
+from gaitc.core.spec import Spec
 from gaitc.diagnostics import GaitcError
+from gaitc.ir.formula import Var
 from gaitc.ir.roles import Fails, WearsUpTo, graded_levels
 from gaitc.ir.spec import Semantics
+from gaitc.solver.game import Game
+from gaitc.solver.symbolic import Options, SymbolicSpec
+from gaitc.solver.synthesis import state_bits
 from ltlcompiler.encoding import EncodingName
+from ltlcompiler.lowering import lower
 from ltlcompiler.model import Model
 
 METHODS: Final = ("parametric", "lattice")
@@ -209,8 +216,6 @@ class Resilience:
                 f"any-time k = {self.any_time_k}>")
 
     def picture(self) -> Any:
-        from gaitc.analysis.legs_picture import legs_picture
-
         return legs_picture(self)
 
     def _repr_svg_(self) -> str:
@@ -292,11 +297,6 @@ def _surprises(report: Resilience, model: Model, encoding: EncodingName,
                semantics: Semantics, bound: int, pool: Pool, notes: list[str]) -> Resilience:
     """Section 5: the tolerance of surprises up to ``bound``, when the game is small enough
     (:data:`MAX_TOLERANCE_BITS`)."""
-    from gaitc.analysis.tolerance import tolerance
-    from gaitc.core.spec import Spec
-    from gaitc.solver.synthesis import state_bits
-    from ltlcompiler.lowering import lower
-
     spec = Spec(report.file, lower(model, encoding), model, encoding)
     bits = state_bits(spec.gr1)
     if bits > MAX_TOLERANCE_BITS:
@@ -309,8 +309,6 @@ def _surprises(report: Resilience, model: Model, encoding: EncodingName,
 
 
 def _with(report: Resilience, **changes: Any) -> Resilience:
-    from dataclasses import replace
-
     return replace(report, **changes)
 
 
@@ -375,10 +373,6 @@ def defeat_candidates(model: Model, legs: list[str], size: int,
 
 def _defeating(model: Model, encoding: EncodingName, legs: list[str], size: int,
                semantics: Semantics) -> tuple[tuple[str, ...], ...]:
-    from gaitc.ir.formula import Var
-    from gaitc.solver.game import Game
-    from gaitc.solver.symbolic import Options, SymbolicSpec
-
     spec = anytime_spec(model, encoding, size, legs, parametric=True)
     names = [breakable_name(leg) for leg in legs]
     sym = SymbolicSpec(spec, Options(first=(*names, *(broken_name(leg) for leg in legs))))
@@ -486,8 +480,6 @@ def _hazard_wear(model: Model, name: str, declared: int, pool: Pool
     realizable) and h - 1 (h the most levels a leg has; more wear changes nothing, a leg
     never drops below 1), and whether it survives the hazard failing the legs outright
     (eq. 3.9). More wear only frees the environment, so survival is monotone."""
-    from dataclasses import replace
-
     def variant(wears: int | None) -> Model:
         harm = Fails() if wears is None else WearsUpTo(wears)
         return replace(model, hazards=tuple(replace(h, harm=harm) if h.name == name else h

@@ -39,6 +39,7 @@ from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Final
 
+from gaitc.core.spec import Spec as LoadedSpec
 from gaitc.diagnostics import Diagnostic, Span
 from gaitc.diagnostics.choices import Choice
 from gaitc.ir.bddwalk import cofactor, first_assignment
@@ -48,6 +49,7 @@ from gaitc.ir.formula import FALSE, TRUE, Compare, Expr, IntConst, IntVar, Not, 
 from gaitc.ir.spec import Clause, GR1Spec, Origin, Semantics
 from gaitc.sim.monitor import clause_rule
 from gaitc.solver.symbolic import BDDNode, Options, SymbolicSpec
+from ltlcompiler.encoding import EncodingName
 
 if TYPE_CHECKING:
     from gaitc.core.spec import Spec
@@ -346,8 +348,6 @@ def _analyse(spec: Spec | GR1Spec, check: Callable[[], None] | None,
              symbolic: SymbolicSpec | None = None
              ) -> tuple[Separation, SymbolicSpec, BDDNode]:
     """:func:`separation`, with the symbolic spec and the environment's winning region."""
-    from gaitc.core.spec import Spec as LoadedSpec
-
     started = time.monotonic()
     loaded = spec if isinstance(spec, LoadedSpec) else None
     gr1 = spec.gr1 if isinstance(spec, LoadedSpec) else spec
@@ -405,8 +405,7 @@ def separation_warnings(spec: Spec | GR1Spec) -> tuple[Diagnostic, ...]:
 def _domain(loaded: Spec | None) -> Domain | None:
     if loaded is None or loaded.model is None:
         return None
-    from gaitc.sim.domain import Domain
-    from ltlcompiler.encoding import EncodingName
+    from gaitc.sim.domain import Domain  # lazy: not on the lint and check paths (start-up)
 
     return Domain(loaded.model, loaded.encoding or EncodingName.ONEHOT)
 
@@ -546,6 +545,7 @@ class _Teller:
         if self.domain is None:
             changed = [f"{n}={after[n]}" for n in play.names if after[n] != before[n]]
             return "sets " + ", ".join(changed) if changed else "keeps every value"
+        # lazy: a SLUGS spec's check loads no .gait front end (start-up)
         from ltlcompiler.model import NO_GAIT
 
         was, now = self.domain.decode(before), self.domain.decode(after)
@@ -652,8 +652,6 @@ def stay_separated(spec: Spec | GR1Spec, semantics: Semantics = Semantics.DEFAUL
     state (it forces J^e_i from P_i, and it is never stuck), so a controller of this spec
     wins against every environment that keeps what it still can; its assumptions are
     weaker and its ρs stronger than ``spec``'s, so it is also a controller of ``spec``."""
-    from gaitc.core.spec import Spec as LoadedSpec
-
     gr1 = spec.gr1 if isinstance(spec, LoadedSpec) else spec
     found, sym, _ = _analyse(spec, check)
     if found.well_separated:

@@ -29,6 +29,7 @@ PRECISION = 1e-10  # the value iteration's relative precision for the unbounded 
 def require_storm() -> Any:
     """The ``stormpy`` module, or a usage error naming the extra that installs it."""
     try:
+        # lazy: the chances extra (stormpy) may be missing; gaitc chances then names it
         import stormpy
     except ImportError:
         raise UsageError(f"gaitc chances needs Storm's Python binding: pip install "

@@ -13,6 +13,8 @@ from gaitc.ir.controller import Controller
 from gaitc.ir.spec import GR1Spec
 from gaitc.sim.play import Play
 from gaitc.sim.run import Run, Step
+from gaitc.solver.canonical import fix, primed, smallest
+from gaitc.solver.symbolic import SymbolicSpec
 
 
 def narrate(run: Run, play: Play, goal_names: list[str], final: str | None = None
@@ -157,9 +159,6 @@ def narrate_values(counter: Controller, play: Play) -> list[str]:
 def deadlock_move(spec: GR1Spec, counter: Controller, node: int) -> dict[str, int] | None:
     """The environment's winning last input at the deadlock ``node``: one its assumptions
     allow and after which no robot answer keeps the guarantees (bits by name)."""
-    from gaitc.solver.canonical import fix, primed, smallest
-    from gaitc.solver.symbolic import SymbolicSpec
-
     sym = SymbolicSpec(spec)
     ins, outs = list(sym.input_bits), list(sym.output_bits)
     here = fix(sym, sym.env_trans & sym.sys_trans, ins + outs, counter.nodes[node].state)

@@ -26,9 +26,12 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Any, Final
 
+from dd.cudd import copy_bdd
+
 from gaitc.core.spec import Spec
 from gaitc.diagnostics import UsageError
 from gaitc.diagnostics.choices import Choice
+from gaitc.ir.bddfile import SymbolicController, node_table
 from gaitc.ir.formula import (
     Add,
     And,
@@ -58,8 +61,20 @@ from gaitc.ir.roles import (
 )
 from gaitc.ir.spec import Clause, GR1Spec, Origin, Semantics, Variable
 from gaitc.sim.monitor import clause_rule
-from gaitc.solver.game import Limits, Progress
-from gaitc.solver.symbolic import Options
+from gaitc.solver.canonical import spec_integers
+from gaitc.solver.game import (
+    ControllerTooLarge,
+    Game,
+    GameResult,
+    GameStats,
+    Limits,
+    Progress,
+    goal_strategies,
+)
+from gaitc.solver.strategy import extract_strategy
+from gaitc.solver.symbolic import Options, SymbolicSpec
+from gaitc.solver.synthesis import memory_guard
+from ltlcompiler.encoding import make_encoding
 
 if TYPE_CHECKING:
     from gaitc.ir.bddfile import SymbolicController
@@ -194,7 +209,6 @@ def _leg_formulas(spec: Spec) -> LegFormulas:
     (the names are those of :meth:`_kind`)."""
     if spec.model is None:
         return {}
-    from ltlcompiler.encoding import make_encoding
 
     enc: Encoding = make_encoding(spec.model, spec.robot_encoding)
     out: LegFormulas = {}
@@ -355,10 +369,6 @@ def _solve(spec: GR1Spec, semantics: Semantics, bound: int, limits: Limits,
     """Solve the tolerance game ``spec`` (of :func:`tolerant_spec` with ``bound``) once and
     read off every budget 0..bound, and whether it is :attr:`_Solved.stable` (``asked``:
     the budget this game stands for, default ``bound``)."""
-    from gaitc.solver.game import Game
-    from gaitc.solver.symbolic import SymbolicSpec
-    from gaitc.solver.synthesis import memory_guard
-
     name = spec.inputs[-1].name
     tolerated = []
     with memory_guard():
@@ -394,10 +404,6 @@ def projected_controller(spec: GR1Spec, solved: _Solved, counter: int,
                          semantics: Semantics) -> SymbolicController:
     """The tolerance game's strategy at counter value ``counter`` (kept on both sides of
     every step) with the counter's bits taken out: a symbolic controller of ``spec``."""
-    from gaitc.ir.bddfile import SymbolicController, node_table
-    from gaitc.solver.canonical import spec_integers
-    from gaitc.solver.game import goal_strategies
-
     sym, result = solved.sym, solved.result
     assert sym is not None and result is not None
     name = sym.spec.inputs[-1].name
@@ -433,12 +439,6 @@ def projected_automaton(spec: GR1Spec, solved: _Solved, counter: int, semantics:
     winning region and the strategy's layers, projected alike, are carried into the game
     of ``spec`` itself and unrolled by the solver's extraction (cofactoring at a constant
     counter commutes with every step of it); None past ``opts.max_nodes`` nodes."""
-    from dd.cudd import copy_bdd
-
-    from gaitc.solver.game import ControllerTooLarge, GameResult, GameStats
-    from gaitc.solver.strategy import extract_strategy
-    from gaitc.solver.symbolic import SymbolicSpec
-
     sym, result = solved.sym, solved.result
     assert sym is not None and result is not None
     name = sym.spec.inputs[-1].name

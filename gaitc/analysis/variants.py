@@ -11,7 +11,20 @@ from __future__ import annotations
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import replace
 
-from gaitc.ir.formula import Const, Expr, Iff, Implies, Not, Var, conj, substitute
+from gaitc.ir.formula import (
+    FALSE,
+    TRUE,
+    And,
+    Const,
+    Expr,
+    Iff,
+    Implies,
+    Not,
+    Or,
+    Var,
+    conj,
+    substitute,
+)
 from gaitc.ir.spec import Clause, GR1Spec, Origin, Variable
 from ltlcompiler.encoding import EncodingName, make_encoding
 from ltlcompiler.lowering import lower
@@ -94,8 +107,6 @@ def family_legs(model: Model, gaits: tuple[str, ...]) -> tuple[tuple[str, ...], 
 def at_most(items: Sequence[Expr], k: int) -> Expr:
     """"At most ``k`` of ``items`` hold", as a DAG of n·k shared nodes: F(i, j) = "at most
     j of items[i:]" is (items[i] & F(i+1, j-1)) | (!items[i] & F(i+1, j))."""
-    from gaitc.ir.formula import FALSE, TRUE, And, Or
-
     memo: dict[tuple[int, int], Expr] = {}
     n = len(items)
     for i in range(n, -1, -1):

@@ -13,9 +13,15 @@ from pathlib import Path
 from typing import Any
 
 from gaitc.analysis.chances import Assumptions, Chances, ChancesOptions, Figures, Gain
+from gaitc.analysis.chances import chances as compute
 from gaitc.core.spec import Spec, SpecLike, as_spec
 from gaitc.diagnostics import UsageError, usercache
 from gaitc.diagnostics.files import write_atomically
+from gaitc.diagnostics.versions import PACKAGE
+from gaitc.forms.reader import load_runtime
+from gaitc.forms.registry import entry
+from gaitc.ir.controller import controller_from_dict, controller_to_dict
+from gaitc.sim.domain import Domain
 from gaitc.sim.rates import Rates, load_rates
 
 #: The version of the cached answers (a change of the model or of what is cached bumps it).
@@ -33,9 +39,6 @@ def chances(spec: SpecLike, controller: str | Path | None = None, *,
     achieves, the controller Storm's scheduler gives (when ``write``) and, with
     ``controller`` (a controller file), that one's, with how long its assumptions hold; with
     ``sensitivity``, what one more health level on a leg or one more cache buys."""
-    from gaitc.analysis.chances import chances as compute
-    from gaitc.forms.reader import load_runtime
-    from gaitc.sim.domain import Domain
 
     loaded: Spec = as_spec(spec)
     model = loaded.model
@@ -67,7 +70,6 @@ def chances(spec: SpecLike, controller: str | Path | None = None, *,
 def _key(spec: Spec, rates: Rates, opt: ChancesOptions, controller: str | Path | None,
          write: bool, sensitivity: bool) -> str:
     """The digest an answer is cached under: what it was computed from."""
-    from gaitc.diagnostics.versions import PACKAGE
 
     given = None if controller is None else hashlib.sha256(
         Path(controller).read_bytes()).hexdigest()
@@ -86,7 +88,6 @@ def _figures(f: Figures | None) -> list[Any] | None:
 
 
 def _pack(answer: Chances) -> dict[str, Any]:
-    from gaitc.ir.controller import controller_to_dict
 
     a = answer.assumptions
     return {"best": _figures(answer.best), "written": _figures(answer.written),
@@ -101,7 +102,6 @@ def _pack(answer: Chances) -> dict[str, Any]:
 
 def _unpack(data: Any, file: str, rates: Rates, opt: ChancesOptions) -> Chances | None:
     """The cached answer, or None when ``data`` is not one (the cache then misses)."""
-    from gaitc.ir.controller import controller_from_dict
 
     def figures(raw: Any) -> Figures | None:
         if raw is None:
@@ -131,7 +131,6 @@ def _unpack(data: Any, file: str, rates: Rates, opt: ChancesOptions) -> Chances 
 
 def save_best(answer: Chances, path: str | Path) -> None:
     """Write the controller ``answer`` found (an explicit controller file)."""
-    from gaitc.forms.registry import entry
 
     if answer.controller is None:
         raise UsageError("no controller was written: ask chances(..., write=True)")

@@ -16,6 +16,11 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from gaitc.diagnostics import UsageError
+from gaitc.hw.sensing import calibrate as fit
+from gaitc.hw.sensing import read_cycles, write_sensing
+from gaitc.models.characterization import fit_curvature, fit_damping, fit_stiffness
+from gaitc.models.robot_edit import matrix, number, write_fields
+from gaitc.models.spring_damper.description import load_spring_damper
 
 if TYPE_CHECKING:
     from gaitc.hw.sensing import Cycle, LegCalibration
@@ -58,8 +63,6 @@ class Characterization:
     def write(self, out: str | Path | None = None) -> str:
         """Write the fields into the robot file's model section (``out``: a copy there
         instead); the file is replaced only if the result still reads. Returns the path."""
-        from gaitc.models.robot_edit import write_fields
-
         target = str(out) if out is not None else self.robot
         write_fields(self.robot, self.limb, self.fields, target)
         return target
@@ -68,10 +71,6 @@ class Characterization:
 def characterize(robot: str | Path, limb: str, data: Recordings) -> Characterization:
     """Fit the second-order curvature model, the stiffness matrices and the damping of
     ``limb`` of the robot file ``robot`` from ``data`` (thesis 4.2.1)."""
-    from gaitc.models.characterization import fit_curvature, fit_damping, fit_stiffness
-    from gaitc.models.robot_edit import matrix, number
-    from gaitc.models.spring_damper.description import load_spring_damper
-
     if not (data.curvature or data.stiffness or data.damping):
         raise UsageError("give at least one of --curvature, --stiffness and --damping")
     if data.damping and data.mass is None:
@@ -155,8 +154,6 @@ class Calibrated:
 
     def write(self, out: str | Path | None = None) -> str:
         """Write the sensing file (default: the CSV's name with ``.sensing.yaml``)."""
-        from gaitc.hw.sensing import write_sensing
-
         target = str(out) if out is not None else str(
             Path(self.source).with_suffix(".sensing.yaml"))
         write_sensing(target, self.calibration)
@@ -166,8 +163,5 @@ class Calibrated:
 def calibrate(cycles: str | Path) -> Calibrated:
     """Calibrate each leg's waveguide thresholds, with hysteresis, from the CSV of recorded
     actuation cycles of known health level ``cycles`` (thesis 3.4.2)."""
-    from gaitc.hw.sensing import calibrate as fit
-    from gaitc.hw.sensing import read_cycles
-
     recorded = read_cycles(str(cycles))
     return Calibrated(str(cycles), tuple(recorded), fit(recorded))

@@ -22,10 +22,12 @@ import time
 from pathlib import Path
 from typing import TYPE_CHECKING, Final, NoReturn
 
+from gaitc.analysis.separation import separation as analyse
 from gaitc.core.spec import Spec, SpecLike, as_gr1, load, reader_of
-from gaitc.diagnostics import Diagnostic
+from gaitc.diagnostics import Diagnostic, SolverError
 from gaitc.diagnostics.choices import Choice
 from ltlcompiler.encoding import ENCODINGS
+from ltlcompiler.lowering import lower
 
 if TYPE_CHECKING:
     from gaitc.analysis.separation import Separation
@@ -54,8 +56,8 @@ def lint(spec: Spec | str | Path, primitives: bool = False,
     the whole lint runs in a child process stopped that many seconds in (a SolverError).
     """
     if timeout is not None:
+        # lazy: lint's child process only with --timeout (start-up of lint)
         from gaitc.api.isolation import HardLimits, run_limited
-        from gaitc.diagnostics import SolverError
 
         try:
             return run_limited(lambda: lint(spec, primitives), HardLimits(seconds=timeout),
@@ -65,7 +67,6 @@ def lint(spec: Spec | str | Path, primitives: bool = False,
                 "raise --timeout: the slow part is the search behind a gait's primitive "
                 "from a robot file, which explicit valves ('valves 0100, 1000') skip"
             )) from None
-    from ltlcompiler.lowering import lower
 
     if not isinstance(spec, Spec):
         spec = load(spec, kind=reader_of(str(spec)))
@@ -77,6 +78,7 @@ def lint(spec: Spec | str | Path, primitives: bool = False,
             lower(model, encoding)
     diagnostics = list(spec.diagnostics)
     if primitives or any(g.primitive is not None for g in model.gaits):
+        # lazy: numpy and the gait searches, for primitives only (lint's start-up)
         from gaitc.search.primitives import check_gaits
 
         folder = str(Path(spec.path).resolve().parent)
@@ -98,13 +100,10 @@ def separation(spec: Spec | str | Path, timeout: float | None = None) -> Separat
     >>> gaitc.separation("specs/thesis_robot_a.gait").well_separated
     True
     """
-    from gaitc.analysis.separation import separation as analyse
-
     if not isinstance(spec, Spec):
         spec = load(spec, kind=reader_of(str(spec)))
     if timeout is None:
         return analyse(spec)
-    from gaitc.diagnostics import SolverError
 
     started = time.monotonic()
 
@@ -137,15 +136,18 @@ def emit(spec: SpecLike, fmt: OutputFormat | str = OutputFormat.STRUCTUREDSLUGS)
     chosen = OutputFormat.parse(fmt, "format")
     gr1 = as_gr1(spec)
     if chosen is OutputFormat.STRUCTUREDSLUGS:
+        # lazy: one output format's writer, loaded for it only (start-up of lint)
         from slugs_bridge.structured import emit_structuredslugs
 
         return emit_structuredslugs(gr1)
     if chosen is OutputFormat.SLUGSIN:
+        # lazy: one output format's writer, loaded for it only (start-up of lint)
         from gaitc.ir.bitblast import bitblast
         from slugs_bridge.slugsin import emit_slugsin
 
         return emit_slugsin(bitblast(gr1))
     if chosen is OutputFormat.LTL:
+        # lazy: one output format's writer, loaded for it only (start-up of lint)
         from slugs_bridge.ltltext import emit_ltl
 
         return emit_ltl(gr1)

@@ -20,11 +20,19 @@ from __future__ import annotations
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from gaitc.api.generating import compact_policy
 from gaitc.api.simulation import session
 from gaitc.core.spec import Spec, SpecLike, load
 from gaitc.diagnostics import ScenarioError, Span, UsageError
+from gaitc.sim.automaton_view import automaton_view
 from gaitc.sim.graphics import FORMATS, Picture, output_format
+from gaitc.sim.map_view import map_view, spec_view
+from gaitc.sim.policy import controller_policy as project
+from gaitc.sim.policy_view import policy_view, rules_view
+from gaitc.sim.run import read_jsonl
 from gaitc.sim.session import Session
+from gaitc.sim.steps_view import steps_view
+from gaitc.sim.strategy import explicit
 
 if TYPE_CHECKING:
     from collections.abc import Sequence
@@ -56,9 +64,6 @@ def draw_automaton(spec: Spec | str | Path, controller: Controller | str | Path 
     is unrealizable. ``quotient`` merges nodes (``none``, ``region-gait``, ``region``; None
     picks one above ``max_nodes``); ``steps`` draws single nodes within that many moves of
     the start instead."""
-    from gaitc.sim.automaton_view import automaton_view
-    from gaitc.sim.strategy import explicit
-
     if max_nodes < 1:
         raise UsageError("--max-nodes must be at least 1")
     _check_steps(steps)
@@ -68,7 +73,6 @@ def draw_automaton(spec: Spec | str | Path, controller: Controller | str | Path 
     if bound is None:
         return None
     if steps is not None:
-        from gaitc.sim.steps_view import steps_view
 
         return steps_view(bound.strategy, bound.domain, steps, max_nodes)
     view = automaton_view(explicit(bound.strategy, "drawing the automaton"), bound.domain,
@@ -87,8 +91,6 @@ def controller_policy(spec: Spec | str | Path,
                       progress: Progress | None = None) -> tuple[Policy, Session] | None:
     """The controller's rules per region (and its session, for drawing them with
     :func:`draw_policy`); None when the spec is unrealizable."""
-    from gaitc.sim.policy import controller_policy as project
-
     if max_nodes < 1:
         raise UsageError("--max-nodes must be at least 1")
     _check_steps(steps)
@@ -103,8 +105,6 @@ def controller_policy(spec: Spec | str | Path,
 def draw_policy(policy: Policy, bound: Session) -> Picture:
     """``policy`` (of :func:`controller_policy`) drawn: one table per region of ``bound``'s
     spec, with arrows for its moves."""
-    from gaitc.sim.policy_view import policy_view
-
     return policy_view(policy, bound.domain)
 
 
@@ -117,16 +117,12 @@ def compact_rules(spec: SpecLike, controller: CompactController | SymbolicContro
     are left out of the text and counted, or with ``all_rules`` listed and marked; its JSON
     lists them all.  None when the spec is unrealizable; the same tables as
     :func:`gaitc.api.generating.compact_policy`."""
-    from gaitc.api.generating import compact_policy
-
     return compact_policy(spec, controller, all_rules=all_rules, prefer=prefer)
 
 
 def draw_rules(tables: RuleTables) -> Picture:
     """``tables`` (of :func:`compact_rules`) drawn: one table per goal, stacked, each long
     condition wrapped, so the picture's width stays bounded however many rules it has."""
-    from gaitc.sim.policy_view import rules_view
-
     return rules_view(tables)
 
 
@@ -141,9 +137,6 @@ def draw_map(spec: Spec | str | Path, run: Run | str | Path | None = None,
              max_steps: int = 30) -> Picture:
     """The region map of ``spec``; with ``run`` (or a run file), its path and leg timeline
     over the first ``max_steps`` steps. A run of another spec is refused."""
-    from gaitc.sim.map_view import map_view
-    from gaitc.sim.run import read_jsonl
-
     model = _model(spec)
     path = None
     if isinstance(run, (str, Path)):
@@ -162,6 +155,4 @@ def draw_map(spec: Spec | str | Path, run: Run | str | Path | None = None,
 
 def draw_spec(spec: Spec | str | Path) -> Picture:
     """The region graph τ with the gaits of each move, and which legs each gait uses."""
-    from gaitc.sim.map_view import spec_view
-
     return spec_view(_model(spec))

@@ -39,9 +39,22 @@ from gaitc.core.modes import BackendKind, EnvironmentKind, ViolationPolicy
 from gaitc.core.spec import Spec, load
 from gaitc.diagnostics import UsageError
 from gaitc.forms.reader import ControllerFile
-from gaitc.hw.driver import VIOLATION_POLICIES
+from gaitc.hw.backend import interrupt_on_signals
+from gaitc.hw.driver import VIOLATION_POLICIES, Driver, bind_primitives, valve_count
+from gaitc.hw.localisation import Localised, PoseStream, RegionMap
+from gaitc.hw.physics import PhysicsRobot, centre, region_map
+from gaitc.hw.saboteur import SurprisingRobot
+from gaitc.hw.sensing import read_sensing
+from gaitc.hw.serial_board import SerialValveBoard, parse_channels
+from gaitc.hw.simulated import SimulatedRobot
 from gaitc.ir.spec import Semantics
+from gaitc.models.spring_damper.description import load_spring_damper
+from gaitc.models.spring_damper.model import SpringDamperModel
+from gaitc.search.primitives import resolve_primitive
+from gaitc.sim.events import plan
 from gaitc.sim.run import checked_steps
+from gaitc.sim.scenario import ScriptedEnvironment
+from gaitc.sim.terminal import step_table, summary_text, surprises_text
 from ltlcompiler.encoding import EncodingName
 
 if TYPE_CHECKING:
@@ -169,13 +182,11 @@ class Drive:
     def __str__(self) -> str:
         if self.run is None:
             return f"{self.spec}: unrealizable: no controller to drive"
-        from gaitc.sim.terminal import step_table, summary_text
 
         parts = [step_table(self.run, self.full_health, False)]
         if self.run.summary is not None:
             parts.append(summary_text(self.run.summary, self.board, False))
         if self.run.surprises:
-            from gaitc.sim.terminal import surprises_text
 
             parts.append(surprises_text(self.run.surprises))
         if self.poses:
@@ -199,10 +210,6 @@ def drive(spec: Spec | str | Path,
     None) on ``board`` (a :class:`SimulatedBoard` by default). ``live`` receives a line per
     valve state as it runs; ``progress`` the synthesis stages. Every valve is vented at the
     end, on any error and on Ctrl-C, SIGTERM and SIGHUP."""
-    from gaitc.hw.backend import interrupt_on_signals
-    from gaitc.hw.driver import Driver, bind_primitives
-    from gaitc.search.primitives import resolve_primitive
-
     chosen = board if board is not None else SimulatedBoard()
     opts = options or DriveOptions()
     _check(chosen, opts)
@@ -266,7 +273,6 @@ def _planned(board: Board, opts: DriveOptions, bound: Session) -> dict[int, Even
     if opts.tracker is not None:
         raise UsageError("--violate changes the simulated robot's readings; with --pose the "
                          "region comes from a tracker")
-    from gaitc.sim.events import plan
 
     return plan(opts.violate, bound.domain)
 
@@ -274,8 +280,6 @@ def _planned(board: Board, opts: DriveOptions, bound: Session) -> dict[int, Even
 def _follower(backend: Backend) -> Any:
     """The surprising simulated robot inside ``backend`` (a physics board wraps it), or
     None."""
-    from gaitc.hw.saboteur import SurprisingRobot
-
     inner: Any = backend
     while inner is not None and not isinstance(inner, SurprisingRobot):
         inner = getattr(inner, "inner", None)
@@ -318,27 +322,20 @@ def _backend(board: Board, opts: DriveOptions, bound: Session, spec_path: str,
              planned: Mapping[int, Event] | None = None) -> tuple[Backend, int]:
     """The backend of ``board`` and the steps to drive; with ``planned`` (None: no
     surprise to meet), a simulated robot that follows the driver and performs them."""
-    from gaitc.hw.driver import valve_count
-    from gaitc.sim.scenario import ScriptedEnvironment
-
     valves = valve_count(primitives, len(bound.domain.legs))
     steps: int = 20 if opts.steps is None else opts.steps
     if isinstance(board, SerialBoard):
-        from gaitc.hw.sensing import read_sensing
-        from gaitc.hw.serial_board import SerialValveBoard, parse_channels
 
         channels = parse_channels(board.channels) if board.channels else None
         calibration = read_sensing(board.sensing) if board.sensing else None
         return SerialValveBoard(board.port, valves, bound.domain.legs, board.baud,
                                 timeout=board.timeout, channels=channels,
                                 levels=bound.domain.full, calibration=calibration), steps
-    from gaitc.hw.simulated import SimulatedRobot
 
     chosen = board_environment(board, bound)
     if isinstance(chosen, ScriptedEnvironment) and opts.steps is None:
         steps = len(chosen.scenario.steps)
     if planned is not None:
-        from gaitc.hw.saboteur import SurprisingRobot
 
         robot: SimulatedRobot = SurprisingRobot(bound.strategy, bound.domain, bound.monitor,
                                                 chosen, valves, planned)
@@ -350,11 +347,6 @@ def _backend(board: Board, opts: DriveOptions, bound: Session, spec_path: str,
 
 
 def _physics(board: PhysicsBoard, bound: Session, robot: Any, spec_path: str) -> Backend:
-    from gaitc.hw.localisation import RegionMap
-    from gaitc.hw.physics import PhysicsRobot, centre, region_map
-    from gaitc.models.spring_damper.description import load_spring_damper
-    from gaitc.models.spring_damper.model import SpringDamperModel
-
     model = bound.domain.model
     path = board.robot or next((str(Path(spec_path).parent / g.primitive.robot)
                                 for g in model.gaits
@@ -375,8 +367,6 @@ def _physics(board: PhysicsBoard, bound: Session, robot: Any, spec_path: str) ->
 
 
 def _localised(tracker: Tracker, backend: Backend, bound: Session) -> Backend:
-    from gaitc.hw.localisation import Localised, PoseStream, RegionMap
-
     model = bound.domain.model
     regions = (RegionMap.from_file(tracker.map, bound.domain.regions) if tracker.map
                else RegionMap.from_grid(model, tracker.cell_size or 1.0))

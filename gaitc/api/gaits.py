@@ -29,7 +29,17 @@ from gaitc.core.modes import SearchMethod
 from gaitc.diagnostics import SpecSemanticError, UsageError
 from gaitc.diagnostics.files import make_folder, write_atomically
 from gaitc.diagnostics.versions import GAITS
-from gaitc.gaitgraph.cycles import MAX_HEADING_DEG
+from gaitc.gaitgraph.cycles import MAX_HEADING_DEG, parse_direction
+from gaitc.gaitgraph.drawing import write_drawings
+from gaitc.gaitgraph.report import gait_table, gaits_json, search_document
+from gaitc.gaitgraph.robot import load_robot
+from gaitc.models.catalogue import MODEL_CHOICES, chosen_model, load_model
+from gaitc.models.gait_graph import gait_rows
+from gaitc.search.goals import numbers, parse_goal
+from gaitc.search.planners import Settings
+from gaitc.search.predictions import graph_transitions
+from gaitc.search.registry import direction_search, entry, goal_search, legs_sentence, pressurised
+from gaitc.search.transitions import TransitionModel
 
 if TYPE_CHECKING:
     from gaitc.gaitgraph.displacement import Stillness
@@ -64,8 +74,6 @@ class GlobalSearch:
 
     def settings(self, seed: int) -> Settings:
         """The planners' settings, checked (a :class:`UsageError` names the option)."""
-        from gaitc.search.planners import Settings
-
         for name in ("budget", "iterations", "horizon"):
             if getattr(self, name) < 1:
                 raise UsageError(f"--{name} must be at least 1")
@@ -77,16 +85,12 @@ class GlobalSearch:
 
     def target(self, method: SearchMethod | str) -> Goal:
         """The goal, parsed with its tolerance."""
-        from gaitc.search.goals import parse_goal
-
         if self.goal is None:
             raise UsageError(f"--method {method} needs --goal DX,DY[,DTHETA] (mm, degrees)")
         return parse_goal(self.goal, self.tolerance)
 
 
 def _pair(text: str, option: str, default_angle: float) -> tuple[float, float]:
-    from gaitc.search.goals import numbers
-
     values = numbers(text, option, 1, 2)
     if any(v <= 0 for v in values):
         raise UsageError(f"{option}: must be positive, got {text!r}")
@@ -116,8 +120,6 @@ class GaitOptions:
 
 
 def _direction(text: str) -> tuple[float, float]:
-    from gaitc.gaitgraph.cycles import parse_direction
-
     try:
         return parse_direction(text)
     except SpecSemanticError as err:  # no file to point at: a usage error
@@ -168,8 +170,6 @@ class KinematicGaits:
         return (f"{why}; {fix}",)
 
     def __str__(self) -> str:
-        from gaitc.gaitgraph.report import gait_table
-
         robot, result = self.robot, self.result
         lines = [f"robot {robot.name}: {robot.valve_count} chambers, method {self.method}, "
                  f"{result.states_added} valve states, {len(result.graph)} poses, "
@@ -186,8 +186,6 @@ class KinematicGaits:
 
     def gaits_file(self) -> str:
         """The gaits file (JSON, format :data:`gaitc.diagnostics.versions.GAITS`)."""
-        from gaitc.gaitgraph.report import gaits_json
-
         return gaits_json(self.robot, self.result, self.direction, self.seed)
 
     def save(self, path: str | Path) -> bool:
@@ -197,13 +195,9 @@ class KinematicGaits:
 
     def draw(self, folder: str | Path) -> list[str]:
         """The gait graph and a top view of every pose of every gait, as SVG files."""
-        from gaitc.gaitgraph.drawing import write_drawings
-
         return write_drawings(self.robot, self.result.graph, self.result.gaits, str(folder))
 
     def to_json(self) -> dict[str, Any]:
-        from gaitc.gaitgraph.report import search_document
-
         return search_document(self.robot, self.result, self.direction, self.seed)
 
 
@@ -229,7 +223,6 @@ class ModelGaits:
             return ()
         edges = len(self.found_search.graph.motion)
         if self.legs is not None:
-            from gaitc.search.registry import legs_sentence
 
             return (legs_sentence(self.legs, self.direction, f"the {self.model} model",
                                   self.movers or ()),)
@@ -243,8 +236,6 @@ class ModelGaits:
                 "(--max-open) give the search more valve states",)
 
     def __str__(self) -> str:
-        from gaitc.models.gait_graph import gait_rows
-
         found, loaded = self.found_search, self.found_search.loaded
         lines = [f"robot {loaded.robot}: model {self.model}, {len(found.graph.states)} valve "
                  f"states, {len(found.graph.motion)} simulated transitions of "
@@ -385,8 +376,6 @@ GaitSearch = KinematicGaits | ModelGaits | GlobalGait
 def model_choices() -> tuple[str, ...]:
     """The gait graphs ``model`` names (``kinematic`` and each chapter 4 model;
     :data:`gaitc.models.catalogue.MODEL_CHOICES`, imported here when asked for)."""
-    from gaitc.models.catalogue import MODEL_CHOICES
-
     return MODEL_CHOICES
 
 
@@ -401,10 +390,6 @@ def gaits(robot: str | Path, options: GaitOptions | None = None) -> GaitSearch:
         >>> found.found, found.to_json()["gaits"][0]["rank"]
         (True, 1)
     """
-    from gaitc.gaitgraph.robot import load_robot
-    from gaitc.models.catalogue import chosen_model
-    from gaitc.search.registry import direction_search, entry, goal_search
-
     opts = options or GaitOptions()
     method = entry(opts.method).method if opts.method is not None else None
     if opts.max_states < 1:
@@ -432,7 +417,6 @@ def gaits(robot: str | Path, options: GaitOptions | None = None) -> GaitSearch:
     result = search.kinematic(loaded, direction, opts.seed, opts.max_states)
     still = None
     if not result.gaits:
-        from gaitc.search.transitions import TransitionModel
 
         still = TransitionModel.from_graph(result.graph).stillness()
     return KinematicGaits(loaded, result, chosen, opts.direction, opts.seed, opts.max_states,
@@ -441,9 +425,6 @@ def gaits(robot: str | Path, options: GaitOptions | None = None) -> GaitSearch:
 
 def _model_gaits(robot: str, opts: GaitOptions, method: SearchMethod | None,
                  model: str) -> ModelGaits:
-    from gaitc.models.catalogue import load_model
-    from gaitc.search.registry import direction_search, pressurised
-
     search = direction_search(method)
     if search.not_on_models is not None:
         raise UsageError(search.not_on_models)
@@ -470,7 +451,6 @@ def _model_gaits(robot: str, opts: GaitOptions, method: SearchMethod | None,
                               max_states=opts.max_states)
         movers = pressurised(anyone.gaits[0], loaded.valve_legs) if anyone.gaits else ()
     elif not found.gaits:
-        from gaitc.search.predictions import graph_transitions
 
         still = graph_transitions(found.graph, loaded.valve_legs).stillness()
     return ModelGaits(found, model, opts.direction, still, legs, movers)
@@ -478,8 +458,6 @@ def _model_gaits(robot: str, opts: GaitOptions, method: SearchMethod | None,
 
 def _global_gait(robot: str, loaded: Robot, opts: GaitOptions, method: SearchMethod,
                  model: str | None) -> GlobalGait:
-    from gaitc.search.registry import goal_search
-
     goal = opts.search.target(method)
     settings = opts.search.settings(opts.seed)
     search = goal_search(method)

@@ -14,20 +14,25 @@ from dataclasses import replace
 from pathlib import Path
 
 from gaitc.api.solving import compact, read_controller, synthesize, verify
-from gaitc.codegen.board import BoardTables
-from gaitc.codegen.build import Built, Recovery, Target, build
+from gaitc.codegen.board import BoardTables, board_tables
+from gaitc.codegen.build import FLASH_LIMIT, Built, Recovery, Target, build
+from gaitc.codegen.recovery import FIRMWARE_BYTES, fit, none_fits, stops
 from gaitc.codegen.tables import table_bytes
 from gaitc.compact.controller import CompactController
+from gaitc.compact.diagram import TooLarge
+from gaitc.compact.recovery import RecoveryOptions, prove_recovery, recovering_controller
 from gaitc.compact.rules import RuleTables, rule_tables
 from gaitc.core.spec import Spec, SpecLike, as_gr1, resolve
-from gaitc.diagnostics import ControllerError, Span, UsageError
+from gaitc.diagnostics import ControllerError, Span, SpecSemanticError, UsageError
+from gaitc.hw.driver import bind_primitives
 from gaitc.ir.bddfile import SymbolicController
 from gaitc.ir.controller import Controller
+from gaitc.search.primitives import resolve_primitive
+from gaitc.sim.domain import model_goals
 
 
 def _goal_labels(spec: Spec | object) -> list[str]:
     if isinstance(spec, Spec) and spec.model is not None:
-        from gaitc.sim.domain import model_goals
 
         return [g.label for g in model_goals(spec.model)]
     return []
@@ -115,11 +120,6 @@ def generate(spec: SpecLike, controller: CompactController | SymbolicController 
 def _recovery(spec: Spec | object, ctrl: CompactController, target: Target, file: str
               ) -> Recovery:
     """The recovering controller of ``spec``, proved, and trimmed to the board's flash."""
-    from gaitc.codegen.build import FLASH_LIMIT
-    from gaitc.codegen.recovery import FIRMWARE_BYTES, fit, none_fits, stops
-    from gaitc.compact.diagram import TooLarge
-    from gaitc.compact.recovery import RecoveryOptions, prove_recovery, recovering_controller
-
     gr1 = as_gr1(spec)  # type: ignore[arg-type]
     vocabulary = spec.vocabulary if isinstance(spec, Spec) else ctrl.vocabulary
     # on the board, building stops as soon as the diagrams pass its flash
@@ -147,10 +147,6 @@ def _board(spec: Spec | object, ctrl: CompactController, target: Target) -> Boar
         return None
     if ctrl.vocabulary.domain != "robot":
         return None
-    from gaitc.codegen.board import board_tables
-    from gaitc.diagnostics import SpecSemanticError
-    from gaitc.hw.driver import bind_primitives
-    from gaitc.search.primitives import resolve_primitive
 
     try:  # the valves drive binds: a primitive clause searches the robot file's model
         primitives = bind_primitives(spec.model, str(Path(spec.path).parent),

@@ -11,6 +11,7 @@ mismatch, or the robot file's spring-damper model.
 from __future__ import annotations
 
 import html
+import json
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -20,6 +21,9 @@ from gaitc.api.gaits import GlobalSearch
 from gaitc.core.modes import BackendKind, SearchMethod
 from gaitc.diagnostics import UsageError
 from gaitc.diagnostics.files import write_atomically
+from gaitc.search.online import learn_gait
+from gaitc.search.registry import goal_search
+from gaitc.search.walker import Mismatch
 
 if TYPE_CHECKING:
     from gaitc.search.goals import Goal
@@ -90,8 +94,6 @@ class Learning:
         return self.learned._repr_svg_() + f"<pre>{html.escape(str(self))}</pre>"
 
     def to_json(self) -> dict[str, Any]:
-        import json
-
         data: dict[str, Any] = json.loads(self.learned.to_json())
         return data
 
@@ -108,10 +110,6 @@ def learn(robot: str | Path, options: LearnOptions | None = None,
           progress: Callable[[str], None] | None = None) -> Learning:
     """Learn a gait of the robot file ``robot`` toward ``options.search.goal`` (see the
     module's docstring); ``progress`` receives one line per iteration."""
-    from gaitc.search.online import learn_gait
-    from gaitc.search.registry import goal_search
-    from gaitc.search.walker import Mismatch
-
     opts = options or LearnOptions()
     method = goal_search(opts.method).method
     backend = _backend(opts.backend)

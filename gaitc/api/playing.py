@@ -10,6 +10,7 @@ from __future__ import annotations
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from gaitc.api.answers import explain
 from gaitc.api.simulation import ControllerLike, counter_session, session
 from gaitc.api.solving import read_once, recorded_encoding
 from gaitc.core.modes import Role
@@ -18,6 +19,7 @@ from gaitc.diagnostics import ScenarioError, UsageError
 from gaitc.forms.reader import ControllerFile
 from gaitc.ir.spec import Semantics
 from gaitc.play.player import Autopilot, Choice, Player
+from gaitc.play.widget import PlayerWidget
 from gaitc.sim.run import Run, read_jsonl
 from ltlcompiler.encoding import EncodingName
 
@@ -82,8 +84,6 @@ def _explains_player(spec: Spec, semantics: Semantics | str, run: Run,
     ``explain`` plays the environment restricted to the freedoms it needs, so its play may
     leave the counter-strategy of the whole spec; the play is then resumed against the one
     it came from. When that cannot follow the run either, its error stands."""
-    from gaitc.api.answers import explain
-
     counter = explain(spec, semantics, repairs=False).counter
     if counter is None:
         raise ScenarioError("the run cannot be played against this spec's counter-strategy",
@@ -103,8 +103,6 @@ def player_widget(spec: Spec | str | Path | Player,
     """The player as a notebook widget (ipywidgets): the map as SVG, the moves as buttons,
     undo, redo and the autopilots; the options are those of :func:`player`, or give a
     :class:`Player` itself."""
-    from gaitc.play.widget import PlayerWidget
-
     bound = spec if isinstance(spec, Player) else player(
         spec, controller, against=against, start=start, at=at, encoding=encoding,
         semantics=semantics)

@@ -7,6 +7,7 @@ the same topics (``simulate --mcap``).  Needs the ``ros`` extra (``pip install
 
 from __future__ import annotations
 
+import dataclasses
 import threading
 from collections.abc import Sequence
 from dataclasses import dataclass, field
@@ -26,7 +27,20 @@ from gaitc.core.modes import ControllerKind, EnvironmentKind, Semantics, Surpris
 from gaitc.core.spec import Spec, load
 from gaitc.diagnostics import GaitcError, UsageError
 from gaitc.forms.reader import ControllerFile
+from gaitc.hw.backend import HardwareError
+from gaitc.hw.driver import bind_primitives
+from gaitc.ros.graph import Graph, wait_until
+from gaitc.ros.node import ControllerNode, NodeOptions
+from gaitc.ros.recorder import Recorder
+from gaitc.ros.recording import Recording, write_run
+from gaitc.ros.robot import RobotNode, RobotOptions
+from gaitc.ros.topics import DIAGNOSTICS, GAIT, TOPICS, Flow, present, require
+from gaitc.search.primitives import resolve_primitive
+from gaitc.sim.events import plan
+from gaitc.sim.monitor import Monitor
+from gaitc.sim.replay import RunEnvironment
 from gaitc.sim.run import checked_steps
+from gaitc.sim.scenario import ScriptedEnvironment
 from ltlcompiler.encoding import EncodingName
 
 if TYPE_CHECKING:
@@ -119,10 +133,7 @@ def _primitives(checked: Spec, robot_file: str | Path | None = None
     """The gaits' valve sequences when the spec binds any (then all must be bound, as
     ``drive`` needs), else None; a primitive that names a robot file reads ``robot_file``
     instead when one is given."""
-    import dataclasses
 
-    from gaitc.hw.driver import bind_primitives
-    from gaitc.search.primitives import resolve_primitive
 
     model = checked.robot
     if not any(g.primitive is not None for g in model.gaits):
@@ -155,7 +166,6 @@ def ros(spec: Spec | str | Path,
     (every valve vented then); with ``robot``, a simulated robot node beside it plays the
     environment over the topics for the robot's steps.  Every topic goes to
     ``options.record`` (MCAP) when given."""
-    from gaitc.ros.node import NodeOptions
 
     require_ros()
     opts = options or RosOptions()
@@ -177,7 +187,6 @@ def ros(spec: Spec | str | Path,
     planned: dict[int, Any] = {}
     chosen = None
     if robot is not None:
-        from gaitc.sim.events import plan
 
         chosen, steps = _robot_environment(robot, bound)
         planned = plan(robot.violate, bound.domain)
@@ -200,8 +209,6 @@ def ros(spec: Spec | str | Path,
 
 def _robot_environment(robot: SimulatedRobot, bound: Session) -> tuple[Any, int]:
     """The simulated robot's environment and the steps it plays (as ``simulate``'s)."""
-    from gaitc.sim.replay import RunEnvironment
-    from gaitc.sim.scenario import ScriptedEnvironment
 
     chosen = environment(opponent(robot.env), bound, robot.seed)
     steps = robot.steps
@@ -227,13 +234,11 @@ class _Plan:
 
 
 def _run_graph(plan: _Plan, opts: RosOptions) -> RosRun:
-    from gaitc.hw.backend import HardwareError
-    from gaitc.ros.graph import Graph, wait_until
-    from gaitc.ros.node import ControllerNode
-    from gaitc.ros.recorder import Recorder
-    from gaitc.ros.recording import Recording
-    from gaitc.ros.robot import RobotNode, RobotOptions
-    from gaitc.ros.topics import TOPICS, Flow, present
+
+
+
+
+
 
     checked, bound, primitives, chosen = plan.checked, plan.bound, plan.primitives, plan.chosen
     steps = plan.node.steps
@@ -296,7 +301,6 @@ def _run_graph(plan: _Plan, opts: RosOptions) -> RosRun:
 def _readers(node: Any, robot: Any, recorded: bool) -> list[tuple[Any, int]]:
     """Each publisher of the command's nodes and how many of its subscribers it must see:
     the recorder's, the robot's (gait, /diagnostics) and the node's (the observations)."""
-    from gaitc.ros.topics import DIAGNOSTICS, GAIT
 
     found = [(publisher, int(recorded) + int(robot is not None
                                              and topic in (GAIT.name, DIAGNOSTICS.name)))
@@ -322,7 +326,6 @@ def _start(robot: Any, steps: int, result: RosRun) -> threading.Thread:
 
 def require_ros() -> None:
     """A :class:`UsageError` naming the ``ros`` extra when ROS 2 or mcap is missing."""
-    from gaitc.ros.topics import require
 
     require()
 
@@ -334,8 +337,6 @@ def record_run(run: Run, spec: Spec | Session | str | Path, path: str | Path,
     ``controller`` file records) to the MCAP file ``path`` with the topics and messages
     ``gaitc ros`` publishes, step k at (k + 1) * ``period`` s (so the same run gives the
     same file); returns the messages written by topic."""
-    from gaitc.ros.recording import write_run
-    from gaitc.sim.monitor import Monitor
 
     require_ros()
     if isinstance(spec, Session):

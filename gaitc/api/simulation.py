@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Final, TypeAlias
 
-from gaitc.api.solving import Synthesis, read_once, recorded_encoding, synthesize
+from gaitc.api.solving import Synthesis, counterstrategy, read_once, recorded_encoding, synthesize
 from gaitc.core.changes import EXAMPLES as CHANGE_EXAMPLES
 from gaitc.core.modes import EnvironmentKind, Semantics, SurprisePolicy
 from gaitc.core.spec import Spec, load
@@ -22,12 +22,18 @@ from gaitc.diagnostics import UsageError
 from gaitc.forms.reader import ControllerFile, load_runtime, runtime
 from gaitc.ir.bddfile import SymbolicController
 from gaitc.ir.controller import Controller, ControllerKind
+from gaitc.sim.counterplay import play, robot_chooser
 from gaitc.sim.domain import Domain
 from gaitc.sim.environments import Environment
+from gaitc.sim.events import plan
 from gaitc.sim.monitor import Monitor
-from gaitc.sim.run import checked_steps
+from gaitc.sim.replay import RunEnvironment, recorded_play
+from gaitc.sim.run import checked_steps, read_jsonl
+from gaitc.sim.scenario import Scenario, ScriptedEnvironment
 from gaitc.sim.session import Opponent, Session, is_run_file
 from gaitc.sim.session import environment as build_environment
+from gaitc.sim.simulator import SurpriseOptions
+from gaitc.sim.simulator import simulate as run_simulation
 from gaitc.sim.strategy import explicit
 from gaitc.solver.progress import Progress
 from ltlcompiler.encoding import EncodingName
@@ -112,8 +118,6 @@ def counter_session(spec: Spec | str | Path, semantics: Semantics | str = Semant
                     progress: Progress | None = None) -> Session | None:
     """``spec`` bound to its counter-strategy (the environment's winning strategy), for the
     adversarial environment of an unrealizable spec; None when the spec is realizable."""
-    from gaitc.api.solving import counterstrategy
-
     loaded = spec if isinstance(spec, Spec) else load(spec, EncodingName.ONEHOT)
     found = counterstrategy(loaded, semantics, verify=False, progress=progress)
     return None if found.controller is None else session(loaded, found, None, semantics)
@@ -122,8 +126,6 @@ def counter_session(spec: Spec | str | Path, semantics: Semantics | str = Semant
 def opponent(env: EnvironmentLike) -> Opponent | Scenario | Environment:
     """``env`` as a typed value: an object stays as it is, a name becomes an
     :class:`Opponent` (a :class:`UsageError` names the accepted ones)."""
-    from gaitc.sim.scenario import Scenario
-
     if isinstance(env, (Opponent, Scenario, Environment)):
         return env
     return Opponent.parse(env)
@@ -137,9 +139,6 @@ def environment(kind: EnvironmentLike, bound: Session, seed: int = 0) -> Environ
 def _recorded(spec: Spec | str | Path, file: str, steps: int | None) -> Run:
     """A run file of an unrealizable spec played again as recorded, checked step by step
     (no controller exists to answer it; see :func:`gaitc.sim.replay.recorded_play`)."""
-    from gaitc.sim.replay import recorded_play
-    from gaitc.sim.run import read_jsonl
-
     loaded = spec if isinstance(spec, Spec) else load(spec, EncodingName.ONEHOT)
     if loaded.model is None:
         raise UsageError(f"'{loaded.path}': replaying a run needs a .gait spec")
@@ -157,8 +156,6 @@ def _counter_play(bound: Session, env: Opponent | Scenario | Environment, steps:
     ``scripted:RUN.jsonl`` both sides play as the run file did (a play of an unrealizable
     spec: ``gaitc play``'s, or ``explain``'s, whose environment may come from a
     counter-strategy of fewer freedoms), every step checked against the spec."""
-    from gaitc.sim.counterplay import play, robot_chooser
-
     if isinstance(env, Opponent) and env.replays_run:
         assert env.file is not None
         return _recorded(bound.spec, env.file, steps)
@@ -234,8 +231,6 @@ def simulate_spec(spec: Spec | Session | str | Path,
         raise UsageError("--violate makes the environment break its assumptions against a "
                          "controller; this spec is unrealizable and its counter-strategy "
                          "plays the environment")
-    from gaitc.sim.events import plan
-    from gaitc.sim.simulator import SurpriseOptions
 
     surprises = SurpriseOptions(plan(violate, bound.domain),
                                 SurprisePolicy.parse(on_surprise, "--on-surprise"),
@@ -249,10 +244,6 @@ def _controller_play(bound: Session, env: Opponent | Scenario | Environment,
                      ) -> Run:
     """A controller of the spec against ``env`` for ``steps`` steps (default 50, or the
     scenario's or run file's length)."""
-    from gaitc.sim.replay import RunEnvironment
-    from gaitc.sim.scenario import ScriptedEnvironment
-    from gaitc.sim.simulator import simulate as run_simulation
-
     chosen = build_environment(env, bound, seed)
     if steps is None:
         steps = (len(chosen.scenario.steps) if isinstance(chosen, ScriptedEnvironment)

@@ -16,7 +16,7 @@ from typing import TYPE_CHECKING, TypeVar
 
 from gaitc.core.modes import FORM_CHOICES, ControllerKind, Form, form_choice
 from gaitc.core.spec import Spec, SpecLike, as_spec, resolve
-from gaitc.diagnostics import UsageError
+from gaitc.diagnostics import ControllerError, UsageError
 from gaitc.forms.base import Automaton
 from gaitc.forms.synthesis import (
     MAX_NODES,
@@ -35,6 +35,7 @@ from gaitc.solver.preferences import PREFERENCES as PREFERENCES
 from gaitc.solver.preferences import preference_order as preference_order
 from gaitc.solver.progress import Progress
 from gaitc.solver.symbolic import Options
+from gaitc.solver.synthesis import Extraction
 from ltlcompiler.encoding import EncodingName
 
 if TYPE_CHECKING:
@@ -130,9 +131,9 @@ def tolerate(spec: SpecLike, k: int, semantics: Semantics | str = Semantics.DEFA
     when no surprise can be planned for (the most reached is 0) it is :func:`synthesize`'s
     controller, with its move preferences.
     """
+    # lazy: not on gaitc check's path (tests/codebase/test_startup_imports.py)
     from gaitc.analysis.tolerance import ToleranceOptions, tolerance
     from gaitc.ir.quotient import merge_equivalent
-    from gaitc.solver.synthesis import Extraction
 
     written = form_choice(form)
     chosen = Semantics.parse(semantics, "semantics")
@@ -185,6 +186,7 @@ def vocabulary_of(spec: SpecLike, ctrl: SymbolicController) -> Vocabulary:
     """The fields a compact controller of ``spec`` decides in
     (:attr:`gaitc.core.spec.Spec.vocabulary`), refused when the symbolic controller ``ctrl``
     is of another spec."""
+    # lazy: not on gaitc check's path (tests/codebase/test_startup_imports.py)
     from gaitc.forms.reader import check_belongs
 
     bound = as_spec(spec)
@@ -205,6 +207,7 @@ def verify(spec: SpecLike,
     counter-strategy) realizes ``spec``, or defeats it; a path is read as a controller
     file.  ``semantics`` defaults to the one recorded in the controller
     (:func:`gaitc.forms.synthesis.prove`)."""
+    # lazy: not on gaitc check's path (tests/codebase/test_startup_imports.py)
     from gaitc.forms.reader import ControllerFile, parse_file
 
     bound = as_spec(spec)
@@ -225,6 +228,7 @@ def read_controller(path: str | Path | ControllerFile, spec: SpecLike) -> Automa
     checked against ``spec``: a file whose bits, integers or fields differ from the spec's
     is a :class:`~gaitc.diagnostics.ControllerError` naming the first difference
     (:mod:`gaitc.forms.reader`, the one reader every command uses)."""
+    # lazy: not on gaitc check's path (tests/codebase/test_startup_imports.py)
     from gaitc.forms.reader import read_controller as read_checked
 
     return read_checked(path, as_spec(spec))
@@ -234,6 +238,7 @@ def controller_form(path: str | Path) -> Form:
     """The form of the controller file ``path`` (explicit, symbolic or compact), read from
     the file's header alone; either layout of an explicit controller
     (:func:`gaitc.forms.reader.read_document`)."""
+    # lazy: not on gaitc check's path (tests/codebase/test_startup_imports.py)
     from gaitc.forms.reader import read_document
     from gaitc.forms.registry import form_of
 
@@ -245,8 +250,8 @@ def recorded_encoding(path: str | Path | ControllerFile) -> EncodingName | None:
     (a file of any form and layout, :func:`gaitc.forms.reader.read_document`, or a file
     read already); None also when the file cannot be read (the reader that follows names
     what is wrong)."""
-    from gaitc.diagnostics import ControllerError
-    from gaitc.forms.reader import ControllerFile  # lazy: 'gaitc check' reads no controller
+    # lazy: not on gaitc check's path (tests/codebase/test_startup_imports.py)
+    from gaitc.forms.reader import ControllerFile
 
     if isinstance(path, ControllerFile):
         return path.encoding
@@ -261,8 +266,8 @@ def read_once(controller: T) -> T | ControllerFile:
     so that a command asks its encoding and parses its controller from one reading;
     anything else as it is, and so is a path whose file cannot be read (the reader that
     follows names what is wrong)."""
-    from gaitc.diagnostics import ControllerError
-    from gaitc.forms.reader import ControllerFile  # lazy: 'gaitc check' reads no controller
+    # lazy: not on gaitc check's path (tests/codebase/test_startup_imports.py)
+    from gaitc.forms.reader import ControllerFile
 
     if not isinstance(controller, (str, Path)):
         return controller
@@ -280,6 +285,7 @@ def tables_hint(output: str | Path) -> str | None:
     """For a large explicit controller written as SLUGS's JSON (``NAME.json`` past
     :data:`LARGE_JSON` bytes), a hint that ``NAME.ctl.gz`` writes the compact tables layout
     (about 80 times smaller; docs/controller-format.md); None otherwise."""
+    # lazy: not on gaitc check's path (tests/codebase/test_startup_imports.py)
     from gaitc.forms.explicit import Layout, layout_for
 
     path = Path(output)

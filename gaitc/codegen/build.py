@@ -24,6 +24,7 @@ from typing import Any, Final
 
 from gaitc.codegen.board import BoardTables, board_header
 from gaitc.codegen.emitter import header, source
+from gaitc.codegen.recovery import recovery_sizes
 from gaitc.codegen.tables import NOT_INPUT, Tables, flatten
 from gaitc.compact.controller import CompactController
 from gaitc.compact.recovery import RecoveringController
@@ -222,7 +223,6 @@ def _made(recovery: Recovery | None) -> dict[str, Any]:
     rc = recovery.controller
     if rc is None:
         return {"stops": recovery.stops}
-    from gaitc.codegen.recovery import recovery_sizes
 
     return {"recovery": tuple(recovery_sizes(rc).lines()), "stops": recovery.stops,
             "recovering": True}

@@ -18,6 +18,7 @@ import re
 from collections.abc import Sequence
 from typing import TYPE_CHECKING, Final
 
+from gaitc.codegen.recovery import header_lines, source_part
 from gaitc.codegen.tables import LEAF, Tables, flatten
 from gaitc.compact.controller import CompactController
 from gaitc.ir.spec import Semantics
@@ -133,8 +134,6 @@ def header(ctrl: CompactController, recovery: RecoveringController | None = None
 
 
 def _recovery_header(recovery: RecoveringController) -> list[str]:
-    from gaitc.codegen.recovery import header_lines
-
     return header_lines(recovery)
 
 
@@ -257,7 +256,6 @@ uint16_t gaitc_step(gaitc_state *s, const uint8_t in[GAITC_INPUTS])
 """,
     ]
     if recovery is not None:
-        from gaitc.codegen.recovery import source_part
 
         start = "    s->goal = 0;\n    set_outputs(s, walk(GAITC_U16(roots[GAITC_START_ROOT])"
         parts[-1] = parts[-1].replace(start, "    s->mode = GAITC_NORMAL;\n" + start)

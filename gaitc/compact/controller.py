@@ -20,10 +20,11 @@ so that the independent verifier (:mod:`gaitc.verifier.symbolic`) proves it on e
 
 from __future__ import annotations
 
+import html
 import json
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import Any, Final
+from typing import TYPE_CHECKING, Any, Final, TypedDict
 
 from gaitc.compact.diagram import (
     Branch,
@@ -38,8 +39,14 @@ from gaitc.compact.diagram import (
 from gaitc.core.vocabulary import Field, Vocabulary
 from gaitc.diagnostics import ControllerError, Span
 from gaitc.ir.bddfile import SymbolicController, node_table
+from gaitc.ir.bitblast import bitblast
 from gaitc.ir.controller import ControllerKind, IntegerVar, integers_from_json, integers_to_json
+from gaitc.ir.manager import manager
 from gaitc.ir.spec import GR1Spec, Semantics
+from gaitc.verifier.logic import Logic
+
+if TYPE_CHECKING:
+    from dd.cudd import BDD, Function
 
 COMPACT_FORMAT: Final = "compact"
 COMPACT_VERSION: Final = 1
@@ -164,8 +171,6 @@ class CompactController:
     def _repr_html_(self) -> str:
         """Its sizes: which of its rules a run uses depends on the spec, so its rules are
         shown by ``gaitc.api.drawing.compact_rules(spec, controller)``."""
-        import html
-
         return (f"<p>compact controller: {html.escape(self.summary())}; its rules, with the "
                 "spec: <code>compact_rules(spec, controller)</code></p>")
 
@@ -195,16 +200,25 @@ class Runner:
 
 
 # -------------------------------------------------------------------- back to BDDs
-def relations(bdd: Any, ctrl: CompactController) -> dict[str, Any]:
+class Relations(TypedDict):
+    """A compact controller's diagrams as BDDs (:func:`relations`)."""
+
+    strategies: list[Function]
+    goals: list[Function]
+    start: Function
+    assumed: Function
+
+
+def relations(bdd: BDD, ctrl: CompactController) -> Relations:
     """The diagrams as BDDs of ``bdd`` over the spec's bits: per goal the move relation
     (path cube and move cube), the goal functions, the start relation or set and the
     assumption monitor (true without one)."""
     move_cubes = [_move_cube(bdd, ctrl, k, primed=True) for k in range(len(ctrl.moves))]
     truth = [bdd.false, bdd.true]
     # nodes shared by several roots are built once per reading of the leaves
-    cache: dict[int, dict[Ref, Any]] = {id(move_cubes): {}, id(truth): {}}
+    cache: dict[int, dict[Ref, Function]] = {id(move_cubes): {}, id(truth): {}}
 
-    def diagram(root: Ref, leaves: Sequence[Any]) -> Any:
+    def diagram(root: Ref, leaves: Sequence[Function]) -> Function:
         built = cache[id(leaves)]
         for index in reachable_nodes(ctrl.nodes, [root]):
             if index in built:
@@ -218,7 +232,7 @@ def relations(bdd: Any, ctrl: CompactController) -> dict[str, Any]:
             built[index] = out
         return leaves[leaf_value(root)] if root < 0 else built[root]
 
-    start_leaves: Sequence[Any] = truth if ctrl.semantics == Semantics.ROBOTICS else move_cubes
+    start_leaves: Sequence[Function] = truth if ctrl.semantics == Semantics.ROBOTICS else move_cubes
     start = diagram(ctrl.start_root, start_leaves)
     if ctrl.semantics != Semantics.ROBOTICS:
         # the start diagram reads the first inputs as next values: bring them to now
@@ -232,13 +246,13 @@ def relations(bdd: Any, ctrl: CompactController) -> dict[str, Any]:
     }
 
 
-def monitor_function(bdd: Any, ctrl: CompactController) -> Any:
+def monitor_function(bdd: BDD, ctrl: CompactController) -> Function:
     """The assumption monitor as a BDD of ``bdd`` over current bits and the inputs' next
     bits (true when the controller carries none)."""
     return relations(bdd, ctrl)["assumed"]
 
 
-def _move_cube(bdd: Any, ctrl: CompactController, index: int, primed: bool) -> Any:
+def _move_cube(bdd: BDD, ctrl: CompactController, index: int, primed: bool) -> Function:
     cube: dict[str, bool] = {}
     for f, value in zip(ctrl.vocabulary.outputs, ctrl.moves[index], strict=True):
         cube.update(f.cube(value, primed))
@@ -266,12 +280,8 @@ def to_symbolic(ctrl: CompactController, spec: GR1Spec | None = None) -> Symboli
     the moves it makes, for the independent verifier and the symbolic runtime.  With
     ``spec``, its θe and ρe are the controller's (a runtime enumerates the environment's
     moves from them); without, they are left true (the verifier reads the spec's own)."""
-    from gaitc.ir.manager import manager
-
     env_init = env_trans = None
     if spec is not None:
-        from gaitc.ir.bitblast import bitblast
-        from gaitc.verifier.logic import Logic
 
         logic = Logic(bitblast(spec), diagram_order(ctrl))
         bdd = logic.bdd

@@ -20,16 +20,21 @@ for a boolean diagram).
 from __future__ import annotations
 
 from collections import Counter
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, TypeAlias
 
 from gaitc.core.vocabulary import Field
 from gaitc.ir.cuddlib import cudd
 
+if TYPE_CHECKING:
+    from dd.cudd import BDD, Function
+
 and_exists = cudd.and_exists
 
 Ref = int
+#: What a build asks at a leaf: the leaf for (care, target) if one settles it, else None.
+AtLeaf: TypeAlias = "Callable[[Function, Function], Ref | None]"
 
 
 def leaf(value: int) -> Ref:
@@ -98,7 +103,7 @@ class Builder:
     that many bytes raises :class:`TooLarge` as soon as it does, instead of finishing
     diagrams that cannot fit (``codegen --recover`` on a board)."""
 
-    def __init__(self, bdd: Any, slots: Sequence[Slot], outputs: Sequence[Field],
+    def __init__(self, bdd: BDD, slots: Sequence[Slot], outputs: Sequence[Field],
                  greedy: bool = False, limit: int | None = None) -> None:
         self.bdd = bdd
         self.greedy = greedy
@@ -112,7 +117,7 @@ class Builder:
         self._move_index: dict[tuple[int, ...], int] = {}
         self._memo: dict[tuple[int, int, int, int], Ref] = {}
         self._recent: list[int] = []
-        self._commons: dict[tuple[int, int], Any] = {}
+        self._commons: dict[tuple[int, int], tuple[Function, Function, Function]] = {}
         self._slot_bits = [frozenset(b + ("'" if s.next else "") for b in s.field.bits)
                            for s in self.slots]
         # each slot value's cube and each move's, made once (a greedy build asks millions)
@@ -180,27 +185,27 @@ class Builder:
         return out
 
     # ------------------------------------------------------------------ moves
-    def build_moves(self, care: Any, relation: Any) -> Ref:
+    def build_moves(self, care: Function, relation: Function) -> Ref:
         """The diagram of a function that picks, at every state of ``care``, a move that
         ``relation`` allows (``care`` must lie inside the relation's domain)."""
         return self._build(0, care, relation, self._move_leaf, 0)
 
-    def _common(self, care: Any, relation: Any) -> Any:
+    def _common(self, care: Function, relation: Function) -> Function:
         """The moves ``relation`` allows in every state of ``care``."""
         key = (int(care), int(relation))
-        found = self._commons.get(key)
-        if found is None:
-            bdd, bits = self.bdd, self._decision_bits
-            # CUDD's and-abstract: the conjunctions are never built (half the time of a
-            # greedy build, which calls this for every slot and value it weighs)
-            found = ~and_exists(care, ~relation, bits)
-            if found != bdd.false:
-                found &= and_exists(care, relation, bits)
-            self._commons[key] = (found, care, relation)  # keeps the ids alive
-            return found
-        return found[0]
+        kept = self._commons.get(key)
+        if kept is not None:
+            return kept[0]
+        bdd, bits = self.bdd, self._decision_bits
+        # CUDD's and-abstract: the conjunctions are never built (half the time of a
+        # greedy build, which calls this for every slot and value it weighs)
+        found = ~and_exists(care, ~relation, bits)
+        if found != bdd.false:
+            found &= and_exists(care, relation, bits)
+        self._commons[key] = (found, care, relation)  # keeps the ids alive
+        return found
 
-    def _move_leaf(self, care: Any, relation: Any) -> Ref | None:
+    def _move_leaf(self, care: Function, relation: Function) -> Ref | None:
         bdd = self.bdd
         common = self._common(care, relation)
         if common == bdd.false:
@@ -223,11 +228,11 @@ class Builder:
         return leaf(index)
 
     # ------------------------------------------------------------------ booleans
-    def build_boolean(self, care: Any, function: Any) -> Ref:
+    def build_boolean(self, care: Function, function: Function) -> Ref:
         """The diagram of ``function`` on ``care`` (anything outside it)."""
         return self._build(0, care, function, self._bool_leaf, 1)
 
-    def _bool_leaf(self, care: Any, function: Any) -> Ref | None:
+    def _bool_leaf(self, care: Function, function: Function) -> Ref | None:
         false = self.bdd.false
         if care & ~function == false:
             return leaf(1)
@@ -236,7 +241,8 @@ class Builder:
         return None
 
     # ------------------------------------------------------------------ the recursion
-    def _build(self, level: int, care: Any, target: Any, at_leaf: Any, kind: int) -> Ref:
+    def _build(self, level: int, care: Function, target: Function, at_leaf: AtLeaf,
+               kind: int) -> Ref:
         bdd = self.bdd
         if care == bdd.false:
             return DONT_CARE
@@ -250,8 +256,8 @@ class Builder:
         self._memo[key] = result
         return result
 
-    def _best_slot(self, level: int, care: Any, target: Any, at_leaf: Any,
-                   support: frozenset[str]) -> int:
+    def _best_slot(self, level: int, care: Function, target: Function, at_leaf: AtLeaf,
+                   support: set[str]) -> int:
         """The slot (from ``level`` on) whose values settle the most cases at once: the
         share of its values that lead straight to a leaf or to no state (one step of
         lookahead, as decision-tree learners choose their tests)."""
@@ -273,12 +279,13 @@ class Builder:
                 best, best_score = index, score
         return best
 
-    def _settles(self, at_leaf: Any, care: Any, target: Any) -> bool:
+    def _settles(self, at_leaf: AtLeaf, care: Function, target: Function) -> bool:
         if at_leaf == self._move_leaf:
             return bool(self._common(care, target) != self.bdd.false)
         return at_leaf(care, target) is not None
 
-    def _split(self, level: int, care: Any, target: Any, at_leaf: Any, kind: int) -> Ref:
+    def _split(self, level: int, care: Function, target: Function, at_leaf: AtLeaf,
+               kind: int) -> Ref:
         bdd = self.bdd
         support = bdd.support(care) | bdd.support(target)
         while level < len(self.slots) and not (self._slot_bits[level] & support):

@@ -13,14 +13,18 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, replace
-from typing import Any, Final
+from typing import TYPE_CHECKING, Any, Final
 
 from gaitc.compact.controller import CompactController, relations
 from gaitc.compact.diagram import DONT_CARE, Builder, Ref, Slot, leaf, reachable_nodes
 from gaitc.core.vocabulary import Vocabulary
 from gaitc.diagnostics.choices import Choice
 from gaitc.ir.bddfile import SymbolicController, declare, materialize
+from gaitc.ir.manager import manager
 from gaitc.ir.spec import Semantics
+
+if TYPE_CHECKING:
+    from dd.cudd import BDD, Function
 
 
 class FieldOrder(Choice):
@@ -59,8 +63,8 @@ class Game:
     """A solved game's roots (dd.cudd functions of ``bdd`` over ``inputs``, ``outputs`` and
     their primed copies), named as in :data:`gaitc.ir.bddfile.SINGLE_ROOTS`."""
 
-    bdd: Any
-    roots: Mapping[str, Any]
+    bdd: BDD
+    roots: Mapping[str, Any]  # a node, or a list of them per goal (gaitc.ir.bddfile.materialize)
     inputs: tuple[str, ...]
     outputs: tuple[str, ...]
     semantics: Semantics
@@ -98,7 +102,7 @@ def _one_order(game: Game, vocabulary: Vocabulary, slots: list[Slot], greedy: bo
         init = bdd.exist(set(outputs), roots["env_init"]) & start_ok
     reach = reachable(bdd, init, strategies, env_trans, moving, inputs, outputs)
     allowed, first_ok = strategies, start_ok
-    best: tuple[CompactController, Builder, Any] | None = None
+    best: tuple[CompactController, Builder, Function] | None = None
     for _ in range(ROUNDS):
         builder = Builder(bdd, slots, vocabulary.outputs, greedy=greedy)
         move_roots = [_defined(builder.build_moves(here & env_trans
@@ -166,7 +170,7 @@ def pruned(ctrl: CompactController) -> CompactController:
                    assumed_root=None if ctrl.assumed_root is None else ref(ctrl.assumed_root))
 
 
-def field_domain(bdd: Any, slots: Sequence[Slot]) -> Any:
+def field_domain(bdd: BDD, slots: Sequence[Slot]) -> Function:
     """The states (and chosen inputs) the slots can name: every field at one of its values."""
     out = bdd.true
     for slot in slots:
@@ -177,11 +181,11 @@ def field_domain(bdd: Any, slots: Sequence[Slot]) -> Any:
     return out
 
 
-def counter_moves(bdd: Any, goals: Sequence[Any]) -> list[list[Any]]:
+def counter_moves(bdd: BDD, goals: Sequence[Function]) -> list[list[Function]]:
     """``moving[j][k]``: the states after which the goal counter goes from j to k (goals
     j..k-1 hold there and k does not; or every goal holds and it stays at j)."""
     n = len(goals)
-    moving: list[list[Any]] = []
+    moving: list[list[Function]] = []
     for j in range(n):
         row, met = [bdd.false] * n, bdd.true
         for t in range(n):
@@ -193,9 +197,9 @@ def counter_moves(bdd: Any, goals: Sequence[Any]) -> list[list[Any]]:
     return moving
 
 
-def reachable(bdd: Any, init: Any, strategies: Sequence[Any], env_trans: Any,
-              moving: Sequence[Sequence[Any]], inputs: Sequence[str],
-              outputs: Sequence[str]) -> list[Any]:
+def reachable(bdd: BDD, init: Function, strategies: Sequence[Function], env_trans: Function,
+              moving: Sequence[Sequence[Function]], inputs: Sequence[str],
+              outputs: Sequence[str]) -> list[Function]:
     """Per goal j, the states a run can be in while it pursues goal j when the controller
     may make any move of ``strategies[j]``, from ``init`` at goal 1: the care sets.  Closed
     under every move allowed, so a function that picks any of them never leaves them."""
@@ -203,9 +207,9 @@ def reachable(bdd: Any, init: Any, strategies: Sequence[Any], env_trans: Any,
     return reachable_from(bdd, starts, strategies, env_trans, moving, inputs, outputs)
 
 
-def reachable_from(bdd: Any, starts: Sequence[Any], strategies: Sequence[Any], env_trans: Any,
-                   moving: Sequence[Sequence[Any]], inputs: Sequence[str],
-                   outputs: Sequence[str]) -> list[Any]:
+def reachable_from(bdd: BDD, starts: Sequence[Function], strategies: Sequence[Function],
+                   env_trans: Function, moving: Sequence[Sequence[Function]],
+                   inputs: Sequence[str], outputs: Sequence[str]) -> list[Function]:
     """:func:`reachable` from ``starts[j]`` pursuing goal j, for every j (a recovery lands a
     run in the middle of a goal, :mod:`gaitc.compact.recovery`)."""
     pre = set(inputs) | set(outputs)
@@ -238,8 +242,6 @@ def _defined(ref: int, otherwise: int | None = None) -> int:
 def compact_from_symbolic(ctrl: SymbolicController, vocabulary: Vocabulary,
                           orders: Sequence[FieldOrder] = ORDERS) -> CompactController:
     """The compact controller of a stored symbolic controller."""
-    from gaitc.ir.manager import manager
-
     bdd = manager()
     declare(bdd, ctrl)
     roots = materialize(bdd, ctrl)

@@ -30,9 +30,9 @@ from __future__ import annotations
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field, replace
 from itertools import combinations
-from typing import Any, TypeAlias
+from typing import TYPE_CHECKING, TypeAlias
 
-from gaitc.compact.controller import CompactController
+from gaitc.compact.controller import CompactController, relations, to_symbolic
 from gaitc.compact.diagram import (
     DONT_CARE,
     Builder,
@@ -53,8 +53,23 @@ from gaitc.core.changes import Change, HazardSwitch, LegFails, LegRepaired, LegW
 from gaitc.core.modes import Outcome
 from gaitc.core.vocabulary import HAZARD_FIELD, Field, Vocabulary
 from gaitc.diagnostics.choices import Choice
+from gaitc.ir.bddfile import materialize
 from gaitc.ir.formula import unreachable
 from gaitc.ir.spec import GR1Spec, Semantics
+from gaitc.solver.canonical import spec_integers
+from gaitc.solver.game import Game, goal_strategies
+from gaitc.solver.symbolic import Options, SymbolicSpec
+from gaitc.solver.symbolic_strategy import symbolic_controller
+from gaitc.verifier.recovery import FallbackRelations, RecoveryRelations, verify_recovery
+
+if TYPE_CHECKING:
+    from dd.cudd import BDD, Function
+
+    from gaitc.compact.controller import Relations
+    from gaitc.ir.controller import IntegerVar
+    from gaitc.solver.symbolic import SymbolicSpec
+    from gaitc.verifier.recovery import RecoveryRelations
+    from gaitc.verifier.strategy import VerificationReport
 
 
 @dataclass(frozen=True)
@@ -276,21 +291,21 @@ def surprise_classes(vocabulary: Vocabulary) -> tuple[SurpriseClass, ...]:
 class _Solved:
     """One game's functions in the shared manager."""
 
-    winning: Any
-    strategies: list[Any]
-    goals: list[Any]
+    winning: Function
+    strategies: list[Function]
+    goals: list[Function]
 
 
 @dataclass
 class _Work:
     """The shared manager and the spec's functions in it."""
 
-    bdd: Any
+    bdd: BDD
     inputs: tuple[str, ...]
     outputs: tuple[str, ...]
-    env_trans: Any
-    sys_trans: Any
-    valid_post: Any  # every next value (inputs and outputs) one of its field's values
+    env_trans: Function
+    sys_trans: Function
+    valid_post: Function  # every next value (inputs and outputs) one of its field's values
     games: dict[tuple[int, ...], _Solved | None] = field(default_factory=dict)
 
     @property
@@ -301,11 +316,11 @@ class _Work:
     def post_out(self) -> set[str]:
         return {b + "'" for b in self.outputs}
 
-    def unprime(self, u: Any) -> Any:
+    def unprime(self, u: Function) -> Function:
         return self.bdd.let({b + "'": b for b in self.pre}, self.bdd.exist(self.pre, u))
 
 
-def _valid(bdd: Any, fields: Sequence[Field], primed: bool) -> Any:
+def _valid(bdd: BDD, fields: Sequence[Field], primed: bool) -> Function:
     out = bdd.true
     for f in fields:
         values = bdd.false
@@ -319,9 +334,6 @@ def recovering_controller(spec: GR1Spec, vocabulary: Vocabulary,
                           semantics: Semantics = Semantics.DEFAULT,
                           options: RecoveryOptions | None = None) -> RecoveringController:
     """The recovering compact controller of ``spec`` (see the module text)."""
-    from gaitc.solver.game import Game, goal_strategies
-    from gaitc.solver.symbolic import Options, SymbolicSpec
-
     opts = options or RecoveryOptions()
     sym = SymbolicSpec(spec, Options(care=False))
     result = Game(sym, purpose="solving the recovery game").solve(keep_layers=True)
@@ -372,7 +384,7 @@ def recovering_controller(spec: GR1Spec, vocabulary: Vocabulary,
     # the fallbacks: class surprises that do not recover, by the largest goal set K
     class_sets = [u & surprises for u in class_sets]
     remaining = in_class & surprises & ~enter
-    chosen: list[tuple[tuple[int, ...], Any, _Solved]] = []
+    chosen: list[tuple[tuple[int, ...], Function, _Solved]] = []
     if opts.fallbacks:
         for size in range(n - 1, 0, -1):
             for kept in combinations(every, size):
@@ -450,19 +462,17 @@ def recovering_controller(spec: GR1Spec, vocabulary: Vocabulary,
     return built if len(fallbacks) == len(chosen) else built.without_fallbacks(len(fallbacks))
 
 
-def _integers(sym: Any) -> dict[str, Any]:
-    from gaitc.solver.canonical import spec_integers
-
+def _integers(sym: SymbolicSpec) -> dict[str, IntegerVar]:
     return dict(spec_integers(sym))
 
 
-def _into(work: _Work, winning: Any) -> Any:
+def _into(work: _Work, winning: Function) -> Function:
     """The moves ρs allows into ``winning`` (next values in range)."""
     prime = {b: b + "'" for b in (*work.inputs, *work.outputs)}
     return work.sys_trans & work.bdd.let(prime, winning) & work.valid_post
 
 
-def _entering(work: _Work, solved: _Solved) -> Any:
+def _entering(work: _Work, solved: _Solved) -> Function:
     """(s, x') with some move ρs allows into the game's winning region."""
     return work.bdd.exist(work.post_out, _into(work, solved.winning))
 
@@ -471,10 +481,6 @@ def _game(work: _Work, spec: GR1Spec, kept: tuple[int, ...]) -> _Solved | None:
     """The game with only the goals ``kept`` (solved once), in the shared manager."""
     if kept in work.games:
         return work.games[kept]
-    from gaitc.ir.bddfile import materialize
-    from gaitc.solver.game import Game
-    from gaitc.solver.symbolic import Options, SymbolicSpec
-    from gaitc.solver.symbolic_strategy import symbolic_controller
 
     variant = spec.with_sections(sys_liveness=tuple(spec.sys_liveness[j] for j in kept))
     sym = SymbolicSpec(variant, Options(care=False))
@@ -487,15 +493,15 @@ def _game(work: _Work, spec: GR1Spec, kept: tuple[int, ...]) -> _Solved | None:
     return solved
 
 
-def _closure(work: _Work, starts: Sequence[Any], strategies: Sequence[Any],
-             moving: Sequence[Sequence[Any]]) -> list[Any]:
+def _closure(work: _Work, starts: Sequence[Function], strategies: Sequence[Function],
+             moving: Sequence[Sequence[Function]]) -> list[Function]:
     """Per goal j, the states a run pursuing goal j can be in from ``starts`` (per goal),
     any move of ``strategies`` taken (:func:`gaitc.compact.extraction.reachable_from`)."""
     return reachable_from(work.bdd, starts, strategies, work.env_trans, moving, work.inputs,
                           work.outputs)
 
 
-def _class_set(bdd: Any, vocabulary: Vocabulary, c: SurpriseClass) -> Any:
+def _class_set(bdd: BDD, vocabulary: Vocabulary, c: SurpriseClass) -> Function:
     """(x, x') where the class's field makes its change and every other input stays."""
     name = _field(c)
     out = bdd.true
@@ -549,8 +555,8 @@ def _changed(c: SurpriseClass, value: int, labels: Sequence[str]) -> list[int]:
             unreachable(c)
 
 
-def _class_report(bdd: Any, c: SurpriseClass, u: Any, enter: Any,
-                  chosen: Sequence[tuple[tuple[int, ...], Any, _Solved]], nvars: int
+def _class_report(bdd: BDD, c: SurpriseClass, u: Function, enter: Function,
+                  chosen: Sequence[tuple[tuple[int, ...], Function, _Solved]], nvars: int
                   ) -> ClassReport:
     recovered = u & enter
     left = u & ~enter
@@ -563,7 +569,7 @@ def _class_report(bdd: Any, c: SurpriseClass, u: Any, enter: Any,
     return ClassReport(c, _pairs(bdd, recovered, nvars), degraded, _pairs(bdd, left, nvars))
 
 
-def _pairs(bdd: Any, u: Any, nvars: int) -> int:
+def _pairs(bdd: BDD, u: Function, nvars: int) -> int:
     """The (state, inputs) pairs of ``u``, a set of field states and in-range inputs over
     the ``nvars`` current bits and next input bits (one assignment per pair)."""
     return 0 if u == bdd.false else int(bdd.count(u, nvars=nvars))
@@ -576,15 +582,12 @@ def _defined(ref: int, otherwise: int | None = None) -> int:
 
 
 # ------------------------------------------------------------------------ the proof
-def recovery_relations(bdd: Any, rc: RecoveringController) -> Any:
+def recovery_relations(bdd: BDD, rc: RecoveringController) -> RecoveryRelations:
     """The recovery diagrams of ``rc`` as BDDs of ``bdd`` over the spec's bits, for
     :func:`gaitc.verifier.recovery.verify_recovery`."""
-    from gaitc.compact.controller import relations
-    from gaitc.verifier.recovery import FallbackRelations, RecoveryRelations
-
     base = rc.base
 
-    def built(moves: Sequence[Ref], flags: Sequence[Ref]) -> dict[str, Any]:
+    def built(moves: Sequence[Ref], flags: Sequence[Ref]) -> Relations:
         return relations(bdd, replace(base, move_roots=tuple(moves), reached_roots=tuple(flags)))
 
     main = built([rc.recover_root], [rc.recoverable_root])
@@ -597,12 +600,9 @@ def recovery_relations(bdd: Any, rc: RecoveringController) -> Any:
                              tuple(fallbacks))
 
 
-def prove_recovery(spec: GR1Spec, rc: RecoveringController) -> Any:
+def prove_recovery(spec: GR1Spec, rc: RecoveringController) -> VerificationReport:
     """The verifier's report on ``rc``'s surprise handling (:mod:`gaitc.verifier.recovery`);
     the ordinary part is proved by :meth:`gaitc.forms.compact.CompactForm.verify`."""
-    from gaitc.compact.controller import to_symbolic
-    from gaitc.verifier.recovery import verify_recovery
-
     inputs = rc.base.vocabulary.inputs
     return verify_recovery(spec, to_symbolic(rc.base), lambda b: recovery_relations(b, rc),
                            lambda b: _valid(b, inputs, True), rc.base.semantics)

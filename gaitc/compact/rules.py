@@ -20,10 +20,16 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
+from gaitc.compact.controller import diagram_order, relations
 from gaitc.compact.diagram import Slot, paths
+from gaitc.compact.extraction import counter_moves, reachable
+from gaitc.ir.bitblast import bitblast
 from gaitc.ir.spec import Semantics
+from gaitc.verifier.logic import Logic
 
 if TYPE_CHECKING:
+    from dd.cudd import BDD, Function
+
     from gaitc.compact.controller import CompactController
     from gaitc.ir.spec import GR1Spec
 
@@ -202,11 +208,11 @@ class Reach:
     per goal, the current states a run pursues it in with every input ρe allows next
     (primed); and the first inputs θe allows (primed, as the start diagram reads them)."""
 
-    bdd: Any
-    moves: tuple[Any, ...]
-    first: Any
+    bdd: BDD
+    moves: tuple[Function, ...]
+    first: Function
 
-    def path(self, ctrl: CompactController, cond: Condition) -> Any:
+    def path(self, ctrl: CompactController, cond: Condition) -> Function:
         """The states and inputs a path of ``ctrl``'s diagrams takes."""
         out = self.bdd.true
         for slot, chosen in zip(ctrl.slots, cond, strict=True):
@@ -214,7 +220,7 @@ class Reach:
                 out &= self.values(slot, chosen)
         return out
 
-    def values(self, slot: Slot, chosen: frozenset[int]) -> Any:
+    def values(self, slot: Slot, chosen: frozenset[int]) -> Function:
         out = self.bdd.false
         for value in sorted(chosen):
             out |= self.bdd.cube(slot.field.cube(value, slot.next))
@@ -227,11 +233,6 @@ def reach(ctrl: CompactController, spec: GR1Spec) -> Reach:
     controller's own move, the goal counter moved by its goal diagrams.  The fixpoint is
     the one compaction shrinks its care sets with (:func:`gaitc.compact.extraction.reachable`),
     here over the controller's relations alone, as the verifier models the closed loop."""
-    from gaitc.compact.controller import diagram_order, relations
-    from gaitc.compact.extraction import counter_moves, reachable
-    from gaitc.ir.bitblast import bitblast
-    from gaitc.verifier.logic import Logic
-
     logic = Logic(bitblast(spec), diagram_order(ctrl))
     bdd = logic.bdd
     env_init, env_trans = logic.conjunction("env_init"), logic.conjunction("env_trans")
@@ -250,7 +251,7 @@ def reach(ctrl: CompactController, spec: GR1Spec) -> Reach:
     return Reach(bdd, moves, first)
 
 
-def _taken(found: Reach, slot: Slot, within: Any, chosen: frozenset[int] | None
+def _taken(found: Reach, slot: Slot, within: Function, chosen: frozenset[int] | None
            ) -> frozenset[int]:
     """The values of ``slot`` (among ``chosen``; None: all) that states of ``within`` have."""
     values = range(len(slot.field.labels)) if chosen is None else sorted(chosen)
@@ -258,7 +259,7 @@ def _taken(found: Reach, slot: Slot, within: Any, chosen: frozenset[int] | None
                      if within & found.values(slot, frozenset([v])) != found.bdd.false)
 
 
-def _narrowed(ctrl: CompactController, cond: Condition, care: Any, found: Reach
+def _narrowed(ctrl: CompactController, cond: Condition, care: Function, found: Reach
               ) -> Condition | None:
     """``cond`` said of the reachable states only: each tested slot narrowed to the values
     they have there, and the robot's own state (a current output field the path does not
@@ -280,13 +281,13 @@ def _narrowed(ctrl: CompactController, cond: Condition, care: Any, found: Reach
     return tuple(out)
 
 
-def _rules(ctrl: CompactController, root: int, care: Any = None,
+def _rules(ctrl: CompactController, root: int, care: Function | None = None,
            found: Reach | None = None) -> tuple[Rule, ...]:
     robot = ctrl.vocabulary.domain == "robot"
     out = []
     for cond, leaf in paths(ctrl.nodes, root, len(ctrl.slots)):
         shown: Condition | None = cond
-        if found is not None:
+        if found is not None and care is not None:  # given together
             shown = _narrowed(ctrl, cond, care, found)
         used = shown is not None
         words = tuple(condition(ctrl.slots[k], chosen, robot)

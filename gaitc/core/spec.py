@@ -78,6 +78,7 @@ class Spec:
         """The fields a compact controller of this spec decides in
         (:func:`gaitc.core.vocabulary.expected_vocabulary`): the robot's words for a
         ``.gait`` spec, one field per declared variable otherwise."""
+        # lazy: not on the lint and check paths (start-up)
         from gaitc.core.vocabulary import expected_vocabulary
 
         return expected_vocabulary(self.gr1, self.model, self.encoding)
@@ -188,6 +189,7 @@ def parse(text: str, name: str = "<string>.gait",
 
 def _build(text: str, name: str, suffix: str, encoding: EncodingName, digest: str) -> Spec:
     if suffix in GAIT_SUFFIXES:
+        # lazy: one input format's reader, loaded for its files only (start-up)
         from ltlcompiler.frontend import model_from_text
         from ltlcompiler.lowering import lower
 
@@ -195,13 +197,16 @@ def _build(text: str, name: str, suffix: str, encoding: EncodingName, digest: st
         spec = lower(model, encoding)
         return Spec(name, spec, model, encoding, tuple(diagnostics), digest, text)
     if suffix in PREFIX_SUFFIXES:
+        # lazy: one input format's reader, loaded for its files only (start-up)
         from slugs_bridge.slugsin import parse_slugsin
 
         return Spec(name, parse_slugsin(text, name), sha256=digest, text=text)
     if suffix in LTL_SUFFIXES:
+        # lazy: one input format's reader, loaded for its files only (start-up)
         from slugs_bridge.ltltext import parse_ltl
 
         return Spec(name, parse_ltl(text, name), sha256=digest, text=text)
+    # lazy: one input format's reader, loaded for its files only (start-up)
     from slugs_bridge.structured import parse_structuredslugs
 
     return Spec(name, parse_structuredslugs(text, name), sha256=digest, text=text)

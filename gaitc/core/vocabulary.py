@@ -15,7 +15,8 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
 from gaitc.diagnostics import ControllerError
-from gaitc.ir.controller import IntegerVar
+from gaitc.ir.bits import spec_bits
+from gaitc.ir.controller import IntegerVar, spec_integers
 from gaitc.ir.spec import GR1Spec
 from ltlcompiler.decoding import RobotState, encode
 from ltlcompiler.encoding import EncodingName, health_prop
@@ -159,9 +160,6 @@ def expected_vocabulary(spec: GR1Spec, model: Model | None = None,
     """The fields a compact controller of ``spec`` decides in, from the spec alone: the
     robot's words when ``spec`` was compiled from ``model`` (and they cover its bits), else
     one field per declared variable.  A controller file must carry exactly these."""
-    from gaitc.ir.bits import spec_bits
-    from gaitc.ir.controller import spec_integers
-
     integers = spec_integers(spec)
     ins, outs = spec_bits(spec)
     if model is not None:

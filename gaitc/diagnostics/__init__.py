@@ -10,6 +10,8 @@ Every package may import this one; it imports none of them.
 
 from __future__ import annotations
 
+import bisect
+import re
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Final
@@ -144,15 +146,11 @@ class LineTable:
     offset's line by bisection (a YAML file's every node is positioned this way)."""
 
     def __init__(self, text: str, file: str) -> None:
-        import re
-
         self.text, self.file = text, file
         self.ends = [m.start() for m in re.finditer("\n", text)]
 
     def span(self, offset: int) -> Span:
         """The span of character ``offset`` (see :func:`span_at`)."""
-        import bisect
-
         text = self.text
         offset = max(0, min(offset, len(text)))
         if offset == len(text) and text.endswith("\n"):

@@ -8,6 +8,7 @@ or lost file behind.
 from __future__ import annotations
 
 import contextlib
+import csv
 import errno
 import os
 import stat
@@ -130,7 +131,8 @@ def make_folder(path: str | Path) -> Path:
 def _check_new_file(folder: Path, path: str | Path) -> None:
     """Make and remove a file in ``folder``, as :func:`write_atomically` will: a folder the
     system lets no one add a file to is refused now, not halfway through the outputs."""
-    import tempfile  # with random: loaded by the commands that write, not those that read
+    # lazy: tempfile, with random, by the commands that write, not those that read
+    import tempfile
 
     try:
         fd, probe = tempfile.mkstemp(prefix=".gaitc-probe.", suffix=".tmp", dir=folder)
@@ -186,7 +188,7 @@ def write_atomically(path: str | Path, data: str | bytes, follow_links: bool = T
         except OSError as err:
             raise FileAccessError(f"cannot write '{path}': {reason(err)}") from None
         return
-    import tempfile
+    import tempfile  # lazy: only commands that write load tempfile (start-up of check)
 
     tmp: str | None = None
     try:
@@ -212,8 +214,6 @@ def csv_rows(text: str, name: str, error: type[GaitcError]) -> list[list[str]]:
     dropped: :func:`gaitc.diagnostics.source_lines`, as everywhere else); a row the csv
     module cannot read (a field over its size limit, a quote left open, a lone ``\\r``) is
     ``error`` at that line."""
-    import csv
-
     rows: list[list[str]] = []
     for number, line in enumerate(source_lines(text), 1):
         try:

@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import contextlib
 import os
+import pickle
 import signal
 import sys
 import time
@@ -62,9 +63,10 @@ def first_success(works: Sequence[Callable[[], Any]], deadline: float | None = N
     :func:`to_parent` is handed to ``relay`` here (progress messages), as it arrives: the
     first child's until a child calls :func:`claim`, then only the claimant's, whose outcome
     (success or not) is then the answer, the others killed."""
-    import ctypes  # noqa: F401  (for die_with_parent, in the children)
-    import multiprocessing
-    from multiprocessing import connection
+    # lazy: for die_with_parent in the children, imported before the fork
+    import ctypes  # noqa: F401
+    import multiprocessing  # lazy: forked solvers' machinery, not on check's path (start-up)
+    from multiprocessing import connection  # lazy: as multiprocessing above
 
     context = multiprocessing.get_context("fork")
     started_at = time.monotonic()
@@ -225,8 +227,6 @@ def _portable(err: BaseException) -> BaseException:
     between processes (a module, a lock, a parser's state) are left out or given as text,
     so the parent still reports the user's error (file, line, message), not an internal
     one."""
-    import pickle
-
     def travels(value: object) -> bool:
         try:
             pickle.dumps(value)
@@ -281,7 +281,8 @@ def as_worker() -> None:
 
 def die_with_parent() -> None:
     """Ask the kernel to kill this process when its parent ends (Linux; elsewhere a no-op)."""
-    import ctypes  # first_success imports it before it forks; other workers load it here
+    # lazy: first_success imports it before it forks; other workers load it here
+    import ctypes
 
     try:
         libc = ctypes.CDLL(None, use_errno=True)

@@ -23,6 +23,7 @@ from pathlib import Path
 import yaml
 
 from gaitc.diagnostics import GaitcError, LineTable, Span, span_at
+from gaitc.diagnostics.files import decode_text, read_input
 
 MAX_DEPTH = 200  # nested lists and mappings; the robot and scenario formats need five
 MAX_NODES = 200_000  # values that aliases add to the document (each use of an alias expands
@@ -120,8 +121,6 @@ def keyed_section(path: str | Path, error: type[GaitcError], what: str, key: str
     """Read the YAML file ``path`` (``what``, as messages name it) and return its name and
     the mapping under its top-level ``key``; anything else is ``error(expected)`` where the
     file went wrong (the value of ``key``, else the document)."""
-    from gaitc.diagnostics.files import decode_text, read_input
-
     name = str(path)
     text = decode_text(read_input(path, what), name, error)
     root = compose(text, name, error, f"the {what}")

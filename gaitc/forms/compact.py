@@ -3,11 +3,23 @@ form generated C and the valve board run; proved with its assumption monitor."""
 
 from __future__ import annotations
 
+import sys
 from dataclasses import replace
 from typing import TYPE_CHECKING, Any, ClassVar
 
+from gaitc.codegen.tables import table_bytes
+from gaitc.compact.controller import (
+    compact_from_dict,
+    compact_to_json,
+    is_compact,
+    monitor_function,
+    to_symbolic,
+)
 from gaitc.core.modes import Form, Semantics
 from gaitc.forms.base import ControllerForm
+from gaitc.sim.symbolic_view import SymbolicStrategy
+from gaitc.verifier.monitor import monitor_check
+from gaitc.verifier.symbolic import verify_symbolic
 
 if TYPE_CHECKING:
     from gaitc.compact.controller import CompactController
@@ -28,36 +40,24 @@ class CompactForm(ControllerForm):
     form: ClassVar[Form] = Form.COMPACT
 
     def owns(self, automaton: object) -> bool:
-        import sys
-
         # none can exist before gaitc.compact is imported: a plain check need not load it
         module = sys.modules.get("gaitc.compact.controller")
         return module is not None and isinstance(automaton, module.CompactController)
 
     def recognises(self, data: Any) -> bool:
-        from gaitc.compact.controller import is_compact
-
         return is_compact(data)
 
     def parse(self, data: Any, file: str, spec: Spec) -> CompactController:
-        from gaitc.compact.controller import compact_from_dict
-
         return compact_from_dict(data, file)
 
     def vocabulary(self, automaton: CompactController) -> Vocabulary:
         return automaton.vocabulary
 
     def to_json(self, automaton: CompactController) -> str:
-        from gaitc.compact.controller import compact_to_json
-
         return compact_to_json(automaton)
 
     def verify(self, spec: Spec, automaton: CompactController, semantics: Semantics
                ) -> VerificationReport:
-        from gaitc.compact.controller import monitor_function, to_symbolic
-        from gaitc.verifier.monitor import monitor_check
-        from gaitc.verifier.symbolic import verify_symbolic
-
         if not automaton.monitored:
             report = verify_symbolic(spec.gr1, to_symbolic(automaton), semantics)
             return replace(report, notes=(*report.notes, NO_MONITOR))
@@ -70,22 +70,15 @@ class CompactForm(ControllerForm):
 
     def runtime(self, spec: Spec, automaton: CompactController, file: str = ""
                 ) -> StrategyView:
-        from gaitc.compact.controller import to_symbolic
-        from gaitc.sim.symbolic_view import SymbolicStrategy
-
         return SymbolicStrategy(to_symbolic(automaton, spec.gr1), spec.gr1, file)
 
     def size(self, automaton: CompactController) -> str:
-        from gaitc.codegen.tables import table_bytes
-
         c = automaton
         return (f"compact, {c.rules} rules, {c.decision_nodes} decision nodes "
                 f"(+{c.monitor_nodes} for the assumption monitor), {table_bytes(c)} bytes "
                 "of tables")
 
     def size_json(self, automaton: CompactController) -> dict[str, Any]:
-        from gaitc.codegen.tables import table_bytes
-
         c = automaton
         return {"nodes": c.decision_nodes,
                 "compact": {"rules": c.rules, "decision_nodes": c.decision_nodes,

@@ -25,11 +25,13 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, ClassVar, Final, NoReturn
 
+from gaitc.compact.extraction import compact_from_symbolic
 from gaitc.core.modes import Form, Semantics
 from gaitc.diagnostics import ControllerError, Span
 from gaitc.diagnostics.choices import Choice
 from gaitc.diagnostics.versions import FileFormat
 from gaitc.forms.base import ControllerForm
+from gaitc.ir.bddfile import SymbolicController, node_table
 from gaitc.ir.controller import (
     KINDS,
     Controller,
@@ -41,6 +43,11 @@ from gaitc.ir.controller import (
     integers_to_json,
 )
 from gaitc.ir.spec import SEMANTICS
+from gaitc.sim.strategy import strategy_from_controller
+from gaitc.solver.canonical import spec_integers
+from gaitc.solver.symbolic import SymbolicSpec
+from gaitc.verifier.counterstrategy import verify_counterstrategy
+from gaitc.verifier.strategy import verify as verify_strategy
 
 if TYPE_CHECKING:
     from gaitc.compact.controller import CompactController
@@ -121,16 +128,12 @@ class ExplicitForm(ControllerForm):
     def verify(self, spec: Spec, automaton: Controller, semantics: Semantics
                ) -> VerificationReport:
         if automaton.kind == ControllerKind.COUNTERSTRATEGY:
-            from gaitc.verifier.counterstrategy import verify_counterstrategy
 
             return verify_counterstrategy(spec.gr1, automaton, semantics)
-        from gaitc.verifier.strategy import verify as verify_strategy
 
         return verify_strategy(spec.gr1, automaton, semantics)
 
     def runtime(self, spec: Spec, automaton: Controller, file: str = "") -> StrategyView:
-        from gaitc.sim.strategy import strategy_from_controller
-
         return strategy_from_controller(automaton, spec.gr1, file)
 
     def size(self, automaton: Controller) -> str:
@@ -140,8 +143,6 @@ class ExplicitForm(ControllerForm):
         return {"nodes": len(automaton.nodes)}
 
     def to_compact(self, spec: Spec, automaton: Controller) -> CompactController:
-        from gaitc.compact.extraction import compact_from_symbolic
-
         if automaton.kind == ControllerKind.COUNTERSTRATEGY:
             raise ControllerError(
                 "a counter-strategy has no compact form: it is the environment's plan, not "
@@ -338,10 +339,6 @@ def controller_from_tables(data: Any, file: str = "<controller>") -> Controller:
 # ---------------------------------------------------------------- as BDD relations
 def symbolic_of_explicit(spec: Spec, automaton: Controller) -> SymbolicController:
     """The explicit automaton as BDD relations, one per goal (see the module's text)."""
-    from gaitc.ir.bddfile import SymbolicController, node_table
-    from gaitc.solver.canonical import spec_integers
-    from gaitc.solver.symbolic import SymbolicSpec
-
     sym = SymbolicSpec(spec.gr1)
     bdd = sym.bdd
     names = automaton.variables

@@ -20,7 +20,9 @@ from typing import TYPE_CHECKING, Any
 from gaitc.core.spec import Spec
 from gaitc.core.vocabulary import vocabulary_difference
 from gaitc.diagnostics import ControllerError, Span
+from gaitc.diagnostics.files import read_input
 from gaitc.forms.base import Automaton
+from gaitc.forms.explicit import GZIP_MAGIC, read_tables
 from gaitc.forms.registry import detect, entry
 from gaitc.ir.bits import bits_mismatch, spec_bits
 from gaitc.ir.controller import IntegerVar, parse_controller_json, spec_integers
@@ -48,9 +50,6 @@ def read_document(path: str | Path) -> Any:
     text, or an explicit controller's tables layout (gzip, :func:`gaitc.forms.explicit.
     read_tables`); a file that is neither is a :class:`~gaitc.diagnostics.ControllerError`
     saying where it goes wrong."""
-    from gaitc.diagnostics.files import read_input
-    from gaitc.forms.explicit import GZIP_MAGIC, read_tables
-
     file = str(path)
     raw = read_input(file, "controller file")
     if raw.startswith(GZIP_MAGIC):

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Any, ClassVar
 
+from gaitc.compact.extraction import compact_from_symbolic
 from gaitc.core.modes import Form, Semantics
 from gaitc.forms.base import ControllerForm
 from gaitc.ir.bddfile import (
@@ -13,6 +14,8 @@ from gaitc.ir.bddfile import (
     symbolic_from_dict,
     symbolic_to_json,
 )
+from gaitc.sim.symbolic_view import SymbolicStrategy
+from gaitc.verifier.symbolic import verify_symbolic
 
 if TYPE_CHECKING:
     from gaitc.compact.controller import CompactController
@@ -40,14 +43,10 @@ class SymbolicForm(ControllerForm):
 
     def verify(self, spec: Spec, automaton: SymbolicController, semantics: Semantics
                ) -> VerificationReport:
-        from gaitc.verifier.symbolic import verify_symbolic
-
         return verify_symbolic(spec.gr1, automaton, semantics)
 
     def runtime(self, spec: Spec, automaton: SymbolicController, file: str = ""
                 ) -> StrategyView:
-        from gaitc.sim.symbolic_view import SymbolicStrategy
-
         return SymbolicStrategy(automaton, spec.gr1, file)
 
     def size(self, automaton: SymbolicController) -> str:
@@ -57,6 +56,4 @@ class SymbolicForm(ControllerForm):
         return {"nodes": len(automaton.nodes)}
 
     def to_compact(self, spec: Spec, automaton: SymbolicController) -> CompactController:
-        from gaitc.compact.extraction import compact_from_symbolic
-
         return compact_from_symbolic(automaton, spec.vocabulary)

@@ -16,17 +16,21 @@ from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Final, Literal, Union, get_args
 
+from gaitc.analysis.separation import preference_note, stay_separated
+from gaitc.analysis.separation import separation as separated
 from gaitc.core.modes import ControllerKind, Form
 from gaitc.core.presentation import table
-from gaitc.core.spec import Spec
+from gaitc.core.spec import Spec, as_spec
 from gaitc.diagnostics import SolverError, UsageError
 from gaitc.diagnostics.files import write_atomically
 from gaitc.forms.base import Automaton
 from gaitc.ir.formula import unreachable
 from gaitc.ir.spec import GR1Spec, Semantics
-from gaitc.solver.game import GameStats, out_of_memory
+from gaitc.solver import synthesis
+from gaitc.solver.game import GameStats, Limits, out_of_memory
+from gaitc.solver.preferences import preference_order
 from gaitc.solver.progress import Progress, Stage
-from gaitc.solver.symbolic import Options
+from gaitc.solver.symbolic import Options, SymbolicSpec
 from gaitc.solver.synthesis import Extraction
 from ltlcompiler.encoding import EncodingName
 
@@ -126,6 +130,7 @@ class Synthesis:
         """The controller's size in words: explicit nodes, or a symbolic one's BDD nodes."""
         if self.controller is None:
             return "none"
+        # lazy: not on gaitc check's path (tests/codebase/test_startup_imports.py)
         from gaitc.forms.registry import entry
 
         size = entry(self.controller).size(self.controller)
@@ -150,6 +155,7 @@ class Synthesis:
             "verification": None if self.report is None else self.report.to_json(),
             "separation": self.separation}
         if self.controller is not None:
+            # lazy: not on gaitc check's path (tests/codebase/test_startup_imports.py)
             from gaitc.forms.registry import entry
 
             out.update(entry(self.controller).size_json(self.controller))
@@ -163,6 +169,7 @@ class Synthesis:
         if self.controller is None:
             raise UsageError(f"there is no {self.kind}: the spec is "
                              f"{'realizable' if self.realizable else 'unrealizable'}")
+        # lazy: not on gaitc check's path (tests/codebase/test_startup_imports.py)
         from gaitc.forms.registry import entry
 
         return entry(self.controller).form
@@ -175,12 +182,14 @@ class Synthesis:
         if self.controller is None:
             raise UsageError(f"there is no {self.kind} to save: the spec is "
                              f"{'realizable' if self.realizable else 'unrealizable'}")
+        # lazy: not on gaitc check's path (tests/codebase/test_startup_imports.py)
         from gaitc.forms.registry import entry
 
         write_atomically(path, entry(self.controller).to_file(self.controller, path, layout))
 
     def picture(self) -> Picture:
         """The automaton drawn in domain terms (needs a ``.gait`` spec and Graphviz)."""
+        # lazy: not on gaitc check's path (tests/codebase/test_startup_imports.py)
         from gaitc.ir.controller import Controller
         from gaitc.sim.automaton_view import automaton_view
         from gaitc.sim.domain import Domain
@@ -236,6 +245,7 @@ def _name(spec: Spec | GR1Spec) -> str:
 
 
 def _slugsin(spec: GR1Spec) -> str:
+    # lazy: not on gaitc check's path (tests/codebase/test_startup_imports.py)
     from gaitc.ir.bitblast import bitblast
     from slugs_bridge.slugsin import emit_slugsin
 
@@ -258,17 +268,15 @@ def decide(spec: Spec | GR1Spec, semantics: Semantics | str = Semantics.DEFAULT,
     started = time.monotonic()
     semantics = _semantics(semantics)
     if _solver(solver) == "slugs":
+        # lazy: not on gaitc check's path (tests/codebase/test_startup_imports.py)
         from slugs_bridge.runner import run_slugs_check
 
         result = run_slugs_check(_slugsin(gr1), semantics=semantics, timeout=timeout,
                                  slugs=slugs)
         return Verdict(_name(spec), result.realizable, result.seconds, semantics, solver)
-    from gaitc.solver import synthesis
 
     also = None
     if separation:
-        from gaitc.analysis.separation import separation as separated
-        from gaitc.solver.symbolic import SymbolicSpec
 
         def also(sym: SymbolicSpec, check: Callable[[], None]) -> Separation:
             return separated(spec, check, symbolic=sym)
@@ -317,10 +325,10 @@ def solve(spec: Spec | GR1Spec, kind: ControllerKind, semantics: Semantics,
           opts: SolveOptions | None = None) -> Synthesis:
     """A strategy (``kind`` STRATEGY) or a counter-strategy of ``spec`` as ``opts`` say,
     proved unless ``opts.check_it`` is False; its ``controller`` is None when none exists."""
+    # lazy: not on gaitc check's path (tests/codebase/test_startup_imports.py)
     from gaitc.ir.bddfile import SymbolicController
     from gaitc.ir.controller import Controller
     from gaitc.ir.quotient import merge_equivalent
-    from gaitc.solver.preferences import preference_order
 
     opts = opts or SolveOptions()
     solver, timeout, slugs, progress = opts.solver, opts.timeout, opts.slugs, opts.progress
@@ -343,8 +351,6 @@ def solve(spec: Spec | GR1Spec, kind: ControllerKind, semantics: Semantics,
                                  "none with --solver slugs")
             automaton = _slugs_automaton(gr1, kind, semantics, timeout, slugs)
         elif kind == ControllerKind.STRATEGY:
-            from gaitc.solver import synthesis
-
             separated = _stay_separated(spec, semantics, opts) if opts.separate else None
             target = gr1 if separated is None else separated[0]
             automaton = synthesis.synthesize_controller(
@@ -371,8 +377,6 @@ def solve(spec: Spec | GR1Spec, kind: ControllerKind, semantics: Semantics,
                 symbolic_nodes = len(automaton.nodes)
                 automaton = compacted(spec, automaton)
         else:
-            from gaitc.solver import synthesis
-
             automaton = synthesis.counterstrategy(gr1, semantics, timeout, progress,
                                                   opts.options)
     except MemoryError:
@@ -408,9 +412,6 @@ def _stay_separated(spec: Spec | GR1Spec, semantics: Semantics, opts: SolveOptio
                     ) -> tuple[GR1Spec, Separation] | None:
     """The spec whose controllers never force the environment to break an assumption, when
     ``spec`` is not well-separated (:func:`gaitc.analysis.separation.stay_separated`)."""
-    from gaitc.analysis.separation import stay_separated
-    from gaitc.solver.game import Limits
-
     if opts.progress is not None:
         opts.progress(Stage("checking well-separation (Maoz and Ringert)"))
     return stay_separated(spec, semantics, Limits(opts.timeout).check)
@@ -421,8 +422,6 @@ def _separated_controller(found: Solved, why: Separation, fallback: Callable[[],
     """The controller of the separated spec (``found``) with the words saying it never
     forces an assumption to break; when there is none, the controller of the spec itself
     (``fallback()``) with the words saying it may (no words when there is none either)."""
-    from gaitc.analysis.separation import preference_note
-
     if found is not None:
         return found, preference_note(why, kept=True)
     plain = fallback()
@@ -433,6 +432,7 @@ def _costs(spec: Spec | GR1Spec, order: Sequence[str]) -> tuple[Cost, ...]:
     """The robot model's move costs (:mod:`ltlcompiler.costs`) when ``order`` needs them."""
     if not isinstance(spec, Spec) or spec.model is None or set(order) <= {"goal"}:
         return ()
+    # lazy: not on gaitc check's path (tests/codebase/test_startup_imports.py)
     from ltlcompiler.costs import model_costs
 
     return model_costs(spec.model, spec.encoding or EncodingName.ONEHOT)
@@ -440,6 +440,7 @@ def _costs(spec: Spec | GR1Spec, order: Sequence[str]) -> tuple[Cost, ...]:
 
 def _slugs_automaton(gr1: GR1Spec, kind: ControllerKind, semantics: Semantics,
                      timeout: float | None, slugs: str | None) -> Controller | None:
+    # lazy: not on gaitc check's path (tests/codebase/test_startup_imports.py)
     from slugs_bridge import runner
 
     wanted = kind == ControllerKind.STRATEGY
@@ -459,7 +460,7 @@ def compacted(spec: Spec | GR1Spec, automaton: Automaton) -> CompactController:
     """The compact controller (:mod:`gaitc.compact`) of a controller of ``spec`` in any form
     (:meth:`gaitc.forms.base.ControllerForm.to_compact`), refused when it belongs to another
     spec; it is not proved here."""
-    from gaitc.core.spec import as_spec
+    # lazy: not on gaitc check's path (tests/codebase/test_startup_imports.py)
     from gaitc.forms.reader import check_belongs
     from gaitc.forms.registry import entry
 
@@ -474,7 +475,7 @@ def prove(spec: Spec | GR1Spec, automaton: Automaton, semantics: Semantics | str
     counter-strategy) realizes ``spec``, or defeats it: first that it belongs to the spec
     (its whole vocabulary), then its form's proof.  ``semantics`` defaults to the one
     recorded in the controller."""
-    from gaitc.core.spec import as_spec
+    # lazy: not on gaitc check's path (tests/codebase/test_startup_imports.py)
     from gaitc.forms.reader import belongs
     from gaitc.forms.registry import entry
     from gaitc.verifier.strategy import VerificationReport

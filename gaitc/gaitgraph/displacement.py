@@ -22,6 +22,10 @@ from collections import deque
 from collections.abc import Sequence
 from dataclasses import dataclass
 
+import numpy as np
+from scipy.sparse import coo_matrix
+from scipy.sparse.csgraph import connected_components
+
 #: What counts as no motion: mm of translation and degrees of rotation around a cycle.
 STILL_MM = 0.05
 STILL_DEG = 0.05
@@ -56,10 +60,6 @@ def stillness(
     dst[i]`` move the chassis by ``dx[i]``, ``dy[i]`` mm and ``rotation[i]`` degrees in the
     source's frame); see the module's docstring.  Only edges inside a strongly connected
     component lie on a cycle, so each component gets its own placements."""
-    import numpy as np
-    from scipy.sparse import coo_matrix
-    from scipy.sparse.csgraph import connected_components
-
     if not len(src):
         return Stillness(frozenset(), (0.0, 0.0), 0)
     a, b = np.asarray(src, np.int64), np.asarray(dst, np.int64)

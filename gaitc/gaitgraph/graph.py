@@ -16,7 +16,7 @@ import numpy as np
 from gaitc.gaitgraph.kinematics import forward, valve_string
 from gaitc.gaitgraph.motion import Edges, transitions
 from gaitc.gaitgraph.poses import PoseTable, contact_names, stable_poses
-from gaitc.gaitgraph.robot import Robot
+from gaitc.gaitgraph.robot import Robot, RobotFileError
 
 PoseKey = tuple[str, tuple[str, ...]]  # (valve state, contact points)
 
@@ -123,7 +123,6 @@ class GaitGraph:
 def full_graph(robot: Robot, limit: int = 16) -> GaitGraph:
     """Every valve state of a small robot (at most ``limit`` chambers)."""
     if robot.valve_count > limit:
-        from gaitc.gaitgraph.robot import RobotFileError
 
         raise RobotFileError(
             f"robot {robot.name} has {robot.valve_count} chambers: 2^{robot.valve_count} "

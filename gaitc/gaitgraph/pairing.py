@@ -13,7 +13,9 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from gaitc.diagnostics import Diagnostic, GaitcError, SpecSemanticError
+from gaitc.gaitgraph.cycles import parse_direction
 from gaitc.gaitgraph.robot import Robot, load_robot, parse_valves
+from gaitc.gaitgraph.search import search
 from ltlcompiler.model import Gait, GaitKind
 
 
@@ -115,8 +117,6 @@ def resolve_primitive(
             f"gait {gait.name}: a primitive needs inline valves, or a robot file and a direction",
             span,
         )
-    from gaitc.gaitgraph.cycles import parse_direction
-    from gaitc.gaitgraph.search import search
 
     direction = parse_direction(prim.direction, span)
     kept = stored_gait(robot, gait)

@@ -27,6 +27,7 @@ from pathlib import Path
 
 import yaml
 
+from gaitc.diagnostics.yamltext import finite_number, keyed_section, node_span
 from gaitc.hw.backend import WRONG_WAY, Backend, Course, HardwareError, SensorReading, where
 from gaitc.sim.environments import Move
 from ltlcompiler.model import Model
@@ -68,8 +69,6 @@ class RegionMap:
     def from_file(cls, path: str | Path, regions: Sequence[str]) -> RegionMap:
         """``regions: {name: [[x, y], ...], ...}`` in YAML; names must be the spec's.  Every
         error names the file and the position of the value at fault."""
-        from gaitc.diagnostics.yamltext import finite_number, keyed_section, node_span
-
         name, polygons = keyed_section(path, HardwareError, "map", "regions",
                                        "a map file maps 'regions' to polygons")
         out = {}

@@ -22,6 +22,7 @@ from gaitc.hw.simulated import SimulatedRobot
 from gaitc.models.motion import Pose2D
 from gaitc.models.spring_damper.model import SpringDamperModel, State
 from gaitc.sim.environments import Move
+from gaitc.sim.placement import positions
 from ltlcompiler.model import Model
 
 
@@ -29,7 +30,6 @@ def region_map(model: Model, cell: float) -> RegionMap:
     """Squares of side ``cell`` (mm) for the spec's regions: its grid, else the map layout."""
     if model.grid is not None:
         return RegionMap.from_grid(model, cell)
-    from gaitc.sim.placement import positions
 
     half = cell / 2.0
     squares = {

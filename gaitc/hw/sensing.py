@@ -23,6 +23,7 @@ import yaml
 
 from gaitc.diagnostics import GaitcError, Span
 from gaitc.diagnostics.files import csv_rows, decode_text, read_input
+from gaitc.diagnostics.yamltext import finite_number, keyed_section, mapping_of, node_span
 from ltlcompiler.checker import MAX_HEALTH
 
 NOMINAL_DEPTH = 0.6  # curvature feature of a healthy actuator when nothing is calibrated
@@ -279,8 +280,6 @@ def write_sensing(path: str | Path, calibration: Mapping[str, LegCalibration]) -
 def read_sensing(path: str | Path) -> dict[str, LegCalibration]:
     """Read a sensing file written by :func:`write_sensing` (or by hand, in YAML); every
     error names the file and the position of the value at fault."""
-    from gaitc.diagnostics.yamltext import finite_number, keyed_section, mapping_of, node_span
-
     name, legs = keyed_section(path, CalibrationError, "sensing file", "legs",
                                "a sensing file maps 'legs' to thresholds")
     out = {}

@@ -21,6 +21,8 @@ from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any, TypeVar
 
+import serial
+
 from gaitc.core.modes import Outcome
 from gaitc.hw.backend import Backend, HardwareError, SensorReading, where
 from gaitc.hw.sensing import HealthSensing, LegCalibration
@@ -42,11 +44,9 @@ def link_errors() -> tuple[type[BaseException], ...]:
     """What the port raises when the board goes away: pyserial's error, the OS's, and on
     POSIX termios's, which is no OSError (``flush`` drains with ``tcdrain``, and a
     vanished pseudo-terminal makes that fail with EIO)."""
-    import serial
-
     found: tuple[type[BaseException], ...] = (serial.SerialException, OSError)
     with contextlib.suppress(ImportError):
-        import termios
+        import termios  # lazy: POSIX only
 
         found += (termios.error,)
     return found
@@ -204,8 +204,6 @@ class SerialValveBoard(Backend):
 
     # ------------------------------------------------------------------ connection
     def open(self) -> None:
-        import serial
-
         try:
             self._port = serial.serial_for_url(self.url, baudrate=self.baudrate, timeout=POLL,
                                                write_timeout=self.timeout)
@@ -367,7 +365,6 @@ class SerialValveBoard(Backend):
 
     def _ask(self, command: str, parse: Callable[[str], T]) -> T:
         """Send ``command`` and parse the reply; retry garbled or missing replies."""
-
         problem = ""
         verb = command.split()[0]
         for _attempt in range(self.retries + 1):

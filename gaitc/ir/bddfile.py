@@ -30,7 +30,7 @@ from gaitc.ir.controller import (
     integers_from_json,
     integers_to_json,
 )
-from gaitc.ir.spec import Semantics
+from gaitc.ir.spec import SEMANTICS, Semantics
 
 #: The single roots every symbolic controller has, and the per-goal lists.
 SINGLE_ROOTS: Final = ("winning", "env_init", "sys_init", "env_trans")
@@ -212,8 +212,6 @@ def is_symbolic(data: Any) -> bool:
 
 def symbolic_from_dict(data: Any, filename: str = "<controller>") -> SymbolicController:
     """Check and convert a parsed symbolic controller file."""
-    from gaitc.ir.spec import SEMANTICS
-
     span = Span(filename, 1, 1)
     _need(is_symbolic(data), "not a symbolic controller file", span)
     extras = data["gaitc"]

@@ -13,16 +13,18 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
+import numpy as np
+
 from gaitc.diagnostics import UsageError
 from gaitc.gaitgraph.robot import MODEL_SECTIONS, Robot
+from gaitc.models.active_passive.model import loaded_model
 from gaitc.models.gait_graph import ModelGait, ModelGraph, build_graph, find_gaits, valve_states
 from gaitc.models.motion import LoadedModel
+from gaitc.models.spring_damper.description import load_spring_damper
+from gaitc.models.spring_damper.model import SpringDamperModel
 
 
 def _spring_damper(path: str | Path) -> LoadedModel:
-    from gaitc.models.spring_damper.description import load_spring_damper
-    from gaitc.models.spring_damper.model import SpringDamperModel
-
     robot = load_spring_damper(path)
     model = SpringDamperModel(robot)
     rest = model.rest_state([(False,) * robot.valve_count])
@@ -35,8 +37,6 @@ def _spring_damper(path: str | Path) -> LoadedModel:
 
 
 def _active_passive(path: str | Path) -> LoadedModel:
-    from gaitc.models.active_passive.model import loaded_model
-
     return loaded_model(path)
 
 
@@ -73,8 +73,6 @@ def sampled_states(count: int, max_open: int, limit: int, seed: int) -> list[tup
     """At most ``limit`` valve states of ``count`` valves with at most ``max_open`` open:
     all of them when they are few enough, else the vented state and a seeded random sample
     of the others (the model's counterpart of thesis 2.5.1's random valve states)."""
-    import numpy as np
-
     every = valve_states(count, max_open)
     if len(every) <= limit:
         return every

@@ -49,7 +49,9 @@ from gaitc.sim.environments import (
 )
 from gaitc.sim.events import Event, Surprise, parse_event
 from gaitc.sim.jumps import breaking, entered, forced, jump
+from gaitc.sim.map_view import run_view
 from gaitc.sim.play import Losses, Play, pursued
+from gaitc.sim.recovery import Fallback
 from gaitc.sim.replay import HINT, follow, last_step, recorded, step_span
 from gaitc.sim.run import Run, Step, checked_steps, save_run
 from gaitc.sim.simulator import Simulator, Verdicts
@@ -367,7 +369,6 @@ class Player:
         index = len(self._played)
         pursuing = self.domain.goals.index(last.goals[last.goal]) if last.goals else 0
         if self._fallback is None:
-            from gaitc.sim.recovery import Fallback
 
             self._fallback = Fallback(self.session.monitor.spec, self.domain, self.semantics)
         jumped = jump(sim, self._fallback, index, last.node, request, pursuing,
@@ -548,6 +549,4 @@ class Player:
                 f"step {self.step}, {len(self.choices())} moves>")
 
     def _repr_svg_(self) -> str:
-        from gaitc.sim.map_view import run_view
-
         return run_view(self.run()).svg()

@@ -21,9 +21,16 @@ class Graph:
     """An rclpy context with an executor thread; a context manager that shuts both down."""
 
     def __init__(self, ros_args: Sequence[str] = ()) -> None:
+        # lazy: the ros extra (rclpy) may be missing; gaitc ros then names the extra
         import rclpy
+
+        # lazy: the ros extra (rclpy) may be missing; gaitc ros then names the extra
         from rclpy.context import Context
+
+        # lazy: the ros extra (rclpy) may be missing; gaitc ros then names the extra
         from rclpy.executors import SingleThreadedExecutor
+
+        # lazy: the ros extra (rclpy) may be missing; gaitc ros then names the extra
         from rclpy.signals import SignalHandlerOptions
 
         self.context = Context()
@@ -53,6 +60,7 @@ class Graph:
         return node
 
     def _spin(self) -> None:
+        # lazy: the ros extra (rclpy) may be missing; gaitc ros then names the extra
         from rclpy.executors import ExternalShutdownException
 
         try:

@@ -120,6 +120,7 @@ class ControllerNode:
     def __init__(self, graph: Graph, strategy: StrategyView, domain: Domain, monitor: Monitor,
                  primitives: Mapping[str, ValveSequence] | None, options: NodeOptions, *,
                  spec_file: str = "", controller_file: str = "") -> None:
+        # lazy: the ros extra (rclpy) may be missing; gaitc ros then names the extra
         from rclpy.node import Node
 
         self.graph = graph
@@ -172,7 +173,10 @@ class ControllerNode:
                     ) -> NodeOptions:
         """Declare the node's parameters with ``options`` as defaults and read them back
         (``--ros-args -p name:=value`` overrides a default)."""
+        # lazy: the ros extra may be missing; gaitc ros then names the extra
         from rcl_interfaces.msg import ParameterDescriptor
+
+        # lazy: the ros extra (rclpy) may be missing; gaitc ros then names the extra
         from rclpy.exceptions import ParameterException
 
         node = self.node

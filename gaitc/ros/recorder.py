@@ -21,6 +21,7 @@ class Recorder:
 
     def __init__(self, graph: Graph, topics: Sequence[Topic], recording: Recording,
                  name: str = "gaitc_recorder") -> None:
+        # lazy: the ros extra (rclpy) may be missing; gaitc ros then names the extra
         from rclpy.node import Node
 
         self.recording = recording

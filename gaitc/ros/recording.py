@@ -18,7 +18,26 @@ from types import TracebackType
 from typing import TYPE_CHECKING, Any, BinaryIO
 
 from gaitc.diagnostics import UsageError
-from gaitc.ros.topics import Topic
+from gaitc.ros.topics import (
+    DIAGNOSTICS,
+    GAIT,
+    HAZARDS,
+    LEG_HEALTH,
+    REGION,
+    TOPICS,
+    VALVES,
+    Topic,
+    diagnostics_message,
+    hazards_message,
+    health_message,
+    present,
+    step_status,
+    stop_status,
+    text_message,
+    valve_pattern,
+)
+from gaitc.sim.events import ALLOWED_NOTE
+from gaitc.solver.progress import goal_titles
 from ltlcompiler.model import GaitKind
 
 if TYPE_CHECKING:
@@ -106,6 +125,7 @@ class Recording:
     """An MCAP file being written: one channel per topic (ROS 2 profile, CDR messages)."""
 
     def __init__(self, path: str | Path) -> None:
+        # lazy: the ros extra (mcap) may be missing; gaitc ros then names the extra
         from mcap.writer import Writer
 
         self.path = Path(path)
@@ -153,6 +173,7 @@ class Recording:
         """``message`` (an rclpy message) in CDR by the schema of ``topic``'s channel, with
         mcap-ros2-support's encoder: the same message gives the same bytes (rclpy's
         serializer leaves its alignment padding unset)."""
+        # lazy: the ros extra (mcap) may be missing; gaitc ros then names the extra
         from mcap_ros2._dynamic import serialize_dynamic  # the encoder of mcap_ros2.writer
 
         kind = self._types[topic]
@@ -190,7 +211,10 @@ class Recorded:
 
 def read(path: str | Path) -> Iterator[Recorded]:
     """The messages of an MCAP recording in log-time order, decoded."""
+    # lazy: the ros extra (mcap) may be missing; gaitc ros then names the extra
     from mcap.reader import make_reader
+
+    # lazy: the ros extra (mcap) may be missing; gaitc ros then names the extra
     from mcap_ros2.decoder import DecoderFactory
 
     with Path(path).open("rb") as handle:
@@ -215,25 +239,6 @@ def write_run(run: Run, model: Model, monitor: Monitor,
     the command (``target_region``, ``gait``, ``valves``) and ``/diagnostics`` (the monitor's
     verdict checked again with ``monitor``, the run's surprises and the goals kept), then
     the vent at the end.  Returns the messages written by topic."""
-    from gaitc.ros.topics import (
-        DIAGNOSTICS,
-        GAIT,
-        HAZARDS,
-        LEG_HEALTH,
-        REGION,
-        TOPICS,
-        VALVES,
-        diagnostics_message,
-        hazards_message,
-        health_message,
-        present,
-        step_status,
-        stop_status,
-        text_message,
-        valve_pattern,
-    )
-    from gaitc.sim.events import ALLOWED_NOTE
-    from gaitc.solver.progress import goal_titles
 
     hazards = tuple(h.name for h in model.hazards)
     no_gait = next(g.name for g in model.gaits if g.kind is GaitKind.NONE)

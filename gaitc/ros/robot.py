@@ -72,6 +72,7 @@ class RobotNode:
 
     def __init__(self, graph: Graph, strategy: StrategyView, domain: Domain, monitor: Monitor,
                  environment: Environment, options: RobotOptions, spec_file: str = "") -> None:
+        # lazy: the ros extra (rclpy) may be missing; gaitc ros then names the extra
         from rclpy.node import Node
 
         self.strategy, self.domain, self.monitor = strategy, domain, monitor

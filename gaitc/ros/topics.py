@@ -106,6 +106,7 @@ def require() -> None:
 def qos(topic: Topic) -> QoSProfile:
     """The QoS of ``topic``: reliable everywhere, so that no step is lost; commands are
     transient-local (a late subscriber gets the current gait, as a latched topic did)."""
+    # lazy: the ros extra (rclpy) may be missing; gaitc ros then names the extra
     from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
 
     durable = topic.flow is Flow.COMMAND
@@ -123,6 +124,7 @@ def qos_words(topic: Topic) -> str:
 
 def stamp(nanoseconds: int) -> Any:
     """A ``builtin_interfaces/Time`` of ``nanoseconds`` since the epoch."""
+    # lazy: the ros extra may be missing; gaitc ros then names the extra
     from builtin_interfaces.msg import Time
 
     return Time(sec=nanoseconds // 1_000_000_000, nanosec=nanoseconds % 1_000_000_000)
@@ -206,6 +208,7 @@ def goal_values(kept: Sequence[str], lost: Sequence[str]) -> tuple[tuple[str, st
 
 def diagnostics_message(status: Status, hardware_id: str, at: int) -> Any:
     """The ``/diagnostics`` array holding ``status``, stamped ``at`` ns."""
+    # lazy: the ros extra may be missing; gaitc ros then names the extra
     from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
 
     entry = DiagnosticStatus(level=bytes([status.level]), name=STATUS_NAME,

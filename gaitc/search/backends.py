@@ -15,12 +15,14 @@ from pathlib import Path
 from gaitc.core.modes import BackendKind, SearchMethod
 from gaitc.diagnostics import UsageError
 from gaitc.gaitgraph.robot import Robot
+from gaitc.search.goal_search import graph_batches
 from gaitc.search.goals import Goal
 from gaitc.search.growth import Grower
 from gaitc.search.physics_walker import PhysicsWalker
 from gaitc.search.planners import Planner, Settings
 from gaitc.search.plans import GaitPlan
 from gaitc.search.predictions import PREDICTIONS, has_model
+from gaitc.search.registry import goal_search
 from gaitc.search.walker import Mismatch, SimulatedWalker
 
 #: The backends a gait search can learn on (the serial board measures no displacement).
@@ -58,9 +60,6 @@ def open_session(
     max_open: int = 1,
 ) -> Session:
     """The first plan for ``goal`` over ``predictions`` and the walker of ``backend``."""
-    from gaitc.search.goal_search import graph_batches
-    from gaitc.search.registry import goal_search
-
     entry = goal_search(method)
     settings = settings or Settings()
     mismatch = mismatch or Mismatch(seed=settings.seed)

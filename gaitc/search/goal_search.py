@@ -21,6 +21,7 @@ import numpy as np
 from gaitc.diagnostics import UsageError
 from gaitc.gaitgraph.graph import GaitGraph, random_states
 from gaitc.gaitgraph.robot import Robot, RobotFileError, load_robot
+from gaitc.models.catalogue import chosen_model, sampled_states
 from gaitc.search.goals import Goal, parse_goal
 from gaitc.search.planners import Planner, SearchLimitError, Settings
 from gaitc.search.plans import GaitPlan
@@ -245,8 +246,6 @@ def model_planner(
     (``model``, by default the one it declares; thesis 4.2.2) with valve states of at most
     ``max_open`` open valves (at most ``max_states`` of them, a seeded sample beyond), and
     the predictions it planned on."""
-    from gaitc.models.catalogue import chosen_model, sampled_states
-
     if max_open < 1:
         raise UsageError("--max-open must be at least 1")
     if max_states < 1:

@@ -18,10 +18,14 @@ from typing import TYPE_CHECKING, Any
 from gaitc.core.modes import BackendKind, SearchMethod
 from gaitc.diagnostics import GaitcError
 from gaitc.gaitgraph.robot import Robot
+from gaitc.search.backends import open_session
 from gaitc.search.cycles import Point, run_cycle, whole_cycle
+from gaitc.search.drawing import learning_svg
+from gaitc.search.goal_search import goal_for
 from gaitc.search.goals import Goal
 from gaitc.search.planners import Planner, SearchLimitError, Settings
 from gaitc.search.plans import GaitPlan
+from gaitc.search.stepwise import replanning_cycle
 from gaitc.search.transitions import Step, TransitionModel
 from gaitc.search.walker import Mismatch, SimulatedWalker
 
@@ -84,8 +88,6 @@ class Learned:
         return self.summary()
 
     def _repr_svg_(self) -> str:
-        from gaitc.search.drawing import learning_svg
-
         final = self.final or self.first
         return learning_svg(self.first, final, [it.path for it in self.iterations], self.changed)
 
@@ -157,7 +159,6 @@ def learn(
                 break
             began = time.perf_counter()
             if planner.replans_from_anywhere:
-                from gaitc.search.stepwise import replanning_cycle
 
                 cycle = replanning_cycle(planner, walker, plan.edges, measured, threshold, changed)
             else:
@@ -285,9 +286,6 @@ def learn_gait(
     spring-damper model, with ``mismatch.noise`` on every measurement).  ``grow``: when the
     robot's removals leave no gait, add the kinematic graph's next batch of valve states
     (:mod:`gaitc.search.growth`) instead of stopping."""
-    from gaitc.search.backends import open_session
-    from gaitc.search.goal_search import goal_for
-
     session = open_session(
 
         robot=robot,

@@ -10,6 +10,7 @@ import json
 from dataclasses import dataclass, field
 from typing import Any
 
+from gaitc.search.drawing import plan_svg
 from gaitc.search.goals import Goal
 from gaitc.search.transitions import Step, TransitionModel, compose
 
@@ -100,8 +101,6 @@ class GaitPlan:
         return self.table()
 
     def _repr_svg_(self) -> str:
-        from gaitc.search.drawing import plan_svg
-
         return plan_svg(self)
 
     def to_dict(self) -> dict[str, Any]:

@@ -21,8 +21,10 @@ from pathlib import Path
 from gaitc.core.modes import SearchMethod
 from gaitc.diagnostics import Diagnostic, SpecSemanticError
 from gaitc.gaitgraph import pairing
+from gaitc.gaitgraph.cycles import parse_direction
 from gaitc.gaitgraph.pairing import ValveSequence
 from gaitc.gaitgraph.robot import load_robot
+from gaitc.models.catalogue import load_model
 from gaitc.search.registry import direction_search, legs_sentence, pressurised
 from ltlcompiler.model import Gait
 
@@ -54,9 +56,6 @@ def model_primitive(gait: Gait, path: Path, model: str, method: SearchMethod | N
                     seed: int = 0) -> ValveSequence:
     """The best gait of ``gait``'s legs toward its primitive's direction in the chapter 4
     ``model`` of the robot file ``path``, as :func:`gaitc.gaits` with those legs finds it."""
-    from gaitc.gaitgraph.cycles import parse_direction
-    from gaitc.models.catalogue import load_model
-
     prim = gait.primitive
     assert prim is not None and prim.direction is not None and prim.robot is not None
     span = prim.span or gait.span

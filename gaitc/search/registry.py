@@ -28,8 +28,13 @@ from pathlib import Path
 from types import MappingProxyType
 from typing import TYPE_CHECKING, Final
 
+import numpy as np
+
 from gaitc.core.modes import SearchMethod
 from gaitc.diagnostics import UsageError
+from gaitc.gaitgraph.search import search
+from gaitc.models.catalogue import ModelSearch, sampled_states, search_gaits
+from gaitc.models.gait_graph import ModelGait, cycle_motion, valve_states
 from gaitc.search.goal_search import FirstPlan, first_planner, model_planner
 from gaitc.search.goals import Goal
 from gaitc.search.planners import HybridPlanner, Planner, Settings, TreePlanner
@@ -97,8 +102,6 @@ class DirectionSearch(SearchEntry):
     def kinematic(self, robot: Robot, direction: tuple[float, float], seed: int = 0,
                   max_states: int = 10_000) -> SearchResult:
         """Gaits of the chapter 2 kinematic graph toward the unit vector ``direction``."""
-        from gaitc.gaitgraph.search import search
-
         return search(robot, direction, self.graph_method(robot, max_states), seed, max_states)
 
     def model(self, loaded: LoadedModel, direction: tuple[float, float], *, max_open: int = 1,
@@ -108,8 +111,6 @@ class DirectionSearch(SearchEntry):
         valves.  With ``legs`` (in firing order) only their valves open, a gait must
         pressurise each of them, and it starts at the first state where ``legs[0]`` is
         pressurised (thesis 3.4.1: the gait's actuators fire in the order it names them)."""
-        from gaitc.models.catalogue import ModelSearch, sampled_states, search_gaits
-
         if self.not_on_models is not None:
             raise UsageError(self.not_on_models)
         if max_open < 1:
@@ -263,10 +264,6 @@ def leg_states(valve_legs: Sequence[str], legs: Sequence[str], max_open: int, li
     """The valve states of at most ``max_open`` open valves that open only valves of
     ``legs`` (the vented state first); a seeded sample of ``limit`` of them when there are
     more."""
-    import numpy as np
-
-    from gaitc.models.gait_graph import valve_states
-
     mine = [i for i, leg in enumerate(valve_legs) if leg in legs]
     every: list[tuple[bool, ...]] = []
     for sub in valve_states(len(mine), max_open):
@@ -294,8 +291,6 @@ def pressurised(gait: ModelGait, valve_legs: Sequence[str]) -> tuple[str, ...]:
 def fired_first(gait: ModelGait, valve_legs: Sequence[str], leg: str) -> ModelGait:
     """``gait`` started at its first state in which ``leg`` is pressurised (the same cycle;
     the net motion is that of the new start's body frame)."""
-    from gaitc.models.gait_graph import ModelGait, cycle_motion
-
     opened = [any(on and name == leg for name, on in zip(valve_legs, s, strict=True))
               for s in gait.states]
     k = opened.index(True) if True in opened else 0

@@ -11,6 +11,7 @@ from typing import TYPE_CHECKING
 
 import pydot
 
+from gaitc.diagnostics import UsageError
 from gaitc.sim.domain import model_goals
 from gaitc.sim.graphics import Picture, html
 from gaitc.sim.placement import positions
@@ -273,7 +274,6 @@ def spec_view(model: Model) -> Picture:
 def run_view(run: Run, max_steps: int = DEFAULT_MAX_STEPS) -> Picture:
     """A run on its map (needs ``run.model``, set by the simulator or by the caller)."""
     if run.model is None:
-        from gaitc.diagnostics import UsageError
 
         raise UsageError("this run has no model attached; draw it with map_view(model, run)")
     return map_view(run.model, run, max_steps)

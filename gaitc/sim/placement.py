@@ -12,6 +12,8 @@ from __future__ import annotations
 
 from collections import deque
 
+import networkx as nx
+
 from ltlcompiler.model import Model
 
 #: (row, column) step of each direction; row 0 is north, as in a grid.
@@ -71,7 +73,6 @@ def positions(model: Model, cell: float) -> dict[str, tuple[float, float]]:
     regions = [r.name for r in model.regions]
     if len(fixed) == len(regions):
         return {name: (x * cell, y * cell) for name, (x, y) in fixed.items()}
-    import networkx as nx
 
     graph = nx.Graph()
     graph.add_nodes_from(regions)

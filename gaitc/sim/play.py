@@ -20,6 +20,8 @@ from collections import deque
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 
+import networkx as nx
+
 from gaitc.ir.controller import Controller
 from gaitc.ir.evaluation import evaluate
 from gaitc.ir.spec import GR1Spec
@@ -173,7 +175,6 @@ class Losses:
     def _safe_loops(self) -> tuple[frozenset[int], ...]:
         """The strongly connected sets of nodes without a forced dead end that hold a loop."""
         if self._loops is None:
-            import networkx as nx
 
             graph = nx.DiGraph()
             safe = [n for n, lv in enumerate(self.level) if lv is None]

@@ -20,6 +20,7 @@ from dataclasses import dataclass
 
 from gaitc.sim.condensation import Condition, Decision, Move, condense
 from gaitc.sim.domain import Domain, State
+from gaitc.sim.strategy import Strategy
 from gaitc.sim.view import StrategyView, reachable
 
 HAZARD, GOAL = "hazard", "goal"
@@ -237,8 +238,6 @@ def controller_policy(
     nodes within ``steps`` moves of the start (at most ``cap``; a symbolic controller is
     always bounded, by default to :data:`SYMBOLIC_STEPS` moves); ``max_rules`` as for
     :func:`project`."""
-    from gaitc.sim.strategy import Strategy
-
     if steps is None and isinstance(strategy, Strategy):
         return project(strategy, domain, max_rules=max_rules)
     bound = SYMBOLIC_STEPS if steps is None else steps

@@ -18,6 +18,7 @@ from gaitc.diagnostics import GaitcError, ScenarioError, Span, UsageError, sourc
 from gaitc.diagnostics.files import decode_text, read_input, write_atomically
 from gaitc.diagnostics.versions import RUN
 from gaitc.sim.events import Surprise
+from gaitc.sim.map_view import run_view
 
 if TYPE_CHECKING:
     from ltlcompiler.model import Model
@@ -157,8 +158,6 @@ class Run:
                 f"{self.environment or 'an environment'}, {held}{stopped}>")
 
     def _repr_svg_(self) -> str:
-        from gaitc.sim.map_view import run_view
-
         return run_view(self).svg()
 
     def add(self, step: Step) -> None:

@@ -24,6 +24,10 @@ from gaitc.sim.environments import (
     StochasticEnvironment,
 )
 from gaitc.sim.monitor import Monitor
+from gaitc.sim.rates import Rates, StepLaw, load_rates
+from gaitc.sim.replay import RunEnvironment
+from gaitc.sim.run import read_jsonl
+from gaitc.sim.scenario import Scenario, ScriptedEnvironment, load_scenario
 
 if TYPE_CHECKING:
     from gaitc.sim.scenario import Scenario
@@ -117,8 +121,6 @@ def environment(opponent: Opponent | Scenario | Environment, bound: Session, see
                 ) -> Environment:
     """The environment ``opponent`` names for a run of ``bound`` (``seed`` for the random
     one), or ``opponent`` itself when it already is one."""
-    from gaitc.sim.scenario import Scenario, ScriptedEnvironment, load_scenario
-
     if isinstance(opponent, Environment):
         return opponent
     if isinstance(opponent, Scenario):
@@ -128,14 +130,11 @@ def environment(opponent: Opponent | Scenario | Environment, bound: Session, see
     if opponent.kind == EnvironmentKind.ADVERSARIAL:
         return AdversarialEnvironment()
     if opponent.kind == EnvironmentKind.STOCHASTIC:
-        from gaitc.sim.rates import Rates, StepLaw, load_rates
 
         rates = Rates() if opponent.rates is None else load_rates(opponent.rates, bound.model)
         return StochasticEnvironment(StepLaw(bound.model, rates.with_wear(opponent.wear)), seed)
     assert opponent.file is not None  # a scripted opponent reads a file (__post_init__)
     if opponent.replays_run:
-        from gaitc.sim.replay import RunEnvironment
-        from gaitc.sim.run import read_jsonl
 
         return RunEnvironment(read_jsonl(opponent.file), bound.strategy.inputs,
                               bound.domain.legs)

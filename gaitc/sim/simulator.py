@@ -22,6 +22,7 @@ from gaitc.sim.events import ALLOWED_NOTE, Event, Surprise, broken_words
 from gaitc.sim.jumps import Jump, forced, jump
 from gaitc.sim.monitor import Monitor, Violation
 from gaitc.sim.play import pursued
+from gaitc.sim.recovery import Fallback
 from gaitc.sim.run import Run, Step, Summary, dropped_at
 from gaitc.sim.strategy import InputKey, Strategy, StrategyView
 
@@ -305,8 +306,6 @@ class Simulator:
               opts: SurpriseOptions) -> Jump:
         """Where the run goes after the request at ``node`` broke an assumption
         (:func:`gaitc.sim.jumps.jump`, with this run's games)."""
-        from gaitc.sim.recovery import Fallback
-
         if self._fallback is None:
             self._fallback = opts.fallback or Fallback(self.monitor.spec, self.domain,
                                                        opts.semantics)

@@ -13,6 +13,7 @@ from gaitc.diagnostics import ControllerError, Span
 from gaitc.ir.bits import bits_mismatch, spec_bits
 from gaitc.ir.controller import Controller, ControllerKind
 from gaitc.ir.spec import GR1Spec
+from gaitc.sim.monitor import compile_formula
 from gaitc.sim.view import Indexed, InputKey, NodeReading, StrategyView
 
 __all__ = ["Indexed", "InputKey", "NodeReading", "Strategy", "StrategyView", "explicit",
@@ -98,8 +99,6 @@ def strategy_from_controller(controller: Controller, spec: GR1Spec, file: str = 
 def _initial_nodes(
     spec: GR1Spec, variables: tuple[str, ...], values: list[tuple[int, ...]]
 ) -> tuple[int, ...]:
-    from gaitc.sim.monitor import compile_formula
-
     checks = [compile_formula(c.formula, variables) for c in spec.env_init + spec.sys_init]
     return tuple(n for n, row in enumerate(values) if all(fn(row + row) for fn in checks))
 

@@ -10,7 +10,6 @@ answer allowed by ρs becomes a successor.
 
 from __future__ import annotations
 
-from collections import deque
 from dataclasses import dataclass
 
 from gaitc.diagnostics import SolverError
@@ -18,7 +17,8 @@ from gaitc.ir.controller import Controller, ControllerKind, ControllerNode
 from gaitc.ir.cuddlib import cudd
 from gaitc.ir.spec import Semantics
 from gaitc.solver.canonical import REPORT_EVERY, assignments, fix, primed, smallest, spec_integers
-from gaitc.solver.game import Limits, too_large
+from gaitc.solver.exploration import Exploration
+from gaitc.solver.game import Limits
 from gaitc.solver.symbolic import BDDNode, SymbolicSpec
 
 State = tuple[int, ...]
@@ -133,22 +133,11 @@ def extract_counterstrategy(
     ins, outs = list(sym.input_bits), list(sym.output_bits)
     pre = ins + outs
     post_in, post_out = primed(ins), primed(outs)
-    index: dict[tuple[State, int, int], int] = {}
-    nodes: list[tuple[State, int, int]] = []
-    trans: list[list[int]] = []
-    queue: deque[int] = deque()
+    found: Exploration[tuple[State, int, int]] = Exploration("counter-strategy", max_nodes)
 
     def node_of(state: State, previous: tuple[int, int, int] | None) -> int:
         j, i = game.memory(state, previous)
-        key = (state, j, i)
-        if key not in index:
-            if max_nodes is not None and len(nodes) >= max_nodes:
-                raise too_large("counter-strategy", max_nodes)
-            index[key] = len(nodes)
-            nodes.append(key)
-            trans.append([])
-            queue.append(index[key])
-        return index[key]
+        return found.number((state, j, i))
 
     initial: list[int] = []
     if semantics == Semantics.ROBOTICS:
@@ -161,13 +150,11 @@ def extract_counterstrategy(
         if x is not None:
             for y in assignments(sym, fix(sym, sym.sys_init, ins, x), outs):
                 initial.append(node_of(x + y, None))
-    while queue:
-        n = queue.popleft()
+    for n, (state, j, i) in found:
         limits.check()
         if n % REPORT_EVERY == 0:
-            limits.report("extracting the counter-strategy", f"{len(nodes)} nodes found, "
-                          f"{len(queue)} to expand", n / len(nodes))
-        state, j, i = nodes[n]
+            limits.report("extracting the counter-strategy", f"{len(found.nodes)} nodes found, "
+                          f"{found.pending} to expand", n / len(found.nodes))
         k = game.layer_of(state)
         layer = game.layers[k]
         rings = layer.rings[j][i]
@@ -180,22 +167,22 @@ def extract_counterstrategy(
         if x is None:
             raise SolverError("internal error: the environment has no winning move")
         step = fix(sym, fix(sym, sym.sys_trans, pre, state), post_in, x)
-        targets = set()
+        targets = []
         for y in assignments(sym, step, post_out):
             move = {
                 b: bool(v) for b, v in zip(pre + post_in + post_out, state + x + y, strict=True)
             }
             met = sym.bdd.let(move, sym.env_live[i]) == sym.bdd.true
             nxt = (k, j, (i + 1) % len(sym.env_live) if met else i)
-            targets.add(node_of(x + y, nxt))
-        trans[n] = sorted(targets)
+            targets.append(node_of(x + y, nxt))
+        found.expanded(n, targets)
     return Controller(
         variables=tuple(pre),
         inputs=tuple(ins),
         outputs=tuple(outs),
         nodes=tuple(
             ControllerNode(i, state, tuple(t))
-            for (state, _, i), t in zip(nodes, trans, strict=True)
+            for (state, _, i), t in zip(found.nodes, found.successors, strict=True)
         ),
         initial=tuple(sorted(set(initial))),
         integers=spec_integers(sym),

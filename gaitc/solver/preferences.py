@@ -131,7 +131,7 @@ class MovePreferences:
         self._goals_at = [Cofactors(sym.bdd, g, self._fixed) for g in self.goals]
         self._post_inputs = sorted(sym.post_inputs)
         self._relations: dict[int, tuple[BDDNode, BDDNode]] = {}  # goal: (strategy, moves)
-        from gaitc.solver.canonical import REMEMBERED  # not on the path that only decides
+        from gaitc.solver.canonical import REMEMBERED  # lazy: not on the path that only decides
 
         self._chosen: dict[tuple[int, BDDNode, Any], BDDNode] = {}  # see choose
         self._chosen_limit = REMEMBERED

@@ -11,7 +11,6 @@ explored breadth-first from the initial states; among the allowed moves the pref
 from __future__ import annotations
 
 import time
-from collections import deque
 from collections.abc import Callable, Sequence
 from typing import TYPE_CHECKING
 
@@ -29,6 +28,7 @@ from gaitc.solver.canonical import (
     spec_integers,
 )
 from gaitc.solver.census import CENSUS_AFTER, CENSUS_SHARE, Census
+from gaitc.solver.exploration import Exploration
 from gaitc.solver.game import GameResult, Limits, goal_strategies, too_large
 from gaitc.solver.steps import Steps, given
 from gaitc.solver.symbolic import BDDNode, SymbolicSpec
@@ -70,21 +70,7 @@ def extract_strategy(
     post_in, post_out = primed(ins), primed(outs)
     post = post_in + post_out
     strategies = goal_strategies(sym, result)
-    index: dict[tuple[State, int], int] = {}
-    nodes: list[tuple[State, int]] = []
-    trans: list[list[int]] = []
-    queue: deque[int] = deque()
-
-    def node_of(state: State, goal: int) -> int:
-        key = (state, goal)
-        if key not in index:
-            if max_nodes is not None and len(nodes) >= max_nodes:
-                raise too_large("controller", max_nodes)
-            index[key] = len(nodes)
-            nodes.append(key)
-            trans.append([])
-            queue.append(index[key])
-        return index[key]
+    found: Exploration[tuple[State, int]] = Exploration("controller", max_nodes)
 
     def relation(goal: int) -> Steps[BDDNode]:
         moves = strategies[goal]
@@ -99,7 +85,7 @@ def extract_strategy(
     # CPU time of this thread, not the wall clock: the census's share of the work must not
     # depend on what else the machine runs.
     started = time.thread_time()
-    initial = [node_of(s, 0) for s in initial_states(sym, result.winning, semantics)]
+    initial = [found.number((s, 0)) for s in initial_states(sym, result.winning, semantics)]
     bdd = sym.bdd
     # The same few choices recur at state after state (one region and gait next, say):
     # their smallest move is found once (thesis 10 x 10 health 3: 7,974 choices, 106 kinds).
@@ -116,8 +102,7 @@ def extract_strategy(
     # The same few cofactors of ρe recur, so do the inputs they allow (a lift with 8 floors:
     # 12,032 states, 256 input sets).
     inputs_of = remembered(lambda u: assignments(sym, bdd.exist(sym.post_outputs, u), post_in))
-    while queue:
-        k = queue.popleft()
+    for k, (state, goal) in found:
         limits.check()
         if census is not None:
             spent = time.thread_time() - started
@@ -129,10 +114,10 @@ def extract_strategy(
                 if census.done:
                     census = None
         if k % REPORT_EVERY == 0:
-            found = f"{len(nodes)} of {expected}" if expected else f"{len(nodes)}"
-            limits.report("extracting the controller", f"{found} nodes found, "
-                          f"{len(queue)} to expand", k / (expected or len(nodes)))
-        state, goal = nodes[k]
+            count = len(found.nodes)
+            so_far = f"{count} of {expected}" if expected else f"{count}"
+            limits.report("extracting the controller", f"{so_far} nodes found, "
+                          f"{found.pending} to expand", k / (expected or count))
         at = dict(zip(pre, map(bool, state), strict=True))
         if functions is not None:
             moves = _moves_at(sym, bdd.let(at, functions[goal]), post, len(post_in))
@@ -148,18 +133,18 @@ def extract_strategy(
                 post_in=post_in,
                 smallest_of=smallest_of,
             )
-        targets = set()
+        targets = []
         for x, y in moves:
             move = at | dict(zip(post, map(bool, x + y), strict=True))
-            targets.add(node_of(x + y, next_goal(sym, goal, move)))
-        trans[k] = sorted(targets)
+            targets.append(found.number((x + y, next_goal(sym, goal, move))))
+        found.expanded(k, targets)
     return Controller(
         variables=tuple(pre),
         inputs=tuple(ins),
         outputs=tuple(outs),
         nodes=tuple(
             ControllerNode(goal, state, tuple(t))
-            for (state, goal), t in zip(nodes, trans, strict=True)
+            for (state, goal), t in zip(found.nodes, found.successors, strict=True)
         ),
         initial=tuple(sorted(set(initial))),
         integers=spec_integers(sym),

@@ -22,6 +22,7 @@ from gaitc.ir.formula import atoms
 from gaitc.ir.spec import SEMANTICS, GR1Spec, Semantics
 from gaitc.solver.game import ControllerTooLarge, Game, GameStats, Limits, Progress, out_of_memory
 from gaitc.solver.portfolio import STATIC, solve_chosen
+from gaitc.solver.preferences import MovePreferences
 from gaitc.solver.symbolic import Options, SymbolicSpec
 
 if TYPE_CHECKING:
@@ -175,7 +176,7 @@ def synthesize(
     ``prefer`` orders the preferences of :mod:`gaitc.solver.preferences` (empty: the first move in
     BDD order); ``costs`` gives the terms of the cost-based ones (e.g. a robot model's).
     """
-    from gaitc.ir.bddfile import SymbolicController
+    from gaitc.ir.bddfile import SymbolicController  # lazy: not on check's path (start-up)
 
     found = synthesize_controller(
         spec=spec,
@@ -205,8 +206,8 @@ def synthesize_controller(
 ) -> Controller | SymbolicController | None:
     """A controller for ``spec`` in ``form`` (:data:`FORMS`), or None when unrealizable;
     either form chooses its moves by ``prefer`` and ``costs`` (see :func:`synthesize`)."""
-    # here, not in run: run may be a forked racer's, and a forked process imports nothing
-    from gaitc.solver.preferences import MovePreferences
+    # lazy: here, not in run: run may be a forked racer's, and a forked process imports
+    # nothing; and not at the top, since they are not on check's path (start-up)
     from gaitc.solver.strategy import extract_strategy
     from gaitc.solver.symbolic_strategy import symbolic_controller
 
@@ -247,7 +248,8 @@ def counterstrategy(
     max_nodes: int | None = None,
 ) -> Controller | None:
     """The environment's winning strategy for an unrealizable ``spec``; None if realizable."""
-    from gaitc.solver.counter import extract_counterstrategy  # before run forks, as above
+    # lazy: before run forks, as above, and not on check's path (start-up)
+    from gaitc.solver.counter import extract_counterstrategy
 
     def run(chosen: Options, lim: Limits) -> Controller | None:
         sym, game = _game(spec, semantics, chosen, lim)

@@ -8,12 +8,15 @@ can keep alive satisfies every environment assumption while starving some system
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING
 
 from gaitc.ir.controller import Controller, ControllerKind
 from gaitc.ir.spec import GR1Spec, Semantics
 from gaitc.verifier.logic import Bits
 from gaitc.verifier.strategy import Check, VerificationReport, few_nodes
+
+if TYPE_CHECKING:
+    from dd.cudd import Function
 
 
 def verify_counterstrategy(
@@ -58,7 +61,7 @@ def _counter_initial(check: Check) -> None:
         if not any(logic.holds(theta_s, check.valuations[n]) for n in starts):
             check.problems.append("no initial node of the counter-strategy satisfies sys_init")
     else:  # default: for one input, every start the system may choose must be covered
-        groups: dict[Bits, Any] = {}
+        groups: dict[Bits, Function] = {}
         for n in starts:
             key = tuple(int(check.valuations[n][v]) for v in logic.inputs)
             cube = b.cube({v: check.valuations[n][v] for v in logic.outputs})

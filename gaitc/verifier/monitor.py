@@ -14,10 +14,13 @@ reported in the fields' words.
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping, Sequence
-from typing import Any, Protocol
+from typing import TYPE_CHECKING, Protocol
 
 from gaitc.verifier.logic import Logic
 from gaitc.verifier.symbolic import ReachCheck
+
+if TYPE_CHECKING:
+    from dd.cudd import BDD, Function
 
 
 class FieldLike(Protocol):
@@ -35,7 +38,7 @@ class FieldLike(Protocol):
     def value_of(self, bits: Mapping[str, object], primed: bool = False) -> int | None: ...
 
 
-def field_states(bdd: Any, fields: Sequence[FieldLike]) -> Any:
+def field_states(bdd: BDD, fields: Sequence[FieldLike]) -> Function:
     """Every field at one of its values, and every input at one of its next values."""
     out = bdd.true
     for f in fields:
@@ -47,14 +50,14 @@ def field_states(bdd: Any, fields: Sequence[FieldLike]) -> Any:
     return out
 
 
-def monitor_check(monitor_of: Callable[[Any], Any], fields: Sequence[FieldLike]
+def monitor_check(monitor_of: Callable[[BDD], Function], fields: Sequence[FieldLike]
                   ) -> ReachCheck:
     """The check that a monitor (``monitor_of(bdd)``, a BDD over current bits and the
     inputs' next bits) is ρe on the reachable states and every value of ``fields`` (see
     the module text), for :func:`~gaitc.verifier.symbolic.verify_symbolic`."""
     inputs = [f for f in fields if f.is_input]
 
-    def check(logic: Logic, reached: Any) -> str | None:
+    def check(logic: Logic, reached: Function) -> str | None:
         bdd = logic.bdd
         rho_e = bdd.true
         for _, u in logic.clauses("env_trans"):

@@ -24,12 +24,15 @@ from __future__ import annotations
 
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING
 
 from gaitc.ir.bddfile import SymbolicController, materialize
 from gaitc.ir.spec import GR1Spec, Semantics
 from gaitc.verifier.strategy import MAX_PROBLEMS, VerificationReport
 from gaitc.verifier.symbolic import _fair_avoiding, _Loop, _reachable
+
+if TYPE_CHECKING:
+    from dd.cudd import BDD, Function
 
 
 @dataclass(frozen=True)
@@ -39,10 +42,10 @@ class FallbackRelations:
     goal its move relation and goal function."""
 
     kept: tuple[int, ...]
-    applies: Any
-    entry: Any
-    strategies: Sequence[Any]
-    goals: Sequence[Any]
+    applies: Function
+    entry: Function
+    strategies: Sequence[Function]
+    goals: Sequence[Function]
 
 
 @dataclass(frozen=True)
@@ -50,15 +53,15 @@ class RecoveryRelations:
     """The surprise handling as BDDs: the recoverable flag (s, x'), the recovery moves
     (s, x', y') and the fallbacks, tried in order."""
 
-    recoverable: Any
-    recover: Any
-    assumed: Any  # the assumption monitor (s, x'): must be ρe wherever a run can be
+    recoverable: Function
+    recover: Function
+    assumed: Function  # the assumption monitor (s, x'): must be ρe wherever a run can be
     fallbacks: Sequence[FallbackRelations] = field(default_factory=tuple)
 
 
 def verify_recovery(spec: GR1Spec, ctrl: SymbolicController,
-                    relations_of: Callable[[Any], RecoveryRelations],
-                    valid_inputs: Callable[[Any], Any],
+                    relations_of: Callable[[BDD], RecoveryRelations],
+                    valid_inputs: Callable[[BDD], Function],
                     semantics: Semantics | None = None) -> VerificationReport:
     """Prove the surprise handling of ``ctrl`` (its ordinary moves, as
     :func:`gaitc.compact.controller.to_symbolic` gives them) with the relations
@@ -116,8 +119,8 @@ def verify_recovery(spec: GR1Spec, ctrl: SymbolicController,
                               semantics=chosen, symbolic=True)
 
 
-def _play(loop: _Loop, reach: Any, strategies: Sequence[Any], edges: Any,
-          goals: Sequence[Any], what: str) -> list[str]:
+def _play(loop: _Loop, reach: Function, strategies: Sequence[Function], edges: Function,
+          goals: Sequence[Function], what: str) -> list[str]:
     """Completeness, safety and every goal of ``goals`` on the ordinary play from ``reach``."""
     b = loop.bdd
     rho_e, rho_s = loop.section("env_trans"), loop.section("sys_trans")
@@ -142,7 +145,7 @@ def _play(loop: _Loop, reach: Any, strategies: Sequence[Any], edges: Any,
     return problems
 
 
-def _monitor(loop: _Loop, here: Any, assumed: Any, what: str) -> list[str]:
+def _monitor(loop: _Loop, here: Function, assumed: Function, what: str) -> list[str]:
     """The monitor must tell ρe from a surprise on every state a run can be in."""
     rho_e = loop.section("env_trans")
     if here & ((assumed & ~rho_e) | (rho_e & ~assumed)) != loop.bdd.false:

@@ -10,7 +10,7 @@ from __future__ import annotations
 import html
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import networkx as nx
 
@@ -19,6 +19,9 @@ from gaitc.ir.bits import bits_mismatch
 from gaitc.ir.controller import Controller, ControllerKind
 from gaitc.ir.spec import SEMANTICS, GR1Spec, Semantics
 from gaitc.verifier.logic import Bits, Logic
+
+if TYPE_CHECKING:
+    from dd.cudd import Function
 
 MAX_PROBLEMS = 60
 
@@ -79,8 +82,8 @@ class Check:
         self.valuations: list[dict[str, bool]] = []
         self.graph: Any = nx.DiGraph()
         self.sccs = 0
-        self._conj: dict[tuple[str, Bits | None], Any] = {}
-        self._cubes: dict[tuple[int, tuple[str, ...]], Any] = {}
+        self._conj: dict[tuple[str, Bits | None], Function] = {}
+        self._cubes: dict[tuple[int, tuple[str, ...]], Function] = {}
         self._next: dict[tuple[int, int], bool] = {}
         self.integer_of = {b: (name, iv) for name, iv in controller.integers.items()
                            for b in iv.bits}
@@ -144,7 +147,7 @@ class Check:
         where = f" (next: {self.show(dst, names)})" if dst is not None and names else ""
         return ", ".join(r for r, _ in bad) + where
 
-    def conj(self, section: str, node: int | None) -> Any:
+    def conj(self, section: str, node: int | None) -> Function:
         """Conjunction of a section; with ``node``, its unprimed bits fixed to the node's state."""
         key = (section, None if node is None else tuple(self.ctrl.nodes[node].state))
         found = self._conj.get(key)
@@ -158,7 +161,7 @@ class Check:
             self._conj[key] = found
         return found
 
-    def next_cube(self, node: int, names: tuple[str, ...] | None = None) -> Any:
+    def next_cube(self, node: int, names: tuple[str, ...] | None = None) -> Function:
         """The primed cube of ``node``'s state (or of its ``names`` bits), cached per node."""
         names = self.logic.inputs + self.logic.outputs if names is None else names
         key = (node, names)
@@ -167,7 +170,7 @@ class Check:
             self._cubes[key] = self.logic.bdd.cube({n + "'": val[n] for n in names})
         return self._cubes[key]
 
-    def holds_next(self, u: Any, node: int) -> bool:
+    def holds_next(self, u: Function, node: int) -> bool:
         """Truth of ``u`` (a BDD over primed bits only) for the successor ``node``."""
         key = (int(u), node)
         found = self._next.get(key)

@@ -22,7 +22,7 @@ It shares no code with the solver's game (the file reader is pure data).
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping, Sequence
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from gaitc.ir.bddfile import SymbolicController, materialize
 from gaitc.ir.bitblast import bitblast
@@ -32,6 +32,9 @@ from gaitc.ir.cuddlib import cudd
 from gaitc.ir.spec import GR1Spec, Semantics, Variable
 from gaitc.verifier.logic import Logic
 from gaitc.verifier.strategy import MAX_PROBLEMS, VerificationReport
+
+if TYPE_CHECKING:
+    from dd.cudd import Function
 
 GOAL_BIT = "#goal"  # no spec name starts with '#', so the counter's bits cannot clash
 
@@ -58,7 +61,7 @@ class _Loop:
         self.post_out = {n + "'" for n in self.logic.outputs}
         self.source = spec  # the spec as written (integers whole), for the witnesses
 
-    def witness(self, bad: Any, moves: bool) -> tuple[dict[str, bool], str]:
+    def witness(self, bad: Function, moves: bool) -> tuple[dict[str, bool], str]:
         """One assignment of the non-empty ``bad`` (over the state, the next inputs and,
         with ``moves``, the next outputs), and its words: the state, the inputs the
         environment chooses and the move, each variable at its value as the spec names it
@@ -74,20 +77,20 @@ class _Loop:
             words += f", moving to {_values(self.source.outputs, found, chr(39))}"
         return found, words
 
-    def section(self, name: str) -> Any:
+    def section(self, name: str) -> Function:
         out = self.bdd.true
         for _, u in self.logic.clauses(name):
             out &= u
         return out
 
-    def goals(self, name: str) -> list[Any]:
+    def goals(self, name: str) -> list[Function]:
         return [u for _, u in self.logic.clauses(name)] or [self.bdd.true]
 
-    def counter(self, g: int, primed: bool = False) -> Any:
+    def counter(self, g: int, primed: bool = False) -> Function:
         suffix = "'" if primed else ""
         return self.bdd.cube({b + suffix: bool(g >> k & 1) for k, b in enumerate(self.g)})
 
-    def advance(self, g: int, goals: list[Any]) -> Any:
+    def advance(self, g: int, goals: list[Function]) -> Function:
         """The counter's next value from g: past every goal the move satisfies, in turn."""
         n, out, met = len(goals), self.bdd.false, self.bdd.true
         for t in range(n):
@@ -96,17 +99,17 @@ class _Loop:
             met &= here
         return out | (met & self.counter(g, primed=True))
 
-    def image(self, states: Any, trans: Any) -> Any:
+    def image(self, states: Function, trans: Function) -> Function:
         return self.bdd.let(self.rename, self.bdd.exist(set(self.pre), states & trans))
 
-    def pre_image(self, trans: Any, target: Any) -> Any:
+    def pre_image(self, trans: Function, target: Function) -> Function:
         primed = self.bdd.let(dict(zip(self.pre, self.post, strict=True)), target)
         return cudd.and_exists(trans, primed, set(self.post))
 
 
 #: A further check on the states a run reaches: given the verifier's reading of the spec and
 #: those states (current bits), the problem found, or None.
-ReachCheck = Callable[[Logic, Any], "str | None"]
+ReachCheck = Callable[[Logic, "Function"], "str | None"]
 
 
 def verify_symbolic(spec: GR1Spec, ctrl: SymbolicController,
@@ -200,12 +203,12 @@ def _values(variables: Sequence[Variable], found: Mapping[str, bool], mark: str)
     return ", ".join(out) or "nothing"
 
 
-def _goal_rules(loop: _Loop) -> list[tuple[str, Any]]:
+def _goal_rules(loop: _Loop) -> list[tuple[str, Function]]:
     found = loop.logic.clauses("sys_liveness")
     return found or [("the trivial goal", loop.bdd.true)]
 
 
-def _reachable(loop: _Loop, init: Any, trans: Any) -> Any:
+def _reachable(loop: _Loop, init: Function, trans: Function) -> Function:
     reach, frontier = init, init
     while frontier != loop.bdd.false:
         frontier = loop.image(frontier, trans) & ~reach
@@ -213,7 +216,8 @@ def _reachable(loop: _Loop, init: Any, trans: Any) -> Any:
     return reach
 
 
-def _fair_avoiding(loop: _Loop, avoiding: Any, env_goals: list[Any], within: Any) -> Any:
+def _fair_avoiding(loop: _Loop, avoiding: Function, env_goals: list[Function],
+                   within: Function) -> Function:
     """The states of ``within`` (closed under ``avoiding``) with a path of ``avoiding``
     edges crossing every environment goal infinitely often: νZ. ∧_i μY. Z ∧ EX over
     avoiding edges of (J^e_i ∧ Z) ∨ Y.  Each μY grows from the goal's image of Z by the images of

@@ -109,7 +109,7 @@ def test_the_gait_search_of_a_primitive_is_bounded(monkeypatch: pytest.MonkeyPat
         asked.append(max_states)
         return search_module.SearchResult(method, GaitGraph(robot), [], max_states, True)  # type: ignore[arg-type]
 
-    monkeypatch.setattr(search_module, "search", bounded)
+    monkeypatch.setattr(pairing, "search", bounded)  # the search pairing imported
     searched = _gait("north", ("L1", "L2"), Primitive(robot="robots/radial8.yaml",
                                                       direction="+y", method="reset"))
     with pytest.raises(SpecSemanticError, match=f"within {pairing.PAIRING_STATES} valve states"):
