@@ -60,6 +60,9 @@ if TYPE_CHECKING:  # the names of _MODULES, for the type checker (tests/cli/test
     from gaitc.api.compiling import emit as emit
     from gaitc.api.compiling import lint as lint
     from gaitc.api.compiling import separation as separation
+    from gaitc.api.deciding import SOLVERS as SOLVERS
+    from gaitc.api.deciding import Verdict as Verdict
+    from gaitc.api.deciding import check as check
     from gaitc.api.drawing import controller_policy as controller_policy
     from gaitc.api.drawing import draw_automaton as draw_automaton
     from gaitc.api.drawing import draw_map as draw_map
@@ -89,11 +92,8 @@ if TYPE_CHECKING:  # the names of _MODULES, for the type checker (tests/cli/test
     from gaitc.api.simulation import SurprisePolicy as SurprisePolicy
     from gaitc.api.simulation import session as session
     from gaitc.api.simulation import simulate as simulate
-    from gaitc.api.solving import SOLVERS as SOLVERS
     from gaitc.api.solving import Synthesis as Synthesis
     from gaitc.api.solving import Tolerance as Tolerance
-    from gaitc.api.solving import Verdict as Verdict
-    from gaitc.api.solving import check as check
     from gaitc.api.solving import counterstrategy as counterstrategy
     from gaitc.api.solving import synthesize as synthesize
     from gaitc.api.solving import tolerate as tolerate
@@ -136,9 +136,9 @@ _MODULES: dict[str, tuple[str, ...]] = {
         "SearchMethod", "Semantics",
     ),
     "gaitc.api.compiling": ("FORMATS", "OutputFormat", "emit", "lint", "separation"),
+    "gaitc.api.deciding": ("SOLVERS", "Verdict", "check"),
     "gaitc.api.solving": (
-        "SOLVERS", "Synthesis", "Tolerance", "Verdict", "check", "counterstrategy",
-        "synthesize", "tolerate", "verify",
+        "Synthesis", "Tolerance", "counterstrategy", "synthesize", "tolerate", "verify",
     ),
     "gaitc.api.answers": ("explain", "resilience"),
     "gaitc.api.chances": ("Chances", "ChancesOptions", "Rates", "chances"),

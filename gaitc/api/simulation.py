@@ -171,11 +171,13 @@ class Simulation:
     """What :func:`simulate_spec` ran: the run (None when the spec is unrealizable and no
     counter-strategy or recorded play stands in), whether a controller of the spec played
     it (False: a counter-strategy, a recorded play of an unrealizable spec, or nothing),
-    and each leg's number of health levels (the step table's reference)."""
+    each leg's number of health levels (the step table's reference) and the spec it was
+    loaded as (so a caller that records or draws the run does not load it again)."""
 
     run: Run | None
     realizable: bool
     full_health: dict[str, int] = field(default_factory=dict)
+    spec: Spec | None = field(default=None, compare=False)
 
     @property
     def environment(self) -> str | None:
@@ -219,14 +221,15 @@ def simulate_spec(spec: Spec | Session | str | Path,
         if isinstance(chosen_env, Opponent) and chosen_env.replays_run:
             assert chosen_env.file is not None
             run = _recorded(loaded, chosen_env.file, steps)
-            return Simulation(run, False, {leg.name: leg.health for leg in loaded.robot.legs})
+            return Simulation(run, False, {leg.name: leg.health for leg in loaded.robot.legs},
+                              loaded)
         if isinstance(chosen_env, Opponent) and chosen_env.kind == EnvironmentKind.ADVERSARIAL:
             bound = counter_session(loaded, semantics, progress)
         if bound is None:
-            return Simulation(None, False)
+            return Simulation(None, False, spec=loaded)
     if bound.strategy.kind == ControllerKind.COUNTERSTRATEGY and not violate:
         return Simulation(_counter_play(bound, chosen_env, steps, seed), False,
-                          bound.full_health)
+                          bound.full_health, loaded)
     if violate and bound.strategy.kind == ControllerKind.COUNTERSTRATEGY:
         raise UsageError("--violate makes the environment break its assumptions against a "
                          "controller; this spec is unrealizable and its counter-strategy "
@@ -236,7 +239,7 @@ def simulate_spec(spec: Spec | Session | str | Path,
                                 SurprisePolicy.parse(on_surprise, "--on-surprise"),
                                 Semantics.parse(semantics))
     return Simulation(_controller_play(bound, chosen_env, steps, seed, surprises), True,
-                      bound.full_health)
+                      bound.full_health, loaded)
 
 
 def _controller_play(bound: Session, env: Opponent | Scenario | Environment,

@@ -1,9 +1,9 @@
-"""Solving, as the facade offers it: realizability, verified controllers and
-counter-strategies for a spec given as a path, a loaded spec or its IR.
+"""Solving, as the facade offers it: verified controllers and counter-strategies for a
+spec given as a path, a loaded spec or its IR, and the controller files they are saved in.
 
-The work is :mod:`gaitc.forms.synthesis`'s (deciding, synthesizing in a form, proving);
-this module converts the arguments, and reads controller files through the one reader
-(:mod:`gaitc.forms.reader`).
+The work is :mod:`gaitc.forms.synthesis`'s (synthesizing in a form, proving); this module
+converts the arguments, and reads controller files through the one reader
+(:mod:`gaitc.forms.reader`).  Deciding alone is :mod:`gaitc.api.deciding`'s.
 """
 
 from __future__ import annotations
@@ -12,62 +12,44 @@ import time
 from collections.abc import Sequence
 from dataclasses import dataclass, replace
 from pathlib import Path
-from typing import TYPE_CHECKING, TypeVar
+from typing import TypeVar
 
+from gaitc.analysis.tolerance import ToleranceOptions, ToleranceReport, tolerance
+from gaitc.compact.controller import CompactController
 from gaitc.core.modes import FORM_CHOICES, ControllerKind, Form, form_choice
 from gaitc.core.spec import Spec, SpecLike, as_spec, resolve
+from gaitc.core.vocabulary import Vocabulary
 from gaitc.diagnostics import ControllerError, UsageError
 from gaitc.forms.base import Automaton
+from gaitc.forms.explicit import Layout, layout_for
+from gaitc.forms.reader import ControllerFile, check_belongs, parse_file, read_document
+from gaitc.forms.reader import read_controller as read_checked
+from gaitc.forms.registry import form_of
 from gaitc.forms.synthesis import (
     MAX_NODES,
-    SOLVERS,
     SolveOptions,
-    SolverName,
     Synthesis,
-    Verdict,
     compacted,
-    decide,
     prove,
     solve,
 )
+from gaitc.ir.bddfile import SymbolicController
+from gaitc.ir.quotient import merge_equivalent
 from gaitc.ir.spec import Semantics
 from gaitc.solver.preferences import PREFERENCES as PREFERENCES
 from gaitc.solver.preferences import preference_order as preference_order
 from gaitc.solver.progress import Progress
 from gaitc.solver.symbolic import Options
 from gaitc.solver.synthesis import Extraction
+from gaitc.verifier.strategy import VerificationReport as VerificationReport
 from ltlcompiler.encoding import EncodingName
 
-if TYPE_CHECKING:
-    from gaitc.analysis.tolerance import ToleranceReport
-    from gaitc.compact.controller import CompactController
-    from gaitc.core.vocabulary import Vocabulary
-    from gaitc.forms.reader import ControllerFile
-    from gaitc.ir.bddfile import SymbolicController
-    from gaitc.verifier.strategy import VerificationReport as VerificationReport
-
-__all__ = ["FORM_CHOICES", "MAX_NODES", "PREFERENCES", "SOLVERS", "Automaton",
-           "SolverName", "Synthesis", "Tolerance", "Verdict", "check", "compact", "controller_form",
+__all__ = ["FORM_CHOICES", "MAX_NODES", "PREFERENCES", "Automaton",
+           "Synthesis", "Tolerance", "compact", "controller_form",
            "counterstrategy", "preference_order", "read_controller", "read_once",
            "recorded_encoding", "synthesize", "tolerate", "verify", "vocabulary_of"]
 
 T = TypeVar("T")
-
-
-def check(spec: SpecLike, semantics: Semantics | str = Semantics.DEFAULT, solver: str = "embedded",
-          timeout: float | None = None, slugs: str | None = None,
-          options: Options | None = None, progress: Progress | None = None, *,
-          separation: bool = False) -> Verdict:
-    """Decide whether a controller exists for ``spec`` (:func:`gaitc.forms.synthesis.decide`).
-
-    ``semantics`` is ``default`` or ``robotics`` (:data:`gaitc.ir.spec.SEMANTICS`), ``solver``
-    ``embedded`` or ``slugs`` (then ``slugs`` names the binary, else ``$SLUGS`` or PATH).
-    With ``separation`` the embedded solver also checks, on the same build, that the spec
-    is well-separated (:func:`gaitc.separation`), in the verdict's ``.separation``.
-    Raises :class:`~gaitc.diagnostics.SolverError` when the solver cannot finish.
-    """
-    return decide(resolve(spec), semantics, solver, timeout, slugs, options, progress,
-                  separation=separation)
 
 
 def synthesize(spec: SpecLike, semantics: Semantics | str = Semantics.DEFAULT,
@@ -131,10 +113,6 @@ def tolerate(spec: SpecLike, k: int, semantics: Semantics | str = Semantics.DEFA
     when no surprise can be planned for (the most reached is 0) it is :func:`synthesize`'s
     controller, with its move preferences.
     """
-    # lazy: not on gaitc check's path (tests/codebase/test_startup_imports.py)
-    from gaitc.analysis.tolerance import ToleranceOptions, tolerance
-    from gaitc.ir.quotient import merge_equivalent
-
     written = form_choice(form)
     chosen = Semantics.parse(semantics, "semantics")
     bound = resolve(spec)
@@ -186,9 +164,6 @@ def vocabulary_of(spec: SpecLike, ctrl: SymbolicController) -> Vocabulary:
     """The fields a compact controller of ``spec`` decides in
     (:attr:`gaitc.core.spec.Spec.vocabulary`), refused when the symbolic controller ``ctrl``
     is of another spec."""
-    # lazy: not on gaitc check's path (tests/codebase/test_startup_imports.py)
-    from gaitc.forms.reader import check_belongs
-
     bound = as_spec(spec)
     check_belongs(ctrl, bound)
     return bound.vocabulary
@@ -207,9 +182,6 @@ def verify(spec: SpecLike,
     counter-strategy) realizes ``spec``, or defeats it; a path is read as a controller
     file.  ``semantics`` defaults to the one recorded in the controller
     (:func:`gaitc.forms.synthesis.prove`)."""
-    # lazy: not on gaitc check's path (tests/codebase/test_startup_imports.py)
-    from gaitc.forms.reader import ControllerFile, parse_file
-
     bound = as_spec(spec)
     automaton: Automaton
     if isinstance(controller, (str, Path, ControllerFile)):
@@ -228,9 +200,6 @@ def read_controller(path: str | Path | ControllerFile, spec: SpecLike) -> Automa
     checked against ``spec``: a file whose bits, integers or fields differ from the spec's
     is a :class:`~gaitc.diagnostics.ControllerError` naming the first difference
     (:mod:`gaitc.forms.reader`, the one reader every command uses)."""
-    # lazy: not on gaitc check's path (tests/codebase/test_startup_imports.py)
-    from gaitc.forms.reader import read_controller as read_checked
-
     return read_checked(path, as_spec(spec))
 
 
@@ -238,10 +207,6 @@ def controller_form(path: str | Path) -> Form:
     """The form of the controller file ``path`` (explicit, symbolic or compact), read from
     the file's header alone; either layout of an explicit controller
     (:func:`gaitc.forms.reader.read_document`)."""
-    # lazy: not on gaitc check's path (tests/codebase/test_startup_imports.py)
-    from gaitc.forms.reader import read_document
-    from gaitc.forms.registry import form_of
-
     return form_of(read_document(path))
 
 
@@ -250,9 +215,6 @@ def recorded_encoding(path: str | Path | ControllerFile) -> EncodingName | None:
     (a file of any form and layout, :func:`gaitc.forms.reader.read_document`, or a file
     read already); None also when the file cannot be read (the reader that follows names
     what is wrong)."""
-    # lazy: not on gaitc check's path (tests/codebase/test_startup_imports.py)
-    from gaitc.forms.reader import ControllerFile
-
     if isinstance(path, ControllerFile):
         return path.encoding
     try:
@@ -266,9 +228,6 @@ def read_once(controller: T) -> T | ControllerFile:
     so that a command asks its encoding and parses its controller from one reading;
     anything else as it is, and so is a path whose file cannot be read (the reader that
     follows names what is wrong)."""
-    # lazy: not on gaitc check's path (tests/codebase/test_startup_imports.py)
-    from gaitc.forms.reader import ControllerFile
-
     if not isinstance(controller, (str, Path)):
         return controller
     try:
@@ -285,9 +244,6 @@ def tables_hint(output: str | Path) -> str | None:
     """For a large explicit controller written as SLUGS's JSON (``NAME.json`` past
     :data:`LARGE_JSON` bytes), a hint that ``NAME.ctl.gz`` writes the compact tables layout
     (about 80 times smaller; docs/controller-format.md); None otherwise."""
-    # lazy: not on gaitc check's path (tests/codebase/test_startup_imports.py)
-    from gaitc.forms.explicit import Layout, layout_for
-
     path = Path(output)
     try:
         large = layout_for(path) is Layout.SLUGS_JSON and path.stat().st_size > LARGE_JSON

@@ -1,11 +1,12 @@
-"""Solving a spec: the verdict, and a controller or counter-strategy in a chosen form with
+"""Solving a spec for a controller: a strategy or counter-strategy in a chosen form, with
 its proof.
 
 The embedded BDD solver (:mod:`gaitc.solver`) or the SLUGS binary (:mod:`slugs_bridge.runner`)
-decides and synthesizes; a compact controller is made from the symbolic one through the
-form registry (:mod:`gaitc.forms.registry`); every automaton is then proved by the
-independent checker of :mod:`gaitc.verifier` (:func:`prove`), which shares no code with
-either solver.  :mod:`gaitc.api.solving` converts the facade's arguments and calls here.
+synthesizes; a compact controller is made from the symbolic one through the form registry
+(:mod:`gaitc.forms.registry`); every automaton is then proved by the independent checker of
+:mod:`gaitc.verifier` (:func:`prove`), which shares no code with either solver.  Deciding
+alone, without a controller, is :mod:`gaitc.forms.decision`'s.  :mod:`gaitc.api.solving`
+converts the facade's arguments and calls here.
 """
 
 from __future__ import annotations
@@ -14,81 +15,47 @@ import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, Final, Literal, Union, get_args
+from typing import TYPE_CHECKING, Any, Final, Union
 
 from gaitc.analysis.separation import preference_note, stay_separated
-from gaitc.analysis.separation import separation as separated
+from gaitc.compact.controller import CompactController
 from gaitc.core.modes import ControllerKind, Form
 from gaitc.core.presentation import table
 from gaitc.core.spec import Spec, as_spec
 from gaitc.diagnostics import SolverError, UsageError
 from gaitc.diagnostics.files import write_atomically
 from gaitc.forms.base import Automaton
+from gaitc.forms.decision import semantics_named, slugsin_text, solver_named, spec_name
+from gaitc.forms.reader import belongs, check_belongs
+from gaitc.forms.registry import entry
+from gaitc.ir.bddfile import SymbolicController
+from gaitc.ir.controller import Controller
+from gaitc.ir.costs import Cost
 from gaitc.ir.formula import unreachable
+from gaitc.ir.quotient import merge_equivalent
 from gaitc.ir.spec import GR1Spec, Semantics
+from gaitc.sim.automaton_view import automaton_view
+from gaitc.sim.domain import Domain
+from gaitc.sim.graphics import Picture
+from gaitc.sim.strategy import strategy_from_controller
 from gaitc.solver import synthesis
-from gaitc.solver.game import GameStats, Limits, out_of_memory
+from gaitc.solver.game import Limits, out_of_memory
 from gaitc.solver.preferences import preference_order
 from gaitc.solver.progress import Progress, Stage
-from gaitc.solver.symbolic import Options, SymbolicSpec
+from gaitc.solver.symbolic import Options
 from gaitc.solver.synthesis import Extraction
+from gaitc.verifier.strategy import VerificationReport
+from ltlcompiler.costs import model_costs
 from ltlcompiler.encoding import EncodingName
+from slugs_bridge import runner
 
 if TYPE_CHECKING:
     from gaitc.analysis.separation import Separation
-    from gaitc.compact.controller import CompactController
-    from gaitc.ir.bddfile import SymbolicController
-    from gaitc.ir.controller import Controller
-    from gaitc.ir.costs import Cost
-    from gaitc.sim.graphics import Picture
-    from gaitc.verifier.strategy import VerificationReport
 
-SolverName = Literal["embedded", "slugs"]
-#: ``embedded``: the BDD solver in :mod:`gaitc.solver`; ``slugs``: an installed SLUGS binary.
-SOLVERS: Final[tuple[SolverName, ...]] = get_args(SolverName)
 #: What the embedded solver leaves of a strategy: an automaton, BDDs, or none.
 Solved = Union["Controller", "SymbolicController", None]
 #: Above this many nodes ``synthesize`` keeps the controller symbolic (form ``auto``).
 MAX_NODES: Final = 100_000
-
-
-@dataclass(frozen=True)
-class Verdict:
-    """Whether a spec is realizable, how long deciding took, and the fixpoint statistics."""
-
-    file: str
-    realizable: bool
-    seconds: float
-    semantics: Semantics = Semantics.DEFAULT
-    solver: str = "embedded"
-    stats: GameStats | None = field(default=None, repr=False)
-    engine: str = ""  # embedded solver: the configuration that answered (gaitc.solver.portfolio)
-    #: The well-separation check made on the solver's own build, when :func:`decide` was
-    #: asked for it (``separation=True``) and the embedded solver decided.
-    separation: Separation | None = field(default=None, repr=False, compare=False)
-
-    def __repr__(self) -> str:
-        word = "realizable" if self.realizable else "unrealizable"
-        return (f"<gaitc.Verdict {self.file!r}: {word} in {self.seconds:.2f} s "
-                f"({self.solver} solver, {self.semantics} semantics)>")
-
-    def to_json(self) -> dict[str, Any]:
-        """The verdict for ``gaitc check --json`` (docs/json.md)."""
-        out: dict[str, Any] = {
-            "file": self.file, "verdict": "realizable" if self.realizable else "unrealizable",
-            "seconds": round(self.seconds, 3), "semantics": self.semantics,
-            "solver": self.solver, "engine": self.engine or None}
-        return out
-
-    def _repr_html_(self) -> str:
-        rows = [("verdict", "realizable" if self.realizable else "unrealizable"),
-                ("seconds", f"{self.seconds:.3f}"), ("solver", self.solver),
-                ("semantics", self.semantics)]
-        if self.engine:
-            rows.append(("engine", self.engine))
-        if self.stats is not None:
-            rows.append(("peak BDD nodes", str(self.stats.peak_nodes)))
-        return table(f"realizability of {self.file}", rows)
 
 
 @dataclass(frozen=True)
@@ -130,9 +97,6 @@ class Synthesis:
         """The controller's size in words: explicit nodes, or a symbolic one's BDD nodes."""
         if self.controller is None:
             return "none"
-        # lazy: not on gaitc check's path (tests/codebase/test_startup_imports.py)
-        from gaitc.forms.registry import entry
-
         size = entry(self.controller).size(self.controller)
         if self.symbolic_nodes is not None:
             size += (f"; the symbolic strategy it comes from has {self.symbolic_nodes} BDD "
@@ -145,7 +109,7 @@ class Synthesis:
         """The outcome for ``gaitc synth --json`` and ``counter --json`` (docs/json.md)."""
         form = None if self.controller is None else self.form
         out: dict[str, Any] = {
-            "file": _name(self.spec), "kind": self.kind,
+            "file": spec_name(self.spec), "kind": self.kind,
             "verdict": "realizable" if self.realizable else "unrealizable",
             "seconds": round(self.seconds, 3), "semantics": self.semantics,
             "solver": self.solver, "symbolic": form == Form.SYMBOLIC, "form": form,
@@ -155,9 +119,6 @@ class Synthesis:
             "verification": None if self.report is None else self.report.to_json(),
             "separation": self.separation}
         if self.controller is not None:
-            # lazy: not on gaitc check's path (tests/codebase/test_startup_imports.py)
-            from gaitc.forms.registry import entry
-
             out.update(entry(self.controller).size_json(self.controller))
             if out["compact"] is not None:
                 out["compact"]["symbolic_nodes"] = self.symbolic_nodes
@@ -169,9 +130,6 @@ class Synthesis:
         if self.controller is None:
             raise UsageError(f"there is no {self.kind}: the spec is "
                              f"{'realizable' if self.realizable else 'unrealizable'}")
-        # lazy: not on gaitc check's path (tests/codebase/test_startup_imports.py)
-        from gaitc.forms.registry import entry
-
         return entry(self.controller).form
 
     def save(self, path: str | Path, layout: str | None = None) -> None:
@@ -182,19 +140,10 @@ class Synthesis:
         if self.controller is None:
             raise UsageError(f"there is no {self.kind} to save: the spec is "
                              f"{'realizable' if self.realizable else 'unrealizable'}")
-        # lazy: not on gaitc check's path (tests/codebase/test_startup_imports.py)
-        from gaitc.forms.registry import entry
-
         write_atomically(path, entry(self.controller).to_file(self.controller, path, layout))
 
     def picture(self) -> Picture:
         """The automaton drawn in domain terms (needs a ``.gait`` spec and Graphviz)."""
-        # lazy: not on gaitc check's path (tests/codebase/test_startup_imports.py)
-        from gaitc.ir.controller import Controller
-        from gaitc.sim.automaton_view import automaton_view
-        from gaitc.sim.domain import Domain
-        from gaitc.sim.strategy import strategy_from_controller
-
         if self.controller is None:
             raise UsageError(f"there is no {self.kind} to draw")
         if not isinstance(self.controller, Controller):
@@ -228,65 +177,6 @@ class Synthesis:
         if self.separation is not None:
             rows.append(("well-separation", self.separation))
         return table(repr(self)[1:-1], rows)
-
-
-def _semantics(semantics: Semantics | str) -> Semantics:
-    return Semantics.parse(semantics, "semantics")
-
-
-def _solver(solver: str) -> str:
-    if solver not in SOLVERS:
-        raise UsageError(f"unknown solver '{solver}'; use one of {', '.join(SOLVERS)}")
-    return solver
-
-
-def _name(spec: Spec | GR1Spec) -> str:
-    return spec.path if isinstance(spec, Spec) else spec.name or "<spec>"
-
-
-def _slugsin(spec: GR1Spec) -> str:
-    # lazy: not on gaitc check's path (tests/codebase/test_startup_imports.py)
-    from gaitc.ir.bitblast import bitblast
-    from slugs_bridge.slugsin import emit_slugsin
-
-    return emit_slugsin(bitblast(spec))
-
-
-def decide(spec: Spec | GR1Spec, semantics: Semantics | str = Semantics.DEFAULT,
-           solver: str = "embedded", timeout: float | None = None, slugs: str | None = None,
-           options: Options | None = None, progress: Progress | None = None, *,
-           separation: bool = False) -> Verdict:
-    """Decide whether a controller exists for ``spec``.
-
-    ``semantics`` is ``default`` or ``robotics`` (:data:`gaitc.ir.spec.SEMANTICS`), ``solver``
-    ``embedded`` or ``slugs`` (then ``slugs`` names the binary, else ``$SLUGS`` or PATH).
-    With ``separation``, the embedded solver also checks that the spec is well-separated
-    on its own build (:func:`gaitc.analysis.separation.separation`), in ``.separation``.
-    Raises :class:`~gaitc.diagnostics.SolverError` when the solver cannot finish.
-    """
-    gr1 = spec.gr1 if isinstance(spec, Spec) else spec
-    started = time.monotonic()
-    semantics = _semantics(semantics)
-    if _solver(solver) == "slugs":
-        # lazy: not on gaitc check's path (tests/codebase/test_startup_imports.py)
-        from slugs_bridge.runner import run_slugs_check
-
-        result = run_slugs_check(_slugsin(gr1), semantics=semantics, timeout=timeout,
-                                 slugs=slugs)
-        return Verdict(_name(spec), result.realizable, result.seconds, semantics, solver)
-
-    also = None
-    if separation:
-
-        def also(sym: SymbolicSpec, check: Callable[[], None]) -> Separation:
-            return separated(spec, check, symbolic=sym)
-
-    try:
-        checked = synthesis.check(gr1, semantics, timeout, progress, options, also=also)
-    except MemoryError:
-        raise out_of_memory() from None
-    return Verdict(_name(spec), checked.realizable, time.monotonic() - started, semantics,
-                   solver, checked.stats, checked.engine, separation=checked.also)
 
 
 def _extraction(form: Form | None) -> Extraction:
@@ -325,11 +215,6 @@ def solve(spec: Spec | GR1Spec, kind: ControllerKind, semantics: Semantics,
           opts: SolveOptions | None = None) -> Synthesis:
     """A strategy (``kind`` STRATEGY) or a counter-strategy of ``spec`` as ``opts`` say,
     proved unless ``opts.check_it`` is False; its ``controller`` is None when none exists."""
-    # lazy: not on gaitc check's path (tests/codebase/test_startup_imports.py)
-    from gaitc.ir.bddfile import SymbolicController
-    from gaitc.ir.controller import Controller
-    from gaitc.ir.quotient import merge_equivalent
-
     opts = opts or SolveOptions()
     solver, timeout, slugs, progress = opts.solver, opts.timeout, opts.slugs, opts.progress
     form, prefer = opts.form, opts.prefer
@@ -345,7 +230,7 @@ def solve(spec: Spec | GR1Spec, kind: ControllerKind, semantics: Semantics,
     automaton: Automaton | None
     separation: str | None = None
     try:
-        if _solver(solver) == "slugs":
+        if solver_named(solver) == "slugs":
             if prefer is not None and order:
                 raise UsageError("move preferences need the embedded solver; use --prefer "
                                  "none with --solver slugs")
@@ -432,20 +317,14 @@ def _costs(spec: Spec | GR1Spec, order: Sequence[str]) -> tuple[Cost, ...]:
     """The robot model's move costs (:mod:`ltlcompiler.costs`) when ``order`` needs them."""
     if not isinstance(spec, Spec) or spec.model is None or set(order) <= {"goal"}:
         return ()
-    # lazy: not on gaitc check's path (tests/codebase/test_startup_imports.py)
-    from ltlcompiler.costs import model_costs
-
     return model_costs(spec.model, spec.encoding or EncodingName.ONEHOT)
 
 
 def _slugs_automaton(gr1: GR1Spec, kind: ControllerKind, semantics: Semantics,
                      timeout: float | None, slugs: str | None) -> Controller | None:
-    # lazy: not on gaitc check's path (tests/codebase/test_startup_imports.py)
-    from slugs_bridge import runner
-
     wanted = kind == ControllerKind.STRATEGY
     run = runner.run_slugs_synth if wanted else runner.run_slugs_counter
-    result = run(_slugsin(gr1), semantics=semantics, timeout=timeout, slugs=slugs)
+    result = run(slugsin_text(gr1), semantics=semantics, timeout=timeout, slugs=slugs)
     if result.realizable != wanted:
         return None
     if result.output is None:
@@ -460,10 +339,6 @@ def compacted(spec: Spec | GR1Spec, automaton: Automaton) -> CompactController:
     """The compact controller (:mod:`gaitc.compact`) of a controller of ``spec`` in any form
     (:meth:`gaitc.forms.base.ControllerForm.to_compact`), refused when it belongs to another
     spec; it is not proved here."""
-    # lazy: not on gaitc check's path (tests/codebase/test_startup_imports.py)
-    from gaitc.forms.reader import check_belongs
-    from gaitc.forms.registry import entry
-
     bound = as_spec(spec)
     check_belongs(automaton, bound)
     return entry(automaton).to_compact(bound, automaton)
@@ -475,13 +350,8 @@ def prove(spec: Spec | GR1Spec, automaton: Automaton, semantics: Semantics | str
     counter-strategy) realizes ``spec``, or defeats it: first that it belongs to the spec
     (its whole vocabulary), then its form's proof.  ``semantics`` defaults to the one
     recorded in the controller."""
-    # lazy: not on gaitc check's path (tests/codebase/test_startup_imports.py)
-    from gaitc.forms.reader import belongs
-    from gaitc.forms.registry import entry
-    from gaitc.verifier.strategy import VerificationReport
-
     bound = as_spec(spec)
-    chosen = _semantics(semantics or automaton.semantics)
+    chosen = semantics_named(semantics or automaton.semantics)
     form = entry(automaton)
     why = belongs(automaton, bound)
     if why is not None:  # the proof covers the whole file: its vocabulary is the spec's

@@ -53,7 +53,7 @@ def test_the_site_builds_strictly(tmp_path: Path) -> None:
     page = (tmp_path / "site" / "tutorial" / "index.html").read_text(encoding="utf-8")
     assert "draft.gait: unrealizable" in page and "--8<--" not in page
     assert (tmp_path / "site" / "tutorial" / "out" / "map.svg").exists()
-    assert "gaitc.api.solving.check" in (tmp_path / "site" / "reference" / "api" /
+    assert "gaitc.api.deciding.check" in (tmp_path / "site" / "reference" / "api" /
                                          "index.html").read_text(encoding="utf-8")
 
 

@@ -25,7 +25,7 @@ from hypothesis import strategies as st
 import gaitc
 from gaitc.core.modes import Outcome, Role
 from gaitc.diagnostics import UsageError
-from gaitc.forms.synthesis import decide
+from gaitc.forms.decision import decide
 from gaitc.ir.evaluation import evaluate
 from gaitc.ir.formula import Const, Expr, Not, Var, substitute
 from gaitc.ir.spec import Clause

@@ -21,7 +21,7 @@ sys.path.insert(0, str(ROOT))
 from bench.families.amba import amba_text  # noqa: E402
 from bench.families.gridworld import evasion_text, gridworld_text  # noqa: E402
 from bench.families.vmcai import arbiter_text, lift_text  # noqa: E402
-from gaitc.api.solving import check  # noqa: E402
+from gaitc.api.deciding import check  # noqa: E402
 from gaitc.core.spec import parse  # noqa: E402
 from gaitc.ir.manager import INITIAL_CACHE_SLOTS, manager  # noqa: E402
 from gaitc.ir.spec import GR1Spec  # noqa: E402

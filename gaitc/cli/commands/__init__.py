@@ -20,7 +20,7 @@ from typing import Final
 COMMANDS: Final = {
     "lint": "compiling",
     "compile": "compiling",
-    "check": "solving",
+    "check": "deciding",
     "synth": "solving",
     "counter": "solving",
     "verify": "solving",

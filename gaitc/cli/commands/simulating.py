@@ -180,7 +180,8 @@ def run_simulate(args: argparse.Namespace) -> int:
     if args.mcap:
         from gaitc.api.ros import record_run
 
-        record_run(played.run, args.spec, args.mcap, args.controller, encoding=args.encoding)
+        assert played.spec is not None  # a run was played, so its spec was loaded
+        record_run(played.run, played.spec, args.mcap)
     return report_run(played.run, played.full_health, played.run.environment, args.quiet,
                       out=args.out, as_json=args.json, realizable=played.realizable)
 

@@ -1,106 +1,50 @@
-"""The solving commands: ``check``, ``synth``, ``counter`` and ``verify``.
+"""The commands that make or read controllers: ``synth``, ``counter`` and ``verify``.
 
-Each parses its options, calls :func:`gaitc.check`, :func:`gaitc.synthesize`,
+Each parses its options (the solver's are :mod:`gaitc.cli.commands.deciding`'s, shared with
+``check``), calls :func:`gaitc.synthesize`, :func:`gaitc.tolerate`,
 :func:`gaitc.counterstrategy` or :func:`gaitc.verify` (:mod:`gaitc.api.solving`) and prints.
 """
 
 from __future__ import annotations
 
 import argparse
-import functools
 import sys
-import time
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import gaitc
-from gaitc.api.isolation import HardLimits, run_limited, solver_options
+from gaitc.api.isolation import run_limited
 from gaitc.api.modes import FORM_CHOICES, ControllerKind, EncodingName, Form, form_choice
-from gaitc.api.solving import MAX_NODES, SOLVERS, read_once, recorded_encoding
+from gaitc.api.solving import (
+    MAX_NODES,
+    VerificationReport,
+    read_once,
+    recorded_encoding,
+    tables_hint,
+)
 from gaitc.cli.commands.arguments import (
     add_prefer,
     output_file,
     positive_count,
-    positive_megabytes,
-    positive_seconds,
     positive_whole,
     semantics_of,
 )
-from gaitc.cli.exitcodes import ExitCode, exit_code_help
-from gaitc.cli.reporting import (
-    diagnostic_json,
-    document,
-    error_json,
-    exit_code_of,
-    print_json,
+from gaitc.cli.commands.deciding import (
+    EXIT_CODES,
+    Unasked,
+    hard_limits,
+    json_flag,
+    options_of,
+    solver_args,
+    solver_arguments,
 )
+from gaitc.cli.exitcodes import ExitCode
+from gaitc.cli.reporting import document, print_json
 from gaitc.cli.status import progress_display
-from gaitc.diagnostics import (
-    Diagnostic,
-    GaitcError,
-    UsageError,
-    render_diagnostic,
-    render_error,
-)
-
-if TYPE_CHECKING:
-    from gaitc.api.progress import Progress
-    from gaitc.api.solving import VerificationReport
-
-EXIT_CODES = exit_code_help({
-    ExitCode.OK: "every spec is realizable (check), the controller was written / verified",
-    ExitCode.USER: "an input file is wrong (syntax, names, malformed controller) or "
-    "verification failed",
-    ExitCode.UNREALIZABLE: "a spec is unrealizable (check, synth) or realizable (counter)",
-})
-
-
-def _common(p: argparse.ArgumentParser, solver: bool = True) -> None:
-    p.add_argument(
-        "--robotics-semantics",
-        action="store_true",
-        help="every initial state allowed by env_init and sys_init must be winning "
-        "(SLUGS --sysInitRoboticsSemantics); default: for every allowed input some output",
-    )
-    p.add_argument(
-        "--encoding",
-        choices=EncodingName.values(),
-        default=_Unasked(EncodingName.ONEHOT.value) if solver else None,
-        help="encoding of .gait specs (default onehot"
-        + ("; synth --tolerate: binary" if solver
-           else "; verify: the one recorded in the controller file") + ")",
-    )
-    if not solver:
-        return
-    p.add_argument("--solver", choices=SOLVERS, default="embedded")
-    p.add_argument("--slugs", metavar="PATH", help="the SLUGS binary (else $SLUGS or PATH)")
-    p.add_argument("--timeout", type=positive_seconds, metavar="SECONDS",
-                   help="stop after this long (exit 4; the solver is killed at most "
-                   "half a second later)")
-    p.add_argument("--memory-limit", type=positive_megabytes, metavar="MB",
-                   help="the most memory the solver process may take (exit 4 when it needs "
-                   "more)")
-    p.add_argument("--verbose", action="store_true",
-                   help="print each stage of the solve on a line of its own, with the "
-                   "solver's figures (rounds, BDD sizes); on a terminal a status line "
-                   "shows the stage and the time elapsed")
+from gaitc.diagnostics import UsageError
 
 
 def register(sub: Any) -> None:
     fmt = argparse.RawDescriptionHelpFormatter
-    p = sub.add_parser(
-        "check",
-        help="decide realizability of specs",
-        description="Decide whether a controller exists for each SPEC (.gait, .slugsin, "
-        ".structuredslugs); prints 'FILE: realizable (0.12 s)' per file.",
-        epilog=EXIT_CODES,
-        formatter_class=fmt,
-    )
-    p.add_argument("specs", nargs="+", metavar="SPEC")
-    p.add_argument("--json", action="store_true",
-                   help="one JSON object per file (docs/json.md)")
-    _common(p)
-    p.set_defaults(run=run_check)
-
     p = sub.add_parser(
         "synth",
         help="synthesize and verify a controller",
@@ -112,7 +56,7 @@ def register(sub: Any) -> None:
     p.add_argument("spec", metavar="SPEC")
     p.add_argument("-o", "--output", required=True, metavar="FILE", type=output_file)
     p.add_argument("--no-verify", action="store_true", help="skip the verification step")
-    _json(p)
+    json_flag(p)
     p.add_argument("--form", choices=FORM_CHOICES, default=None,
                    help="the controller's form: explicit (every node listed), symbolic "
                    "(BDDs; simulate, drive, verify and render map read it), compact "
@@ -137,7 +81,7 @@ def register(sub: Any) -> None:
                    "step), cache (a cache restores every leg), hazard, hazard-wear, or the "
                    "rule of an assumption of the spec (default: every one)")
     add_prefer(p)
-    _common(p)
+    solver_arguments(p)
     p.set_defaults(run=run_synth)
 
     p = sub.add_parser(
@@ -149,8 +93,8 @@ def register(sub: Any) -> None:
     )
     p.add_argument("spec", metavar="SPEC")
     p.add_argument("-o", "--output", required=True, metavar="FILE", type=output_file)
-    _json(p)
-    _common(p)
+    json_flag(p)
+    solver_arguments(p)
     p.set_defaults(run=run_counter)
 
     p = sub.add_parser(
@@ -163,91 +107,26 @@ def register(sub: Any) -> None:
     )
     p.add_argument("spec", metavar="SPEC")
     p.add_argument("controller", metavar="CONTROLLER")
-    _json(p)
-    _common(p, solver=False)
+    json_flag(p)
+    solver_arguments(p, solver=False)
     p.set_defaults(run=run_verify)
 
 
-# ---------------------------------------------------------------- helpers
-def _json(p: argparse.ArgumentParser) -> None:
-    p.add_argument("--json", action="store_true",
-                   help="print one JSON object instead of the text (docs/json.md)")
-
-
-def _limits(args: argparse.Namespace) -> HardLimits:
-    return HardLimits(args.timeout, getattr(args, "memory_limit", None))
-
-
-def _options(args: argparse.Namespace) -> Any:
-    return solver_options(getattr(args, "memory_limit", None))
-
-
-def _solver_args(args: argparse.Namespace, progress: Progress | None) -> dict[str, Any]:
-    return {"semantics": semantics_of(args), "solver": args.solver, "timeout": args.timeout,
-            "slugs": args.slugs, "options": _options(args), "progress": progress}
-
-
 # ---------------------------------------------------------------- commands
-def run_check(args: argparse.Namespace) -> int:
-    worst = ExitCode.OK
-    for path in args.specs:
-        started = time.monotonic()
-        record: dict[str, Any] = {"file": path, "semantics": semantics_of(args),
-                                  "solver": args.solver, "engine": None, "error": None,
-                                  "warnings": []}
-        try:
-            _options(args)  # a memory limit too small fails here, before the fork
-            verdict, warnings = run_limited(functools.partial(_check_one, path, args),
-                                            _limits(args))
-            record.update(verdict.to_json(), file=path, warnings=[
-                diagnostic_json(w) for w in warnings])
-            for warning in warnings:
-                print(render_diagnostic(warning), file=sys.stderr)
-            code = ExitCode.OK if verdict.realizable else ExitCode.UNREALIZABLE
-        except UsageError:
-            raise
-        except GaitcError as err:
-            record.update(verdict="error", error=error_json(err))
-            code = exit_code_of(err)
-            print(render_error(err), file=sys.stderr)
-        record.setdefault("seconds", round(time.monotonic() - started, 3))
-        if args.json:
-            print_json(document("check", record))
-        elif record["verdict"] != "error":
-            print(f"{path}: {record['verdict']} ({record['seconds']:.2f} s)", flush=True)
-        worst = max(worst, code, key=_SEVERITY.index)
-    return worst
-
-
-def _check_one(path: str, args: argparse.Namespace
-               ) -> tuple[gaitc.Verdict, tuple[Diagnostic, ...]]:
-    """Load and decide one spec (in the limited child process when there are limits; CUDD's
-    share of the memory limit is what is left once the spec is loaded), and check that it
-    is well-separated (its warnings)."""
-    spec = gaitc.load(path, args.encoding)
-    with progress_display(args.verbose) as progress:
-        verdict = gaitc.check(spec, separation=True, **_solver_args(args, progress))
-    separated = verdict.separation or gaitc.separation(spec)  # SLUGS decided: check here
-    return verdict, separated.warnings()
-
-
-_SEVERITY = (ExitCode.OK, ExitCode.UNREALIZABLE, ExitCode.USER, ExitCode.SOLVER)
-
-
 def _solve(args: argparse.Namespace, kind: ControllerKind
            ) -> tuple[gaitc.Spec, gaitc.Synthesis]:
-    _options(args)  # a memory limit too small fails here, before the fork
+    options_of(args)  # a memory limit too small fails here, before the fork
 
     def work() -> tuple[gaitc.Spec, gaitc.Synthesis]:
         spec = gaitc.load(args.spec, args.encoding)
         with progress_display(args.verbose) as progress:
             if kind == ControllerKind.COUNTERSTRATEGY:
-                return spec, gaitc.counterstrategy(spec, **_solver_args(args, progress))
+                return spec, gaitc.counterstrategy(spec, **solver_args(args, progress))
             return spec, gaitc.synthesize(spec, verify=not args.no_verify, form=_form(args),
                                           max_nodes=args.max_nodes, prefer=args.prefer,
-                                          **_solver_args(args, progress))
+                                          **solver_args(args, progress))
 
-    return run_limited(work, _limits(args))
+    return run_limited(work, hard_limits(args))
 
 
 def run_synth(args: argparse.Namespace) -> int:
@@ -280,13 +159,6 @@ def run_synth(args: argparse.Namespace) -> int:
     return _print_report(found.report)
 
 
-class _Unasked(str):
-    """An option's default, told apart from the same value given on the command line (a
-    command may choose another value when the user did not ask for one)."""
-
-    __slots__ = ()
-
-
 def _form(args: argparse.Namespace) -> Form | None:
     """The form ``--form``, ``--symbolic`` or ``--compact`` asks for (None: auto); two of
     them naming different forms is a :class:`UsageError`."""
@@ -307,7 +179,7 @@ TOLERATE_ENCODING_NOTE = ("synth --tolerate: solving in the binary encoding, who
 
 def _tolerate(args: argparse.Namespace) -> gaitc.Tolerance:
     """``synth --tolerate K``: the tolerance report and its controller (gaitc.tolerate)."""
-    _options(args)  # a memory limit too small fails here, before the fork
+    options_of(args)  # a memory limit too small fails here, before the fork
     if args.solver != "embedded":
         raise UsageError("--tolerate solves a game of its own with the embedded solver; drop "
                          "--solver slugs")
@@ -317,7 +189,7 @@ def _tolerate(args: argparse.Namespace) -> gaitc.Tolerance:
                          "winning move of the game with surprises")
 
     encoding = args.encoding
-    if isinstance(encoding, _Unasked) and str(args.spec).endswith(".gait"):
+    if isinstance(encoding, Unasked) and str(args.spec).endswith(".gait"):
         # issue 59: a six-legged robot's --tolerate 1 took over 300 s one-hot, 38 s binary
         encoding = EncodingName.BINARY
         print(f"note: {TOLERATE_ENCODING_NOTE}", file=sys.stderr)
@@ -328,10 +200,10 @@ def _tolerate(args: argparse.Namespace) -> gaitc.Tolerance:
             return gaitc.tolerate(spec, args.tolerate, semantics_of(args),
                                   breakable=args.breakable, form=form,
                                   max_nodes=args.max_nodes,
-                                  verify=not args.no_verify, options=_options(args),
+                                  verify=not args.no_verify, options=options_of(args),
                                   timeout=args.timeout, progress=progress)
 
-    return run_limited(work, _limits(args))
+    return run_limited(work, hard_limits(args))
 
 
 def _run_tolerate(args: argparse.Namespace) -> int:
@@ -367,8 +239,6 @@ def _run_tolerate(args: argparse.Namespace) -> int:
 
 def _hint_tables(output: str) -> None:
     """The hint of :func:`gaitc.api.solving.tables_hint`, on standard error."""
-    from gaitc.api.solving import tables_hint
-
     hint = tables_hint(output)
     if hint is not None:
         print(f"  hint: {hint}", file=sys.stderr)
