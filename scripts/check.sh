@@ -43,10 +43,14 @@ if [ "${FAST_ONLY:-0}" = 1 ]; then
     exit 0
 fi
 
-# The rest of the suite, on every core (pytest-xdist; GAITC_TEST_JOBS=1 runs it in one
-# process): each test module stays on one worker, so its module-scoped fixtures are made
-# once. tests/codebase passed above and is not run again.
-JOBS="${GAITC_TEST_JOBS:-auto}"
+# The rest of the suite, on one worker more than the cores (pytest-xdist; GAITC_TEST_JOBS=1
+# runs it in one process): many tests wait (on a child gaitc, the terminal player's frames,
+# a board's watchdog period), and the extra worker runs while they wait; on two cores three
+# workers took 13 min 24 s where two took 14 min 10 s (docs/background/testing.md).  Each
+# test module stays on one worker, so its module-scoped fixtures are made once.
+# tests/codebase passed above and is not run again.
+CORES="$(getconf _NPROCESSORS_ONLN 2>/dev/null || echo 1)"
+JOBS="${GAITC_TEST_JOBS:-$((CORES + 1))}"
 PARALLEL=()
 [ "$JOBS" = 1 ] || PARALLEL=(-n "$JOBS" --dist loadscope)
 echo "check: fast stage passed; the whole test suite (workers: $JOBS)" >&2

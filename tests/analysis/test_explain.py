@@ -372,11 +372,20 @@ def test_realizable_for_the_wrong_reason(name: str, code: str) -> None:
         assert [u.rule for u in why.warnings[0].units] == ["assumption (line 9): b"]
 
 
+#: The shipped examples that are unrealizable on purpose (each with its explanation in
+#: docs); every other one is realizable.  A new example must be placed here or not.
+UNREALIZABLE_EXAMPLES = frozenset({"unrealizable_2x2.gait", "thesis_robot_a_health2.gait"})
+
+
 def test_every_example_spec_is_explained() -> None:
+    """Each example's explanation gives its known verdict (pinned here, not asked of the
+    solver a second time: radial12's explanation alone takes half a minute)."""
+    explained = {}
     for path in sorted((ROOT / "specs").glob("*.gait")):
-        why = gaitc.explain(path, repairs=False)
-        assert why.realizable == gaitc.check(gaitc.load(path)).realizable, path
-    robot_b = gaitc.explain(ROOT / "specs" / "thesis_robot_b.gait")
+        explained[path.name] = why = gaitc.explain(path, repairs=False)
+        assert why.realizable is (path.name not in UNREALIZABLE_EXAMPLES), path
+    assert set(explained) >= UNREALIZABLE_EXAMPLES
+    robot_b = explained["thesis_robot_b.gait"]
     assert [w.code for w in robot_b.warnings] == ["unused-gaits"]
     assert "north_b, east_b, south_c, west_c" in robot_b.warnings[0].message
 

@@ -83,7 +83,7 @@ def digits(ctrl: CompactController, values: dict[str, int]) -> str:
     return "".join(DIGITS[values[f.name]] for f in ctrl.vocabulary.inputs)
 
 
-def test_the_board_makes_the_python_moves_for_10000_steps(
+def test_the_board_makes_the_python_moves_on_a_long_walk(
         robot_a: tuple[gaitc.Spec, CompactController], link: serial.Serial) -> None:
     spec, ctrl = robot_a
     assert _replay(spec, ctrl, link, (11, 12)) >= 2 * WALK
