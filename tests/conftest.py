@@ -1,7 +1,9 @@
 """Shared pytest options (``--update-golden`` rewrites tests/golden/ from the current
-output) and the fixtures several test files use: the two-leg shuttle spec ``tiny_spec``
-(specs/shuttle_2leg.gait, copied to a temporary folder) and its session ``tiny``, and
-``live_slugs``, the real SLUGS binary for the ``slugs``-marked family tests."""
+output), the ``slow`` mark of the functions listed in tests/slow_tests.txt (written by
+tools/slow_tests.py from measured times), and the fixtures several test files use: the
+two-leg shuttle spec ``tiny_spec`` (specs/shuttle_2leg.gait, copied to a temporary folder)
+and its session ``tiny``, and ``live_slugs``, the real SLUGS binary for the
+``slugs``-marked family tests."""
 
 from __future__ import annotations
 
@@ -10,8 +12,17 @@ from pathlib import Path
 
 import pytest
 from fake_board import TINY
+from slow_marks import listed_slow
 
 from gaitc.api.simulation import Session, session
+
+
+def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
+    """Mark ``slow`` every case of the functions tests/slow_tests.txt names."""
+    slow = listed_slow()
+    for item in items:
+        if item.nodeid.split("[", 1)[0] in slow:
+            item.add_marker(pytest.mark.slow)
 
 
 def pytest_addoption(parser: pytest.Parser) -> None:
