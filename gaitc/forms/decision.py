@@ -18,13 +18,11 @@ from gaitc.analysis.separation import separation as separated
 from gaitc.core.presentation import table
 from gaitc.core.spec import Spec
 from gaitc.diagnostics import UsageError
-from gaitc.ir.bitblast import bitblast
 from gaitc.ir.spec import GR1Spec, Semantics
 from gaitc.solver import synthesis
 from gaitc.solver.game import GameStats, out_of_memory
 from gaitc.solver.progress import Progress
 from gaitc.solver.symbolic import Options, SymbolicSpec
-from slugs_bridge.slugsin import emit_slugsin
 
 if TYPE_CHECKING:
     from gaitc.analysis.separation import Separation
@@ -92,6 +90,10 @@ def spec_name(spec: Spec | GR1Spec) -> str:
 
 def slugsin_text(spec: GR1Spec) -> str:
     """``spec`` bit-blasted and written in SLUGS's input format, for the SLUGS binary."""
+    # lazy: --solver slugs only; the embedded solver's check needs neither (start-up of check)
+    from gaitc.ir.bitblast import bitblast
+    from slugs_bridge.slugsin import emit_slugsin
+
     return emit_slugsin(bitblast(spec))
 
 
