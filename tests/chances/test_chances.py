@@ -14,17 +14,10 @@ from gaitc.sim.rates import load_rates
 stormpy = pytest.importorskip(
     "stormpy", reason="needs Storm's binding: pip install 'gaitc[chances]' (scripts/setup.sh)")
 
-# A corridor a - b - c: east uses L1, west uses L2, both of health 2 (one move to failure),
-# the cache in a.  The patrol is c, then a.
-CORRIDOR = """robot "corridor"
-legs L1..L2 health 2
-gait east uses L1 moves east
-gait west uses L2 moves west
-grid 1 x 3 cells a, b, c
-cache a
-start a
-visit c, a infinitely often
-"""
+#: The corridor a - b - c (tests/data/chances/corridor.gait): east uses L1, west uses L2,
+#: both of health 2 (one move to failure), the cache in a; the patrol is c, then a.
+CORRIDOR = (Path(__file__).resolve().parents[1] / "data" / "chances"
+            / "corridor.gait").read_text(encoding="utf-8")
 P, Q = 0.1, 0.2  # L1's and L2's chance of losing a level on a move
 RATES = f"wear:\n  legs: {{L1: {P}, L2: {Q}}}\n"
 

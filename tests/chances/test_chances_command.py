@@ -11,15 +11,9 @@ import pytest
 
 from gaitc.cli import main
 
-CORRIDOR = """robot "corridor"
-legs L1..L2 health 2
-gait east uses L1 moves east
-gait west uses L2 moves west
-grid 1 x 3 cells a, b, c
-cache a
-start a
-visit c, a infinitely often
-"""
+#: The corridor of tests/data/chances/corridor.gait (see test_chances.py).
+CORRIDOR = (Path(__file__).resolve().parents[1] / "data" / "chances"
+            / "corridor.gait").read_text(encoding="utf-8")
 
 
 @pytest.fixture
