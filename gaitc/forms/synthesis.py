@@ -34,9 +34,7 @@ from gaitc.ir.costs import Cost
 from gaitc.ir.formula import unreachable
 from gaitc.ir.quotient import merge_equivalent
 from gaitc.ir.spec import GR1Spec, Semantics
-from gaitc.sim.automaton_view import automaton_view
 from gaitc.sim.domain import Domain
-from gaitc.sim.graphics import Picture
 from gaitc.sim.strategy import strategy_from_controller
 from gaitc.solver import synthesis
 from gaitc.solver.game import Limits, out_of_memory
@@ -51,6 +49,7 @@ from slugs_bridge import runner
 
 if TYPE_CHECKING:
     from gaitc.analysis.separation import Separation
+    from gaitc.sim.graphics import Picture
 
 #: What the embedded solver leaves of a strategy: an automaton, BDDs, or none.
 Solved = Union["Controller", "SymbolicController", None]
@@ -144,6 +143,9 @@ class Synthesis:
 
     def picture(self) -> Picture:
         """The automaton drawn in domain terms (needs a ``.gait`` spec and Graphviz)."""
+        # lazy: pydot, only to draw (start-up of synth, simulate and the other commands)
+        from gaitc.sim.automaton_view import automaton_view
+
         if self.controller is None:
             raise UsageError(f"there is no {self.kind} to draw")
         if not isinstance(self.controller, Controller):
