@@ -98,12 +98,6 @@ def register(sub: Any) -> None:
     p.set_defaults(run=run_check)
 
 
-def json_flag(p: argparse.ArgumentParser) -> None:
-    """``--json``: one object printed instead of the text."""
-    p.add_argument("--json", action="store_true",
-                   help="print one JSON object instead of the text (docs/json.md)")
-
-
 def hard_limits(args: argparse.Namespace) -> HardLimits:
     """The limits the solver's process runs under (``--timeout``, ``--memory-limit``)."""
     return HardLimits(args.timeout, getattr(args, "memory_limit", None))

@@ -32,7 +32,6 @@ from gaitc.cli.commands.deciding import (
     EXIT_CODES,
     Unasked,
     hard_limits,
-    json_flag,
     options_of,
     solver_args,
     solver_arguments,
@@ -41,6 +40,12 @@ from gaitc.cli.exitcodes import ExitCode
 from gaitc.cli.reporting import document, print_json
 from gaitc.cli.status import progress_display
 from gaitc.diagnostics import UsageError
+
+
+def _json(p: argparse.ArgumentParser) -> None:
+    """``--json``: one object printed instead of the text."""
+    p.add_argument("--json", action="store_true",
+                   help="print one JSON object instead of the text (docs/json.md)")
 
 
 def register(sub: Any) -> None:
@@ -56,7 +61,7 @@ def register(sub: Any) -> None:
     p.add_argument("spec", metavar="SPEC")
     p.add_argument("-o", "--output", required=True, metavar="FILE", type=output_file)
     p.add_argument("--no-verify", action="store_true", help="skip the verification step")
-    json_flag(p)
+    _json(p)
     p.add_argument("--form", choices=FORM_CHOICES, default=None,
                    help="the controller's form: explicit (every node listed), symbolic "
                    "(BDDs; simulate, drive, verify and render map read it), compact "
@@ -93,7 +98,7 @@ def register(sub: Any) -> None:
     )
     p.add_argument("spec", metavar="SPEC")
     p.add_argument("-o", "--output", required=True, metavar="FILE", type=output_file)
-    json_flag(p)
+    _json(p)
     solver_arguments(p)
     p.set_defaults(run=run_counter)
 
@@ -107,7 +112,7 @@ def register(sub: Any) -> None:
     )
     p.add_argument("spec", metavar="SPEC")
     p.add_argument("controller", metavar="CONTROLLER")
-    json_flag(p)
+    _json(p)
     solver_arguments(p, solver=False)
     p.set_defaults(run=run_verify)
 
